@@ -1,0 +1,241 @@
+//! The command line: LIGGGHTS's single-dash flags (`-in`, `-var`, `-log`, ...) exactly as
+//! `liggghts` reads them, plus regolith's own subcommands (`run`, `check`, ...).
+
+use crate::commands::suggest::did_you_mean;
+
+/// Settings from LIGGGHTS-style flags.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct DeckOptions {
+    /// `-in FILE`: the script; standard input when absent.
+    pub input: Option<String>,
+    /// `-var NAME V1 V2 ...`, in order.
+    pub vars: Vec<(String, Vec<String>)>,
+    /// `-log FILE|none`; `log.liggghts` when absent.
+    pub log: Option<String>,
+    /// `-screen FILE|none`; standard output when absent.
+    pub screen: Option<String>,
+    /// `-echo none|screen|log|both`.
+    pub echo: Option<String>,
+    /// `-nocite`: accepted; regolith writes no citation file anyway.
+    pub nocite: bool,
+    /// `-seedtolerant`: accept random seeds that are not large primes.
+    pub seed_tolerant: bool,
+    /// `-restart RESTART DATAFILE`: convert a restart file to a data file and exit.
+    pub restart_to_data: Option<(String, String)>,
+    /// `-help`.
+    pub help: bool,
+}
+
+/// A command-line problem (exit status 2).
+#[derive(Debug, Clone, PartialEq)]
+pub struct UsageError {
+    /// What is wrong, in LIGGGHTS's words where it has them.
+    pub message: String,
+    /// Nearest valid flag or what was expected.
+    pub help: Option<String>,
+}
+
+/// The flags `liggghts` 3.8.0 accepts (long and short forms).
+pub const FLAGS: &[&str] = &[
+    "-echo",
+    "-e",
+    "-in",
+    "-i",
+    "-help",
+    "-h",
+    "-log",
+    "-l",
+    "-nocite",
+    "-nc",
+    "-partition",
+    "-p",
+    "-plog",
+    "-pl",
+    "-pscreen",
+    "-ps",
+    "-reorder",
+    "-ro",
+    "-restart",
+    "-r",
+    "-restart_offset",
+    "-roff",
+    "-screen",
+    "-sc",
+    "-var",
+    "-v",
+    "-suffix",
+    "-sf",
+    "-seedtolerant",
+    "-st",
+    "-cuda",
+    "-c",
+    "-domain",
+    "-uid",
+    "-thermo",
+    "-wb",
+];
+
+fn usage(message: impl Into<String>, help: Option<String>) -> UsageError {
+    UsageError {
+        message: message.into(),
+        help,
+    }
+}
+
+/// Parse LIGGGHTS-style flags (everything after the program name or subcommand).
+pub fn parse_deck_flags(args: &[String]) -> Result<DeckOptions, UsageError> {
+    let mut o = DeckOptions::default();
+    let mut i = 0;
+    let missing = |flag: &str, what: &str| {
+        usage(
+            "Invalid command-line argument",
+            Some(format!("{flag} needs {what}")),
+        )
+    };
+    while i < args.len() {
+        let flag = args[i].as_str();
+        let value = |n: usize| args.get(i + n).cloned();
+        match flag {
+            "-in" | "-i" => {
+                o.input = Some(value(1).ok_or_else(|| missing(flag, "a file name"))?);
+                i += 2;
+            }
+            "-log" | "-l" => {
+                o.log = Some(value(1).ok_or_else(|| missing(flag, "a file name or none"))?);
+                i += 2;
+            }
+            "-screen" | "-sc" => {
+                o.screen = Some(value(1).ok_or_else(|| missing(flag, "a file name or none"))?);
+                i += 2;
+            }
+            "-echo" | "-e" => {
+                let v = value(1).ok_or_else(|| missing(flag, "none, screen, log or both"))?;
+                if !["none", "screen", "log", "both"].contains(&v.as_str()) {
+                    return Err(usage(
+                        "Illegal echo command",
+                        Some(format!("-echo takes none, screen, log or both, not '{v}'")),
+                    ));
+                }
+                o.echo = Some(v);
+                i += 2;
+            }
+            "-var" | "-v" => {
+                // as liggghts: the name and first value are taken whatever they look like,
+                // further values run until the next word starting with '-'
+                let (Some(name), Some(first)) = (value(1), value(2)) else {
+                    return Err(missing(flag, "a name and at least one value"));
+                };
+                let mut values = vec![first];
+                let mut j = i + 3;
+                while j < args.len() && !args[j].starts_with('-') {
+                    values.push(args[j].clone());
+                    j += 1;
+                }
+                o.vars.push((name, values));
+                i = j;
+            }
+            "-nocite" | "-nc" => {
+                o.nocite = true;
+                i += 1;
+            }
+            "-seedtolerant" | "-st" => {
+                o.seed_tolerant = true;
+                i += 1;
+            }
+            "-help" | "-h" => {
+                o.help = true;
+                i += 1;
+            }
+            "-restart" | "-r" => {
+                let (Some(r), Some(d)) = (value(1), value(2)) else {
+                    return Err(missing(flag, "a restart file and a data file"));
+                };
+                o.restart_to_data = Some((r, d));
+                i += 3;
+            }
+            "-partition" | "-p" => {
+                let mut j = i + 1;
+                let mut worlds = Vec::new();
+                while j < args.len() && !args[j].starts_with('-') {
+                    worlds.push(args[j].clone());
+                    j += 1;
+                }
+                if worlds.is_empty() {
+                    return Err(missing(flag, "partition sizes"));
+                }
+                if worlds != ["1"] {
+                    return Err(usage(
+                        format!("{flag} {}: not supported yet", worlds.join(" ")),
+                        Some("regolith runs one partition; parallelism comes from threads".into()),
+                    ));
+                }
+                i = j;
+            }
+            _ if FLAGS.contains(&flag) => {
+                return Err(usage(
+                    format!("{flag}: not supported yet"),
+                    Some("supported: -in -var -log -screen -echo -nocite -seedtolerant -partition 1 -help -restart".into()),
+                ));
+            }
+            _ => {
+                let help = did_you_mean(flag, FLAGS).or_else(|| {
+                    (!flag.starts_with('-'))
+                        .then(|| format!("to run a deck, write: regolith -in {flag}"))
+                });
+                return Err(usage(
+                    format!("Invalid command-line argument: {flag}"),
+                    help,
+                ));
+            }
+        }
+    }
+    Ok(o)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(s: &str) -> Result<DeckOptions, UsageError> {
+        let v: Vec<String> = s.split_whitespace().map(str::to_string).collect();
+        parse_deck_flags(&v)
+    }
+
+    #[test]
+    fn liggghts_flags() {
+        let o = parse("-in in.deck -var v 10 -v list a b c -log log.txt -e screen -nc").unwrap();
+        assert_eq!(o.input.as_deref(), Some("in.deck"));
+        assert_eq!(
+            o.vars,
+            vec![
+                ("v".to_string(), vec!["10".to_string()]),
+                ("list".to_string(), vec!["a".into(), "b".into(), "c".into()])
+            ]
+        );
+        assert_eq!(o.log.as_deref(), Some("log.txt"));
+        assert_eq!(o.echo.as_deref(), Some("screen"));
+        assert!(o.nocite);
+    }
+
+    #[test]
+    fn negative_first_value_is_kept() {
+        let o = parse("-var x -5 -in a").unwrap();
+        assert_eq!(o.vars[0].1, vec!["-5".to_string()]);
+        assert_eq!(o.input.as_deref(), Some("a"));
+    }
+
+    #[test]
+    fn bad_flags_explain_themselves() {
+        let e = parse("-inn deck").unwrap_err();
+        assert!(e.message.contains("-inn"));
+        assert!(e.help.unwrap().contains("-in"));
+        assert!(parse("-var x").is_err());
+        assert!(parse("-in").is_err());
+        assert!(parse("-echo loud").is_err());
+        assert!(parse("-p 2 2")
+            .unwrap_err()
+            .message
+            .contains("not supported yet"));
+        assert!(parse("-p 1").is_ok());
+    }
+}

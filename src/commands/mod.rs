@@ -1,0 +1,181 @@
+//! The command registry: every command and style name LIGGGHTS 3.8.0 knows, and what regolith
+//! does with each. Script-language commands are executed by the interpreter
+//! ([`crate::script::interp`]); everything else arrives here as a [`CommandLine`].
+
+pub mod names;
+pub mod registry;
+pub mod suggest;
+
+use crate::error::{Diagnostic, Location};
+use crate::script::line::Word;
+use crate::script::system::{Mode, System};
+use crate::script::variables::Variables;
+
+pub use registry::validate_names;
+
+/// Keywords a formula may use for thermo values (LIGGGHTS 3.8.0's `Thermo::evaluate_keyword`).
+pub const THERMO_KEYWORDS: &[&str] = &[
+    "atoms",
+    "cella",
+    "cellalpha",
+    "cellb",
+    "cellbeta",
+    "cellc",
+    "cellgamma",
+    "cpu",
+    "cpuremain",
+    "cu",
+    "density",
+    "dt",
+    "elaplong",
+    "elapsed",
+    "erotate",
+    "fmax",
+    "fnorm",
+    "ke",
+    "lx",
+    "ly",
+    "lz",
+    "part",
+    "spcpu",
+    "step",
+    "time",
+    "tpcpu",
+    "vol",
+    "xhi",
+    "xlat",
+    "xlo",
+    "xy",
+    "xz",
+    "yhi",
+    "ylat",
+    "ylo",
+    "yz",
+    "zhi",
+    "zlat",
+    "zlo",
+];
+
+/// One command after substitution and word splitting.
+#[derive(Debug, Clone)]
+pub struct CommandLine {
+    /// The words, the command name first.
+    pub words: Vec<Word>,
+    /// The line as executed (comment removed, variables substituted).
+    pub text: String,
+    /// Where it came from.
+    pub location: Location,
+}
+
+impl CommandLine {
+    /// The command's name.
+    pub fn name(&self) -> &str {
+        &self.words[0].text
+    }
+
+    /// Argument `i` (0-based, after the name).
+    pub fn arg(&self, i: usize) -> Option<&str> {
+        self.words.get(i + 1).map(|w| w.text.as_str())
+    }
+
+    /// Number of arguments after the name.
+    pub fn nargs(&self) -> usize {
+        self.words.len() - 1
+    }
+
+    /// Byte range of argument `i` in [`CommandLine::text`] (the last word if `i` is past the end).
+    pub fn span(&self, i: usize) -> (usize, usize) {
+        let w = self
+            .words
+            .get(i.saturating_add(1))
+            .unwrap_or_else(|| self.words.last().expect("a command has a name"));
+        (w.start, w.end)
+    }
+}
+
+/// Everything below the script language. Until the simulation engine lands it knows which
+/// commands exist and reports the ones it cannot run yet.
+#[derive(Debug)]
+pub struct Engine {
+    /// Current timestep number.
+    pub timestep: i64,
+    /// Time-step size (s in SI units).
+    pub dt: f64,
+    /// Accept random seeds that are not primes above 10000 (`-seedtolerant`).
+    pub seed_tolerant: bool,
+    property_globals: Vec<String>,
+}
+
+impl Default for Engine {
+    fn default() -> Self {
+        Engine::new()
+    }
+}
+
+impl Engine {
+    /// An engine with no box and LIGGGHTS's default settings.
+    pub fn new() -> Engine {
+        Engine {
+            timestep: 0,
+            dt: 0.005,
+            seed_tolerant: false,
+            property_globals: Vec::new(),
+        }
+    }
+
+    /// The `clear` command: forget the simulation, keep the variables and settings.
+    pub fn clear(&mut self) {
+        let tolerant = self.seed_tolerant;
+        *self = Engine::new();
+        self.seed_tolerant = tolerant;
+    }
+
+    /// Whether `create_box` (or a restart/data file) has defined the simulation box.
+    pub fn box_exists(&self) -> bool {
+        false
+    }
+
+    /// Execute a non-script command.
+    pub fn execute(
+        &mut self,
+        cmd: &CommandLine,
+        sys: &mut System,
+        vars: &Variables,
+    ) -> Result<(), Diagnostic> {
+        let _ = (sys.mode, vars);
+        validate_names(cmd)?;
+        Err(Diagnostic::unsupported(registry::feature_name(cmd))
+            .with_source(&cmd.text, Some(registry::feature_span(cmd))))
+    }
+
+    /// Check a command's names without executing it.
+    pub fn validate_names(&self, cmd: &CommandLine) -> Result<(), Diagnostic> {
+        validate_names(cmd)?;
+        Err(Diagnostic::unsupported(registry::feature_name(cmd)))
+    }
+
+    /// True if a `fix property/global` with this variable name exists (the `if property_X` test).
+    pub fn has_property_global(&self, name: &str) -> bool {
+        self.property_globals.iter().any(|p| p == name)
+    }
+
+    /// Group functions of formulas (`count(all)` ...).
+    pub fn group_function(&self, name: &str, args: &[String], mode: Mode) -> Result<f64, String> {
+        let group = args.first().map(String::as_str).unwrap_or("");
+        if group != "all" {
+            return Err(match mode {
+                Mode::Check => crate::script::scope::UNKNOWN_QUERY.to_string(),
+                Mode::Run => "Group ID in variable formula does not exist".to_string(),
+            });
+        }
+        // no atoms exist before the engine creates them: every group sum is zero
+        match name {
+            "count" | "mass" | "charge" | "xcm" | "vcm" | "fcm" | "gyration" | "ke" | "angmom"
+            | "torque" | "inertia" | "omega" => Ok(0.0),
+            _ => Err(match mode {
+                Mode::Check => crate::script::scope::UNKNOWN_QUERY.to_string(),
+                Mode::Run => "Variable evaluation before simulation box is defined".to_string(),
+            }),
+        }
+    }
+}

@@ -1,0 +1,147 @@
+//! Name validation: is this a LIGGGHTS command, is its style one LIGGGHTS has, and is it
+//! spelled right. Misspellings get the nearest valid names.
+
+use crate::commands::names::{self, NameKind};
+use crate::commands::suggest::did_you_mean;
+use crate::commands::CommandLine;
+use crate::error::Diagnostic;
+
+/// Commands whose argument at `index` (0-based, after the command name) is a style name.
+const STYLED: &[(&str, usize, NameKind, &str)] = &[
+    ("atom_style", 0, NameKind::AtomStyle, "atom_style STYLE ..."),
+    ("pair_style", 0, NameKind::PairStyle, "pair_style STYLE ..."),
+    ("fix", 2, NameKind::FixStyle, "fix ID GROUP STYLE ..."),
+    (
+        "compute",
+        2,
+        NameKind::ComputeStyle,
+        "compute ID GROUP STYLE ...",
+    ),
+    (
+        "dump",
+        2,
+        NameKind::DumpStyle,
+        "dump ID GROUP STYLE N FILE ...",
+    ),
+    ("region", 1, NameKind::RegionStyle, "region ID STYLE ..."),
+    (
+        "run_style",
+        0,
+        NameKind::IntegrateStyle,
+        "run_style STYLE ...",
+    ),
+    ("min_style", 0, NameKind::MinimizeStyle, "min_style STYLE"),
+];
+
+/// The (command, style) a line names, e.g. `fix insert/stream` or `create_box`.
+pub fn feature_name(cmd: &CommandLine) -> String {
+    match STYLED.iter().find(|s| s.0 == cmd.name()) {
+        Some(&(name, index, _, _)) => match cmd.arg(index) {
+            Some(style) => format!("{name} {style}"),
+            None => name.to_string(),
+        },
+        None => cmd.name().to_string(),
+    }
+}
+
+/// Byte range of the command name through its style word, for "not supported yet" carets.
+pub fn feature_span(cmd: &CommandLine) -> (usize, usize) {
+    let start = cmd.words[0].start;
+    let end = match STYLED.iter().find(|s| s.0 == cmd.name()) {
+        Some(&(_, index, _, _)) if index < cmd.nargs() => cmd.span(index).1,
+        _ => cmd.words[0].end,
+    };
+    (start, end)
+}
+
+fn unknown(kind: NameKind, word: &str, cmd: &CommandLine, index: usize) -> Diagnostic {
+    let candidates = names::names(kind);
+    let help = did_you_mean(word, candidates)
+        .unwrap_or_else(|| format!("a {} known to LIGGGHTS 3.8.0", names::label(kind)));
+    Diagnostic::error(names::liggghts_message(kind, word))
+        .with_source(&cmd.text, Some(cmd.span(index)))
+        .with_help(help)
+}
+
+/// Check that the command and any style or contact sub-model it names exist in LIGGGHTS 3.8.0.
+pub fn validate_names(cmd: &CommandLine) -> Result<(), Diagnostic> {
+    let name = cmd.name();
+    if !names::COMMANDS.contains(&name) {
+        let help =
+            did_you_mean(name, names::COMMANDS).unwrap_or_else(|| "a LIGGGHTS command".into());
+        return Err(
+            Diagnostic::error(format!("Unknown command: {}", cmd.text.trim()))
+                .with_source(&cmd.text, Some((cmd.words[0].start, cmd.words[0].end)))
+                .with_help(help),
+        );
+    }
+    let Some(&(_, index, kind, usage)) = STYLED.iter().find(|s| s.0 == name) else {
+        return Ok(());
+    };
+    let Some(style) = cmd.arg(index) else {
+        return Err(Diagnostic::error(format!("Illegal {name} command"))
+            .with_source(&cmd.text, Some(cmd.span(index)))
+            .with_help(format!("expected: {usage}")));
+    };
+    if crate::script::interp::UNKNOWN_VALUE == style {
+        return Ok(());
+    }
+    if kind == NameKind::FixStyle && style.starts_with("mesh/surface") {
+        validate_mesh_modules(style, cmd, index)?;
+    } else if !names::names(kind).contains(&style) {
+        return Err(unknown(kind, style, cmd, index));
+    }
+    let model_start = match (name, style) {
+        ("pair_style", "gran") => Some(index + 1),
+        ("fix", "wall/gran") => Some(index + 1),
+        _ => None,
+    };
+    if let Some(start) = model_start {
+        validate_gran_models(cmd, start)?;
+    }
+    Ok(())
+}
+
+/// Mesh modules LIGGGHTS 3.8.0 composes into `fix mesh/surface/...` styles.
+pub const MESH_MODULES: &[&str] = &["liquidtransfer", "planar", "servo", "stress"];
+
+/// LIGGGHTS accepts any `mesh/surface[/module...]` fix style whose parts are mesh modules.
+fn validate_mesh_modules(style: &str, cmd: &CommandLine, index: usize) -> Result<(), Diagnostic> {
+    for part in style.split('/').skip(2) {
+        if !MESH_MODULES.contains(&part) {
+            let help = did_you_mean(part, MESH_MODULES)
+                .unwrap_or_else(|| format!("mesh modules: {}", MESH_MODULES.join(", ")));
+            return Err(Diagnostic::error(format!(
+                "unknown keyword in style definition: {style} ({part})"
+            ))
+            .with_source(&cmd.text, Some(cmd.span(index)))
+            .with_help(help));
+        }
+    }
+    Ok(())
+}
+
+/// Check `model X tangential Y cohesion Z rolling_friction W surface V` names.
+fn validate_gran_models(cmd: &CommandLine, start: usize) -> Result<(), Diagnostic> {
+    let mut i = start;
+    while let Some(key) = cmd.arg(i) {
+        let kind = match key {
+            "model" => NameKind::GranNormalModel,
+            "tangential" => NameKind::GranTangentialModel,
+            "cohesion" => NameKind::GranCohesionModel,
+            "rolling_friction" => NameKind::GranRollingModel,
+            "surface" => NameKind::GranSurfaceModel,
+            _ => return Ok(()),
+        };
+        let Some(value) = cmd.arg(i + 1) else {
+            return Err(Diagnostic::error(format!("Illegal {} command", cmd.name()))
+                .with_source(&cmd.text, Some(cmd.span(i)))
+                .with_help(format!("expected a {} after '{key}'", names::label(kind))));
+        };
+        if value != crate::script::interp::UNKNOWN_VALUE && !names::names(kind).contains(&value) {
+            return Err(unknown(kind, value, cmd, i + 1));
+        }
+        i += 2;
+    }
+    Ok(())
+}

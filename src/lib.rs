@@ -1,0 +1,12 @@
+//! regolith: a soft-sphere discrete-element solver that runs LIGGGHTS 3.8.0 decks unchanged.
+//!
+//! The crate is organised as the path a deck takes: [`script`] reads and expands the input
+//! language, [`commands`] maps every LIGGGHTS command and style name onto what regolith does
+//! with it, [`session`] runs or checks a whole deck, and [`error`] carries the file/line
+//! diagnostics every layer reports.
+
+pub mod cli;
+pub mod commands;
+pub mod error;
+pub mod script;
+pub mod session;

@@ -1,0 +1,167 @@
+//! `regolith`: run LIGGGHTS decks (`regolith -in in.deck`), or check, diff and convert.
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use regolith::cli::{parse_deck_flags, DeckOptions};
+use regolith::error::ExitStatus;
+use regolith::session;
+
+#[derive(Parser)]
+#[command(
+    name = "regolith",
+    version,
+    about = "Soft-sphere DEM solver that runs LIGGGHTS 3.8.0 decks unchanged",
+    long_about = "Soft-sphere DEM solver that runs LIGGGHTS 3.8.0 decks unchanged.\n\n\
+        Drop-in use takes liggghts's own flags:\n  \
+        regolith -in in.deck [-var NAME VALUE ...] [-log FILE|none] [-screen FILE|none] [-echo none|screen|log|both] [-nocite]\n\
+        With no -in, the deck is read from standard input."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a deck (same as `regolith -in DECK`); LIGGGHTS flags may follow.
+    Run {
+        /// The input deck.
+        deck: String,
+        /// LIGGGHTS-style flags: -var NAME VALUE..., -log FILE, -screen FILE, -echo MODE.
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        flags: Vec<String>,
+    },
+    /// Parse and validate whole decks without running a step; lists every problem as file:line: message.
+    Check {
+        /// Print a Markdown support table for all the decks instead (each checked from its own folder).
+        #[arg(long)]
+        table: bool,
+        /// With --table: show deck paths relative to this folder.
+        #[arg(long, requires = "table")]
+        root: Option<String>,
+        /// Deck files, then LIGGGHTS-style flags (-var NAME VALUE ...).
+        #[arg(required = true, trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
+    /// Compare two dumps or logs (not supported yet).
+    Diff {
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
+    /// Convert restart, data, dump and VTK files (not supported yet).
+    Convert {
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
+    /// Measure speed on built-in scenes (not supported yet).
+    Bench {
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
+}
+
+fn exit(status: ExitStatus) -> ExitCode {
+    ExitCode::from(status as u8)
+}
+
+fn deck_flags(deck: Option<String>, flags: &[String]) -> Result<DeckOptions, ExitCode> {
+    match parse_deck_flags(flags) {
+        Ok(mut o) => {
+            if deck.is_some() {
+                o.input = deck;
+            }
+            Ok(o)
+        }
+        Err(e) => {
+            eprintln!("ERROR: {}", e.message);
+            if let Some(h) = e.help {
+                eprintln!("  = {h}");
+            }
+            Err(exit(ExitStatus::Usage))
+        }
+    }
+}
+
+fn run_with(opts: DeckOptions) -> ExitCode {
+    if opts.help {
+        use clap::CommandFactory;
+        let _ = Cli::command().print_long_help();
+        return exit(ExitStatus::Success);
+    }
+    if opts.restart_to_data.is_some() {
+        eprintln!(
+            "ERROR: -restart: not supported yet (restart files come with `regolith convert`)"
+        );
+        return exit(ExitStatus::Unsupported);
+    }
+    exit(session::run_deck(&opts))
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().collect();
+    let legacy = match args.get(1).map(String::as_str) {
+        None => true,
+        Some(a) => a.starts_with('-') && !matches!(a, "--help" | "--version" | "-V"),
+    };
+    if legacy {
+        return match deck_flags(None, &args[1..]) {
+            Ok(o) => run_with(o),
+            Err(code) => code,
+        };
+    }
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Run { deck, flags } => match deck_flags(Some(deck), &flags) {
+            Ok(o) => run_with(o),
+            Err(code) => code,
+        },
+        Command::Check { table, root, args } => {
+            let split = args
+                .iter()
+                .position(|a| a.starts_with('-'))
+                .unwrap_or(args.len());
+            let (decks, flags) = args.split_at(split);
+            let opts = match deck_flags(None, flags) {
+                Ok(o) => o,
+                Err(code) => return code,
+            };
+            if table {
+                return match session::support_table(decks, root.as_deref(), &opts) {
+                    Ok(text) => {
+                        print!("{text}");
+                        exit(ExitStatus::Success)
+                    }
+                    Err(d) => {
+                        eprint!("{}", d.render());
+                        exit(ExitStatus::DeckError)
+                    }
+                };
+            }
+            let mut worst = ExitStatus::Success;
+            for deck in decks {
+                let source = match session::load_source(Some(deck)) {
+                    Ok(s) => s,
+                    Err(d) => {
+                        eprint!("{}", d.render());
+                        return exit(ExitStatus::DeckError);
+                    }
+                };
+                let diagnostics = session::check_deck(source, &opts);
+                for d in &diagnostics {
+                    println!("{}", d.one_line());
+                }
+                let status = session::status_of(&diagnostics);
+                if status == ExitStatus::DeckError || worst == ExitStatus::Success {
+                    worst = status;
+                }
+            }
+            exit(worst)
+        }
+        Command::Diff { .. } | Command::Convert { .. } | Command::Bench { .. } => {
+            let name = args[1].as_str();
+            eprintln!("ERROR: regolith {name}: not supported yet");
+            exit(ExitStatus::Unsupported)
+        }
+    }
+}

@@ -1,0 +1,248 @@
+//! C `printf`-compatible formatting of numbers.
+//!
+//! LIGGGHTS prints every number through C's `printf` family (`%.15g` for `${var}`, `%.20g`
+//! for `$(expr)`, `%g` in dumps, `%14.8g` in thermo lines), and users hand it format strings
+//! through `dump_modify format` and friends. To reproduce its output byte for byte we parse
+//! such format strings ourselves, accept only conversions that are safe for the argument we
+//! pass, and let the C library do the digit generation for each conversion.
+
+use std::ffi::CString;
+
+/// One `%...` conversion of a C format string.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Conversion {
+    /// The full specification text, e.g. `%-14.8g`.
+    pub spec: String,
+    /// The conversion character (`g`, `e`, `f`, `d`, ...).
+    pub kind: char,
+}
+
+impl Conversion {
+    /// True for the floating-point conversions (`e E f F g G a A`).
+    pub fn is_float(&self) -> bool {
+        matches!(self.kind, 'e' | 'E' | 'f' | 'F' | 'g' | 'G' | 'a' | 'A')
+    }
+}
+
+/// A piece of a parsed format string.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Piece {
+    /// Literal text (with `%%` already turned into `%`).
+    Text(String),
+    /// A conversion consuming one argument.
+    Convert(Conversion),
+}
+
+/// A parsed C format string such as `"%d %d %20.15g"`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CFormat {
+    /// Literal text and conversions in order.
+    pub pieces: Vec<Piece>,
+}
+
+impl CFormat {
+    /// Parse `text`; errors name the offending conversion.
+    pub fn parse(text: &str) -> Result<CFormat, String> {
+        let mut pieces = Vec::new();
+        let mut literal = String::new();
+        let mut chars = text.char_indices().peekable();
+        while let Some((start, c)) = chars.next() {
+            if c != '%' {
+                literal.push(c);
+                continue;
+            }
+            if let Some(&(_, '%')) = chars.peek() {
+                chars.next();
+                literal.push('%');
+                continue;
+            }
+            let mut spec = String::from("%");
+            while let Some(&(_, f)) = chars.peek() {
+                if matches!(f, '-' | '+' | ' ' | '#' | '0') {
+                    spec.push(f);
+                    chars.next();
+                } else {
+                    break;
+                }
+            }
+            take_digits(&mut chars, &mut spec);
+            if let Some(&(_, '.')) = chars.peek() {
+                spec.push('.');
+                chars.next();
+                take_digits(&mut chars, &mut spec);
+            }
+            // length modifiers LIGGGHTS users write (%ld, %lg, %lld) carry no meaning for us
+            while let Some(&(_, l)) = chars.peek() {
+                if l == 'l' || l == 'h' {
+                    chars.next();
+                } else {
+                    break;
+                }
+            }
+            let Some((_, kind)) = chars.next() else {
+                return Err(format!(
+                    "format ends inside the conversion starting at byte {start}"
+                ));
+            };
+            if !matches!(
+                kind,
+                'd' | 'i' | 'u' | 'x' | 'X' | 'o' | 'e' | 'E' | 'f' | 'F' | 'g' | 'G' | 'a' | 'A'
+            ) {
+                return Err(format!(
+                    "unsupported conversion '%{kind}' at byte {start} (expected one of d i u x X o e E f F g G)"
+                ));
+            }
+            spec.push(kind);
+            if !literal.is_empty() {
+                pieces.push(Piece::Text(std::mem::take(&mut literal)));
+            }
+            pieces.push(Piece::Convert(Conversion { spec, kind }));
+        }
+        if !literal.is_empty() {
+            pieces.push(Piece::Text(literal));
+        }
+        Ok(CFormat { pieces })
+    }
+
+    /// The conversions, in order.
+    pub fn conversions(&self) -> impl Iterator<Item = &Conversion> {
+        self.pieces.iter().filter_map(|p| match p {
+            Piece::Convert(c) => Some(c),
+            Piece::Text(_) => None,
+        })
+    }
+}
+
+/// Move up to three ASCII digits from `chars` onto `spec` (a width or a precision).
+fn take_digits(chars: &mut std::iter::Peekable<std::str::CharIndices<'_>>, spec: &mut String) {
+    let mut n = 0;
+    while let Some(&(_, d)) = chars.peek() {
+        if d.is_ascii_digit() && n < 3 {
+            spec.push(d);
+            chars.next();
+            n += 1;
+        } else {
+            break;
+        }
+    }
+}
+
+/// Format one value with one conversion spec (`%g`, `%8d`, ...), as C's `printf` would.
+/// Integer conversions receive the value truncated toward zero.
+pub fn format_one(conv: &Conversion, value: f64) -> String {
+    if conv.is_float() {
+        c_format_f64(&conv.spec, value)
+    } else {
+        // integers go through a 64-bit conversion so %d of large ids stays exact
+        let spec = format!("{}ll{}", &conv.spec[..conv.spec.len() - 1], conv.kind);
+        c_format_i64(&spec, value as i64)
+    }
+}
+
+/// `sprintf(spec, value)` for a double; `spec` must hold exactly one float conversion.
+fn c_format_f64(spec: &str, value: f64) -> String {
+    let fmt = CString::new(spec).expect("format spec has no NUL");
+    let mut buf = vec![0u8; 64];
+    loop {
+        // SAFETY: fmt holds exactly one floating conversion (checked by CFormat::parse or the
+        // callers below) and we pass exactly one double; snprintf never writes past buf.len().
+        let n = unsafe {
+            libc::snprintf(
+                buf.as_mut_ptr() as *mut libc::c_char,
+                buf.len(),
+                fmt.as_ptr(),
+                value,
+            )
+        };
+        let n = n.max(0) as usize;
+        if n < buf.len() {
+            buf.truncate(n);
+            return String::from_utf8_lossy(&buf).into_owned();
+        }
+        buf.resize(n + 1, 0);
+    }
+}
+
+/// `sprintf(spec, value)` for a 64-bit integer; `spec` must hold exactly one `ll` conversion.
+fn c_format_i64(spec: &str, value: i64) -> String {
+    let fmt = CString::new(spec).expect("format spec has no NUL");
+    let mut buf = vec![0u8; 32];
+    loop {
+        // SAFETY: fmt holds exactly one `ll` integer conversion and we pass one c_longlong.
+        let n = unsafe {
+            libc::snprintf(
+                buf.as_mut_ptr() as *mut libc::c_char,
+                buf.len(),
+                fmt.as_ptr(),
+                value as libc::c_longlong,
+            )
+        };
+        let n = n.max(0) as usize;
+        if n < buf.len() {
+            buf.truncate(n);
+            return String::from_utf8_lossy(&buf).into_owned();
+        }
+        buf.resize(n + 1, 0);
+    }
+}
+
+/// `%.Ng` formatting, e.g. `g_precision(1.0/3.0, 15)` gives `0.333333333333333`.
+pub fn g_precision(value: f64, precision: usize) -> String {
+    c_format_f64(&format!("%.{}g", precision.min(99)), value)
+}
+
+/// `%g` formatting (6 significant digits), as dumps print floats.
+pub fn g(value: f64) -> String {
+    c_format_f64("%g", value)
+}
+
+/// Format `value` with an arbitrary single-conversion C spec such as `%14.8g` or `%8d`.
+pub fn with_spec(spec: &str, value: f64) -> Result<String, String> {
+    let fmt = CFormat::parse(spec)?;
+    let mut out = String::new();
+    let mut used = 0;
+    for piece in &fmt.pieces {
+        match piece {
+            Piece::Text(t) => out.push_str(t),
+            Piece::Convert(c) => {
+                used += 1;
+                if used > 1 {
+                    return Err(format!("format '{spec}' has more than one conversion"));
+                }
+                out.push_str(&format_one(c, value));
+            }
+        }
+    }
+    if used == 0 {
+        return Err(format!("format '{spec}' has no conversion"));
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn matches_c_printf() {
+        assert_eq!(g_precision(1.0 / 3.0, 15), "0.333333333333333");
+        assert_eq!(g_precision(1.0 / 3.0, 20), "0.33333333333333331483");
+        assert_eq!(g_precision(-0.02064 - 1e-5, 15), "-0.02065");
+        assert_eq!(g(-0.0), "-0");
+        assert_eq!(g(1e20), "1e+20");
+        assert_eq!(with_spec("%14.8g", 2.5).unwrap(), "           2.5");
+        assert_eq!(with_spec("%8d", 42.0).unwrap(), "      42");
+        assert_eq!(with_spec("%05d", 7.9).unwrap(), "00007");
+        assert_eq!(g_precision(f64::INFINITY, 15), "inf");
+    }
+
+    #[test]
+    fn rejects_unsafe_conversions() {
+        assert!(CFormat::parse("%s").is_err());
+        assert!(CFormat::parse("%n").is_err());
+        assert!(CFormat::parse("%").is_err());
+        assert!(with_spec("%g %g", 1.0).is_err());
+        let f = CFormat::parse("%d %lg 100%%").unwrap();
+        assert_eq!(f.conversions().count(), 2);
+    }
+}

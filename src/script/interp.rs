@@ -1,0 +1,801 @@
+//! The script interpreter: reads logical lines from a stack of input files, echoes them,
+//! substitutes variables, splits words and executes the script-level commands itself
+//! (`variable`, `next`, `jump`, `label`, `if`, `include`, `print`, `log`, `echo`, `shell`,
+//! `quit`, `clear`, `partition`); everything else goes to the command registry.
+
+use std::collections::HashSet;
+use std::io::Write;
+use std::rc::Rc;
+
+use crate::commands::{CommandLine, Engine};
+use crate::error::{Diagnostic, Location, Severity};
+use crate::script::line::{self, LexError, VarRef, Word};
+use crate::script::scope::{Scope, UNKNOWN_QUERY};
+use crate::script::system::{Mode, System};
+use crate::script::variables::{c_atof, Value, Variables};
+use crate::script::{expr, format};
+
+/// How deeply `include` may nest input files.
+pub const MAX_INCLUDE_DEPTH: usize = 64;
+
+/// The text substituted in check mode for a value only a real run can know.
+pub const UNKNOWN_VALUE: &str = "?unknown?";
+
+/// A script's text split into physical lines.
+#[derive(Debug)]
+pub struct Source {
+    /// The name shown in diagnostics (as given by the user; `-` for standard input).
+    pub name: String,
+    /// Physical lines without their line terminators.
+    pub lines: Vec<String>,
+    /// True when the script came from standard input (`jump SELF` is then refused).
+    pub from_stdin: bool,
+}
+
+impl Source {
+    /// Split `text` into lines (a final line without newline counts).
+    pub fn from_text(name: &str, text: &str, from_stdin: bool) -> Source {
+        let lines = text.lines().map(str::to_string).collect();
+        Source {
+            name: name.to_string(),
+            lines,
+            from_stdin,
+        }
+    }
+}
+
+/// Where screen and log text go, and which of them echo input lines.
+pub struct Output {
+    /// The screen (standard output, a file, or nothing for `-screen none`).
+    pub screen: Option<Box<dyn Write>>,
+    /// The log file (nothing for `-log none`).
+    pub log: Option<Box<dyn Write>>,
+    /// Echo input lines to the screen.
+    pub echo_screen: bool,
+    /// Echo input lines to the log.
+    pub echo_log: bool,
+}
+
+impl Output {
+    /// Output that goes nowhere (used by check mode).
+    pub fn silent() -> Output {
+        Output {
+            screen: None,
+            log: None,
+            echo_screen: false,
+            echo_log: false,
+        }
+    }
+
+    /// Write `text` to the screen.
+    pub fn screen(&mut self, text: &str) {
+        if let Some(s) = self.screen.as_mut() {
+            let _ = s.write_all(text.as_bytes());
+        }
+    }
+
+    /// Write `text` to the log.
+    pub fn log(&mut self, text: &str) {
+        if let Some(l) = self.log.as_mut() {
+            let _ = l.write_all(text.as_bytes());
+        }
+    }
+
+    /// Write `text` to both screen and log.
+    pub fn both(&mut self, text: &str) {
+        self.screen(text);
+        self.log(text);
+    }
+
+    /// Echo an input line where `echo` says.
+    fn echo(&mut self, text: &str) {
+        if self.echo_screen {
+            self.screen(&format!("{text}\n"));
+        }
+        if self.echo_log {
+            self.log(&format!("{text}\n"));
+        }
+    }
+
+    /// Flush both streams.
+    pub fn flush(&mut self) {
+        if let Some(s) = self.screen.as_mut() {
+            let _ = s.flush();
+        }
+        if let Some(l) = self.log.as_mut() {
+            let _ = l.flush();
+        }
+    }
+}
+
+struct Frame {
+    source: Rc<Source>,
+    pos: usize,
+}
+
+/// Runs (or checks) a deck.
+pub struct Interpreter {
+    /// Files, directory and environment as the deck sees them.
+    pub sys: System,
+    /// The deck's variables.
+    pub vars: Variables,
+    /// Screen and log.
+    pub out: Output,
+    /// Everything below the script language.
+    pub engine: Engine,
+    /// Problems found in check mode (run mode stops at the first one instead).
+    pub diagnostics: Vec<Diagnostic>,
+    frames: Vec<Frame>,
+    label: Option<String>,
+    jump_skip: bool,
+    if_depth: usize,
+    quit: bool,
+    uncertain: bool,
+    fired_jumps: HashSet<(String, usize)>,
+    location: Location,
+    text: String,
+}
+
+fn lex_error(e: LexError, text: &str) -> Diagnostic {
+    Diagnostic::error(e.message).with_source(text, Some(e.span))
+}
+
+impl Interpreter {
+    /// A fresh interpreter.
+    pub fn new(mode: Mode, out: Output) -> Interpreter {
+        Interpreter {
+            sys: System::new(mode),
+            vars: Variables::default(),
+            out,
+            engine: Engine::new(),
+            diagnostics: Vec::new(),
+            frames: Vec::new(),
+            label: None,
+            jump_skip: false,
+            if_depth: 0,
+            quit: false,
+            uncertain: false,
+            fired_jumps: HashSet::new(),
+            location: Location {
+                file: String::new(),
+                line: 0,
+            },
+            text: String::new(),
+        }
+    }
+
+    /// Run or check mode.
+    pub fn mode(&self) -> Mode {
+        self.sys.mode
+    }
+
+    /// `-var NAME values...` from the command line.
+    pub fn set_command_line_variable(
+        &mut self,
+        name: &str,
+        values: &[String],
+    ) -> Result<(), Diagnostic> {
+        self.vars
+            .set_from_command_line(name, values, &mut self.sys)
+            .map_err(|m| Diagnostic::error(m).with_help(format!("in -var {name}")))
+    }
+
+    /// Execute a whole script (and whatever it includes or jumps to).
+    ///
+    /// In run mode the first error is returned. In check mode problems are collected in
+    /// [`Interpreter::diagnostics`] and checking goes on with the next line.
+    pub fn run_source(&mut self, source: Source) -> Result<(), Diagnostic> {
+        self.frames.push(Frame {
+            source: Rc::new(source),
+            pos: 0,
+        });
+        while !self.quit {
+            let Some(frame) = self.frames.last_mut() else {
+                break;
+            };
+            let Some((text, first)) = line::next_logical_line(&frame.source.lines, &mut frame.pos)
+            else {
+                let done = self.frames.pop().expect("frame exists");
+                if let Some(label) = self.label.take() {
+                    let d =
+                        Diagnostic::error("Label wasn't found in input script").with_help(format!(
+                            "no 'label {label}' found after the jump in {}",
+                            done.source.name
+                        ));
+                    self.fail(d.at(&self.location.clone()))?;
+                }
+                continue;
+            };
+            self.location = Location {
+                file: frame.source.name.clone(),
+                line: first + 1,
+            };
+            let result = self.execute_line(&text, true);
+            if let Err(d) = result {
+                let d = d.at(&self.location.clone());
+                self.fail(d)?;
+            }
+        }
+        self.out.flush();
+        Ok(())
+    }
+
+    /// In run mode return the error; in check mode record it (unless the dry run is no longer
+    /// certain what a real run would do, and it is not about an unsupported feature).
+    fn fail(&mut self, d: Diagnostic) -> Result<(), Diagnostic> {
+        match self.sys.mode {
+            Mode::Run => Err(d),
+            Mode::Check => {
+                let seen = self
+                    .diagnostics
+                    .iter()
+                    .any(|e| e.location == d.location && e.message == d.message);
+                if !seen && (d.severity == Severity::Unsupported || !self.uncertain) {
+                    self.diagnostics.push(d);
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// Echo, substitute, split and execute one logical line (the core of LIGGGHTS's `one()`).
+    fn execute_line(&mut self, raw: &str, from_file: bool) -> Result<(), Diagnostic> {
+        let _ = from_file;
+        if self.label.is_none() {
+            self.out.echo(raw);
+        }
+        let stripped = line::strip_comment(raw);
+        let text = if self.label.is_none() {
+            self.substitute(stripped, true)?
+        } else {
+            stripped.to_string()
+        };
+        let words = line::split_words(&text).map_err(|e| lex_error(e, &text))?;
+        let Some(first) = words.first() else {
+            return Ok(());
+        };
+        if let Some(label) = &self.label {
+            if first.text != "label" {
+                return Ok(());
+            }
+            if words.len() == 2 && &words[1].text == label {
+                self.label = None;
+            }
+            return Ok(());
+        }
+        self.text = text.clone();
+        let cmd = CommandLine {
+            words,
+            text,
+            location: self.location.clone(),
+        };
+        self.execute(&cmd).map_err(|d| {
+            let span = d.span.or(Some((cmd.words[0].start, cmd.words[0].end)));
+            d.with_source(&cmd.text, span)
+        })
+    }
+
+    /// Replace `$` references in `text`; echo progress when `echo` (as LIGGGHTS does).
+    pub fn substitute(&mut self, text: &str, echo: bool) -> Result<String, Diagnostic> {
+        let check = self.sys.mode == Mode::Check;
+        let uncertain = self.uncertain;
+        let mut became_uncertain = false;
+        let vars = &mut self.vars;
+        let sys = &mut self.sys;
+        let engine = &self.engine;
+        let out = &mut self.out;
+        let result = line::substitute(
+            text,
+            |r| {
+                let value = match r {
+                    VarRef::Named(name) => match vars.retrieve(name, sys) {
+                        None => Err("Substitution for illegal variable".to_string()),
+                        Some(Value::Text(t)) => Ok(t),
+                        Some(Value::Formula(f)) => {
+                            let mut scope = Scope::new(vars, sys, engine);
+                            expr::evaluate(&f, &mut scope)
+                                .map(|x| format::g_precision(x, 15))
+                                .map_err(|e| e.message)
+                        }
+                    },
+                    VarRef::Immediate(e) => {
+                        let mut scope = Scope::new(vars, sys, engine);
+                        expr::evaluate(e, &mut scope)
+                            .map(|x| format::g_precision(x, 20))
+                            .map_err(|e| e.message)
+                    }
+                };
+                match value {
+                    Err(m) if check && (m == UNKNOWN_QUERY || uncertain) => {
+                        became_uncertain = true;
+                        Ok(UNKNOWN_VALUE.to_string())
+                    }
+                    other => other,
+                }
+            },
+            |progress| {
+                if echo {
+                    out.echo(progress);
+                }
+            },
+        );
+        if became_uncertain {
+            self.uncertain = true;
+        }
+        result.map_err(|e| lex_error(e, text))
+    }
+}
+
+/// Words of a command after its name, as strings.
+fn arg_texts(cmd: &CommandLine) -> Vec<String> {
+    cmd.words[1..].iter().map(|w| w.text.clone()).collect()
+}
+
+/// An error pointing at argument `i` (0-based, after the command name).
+fn at_arg(d: Diagnostic, cmd: &CommandLine, i: usize) -> Diagnostic {
+    let w: Option<&Word> = cmd.words.get(i + 1).or(cmd.words.last());
+    let span = w.map(|w| (w.start, w.end));
+    d.with_source(&cmd.text, span)
+}
+
+fn illegal(cmd: &str, expected: &str) -> Diagnostic {
+    Diagnostic::error(format!("Illegal {cmd} command")).with_help(format!("expected: {expected}"))
+}
+
+impl Interpreter {
+    /// Execute one parsed command.
+    pub fn execute(&mut self, cmd: &CommandLine) -> Result<(), Diagnostic> {
+        let args = arg_texts(cmd);
+        match cmd.name() {
+            "clear" => {
+                if !args.is_empty() {
+                    return Err(illegal("clear", "no arguments"));
+                }
+                self.engine.clear();
+                Ok(())
+            }
+            "echo" => self.echo_command(&args),
+            "if" => self.if_command(cmd, &args),
+            "include" => self.include(&args),
+            "jump" => self.jump(&args),
+            "label" => {
+                if args.len() != 1 {
+                    return Err(illegal("label", "label ID"));
+                }
+                Ok(())
+            }
+            "log" => self.log_command(&args),
+            "next" => {
+                let outcome = self
+                    .vars
+                    .next(&args, &mut self.sys)
+                    .map_err(Diagnostic::error)?;
+                if let Some(i) = outcome.universe_index {
+                    self.out.both(&format!(
+                        "Increment via next: value {} on partition 0\n",
+                        i + 1
+                    ));
+                }
+                if outcome.exhausted {
+                    self.jump_skip = true;
+                }
+                Ok(())
+            }
+            "partition" => self.partition(cmd, &args),
+            "print" => self.print(&args),
+            "quit" => {
+                if !args.is_empty() {
+                    return Err(illegal("quit", "no arguments"));
+                }
+                self.quit = true;
+                Ok(())
+            }
+            "shell" => self.shell(&args),
+            "variable" => self.variable(cmd, &args),
+            _ => self.engine.execute(cmd, &mut self.sys, &self.vars),
+        }
+    }
+
+    fn variable(&mut self, cmd: &CommandLine, args: &[String]) -> Result<(), Diagnostic> {
+        if args.len() >= 2 && !crate::script::variables::STYLE_NAMES.contains(&args[1].as_str()) {
+            let help = crate::commands::suggest::did_you_mean(
+                &args[1],
+                crate::script::variables::STYLE_NAMES,
+            )
+            .unwrap_or_else(|| {
+                format!(
+                    "a variable style: {}",
+                    crate::script::variables::STYLE_NAMES.join(", ")
+                )
+            });
+            return Err(
+                at_arg(Diagnostic::error("Illegal variable command"), cmd, 1).with_help(help),
+            );
+        }
+        self.vars.set(args, &mut self.sys).map_err(|m| {
+            let d = Diagnostic::error(m);
+            if args.len() < 2 {
+                d.with_help("variable NAME STYLE ARGS ...")
+            } else {
+                d
+            }
+        })
+    }
+
+    fn echo_command(&mut self, args: &[String]) -> Result<(), Diagnostic> {
+        let (screen, log) = match args {
+            [a] if a == "none" => (false, false),
+            [a] if a == "screen" => (true, false),
+            [a] if a == "log" => (false, true),
+            [a] if a == "both" => (true, true),
+            _ => return Err(illegal("echo", "none, screen, log or both")),
+        };
+        if self.sys.mode == Mode::Run {
+            self.out.echo_screen = screen;
+            self.out.echo_log = log;
+        }
+        Ok(())
+    }
+
+    fn log_command(&mut self, args: &[String]) -> Result<(), Diagnostic> {
+        let append = match args {
+            [_] => false,
+            [_, a] if a == "append" => true,
+            _ => return Err(illegal("log", "log FILE [append], or log none")),
+        };
+        if self.sys.mode == Mode::Check {
+            return Ok(());
+        }
+        if let Some(mut old) = self.out.log.take() {
+            let _ = old.flush();
+        }
+        if args[0] != "none" {
+            let path = self.sys.resolve(&args[0]);
+            let file = std::fs::OpenOptions::new()
+                .create(true)
+                .write(true)
+                .append(append)
+                .truncate(!append)
+                .open(&path)
+                .map_err(|e| {
+                    Diagnostic::error(format!("Cannot open logfile {}", args[0]))
+                        .with_help(e.to_string())
+                })?;
+            self.out.log = Some(Box::new(std::io::BufWriter::new(file)));
+        }
+        Ok(())
+    }
+
+    fn include(&mut self, args: &[String]) -> Result<(), Diagnostic> {
+        if args.len() != 1 {
+            return Err(illegal("include", "include FILE"));
+        }
+        if self.if_depth > 0 {
+            return Err(Diagnostic::error(
+                "Cannot use include command within an if command",
+            ));
+        }
+        if self.frames.len() >= MAX_INCLUDE_DEPTH {
+            return Err(Diagnostic::error(format!(
+                "Cannot include {}: input files nested {MAX_INCLUDE_DEPTH} deep",
+                args[0]
+            ))
+            .with_help("does the deck include itself?"));
+        }
+        let source = self.open_script(&args[0])?;
+        self.frames.push(Frame {
+            source: Rc::new(source),
+            pos: 0,
+        });
+        Ok(())
+    }
+
+    fn open_script(&mut self, name: &str) -> Result<Source, Diagnostic> {
+        let text = self.sys.read(name).map_err(|e| {
+            Diagnostic::error(format!("Cannot open input script {name}")).with_help(e)
+        })?;
+        Ok(Source::from_text(name, &text, false))
+    }
+
+    fn jump(&mut self, args: &[String]) -> Result<(), Diagnostic> {
+        if args.is_empty() || args.len() > 2 {
+            return Err(illegal("jump", "jump FILE|SELF [label]"));
+        }
+        if self.jump_skip {
+            self.jump_skip = false;
+            return Ok(());
+        }
+        if self.sys.mode == Mode::Check {
+            // a dry run follows each jump once: every line gets checked, every loop ends
+            let site = (self.location.file.clone(), self.location.line);
+            if !self.fired_jumps.insert(site) {
+                self.uncertain = true;
+                return Ok(());
+            }
+        }
+        let top = self.frames.last_mut().expect("a jump runs inside a script");
+        if args[0] == "SELF" {
+            if top.source.from_stdin {
+                return Err(Diagnostic::error(
+                    "jump SELF is not allowed when using stdin, use -in instead",
+                ));
+            }
+            top.pos = 0;
+        } else {
+            let source = self.open_script(&args[0])?;
+            let top = self.frames.last_mut().expect("a jump runs inside a script");
+            *top = Frame {
+                source: Rc::new(source),
+                pos: 0,
+            };
+        }
+        if let Some(label) = args.get(1) {
+            self.label = Some(label.clone());
+        }
+        Ok(())
+    }
+
+    fn if_command(&mut self, cmd: &CommandLine, args: &[String]) -> Result<(), Diagnostic> {
+        if args.len() < 3 {
+            return Err(illegal("if", "if \"condition\" then \"command\" ... [elif \"condition\" \"command\" ...] [else \"command\" ...]"));
+        }
+        if args[1] != "then" {
+            return Err(at_arg(illegal("if", "'then' after the condition"), cmd, 1));
+        }
+        // split into (condition, commands) branches; `else` has no condition
+        let mut branches: Vec<(Option<String>, Vec<String>)> = Vec::new();
+        let mut i = 2;
+        let mut condition = Some(args[0].clone());
+        loop {
+            let start = i;
+            while i < args.len() && args[i] != "elif" && args[i] != "else" {
+                i += 1;
+            }
+            branches.push((condition.take(), args[start..i].to_vec()));
+            if i >= args.len() {
+                break;
+            }
+            if i + 2 > args.len() {
+                return Err(at_arg(
+                    illegal(
+                        "if",
+                        "a condition and command after elif, a command after else",
+                    ),
+                    cmd,
+                    i,
+                ));
+            }
+            if args[i] == "elif" {
+                condition = Some(args[i + 1].clone());
+                i += 2;
+            } else {
+                i += 1;
+            }
+        }
+        for (condition, commands) in branches {
+            let truth = match condition {
+                None => Some(true),
+                Some(c) => self.condition(&c)?,
+            };
+            match truth {
+                Some(false) => continue,
+                Some(true) => {
+                    if commands.is_empty() || commands.iter().any(String::is_empty) {
+                        return Err(illegal("if", "a non-empty command for each branch"));
+                    }
+                    return self.run_branch(&commands);
+                }
+                None => {
+                    // check mode, condition unknown: check this branch's commands without
+                    // acting on them and keep looking at the others
+                    self.uncertain = true;
+                    for c in &commands {
+                        self.check_only(c);
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Evaluate an `if`/`elif` condition; None when check mode cannot know it.
+    fn condition(&mut self, text: &str) -> Result<Option<bool>, Diagnostic> {
+        let text = self.substitute(text, false)?;
+        if text.contains(UNKNOWN_VALUE) {
+            return Ok(None);
+        }
+        if let Some(name) = text.strip_prefix("property_") {
+            if text.len() < 11 {
+                return Err(Diagnostic::error(
+                    "Illegal if command, length of argument too short",
+                ));
+            }
+            return Ok(Some(self.engine.has_property_global(name)));
+        }
+        match expr::evaluate_boolean(&text) {
+            Ok(v) => Ok(Some(v != 0.0)),
+            Err(e) if self.sys.mode == Mode::Check && e.message == UNKNOWN_QUERY => Ok(None),
+            Err(e) => {
+                Err(Diagnostic::error(e.message).with_help(format!("in the condition \"{text}\"")))
+            }
+        }
+    }
+
+    fn run_branch(&mut self, commands: &[String]) -> Result<(), Diagnostic> {
+        self.if_depth += 1;
+        let mut result = Ok(());
+        for c in commands {
+            result = self.execute_line(c, false);
+            if result.is_err() || self.quit {
+                break;
+            }
+        }
+        self.if_depth -= 1;
+        result
+    }
+
+    /// In check mode, look at a command whose execution is uncertain: report unknown or
+    /// unsupported names, change nothing.
+    fn check_only(&mut self, text: &str) {
+        let stripped = line::strip_comment(text).to_string();
+        let Ok(words) = line::split_words(&stripped) else {
+            return;
+        };
+        if words.is_empty() {
+            return;
+        }
+        let cmd = CommandLine {
+            words,
+            text: stripped,
+            location: self.location.clone(),
+        };
+        if let Err(d) = self.engine.validate_names(&cmd) {
+            self.diagnostics.push(d.at(&self.location.clone()));
+        }
+    }
+
+    fn print(&mut self, args: &[String]) -> Result<(), Diagnostic> {
+        let Some(message) = args.first() else {
+            return Err(illegal(
+                "print",
+                "print \"text\" [file F] [append F] [screen yes|no] [newline yes|no]",
+            ));
+        };
+        let text = self.substitute(message, false)?;
+        let mut files: Vec<(String, bool)> = Vec::new();
+        let mut screen = true;
+        let mut newline = true;
+        let mut i = 1;
+        let yes_no = |w: Option<&String>| match w.map(String::as_str) {
+            Some("yes") => Ok(true),
+            Some("no") => Ok(false),
+            _ => Err(illegal("print", "yes or no")),
+        };
+        while i < args.len() {
+            match args[i].as_str() {
+                "file" | "append" => {
+                    let Some(name) = args.get(i + 1) else {
+                        return Err(illegal("print", "a file name after file/append"));
+                    };
+                    files.push((name.clone(), args[i] == "append"));
+                }
+                "screen" => screen = yes_no(args.get(i + 1))?,
+                "newline" => newline = yes_no(args.get(i + 1))?,
+                // regolith extension: with one partition the universe screen is the screen
+                "universe" => screen = yes_no(args.get(i + 1))? || screen,
+                other => {
+                    let keys = ["file", "append", "screen", "newline", "universe"];
+                    let help = crate::commands::suggest::did_you_mean(other, &keys)
+                        .unwrap_or_else(|| "keywords file, append, screen, newline".into());
+                    return Err(Diagnostic::error("Illegal print command").with_help(help));
+                }
+            }
+            i += 2;
+        }
+        let line = if newline { format!("{text}\n") } else { text };
+        for (name, append) in &files {
+            self.sys.write(name, &line, *append).map_err(|e| {
+                Diagnostic::error(format!("Cannot open print file {name}")).with_help(e)
+            })?;
+        }
+        if screen {
+            self.out.both(&line);
+        }
+        Ok(())
+    }
+
+    fn shell(&mut self, args: &[String]) -> Result<(), Diagnostic> {
+        let Some(what) = args.first() else {
+            return Err(illegal(
+                "shell",
+                "shell cd|mkdir|mv|rm|rmdir|putenv ARGS, or a shell command",
+            ));
+        };
+        let rest = &args[1..];
+        let need = |ok: bool, usage: &str| {
+            if ok {
+                Ok(())
+            } else {
+                Err(Diagnostic::error(format!("Illegal shell {what} command"))
+                    .with_help(usage.to_string()))
+            }
+        };
+        match what.as_str() {
+            "cd" => {
+                need(rest.len() == 1, "shell cd DIR")?;
+                self.sys.chdir(&rest[0]);
+            }
+            "mkdir" => {
+                need(!rest.is_empty(), "shell mkdir DIR ...")?;
+                rest.iter().for_each(|d| self.sys.mkdir(d));
+            }
+            "mv" => {
+                need(rest.len() == 2, "shell mv OLD NEW")?;
+                self.sys.rename(&rest[0], &rest[1]);
+            }
+            "rm" => {
+                need(!rest.is_empty(), "shell rm FILE ...")?;
+                rest.iter().for_each(|f| self.sys.remove_file(f));
+            }
+            "rmdir" => {
+                need(!rest.is_empty(), "shell rmdir DIR ...")?;
+                rest.iter().for_each(|d| self.sys.rmdir(d));
+            }
+            "putenv" => {
+                need(!rest.is_empty(), "shell putenv NAME=VALUE ...")?;
+                rest.iter().for_each(|a| self.sys.putenv(a));
+            }
+            _ => {
+                self.out.flush();
+                if self.sys.system(&args.join(" ")).is_none() && self.sys.mode == Mode::Check {
+                    // an arbitrary shell command may change anything the deck reads later
+                    self.uncertain = true;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn partition(&mut self, cmd: &CommandLine, args: &[String]) -> Result<(), Diagnostic> {
+        if args.len() < 3 {
+            return Err(illegal("partition", "partition yes|no I1:I2 command ..."));
+        }
+        let yes = match args[0].as_str() {
+            "yes" => true,
+            "no" => false,
+            _ => return Err(at_arg(illegal("partition", "yes or no"), cmd, 0)),
+        };
+        let (lo, hi) = bounds(&args[1], 1).map_err(|m| at_arg(Diagnostic::error(m), cmd, 1))?;
+        let inside = lo <= 1 && 1 <= hi;
+        if inside == yes {
+            let rest = &cmd.text[cmd.words[3].start..];
+            return self.execute_line(rest, false);
+        }
+        Ok(())
+    }
+}
+
+/// LIGGGHTS's `force->bounds`: `N`, `*`, `*N`, `N*`, `M*N` within 1..=nmax.
+pub fn bounds(text: &str, nmax: i64) -> Result<(i64, i64), String> {
+    let bad = || format!("Numeric index {text} is out of bounds");
+    let parse = |s: &str| s.parse::<i64>().map_err(|_| bad());
+    let (lo, hi) = match text.split_once('*') {
+        None => {
+            let n = parse(text)?;
+            (n, n)
+        }
+        Some(("", "")) => (1, nmax),
+        Some(("", b)) => (1, parse(b)?),
+        Some((a, "")) => (parse(a)?, nmax),
+        Some((a, b)) => (parse(a)?, parse(b)?),
+    };
+    if lo < 1 || hi > nmax || lo > hi {
+        return Err(bad());
+    }
+    Ok((lo, hi))
+}
+
+/// Value of an equal-style or plain variable as a number (C `atof` of its text).
+pub fn numeric_text(text: &str) -> f64 {
+    c_atof(text)
+}

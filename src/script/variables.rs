@@ -1,0 +1,601 @@
+//! The `variable` command's store: every style LIGGGHTS 3.8.0 has, `next`, and retrieval of
+//! a variable's text for `$` substitution.
+
+use crate::script::random::RanMars;
+
+/// A variable's style, as named in the `variable` command.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Style {
+    /// `index v1 v2 ...`: advanced by `next`.
+    Index,
+    /// `loop N` / `loop N1 N2`, optionally `pad`.
+    Loop,
+    /// `world v1 ...`: one value per partition.
+    World,
+    /// `universe v1 ...`: values handed out across partitions.
+    Universe,
+    /// `uloop N`: like universe with integers.
+    Uloop,
+    /// `string text`: redefinable text.
+    String,
+    /// `getenv NAME`: an environment variable's value.
+    Getenv,
+    /// `file name`: one value per non-blank line of a file.
+    File,
+    /// `atomfile name`: per-atom values from a file.
+    AtomFile,
+    /// `equal expr`: evaluated whenever used.
+    Equal,
+    /// `atom expr`: evaluated per atom.
+    Atom,
+}
+
+impl Style {
+    /// The style's name in the `variable` command.
+    pub fn name(self) -> &'static str {
+        match self {
+            Style::Index => "index",
+            Style::Loop => "loop",
+            Style::World => "world",
+            Style::Universe => "universe",
+            Style::Uloop => "uloop",
+            Style::String => "string",
+            Style::Getenv => "getenv",
+            Style::File => "file",
+            Style::AtomFile => "atomfile",
+            Style::Equal => "equal",
+            Style::Atom => "atom",
+        }
+    }
+}
+
+/// Every style name the `variable` command accepts (for messages and suggestions).
+pub const STYLE_NAMES: &[&str] = &[
+    "delete", "index", "loop", "world", "universe", "uloop", "string", "getenv", "file",
+    "atomfile", "equal", "atom",
+];
+
+/// The values of a `file`-style variable still to be read (non-blank lines, comments cut).
+#[derive(Debug, Clone)]
+struct FileValues {
+    values: std::collections::VecDeque<String>,
+}
+
+impl FileValues {
+    fn from_text(text: &str) -> FileValues {
+        let values = text
+            .lines()
+            .filter_map(|line| {
+                let line = match line.find('#') {
+                    Some(i) => &line[..i],
+                    None => line,
+                };
+                // LIGGGHTS keeps the first blank-separated word of the line
+                line.split(|c: char| " \t\n\r\u{0c}".contains(c))
+                    .find(|w| !w.is_empty())
+                    .map(str::to_string)
+            })
+            .collect();
+        FileValues { values }
+    }
+}
+
+/// One defined variable.
+#[derive(Debug, Clone)]
+pub struct Variable {
+    /// Its name (letters, digits, underscores).
+    pub name: String,
+    /// Its style.
+    pub style: Style,
+    values: Vec<String>,
+    which: usize,
+    count: usize,
+    pad: usize,
+    file: Option<FileValues>,
+}
+
+impl Variable {
+    /// The formula of an equal- or atom-style variable, or the text of a string variable.
+    pub fn formula(&self) -> Option<&str> {
+        match self.style {
+            Style::Equal | Style::Atom | Style::String | Style::Getenv => {
+                self.values.first().map(String::as_str)
+            }
+            _ => None,
+        }
+    }
+}
+
+/// What a `variable` command needs from the outside world.
+pub trait VariableHost {
+    /// Read a whole file (relative names resolve as the deck sees them).
+    fn read_file(&mut self, name: &str) -> Result<String, String>;
+    /// The value of an environment variable.
+    fn getenv(&mut self, name: &str) -> Option<String>;
+    /// Number of partitions (always 1 in regolith) and this one's index.
+    fn partitions(&self) -> (usize, usize) {
+        (1, 0)
+    }
+    /// Read and advance the shared universe counter (the `tmp.lammps.variable` file).
+    fn universe_next(&mut self) -> Result<usize, String>;
+    /// Create the shared universe counter file holding `worlds`.
+    fn universe_init(&mut self, worlds: usize) -> Result<(), String>;
+}
+
+/// A variable's value as `$` substitution sees it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Value {
+    /// Text to substitute as is.
+    Text(String),
+    /// An equal-style formula still to be evaluated.
+    Formula(String),
+}
+
+/// What a `next` command did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NextOutcome {
+    /// A variable ran out of values and was deleted (the following `jump` is skipped).
+    pub exhausted: bool,
+    /// For universe/uloop variables: the 0-based counter value taken.
+    pub universe_index: Option<usize>,
+}
+
+/// All defined variables, in definition order.
+#[derive(Debug, Default)]
+pub struct Variables {
+    vars: Vec<Variable>,
+    /// Generator behind `random()`/`normal()` in equal-style formulas, made on first use.
+    pub random_equal: Option<RanMars>,
+    /// Generator behind `random()`/`normal()` in atom-style formulas, made on first use.
+    pub random_atom: Option<RanMars>,
+}
+
+fn illegal() -> String {
+    "Illegal variable command".to_string()
+}
+
+fn parse_int(word: &str) -> Result<i64, String> {
+    // LIGGGHTS's force->inumeric: digits with an optional leading minus sign only
+    let digits = word.strip_prefix('-').unwrap_or(word);
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return Err(format!(
+            "Expected integer parameter in input script or data file, got '{word}'"
+        ));
+    }
+    word.parse::<i64>()
+        .map_err(|_| format!("Integer '{word}' is out of range"))
+}
+
+fn pad_width(last: i64) -> usize {
+    last.to_string().len()
+}
+
+impl Variables {
+    /// Find a variable by name.
+    pub fn get(&self, name: &str) -> Option<&Variable> {
+        self.vars.iter().find(|v| v.name == name)
+    }
+
+    fn position(&self, name: &str) -> Option<usize> {
+        self.vars.iter().position(|v| v.name == name)
+    }
+
+    /// Remove a variable if it exists.
+    pub fn remove(&mut self, name: &str) {
+        if let Some(i) = self.position(name) {
+            self.vars.remove(i);
+        }
+    }
+
+    /// `-var NAME v1 v2 ...` from the command line: an index variable.
+    pub fn set_from_command_line(
+        &mut self,
+        name: &str,
+        values: &[String],
+        host: &mut dyn VariableHost,
+    ) -> Result<(), String> {
+        let mut args = vec![name.to_string(), "index".to_string()];
+        args.extend(values.iter().cloned());
+        self.set(&args, host)
+    }
+
+    /// The `variable` command: `args` are its words after the command name.
+    pub fn set(&mut self, args: &[String], host: &mut dyn VariableHost) -> Result<(), String> {
+        if args.len() < 2 {
+            return Err(illegal());
+        }
+        let name = args[0].as_str();
+        let style_word = args[1].as_str();
+        let rest = &args[2..];
+        let exists = self.position(name);
+        let new = |style: Style, values: Vec<String>| Variable {
+            name: name.to_string(),
+            style,
+            values,
+            which: 0,
+            count: 0,
+            pad: 0,
+            file: None,
+        };
+        let var = match style_word {
+            "delete" => {
+                if !rest.is_empty() {
+                    return Err(illegal());
+                }
+                self.remove(name);
+                return Ok(());
+            }
+            "index" | "world" | "universe" => {
+                if rest.is_empty() {
+                    return Err(illegal());
+                }
+                if exists.is_some() {
+                    return Ok(());
+                }
+                let style = match style_word {
+                    "index" => Style::Index,
+                    "world" => Style::World,
+                    _ => Style::Universe,
+                };
+                let mut v = new(style, rest.to_vec());
+                v.count = rest.len();
+                let (worlds, me) = host.partitions();
+                if style == Style::World {
+                    if v.count != worlds {
+                        return Err("World variable count doesn't match # of partitions".into());
+                    }
+                    v.which = me;
+                }
+                if style == Style::Universe {
+                    self.universe_checks(&v, host)?;
+                }
+                v
+            }
+            "loop" => {
+                if exists.is_some() {
+                    return Ok(());
+                }
+                let padded = rest.last().map(String::as_str) == Some("pad");
+                let numbers = if padded {
+                    &rest[..rest.len() - 1]
+                } else {
+                    rest
+                };
+                let (first, last) = match numbers {
+                    [n] => {
+                        let n = parse_int(n)?;
+                        if n <= 0 {
+                            return Err(illegal());
+                        }
+                        (1, n)
+                    }
+                    [a, b] => {
+                        let (a, b) = (parse_int(a)?, parse_int(b)?);
+                        if a > b || b < 0 {
+                            return Err(illegal());
+                        }
+                        (a, b)
+                    }
+                    _ => return Err(illegal()),
+                };
+                let mut v = new(Style::Loop, Vec::new());
+                v.count = last as usize;
+                v.which = (first - 1).max(0) as usize;
+                if padded {
+                    v.pad = pad_width(last);
+                }
+                v
+            }
+            "uloop" => {
+                let padded = match rest {
+                    [_] => false,
+                    [_, p] if p == "pad" => true,
+                    _ => return Err(illegal()),
+                };
+                if exists.is_some() {
+                    return Ok(());
+                }
+                let n = parse_int(&rest[0])?;
+                let mut v = new(Style::Uloop, Vec::new());
+                v.count = n.max(0) as usize;
+                if padded {
+                    v.pad = pad_width(n);
+                }
+                self.universe_checks(&v, host)?;
+                v
+            }
+            "string" | "getenv" | "equal" | "atom" => {
+                if rest.len() != 1 {
+                    return Err(illegal());
+                }
+                let style = match style_word {
+                    "string" => Style::String,
+                    "getenv" => Style::Getenv,
+                    "equal" => Style::Equal,
+                    _ => Style::Atom,
+                };
+                if let Some(i) = exists {
+                    if self.vars[i].style != style {
+                        return Err("Cannot redefine variable as a different style".into());
+                    }
+                    self.vars.remove(i);
+                }
+                let mut v = new(style, rest.to_vec());
+                v.count = 1;
+                v
+            }
+            "file" | "atomfile" => {
+                if rest.len() != 1 {
+                    return Err(illegal());
+                }
+                if exists.is_some() {
+                    return Ok(());
+                }
+                let text = host
+                    .read_file(&rest[0])
+                    .map_err(|_| format!("Cannot open file variable file {}", rest[0]))?;
+                if style_word == "atomfile" {
+                    return Err("variable atomfile: not supported yet".into());
+                }
+                let mut file = FileValues::from_text(&text);
+                let Some(first) = file.values.pop_front() else {
+                    return Err("File variable could not read value".into());
+                };
+                let mut v = new(Style::File, vec![first]);
+                v.count = 1;
+                v.file = Some(file);
+                v
+            }
+            _ => return Err(illegal()),
+        };
+        if !name.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_') {
+            return Err("Variable name must be alphanumeric or underscore characters".into());
+        }
+        self.vars.push(var);
+        Ok(())
+    }
+
+    fn universe_checks(&self, v: &Variable, host: &mut dyn VariableHost) -> Result<(), String> {
+        let (worlds, me) = host.partitions();
+        if v.count < worlds {
+            return Err("Universe/uloop variable count < # of partitions".into());
+        }
+        let _ = me;
+        host.universe_init(worlds)?;
+        for other in &self.vars {
+            if matches!(other.style, Style::Universe | Style::Uloop)
+                && other.count != 0
+                && other.count != v.count
+            {
+                return Err("All universe/uloop variables must have same # of values".into());
+            }
+        }
+        Ok(())
+    }
+
+    /// The `next` command. Says whether any variable ran out (it is then deleted) and, for
+    /// universe/uloop variables, which counter value this partition took.
+    pub fn next(
+        &mut self,
+        names: &[String],
+        host: &mut dyn VariableHost,
+    ) -> Result<NextOutcome, String> {
+        let Some(first) = names.first() else {
+            return Err("Illegal next command".into());
+        };
+        let mut styles = Vec::with_capacity(names.len());
+        for n in names {
+            match self.get(n) {
+                Some(v) => styles.push(v.style),
+                None => return Err("Invalid variable in next command".into()),
+            }
+        }
+        let lead = self.get(first).map(|v| v.style).unwrap_or(Style::Index);
+        let universe_like = |s: Style| matches!(s, Style::Universe | Style::Uloop);
+        for &s in &styles {
+            if s != lead && !(universe_like(s) && universe_like(lead)) {
+                return Err("All variables in next command must be same style".into());
+            }
+        }
+        if matches!(
+            lead,
+            Style::String | Style::Equal | Style::World | Style::Getenv | Style::Atom
+        ) {
+            return Err("Invalid variable style with next command".into());
+        }
+        let mut exhausted = false;
+        let universe_index = if universe_like(lead) {
+            Some(host.universe_next()?)
+        } else {
+            None
+        };
+        for n in names {
+            let i = self.position(n).expect("checked above");
+            let v = &mut self.vars[i];
+            let done = match v.style {
+                Style::Index | Style::Loop => {
+                    v.which += 1;
+                    v.which >= v.count
+                }
+                Style::File => match v.file.as_mut().and_then(|f| f.values.pop_front()) {
+                    Some(value) => {
+                        v.values[0] = value;
+                        false
+                    }
+                    None => true,
+                },
+                Style::Universe | Style::Uloop => {
+                    v.which = universe_index.unwrap_or(0);
+                    v.which >= v.count
+                }
+                _ => false,
+            };
+            if done {
+                exhausted = true;
+                self.vars.remove(i);
+            }
+        }
+        Ok(NextOutcome {
+            exhausted,
+            universe_index,
+        })
+    }
+
+    /// What `$name` stands for: text, or an equal-style formula the caller evaluates and
+    /// prints with `%.15g`. None if there is no such variable, it is exhausted, or per-atom.
+    pub fn retrieve(&self, name: &str, host: &mut dyn VariableHost) -> Option<Value> {
+        let v = self.get(name)?;
+        if v.which >= v.count {
+            return None;
+        }
+        Some(match v.style {
+            Style::Index | Style::World | Style::Universe | Style::String | Style::File => {
+                Value::Text(v.values[v.which].clone())
+            }
+            Style::Loop | Style::Uloop => {
+                let n = v.which + 1;
+                Value::Text(format!("{n:0width$}", width = v.pad))
+            }
+            Style::Equal => Value::Formula(v.values[0].clone()),
+            Style::Getenv => Value::Text(host.getenv(&v.values[0]).unwrap_or_default()),
+            Style::Atom | Style::AtomFile => return None,
+        })
+    }
+
+    /// Names of all defined variables (for suggestions).
+    pub fn names(&self) -> Vec<&str> {
+        self.vars.iter().map(|v| v.name.as_str()).collect()
+    }
+}
+
+/// C's `atof`: the longest numeric prefix after leading blanks, 0 if there is none.
+pub fn c_atof(text: &str) -> f64 {
+    let t = text.trim_start_matches(crate::script::line::is_c_space);
+    let b = t.as_bytes();
+    let mut end = 0;
+    let mut best = 0;
+    if end < b.len() && (b[end] == b'+' || b[end] == b'-') {
+        end += 1;
+    }
+    let lower = t.to_ascii_lowercase();
+    for special in ["infinity", "inf", "nan"] {
+        if lower[end..].starts_with(special) {
+            let v = if special == "nan" {
+                f64::NAN
+            } else {
+                f64::INFINITY
+            };
+            return if b.first() == Some(&b'-') { -v } else { v };
+        }
+    }
+    let mut digits = 0;
+    while end < b.len() && b[end].is_ascii_digit() {
+        end += 1;
+        digits += 1;
+    }
+    if end < b.len() && b[end] == b'.' {
+        end += 1;
+        while end < b.len() && b[end].is_ascii_digit() {
+            end += 1;
+            digits += 1;
+        }
+    }
+    if digits > 0 {
+        best = end;
+        if end < b.len() && (b[end] == b'e' || b[end] == b'E') {
+            let mut e = end + 1;
+            if e < b.len() && (b[e] == b'+' || b[e] == b'-') {
+                e += 1;
+            }
+            let start = e;
+            while e < b.len() && b[e].is_ascii_digit() {
+                e += 1;
+            }
+            if e > start {
+                best = e;
+            }
+        }
+    }
+    t[..best].parse::<f64>().unwrap_or(0.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    struct Host;
+    impl VariableHost for Host {
+        fn read_file(&mut self, _: &str) -> Result<String, String> {
+            Ok("# header\n\n 1.5 extra\n two\n".into())
+        }
+        fn getenv(&mut self, name: &str) -> Option<String> {
+            (name == "HOME_X").then(|| "here".into())
+        }
+        fn universe_next(&mut self) -> Result<usize, String> {
+            Ok(1)
+        }
+        fn universe_init(&mut self, _: usize) -> Result<(), String> {
+            Ok(())
+        }
+    }
+
+    fn words(s: &str) -> Vec<String> {
+        s.split_whitespace().map(str::to_string).collect()
+    }
+
+    fn text(v: &Variables, name: &str) -> Option<String> {
+        v.retrieve(name, &mut Host).map(|r| match r {
+            Value::Text(t) => t,
+            Value::Formula(f) => format!("={f}"),
+        })
+    }
+
+    #[test]
+    fn index_loop_and_next() {
+        let mut v = Variables::default();
+        v.set(&words("a index x y"), &mut Host).unwrap();
+        v.set(&words("a index z"), &mut Host).unwrap(); // ignored: already defined
+        assert_eq!(text(&v, "a").as_deref(), Some("x"));
+        assert!(!v.next(&words("a"), &mut Host).unwrap().exhausted);
+        assert_eq!(text(&v, "a").as_deref(), Some("y"));
+        assert!(v.next(&words("a"), &mut Host).unwrap().exhausted);
+        assert_eq!(text(&v, "a"), None);
+
+        v.set(&words("i loop 3 12 pad"), &mut Host).unwrap();
+        assert_eq!(text(&v, "i").as_deref(), Some("03"));
+        v.set(&words("j loop 10 pad"), &mut Host).unwrap();
+        assert_eq!(text(&v, "j").as_deref(), Some("01"));
+        assert_eq!(
+            v.set(&words("k loop 0"), &mut Host).unwrap_err(),
+            "Illegal variable command"
+        );
+    }
+
+    #[test]
+    fn string_equal_file_getenv() {
+        let mut v = Variables::default();
+        v.set(&words("s string abc"), &mut Host).unwrap();
+        v.set(&words("s string def"), &mut Host).unwrap();
+        assert_eq!(text(&v, "s").as_deref(), Some("def"));
+        assert!(v.set(&words("s equal 1"), &mut Host).is_err());
+        v.set(&words("e equal 1/4"), &mut Host).unwrap();
+        assert_eq!(text(&v, "e").as_deref(), Some("=1/4"));
+        v.set(&words("f file data.txt"), &mut Host).unwrap();
+        assert_eq!(text(&v, "f").as_deref(), Some("1.5"));
+        assert!(!v.next(&words("f"), &mut Host).unwrap().exhausted);
+        assert_eq!(text(&v, "f").as_deref(), Some("two"));
+        assert!(v.next(&words("f"), &mut Host).unwrap().exhausted);
+        v.set(&words("h getenv HOME_X"), &mut Host).unwrap();
+        assert_eq!(text(&v, "h").as_deref(), Some("here"));
+        assert!(v.set(&words("bad-name index 1"), &mut Host).is_err());
+        assert!(v.next(&words("s"), &mut Host).is_err());
+    }
+
+    #[test]
+    fn atof_prefix() {
+        assert_eq!(c_atof("  1.5e3xyz"), 1500.0);
+        assert_eq!(c_atof("abc"), 0.0);
+        assert_eq!(c_atof("-2e"), -2.0);
+        assert_eq!(c_atof(".5"), 0.5);
+    }
+}

@@ -1,0 +1,250 @@
+//! Running and checking decks end to end: open the script, set up screen and log, check the
+//! whole deck before any step runs, then run it.
+
+use std::collections::BTreeMap;
+use std::io::{Read, Write};
+use std::path::Path;
+
+use crate::cli::DeckOptions;
+use crate::error::{Diagnostic, ExitStatus, Severity};
+use crate::script::interp::{Interpreter, Output, Source};
+use crate::script::system::Mode;
+
+/// The first line regolith writes to screen and log (LIGGGHTS writes its version there).
+pub fn banner() -> String {
+    format!(
+        "regolith {} (runs LIGGGHTS-PUBLIC 3.8.0 decks)\n",
+        env!("CARGO_PKG_VERSION")
+    )
+}
+
+/// Read the deck named by `-in`, or standard input.
+pub fn load_source(input: Option<&str>) -> Result<Source, Diagnostic> {
+    match input {
+        Some(name) => {
+            let bytes = std::fs::read(name).map_err(|e| {
+                Diagnostic::error(format!("Cannot open input script {name}"))
+                    .with_help(e.to_string())
+            })?;
+            Ok(Source::from_text(
+                name,
+                &String::from_utf8_lossy(&bytes),
+                false,
+            ))
+        }
+        None => {
+            let mut text = String::new();
+            std::io::stdin().read_to_string(&mut text).map_err(|e| {
+                Diagnostic::error("Cannot read input script from standard input")
+                    .with_help(e.to_string())
+            })?;
+            Ok(Source::from_text("-", &text, true))
+        }
+    }
+}
+
+/// Check a deck without running it: every problem found, in order.
+pub fn check_deck(source: Source, opts: &DeckOptions) -> Vec<Diagnostic> {
+    check_deck_in(source, opts, None)
+}
+
+/// Check a deck as if run from folder `cwd` (default: the current directory).
+pub fn check_deck_in(source: Source, opts: &DeckOptions, cwd: Option<&Path>) -> Vec<Diagnostic> {
+    let mut interp = Interpreter::new(Mode::Check, Output::silent());
+    interp.engine.seed_tolerant = opts.seed_tolerant;
+    if let Some(dir) = cwd {
+        interp.sys.cwd = dir.to_path_buf();
+    }
+    for (name, values) in &opts.vars {
+        if let Err(d) = interp.set_command_line_variable(name, values) {
+            interp.diagnostics.push(d);
+        }
+    }
+    let _ = interp.run_source(source);
+    interp.diagnostics
+}
+
+/// The exit status a list of check diagnostics leads to.
+pub fn status_of(diagnostics: &[Diagnostic]) -> ExitStatus {
+    if diagnostics.iter().any(|d| d.severity == Severity::Error) {
+        ExitStatus::DeckError
+    } else if diagnostics
+        .iter()
+        .any(|d| d.severity == Severity::Unsupported)
+    {
+        ExitStatus::Unsupported
+    } else {
+        ExitStatus::Success
+    }
+}
+
+fn open_output(name: &str) -> Result<Option<Box<dyn Write>>, Diagnostic> {
+    if name == "none" {
+        return Ok(None);
+    }
+    let f = std::fs::File::create(name).map_err(|e| {
+        Diagnostic::error(format!("Cannot open file {name}")).with_help(e.to_string())
+    })?;
+    Ok(Some(Box::new(std::io::BufWriter::new(f))))
+}
+
+/// Run a deck as `liggghts -in ...` would. Problems go to standard error.
+pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
+    let report = |d: &Diagnostic| {
+        let _ = std::io::stderr().write_all(d.render().as_bytes());
+    };
+    let source = match load_source(opts.input.as_deref()) {
+        Ok(s) => s,
+        Err(d) => {
+            report(&d);
+            return ExitStatus::DeckError;
+        }
+    };
+
+    // the whole deck is checked first: nothing unsupported or misspelled starts a run
+    let problems: Vec<Diagnostic> = check_deck(
+        Source {
+            name: source.name.clone(),
+            lines: source.lines.clone(),
+            from_stdin: source.from_stdin,
+        },
+        opts,
+    )
+    .into_iter()
+    .filter(|d| d.severity != Severity::Warning)
+    .collect();
+    if !problems.is_empty() {
+        for d in &problems {
+            report(d);
+        }
+        let _ = writeln!(
+            std::io::stderr(),
+            "regolith: {} problem(s) found before running; nothing was run",
+            problems.len()
+        );
+        return status_of(&problems);
+    }
+
+    let screen: Option<Box<dyn Write>> = match opts.screen.as_deref() {
+        None => Some(Box::new(std::io::stdout())),
+        Some(name) => match open_output(name) {
+            Ok(s) => s,
+            Err(d) => {
+                report(&d);
+                return ExitStatus::DeckError;
+            }
+        },
+    };
+    let log = match open_output(opts.log.as_deref().unwrap_or("log.liggghts")) {
+        Ok(l) => l,
+        Err(d) => {
+            report(&d);
+            return ExitStatus::DeckError;
+        }
+    };
+    let (echo_screen, echo_log) = match opts.echo.as_deref() {
+        Some("none") => (false, false),
+        Some("screen") => (true, false),
+        Some("both") => (true, true),
+        _ => (false, true),
+    };
+    let mut out = Output {
+        screen,
+        log,
+        echo_screen,
+        echo_log,
+    };
+    out.both(&banner());
+    let mut interp = Interpreter::new(Mode::Run, out);
+    interp.engine.seed_tolerant = opts.seed_tolerant;
+    for (name, values) in &opts.vars {
+        if let Err(d) = interp.set_command_line_variable(name, values) {
+            report(&d);
+            return ExitStatus::DeckError;
+        }
+    }
+    let status = match interp.run_source(source) {
+        Ok(()) => ExitStatus::Success,
+        Err(d) => {
+            interp.out.log(&format!("ERROR: {}\n", d.one_line()));
+            interp.out.flush();
+            report(&d);
+            d.exit_status()
+        }
+    };
+    interp.out.flush();
+    status
+}
+
+/// A Markdown table of what each deck needs that regolith lacks, every deck checked from its
+/// own folder (as the LIGGGHTS tutorials are run). Deck names are shown relative to `root`.
+pub fn support_table(
+    decks: &[String],
+    root: Option<&str>,
+    opts: &DeckOptions,
+) -> Result<String, Diagnostic> {
+    let mut rows = Vec::new();
+    for deck in decks {
+        let path = Path::new(deck);
+        let shown = match root {
+            Some(r) => path
+                .strip_prefix(r)
+                .unwrap_or(path)
+                .to_string_lossy()
+                .into_owned(),
+            None => deck.clone(),
+        };
+        let source = load_source(Some(deck))?;
+        let source = Source {
+            name: shown.clone(),
+            ..source
+        };
+        let dir = path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        let diagnostics = check_deck_in(source, opts, Some(dir));
+        // one entry per distinct message, with the lines it occurs on
+        let mut items: BTreeMap<(u8, String), Vec<usize>> = BTreeMap::new();
+        for d in &diagnostics {
+            let rank = match d.severity {
+                Severity::Error => 0,
+                Severity::Unsupported => 1,
+                Severity::Warning => 2,
+            };
+            let line = d.location.as_ref().map_or(0, |l| l.line);
+            items
+                .entry((rank, d.message.replace('|', "\\|")))
+                .or_default()
+                .push(line);
+        }
+        let status = match status_of(&diagnostics) {
+            ExitStatus::Success => "runs",
+            ExitStatus::Unsupported => "unsupported",
+            _ => "invalid",
+        };
+        let list: Vec<String> = items
+            .into_iter()
+            .map(|((rank, msg), lines)| {
+                let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
+                let tag = if rank == 0 { "error: " } else { "" };
+                format!("{tag}{msg} (line {})", lines.join(", "))
+            })
+            .collect();
+        rows.push(format!(
+            "| `{shown}` | {status} | {} |",
+            if list.is_empty() {
+                "-".to_string()
+            } else {
+                list.join("<br>")
+            }
+        ));
+    }
+    let mut out =
+        String::from("| deck | status | what regolith lacks (or what is wrong) |\n|---|---|---|\n");
+    for r in rows {
+        out.push_str(&r);
+        out.push('\n');
+    }
+    Ok(out)
+}

@@ -1,0 +1,148 @@
+//! The command line behaves like `liggghts`: flags, exit statuses, where output goes, and
+//! errors that name file, line and word.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("regolith-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn regolith(dir: &PathBuf, args: &[&str], stdin: Option<&str>) -> Output {
+    use std::io::Write;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_regolith"))
+        .args(args)
+        .current_dir(dir)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("regolith starts");
+    if let Some(text) = stdin {
+        child
+            .stdin
+            .take()
+            .unwrap()
+            .write_all(text.as_bytes())
+            .unwrap();
+    } else {
+        drop(child.stdin.take());
+    }
+    child.wait_with_output().unwrap()
+}
+
+fn text(b: &[u8]) -> String {
+    String::from_utf8_lossy(b).into_owned()
+}
+
+#[test]
+fn runs_deck_with_var_and_writes_default_log() {
+    let dir = scratch("var");
+    std::fs::write(
+        dir.join("in.t"),
+        "variable v index 1\nprint \"v=${v} half=$(v_v/2)\"\n",
+    )
+    .unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-var", "v", "10"], None);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    assert!(stdout.starts_with("regolith "), "{stdout}");
+    assert_eq!(stdout.lines().nth(1), Some("v=10 half=5"));
+    // the log echoes input lines and the substituted line, as LIGGGHTS's log does
+    let log = std::fs::read_to_string(dir.join("log.liggghts")).unwrap();
+    let lines: Vec<&str> = log.lines().collect();
+    assert_eq!(lines[1], "variable v index 1");
+    assert_eq!(lines[2], "print \"v=${v} half=$(v_v/2)\"");
+    assert_eq!(lines[3], "v=10 half=5");
+}
+
+#[test]
+fn reads_standard_input_and_honours_log_none_and_echo_screen() {
+    let dir = scratch("stdin");
+    let out = regolith(
+        &dir,
+        &["-log", "none", "-echo", "screen"],
+        Some("print hello\n"),
+    );
+    assert!(out.status.success());
+    let stdout = text(&out.stdout);
+    assert_eq!(
+        stdout.lines().skip(1).collect::<Vec<_>>(),
+        ["print hello", "hello"]
+    );
+    assert!(!dir.join("log.liggghts").exists());
+}
+
+#[test]
+fn unknown_command_fails_before_anything_runs() {
+    let dir = scratch("unknown");
+    std::fs::write(
+        dir.join("in.t"),
+        "print first\n\nfix 1 all insert/strem foo\n",
+    )
+    .unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"], None);
+    assert_eq!(out.status.code(), Some(1));
+    let stdout = text(&out.stdout);
+    assert!(!stdout.contains("first"), "nothing may run: {stdout}");
+    let err = text(&out.stderr);
+    assert!(err.contains("ERROR: Invalid fix style"), "{err}");
+    assert!(err.contains("--> in.t:3"), "{err}");
+    assert!(err.contains("insert/stream"), "suggestion missing: {err}");
+    assert!(err.contains("^^^^^^^^^^^^"), "caret missing: {err}");
+}
+
+#[test]
+fn unsupported_feature_exits_3_and_check_lists_every_item() {
+    let dir = scratch("unsupported");
+    std::fs::write(
+        dir.join("in.t"),
+        "atom_style granular\n# comment\nfix ins all insert/stream seed 10007\nrun 10\n",
+    )
+    .unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"], None);
+    assert_eq!(out.status.code(), Some(3));
+    let out = regolith(&dir, &["check", "in.t"], None);
+    assert_eq!(out.status.code(), Some(3));
+    assert_eq!(
+        text(&out.stdout),
+        "in.t:1: atom_style granular: not supported yet\n\
+         in.t:3: fix insert/stream: not supported yet\n\
+         in.t:4: run: not supported yet\n"
+    );
+}
+
+#[test]
+fn usage_errors_exit_2_with_suggestion() {
+    let dir = scratch("usage");
+    let out = regolith(&dir, &["-inn", "x"], None);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        text(&out.stderr).contains("did you mean '-in'"),
+        "{}",
+        text(&out.stderr)
+    );
+    let out = regolith(&dir, &["-in", "missing.deck", "-log", "none"], None);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(text(&out.stderr).contains("Cannot open input script missing.deck"));
+}
+
+#[test]
+fn check_follows_loops_once_and_includes() {
+    let dir = scratch("loops");
+    std::fs::write(dir.join("in.inc"), "fix g all gravity 9.81 vector 0 0 -1\n").unwrap();
+    std::fs::write(
+        dir.join("in.t"),
+        "variable a loop 1000\nlabel top\ninclude in.inc\nnext a\njump SELF top\nprint done\n",
+    )
+    .unwrap();
+    let out = regolith(&dir, &["check", "in.t"], None);
+    assert_eq!(
+        text(&out.stdout),
+        "in.inc:1: fix gravity: not supported yet\n"
+    );
+    assert_eq!(out.status.code(), Some(3));
+}

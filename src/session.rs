@@ -164,6 +164,8 @@ pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
         }
     }
     let status = match interp.run_source(source) {
+        // LIGGGHTS 3.8.0 leaves through Error::done(), which exits with status 1
+        Ok(()) if interp.quit_requested() => ExitStatus::DeckError,
         Ok(()) => ExitStatus::Success,
         Err(d) => {
             interp.out.log(&format!("ERROR: {}\n", d.one_line()));

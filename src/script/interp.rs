@@ -164,6 +164,11 @@ impl Interpreter {
         }
     }
 
+    /// True once a `quit` command ended the script.
+    pub fn quit_requested(&self) -> bool {
+        self.quit
+    }
+
     /// Run or check mode.
     pub fn mode(&self) -> Mode {
         self.sys.mode

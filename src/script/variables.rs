@@ -63,6 +63,7 @@ struct FileValues {
 
 impl FileValues {
     fn from_text(text: &str) -> FileValues {
+        let blank = |c: char| " \t\n\r\u{0c}".contains(c);
         let values = text
             .lines()
             .filter_map(|line| {
@@ -70,10 +71,10 @@ impl FileValues {
                     Some(i) => &line[..i],
                     None => line,
                 };
-                // LIGGGHTS keeps the first blank-separated word of the line
-                line.split(|c: char| " \t\n\r\u{0c}".contains(c))
-                    .find(|w| !w.is_empty())
-                    .map(str::to_string)
+                // LIGGGHTS keeps the line up to the end of its first word, leading blanks included
+                let start = line.find(|c: char| !blank(c))?;
+                let end = line[start..].find(blank).map_or(line.len(), |e| start + e);
+                Some(line[..end].to_string())
             })
             .collect();
         FileValues { values }
@@ -581,9 +582,9 @@ mod tests {
         v.set(&words("e equal 1/4"), &mut Host).unwrap();
         assert_eq!(text(&v, "e").as_deref(), Some("=1/4"));
         v.set(&words("f file data.txt"), &mut Host).unwrap();
-        assert_eq!(text(&v, "f").as_deref(), Some("1.5"));
+        assert_eq!(text(&v, "f").as_deref(), Some(" 1.5"));
         assert!(!v.next(&words("f"), &mut Host).unwrap().exhausted);
-        assert_eq!(text(&v, "f").as_deref(), Some("two"));
+        assert_eq!(text(&v, "f").as_deref(), Some(" two"));
         assert!(v.next(&words("f"), &mut Host).unwrap().exhausted);
         v.set(&words("h getenv HOME_X"), &mut Host).unwrap();
         assert_eq!(text(&v, "h").as_deref(), Some("here"));

@@ -1,0 +1,248 @@
+//! The simulation box: bounds, boundary conditions per face (`p`, `f`, `s`, `m`),
+//! periodic wrapping with image counts, and shrink-wrapping, as LIGGGHTS does them.
+
+/// How one face of the box behaves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Boundary {
+    /// `p`: periodic (both faces of the direction).
+    Periodic,
+    /// `f`: fixed; particles crossing it are lost.
+    Fixed,
+    /// `s`: shrink-wrapped to the particles.
+    Shrink,
+    /// `m`: shrink-wrapped, but never inside the initial face position.
+    ShrinkMin,
+}
+
+impl Boundary {
+    fn letter(self) -> char {
+        match self {
+            Boundary::Periodic => 'p',
+            Boundary::Fixed => 'f',
+            Boundary::Shrink => 's',
+            Boundary::ShrinkMin => 'm',
+        }
+    }
+}
+
+/// Padding LIGGGHTS adds around shrink-wrapped extents, as a fraction of the initial length.
+const SHRINK_PAD: f64 = 1.0e-4;
+
+/// The box (lengths in box units).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Domain {
+    /// True once `create_box` (or a data/restart file) has made the box.
+    pub exists: bool,
+    /// Lower corner.
+    pub lo: [f64; 3],
+    /// Upper corner.
+    pub hi: [f64; 3],
+    /// Boundary of the lower and upper face in each direction.
+    pub boundary: [[Boundary; 2]; 3],
+    /// Face positions at creation, the limits for `m` faces.
+    initial_lo: [f64; 3],
+    initial_hi: [f64; 3],
+    /// Shrink-wrap padding per direction (fixed at creation).
+    pad: [f64; 3],
+}
+
+impl Default for Domain {
+    fn default() -> Self {
+        Domain {
+            exists: false,
+            lo: [-0.5; 3],
+            hi: [0.5; 3],
+            boundary: [[Boundary::Periodic; 2]; 3],
+            initial_lo: [-0.5; 3],
+            initial_hi: [0.5; 3],
+            pad: [0.0; 3],
+        }
+    }
+}
+
+/// Parse the `boundary` command's three words (e.g. `p f fm`).
+pub fn parse_boundary(words: &[&str]) -> Result<[[Boundary; 2]; 3], String> {
+    if words.len() != 3 {
+        return Err("Illegal boundary command".into());
+    }
+    let mut out = [[Boundary::Periodic; 2]; 3];
+    for (d, w) in words.iter().enumerate() {
+        let chars: Vec<char> = w.chars().collect();
+        let pair = match chars.as_slice() {
+            [c] => [*c, *c],
+            [a, b] => [*a, *b],
+            _ => {
+                return Err(format!(
+                    "Illegal boundary command: '{w}' (expected p, f, s, m or two of them)"
+                ))
+            }
+        };
+        for (side, c) in pair.iter().enumerate() {
+            out[d][side] = match c {
+                'p' => Boundary::Periodic,
+                'f' => Boundary::Fixed,
+                's' => Boundary::Shrink,
+                'm' => Boundary::ShrinkMin,
+                _ => {
+                    return Err(format!(
+                        "Illegal boundary command: '{w}' (expected p, f, s, m or two of them)"
+                    ))
+                }
+            };
+        }
+        if (out[d][0] == Boundary::Periodic) != (out[d][1] == Boundary::Periodic) {
+            return Err("Both sides of boundary must be periodic".into());
+        }
+    }
+    Ok(out)
+}
+
+impl Domain {
+    /// Make the box with the given corners (the `create_box` step).
+    pub fn create(&mut self, lo: [f64; 3], hi: [f64; 3]) {
+        self.exists = true;
+        self.lo = lo;
+        self.hi = hi;
+        self.initial_lo = lo;
+        self.initial_hi = hi;
+        for d in 0..3 {
+            self.pad[d] = SHRINK_PAD * (hi[d] - lo[d]);
+        }
+    }
+
+    /// True if direction `d` is periodic.
+    pub fn periodic(&self, d: usize) -> bool {
+        self.boundary[d][0] == Boundary::Periodic
+    }
+
+    /// Box length in direction `d`.
+    pub fn length(&self, d: usize) -> f64 {
+        self.hi[d] - self.lo[d]
+    }
+
+    /// The boundary letters as dumps print them, e.g. `pp ff fm`.
+    pub fn boundary_label(&self) -> String {
+        let parts: Vec<String> = self
+            .boundary
+            .iter()
+            .map(|b| format!("{}{}", b[0].letter(), b[1].letter()))
+            .collect();
+        parts.join(" ")
+    }
+
+    /// Wrap a position into the box along periodic directions, counting images.
+    pub fn remap(&self, x: &mut [f64; 3], image: &mut [i32; 3]) {
+        for d in 0..3 {
+            if !self.periodic(d) {
+                continue;
+            }
+            let period = self.length(d);
+            while x[d] < self.lo[d] {
+                x[d] += period;
+                image[d] -= 1;
+            }
+            while x[d] >= self.hi[d] {
+                x[d] -= period;
+                image[d] += 1;
+            }
+            x[d] = x[d].max(self.lo[d]);
+        }
+    }
+
+    /// Shortest periodic image of a separation vector.
+    pub fn minimum_image(&self, delta: &mut [f64; 3]) {
+        for d in 0..3 {
+            if self.periodic(d) {
+                let period = self.length(d);
+                if delta[d].abs() > 0.5 * period {
+                    if delta[d] < 0.0 {
+                        delta[d] += period;
+                    } else {
+                        delta[d] -= period;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Shrink-wrap the `s`/`m` faces around `extent` (min and max of positions, and of
+    /// anything else that bounds the box such as walls); errors if the box turns inside out.
+    pub fn shrink_wrap(&mut self, extent_lo: [f64; 3], extent_hi: [f64; 3]) -> Result<(), String> {
+        for d in 0..3 {
+            if self.periodic(d) {
+                continue;
+            }
+            match self.boundary[d][0] {
+                Boundary::Shrink => self.lo[d] = extent_lo[d] - self.pad[d],
+                Boundary::ShrinkMin => {
+                    self.lo[d] = (extent_lo[d] - self.pad[d]).min(self.initial_lo[d])
+                }
+                _ => {}
+            }
+            match self.boundary[d][1] {
+                Boundary::Shrink => self.hi[d] = extent_hi[d] + self.pad[d],
+                Boundary::ShrinkMin => {
+                    self.hi[d] = (extent_hi[d] + self.pad[d]).max(self.initial_hi[d])
+                }
+                _ => {}
+            }
+            if self.lo[d] > self.hi[d] {
+                return Err("Illegal simulation box".into());
+            }
+        }
+        Ok(())
+    }
+
+    /// Does any face shrink-wrap?
+    pub fn shrinks(&self) -> bool {
+        self.boundary
+            .iter()
+            .flatten()
+            .any(|b| matches!(b, Boundary::Shrink | Boundary::ShrinkMin))
+    }
+
+    /// Is `x` inside the box along every non-periodic direction (lost-atom test)?
+    pub fn contains(&self, x: [f64; 3]) -> bool {
+        (0..3).all(|d| self.periodic(d) || (x[d] >= self.lo[d] && x[d] < self.hi[d]))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn boundary_words() {
+        let b = parse_boundary(&["p", "f", "fm"]).unwrap();
+        let mut d = Domain {
+            boundary: b,
+            ..Domain::default()
+        };
+        d.create([0.0; 3], [1.0, 2.0, 3.0]);
+        assert_eq!(d.boundary_label(), "pp ff fm");
+        assert!(parse_boundary(&["pf", "f", "f"]).is_err());
+        assert!(parse_boundary(&["x", "f", "f"]).is_err());
+        assert!(parse_boundary(&["p", "f"]).is_err());
+    }
+
+    #[test]
+    fn wrap_and_shrink() {
+        let mut d = Domain {
+            boundary: parse_boundary(&["p", "s", "fm"]).unwrap(),
+            ..Domain::default()
+        };
+        d.create([0.0; 3], [1.0, 1.0, 1.0]);
+        let mut x = [1.25, 0.5, 0.5];
+        let mut img = [0; 3];
+        d.remap(&mut x, &mut img);
+        assert_eq!((x[0], img[0]), (0.25, 1));
+        let mut delta = [0.9, 0.0, 0.0];
+        d.minimum_image(&mut delta);
+        assert!((delta[0] + 0.1).abs() < 1e-15);
+        d.shrink_wrap([0.0, 0.2, 0.1], [1.0, 0.4, 0.5]).unwrap();
+        assert!((d.lo[1] - (0.2 - 1e-4)).abs() < 1e-15 && (d.hi[1] - (0.4 + 1e-4)).abs() < 1e-15);
+        assert_eq!(d.hi[2], 1.0); // m face never moves inside its initial position
+        d.shrink_wrap([0.0, 0.2, 0.1], [1.0, 0.4, 2.0]).unwrap();
+        assert!((d.hi[2] - (2.0 + 1e-4)).abs() < 1e-15);
+    }
+}

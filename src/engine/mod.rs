@@ -1,0 +1,8 @@
+//! The simulation engine: particles, box, regions, neighbours, contact models, fixes,
+//! computes and the integrator. Commands in [`crate::commands`] configure it.
+
+pub mod domain;
+pub mod neighbor;
+pub mod numbers;
+pub mod particles;
+pub mod region;

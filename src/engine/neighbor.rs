@@ -1,0 +1,296 @@
+//! Neighbour lists: particles are binned in cells of the interaction cutoff, and every pair
+//! closer than the cutoff plus skin is listed once (a half list) with the periodic shift
+//! that brings the second particle next to the first. The list is rebuilt when a particle
+//! has moved more than half the skin; between rebuilds positions are not re-wrapped, so the
+//! stored shifts stay valid. Pairs come out in a fixed order for any thread count.
+
+use crate::engine::domain::Domain;
+
+/// One listed pair.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pair {
+    /// Index of the first particle.
+    pub i: u32,
+    /// Index of the second particle (`j > i` unless the pair crosses a periodic face).
+    pub j: u32,
+    /// Shift added to x\[j\] to get the image nearest x\[i\] (length).
+    pub shift: [f64; 3],
+}
+
+/// A half neighbour list.
+#[derive(Debug, Clone, Default)]
+pub struct NeighborList {
+    /// The pairs, grouped by `i` in increasing order.
+    pub pairs: Vec<Pair>,
+    /// Positions at the last build (for the half-skin rebuild test).
+    built_at: Vec<[f64; 3]>,
+    /// Number of builds so far.
+    pub builds: u64,
+}
+
+impl NeighborList {
+    /// Should the list be rebuilt (LIGGGHTS `check yes`: a particle moved more than skin/2)?
+    pub fn needs_rebuild(&self, x: &[[f64; 3]], skin: f64) -> bool {
+        if self.built_at.len() != x.len() {
+            return true;
+        }
+        let limit = 0.25 * skin * skin;
+        x.iter().zip(&self.built_at).any(|(a, b)| {
+            let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+            d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > limit
+        })
+    }
+
+    /// Rebuild from scratch. `reach[i]` is how far particle i interacts (its radius, for
+    /// spheres); a pair is listed when its distance is below `reach[i] + reach[j] + skin`.
+    pub fn build(&mut self, x: &[[f64; 3]], reach: &[f64], skin: f64, domain: &Domain) {
+        self.pairs.clear();
+        self.built_at.clear();
+        self.built_at.extend_from_slice(x);
+        self.builds += 1;
+        let n = x.len();
+        if n == 0 {
+            return;
+        }
+        let max_reach = reach.iter().copied().fold(0.0, f64::max);
+        let cutoff = (2.0 * max_reach + skin).max(f64::MIN_POSITIVE);
+
+        // bins over the particles' extent (positions may sit outside a shrink-wrapped box)
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for p in x {
+            for d in 0..3 {
+                lo[d] = lo[d].min(p[d]);
+                hi[d] = hi[d].max(p[d]);
+            }
+        }
+        let mut nbins = [1usize; 3];
+        let mut size = [cutoff; 3];
+        for d in 0..3 {
+            if domain.periodic(d) {
+                lo[d] = domain.lo[d];
+                hi[d] = domain.hi[d];
+            }
+            let span = (hi[d] - lo[d]).max(0.0);
+            nbins[d] = ((span / cutoff).floor() as usize).clamp(1, 1 << 10);
+            size[d] = if span > 0.0 {
+                span / nbins[d] as f64
+            } else {
+                cutoff
+            };
+            if size[d] < cutoff {
+                nbins[d] = (nbins[d] - 1).max(1);
+                size[d] = if span > 0.0 {
+                    span / nbins[d] as f64
+                } else {
+                    cutoff
+                };
+            }
+        }
+        let bin_of = |p: &[f64; 3]| -> [usize; 3] {
+            let mut b = [0usize; 3];
+            for d in 0..3 {
+                let k = ((p[d] - lo[d]) / size[d]).floor();
+                b[d] = (k.max(0.0) as usize).min(nbins[d] - 1);
+            }
+            b
+        };
+        let flat = |b: [usize; 3]| (b[2] * nbins[1] + b[1]) * nbins[0] + b[0];
+        let total = nbins[0] * nbins[1] * nbins[2];
+        // counting sort of particles into bins (stable: keeps index order inside a bin)
+        let mut start = vec![0usize; total + 1];
+        let bins: Vec<usize> = x.iter().map(|p| flat(bin_of(p))).collect();
+        for &b in &bins {
+            start[b + 1] += 1;
+        }
+        for k in 0..total {
+            start[k + 1] += start[k];
+        }
+        let mut fill = start.clone();
+        let mut members = vec![0u32; n];
+        for (i, &b) in bins.iter().enumerate() {
+            members[fill[b]] = i as u32;
+            fill[b] += 1;
+        }
+
+        let mut candidates: Vec<(u32, [f64; 3])> = Vec::new();
+        for i in 0..n {
+            let bi = bin_of(&x[i]);
+            candidates.clear();
+            for dz in -1i64..=1 {
+                for dy in -1i64..=1 {
+                    for dx in -1i64..=1 {
+                        let mut b = [0usize; 3];
+                        let mut shift = [0.0; 3];
+                        let mut skip = false;
+                        for (d, off) in [dx, dy, dz].into_iter().enumerate() {
+                            let k = bi[d] as i64 + off;
+                            let m = nbins[d] as i64;
+                            if (0..m).contains(&k) {
+                                b[d] = k as usize;
+                            } else if domain.periodic(d) && m > 2 {
+                                b[d] = k.rem_euclid(m) as usize;
+                                shift[d] = if k < 0 {
+                                    -domain.length(d)
+                                } else {
+                                    domain.length(d)
+                                };
+                            } else {
+                                skip = true;
+                            }
+                        }
+                        if skip {
+                            continue;
+                        }
+                        let fb = flat(b);
+                        for &j in &members[start[fb]..start[fb + 1]] {
+                            candidates.push((j, shift));
+                        }
+                    }
+                }
+            }
+            // small periodic boxes (fewer than 3 bins): take the minimum image instead
+            let small_periodic = (0..3).any(|d| domain.periodic(d) && nbins[d] <= 2);
+            candidates.sort_by(|a, b| a.0.cmp(&b.0));
+            candidates.dedup_by(|a, b| a.0 == b.0 && a.1 == b.1);
+            for &(j, mut shift) in &candidates {
+                let ju = j as usize;
+                // each physical pair is listed once, from its lower index
+                if ju <= i {
+                    continue;
+                }
+                let mut delta = [0.0; 3];
+                for d in 0..3 {
+                    delta[d] = x[ju][d] + shift[d] - x[i][d];
+                }
+                if small_periodic {
+                    let raw = delta;
+                    domain.minimum_image(&mut delta);
+                    for d in 0..3 {
+                        shift[d] += delta[d] - raw[d];
+                    }
+                }
+                let cut = reach[i] + reach[ju] + skin;
+                let rsq = delta[0] * delta[0] + delta[1] * delta[1] + delta[2] * delta[2];
+                if rsq < cut * cut {
+                    self.pairs.push(Pair {
+                        i: i as u32,
+                        j,
+                        shift,
+                    });
+                }
+            }
+        }
+    }
+}
+
+/// Carry per-pair contact history from the old pair list to the new one, matching pairs by
+/// the atom IDs they join (and the periodic shift). Pairs not in the old list start at zero.
+pub fn carry_history(
+    old_pairs: &[Pair],
+    old_history: &[f64],
+    new_pairs: &[Pair],
+    ids: &[i64],
+    old_ids: &[i64],
+    width: usize,
+) -> Vec<f64> {
+    let mut out = vec![0.0; new_pairs.len() * width];
+    if width == 0 || old_pairs.is_empty() {
+        return out;
+    }
+    let key = |p: &Pair, ids: &[i64]| {
+        let (a, b) = (ids[p.i as usize], ids[p.j as usize]);
+        let sign = if a <= b { 1.0 } else { -1.0 };
+        let s = p.shift.map(|v| (v * sign + 0.0).to_bits());
+        (a.min(b), a.max(b), s)
+    };
+    let mut index: std::collections::HashMap<(i64, i64, [u64; 3]), (usize, bool)> =
+        std::collections::HashMap::with_capacity(old_pairs.len());
+    for (k, p) in old_pairs.iter().enumerate() {
+        let swapped = old_ids[p.i as usize] > old_ids[p.j as usize];
+        index.insert(key(p, old_ids), (k, swapped));
+    }
+    for (k, p) in new_pairs.iter().enumerate() {
+        if let Some(&(old, old_swapped)) = index.get(&key(p, ids)) {
+            let swapped = ids[p.i as usize] > ids[p.j as usize];
+            let src = &old_history[old * width..(old + 1) * width];
+            let dst = &mut out[k * width..(k + 1) * width];
+            dst.copy_from_slice(src);
+            if swapped != old_swapped {
+                // the pair is seen from the other particle now: vectors flip sign
+                dst.iter_mut().for_each(|v| *v = -*v);
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::domain::parse_boundary;
+
+    fn brute(x: &[[f64; 3]], cut: f64, domain: &Domain) -> Vec<(u32, u32)> {
+        let mut v = Vec::new();
+        for i in 0..x.len() {
+            for j in i + 1..x.len() {
+                let mut d = [x[j][0] - x[i][0], x[j][1] - x[i][1], x[j][2] - x[i][2]];
+                domain.minimum_image(&mut d);
+                if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() < cut {
+                    v.push((i as u32, j as u32));
+                }
+            }
+        }
+        v
+    }
+
+    #[test]
+    fn matches_brute_force_with_periodic_faces() {
+        let mut domain = Domain::default();
+        domain.boundary = parse_boundary(&["p", "f", "p"]).unwrap();
+        domain.create([0.0; 3], [1.0, 1.0, 0.5]);
+        let mut r = crate::script::random::RanPark::new(12345).unwrap();
+        let x: Vec<[f64; 3]> = (0..400)
+            .map(|_| [r.uniform(), r.uniform(), 0.5 * r.uniform()])
+            .collect();
+        let reach = vec![0.04; x.len()];
+        let mut list = NeighborList::default();
+        list.build(&x, &reach, 0.02, &domain);
+        let mut got: Vec<(u32, u32)> = list
+            .pairs
+            .iter()
+            .map(|p| (p.i.min(p.j), p.i.max(p.j)))
+            .collect();
+        got.sort();
+        assert_eq!(got, brute(&x, 0.1, &domain));
+        for p in &list.pairs {
+            let (i, j) = (p.i as usize, p.j as usize);
+            let d: Vec<f64> = (0..3).map(|k| x[j][k] + p.shift[k] - x[i][k]).collect();
+            assert!((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() < 0.1);
+        }
+        assert!(!list.needs_rebuild(&x, 0.02));
+        let mut moved = x.clone();
+        moved[7][0] += 0.011;
+        assert!(list.needs_rebuild(&moved, 0.02));
+    }
+
+    #[test]
+    fn history_follows_atom_ids() {
+        let old = vec![Pair {
+            i: 0,
+            j: 1,
+            shift: [0.0; 3],
+        }];
+        let hist = vec![1.0, 2.0, 3.0];
+        // atoms were reordered: ids [5, 9] became [9, 5]
+        let new = vec![Pair {
+            i: 0,
+            j: 1,
+            shift: [0.0; 3],
+        }];
+        let carried = carry_history(&old, &hist, &new, &[9, 5], &[5, 9], 3);
+        assert_eq!(carried, vec![-1.0, -2.0, -3.0]);
+        let fresh = carry_history(&old, &hist, &new, &[9, 7], &[5, 9], 3);
+        assert_eq!(fresh, vec![0.0; 3]);
+    }
+}

@@ -1,0 +1,134 @@
+//! Per-particle state as a structure of arrays: one contiguous vector per quantity, so force
+//! loops stream through memory and vectorise. Vectors are `[f64; 3]` (x, y, z).
+
+/// All particles of the simulation (SI units unless the deck says otherwise).
+#[derive(Debug, Clone, Default)]
+pub struct Particles {
+    /// Atom IDs (LIGGGHTS `tag`), 1-based.
+    pub id: Vec<i64>,
+    /// Atom types, 1-based.
+    pub kind: Vec<u32>,
+    /// Group membership bits (bit 0 is group `all`).
+    pub mask: Vec<u32>,
+    /// Positions (length).
+    pub x: Vec<[f64; 3]>,
+    /// Velocities (length/time).
+    pub v: Vec<[f64; 3]>,
+    /// Forces (force).
+    pub f: Vec<[f64; 3]>,
+    /// Angular velocities (1/time).
+    pub omega: Vec<[f64; 3]>,
+    /// Torques (force x length).
+    pub torque: Vec<[f64; 3]>,
+    /// Radii (length).
+    pub radius: Vec<f64>,
+    /// Masses (mass).
+    pub mass: Vec<f64>,
+    /// Densities (mass/length^3).
+    pub density: Vec<f64>,
+    /// Periodic image counts per direction.
+    pub image: Vec<[i32; 3]>,
+}
+
+impl Particles {
+    /// Number of particles.
+    pub fn len(&self) -> usize {
+        self.id.len()
+    }
+
+    /// True when there are no particles.
+    pub fn is_empty(&self) -> bool {
+        self.id.is_empty()
+    }
+
+    /// Append a particle at rest with the given id, type, position, radius (length) and
+    /// density (mass/length^3); its mass is that of a sphere.
+    pub fn push(&mut self, id: i64, kind: u32, x: [f64; 3], radius: f64, density: f64) {
+        self.id.push(id);
+        self.kind.push(kind);
+        self.mask.push(1);
+        self.x.push(x);
+        self.v.push([0.0; 3]);
+        self.f.push([0.0; 3]);
+        self.omega.push([0.0; 3]);
+        self.torque.push([0.0; 3]);
+        self.radius.push(radius);
+        self.mass.push(sphere_mass(radius, density));
+        self.density.push(density);
+        self.image.push([0; 3]);
+    }
+
+    /// Remove the particles for which `remove` is true, keeping the others' order.
+    pub fn retain_by(&mut self, remove: &[bool]) {
+        fn keep<T: Copy>(v: &mut Vec<T>, remove: &[bool]) {
+            let mut i = 0;
+            v.retain(|_| {
+                let k = !remove[i];
+                i += 1;
+                k
+            });
+        }
+        keep(&mut self.id, remove);
+        keep(&mut self.kind, remove);
+        keep(&mut self.mask, remove);
+        keep(&mut self.x, remove);
+        keep(&mut self.v, remove);
+        keep(&mut self.f, remove);
+        keep(&mut self.omega, remove);
+        keep(&mut self.torque, remove);
+        keep(&mut self.radius, remove);
+        keep(&mut self.mass, remove);
+        keep(&mut self.density, remove);
+        keep(&mut self.image, remove);
+    }
+
+    /// Reorder every array by `order` (new index -> old index), e.g. to sort by cell.
+    pub fn permute(&mut self, order: &[usize]) {
+        fn apply<T: Copy>(v: &mut Vec<T>, order: &[usize]) {
+            let old = std::mem::take(v);
+            v.extend(order.iter().map(|&i| old[i]));
+        }
+        apply(&mut self.id, order);
+        apply(&mut self.kind, order);
+        apply(&mut self.mask, order);
+        apply(&mut self.x, order);
+        apply(&mut self.v, order);
+        apply(&mut self.f, order);
+        apply(&mut self.omega, order);
+        apply(&mut self.torque, order);
+        apply(&mut self.radius, order);
+        apply(&mut self.mass, order);
+        apply(&mut self.density, order);
+        apply(&mut self.image, order);
+    }
+
+    /// Largest atom ID in use (0 when empty).
+    pub fn max_id(&self) -> i64 {
+        self.id.iter().copied().max().unwrap_or(0)
+    }
+}
+
+/// Mass of a sphere of radius `r` and density `rho`, as LIGGGHTS computes it (4/3 pi r^3 rho).
+pub fn sphere_mass(r: f64, rho: f64) -> f64 {
+    4.0 * std::f64::consts::PI / 3.0 * r * r * r * rho
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn push_remove_permute() {
+        let mut p = Particles::default();
+        for i in 0..4 {
+            p.push(i + 1, 1, [i as f64, 0.0, 0.0], 0.5, 1000.0);
+        }
+        assert!((p.mass[0] - 4.0 / 3.0 * std::f64::consts::PI * 0.125 * 1000.0).abs() < 1e-12);
+        p.retain_by(&[false, true, false, false]);
+        assert_eq!(p.id, [1, 3, 4]);
+        p.permute(&[2, 0, 1]);
+        assert_eq!(p.id, [4, 1, 3]);
+        assert_eq!(p.x[0], [3.0, 0.0, 0.0]);
+        assert_eq!(p.max_id(), 4);
+    }
+}

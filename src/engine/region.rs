@@ -1,0 +1,548 @@
+//! Geometric regions (`region` command): block, cylinder, sphere, cone, plane, prism and
+//! their intersections and unions, with `side in/out`. Inside tests follow LIGGGHTS
+//! exactly, boundaries included (a point on a block face is inside).
+
+use crate::engine::numbers::numeric;
+
+/// Stand-in for an infinite bound (`INF`), as LIGGGHTS uses.
+pub const BIG: f64 = 1.0e20;
+
+/// The shape of a region (lengths in box units).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// Axis-aligned box between `lo` and `hi`.
+    Block { lo: [f64; 3], hi: [f64; 3] },
+    /// Cylinder along `axis` (0, 1, 2) centred at (c1, c2) in the other two coordinates.
+    Cylinder {
+        axis: usize,
+        c1: f64,
+        c2: f64,
+        radius: f64,
+        lo: f64,
+        hi: f64,
+    },
+    /// Sphere of `radius` around `centre`.
+    Sphere { centre: [f64; 3], radius: f64 },
+    /// Truncated cone along `axis`, radius `radlo` at `lo` to `radhi` at `hi`.
+    Cone {
+        axis: usize,
+        c1: f64,
+        c2: f64,
+        radlo: f64,
+        radhi: f64,
+        lo: f64,
+        hi: f64,
+    },
+    /// Half space on the side `normal` (unit) points to, through `point`.
+    Plane { point: [f64; 3], normal: [f64; 3] },
+    /// Parallelepiped with origin `lo`, edge lengths from `lo`/`hi` and tilts xy, xz, yz.
+    Prism {
+        lo: [f64; 3],
+        hi: [f64; 3],
+        tilt: [f64; 3],
+        hinv: [[f64; 3]; 3],
+    },
+    /// Inside all of the listed regions (indices into the region list).
+    Intersect(Vec<usize>),
+    /// Inside any of the listed regions.
+    Union(Vec<usize>),
+}
+
+/// A named region.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Region {
+    /// The region ID.
+    pub id: String,
+    /// Its style name as written (`block`, `cylinder`, ...).
+    pub style: String,
+    /// The geometry.
+    pub shape: Shape,
+    /// `side in` (true) or `side out`.
+    pub interior: bool,
+}
+
+/// All regions defined so far, in order.
+#[derive(Debug, Clone, Default)]
+pub struct Regions {
+    /// The regions.
+    pub list: Vec<Region>,
+}
+
+fn axis_of(word: &str) -> Result<usize, String> {
+    match word {
+        "x" => Ok(0),
+        "y" => Ok(1),
+        "z" => Ok(2),
+        _ => Err(format!("expected an axis x, y or z, got '{word}'")),
+    }
+}
+
+/// The other two axes of a cylinder/cone along `axis`, in LIGGGHTS's order.
+fn cross_axes(axis: usize) -> (usize, usize) {
+    match axis {
+        0 => (1, 2),
+        1 => (0, 2),
+        _ => (0, 1),
+    }
+}
+
+/// What a region definition needs to know about the box and lattice.
+#[derive(Debug, Clone, Copy)]
+pub struct RegionContext {
+    /// Box bounds, if the box exists (for `EDGE` and `INF`).
+    pub bounds: Option<([f64; 3], [f64; 3])>,
+    /// Lattice spacings for `units lattice` (None when no lattice is defined).
+    pub lattice: Option<[f64; 3]>,
+}
+
+impl Regions {
+    /// Find a region by ID.
+    pub fn find(&self, id: &str) -> Option<usize> {
+        self.list.iter().position(|r| r.id == id)
+    }
+
+    /// Parse `region ID STYLE args... [keyword value ...]` (`args` excludes the command name).
+    pub fn define(&mut self, args: &[&str], ctx: RegionContext) -> Result<(), String> {
+        if args.len() < 2 {
+            return Err("Illegal region command".into());
+        }
+        let (id, style) = (args[0], args[1]);
+        if self.find(id).is_some() {
+            return Err("Reuse of region ID".into());
+        }
+        if style == "delete" {
+            return Err("region delete: not supported yet".into());
+        }
+        let nshape = match style {
+            "block" => 6,
+            "cylinder" | "plane" => 6,
+            "sphere" => 4,
+            "cone" => 7,
+            "prism" => 9,
+            "intersect" | "union" => {
+                let n = args.get(2).ok_or("Illegal region command")?;
+                let n: usize = n
+                    .parse()
+                    .map_err(|_| "Illegal region command".to_string())?;
+                if n < 2 {
+                    return Err(format!("Illegal region {style} command"));
+                }
+                n + 1
+            }
+            other => return Err(format!("region {other}: not supported yet")),
+        };
+        if args.len() < 2 + nshape {
+            return Err(format!("Illegal region {style} command"));
+        }
+        let geometry = &args[2..2 + nshape];
+        let (interior, scale) = options(&args[2 + nshape..], ctx)?;
+        let coord = |w: &str, d: usize, lo_side: bool| -> Result<f64, String> {
+            if w == "INF" || w == "EDGE" {
+                let (lo, hi) = ctx
+                    .bounds
+                    .ok_or("Cannot use region INF or EDGE when box does not exist")?;
+                return Ok(match (w, lo_side) {
+                    ("INF", true) => -BIG,
+                    ("INF", false) => BIG,
+                    (_, true) => lo[d],
+                    (_, false) => hi[d],
+                });
+            }
+            Ok(scale[d] * numeric(w)?)
+        };
+        let plain = |w: &str| -> Result<f64, String> {
+            if w.starts_with("v_") {
+                return Err("region with variable size (v_): not supported yet".into());
+            }
+            numeric(w)
+        };
+        let shape = match style {
+            "block" => {
+                let mut lo = [0.0; 3];
+                let mut hi = [0.0; 3];
+                for d in 0..3 {
+                    lo[d] = coord(geometry[2 * d], d, true)?;
+                    hi[d] = coord(geometry[2 * d + 1], d, false)?;
+                }
+                if (0..3).any(|d| lo[d] > hi[d]) {
+                    return Err("Illegal region block command".into());
+                }
+                Shape::Block { lo, hi }
+            }
+            "cylinder" | "cone" => {
+                let axis = axis_of(geometry[0])?;
+                let (a1, a2) = cross_axes(axis);
+                let c1 = scale[a1] * numeric(geometry[1])?;
+                let c2 = scale[a2] * numeric(geometry[2])?;
+                if style == "cylinder" {
+                    let radius = scale[a1] * plain(geometry[3])?;
+                    let lo = coord(geometry[4], axis, true)?;
+                    let hi = coord(geometry[5], axis, false)?;
+                    if radius <= 0.0 {
+                        return Err("Illegal region cylinder command".into());
+                    }
+                    Shape::Cylinder {
+                        axis,
+                        c1,
+                        c2,
+                        radius,
+                        lo,
+                        hi,
+                    }
+                } else {
+                    let radlo = scale[a1] * numeric(geometry[3])?;
+                    let radhi = scale[a1] * numeric(geometry[4])?;
+                    let lo = coord(geometry[5], axis, true)?;
+                    let hi = coord(geometry[6], axis, false)?;
+                    if radlo < 0.0 || radhi < 0.0 || (radlo == 0.0 && radhi == 0.0) || lo >= hi {
+                        return Err("Illegal region cone command".into());
+                    }
+                    Shape::Cone {
+                        axis,
+                        c1,
+                        c2,
+                        radlo,
+                        radhi,
+                        lo,
+                        hi,
+                    }
+                }
+            }
+            "sphere" => {
+                let mut centre = [0.0; 3];
+                for d in 0..3 {
+                    centre[d] = scale[d] * numeric(geometry[d])?;
+                }
+                let radius = scale[0] * plain(geometry[3])?;
+                if radius < 0.0 {
+                    return Err("Illegal region sphere command".into());
+                }
+                Shape::Sphere { centre, radius }
+            }
+            "plane" => {
+                let mut point = [0.0; 3];
+                let mut normal = [0.0; 3];
+                for d in 0..3 {
+                    point[d] = scale[d] * numeric(geometry[d])?;
+                    normal[d] = scale[d] * numeric(geometry[3 + d])?;
+                }
+                let rsq = normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2];
+                if rsq == 0.0 {
+                    return Err("Illegal region plane command".into());
+                }
+                for n in &mut normal {
+                    *n /= rsq.sqrt();
+                }
+                Shape::Plane { point, normal }
+            }
+            "prism" => {
+                let mut lo = [0.0; 3];
+                let mut hi = [0.0; 3];
+                for d in 0..3 {
+                    lo[d] = coord(geometry[2 * d], d, true)?;
+                    hi[d] = coord(geometry[2 * d + 1], d, false)?;
+                }
+                let tilt = [
+                    scale[0] * numeric(geometry[6])?,
+                    scale[0] * numeric(geometry[7])?,
+                    scale[1] * numeric(geometry[8])?,
+                ];
+                if (0..3).any(|d| lo[d] >= hi[d]) {
+                    return Err("Illegal region prism command".into());
+                }
+                let h = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+                let hinv = [
+                    [
+                        1.0 / h[0],
+                        -tilt[0] / (h[0] * h[1]),
+                        (tilt[0] * tilt[2] - tilt[1] * h[1]) / (h[0] * h[1] * h[2]),
+                    ],
+                    [0.0, 1.0 / h[1], -tilt[2] / (h[1] * h[2])],
+                    [0.0, 0.0, 1.0 / h[2]],
+                ];
+                Shape::Prism { lo, hi, tilt, hinv }
+            }
+            _ => {
+                let mut members = Vec::new();
+                for name in &geometry[1..] {
+                    members.push(self.find(name).ok_or_else(|| {
+                        format!("Region {style} region ID {name} does not exist")
+                    })?);
+                }
+                if style == "intersect" {
+                    Shape::Intersect(members)
+                } else {
+                    Shape::Union(members)
+                }
+            }
+        };
+        self.list.push(Region {
+            id: id.to_string(),
+            style: style.to_string(),
+            shape,
+            interior,
+        });
+        Ok(())
+    }
+
+    /// Is point `x` in region `index`, honouring `side`?
+    pub fn matches(&self, index: usize, x: [f64; 3]) -> bool {
+        let r = &self.list[index];
+        self.inside(&r.shape, x) == r.interior
+    }
+
+    fn inside(&self, shape: &Shape, x: [f64; 3]) -> bool {
+        match shape {
+            Shape::Block { lo, hi } => (0..3).all(|d| x[d] >= lo[d] && x[d] <= hi[d]),
+            Shape::Cylinder {
+                axis,
+                c1,
+                c2,
+                radius,
+                lo,
+                hi,
+            } => {
+                let (a1, a2) = cross_axes(*axis);
+                let (d1, d2) = (x[a1] - c1, x[a2] - c2);
+                let dist = (d1 * d1 + d2 * d2).sqrt();
+                dist <= *radius && x[*axis] >= *lo && x[*axis] <= *hi
+            }
+            Shape::Sphere { centre, radius } => {
+                let d = [x[0] - centre[0], x[1] - centre[1], x[2] - centre[2]];
+                (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() <= *radius
+            }
+            Shape::Cone {
+                axis,
+                c1,
+                c2,
+                radlo,
+                radhi,
+                lo,
+                hi,
+            } => {
+                let (a1, a2) = cross_axes(*axis);
+                let (d1, d2) = (x[a1] - c1, x[a2] - c2);
+                let dist = (d1 * d1 + d2 * d2).sqrt();
+                let current = radlo + (x[*axis] - lo) * (radhi - radlo) / (hi - lo);
+                dist <= current && x[*axis] >= *lo && x[*axis] <= *hi
+            }
+            Shape::Plane { point, normal } => {
+                (x[0] - point[0]) * normal[0]
+                    + (x[1] - point[1]) * normal[1]
+                    + (x[2] - point[2]) * normal[2]
+                    >= 0.0
+            }
+            Shape::Prism { lo, hinv, .. } => {
+                let a = hinv[0][0] * (x[0] - lo[0])
+                    + hinv[0][1] * (x[1] - lo[1])
+                    + hinv[0][2] * (x[2] - lo[2]);
+                let b = hinv[1][1] * (x[1] - lo[1]) + hinv[1][2] * (x[2] - lo[2]);
+                let c = hinv[2][2] * (x[2] - lo[2]);
+                (0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b) && (0.0..=1.0).contains(&c)
+            }
+            Shape::Intersect(members) => members.iter().all(|&m| self.matches(m, x)),
+            Shape::Union(members) => members.iter().any(|&m| self.matches(m, x)),
+        }
+    }
+
+    /// Axis-aligned bounds of region `index` (for `create_box`), if it has finite ones.
+    pub fn extent(&self, index: usize) -> Option<([f64; 3], [f64; 3])> {
+        let r = &self.list[index];
+        if !r.interior {
+            return None;
+        }
+        match &r.shape {
+            Shape::Block { lo, hi } => Some((*lo, *hi)),
+            Shape::Cylinder {
+                axis,
+                c1,
+                c2,
+                radius,
+                lo,
+                hi,
+            } => {
+                let (a1, a2) = cross_axes(*axis);
+                let mut l = [0.0; 3];
+                let mut h = [0.0; 3];
+                l[*axis] = *lo;
+                h[*axis] = *hi;
+                l[a1] = c1 - radius;
+                h[a1] = c1 + radius;
+                l[a2] = c2 - radius;
+                h[a2] = c2 + radius;
+                Some((l, h))
+            }
+            Shape::Sphere { centre, radius } => Some((
+                [centre[0] - radius, centre[1] - radius, centre[2] - radius],
+                [centre[0] + radius, centre[1] + radius, centre[2] + radius],
+            )),
+            Shape::Cone {
+                axis,
+                c1,
+                c2,
+                radlo,
+                radhi,
+                lo,
+                hi,
+            } => {
+                let (a1, a2) = cross_axes(*axis);
+                let r = radlo.max(*radhi);
+                let mut l = [0.0; 3];
+                let mut h = [0.0; 3];
+                l[*axis] = *lo;
+                h[*axis] = *hi;
+                l[a1] = c1 - r;
+                h[a1] = c1 + r;
+                l[a2] = c2 - r;
+                h[a2] = c2 + r;
+                Some((l, h))
+            }
+            Shape::Prism { .. } | Shape::Plane { .. } => None,
+            Shape::Intersect(m) => {
+                let boxes: Vec<_> = m.iter().filter_map(|&i| self.extent(i)).collect();
+                let first = *boxes.first()?;
+                Some(boxes.iter().fold(first, |(l, h), (bl, bh)| {
+                    (
+                        [l[0].max(bl[0]), l[1].max(bl[1]), l[2].max(bl[2])],
+                        [h[0].min(bh[0]), h[1].min(bh[1]), h[2].min(bh[2])],
+                    )
+                }))
+            }
+            Shape::Union(m) => {
+                let boxes: Option<Vec<_>> = m.iter().map(|&i| self.extent(i)).collect();
+                let boxes = boxes?;
+                let first = *boxes.first()?;
+                Some(boxes.iter().fold(first, |(l, h), (bl, bh)| {
+                    (
+                        [l[0].min(bl[0]), l[1].min(bl[1]), l[2].min(bl[2])],
+                        [h[0].max(bh[0]), h[1].max(bh[1]), h[2].max(bh[2])],
+                    )
+                }))
+            }
+        }
+    }
+}
+
+/// Trailing `units`, `side`, `seed`, `volume_limit` options; returns (interior, scale).
+fn options(words: &[&str], ctx: RegionContext) -> Result<(bool, [f64; 3]), String> {
+    let mut interior = true;
+    let mut lattice = false;
+    let mut i = 0;
+    while i < words.len() {
+        let value = words.get(i + 1).ok_or("Illegal region command")?;
+        match (words[i], *value) {
+            ("units", "box") => lattice = false,
+            ("units", "lattice") => lattice = true,
+            ("side", "in") => interior = true,
+            ("side", "out") => interior = false,
+            ("seed", _) | ("volume_limit", _) => {
+                numeric(value)?;
+            }
+            ("move" | "rotate", _) => {
+                return Err(format!("region {}: not supported yet", words[i]))
+            }
+            _ => {
+                return Err(format!(
+                    "Illegal region command (unknown option '{}')",
+                    words[i]
+                ))
+            }
+        }
+        i += 2;
+    }
+    let scale = if lattice {
+        ctx.lattice.ok_or("Use of region with undefined lattice")?
+    } else {
+        [1.0; 3]
+    };
+    Ok((interior, scale))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ctx() -> RegionContext {
+        RegionContext {
+            bounds: Some(([0.0; 3], [1.0; 3])),
+            lattice: Some([2.0; 3]),
+        }
+    }
+
+    #[test]
+    fn shapes_and_sides() {
+        let mut r = Regions::default();
+        r.define(&["b", "block", "0", "1", "0", "1", "INF", "EDGE"], ctx())
+            .unwrap();
+        assert!(r.matches(0, [1.0, 0.0, -5.0]));
+        assert!(!r.matches(0, [1.0, 0.0, 1.5]));
+        r.define(
+            &["c", "cylinder", "z", "0", "0", "1", "0", "2", "side", "out"],
+            ctx(),
+        )
+        .unwrap();
+        assert!(!r.matches(1, [0.5, 0.5, 1.0]));
+        assert!(r.matches(1, [0.9, 0.9, 1.0]));
+        r.define(
+            &["s", "sphere", "0", "0", "0", "1", "units", "lattice"],
+            ctx(),
+        )
+        .unwrap();
+        assert!(r.matches(2, [0.0, 1.9, 0.0]));
+        r.define(&["p", "plane", "0", "0", "0.5", "0", "0", "-3"], ctx())
+            .unwrap();
+        assert!(r.matches(3, [9.0, 9.0, 0.2]) && !r.matches(3, [0.0, 0.0, 0.6]));
+        r.define(&["k", "cone", "z", "0", "0", "1", "0", "0", "1"], ctx())
+            .unwrap();
+        assert!(r.matches(4, [0.4, 0.0, 0.5]) && !r.matches(4, [0.6, 0.0, 0.5]));
+        r.define(&["i", "intersect", "2", "b", "s"], ctx()).unwrap();
+        assert!(r.matches(5, [0.5, 0.5, 0.5]) && !r.matches(5, [-0.5, 0.5, 0.5]));
+        r.define(&["u", "union", "2", "b", "s"], ctx()).unwrap();
+        assert!(r.matches(6, [-0.5, 0.5, 0.5]));
+        r.define(
+            &["pr", "prism", "0", "1", "0", "1", "0", "1", "0.5", "0", "0"],
+            ctx(),
+        )
+        .unwrap();
+        assert!(r.matches(7, [1.4, 0.9, 0.5]) && !r.matches(7, [0.1, 0.9, 0.5]));
+        assert_eq!(r.extent(1), None);
+        assert_eq!(r.extent(2), Some(([-2.0; 3], [2.0; 3])));
+    }
+
+    #[test]
+    fn errors() {
+        let mut r = Regions::default();
+        let none = RegionContext {
+            bounds: None,
+            lattice: None,
+        };
+        assert_eq!(
+            r.define(&["b", "block", "0", "1", "0", "1", "0", "INF"], none)
+                .unwrap_err(),
+            "Cannot use region INF or EDGE when box does not exist"
+        );
+        assert!(r
+            .define(&["b", "block", "0", "1", "0", "1", "0", "x"], none)
+            .is_err());
+        assert!(r
+            .define(
+                &["s", "sphere", "0", "0", "0", "1", "units", "lattice"],
+                none
+            )
+            .is_err());
+        assert!(r
+            .define(
+                &["s", "sphere", "0", "0", "0", "1", "side", "sideways"],
+                none
+            )
+            .is_err());
+        r.define(&["s", "sphere", "0", "0", "0", "1"], none)
+            .unwrap();
+        assert_eq!(
+            r.define(&["s", "sphere", "0", "0", "0", "1"], none)
+                .unwrap_err(),
+            "Reuse of region ID"
+        );
+        assert!(r.define(&["u", "union", "2", "s", "nope"], none).is_err());
+    }
+}

@@ -1,0 +1,3 @@
+//! Files regolith writes and reads: dumps (and, later, logs, restarts and data files).
+
+pub mod dump;

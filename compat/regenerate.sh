@@ -45,4 +45,36 @@ script_references() {
     done
 }
 
-script_references
+# Engine decks: compat/engine/in.NAME (side files in NAME.inputs/). References in NAME.ref/:
+# every file the deck writes (dumps) and thermo.txt, the thermo lines of its runs.
+engine_references() {
+    local dir="$here/engine"
+    for deck in "$dir"/in.*; do
+        local name="${deck##*/in.}"
+        local work
+        work="$(mktemp -d)"
+        cp "$deck" "$work/"
+        if [ -d "$dir/$name.inputs" ]; then cp -r "$dir/$name.inputs/." "$work/"; fi
+        local status=0
+        (cd "$work" && liggghts -in "in.$name" -log none > stdout.txt 2> /dev/null) || status=$?
+        rm -rf "$dir/$name.ref"
+        mkdir -p "$dir/$name.ref"
+        tr -d '\000' < "$work/stdout.txt" | awk '
+            /^Loop time/ { inrun = 0 }
+            inrun { print }
+            /^ *Step / { inrun = 1; print }' > "$dir/$name.ref/thermo.txt"
+        (
+            cd "$work"
+            rm -f stdout.txt "in.$name"
+            if [ -d "$dir/$name.inputs" ]; then
+                (cd "$dir/$name.inputs" && find . -type f) | while read -r f; do rm -f "$f"; done
+            fi
+            cp -r . "$dir/$name.ref/"
+        )
+        rm -rf "$work"
+        echo "engine/$name: status $status"
+    done
+}
+
+[ "${1:-all}" = engine ] || script_references
+[ "${1:-all}" = script ] || engine_references

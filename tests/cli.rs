@@ -100,7 +100,7 @@ fn unsupported_feature_exits_3_and_check_lists_every_item() {
     let dir = scratch("unsupported");
     std::fs::write(
         dir.join("in.t"),
-        "atom_style granular\n# comment\nfix ins all insert/stream seed 10007\nrun 10\n",
+        "atom_style granular\n# comment\nregion b block 0 1 0 1 0 1\ncreate_box 1 b\nfix ins all insert/stream seed 10007\npair_style gran model hertz tangential history\ncompute s all stress/atom\n",
     )
     .unwrap();
     let out = regolith(&dir, &["-in", "in.t", "-log", "none"], None);
@@ -109,9 +109,9 @@ fn unsupported_feature_exits_3_and_check_lists_every_item() {
     assert_eq!(out.status.code(), Some(3));
     assert_eq!(
         text(&out.stdout),
-        "in.t:1: atom_style granular: not supported yet\n\
-         in.t:3: fix insert/stream: not supported yet\n\
-         in.t:4: run: not supported yet\n"
+        "in.t:5: fix insert/stream: not supported yet\n\
+         in.t:6: pair_style gran: not supported yet\n\
+         in.t:7: compute stress/atom: not supported yet\n"
     );
 }
 
@@ -133,7 +133,7 @@ fn usage_errors_exit_2_with_suggestion() {
 #[test]
 fn check_follows_loops_once_and_includes() {
     let dir = scratch("loops");
-    std::fs::write(dir.join("in.inc"), "fix g all gravity 9.81 vector 0 0 -1\n").unwrap();
+    std::fs::write(dir.join("in.inc"), "compute s all stress/atom\n").unwrap();
     std::fs::write(
         dir.join("in.t"),
         "variable a loop 1000\nlabel top\ninclude in.inc\nnext a\njump SELF top\nprint done\n",
@@ -142,7 +142,8 @@ fn check_follows_loops_once_and_includes() {
     let out = regolith(&dir, &["check", "in.t"], None);
     assert_eq!(
         text(&out.stdout),
-        "in.inc:1: fix gravity: not supported yet\n"
+        "in.inc:1: compute stress/atom: not supported yet
+"
     );
     assert_eq!(out.status.code(), Some(3));
 }

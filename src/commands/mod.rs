@@ -2,16 +2,41 @@
 //! does with each. Script-language commands are executed by the interpreter
 //! ([`crate::script::interp`]); everything else arrives here as a [`CommandLine`].
 
+pub mod args;
 pub mod names;
 pub mod registry;
+pub mod sim_run;
+pub mod sim_setup;
 pub mod suggest;
 
+use crate::engine::sim::Simulation;
 use crate::error::{Diagnostic, Location};
+use crate::script::interp::Output;
 use crate::script::line::Word;
 use crate::script::system::{Mode, System};
 use crate::script::variables::Variables;
 
+pub use args::Args;
 pub use registry::validate_names;
+
+/// What a command handler may touch.
+pub struct Ctx<'a> {
+    /// The simulation.
+    pub sim: &'a mut Simulation,
+    /// Files and mode.
+    pub sys: &'a mut System,
+    /// Screen and log.
+    pub out: &'a mut Output,
+}
+
+impl Ctx<'_> {
+    /// Print an informational line to screen and log (not in check mode).
+    pub fn say(&mut self, text: &str) {
+        if self.sys.mode == Mode::Run {
+            self.out.both(text);
+        }
+    }
+}
 
 /// Keywords a formula may use for thermo values (LIGGGHTS 3.8.0's `Thermo::evaluate_keyword`).
 pub const THERMO_KEYWORDS: &[&str] = &[
@@ -95,8 +120,9 @@ impl CommandLine {
 
 /// Everything below the script language. Until the simulation engine lands it knows which
 /// commands exist and reports the ones it cannot run yet.
-#[derive(Debug)]
 pub struct Engine {
+    /// The simulation the commands build and run.
+    pub sim: Simulation,
     /// Current timestep number.
     pub timestep: i64,
     /// Time-step size (s in SI units).
@@ -116,6 +142,7 @@ impl Engine {
     /// An engine with no box and LIGGGHTS's default settings.
     pub fn new() -> Engine {
         Engine {
+            sim: Simulation::default(),
             timestep: 0,
             dt: 0.005,
             seed_tolerant: false,
@@ -132,7 +159,7 @@ impl Engine {
 
     /// Whether `create_box` (or a restart/data file) has defined the simulation box.
     pub fn box_exists(&self) -> bool {
-        false
+        self.sim.domain.exists
     }
 
     /// Execute a non-script command.
@@ -141,16 +168,33 @@ impl Engine {
         cmd: &CommandLine,
         sys: &mut System,
         vars: &Variables,
+        out: &mut Output,
     ) -> Result<(), Diagnostic> {
-        let _ = (sys.mode, vars);
+        let _ = vars;
         validate_names(cmd)?;
+        let args = Args { cmd };
+        let mut ctx = Ctx {
+            sim: &mut self.sim,
+            sys,
+            out,
+        };
+        let handled = sim_setup::execute(cmd.name(), &args, &mut ctx)
+            .or_else(|| sim_run::execute(cmd.name(), &args, &mut ctx));
+        if let Some(result) = handled {
+            self.timestep = self.sim.step;
+            self.dt = self.sim.dt;
+            return result;
+        }
         Err(Diagnostic::unsupported(registry::feature_name(cmd))
             .with_source(&cmd.text, Some(registry::feature_span(cmd))))
     }
 
-    /// Check a command's names without executing it.
+    /// Check a command's names without executing it (supported commands pass).
     pub fn validate_names(&self, cmd: &CommandLine) -> Result<(), Diagnostic> {
         validate_names(cmd)?;
+        if registry::is_supported(cmd) {
+            return Ok(());
+        }
         Err(Diagnostic::unsupported(registry::feature_name(cmd)))
     }
 

@@ -145,3 +145,56 @@ fn validate_gran_models(cmd: &CommandLine, start: usize) -> Result<(), Diagnosti
     }
     Ok(())
 }
+
+/// Commands regolith executes (beyond the script language), and their supported styles.
+pub fn is_supported(cmd: &CommandLine) -> bool {
+    match cmd.name() {
+        "fix" => cmd
+            .arg(2)
+            .is_some_and(|s| crate::commands::sim_run::FIX_STYLES.contains(&s)),
+        "dump" => cmd.arg(2) == Some("custom"),
+        "atom_style" => matches!(cmd.arg(0), Some("granular" | "sphere")),
+        "region" => matches!(
+            cmd.arg(1),
+            Some(
+                "block"
+                    | "cylinder"
+                    | "sphere"
+                    | "cone"
+                    | "plane"
+                    | "prism"
+                    | "intersect"
+                    | "union"
+            )
+        ),
+        name => SUPPORTED_COMMANDS.contains(&name),
+    }
+}
+
+/// Commands with a native implementation (their keywords are checked when they run).
+pub const SUPPORTED_COMMANDS: &[&str] = &[
+    "atom_modify",
+    "boundary",
+    "comm_modify",
+    "communicate",
+    "create_atoms",
+    "create_box",
+    "dimension",
+    "dump_modify",
+    "group",
+    "neigh_modify",
+    "neighbor",
+    "newton",
+    "processors",
+    "reset_timestep",
+    "run",
+    "set",
+    "thermo",
+    "thermo_modify",
+    "thermo_style",
+    "timestep",
+    "undump",
+    "unfix",
+    "units",
+    "velocity",
+];

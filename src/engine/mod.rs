@@ -7,3 +7,5 @@ pub mod neighbor;
 pub mod numbers;
 pub mod particles;
 pub mod region;
+pub mod sim;
+pub mod thermo;

@@ -29,6 +29,11 @@ pub struct NeighborList {
 }
 
 impl NeighborList {
+    /// Positions of the particles when the list was last built.
+    pub fn built_positions(&self) -> &[[f64; 3]] {
+        &self.built_at
+    }
+
     /// Should the list be rebuilt (LIGGGHTS `check yes`: a particle moved more than skin/2)?
     pub fn needs_rebuild(&self, x: &[[f64; 3]], skin: f64) -> bool {
         if self.built_at.len() != x.len() {

@@ -397,7 +397,9 @@ impl Interpreter {
             }
             "shell" => self.shell(&args),
             "variable" => self.variable(cmd, &args),
-            _ => self.engine.execute(cmd, &mut self.sys, &self.vars),
+            _ => self
+                .engine
+                .execute(cmd, &mut self.sys, &self.vars, &mut self.out),
         }
     }
 

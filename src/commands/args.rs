@@ -1,0 +1,100 @@
+//! Typed access to a command's arguments with errors that point at the offending word.
+
+use crate::commands::suggest::did_you_mean;
+use crate::commands::CommandLine;
+use crate::engine::numbers::{inumeric, numeric};
+use crate::error::Diagnostic;
+
+/// A command's arguments (after the command name).
+pub struct Args<'a> {
+    /// The command.
+    pub cmd: &'a CommandLine,
+}
+
+impl<'a> Args<'a> {
+    /// Number of arguments.
+    pub fn len(&self) -> usize {
+        self.cmd.nargs()
+    }
+
+    /// True when there are none.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// An error about argument `i`, in LIGGGHTS's words.
+    pub fn error(&self, i: usize, message: &str) -> Diagnostic {
+        Diagnostic::error(message).with_source(&self.cmd.text, Some(self.cmd.span(i)))
+    }
+
+    /// A "not supported yet" report pointing at argument `i`.
+    pub fn unsupported(&self, i: usize, what: &str) -> Diagnostic {
+        Diagnostic::unsupported(what).with_source(&self.cmd.text, Some(self.cmd.span(i)))
+    }
+
+    /// An unknown keyword at `i`, with the nearest of `known`.
+    pub fn keyword_error(&self, i: usize, known: &[&str]) -> Diagnostic {
+        let word = self.cmd.arg(i).unwrap_or("");
+        let help = did_you_mean(word, known)
+            .unwrap_or_else(|| format!("expected one of: {}", known.join(", ")));
+        self.error(
+            i,
+            &format!(
+                "Illegal {} command: unknown keyword '{word}'",
+                self.cmd.name()
+            ),
+        )
+        .with_help(help)
+    }
+
+    /// Check the argument count.
+    pub fn count(
+        &self,
+        range: std::ops::RangeInclusive<usize>,
+        usage: &str,
+    ) -> Result<(), Diagnostic> {
+        if range.contains(&self.len()) {
+            Ok(())
+        } else {
+            Err(self
+                .error(
+                    self.len().saturating_sub(1),
+                    &format!("Illegal {} command", self.cmd.name()),
+                )
+                .with_help(format!("expected: {usage}")))
+        }
+    }
+
+    /// Argument `i` as a word.
+    pub fn word(&self, i: usize) -> Result<&'a str, Diagnostic> {
+        self.cmd.arg(i).ok_or_else(|| {
+            self.error(
+                self.len().saturating_sub(1),
+                &format!("Illegal {} command", self.cmd.name()),
+            )
+            .with_help(format!("missing argument {}", i + 1))
+        })
+    }
+
+    /// Argument `i`, which must be one of `allowed`.
+    pub fn word_in(&self, i: usize, allowed: &[&str]) -> Result<&'a str, Diagnostic> {
+        let w = self.word(i)?;
+        if allowed.contains(&w) {
+            Ok(w)
+        } else {
+            Err(self.keyword_error(i, allowed))
+        }
+    }
+
+    /// Argument `i` as a real number (LIGGGHTS's rules).
+    pub fn real(&self, i: usize) -> Result<f64, Diagnostic> {
+        let w = self.word(i)?;
+        numeric(w).map_err(|m| self.error(i, &m))
+    }
+
+    /// Argument `i` as an integer (LIGGGHTS's rules).
+    pub fn int(&self, i: usize) -> Result<i64, Diagnostic> {
+        let w = self.word(i)?;
+        inumeric(w).map_err(|m| self.error(i, &m))
+    }
+}

@@ -1,0 +1,281 @@
+//! Commands that drive and observe the run: fixes regolith integrates, thermo, dumps, `run`.
+
+use crate::commands::{Args, Ctx};
+use crate::engine::integrate::Gravity;
+use crate::engine::sim::{Dump, Fix, FixKind};
+use crate::error::Diagnostic;
+use crate::io::dump::Layout;
+use crate::script::system::Mode;
+
+type Result = std::result::Result<(), Diagnostic>;
+
+/// Fix styles regolith runs.
+pub const FIX_STYLES: &[&str] = &["gravity", "nve/sphere"];
+
+/// Handle a run/output command; None if `name` is not one of them.
+pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
+    Some(match name {
+        "fix" => fix(a, ctx),
+        "unfix" => unfix(a, ctx),
+        "thermo" => thermo(a, ctx),
+        "thermo_style" => thermo_style(a, ctx),
+        "thermo_modify" => thermo_modify(a, ctx),
+        "dump" => dump(a, ctx),
+        "dump_modify" => dump_modify(a, ctx),
+        "undump" => undump(a, ctx),
+        "run" => run(a, ctx),
+        _ => return None,
+    })
+}
+
+fn fix(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(3..=usize::MAX, "fix ID GROUP STYLE ...")?;
+    let (id, group, style) = (a.word(0)?, a.word(1)?, a.word(2)?);
+    if !ctx.sim.domain.exists {
+        return Err(a.error(0, "Fix command before simulation box is defined"));
+    }
+    if !id.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_') {
+        return Err(a.error(0, "Fix ID must be alphanumeric or underscore characters"));
+    }
+    let bit = ctx
+        .sim
+        .group_bit(group)
+        .ok_or_else(|| a.error(1, "Could not find fix group ID"))?;
+    let kind = match style {
+        "nve/sphere" => {
+            if a.len() > 3 {
+                return Err(a.unsupported(3, "fix nve/sphere keywords"));
+            }
+            FixKind::NveSphere
+        }
+        "gravity" => {
+            a.count(4..=usize::MAX, "fix ID GROUP gravity MAG vector X Y Z")?;
+            let magnitude = a.real(3)?;
+            match a.word(4)? {
+                "vector" => {
+                    a.count(8..=8, "fix ID GROUP gravity MAG vector X Y Z")?;
+                    let dir = [a.real(5)?, a.real(6)?, a.real(7)?];
+                    FixKind::Gravity(
+                        Gravity::along(magnitude, dir, bit).map_err(|m| a.error(5, &m))?,
+                    )
+                }
+                other => return Err(a.unsupported(4, &format!("fix gravity {other}"))),
+            }
+        }
+        other => return Err(a.unsupported(2, &format!("fix {other}"))),
+    };
+    let fix = Fix {
+        id: id.to_string(),
+        style: style.to_string(),
+        group: bit,
+        kind,
+        args: Vec::new(),
+    };
+    match ctx.sim.fixes.iter().position(|f| f.id == id) {
+        Some(i) => {
+            if ctx.sim.fixes[i].style != style {
+                return Err(a.error(2, "Replacing a fix, but new style != old style"));
+            }
+            ctx.sim.fixes[i] = fix;
+        }
+        None => ctx.sim.fixes.push(fix),
+    }
+    Ok(())
+}
+
+fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=1, "unfix ID")?;
+    let id = a.word(0)?;
+    let i = ctx
+        .sim
+        .fixes
+        .iter()
+        .position(|f| f.id == id)
+        .ok_or_else(|| a.error(0, "Could not find fix ID to delete"))?;
+    ctx.sim.fixes.remove(i);
+    Ok(())
+}
+
+fn thermo(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=1, "thermo N")?;
+    let n = a.int(0)?;
+    if n < 0 {
+        return Err(a.error(0, "Illegal thermo command"));
+    }
+    ctx.sim.thermo.every = n;
+    Ok(())
+}
+
+fn thermo_style(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=usize::MAX, "thermo_style one|custom KEYWORDS...")?;
+    let words: Vec<&str> = match a.word(0)? {
+        "one" => vec!["step", "atoms", "ke", "cpu"],
+        "custom" => (1..a.len())
+            .map(|i| a.word(i))
+            .collect::<std::result::Result<_, _>>()?,
+        "multi" => return Err(a.unsupported(0, "thermo_style multi")),
+        _ => return Err(a.keyword_error(0, &["one", "custom", "multi"])),
+    };
+    ctx.sim.thermo.set_style(&words).map_err(|m| {
+        let at = words
+            .iter()
+            .position(|w| m.contains(w))
+            .map_or(0, |k| k + 1);
+        if m.ends_with("not supported yet") {
+            a.unsupported(at, m.trim_end_matches(": not supported yet"))
+        } else {
+            a.error(at, &m)
+        }
+    })?;
+    // LIGGGHTS: a new thermo_style resets thermo_modify settings
+    ctx.sim.thermo.norm = false;
+    ctx.sim.lost_ignore = false;
+    Ok(())
+}
+
+fn thermo_modify(a: &Args, ctx: &mut Ctx) -> Result {
+    let mut i = 0;
+    while i < a.len() {
+        match a.word(i)? {
+            "norm" => ctx.sim.thermo.norm = a.word_in(i + 1, &["yes", "no"])? == "yes",
+            "lost" => {
+                ctx.sim.lost_ignore = a.word_in(i + 1, &["ignore", "warn", "error"])? != "error"
+            }
+            "flush" => {
+                a.word_in(i + 1, &["yes", "no"])?;
+            }
+            other => return Err(a.unsupported(i, &format!("thermo_modify {other}"))),
+        }
+        i += 2;
+    }
+    Ok(())
+}
+
+fn dump(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(5..=usize::MAX, "dump ID GROUP custom N FILE columns...")?;
+    let (id, group, style) = (a.word(0)?, a.word(1)?, a.word(2)?);
+    let bit = ctx
+        .sim
+        .group_bit(group)
+        .ok_or_else(|| a.error(1, "Could not find dump group ID"))?;
+    if ctx.sim.dumps.iter().any(|d| d.id == id) {
+        return Err(a.error(0, "Reuse of dump ID"));
+    }
+    let every = a.int(3)?;
+    if every <= 0 {
+        return Err(a.error(3, "Illegal dump command"));
+    }
+    let file = a.word(4)?;
+    if file.ends_with(".gz") {
+        return Err(a.unsupported(4, "gzip dump files"));
+    }
+    let layout = match style {
+        "custom" => {
+            let names: Vec<&str> = (5..a.len())
+                .map(|i| a.word(i))
+                .collect::<std::result::Result<_, _>>()?;
+            if names.is_empty() {
+                return Err(a
+                    .error(4, "Illegal dump custom command")
+                    .with_help("list the columns to dump"));
+            }
+            if let Some(k) = names
+                .iter()
+                .position(|n| n.starts_with("c_") || n.starts_with("f_") || n.starts_with("v_"))
+            {
+                return Err(a.unsupported(5 + k, "dump columns of computes, fixes and variables"));
+            }
+            Layout::new(&names).map_err(|m| {
+                let k = names
+                    .iter()
+                    .position(|n| m.contains(&format!(" {n} ")))
+                    .unwrap_or(0);
+                a.error(5 + k, &m)
+            })?
+        }
+        other => return Err(a.unsupported(2, &format!("dump {other}"))),
+    };
+    ctx.sim.dumps.push(Dump {
+        id: id.to_string(),
+        group: bit,
+        every,
+        file: ctx.sys.resolve(file).to_string_lossy().into_owned(),
+        layout,
+        last_written: None,
+        handle: None,
+    });
+    Ok(())
+}
+
+fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(3..=usize::MAX, "dump_modify ID keyword value ...")?;
+    let id = a.word(0)?;
+    let k = ctx
+        .sim
+        .dumps
+        .iter()
+        .position(|d| d.id == id)
+        .ok_or_else(|| a.error(0, "Could not find dump_modify ID"))?;
+    let mut i = 1;
+    while i < a.len() {
+        let dump = &mut ctx.sim.dumps[k];
+        match a.word(i)? {
+            "sort" => match a.word(i + 1)? {
+                "id" => dump.layout.sort_by_id = true,
+                "off" => dump.layout.sort_by_id = false,
+                _ => return Err(a.unsupported(i + 1, "dump_modify sort by column")),
+            },
+            "format" => dump
+                .layout
+                .set_format(a.word(i + 1)?)
+                .map_err(|m| a.error(i + 1, &m))?,
+            "every" => {
+                let n = a.int(i + 1)?;
+                if n <= 0 {
+                    return Err(a.error(i + 1, "Illegal dump_modify command"));
+                }
+                dump.every = n;
+            }
+            "flush" => {
+                a.word_in(i + 1, &["yes", "no"])?;
+            }
+            other => return Err(a.unsupported(i, &format!("dump_modify {other}"))),
+        }
+        i += 2;
+    }
+    Ok(())
+}
+
+fn undump(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=1, "undump ID")?;
+    let id = a.word(0)?;
+    let k = ctx
+        .sim
+        .dumps
+        .iter()
+        .position(|d| d.id == id)
+        .ok_or_else(|| a.error(0, "Could not find undump ID"))?;
+    ctx.sim.dumps.remove(k);
+    Ok(())
+}
+
+fn run(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=usize::MAX, "run N")?;
+    let n = a.int(0)?;
+    if n < 0 {
+        return Err(a.error(0, "Illegal run command"));
+    }
+    if a.len() > 1 {
+        return Err(a.unsupported(1, &format!("run keyword {}", a.word(1)?)));
+    }
+    if !ctx.sim.domain.exists {
+        return Err(a.error(0, "Run command before simulation box is defined"));
+    }
+    if ctx.sys.mode == Mode::Check {
+        // a dry run validates the deck but never steps
+        return Ok(());
+    }
+    let out = &mut *ctx.out;
+    let mut sink = |s: &str| out.both(s);
+    ctx.sim.run(n, &mut sink).map_err(|m| a.error(0, &m))
+}

@@ -1,0 +1,612 @@
+//! Commands that build the simulation: styles and units, the box, regions, atoms, groups,
+//! per-atom values, velocities, neighbour settings and the time step.
+
+use crate::commands::{Args, Ctx};
+use crate::engine::domain::parse_boundary;
+use crate::engine::numbers::{inumeric, numeric};
+use crate::engine::region::RegionContext;
+use crate::error::Diagnostic;
+
+type Result = std::result::Result<(), Diagnostic>;
+
+/// Handle a setup command; None if `name` is not one of them.
+pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
+    Some(match name {
+        "atom_style" => atom_style(a, ctx),
+        "atom_modify" => atom_modify(a),
+        "boundary" => boundary(a, ctx),
+        "units" => units(a),
+        "dimension" => dimension(a),
+        "newton" => one_of(a, "newton", &["on", "off"], 1..=2),
+        "communicate" | "comm_modify" => communicate(a),
+        "processors" => processors(a),
+        "region" => region(a, ctx),
+        "create_box" => create_box(a, ctx),
+        "create_atoms" => create_atoms(a, ctx),
+        "set" => set(a, ctx),
+        "group" => group(a, ctx),
+        "velocity" => velocity(a, ctx),
+        "neighbor" => neighbor(a, ctx),
+        "neigh_modify" => neigh_modify(a, ctx),
+        "timestep" => timestep(a, ctx),
+        "reset_timestep" => reset_timestep(a, ctx),
+        _ => return None,
+    })
+}
+
+fn atom_style(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=1, "atom_style granular|sphere")?;
+    match a.word(0)? {
+        "granular" | "sphere" => {
+            if ctx.sim.domain.exists {
+                return Err(a.error(0, "Atom_style command after simulation box is defined"));
+            }
+            Ok(())
+        }
+        other => Err(a.unsupported(0, &format!("atom_style {other}"))),
+    }
+}
+
+fn atom_modify(a: &Args) -> Result {
+    let mut i = 0;
+    while i < a.len() {
+        match a.word(i)? {
+            "map" => {
+                a.word_in(i + 1, &["array", "hash"])?;
+                i += 2;
+            }
+            "sort" => {
+                // regolith orders particles itself; atom IDs are never affected by sorting
+                a.int(i + 1)?;
+                a.real(i + 2)?;
+                i += 3;
+            }
+            "first" => return Err(a.unsupported(i, "atom_modify first")),
+            _ => return Err(a.keyword_error(i, &["map", "sort"])),
+        }
+    }
+    Ok(())
+}
+
+fn boundary(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(3..=3, "boundary X Y Z (p, f, s, m or two of them each)")?;
+    if ctx.sim.domain.exists {
+        return Err(a.error(0, "Boundary command after simulation box is defined"));
+    }
+    let words = [a.word(0)?, a.word(1)?, a.word(2)?];
+    ctx.sim.domain.boundary = parse_boundary(&words).map_err(|m| a.error(0, &m))?;
+    Ok(())
+}
+
+fn units(a: &Args) -> Result {
+    a.count(1..=1, "units si")?;
+    match a.word(0)? {
+        "si" => Ok(()),
+        "cgs" | "lj" | "real" | "metal" | "micro" | "nano" | "electron" => {
+            Err(a.unsupported(0, &format!("units {}", a.word(0)?)))
+        }
+        _ => Err(a.error(0, "Illegal units command")),
+    }
+}
+
+fn dimension(a: &Args) -> Result {
+    a.count(1..=1, "dimension 3")?;
+    match a.int(0)? {
+        3 => Ok(()),
+        2 => Err(a.unsupported(0, "dimension 2")),
+        _ => Err(a.error(0, "Illegal dimension command")),
+    }
+}
+
+fn one_of(a: &Args, cmd: &str, allowed: &[&str], count: std::ops::RangeInclusive<usize>) -> Result {
+    a.count(count, &format!("{cmd} {}", allowed.join("|")))?;
+    for i in 0..a.len() {
+        a.word_in(i, allowed)?;
+    }
+    Ok(())
+}
+
+fn communicate(a: &Args) -> Result {
+    // one process: communication settings change nothing, but they must be valid
+    let mut i = 0;
+    while i < a.len() {
+        match a.word(i)? {
+            "single" | "multi" => i += 1,
+            "vel" => {
+                a.word_in(i + 1, &["yes", "no"])?;
+                i += 2;
+            }
+            "cutoff" => {
+                a.real(i + 1)?;
+                i += 2;
+            }
+            "group" => {
+                a.word(i + 1)?;
+                i += 2;
+            }
+            _ => return Err(a.keyword_error(i, &["single", "multi", "vel", "cutoff", "group"])),
+        }
+    }
+    Ok(())
+}
+
+fn processors(a: &Args) -> Result {
+    a.count(3..=usize::MAX, "processors Px Py Pz")?;
+    for i in 0..3 {
+        let w = a.word(i)?;
+        if w != "*" {
+            a.int(i)?;
+        }
+    }
+    if a.len() > 3 {
+        return Err(a.unsupported(3, "processors keywords"));
+    }
+    Ok(())
+}
+
+fn region(a: &Args, ctx: &mut Ctx) -> Result {
+    let words: Vec<&str> = (0..a.len())
+        .map(|i| a.word(i))
+        .collect::<std::result::Result<_, _>>()?;
+    let d = &ctx.sim.domain;
+    let rctx = RegionContext {
+        bounds: d.exists.then_some((d.lo, d.hi)),
+        lattice: None,
+    };
+    ctx.sim.regions.define(&words, rctx).map_err(|m| {
+        if m.ends_with("not supported yet") {
+            Diagnostic::unsupported(m.trim_end_matches(": not supported yet"))
+        } else {
+            a.error(1, &m)
+        }
+    })
+}
+
+fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(2..=usize::MAX, "create_box N region-ID")?;
+    if ctx.sim.domain.exists {
+        return Err(a.error(0, "Cannot create_box after simulation box is defined"));
+    }
+    let ntypes = a.int(0)?;
+    if ntypes < 1 {
+        return Err(a.error(0, "Illegal create_box command"));
+    }
+    if a.len() > 2 {
+        return Err(a.unsupported(2, "create_box keywords"));
+    }
+    let rid = a.word(1)?;
+    let index = ctx
+        .sim
+        .regions
+        .find(rid)
+        .ok_or_else(|| a.error(1, "Create_box region ID does not exist"))?;
+    let (lo, hi) = ctx
+        .sim
+        .regions
+        .extent(index)
+        .ok_or_else(|| a.error(1, "Create_box region does not support a bounding box"))?;
+    ctx.sim.domain.create(lo, hi);
+    ctx.sim.ntypes = ntypes as u32;
+    ctx.say(&format!(
+        "Created orthogonal box = ({} {} {}) to ({} {} {})\n  1 by 1 by 1 MPI processor grid\n",
+        g(lo[0]),
+        g(lo[1]),
+        g(lo[2]),
+        g(hi[0]),
+        g(hi[1]),
+        g(hi[2])
+    ));
+    Ok(())
+}
+
+fn g(x: f64) -> String {
+    crate::script::format::g(x)
+}
+
+fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
+    if !ctx.sim.domain.exists {
+        return Err(a.error(0, "Create_atoms command before simulation box is defined"));
+    }
+    a.count(2..=usize::MAX, "create_atoms TYPE single X Y Z [units box]")?;
+    let kind = a.int(0)?;
+    if kind < 1 || kind > ctx.sim.ntypes as i64 {
+        return Err(a.error(0, "Invalid atom type in create_atoms command"));
+    }
+    if a.word(1)? != "single" {
+        return Err(a.unsupported(1, &format!("create_atoms {}", a.word(1)?)));
+    }
+    let x = [a.real(2)?, a.real(3)?, a.real(4)?];
+    let mut i = 5;
+    let mut box_units = false;
+    while i < a.len() {
+        match a.word(i)? {
+            "units" => {
+                box_units = a.word_in(i + 1, &["box", "lattice"])? == "box";
+                i += 2;
+            }
+            _ => return Err(a.unsupported(i, &format!("create_atoms keyword {}", a.word(i)?))),
+        }
+    }
+    if !box_units {
+        return Err(a
+            .error(5, "Cannot create atoms with undefined lattice")
+            .with_help("add 'units box'"));
+    }
+    let d = &ctx.sim.domain;
+    let inside = (0..3).all(|k| x[k] >= d.lo[k] && x[k] < d.hi[k]);
+    let mut created = 0;
+    if inside {
+        let id = ctx.sim.particles.max_id() + 1;
+        ctx.sim.particles.push(id, kind as u32, x, 0.5, 1.0);
+        created = 1;
+    }
+    ctx.say(&format!("Created {created} atoms\n"));
+    Ok(())
+}
+
+/// Atoms selected by `set atom|type|group|region ID`.
+fn selection(a: &Args, ctx: &Ctx) -> std::result::Result<Vec<usize>, Diagnostic> {
+    let p = &ctx.sim.particles;
+    let what = a.word_in(0, &["atom", "type", "group", "region", "mol"])?;
+    let id = a.word(1)?;
+    Ok(match what {
+        "atom" | "type" => {
+            let (lo, hi) =
+                crate::script::interp::bounds(id, i64::MAX / 4).map_err(|m| a.error(1, &m))?;
+            (0..p.len())
+                .filter(|&i| {
+                    let v = if what == "atom" {
+                        p.id[i]
+                    } else {
+                        p.kind[i] as i64
+                    };
+                    v >= lo && v <= hi
+                })
+                .collect()
+        }
+        "group" => {
+            let bit = ctx
+                .sim
+                .group_bit(id)
+                .ok_or_else(|| a.error(1, "Set group ID does not exist"))?;
+            (0..p.len()).filter(|&i| p.mask[i] & bit != 0).collect()
+        }
+        "region" => {
+            let r = ctx
+                .sim
+                .regions
+                .find(id)
+                .ok_or_else(|| a.error(1, "Set region ID does not exist"))?;
+            (0..p.len())
+                .filter(|&i| ctx.sim.regions.matches(r, p.x[i]))
+                .collect()
+        }
+        _ => return Err(a.unsupported(0, "set mol")),
+    })
+}
+
+fn set(a: &Args, ctx: &mut Ctx) -> Result {
+    if !ctx.sim.domain.exists {
+        return Err(a.error(0, "Set command before simulation box is defined"));
+    }
+    a.count(
+        4..=usize::MAX,
+        "set atom|type|group|region ID keyword value ...",
+    )?;
+    let atoms = selection(a, ctx)?;
+    ctx.say("Setting atom values ...\n");
+    let mut i = 2;
+    while i < a.len() {
+        let key = a.word(i)?;
+        let value = a.real(i + 1)?;
+        let p = &mut ctx.sim.particles;
+        for &k in &atoms {
+            match key {
+                "diameter" => {
+                    if value < 0.0 {
+                        return Err(a.error(i + 1, "Invalid diameter in set command"));
+                    }
+                    p.radius[k] = 0.5 * value * 1.0;
+                    if p.density[k] > 0.0 {
+                        let r = p.radius[k];
+                        p.mass[k] = 4.0 * std::f64::consts::PI / 3.0 * r * r * r * p.density[k];
+                    }
+                }
+                "density" => {
+                    if value <= 0.0 {
+                        return Err(a.error(i + 1, "Invalid density in set command"));
+                    }
+                    p.density[k] = value;
+                    if p.radius[k] > 0.0 {
+                        let r = p.radius[k];
+                        p.mass[k] = 4.0 * std::f64::consts::PI / 3.0 * r * r * r * p.density[k];
+                    }
+                }
+                "mass" => {
+                    if value <= 0.0 {
+                        return Err(a.error(i + 1, "Invalid mass in set command"));
+                    }
+                    p.mass[k] = value;
+                }
+                "type" => {
+                    let t = value as i64;
+                    if t < 1 || t > ctx.sim.ntypes as i64 {
+                        return Err(a.error(i + 1, "Invalid value in set command"));
+                    }
+                    p.kind[k] = t as u32;
+                }
+                "x" => p.x[k][0] = value,
+                "y" => p.x[k][1] = value,
+                "z" => p.x[k][2] = value,
+                "vx" => p.v[k][0] = value,
+                "vy" => p.v[k][1] = value,
+                "vz" => p.v[k][2] = value,
+                "omegax" => p.omega[k][0] = value,
+                "omegay" => p.omega[k][1] = value,
+                "omegaz" => p.omega[k][2] = value,
+                _ => {
+                    return Err(a.keyword_error(
+                        i,
+                        &[
+                            "diameter", "density", "mass", "type", "x", "y", "z", "vx", "vy", "vz",
+                            "omegax", "omegay", "omegaz",
+                        ],
+                    ))
+                }
+            }
+        }
+        ctx.say(&format!("  {} settings made for {key}\n", atoms.len()));
+        i += 2;
+    }
+    Ok(())
+}
+
+fn group(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(
+        2..=usize::MAX,
+        "group ID region|type|id|subtract|union|intersect|delete|clear ...",
+    )?;
+    let name = a.word(0)?;
+    let style = a.word(1)?;
+    let sim = &mut ctx.sim;
+    if style == "delete" {
+        if name == "all" {
+            return Err(a.error(0, "Cannot delete group all"));
+        }
+        let bit = sim
+            .group_bit(name)
+            .ok_or_else(|| a.error(0, "Could not find group delete group ID"))?;
+        sim.particles.mask.iter_mut().for_each(|m| *m &= !bit);
+        let idx = bit.trailing_zeros() as usize;
+        sim.groups[idx] = String::new();
+        return Ok(());
+    }
+    let bit = match sim.group_bit(name) {
+        Some(b) => b,
+        None => {
+            let slot = match sim.groups.iter().position(String::is_empty) {
+                Some(s) => s,
+                None => {
+                    if sim.groups.len() >= 32 {
+                        return Err(a.error(0, "Too many groups"));
+                    }
+                    sim.groups.push(String::new());
+                    sim.groups.len() - 1
+                }
+            };
+            sim.groups[slot] = name.to_string();
+            1u32 << slot
+        }
+    };
+    let p = &sim.particles;
+    let n = p.len();
+    let selected: Vec<bool> = match style {
+        "clear" => {
+            sim.particles.mask.iter_mut().for_each(|m| *m &= !bit);
+            return Ok(());
+        }
+        "region" => {
+            let r = sim
+                .regions
+                .find(a.word(2)?)
+                .ok_or_else(|| a.error(2, "Group region ID does not exist"))?;
+            (0..n).map(|i| sim.regions.matches(r, p.x[i])).collect()
+        }
+        "type" | "id" => {
+            let mut sel = vec![false; n];
+            let values: Vec<i64> = (0..n)
+                .map(|i| {
+                    if style == "type" {
+                        p.kind[i] as i64
+                    } else {
+                        p.id[i]
+                    }
+                })
+                .collect();
+            if a.len() == 5 && matches!(a.word(2)?, "<" | ">" | "<=" | ">=" | "==" | "!=" | "<>") {
+                return Err(a.unsupported(2, "group type/id with a comparison"));
+            }
+            for k in 2..a.len() {
+                let w = a.word(k)?;
+                let (lo, hi) = match w.split_once(':') {
+                    Some((l, h)) => (
+                        inumeric(l).map_err(|m| a.error(k, &m))?,
+                        inumeric(h).map_err(|m| a.error(k, &m))?,
+                    ),
+                    None => {
+                        let v = a.int(k)?;
+                        (v, v)
+                    }
+                };
+                for (s, v) in sel.iter_mut().zip(&values) {
+                    *s |= *v >= lo && *v <= hi;
+                }
+            }
+            sel
+        }
+        "subtract" | "union" | "intersect" => {
+            let mut bits = Vec::new();
+            for k in 2..a.len() {
+                bits.push(
+                    sim.group_bit(a.word(k)?)
+                        .ok_or_else(|| a.error(k, "Group ID does not exist"))?,
+                );
+            }
+            let m = &p.mask;
+            (0..n)
+                .map(|i| match style {
+                    "subtract" => m[i] & bits[0] != 0 && bits[1..].iter().all(|b| m[i] & b == 0),
+                    "union" => bits.iter().any(|b| m[i] & b != 0),
+                    _ => bits.iter().all(|b| m[i] & b != 0),
+                })
+                .collect()
+        }
+        _ => {
+            return Err(a.keyword_error(
+                1,
+                &[
+                    "region",
+                    "type",
+                    "id",
+                    "subtract",
+                    "union",
+                    "intersect",
+                    "delete",
+                    "clear",
+                ],
+            ))
+        }
+    };
+    let mut count = 0;
+    for (m, s) in sim.particles.mask.iter_mut().zip(&selected) {
+        if *s {
+            *m |= bit;
+        }
+        if *m & bit != 0 {
+            count += 1;
+        }
+    }
+    ctx.say(&format!("{count} atoms in group {name}\n"));
+    Ok(())
+}
+
+fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(2..=usize::MAX, "velocity GROUP set|zero|ramp ...")?;
+    let bit = ctx
+        .sim
+        .group_bit(a.word(0)?)
+        .ok_or_else(|| a.error(0, "Could not find velocity group ID"))?;
+    if ctx.sim.particles.is_empty() {
+        return Err(a.error(0, "Velocity command with no atoms existing"));
+    }
+    match a.word(1)? {
+        "set" => {
+            let mut v = [None; 3];
+            for (d, slot) in v.iter_mut().enumerate() {
+                let w = a.word(2 + d)?;
+                if w != "NULL" {
+                    if w.starts_with("v_") {
+                        return Err(a.unsupported(2 + d, "velocity set with variables"));
+                    }
+                    *slot = Some(a.real(2 + d)?);
+                }
+            }
+            let mut i = 5;
+            while i < a.len() {
+                match (a.word(i)?, a.word(i + 1)?) {
+                    ("units", "box") => {}
+                    ("sum", "no") => {}
+                    _ => return Err(a.unsupported(i, &format!("velocity keyword {}", a.word(i)?))),
+                }
+                i += 2;
+            }
+            let p = &mut ctx.sim.particles;
+            for k in 0..p.len() {
+                if p.mask[k] & bit != 0 {
+                    for d in 0..3 {
+                        if let Some(value) = v[d] {
+                            p.v[k][d] = value;
+                        }
+                    }
+                }
+            }
+            Ok(())
+        }
+        "create" => Err(a
+            .error(1, "Illegal velocity command")
+            .with_help("LIGGGHTS 3.8.0 has velocity set, ramp and zero")),
+        other => Err(a.unsupported(1, &format!("velocity {other}"))),
+    }
+}
+
+fn neighbor(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(2..=2, "neighbor SKIN bin")?;
+    let skin = a.real(0)?;
+    if skin < 0.0 {
+        return Err(a.error(0, "Illegal neighbor command"));
+    }
+    match a.word(1)? {
+        "bin" => {}
+        "nsq" | "multi" => return Err(a.unsupported(1, &format!("neighbor {}", a.word(1)?))),
+        _ => return Err(a.error(1, "Illegal neighbor command")),
+    }
+    ctx.sim.neighbor.skin = skin;
+    Ok(())
+}
+
+fn neigh_modify(a: &Args, ctx: &mut Ctx) -> Result {
+    let mut i = 0;
+    while i < a.len() {
+        let n = &mut ctx.sim.neighbor;
+        match a.word(i)? {
+            "every" => n.every = positive(a, i + 1)?,
+            "delay" => n.delay = a.int(i + 1)?.max(0) as u64,
+            "check" => n.check = a.word_in(i + 1, &["yes", "no"])? == "yes",
+            // capacity hints for LIGGGHTS's fixed-size pages; regolith's lists grow as needed
+            "one" | "page" => {
+                positive(a, i + 1)?;
+            }
+            "exclude" | "include" | "binsize" | "contact_distance_factor" => {
+                return Err(a.unsupported(i, &format!("neigh_modify {}", a.word(i)?)))
+            }
+            _ => return Err(a.keyword_error(i, &["every", "delay", "check", "one", "page"])),
+        }
+        i += 2;
+    }
+    Ok(())
+}
+
+fn positive(a: &Args, i: usize) -> std::result::Result<u64, Diagnostic> {
+    let v = a.int(i)?;
+    if v <= 0 {
+        return Err(a.error(i, "expected a positive integer"));
+    }
+    Ok(v as u64)
+}
+
+fn timestep(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=1, "timestep DT")?;
+    let dt = a.real(0)?;
+    ctx.sim.time_origin = (ctx.sim.step, ctx.sim.time());
+    ctx.sim.dt = dt;
+    Ok(())
+}
+
+fn reset_timestep(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=1, "reset_timestep N")?;
+    let n = a.int(0)?;
+    if n < 0 {
+        return Err(a.error(0, "Timestep must be >= 0"));
+    }
+    ctx.sim.step = n;
+    ctx.sim.time_origin = (n, 0.0);
+    for d in &mut ctx.sim.dumps {
+        d.last_written = None;
+    }
+    Ok(())
+}
+
+/// `numeric` on a word, for callers outside this module.
+pub fn real(word: &str) -> std::result::Result<f64, String> {
+    numeric(word)
+}

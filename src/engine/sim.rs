@@ -1,0 +1,373 @@
+//! The simulation state and the time loop: LIGGGHTS's Verlet order of operations
+//! (setup force evaluation at every `run`, initial integrate, neighbour decision, force
+//! clear, pair forces, post-force fixes, final integrate, output).
+
+use crate::engine::domain::Domain;
+use crate::engine::integrate::{final_integrate, initial_integrate, Gravity};
+use crate::engine::neighbor::{carry_history, NeighborList, Pair};
+use crate::engine::particles::Particles;
+use crate::engine::region::Regions;
+use crate::engine::thermo::Thermo;
+use crate::io::dump::Layout;
+
+/// Neighbour-list settings (`neighbor`, `neigh_modify`); skin in length units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NeighborSettings {
+    /// Extra distance beyond contact kept in the list (length).
+    pub skin: f64,
+    /// Consider rebuilding every this many steps.
+    pub every: u64,
+    /// Never rebuild sooner than this many steps after the last build.
+    pub delay: u64,
+    /// Rebuild only when something moved more than half the skin.
+    pub check: bool,
+}
+
+impl Default for NeighborSettings {
+    fn default() -> Self {
+        // LIGGGHTS's defaults for SI units
+        NeighborSettings {
+            skin: 0.001,
+            every: 1,
+            delay: 10,
+            check: true,
+        }
+    }
+}
+
+/// Pairwise forces between listed particles (the granular contact model).
+pub trait PairInteraction: Send {
+    /// Doubles of history kept per listed pair (0 when the model keeps none).
+    fn history_width(&self) -> usize;
+    /// Add pair forces and torques to `p.f`/`p.torque` for the listed pairs.
+    fn compute(&mut self, p: &mut Particles, pairs: &[Pair], history: &mut [f64], dt: f64);
+}
+
+/// What a fix does each step.
+pub enum FixKind {
+    /// `fix nve/sphere`.
+    NveSphere,
+    /// `fix gravity`.
+    Gravity(Gravity),
+    /// A fix that only holds settings (e.g. `property/global`), read by other parts.
+    Settings,
+}
+
+/// One defined fix.
+pub struct Fix {
+    /// The fix ID.
+    pub id: String,
+    /// Its style name.
+    pub style: String,
+    /// Group bits it acts on.
+    pub group: u32,
+    /// What it does.
+    pub kind: FixKind,
+    /// Its arguments after the style (for settings fixes).
+    pub args: Vec<String>,
+}
+
+/// One `dump` command.
+pub struct Dump {
+    /// The dump ID.
+    pub id: String,
+    /// Group bits of the atoms dumped.
+    pub group: u32,
+    /// Write every this many steps.
+    pub every: i64,
+    /// File name as given (a `*` is replaced by the step).
+    pub file: String,
+    /// Columns and formats.
+    pub layout: Layout,
+    /// Last step written (a step is never written twice).
+    pub last_written: Option<i64>,
+    /// The open file for single-file dumps.
+    pub handle: Option<std::io::BufWriter<std::fs::File>>,
+}
+
+/// Everything the engine simulates.
+pub struct Simulation {
+    /// The particles.
+    pub particles: Particles,
+    /// The box.
+    pub domain: Domain,
+    /// Regions.
+    pub regions: Regions,
+    /// Group names; the index is the group's bit (0 = `all`).
+    pub groups: Vec<String>,
+    /// Number of atom types (`create_box N`).
+    pub ntypes: u32,
+    /// Current step.
+    pub step: i64,
+    /// Time-step size (time units).
+    pub dt: f64,
+    /// Simulated time at `time_origin_step` (time advances by dt per step).
+    pub time_origin: (i64, f64),
+    /// Neighbour settings.
+    pub neighbor: NeighborSettings,
+    /// The current list and the history of its pairs.
+    pub list: NeighborList,
+    history: Vec<f64>,
+    list_ids: Vec<i64>,
+    ago: u64,
+    box_at_build: ([f64; 3], [f64; 3]),
+    /// The pair interaction, once `pair_style` is set.
+    pub pair: Option<Box<dyn PairInteraction>>,
+    /// Fixes in definition order.
+    pub fixes: Vec<Fix>,
+    /// Thermo output settings.
+    pub thermo: Thermo,
+    /// Dumps.
+    pub dumps: Vec<Dump>,
+    /// First and last step of the run in progress.
+    pub run_bounds: Option<(i64, i64)>,
+    /// Particles lost through fixed faces are dropped silently (`thermo_modify lost ignore`).
+    pub lost_ignore: bool,
+    /// Atom count at the last check (for the lost-atoms error).
+    pub natoms_expected: usize,
+}
+
+impl Default for Simulation {
+    fn default() -> Self {
+        Simulation {
+            particles: Particles::default(),
+            domain: Domain::default(),
+            regions: Regions::default(),
+            groups: vec!["all".to_string()],
+            ntypes: 0,
+            step: 0,
+            dt: 0.001,
+            time_origin: (0, 0.0),
+            neighbor: NeighborSettings::default(),
+            list: NeighborList::default(),
+            history: Vec::new(),
+            list_ids: Vec::new(),
+            ago: 0,
+            box_at_build: ([0.0; 3], [0.0; 3]),
+            pair: None,
+            fixes: Vec::new(),
+            thermo: Thermo::default(),
+            dumps: Vec::new(),
+            run_bounds: None,
+            lost_ignore: false,
+            natoms_expected: 0,
+        }
+    }
+}
+
+/// Where the time loop writes screen/log text.
+pub type Sink<'a> = &'a mut dyn FnMut(&str);
+
+impl Simulation {
+    /// Bit mask of group `name`.
+    pub fn group_bit(&self, name: &str) -> Option<u32> {
+        self.groups
+            .iter()
+            .position(|g| g == name)
+            .map(|i| 1u32 << i)
+    }
+
+    /// Simulated time at the current step (time units).
+    pub fn time(&self) -> f64 {
+        self.time_origin.1 + (self.step - self.time_origin.0) as f64 * self.dt
+    }
+
+    /// Wrap periodic coordinates, drop particles outside fixed faces, shrink-wrap the box.
+    fn pbc_and_box(&mut self) -> Result<(), String> {
+        let p = &mut self.particles;
+        for i in 0..p.len() {
+            self.domain.remap(&mut p.x[i], &mut p.image[i]);
+        }
+        let lost: Vec<bool> = p.x.iter().map(|x| !self.domain.contains(*x)).collect();
+        if lost.iter().any(|&l| l) {
+            if !self.lost_ignore {
+                let remaining = lost.iter().filter(|&&l| !l).count();
+                return Err(format!(
+                    "Lost atoms: original {} current {}",
+                    p.len(),
+                    remaining
+                ));
+            }
+            p.retain_by(&lost);
+        }
+        if self.domain.shrinks() && !p.is_empty() {
+            let mut lo = [f64::INFINITY; 3];
+            let mut hi = [f64::NEG_INFINITY; 3];
+            for x in &p.x {
+                for d in 0..3 {
+                    lo[d] = lo[d].min(x[d]);
+                    hi[d] = hi[d].max(x[d]);
+                }
+            }
+            self.domain.shrink_wrap(lo, hi)?;
+        }
+        Ok(())
+    }
+
+    fn build_neighbors(&mut self) {
+        let old_pairs = std::mem::take(&mut self.list.pairs);
+        let width = self.pair.as_ref().map_or(0, |p| p.history_width());
+        self.list.build(
+            &self.particles.x,
+            &self.particles.radius,
+            self.neighbor.skin,
+            &self.domain,
+        );
+        self.history = carry_history(
+            &old_pairs,
+            &self.history,
+            &self.list.pairs,
+            &self.particles.id,
+            &self.list_ids,
+            width,
+        );
+        self.list_ids = self.particles.id.clone();
+        self.ago = 0;
+        self.box_at_build = (self.domain.lo, self.domain.hi);
+    }
+
+    /// LIGGGHTS's `Neighbor::decide`: rebuild now?
+    fn decide(&mut self) -> bool {
+        self.ago += 1;
+        if self.list.built_positions().len() != self.particles.len() {
+            return true;
+        }
+        let n = &self.neighbor;
+        if self.ago < n.delay || self.ago % n.every != 0 {
+            return false;
+        }
+        if !n.check {
+            return true;
+        }
+        let mut trigger = 0.5 * n.skin;
+        let periodic = (0..3).any(|d| self.domain.periodic(d));
+        if self.domain.shrinks() && periodic {
+            let dist = |a: [f64; 3], b: [f64; 3]| {
+                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+            };
+            let d1 = dist(self.domain.lo, self.box_at_build.0);
+            let d2 = dist(self.domain.hi, self.box_at_build.1);
+            trigger = 0.5 * (n.skin - (d1 + d2));
+        }
+        let limit = trigger * trigger;
+        self.particles
+            .x
+            .iter()
+            .zip(self.list_positions())
+            .any(|(a, b)| {
+                let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+                d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > limit
+            })
+    }
+
+    fn list_positions(&self) -> &[[f64; 3]] {
+        self.list.built_positions()
+    }
+
+    fn compute_forces(&mut self) {
+        let p = &mut self.particles;
+        p.f.iter_mut().for_each(|f| *f = [0.0; 3]);
+        p.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
+        if let Some(pair) = self.pair.as_mut() {
+            pair.compute(p, &self.list.pairs, &mut self.history, self.dt);
+        }
+        for fix in &self.fixes {
+            if let FixKind::Gravity(g) = &fix.kind {
+                g.apply(p);
+            }
+        }
+    }
+
+    /// `run N`: a setup force evaluation, then N velocity-Verlet steps with output.
+    pub fn run(&mut self, nsteps: i64, out: Sink<'_>) -> Result<(), String> {
+        if !self.domain.exists {
+            return Err("Run command before simulation box is defined".into());
+        }
+        let first = self.step;
+        let last = self.step + nsteps;
+        self.run_bounds = Some((first, last));
+        // setup
+        self.pbc_and_box()?;
+        self.build_neighbors();
+        self.compute_forces();
+        self.thermo.run_start = first;
+        self.thermo.header(out);
+        self.thermo_line(out);
+        self.write_dumps(true)?;
+        for _ in 0..nsteps {
+            self.step += 1;
+            for fix in &self.fixes {
+                if let FixKind::NveSphere = fix.kind {
+                    initial_integrate(&mut self.particles, fix.group, self.dt);
+                }
+            }
+            if self.decide() {
+                self.pbc_and_box()?;
+                self.build_neighbors();
+            }
+            self.compute_forces();
+            for fix in &self.fixes {
+                if let FixKind::NveSphere = fix.kind {
+                    final_integrate(&mut self.particles, fix.group, self.dt);
+                }
+            }
+            if self.thermo.due(self.step, last) {
+                self.thermo_line(out);
+            }
+            self.write_dumps(false)?;
+        }
+        self.run_bounds = None;
+        Ok(())
+    }
+
+    fn thermo_line(&mut self, out: Sink<'_>) {
+        let values = self.thermo.values(self);
+        self.thermo.line(&values, out);
+    }
+
+    fn write_dumps(&mut self, setup: bool) -> Result<(), String> {
+        use std::io::Write;
+        let step = self.step;
+        for k in 0..self.dumps.len() {
+            let due = step % self.dumps[k].every == 0 && self.dumps[k].last_written != Some(step);
+            if !due {
+                continue;
+            }
+            let _ = setup;
+            let dump = &mut self.dumps[k];
+            dump.last_written = Some(step);
+            let multi = dump.file.contains('*');
+            let name = dump.file.replace('*', &step.to_string());
+            if let Some(dir) = std::path::Path::new(&name).parent() {
+                if !dir.as_os_str().is_empty() {
+                    std::fs::create_dir_all(dir)
+                        .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
+                }
+            }
+            let mut text = Vec::new();
+            let p = &self.particles;
+            dump.layout
+                .write_snapshot(&mut text, step, p, dump.group, &self.domain, |_, _| 0.0)
+                .map_err(|e| e.to_string())?;
+            if multi {
+                // one file per snapshot, written whole: temp file then rename
+                let tmp = format!("{name}.tmp");
+                std::fs::write(&tmp, &text)
+                    .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
+                std::fs::rename(&tmp, &name)
+                    .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
+            } else {
+                if dump.handle.is_none() {
+                    let f = std::fs::File::create(&name)
+                        .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
+                    dump.handle = Some(std::io::BufWriter::new(f));
+                }
+                let h = dump.handle.as_mut().expect("opened above");
+                h.write_all(&text)
+                    .and_then(|_| h.flush())
+                    .map_err(|e| format!("{name}: {e}"))?;
+            }
+        }
+        Ok(())
+    }
+}

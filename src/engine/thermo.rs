@@ -1,0 +1,208 @@
+//! Thermo output (`thermo`, `thermo_style`, `thermo_modify`): column headers right-aligned,
+//! integers as `%8d`, reals as `%14.8g`, each followed by a blank, as LIGGGHTS prints them.
+
+use crate::engine::sim::{Simulation, Sink};
+use crate::script::format;
+
+/// Whether a column holds an integer or a real number.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// Printed with `%8d`.
+    Int,
+    /// Printed with `%14.8g`.
+    Real,
+}
+
+/// One thermo column.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Field {
+    /// The keyword as written (`step`, `ke`, ...).
+    pub keyword: String,
+    /// The header label LIGGGHTS prints (`Step`, `KinEng`, ...).
+    pub label: String,
+    /// Integer or real.
+    pub kind: Kind,
+}
+
+/// Keywords regolith evaluates, with LIGGGHTS's header labels.
+const KEYWORDS: &[(&str, &str, Kind)] = &[
+    ("step", "Step", Kind::Int),
+    ("elapsed", "Elapsed", Kind::Int),
+    ("atoms", "Atoms", Kind::Int),
+    ("dt", "Dt", Kind::Real),
+    ("time", "Time", Kind::Real),
+    ("cpu", "CPU", Kind::Real),
+    ("ke", "KinEng", Kind::Real),
+    ("vol", "Volume", Kind::Real),
+    ("lx", "Lx", Kind::Real),
+    ("ly", "Ly", Kind::Real),
+    ("lz", "Lz", Kind::Real),
+    ("xlo", "Xlo", Kind::Real),
+    ("xhi", "Xhi", Kind::Real),
+    ("ylo", "Ylo", Kind::Real),
+    ("yhi", "Yhi", Kind::Real),
+    ("zlo", "Zlo", Kind::Real),
+    ("zhi", "Zhi", Kind::Real),
+];
+
+/// Thermo settings and state.
+#[derive(Debug, Clone)]
+pub struct Thermo {
+    /// Print every this many steps (0: only at the start and end of runs).
+    pub every: i64,
+    /// The columns.
+    pub fields: Vec<Field>,
+    /// Divide extensive values by the atom count (`thermo_modify norm`).
+    pub norm: bool,
+    /// Step at which the current run started (for `elapsed`).
+    pub run_start: i64,
+    started: std::time::Instant,
+}
+
+impl Default for Thermo {
+    fn default() -> Self {
+        let mut t = Thermo {
+            every: 0,
+            fields: Vec::new(),
+            norm: false,
+            run_start: 0,
+            started: std::time::Instant::now(),
+        };
+        t.set_style(&["step", "atoms", "ke", "cpu"])
+            .expect("default style is valid");
+        t
+    }
+}
+
+impl Thermo {
+    /// `thermo_style custom ...` (or the default columns of style `one`).
+    pub fn set_style(&mut self, keywords: &[&str]) -> Result<(), String> {
+        let mut fields = Vec::new();
+        for k in keywords {
+            let Some(&(_, label, kind)) = KEYWORDS.iter().find(|e| e.0 == *k) else {
+                let known = crate::commands::THERMO_KEYWORDS.contains(k)
+                    || k.starts_with("c_")
+                    || k.starts_with("f_")
+                    || k.starts_with("v_");
+                return Err(if known {
+                    format!("thermo keyword {k}: not supported yet")
+                } else {
+                    format!("Invalid keyword in thermo_style custom command: {k}")
+                });
+            };
+            fields.push(Field {
+                keyword: k.to_string(),
+                label: label.to_string(),
+                kind,
+            });
+        }
+        self.fields = fields;
+        Ok(())
+    }
+
+    /// Is a thermo line due at `step` of a run ending at `last`?
+    pub fn due(&self, step: i64, last: i64) -> bool {
+        step == last || (self.every > 0 && step % self.every == 0)
+    }
+
+    /// Print the header line.
+    pub fn header(&self, out: Sink<'_>) {
+        let mut line = String::new();
+        for f in &self.fields {
+            match f.kind {
+                Kind::Real => line.push_str(&format!("{:>14} ", f.label)),
+                Kind::Int => line.push_str(&format!("{:>8} ", f.label)),
+            }
+        }
+        line.push('\n');
+        out(&line);
+    }
+
+    /// The current values of every column.
+    pub fn values(&self, sim: &Simulation) -> Vec<f64> {
+        self.fields
+            .iter()
+            .map(|f| keyword_value(&f.keyword, sim, self).unwrap_or(0.0))
+            .collect()
+    }
+
+    /// Print one line of values.
+    pub fn line(&self, values: &[f64], out: Sink<'_>) {
+        let mut line = String::new();
+        for (f, v) in self.fields.iter().zip(values) {
+            match f.kind {
+                Kind::Real => line.push_str(&format::with_spec("%14.8g", *v).unwrap_or_default()),
+                Kind::Int => line.push_str(&format!("{:>8}", *v as i64)),
+            }
+            line.push(' ');
+        }
+        line.push('\n');
+        out(&line);
+    }
+}
+
+/// Kinetic energy of translation, summed as LIGGGHTS's `compute ke` does (mass units x
+/// velocity^2).
+pub fn kinetic_energy(sim: &Simulation) -> f64 {
+    let p = &sim.particles;
+    let mut ke = 0.0;
+    for i in 0..p.len() {
+        let v = p.v[i];
+        ke += p.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    }
+    ke * 0.5
+}
+
+/// The value of a thermo keyword, or None if regolith does not evaluate it.
+pub fn keyword_value(keyword: &str, sim: &Simulation, thermo: &Thermo) -> Option<f64> {
+    let d = &sim.domain;
+    let n = sim.particles.len() as f64;
+    let norm = |v: f64| if thermo.norm && n > 0.0 { v / n } else { v };
+    Some(match keyword {
+        "step" => sim.step as f64,
+        "elapsed" => (sim.step - thermo.run_start) as f64,
+        "atoms" => n,
+        "dt" => sim.dt,
+        "time" => sim.time(),
+        "cpu" => thermo.started.elapsed().as_secs_f64(),
+        "ke" => norm(kinetic_energy(sim)),
+        "vol" => d.length(0) * d.length(1) * d.length(2),
+        "lx" => d.length(0),
+        "ly" => d.length(1),
+        "lz" => d.length(2),
+        "xlo" => d.lo[0],
+        "xhi" => d.hi[0],
+        "ylo" => d.lo[1],
+        "yhi" => d.hi[1],
+        "zlo" => d.lo[2],
+        "zhi" => d.hi[2],
+        _ => return None,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn layout_matches_liggghts() {
+        let mut t = Thermo::default();
+        t.set_style(&["step", "atoms", "ke"]).unwrap();
+        let mut text = String::new();
+        t.header(&mut |s| text.push_str(s));
+        t.line(&[0.0, 2.0, 9.0320789e-05], &mut |s| text.push_str(s));
+        assert_eq!(
+            text,
+            "    Step    Atoms         KinEng \n       0        2  9.0320789e-05 \n"
+        );
+        assert!(t
+            .set_style(&["step", "bogus"])
+            .unwrap_err()
+            .starts_with("Invalid keyword"));
+        assert!(t
+            .set_style(&["c_x"])
+            .unwrap_err()
+            .contains("not supported yet"));
+        assert!(t.due(100, 1000) == (t.every > 0) && t.due(1000, 1000));
+    }
+}

@@ -1,0 +1,134 @@
+//! The engine against Debian's LIGGGHTS: each deck in compat/engine/ runs in regolith as
+//! compat/regenerate.sh ran it in liggghts; every dump must agree atom by atom within
+//! relative 1e-6 and every thermo line must be identical to the printed precision.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use regolith::io::dump_compare::{compare, parse};
+
+const RTOL: f64 = 1e-6;
+const ATOL: f64 = 1e-12;
+
+fn engine_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("compat/engine")
+}
+
+/// Thermo blocks: a header line starting with `Step` and the numeric lines after it.
+fn thermo_lines(stdout: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut inside = false;
+    for line in stdout.lines() {
+        if line.trim_start().starts_with("Step ") {
+            inside = true;
+            out.push(line.to_string());
+        } else if inside
+            && !line.trim().is_empty()
+            && line.split_whitespace().all(|w| w.parse::<f64>().is_ok())
+        {
+            out.push(line.to_string());
+        } else {
+            inside = false;
+        }
+    }
+    out
+}
+
+fn files_below(dir: &Path, base: &Path, out: &mut Vec<PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            files_below(&p, base, out);
+        } else {
+            out.push(p.strip_prefix(base).unwrap().to_path_buf());
+        }
+    }
+}
+
+fn check_deck(name: &str) -> Vec<String> {
+    let dir = engine_dir();
+    let work = std::env::temp_dir().join(format!("regolith-engine-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&work);
+    std::fs::create_dir_all(&work).unwrap();
+    let deck = format!("in.{name}");
+    std::fs::copy(dir.join(&deck), work.join(&deck)).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
+        .args(["-in", &deck, "-log", "none"])
+        .current_dir(&work)
+        .output()
+        .unwrap();
+    let mut problems = Vec::new();
+    if !out.status.success() {
+        problems.push(format!(
+            "exit status {:?}: {}",
+            out.status.code(),
+            String::from_utf8_lossy(&out.stderr)
+        ));
+        return problems;
+    }
+    let reference = dir.join(format!("{name}.ref"));
+    let want = std::fs::read_to_string(reference.join("thermo.txt")).unwrap();
+    let got = thermo_lines(&String::from_utf8_lossy(&out.stdout));
+    let want: Vec<&str> = want.lines().collect();
+    if got != want {
+        let k = got.iter().zip(&want).take_while(|(a, b)| a == b).count();
+        problems.push(format!(
+            "thermo line {} differs:\n  liggghts: {:?}\n  regolith: {:?}",
+            k + 1,
+            want.get(k),
+            got.get(k)
+        ));
+    }
+    let mut files = Vec::new();
+    files_below(&reference, &reference, &mut files);
+    for f in files.iter().filter(|f| f.as_os_str() != "thermo.txt") {
+        let a = parse(&std::fs::read_to_string(reference.join(f)).unwrap()).unwrap();
+        let Ok(text) = std::fs::read_to_string(work.join(f)) else {
+            problems.push(format!("{} not written", f.display()));
+            continue;
+        };
+        let b = match parse(&text) {
+            Ok(b) => b,
+            Err(e) => {
+                problems.push(format!("{}: {e}", f.display()));
+                continue;
+            }
+        };
+        let d = compare(&a, &b, ATOL);
+        if !d.mismatches.is_empty() || d.max_rel > RTOL {
+            problems.push(format!(
+                "{}: max relative deviation {:e} at {:?}; {:?}",
+                f.display(),
+                d.max_rel,
+                d.worst,
+                d.mismatches
+            ));
+        }
+    }
+    let _ = std::fs::remove_dir_all(&work);
+    problems
+}
+
+#[test]
+fn engine_decks_match_liggghts() {
+    let mut decks: Vec<String> = std::fs::read_dir(engine_dir())
+        .unwrap()
+        .filter_map(|e| {
+            e.unwrap()
+                .file_name()
+                .to_str()?
+                .strip_prefix("in.")
+                .map(str::to_string)
+        })
+        .collect();
+    decks.sort();
+    assert!(!decks.is_empty());
+    let failures: Vec<String> = decks
+        .iter()
+        .filter_map(|d| {
+            let p = check_deck(d);
+            (!p.is_empty()).then(|| format!("{d}:\n  {}", p.join("\n  ")))
+        })
+        .collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

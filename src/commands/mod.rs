@@ -203,23 +203,131 @@ impl Engine {
         self.property_globals.iter().any(|p| p == name)
     }
 
-    /// Group functions of formulas (`count(all)` ...).
+    /// Group functions of formulas: `count(g)`, `mass(g)`, `xcm(g,dim)`, `vcm(g,dim)`,
+    /// `fcm(g,dim)`, `bound(g,xmin|xmax|...)`, `ke(g)`, each with an optional region.
     pub fn group_function(&self, name: &str, args: &[String], mode: Mode) -> Result<f64, String> {
-        let group = args.first().map(String::as_str).unwrap_or("");
-        if group != "all" {
-            return Err(match mode {
-                Mode::Check => crate::script::scope::UNKNOWN_QUERY.to_string(),
-                Mode::Run => "Group ID in variable formula does not exist".to_string(),
-            });
+        if mode == Mode::Check {
+            return Err(crate::script::scope::UNKNOWN_QUERY.to_string());
         }
-        // no atoms exist before the engine creates them: every group sum is zero
-        match name {
-            "count" | "mass" | "charge" | "xcm" | "vcm" | "fcm" | "gyration" | "ke" | "angmom"
-            | "torque" | "inertia" | "omega" => Ok(0.0),
-            _ => Err(match mode {
-                Mode::Check => crate::script::scope::UNKNOWN_QUERY.to_string(),
-                Mode::Run => "Variable evaluation before simulation box is defined".to_string(),
-            }),
+        let invalid = || "Invalid group function in variable formula".to_string();
+        let sim = &self.sim;
+        let bit = sim
+            .group_bit(args.first().map(String::as_str).unwrap_or(""))
+            .ok_or("Group ID in variable formula does not exist")?;
+        let takes_dim = matches!(name, "xcm" | "vcm" | "fcm" | "bound");
+        let region_arg = args.get(if takes_dim { 2 } else { 1 });
+        if args.len() > if takes_dim { 3 } else { 2 } || (takes_dim && args.len() < 2) {
+            return Err(invalid());
         }
+        let region = match region_arg {
+            Some(r) => Some(
+                sim.regions
+                    .find(r)
+                    .ok_or("Region ID in variable formula does not exist")?,
+            ),
+            None => None,
+        };
+        let p = &sim.particles;
+        let members: Vec<usize> = (0..p.len())
+            .filter(|&i| {
+                p.mask[i] & bit != 0 && region.is_none_or(|r| sim.regions.matches(r, p.x[i]))
+            })
+            .collect();
+        let dim = |w: &str| match w {
+            "x" => Ok(0),
+            "y" => Ok(1),
+            "z" => Ok(2),
+            _ => Err(invalid()),
+        };
+        let mass: f64 = members.iter().map(|&i| p.mass[i]).sum();
+        Ok(match name {
+            "count" => members.len() as f64,
+            "mass" => mass,
+            "xcm" | "vcm" => {
+                let d = dim(&args[1])?;
+                let mut sum = 0.0;
+                for &i in &members {
+                    let value = if name == "xcm" {
+                        p.x[i][d] + p.image[i][d] as f64 * sim.domain.length(d)
+                    } else {
+                        p.v[i][d]
+                    };
+                    sum += value * p.mass[i];
+                }
+                if mass > 0.0 {
+                    sum / mass
+                } else {
+                    0.0
+                }
+            }
+            "fcm" => {
+                let d = dim(&args[1])?;
+                members.iter().map(|&i| p.f[i][d]).sum()
+            }
+            "bound" => {
+                let (d, lower) = match args[1].as_str() {
+                    "xmin" => (0, true),
+                    "xmax" => (0, false),
+                    "ymin" => (1, true),
+                    "ymax" => (1, false),
+                    "zmin" => (2, true),
+                    "zmax" => (2, false),
+                    _ => return Err(invalid()),
+                };
+                let values = members.iter().map(|&i| p.x[i][d]);
+                if lower {
+                    values.fold(1.0e20, f64::min)
+                } else {
+                    values.fold(-1.0e20, f64::max)
+                }
+            }
+            "ke" => {
+                let mut ke = 0.0;
+                for &i in &members {
+                    let v = p.v[i];
+                    ke += p.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+                }
+                0.5 * ke
+            }
+            other => return Err(format!("group function {other}(): not supported yet")),
+        })
     }
+
+    /// A thermo keyword's current value for formulas (None: not a keyword regolith evaluates).
+    pub fn thermo_value(&self, name: &str) -> Option<f64> {
+        crate::engine::thermo::keyword_value(name, &self.sim, &self.sim.thermo)
+    }
+
+    /// Per-atom keyword of the atom with ID `id` (`x[N]` in formulas).
+    pub fn atom_value_by_id(&self, name: &str, id: usize) -> Result<f64, String> {
+        let p = &self.sim.particles;
+        let i =
+            p.id.iter()
+                .position(|&t| t == id as i64)
+                .ok_or("Variable atom ID is not currently defined")?;
+        atom_keyword(p, name, i)
+    }
+}
+
+/// A per-atom keyword of particle `i` (`x`, `vx`, `fx`, `mass`, `r`, ...).
+pub fn atom_keyword(
+    p: &crate::engine::particles::Particles,
+    name: &str,
+    i: usize,
+) -> Result<f64, String> {
+    let axis = |c: u8| (c - b'x') as usize;
+    let b = name.as_bytes();
+    Ok(match name {
+        "id" => p.id[i] as f64,
+        "type" => p.kind[i] as f64,
+        "mass" => p.mass[i],
+        "r" => p.radius[i],
+        "density" => p.density[i],
+        "x" | "y" | "z" => p.x[i][axis(b[0])],
+        "vx" | "vy" | "vz" => p.v[i][axis(b[1])],
+        "fx" | "fy" | "fz" => p.f[i][axis(b[1])],
+        "omegax" | "omegay" | "omegaz" => p.omega[i][axis(b[5])],
+        "tqx" | "tqy" | "tqz" => p.torque[i][axis(b[2])],
+        other => return Err(format!("per-atom keyword {other}: not supported yet")),
+    })
 }

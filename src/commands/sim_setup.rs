@@ -586,9 +586,8 @@ fn positive(a: &Args, i: usize) -> std::result::Result<u64, Diagnostic> {
 
 fn timestep(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(1..=1, "timestep DT")?;
-    let dt = a.real(0)?;
-    ctx.sim.time_origin = (ctx.sim.step, ctx.sim.time());
-    ctx.sim.dt = dt;
+    // LIGGGHTS changes only dt here; elapsed time is brought up to date at run ends
+    ctx.sim.dt = a.real(0)?;
     Ok(())
 }
 
@@ -598,11 +597,7 @@ fn reset_timestep(a: &Args, ctx: &mut Ctx) -> Result {
     if n < 0 {
         return Err(a.error(0, "Timestep must be >= 0"));
     }
-    ctx.sim.step = n;
-    ctx.sim.time_origin = (n, 0.0);
-    for d in &mut ctx.sim.dumps {
-        d.last_written = None;
-    }
+    ctx.sim.reset_timestep(n);
     Ok(())
 }
 

@@ -101,8 +101,10 @@ pub struct Simulation {
     pub step: i64,
     /// Time-step size (time units).
     pub dt: f64,
-    /// Simulated time at `time_origin_step` (time advances by dt per step).
-    pub time_origin: (i64, f64),
+    /// Elapsed time accumulated up to step `atime_step` (LIGGGHTS's atime/atimestep).
+    pub atime: f64,
+    /// The step at which `atime` was last brought up to date.
+    pub atime_step: i64,
     /// Neighbour settings.
     pub neighbor: NeighborSettings,
     /// The current list and the history of its pairs.
@@ -137,7 +139,8 @@ impl Default for Simulation {
             ntypes: 0,
             step: 0,
             dt: 0.001,
-            time_origin: (0, 0.0),
+            atime: 0.0,
+            atime_step: 0,
             neighbor: NeighborSettings::default(),
             list: NeighborList::default(),
             history: Vec::new(),
@@ -169,7 +172,7 @@ impl Simulation {
 
     /// Simulated time at the current step (time units).
     pub fn time(&self) -> f64 {
-        self.time_origin.1 + (self.step - self.time_origin.0) as f64 * self.dt
+        self.atime + (self.step - self.atime_step) as f64 * self.dt
     }
 
     /// Wrap periodic coordinates, drop particles outside fixed faces, shrink-wrap the box.
@@ -286,6 +289,8 @@ impl Simulation {
         let first = self.step;
         let last = self.step + nsteps;
         self.run_bounds = Some((first, last));
+        self.atime_step = self.step;
+        let started = std::time::Instant::now();
         // setup
         self.pbc_and_box()?;
         self.build_neighbors();
@@ -317,7 +322,28 @@ impl Simulation {
             self.write_dumps(false)?;
         }
         self.run_bounds = None;
+        self.atime += (self.step - self.atime_step) as f64 * self.dt;
+        self.atime_step = self.step;
+        out(&format!(
+            "Loop time of {} on 1 procs for {} steps with {} atoms\n\n",
+            crate::script::format::g(started.elapsed().as_secs_f64()),
+            nsteps,
+            self.particles.len()
+        ));
         Ok(())
+    }
+
+    /// `reset_timestep N`: bring the elapsed time up to date, then jump to step N.
+    pub fn reset_timestep(&mut self, n: i64) {
+        self.atime += (n - self.atime_step) as f64 * self.dt;
+        if self.atime < 0.0 {
+            self.atime = 0.0;
+        }
+        self.atime_step = n;
+        self.step = n;
+        for d in &mut self.dumps {
+            d.last_written = None;
+        }
     }
 
     fn thermo_line(&mut self, out: Sink<'_>) {

@@ -82,7 +82,12 @@ impl ExprContext for Scope<'_> {
         if !crate::commands::THERMO_KEYWORDS.contains(&name) {
             return Err("Invalid thermo keyword in variable formula".into());
         }
-        Err(self.no_state("Variable evaluation before simulation box is defined"))
+        if self.sys.mode == Mode::Check {
+            return Err(UNKNOWN_QUERY.to_string());
+        }
+        self.engine
+            .thermo_value(name)
+            .ok_or_else(|| format!("thermo keyword {name} in a formula: not supported yet"))
     }
 
     fn compute(
@@ -117,8 +122,11 @@ impl ExprContext for Scope<'_> {
         Err(self.no_state("Variable evaluation before simulation box is defined"))
     }
 
-    fn atom_value_by_id(&mut self, _: &str, _: usize) -> Result<f64, String> {
-        Err(self.no_state("Variable evaluation before simulation box is defined"))
+    fn atom_value_by_id(&mut self, name: &str, id: usize) -> Result<f64, String> {
+        if self.sys.mode == Mode::Check {
+            return Err(UNKNOWN_QUERY.to_string());
+        }
+        self.engine.atom_value_by_id(name, id)
     }
 
     fn box_exists(&self) -> bool {
@@ -131,7 +139,7 @@ impl ExprContext for Scope<'_> {
     }
 
     fn run_bounds(&self) -> Option<(i64, i64)> {
-        None
+        self.engine.sim.run_bounds
     }
 
     fn dt(&self) -> f64 {

@@ -239,7 +239,7 @@ impl Engine {
             "z" => Ok(2),
             _ => Err(invalid()),
         };
-        let mass: f64 = members.iter().map(|&i| p.mass[i]).sum();
+        let mass = members.iter().fold(0.0, |s, &i| s + p.mass[i]);
         Ok(match name {
             "count" => members.len() as f64,
             "mass" => mass,
@@ -262,7 +262,7 @@ impl Engine {
             }
             "fcm" => {
                 let d = dim(&args[1])?;
-                members.iter().map(|&i| p.f[i][d]).sum()
+                members.iter().fold(0.0, |s, &i| s + p.f[i][d])
             }
             "bound" => {
                 let (d, lower) = match args[1].as_str() {

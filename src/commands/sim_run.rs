@@ -1,8 +1,9 @@
 //! Commands that drive and observe the run: fixes regolith integrates, thermo, dumps, `run`.
 
 use crate::commands::{Args, Ctx};
+use crate::engine::fixes::{Fix, FixKind, Motion, Move};
 use crate::engine::integrate::Gravity;
-use crate::engine::sim::{Dump, Fix, FixKind};
+use crate::engine::sim::Dump;
 use crate::error::Diagnostic;
 use crate::io::dump::Layout;
 use crate::script::system::Mode;
@@ -10,7 +11,15 @@ use crate::script::system::Mode;
 type Result = std::result::Result<(), Diagnostic>;
 
 /// Fix styles regolith runs.
-pub const FIX_STYLES: &[&str] = &["gravity", "nve/sphere"];
+pub const FIX_STYLES: &[&str] = &[
+    "addforce",
+    "freeze",
+    "gravity",
+    "move",
+    "nve/sphere",
+    "setforce",
+    "viscous",
+];
 
 /// Handle a run/output command; None if `name` is not one of them.
 pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
@@ -61,6 +70,85 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                 }
                 other => return Err(a.unsupported(4, &format!("fix gravity {other}"))),
             }
+        }
+        "freeze" => {
+            if a.len() > 3 {
+                return Err(a.error(3, "Illegal fix freeze command"));
+            }
+            if ctx
+                .sim
+                .fixes
+                .iter()
+                .any(|f| matches!(f.kind, FixKind::Freeze) && f.id != id)
+            {
+                return Err(a.error(2, "More than one fix freeze"));
+            }
+            FixKind::Freeze
+        }
+        "setforce" | "addforce" => {
+            a.count(6..=6, &format!("fix ID GROUP {style} FX FY FZ"))?;
+            let mut v = [None; 3];
+            for (d, slot) in v.iter_mut().enumerate() {
+                let w = a.word(3 + d)?;
+                if w.starts_with("v_") {
+                    return Err(a.unsupported(3 + d, &format!("fix {style} with variables")));
+                }
+                if w != "NULL" {
+                    *slot = Some(a.real(3 + d)?);
+                } else if style == "addforce" {
+                    return Err(a.error(3 + d, "Illegal fix addforce command"));
+                }
+            }
+            if style == "setforce" {
+                FixKind::SetForce(v)
+            } else {
+                FixKind::AddForce(v.map(|c| c.unwrap_or(0.0)))
+            }
+        }
+        "viscous" => {
+            a.count(4..=4, "fix ID GROUP viscous GAMMA")?;
+            FixKind::Viscous(a.real(3)?)
+        }
+        "move" => {
+            let components = |from: usize| -> std::result::Result<[Option<f64>; 3], Diagnostic> {
+                let mut v = [None; 3];
+                for (d, slot) in v.iter_mut().enumerate() {
+                    let w = a.word(from + d)?;
+                    if w != "NULL" {
+                        *slot = Some(a.real(from + d)?);
+                    }
+                }
+                Ok(v)
+            };
+            let (motion, used) = match a.word(3)? {
+                "linear" => (Motion::Linear(components(4)?), 7),
+                "wiggle" => {
+                    let amplitude = components(4)?;
+                    let period = a.real(7)?;
+                    if period <= 0.0 {
+                        return Err(a.error(7, "Illegal fix move command"));
+                    }
+                    (
+                        Motion::Wiggle {
+                            amplitude,
+                            omega: 2.0 * std::f64::consts::PI / period,
+                        },
+                        8,
+                    )
+                }
+                other => return Err(a.unsupported(3, &format!("fix move {other}"))),
+            };
+            if a.len() > used {
+                return Err(a.unsupported(used, "fix move keywords"));
+            }
+            let sim = &ctx.sim;
+            FixKind::Move(Move::new(
+                motion,
+                &sim.particles,
+                bit,
+                &sim.domain,
+                sim.step,
+            ))
         }
         other => return Err(a.unsupported(2, &format!("fix {other}"))),
     };

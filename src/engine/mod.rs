@@ -2,6 +2,7 @@
 //! computes and the integrator. Commands in [`crate::commands`] configure it.
 
 pub mod domain;
+pub mod fixes;
 pub mod integrate;
 pub mod neighbor;
 pub mod numbers;

@@ -3,7 +3,8 @@
 //! clear, pair forces, post-force fixes, final integrate, output).
 
 use crate::engine::domain::Domain;
-use crate::engine::integrate::{final_integrate, initial_integrate, Gravity};
+pub use crate::engine::fixes::FixKind;
+use crate::engine::fixes::{self, Fix};
 use crate::engine::neighbor::{carry_history, NeighborList, Pair};
 use crate::engine::particles::Particles;
 use crate::engine::region::Regions;
@@ -41,30 +42,6 @@ pub trait PairInteraction: Send {
     fn history_width(&self) -> usize;
     /// Add pair forces and torques to `p.f`/`p.torque` for the listed pairs.
     fn compute(&mut self, p: &mut Particles, pairs: &[Pair], history: &mut [f64], dt: f64);
-}
-
-/// What a fix does each step.
-pub enum FixKind {
-    /// `fix nve/sphere`.
-    NveSphere,
-    /// `fix gravity`.
-    Gravity(Gravity),
-    /// A fix that only holds settings (e.g. `property/global`), read by other parts.
-    Settings,
-}
-
-/// One defined fix.
-pub struct Fix {
-    /// The fix ID.
-    pub id: String,
-    /// Its style name.
-    pub style: String,
-    /// Group bits it acts on.
-    pub group: u32,
-    /// What it does.
-    pub kind: FixKind,
-    /// Its arguments after the style (for settings fixes).
-    pub args: Vec<String>,
 }
 
 /// One `dump` command.
@@ -274,11 +251,7 @@ impl Simulation {
         if let Some(pair) = self.pair.as_mut() {
             pair.compute(p, &self.list.pairs, &mut self.history, self.dt);
         }
-        for fix in &self.fixes {
-            if let FixKind::Gravity(g) = &fix.kind {
-                g.apply(p);
-            }
-        }
+        fixes::post_force(&self.fixes, p);
     }
 
     /// `run N`: a setup force evaluation, then N velocity-Verlet steps with output.
@@ -301,21 +274,13 @@ impl Simulation {
         self.write_dumps(true)?;
         for _ in 0..nsteps {
             self.step += 1;
-            for fix in &self.fixes {
-                if let FixKind::NveSphere = fix.kind {
-                    initial_integrate(&mut self.particles, fix.group, self.dt);
-                }
-            }
+            fixes::initial_integrate(&self.fixes, &mut self.particles, self.step, self.dt);
             if self.decide() {
                 self.pbc_and_box()?;
                 self.build_neighbors();
             }
             self.compute_forces();
-            for fix in &self.fixes {
-                if let FixKind::NveSphere = fix.kind {
-                    final_integrate(&mut self.particles, fix.group, self.dt);
-                }
-            }
+            fixes::final_integrate(&self.fixes, &mut self.particles, self.dt);
             if self.thermo.due(self.step, last) {
                 self.thermo_line(out);
             }

@@ -1,0 +1,278 @@
+//! Fixes that act on particles each step, in LIGGGHTS's phases: `initial_integrate`
+//! (nve/sphere, move), `post_force` (gravity, setforce, addforce, viscous, freeze) and
+//! `final_integrate`. Within a phase fixes act in the order they were defined.
+
+use std::collections::HashMap;
+
+use crate::engine::domain::Domain;
+use crate::engine::integrate::{self, Gravity};
+use crate::engine::particles::Particles;
+
+/// Prescribed motion of `fix move` (length and time units).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Motion {
+    /// `linear vx vy vz`: constant velocity; None components are integrated freely.
+    Linear([Option<f64>; 3]),
+    /// `wiggle Ax Ay Az period`: x = x0 + A sin(2 pi t / period).
+    Wiggle {
+        amplitude: [Option<f64>; 3],
+        omega: f64,
+    },
+}
+
+/// A `fix move`: the motion, where each atom started (unwrapped) and the start step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Move {
+    /// The motion.
+    pub motion: Motion,
+    /// Unwrapped start positions by atom ID.
+    pub origin: HashMap<i64, [f64; 3]>,
+    /// The step the fix was defined at (its time origin).
+    pub start_step: i64,
+}
+
+impl Move {
+    /// Record the current unwrapped positions of the group's atoms as the origin.
+    pub fn new(motion: Motion, p: &Particles, group: u32, domain: &Domain, step: i64) -> Move {
+        let mut origin = HashMap::new();
+        for i in 0..p.len() {
+            if p.mask[i] & group != 0 {
+                let mut x = p.x[i];
+                for (d, xd) in x.iter_mut().enumerate() {
+                    *xd += p.image[i][d] as f64 * domain.length(d);
+                }
+                origin.insert(p.id[i], x);
+            }
+        }
+        Move {
+            motion,
+            origin,
+            start_step: step,
+        }
+    }
+
+    /// Which components the motion prescribes (the rest are integrated).
+    fn prescribed(&self) -> [bool; 3] {
+        match &self.motion {
+            Motion::Linear(v) => v.map(|c| c.is_some()),
+            Motion::Wiggle { amplitude, .. } => amplitude.map(|c| c.is_some()),
+        }
+    }
+
+    fn initial_integrate(&self, p: &mut Particles, group: u32, step: i64, dt: f64) {
+        let delta = (step - self.start_step) as f64 * dt;
+        let dtf = 0.5 * dt;
+        for i in 0..p.len() {
+            if p.mask[i] & group == 0 {
+                continue;
+            }
+            let x0 = self.origin.get(&p.id[i]).copied().unwrap_or([0.0; 3]);
+            for d in 0..3 {
+                let set = match &self.motion {
+                    Motion::Linear(v) => v[d].map(|vd| (vd, x0[d] + vd * delta)),
+                    Motion::Wiggle { amplitude, omega } => amplitude[d].map(|a| {
+                        let arg = omega * delta;
+                        (a * omega * arg.cos(), x0[d] + a * arg.sin())
+                    }),
+                };
+                match set {
+                    Some((v, x)) => {
+                        p.v[i][d] = v;
+                        p.x[i][d] = x;
+                    }
+                    None => {
+                        let dtfm = dtf / p.mass[i];
+                        p.v[i][d] += dtfm * p.f[i][d];
+                        p.x[i][d] += dt * p.v[i][d];
+                    }
+                }
+            }
+        }
+    }
+
+    fn final_integrate(&self, p: &mut Particles, group: u32, dt: f64) {
+        let free = self.prescribed().map(|s| !s);
+        let dtf = 0.5 * dt;
+        for i in 0..p.len() {
+            if p.mask[i] & group == 0 {
+                continue;
+            }
+            for d in 0..3 {
+                if free[d] {
+                    let dtfm = dtf / p.mass[i];
+                    p.v[i][d] += dtfm * p.f[i][d];
+                }
+            }
+        }
+    }
+}
+
+/// What a fix does.
+pub enum FixKind {
+    /// `fix nve/sphere`.
+    NveSphere,
+    /// `fix move`.
+    Move(Move),
+    /// `fix gravity`.
+    Gravity(Gravity),
+    /// `fix setforce fx fy fz` (None: leave that component).
+    SetForce([Option<f64>; 3]),
+    /// `fix addforce fx fy fz` (force units).
+    AddForce([f64; 3]),
+    /// `fix viscous gamma`: f -= gamma v (force/velocity units).
+    Viscous(f64),
+    /// `fix freeze`: force and torque zero (and infinite mass in contacts).
+    Freeze,
+    /// A fix that only holds settings read by other parts (e.g. `property/global`).
+    Settings,
+}
+
+/// One defined fix.
+pub struct Fix {
+    /// The fix ID.
+    pub id: String,
+    /// Its style name.
+    pub style: String,
+    /// Group bits it acts on.
+    pub group: u32,
+    /// What it does.
+    pub kind: FixKind,
+    /// Its arguments after the style (for settings fixes).
+    pub args: Vec<String>,
+}
+
+/// Run the `initial_integrate` phase of all fixes.
+pub fn initial_integrate(fixes: &[Fix], p: &mut Particles, step: i64, dt: f64) {
+    for fix in fixes {
+        match &fix.kind {
+            FixKind::NveSphere => integrate::initial_integrate(p, fix.group, dt),
+            FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt),
+            _ => {}
+        }
+    }
+}
+
+/// Run the `post_force` phase of all fixes.
+pub fn post_force(fixes: &[Fix], p: &mut Particles) {
+    for fix in fixes {
+        let g = fix.group;
+        match &fix.kind {
+            FixKind::Gravity(grav) => grav.apply(p),
+            FixKind::SetForce(f) => {
+                for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
+                    for d in 0..3 {
+                        if let Some(v) = f[d] {
+                            p.f[i][d] = v;
+                        }
+                    }
+                }
+            }
+            FixKind::AddForce(f) => {
+                for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
+                    for d in 0..3 {
+                        p.f[i][d] += f[d];
+                    }
+                }
+            }
+            FixKind::Viscous(gamma) => {
+                for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
+                    for d in 0..3 {
+                        p.f[i][d] -= gamma * p.v[i][d];
+                    }
+                }
+            }
+            FixKind::Freeze => {
+                for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
+                    p.f[i] = [0.0; 3];
+                    p.torque[i] = [0.0; 3];
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+/// Run the `final_integrate` phase of all fixes.
+pub fn final_integrate(fixes: &[Fix], p: &mut Particles, dt: f64) {
+    for fix in fixes {
+        match &fix.kind {
+            FixKind::NveSphere => integrate::final_integrate(p, fix.group, dt),
+            FixKind::Move(m) => m.final_integrate(p, fix.group, dt),
+            _ => {}
+        }
+    }
+}
+
+/// Group bits of all frozen particles (contacts treat them as infinitely heavy).
+pub fn frozen_groups(fixes: &[Fix]) -> u32 {
+    fixes
+        .iter()
+        .filter(|f| matches!(f.kind, FixKind::Freeze))
+        .fold(0, |m, f| m | f.group)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wiggle_velocity_after_one_period_is_a_omega() {
+        // LIGGGHTS-BEHAVIOUR item 10: after exactly one period |v| = A w, not 0
+        let mut p = Particles::default();
+        p.push(1, 1, [0.0, 0.0, 1.0], 0.001, 2500.0);
+        let domain = Domain::default();
+        let (a, f) = (1e-3, 50.0);
+        let omega = 2.0 * std::f64::consts::PI / (1.0 / f);
+        let m = Move::new(
+            Motion::Wiggle {
+                amplitude: [None, None, Some(a)],
+                omega,
+            },
+            &p,
+            1,
+            &domain,
+            0,
+        );
+        let fixes = vec![Fix {
+            id: "m".into(),
+            style: "move".into(),
+            group: 1,
+            kind: FixKind::Move(m),
+            args: vec![],
+        }];
+        let dt = 1e-4;
+        for step in 1..=200 {
+            initial_integrate(&fixes, &mut p, step, dt);
+            p.f[0] = [0.0; 3];
+            post_force(&fixes, &mut p);
+            final_integrate(&fixes, &mut p, dt);
+        }
+        assert!((p.v[0][2] - a * omega).abs() < 1e-9);
+        assert!((p.x[0][2] - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn post_force_order_and_freeze() {
+        let mut p = Particles::default();
+        p.push(1, 1, [0.0; 3], 0.5, 1.0);
+        p.v[0] = [1.0, 0.0, 0.0];
+        p.torque[0] = [1.0; 3];
+        let mk = |kind| Fix {
+            id: "f".into(),
+            style: "x".into(),
+            group: 1,
+            kind,
+            args: vec![],
+        };
+        let fixes = vec![
+            mk(FixKind::AddForce([1.0, 2.0, 3.0])),
+            mk(FixKind::Viscous(0.5)),
+            mk(FixKind::SetForce([None, Some(7.0), None])),
+        ];
+        post_force(&fixes, &mut p);
+        assert_eq!(p.f[0], [0.5, 7.0, 3.0]);
+        post_force(&[mk(FixKind::Freeze)], &mut p);
+        assert_eq!((p.f[0], p.torque[0]), ([0.0; 3], [0.0; 3]));
+        assert_eq!(frozen_groups(&[mk(FixKind::Freeze)]), 1);
+    }
+}

@@ -153,6 +153,18 @@ pub fn is_supported(cmd: &CommandLine) -> bool {
             .arg(2)
             .is_some_and(|s| crate::commands::sim_run::FIX_STYLES.contains(&s)),
         "dump" => cmd.arg(2) == Some("custom"),
+        "pair_style" => {
+            cmd.arg(0) == Some("gran")
+                && (1..cmd.nargs())
+                    .step_by(2)
+                    .all(|k| match (cmd.arg(k), cmd.arg(k + 1)) {
+                        (Some("model"), Some(m)) => m == "hertz",
+                        (Some("tangential"), Some(t)) => matches!(t, "history" | "no_history"),
+                        (Some("surface"), Some(s)) => s == "default",
+                        (Some("cohesion" | "rolling_friction"), _) => false,
+                        _ => true,
+                    })
+        }
         "atom_style" => matches!(cmd.arg(0), Some("granular" | "sphere")),
         "region" => matches!(
             cmd.arg(1),

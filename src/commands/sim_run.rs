@@ -33,6 +33,9 @@ pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
         "dump_modify" => dump_modify(a, ctx),
         "undump" => undump(a, ctx),
         "run" => run(a, ctx),
+        "pair_style" => pair_style(a, ctx),
+        "pair_coeff" => pair_coeff(a, ctx),
+        "soft_particles" | "hard_particles" => soft_hard(name, a, ctx),
         _ => return None,
     })
 }
@@ -70,6 +73,42 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                 }
                 other => return Err(a.unsupported(4, &format!("fix gravity {other}"))),
             }
+        }
+        "property/global" => {
+            a.count(
+                6..=usize::MAX,
+                "fix ID GROUP property/global NAME STYLE VALUES...",
+            )?;
+            let style = a.word_in(
+                4,
+                &[
+                    "scalar",
+                    "vector",
+                    "peratomtype",
+                    "atomtype",
+                    "peratomtypepair",
+                    "atomtypepair",
+                    "matrix",
+                ],
+            )?;
+            let first_value = if matches!(style, "peratomtypepair" | "atomtypepair" | "matrix") {
+                6
+            } else {
+                5
+            };
+            if matches!(style, "peratomtypepair" | "atomtypepair" | "matrix") {
+                let n = a.int(5)?;
+                if n < 1 {
+                    return Err(a.error(5, "Illegal fix property/global command"));
+                }
+                if (a.len() - first_value) as i64 % n != 0 {
+                    return Err(a.error(5, "Fix property/global: the number of default values must be a multiple of nCols."));
+                }
+            }
+            for i in first_value..a.len() {
+                a.real(i)?;
+            }
+            FixKind::Settings
         }
         "freeze" => {
             if a.len() > 3 {
@@ -152,12 +191,15 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
         }
         other => return Err(a.unsupported(2, &format!("fix {other}"))),
     };
+    let args: Vec<String> = (3..a.len())
+        .map(|i| a.word(i).map(str::to_string))
+        .collect::<std::result::Result<_, _>>()?;
     let fix = Fix {
         id: id.to_string(),
         style: style.to_string(),
         group: bit,
         kind,
-        args: Vec::new(),
+        args,
     };
     match ctx.sim.fixes.iter().position(|f| f.id == id) {
         Some(i) => {
@@ -363,7 +405,111 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         // a dry run validates the deck but never steps
         return Ok(());
     }
+    if ctx.sim.pair_selection.is_some() && !ctx.sim.pair_coeff_set {
+        return Err(a.error(0, "All pair coeffs are not set"));
+    }
     let out = &mut *ctx.out;
     let mut sink = |s: &str| out.both(s);
     ctx.sim.run(n, &mut sink).map_err(|m| a.error(0, &m))
+}
+
+/// The order LIGGGHTS requires for the model keywords of `pair_style gran`.
+const MODEL_KEYS: &[&str] = &[
+    "model",
+    "tangential",
+    "cohesion",
+    "rolling_friction",
+    "surface",
+];
+
+fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=usize::MAX, "pair_style gran model M tangential T ...")?;
+    if a.word(0)? != "gran" {
+        return Err(a.unsupported(0, &format!("pair_style {}", a.word(0)?)));
+    }
+    let mut sel = crate::engine::granular::Selection {
+        model: String::new(),
+        tangential: "no_history".into(),
+        tangential_damping: true,
+        limit_force: false,
+    };
+    let mut i = 1;
+    let mut last_key = None;
+    while i < a.len() {
+        let key = a.word(i)?;
+        let Some(rank) = MODEL_KEYS.iter().position(|k| *k == key) else {
+            break;
+        };
+        if last_key.is_some_and(|l| rank <= l) {
+            return Err(a
+                .error(
+                    i,
+                    &format!(
+                        "Illegal pair_style gran command: '{key}' must come before '{}'",
+                        MODEL_KEYS[last_key.unwrap()]
+                    ),
+                )
+                .with_help(format!(
+                    "model keywords go in the order {}",
+                    MODEL_KEYS.join(", ")
+                )));
+        }
+        last_key = Some(rank);
+        let value = a.word(i + 1)?;
+        match (key, value) {
+            ("model", "hertz") => sel.model = value.into(),
+            ("tangential", "history" | "no_history") => sel.tangential = value.into(),
+            ("surface", "default") => {}
+            _ => return Err(a.unsupported(i + 1, &format!("pair_style gran {key} {value}"))),
+        }
+        i += 2;
+    }
+    if sel.model.is_empty() {
+        return Err(a.error(
+            0,
+            "Invalid model specified (check for typos and enable at least one model)",
+        ));
+    }
+    while i < a.len() {
+        let key = a.word(i)?;
+        let on = a.word_in(i + 1, &["on", "off", "yes", "no"])?;
+        let on = matches!(on, "on" | "yes");
+        match key {
+            "tangential_damping" => sel.tangential_damping = on,
+            "limitForce" => sel.limit_force = on,
+            _ => return Err(a.unsupported(i, &format!("pair_style gran option {key}"))),
+        }
+        i += 2;
+    }
+    ctx.sim.pair_selection = Some(sel);
+    ctx.sim.pair_coeff_set = false;
+    Ok(())
+}
+
+fn pair_coeff(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(2..=2, "pair_coeff * *")?;
+    if ctx.sim.pair_selection.is_none() {
+        return Err(a.error(0, "Pair_coeff command before pair_style is defined"));
+    }
+    for i in 0..2 {
+        let w = a.word(i)?;
+        crate::script::interp::bounds(w, ctx.sim.ntypes.max(1) as i64)
+            .map_err(|m| a.error(i, &m))?;
+    }
+    if a.word(0)? != "*" || a.word(1)? != "*" {
+        return Err(a.unsupported(0, "pair_coeff for single type pairs"));
+    }
+    ctx.sim.pair_coeff_set = true;
+    Ok(())
+}
+
+fn soft_hard(name: &str, a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=1, &format!("{name} yes|no"))?;
+    let on = a.word_in(0, &["yes", "no"])? == "yes";
+    if name == "soft_particles" {
+        ctx.sim.soft_hard.0 = on;
+    } else {
+        ctx.sim.soft_hard.1 = on;
+    }
+    Ok(())
 }

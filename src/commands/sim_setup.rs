@@ -18,7 +18,7 @@ pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
         "units" => units(a),
         "dimension" => dimension(a),
         "newton" => one_of(a, "newton", &["on", "off"], 1..=2),
-        "communicate" | "comm_modify" => communicate(a),
+        "communicate" | "comm_modify" => communicate(a, ctx),
         "processors" => processors(a),
         "region" => region(a, ctx),
         "create_box" => create_box(a, ctx),
@@ -106,14 +106,14 @@ fn one_of(a: &Args, cmd: &str, allowed: &[&str], count: std::ops::RangeInclusive
     Ok(())
 }
 
-fn communicate(a: &Args) -> Result {
+fn communicate(a: &Args, ctx: &mut Ctx) -> Result {
     // one process: communication settings change nothing, but they must be valid
     let mut i = 0;
     while i < a.len() {
         match a.word(i)? {
             "single" | "multi" => i += 1,
             "vel" => {
-                a.word_in(i + 1, &["yes", "no"])?;
+                ctx.sim.comm_vel = a.word_in(i + 1, &["yes", "no"])? == "yes";
                 i += 2;
             }
             "cutoff" => {

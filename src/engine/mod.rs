@@ -3,6 +3,7 @@
 
 pub mod domain;
 pub mod fixes;
+pub mod granular;
 pub mod integrate;
 pub mod neighbor;
 pub mod numbers;

@@ -90,8 +90,16 @@ pub struct Simulation {
     list_ids: Vec<i64>,
     ago: u64,
     box_at_build: ([f64; 3], [f64; 3]),
-    /// The pair interaction, once `pair_style` is set.
+    /// The pair interaction, built at each run from the selection and materials.
     pub pair: Option<Box<dyn PairInteraction>>,
+    /// The contact models `pair_style gran` selected.
+    pub pair_selection: Option<crate::engine::granular::Selection>,
+    /// `pair_coeff * *` was given.
+    pub pair_coeff_set: bool,
+    /// `soft_particles yes` / `hard_particles yes`.
+    pub soft_hard: (bool, bool),
+    /// `communicate ... vel yes` (LIGGGHTS's pair gran requires it).
+    pub comm_vel: bool,
     /// Fixes in definition order.
     pub fixes: Vec<Fix>,
     /// Thermo output settings.
@@ -125,6 +133,10 @@ impl Default for Simulation {
             ago: 0,
             box_at_build: ([0.0; 3], [0.0; 3]),
             pair: None,
+            pair_selection: None,
+            pair_coeff_set: false,
+            soft_hard: (false, false),
+            comm_vel: false,
             fixes: Vec::new(),
             thermo: Thermo::default(),
             dumps: Vec::new(),
@@ -206,6 +218,67 @@ impl Simulation {
         self.box_at_build = (self.domain.lo, self.domain.hi);
     }
 
+    /// Values of a `fix property/global` by its variable name: (style, columns, values).
+    pub fn property(&self, name: &str) -> Option<(&str, usize, Vec<f64>)> {
+        let fix = self.fixes.iter().rev().find(|f| {
+            f.style == "property/global" && f.args.first().map(String::as_str) == Some(name)
+        })?;
+        let style = fix.args.get(1)?.as_str();
+        let (columns, start) = match style {
+            "peratomtypepair" | "atomtypepair" | "matrix" => (fix.args.get(2)?.parse().ok()?, 3),
+            _ => (1, 2),
+        };
+        let values = fix.args[start..]
+            .iter()
+            .map(|w| crate::engine::numbers::numeric(w).unwrap_or(0.0))
+            .collect();
+        Some((style, columns, values))
+    }
+
+    /// Build the pair interaction from `pair_style` and the current material properties.
+    fn init_pair(&mut self) -> Result<(), String> {
+        use crate::engine::granular::{
+            self,
+            material::{Material, MaterialInput},
+        };
+        let Some(sel) = self.pair_selection.clone() else {
+            self.pair = None;
+            return Ok(());
+        };
+        if !self.pair_coeff_set {
+            return Err("All pair coeffs are not set".into());
+        }
+        if !self.comm_vel {
+            return Err("Pair granular requires ghost atoms store velocity".into());
+        }
+        let n = self.ntypes as usize;
+        let caller = format!("model {}", sel.model);
+        let get = |name: &str, per_pair: bool| -> Result<Vec<f64>, String> {
+            let (_, _, values) = self.property(name).ok_or_else(|| {
+                format!("Could not locate a fix/property storing value(s) for {name} as requested by {caller}.")
+            })?;
+            let want = if per_pair { n * n } else { n };
+            if values.len() < want {
+                return Err(format!(
+                    "fix property/global {name}: expected {want} values for {n} atom types"
+                ));
+            }
+            Ok(values[..want].to_vec())
+        };
+        let input = MaterialInput {
+            youngs: get("youngsModulus", false)?,
+            poisson: get("poissonsRatio", false)?,
+            restitution: get("coefficientRestitution", true)?,
+            friction: get("coefficientFriction", true)?,
+            soft: self.soft_hard.0,
+            hard: self.soft_hard.1,
+        };
+        let material = Material::new(&input)?;
+        let frozen = fixes::frozen_groups(&self.fixes);
+        self.pair = Some(granular::build(&sel, material, frozen)?);
+        Ok(())
+    }
+
     /// LIGGGHTS's `Neighbor::decide`: rebuild now?
     fn decide(&mut self) -> bool {
         self.ago += 1;
@@ -259,6 +332,7 @@ impl Simulation {
         if !self.domain.exists {
             return Err("Run command before simulation box is defined".into());
         }
+        self.init_pair()?;
         let first = self.step;
         let last = self.step + nsteps;
         self.run_bounds = Some((first, last));

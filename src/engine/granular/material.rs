@@ -1,0 +1,112 @@
+//! Per-type-pair contact coefficients from `fix property/global` (youngsModulus,
+//! poissonsRatio, coefficientRestitution, coefficientFriction), mixed as LIGGGHTS mixes them.
+
+/// Coefficient tables indexed by 1-based atom types.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Material {
+    ntypes: usize,
+    yeff: Vec<f64>,
+    geff: Vec<f64>,
+    betaeff: Vec<f64>,
+    friction: Vec<f64>,
+}
+
+/// The raw per-type inputs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MaterialInput {
+    /// Young's modulus per type (pressure).
+    pub youngs: Vec<f64>,
+    /// Poisson's ratio per type.
+    pub poisson: Vec<f64>,
+    /// Restitution per type pair, row-major ntypes x ntypes.
+    pub restitution: Vec<f64>,
+    /// Friction per type pair, row-major.
+    pub friction: Vec<f64>,
+    /// `soft_particles yes`: allow E < 5e6.
+    pub soft: bool,
+    /// `hard_particles yes`: allow E > 1e9.
+    pub hard: bool,
+}
+
+impl Material {
+    /// Mix the per-type inputs into per-pair coefficients, with LIGGGHTS's checks.
+    pub fn new(input: &MaterialInput) -> Result<Material, String> {
+        let n = input.youngs.len();
+        if input.poisson.len() != n
+            || input.restitution.len() != n * n
+            || input.friction.len() != n * n
+        {
+            return Err("material property tables do not match the number of atom types".into());
+        }
+        for &y in &input.youngs {
+            if !input.soft && y < 5e6 {
+                return Err("youngsModulus >= 5e6 required for SI units (use command 'soft_particles yes' to override)".into());
+            }
+            if !input.hard && y > 1e9 {
+                return Err("youngsModulus <= 1e9 required for SI units (use command 'hard_particles yes' to override)".into());
+            }
+        }
+        for &v in &input.poisson {
+            if !(0.0..=0.5).contains(&v) {
+                return Err("0 <= poissonsRatio <= 0.5 required".into());
+            }
+        }
+        for &e in &input.restitution {
+            if e <= 0.05 || e > 1.0 {
+                return Err("0.05 < coefficientRestitution <= 1 required".into());
+            }
+        }
+        let mut m = Material {
+            ntypes: n,
+            ..Material::default()
+        };
+        for i in 0..n {
+            for j in 0..n {
+                let (yi, yj, vi, vj) = (
+                    input.youngs[i],
+                    input.youngs[j],
+                    input.poisson[i],
+                    input.poisson[j],
+                );
+                m.yeff
+                    .push(1. / ((1. - vi.powf(2.)) / yi + (1. - vj.powf(2.)) / yj));
+                m.geff
+                    .push(1. / (2. * (2. - vi) * (1. + vi) / yi + 2. * (2. - vj) * (1. + vj) / yj));
+                let log_e = input.restitution[i * n + j].ln();
+                m.betaeff
+                    .push(log_e / (log_e.powf(2.) + std::f64::consts::PI.powf(2.)).sqrt());
+                m.friction.push(input.friction[i * n + j]);
+            }
+        }
+        Ok(m)
+    }
+
+    #[inline(always)]
+    fn at(&self, table: &[f64], i: usize, j: usize) -> f64 {
+        table[(i - 1) * self.ntypes + (j - 1)]
+    }
+
+    /// Effective Young's modulus of a type pair (pressure).
+    #[inline(always)]
+    pub fn yeff(&self, i: usize, j: usize) -> f64 {
+        self.at(&self.yeff, i, j)
+    }
+
+    /// Effective shear modulus (pressure).
+    #[inline(always)]
+    pub fn geff(&self, i: usize, j: usize) -> f64 {
+        self.at(&self.geff, i, j)
+    }
+
+    /// Damping ratio from the restitution: ln e / sqrt(ln^2 e + pi^2).
+    #[inline(always)]
+    pub fn betaeff(&self, i: usize, j: usize) -> f64 {
+        self.at(&self.betaeff, i, j)
+    }
+
+    /// Coulomb friction coefficient.
+    #[inline(always)]
+    pub fn friction(&self, i: usize, j: usize) -> f64 {
+        self.at(&self.friction, i, j)
+    }
+}

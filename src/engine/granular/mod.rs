@@ -1,0 +1,215 @@
+//! Granular contacts (`pair_style gran`), composed from sub-models chosen once per run:
+//! a normal model ([`normal`]) and a tangential model ([`tangential`]). Each combination is
+//! a separate monomorphised kernel, so a deck without history stores none and runs no
+//! history code. The arithmetic follows LIGGGHTS 3.8.0 operation by operation.
+
+pub mod material;
+pub mod normal;
+pub mod tangential;
+
+use crate::engine::neighbor::Pair;
+use crate::engine::particles::Particles;
+use crate::engine::sim::PairInteraction;
+use material::Material;
+use normal::NormalModel;
+use tangential::TangentialModel;
+
+/// One touching pair as the sub-models see it (LIGGGHTS's `SurfacesIntersectData`).
+#[derive(Debug, Clone, Default)]
+pub struct Contact {
+    /// Types of the two particles (1-based).
+    pub itype: usize,
+    /// Type of the second particle.
+    pub jtype: usize,
+    /// Unit normal pointing from j to i.
+    pub en: [f64; 3],
+    /// Separation x_i - x_j (length).
+    pub delta: [f64; 3],
+    /// Overlap (length).
+    pub deltan: f64,
+    /// Effective radius (length).
+    pub reff: f64,
+    /// Effective mass (mass).
+    pub meff: f64,
+    /// Normal relative velocity (length/time, positive when separating).
+    pub vn: f64,
+    /// Tangential relative velocity at the contact point (length/time).
+    pub vtr: [f64; 3],
+    /// Lever arms from the centres to the contact point (length).
+    pub cri: f64,
+    /// Lever arm of particle j.
+    pub crj: f64,
+    /// Normal force magnitude set by the normal model (force).
+    pub fn_total: f64,
+    /// Normal stiffness (force/length).
+    pub kn: f64,
+    /// Tangential stiffness (force/length).
+    pub kt: f64,
+    /// Normal damping coefficient (force time/length).
+    pub gamman: f64,
+    /// Tangential damping coefficient.
+    pub gammat: f64,
+    /// Force on i (force).
+    pub fi: [f64; 3],
+    /// Force on j.
+    pub fj: [f64; 3],
+    /// Torque on i (force length).
+    pub ti: [f64; 3],
+    /// Torque on j.
+    pub tj: [f64; 3],
+}
+
+/// A granular pair interaction with normal model `N` and tangential model `T`.
+pub struct PairGran<N: NormalModel, T: TangentialModel> {
+    /// Normal model.
+    pub normal: N,
+    /// Tangential model.
+    pub tangential: T,
+    /// Per-type-pair coefficients.
+    pub material: Material,
+    /// Group bits of frozen particles (infinite mass in contacts).
+    pub frozen: u32,
+}
+
+impl<N: NormalModel, T: TangentialModel> PairInteraction for PairGran<N, T> {
+    fn history_width(&self) -> usize {
+        T::HISTORY
+    }
+
+    fn compute(&mut self, p: &mut Particles, pairs: &[Pair], history: &mut [f64], dt: f64) {
+        let width = T::HISTORY;
+        for (k, pair) in pairs.iter().enumerate() {
+            let (i, j) = (pair.i as usize, pair.j as usize);
+            let xj = [
+                p.x[j][0] + pair.shift[0],
+                p.x[j][1] + pair.shift[1],
+                p.x[j][2] + pair.shift[2],
+            ];
+            let delx = p.x[i][0] - xj[0];
+            let dely = p.x[i][1] - xj[1];
+            let delz = p.x[i][2] - xj[2];
+            let rsq = delx * delx + dely * dely + delz * delz;
+            let (radi, radj) = (p.radius[i], p.radius[j]);
+            let radsum = radi + radj;
+            if rsq >= radsum * radsum {
+                continue;
+            }
+            let r = rsq.sqrt();
+            let rinv = 1.0 / r;
+            let (mi, mj) = (p.mass[i], p.mass[j]);
+            let mut meff = mi * mj / (mi + mj);
+            if p.mask[i] & self.frozen != 0 {
+                meff = mj;
+            }
+            if p.mask[j] & self.frozen != 0 {
+                meff = mi;
+            }
+            let mut c = Contact {
+                itype: p.kind[i] as usize,
+                jtype: p.kind[j] as usize,
+                en: [delx * rinv, dely * rinv, delz * rinv],
+                delta: [delx, dely, delz],
+                reff: radi * radj / (radi + radj),
+                meff,
+                ..Contact::default()
+            };
+            surface(&mut c, p, i, j, radi, radj, radsum, r, rinv);
+            self.normal.force(&mut c, &self.material);
+            let h = &mut history[k * width..(k + 1) * width];
+            self.tangential.force(&mut c, &self.material, h, dt);
+            for d in 0..3 {
+                p.f[i][d] += 1.0 * c.fi[d];
+                p.torque[i][d] += 1.0 * c.ti[d];
+            }
+            for d in 0..3 {
+                p.f[j][d] += 1.0 * c.fj[d];
+                p.torque[j][d] += 1.0 * c.tj[d];
+            }
+        }
+    }
+}
+
+/// The default surface model: relative velocities at the contact point and lever arms.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn surface(
+    c: &mut Contact,
+    p: &Particles,
+    i: usize,
+    j: usize,
+    radi: f64,
+    radj: f64,
+    radsum: f64,
+    r: f64,
+    rinv: f64,
+) {
+    let [enx, eny, enz] = c.en;
+    let vr1 = p.v[i][0] - p.v[j][0];
+    let vr2 = p.v[i][1] - p.v[j][1];
+    let vr3 = p.v[i][2] - p.v[j][2];
+    let vn = vr1 * enx + vr2 * eny + vr3 * enz;
+    let vt1 = vr1 - vn * enx;
+    let vt2 = vr2 - vn * eny;
+    let vt3 = vr3 - vn * enz;
+    let deltan = radsum - r;
+    let [dx, dy, dz] = c.delta;
+    let cri = radi - 0.5 * deltan;
+    let crj = radj - 0.5 * deltan;
+    let (wi, wj) = (p.omega[i], p.omega[j]);
+    let wr1 = (cri * wi[0] + crj * wj[0]) * rinv;
+    let wr2 = (cri * wi[1] + crj * wj[1]) * rinv;
+    let wr3 = (cri * wi[2] + crj * wj[2]) * rinv;
+    c.vtr = [
+        vt1 - (dz * wr2 - dy * wr3),
+        vt2 - (dx * wr3 - dz * wr1),
+        vt3 - (dy * wr1 - dx * wr2),
+    ];
+    c.vn = vn;
+    c.deltan = deltan;
+    c.cri = cri;
+    c.crj = crj;
+}
+
+/// The contact sub-models and options a `pair_style gran` line selects.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Selection {
+    /// Normal model name.
+    pub model: String,
+    /// Tangential model name.
+    pub tangential: String,
+    /// `tangential_damping` (default on).
+    pub tangential_damping: bool,
+    /// `limitForce` (default off).
+    pub limit_force: bool,
+}
+
+/// Build the monomorphised interaction for a selection.
+pub fn build(
+    sel: &Selection,
+    material: Material,
+    frozen: u32,
+) -> Result<Box<dyn PairInteraction>, String> {
+    let hertz = normal::Hertz {
+        tangential_damping: sel.tangential_damping,
+        limit_force: sel.limit_force,
+    };
+    Ok(match (sel.model.as_str(), sel.tangential.as_str()) {
+        ("hertz", "history") => Box::new(PairGran {
+            normal: hertz,
+            tangential: tangential::History,
+            material,
+            frozen,
+        }),
+        ("hertz", "no_history") => Box::new(PairGran {
+            normal: hertz,
+            tangential: tangential::NoHistory,
+            material,
+            frozen,
+        }),
+        (m, t) => {
+            return Err(format!(
+                "pair_style gran model {m} tangential {t}: not supported yet"
+            ))
+        }
+    })
+}

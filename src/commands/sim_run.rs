@@ -110,6 +110,45 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
             }
             FixKind::Settings
         }
+        "wall/gran" => {
+            let (selection, next) = gran_models(a, 3, "history", "fix wall/gran")?;
+            if a.word(next)? != "primitive" {
+                return Err(a.unsupported(next, &format!("fix wall/gran {}", a.word(next)?)));
+            }
+            if a.word(next + 1)? != "type" {
+                return Err(a
+                    .error(next + 1, "Illegal fix wall/gran command")
+                    .with_help("expected: primitive type T xplane|yplane|zplane POS"));
+            }
+            let wall_type = a.int(next + 2)?;
+            if wall_type < 1 || wall_type > ctx.sim.ntypes as i64 {
+                return Err(a.error(
+                    next + 2,
+                    "Illegal fix wall/gran command: wall type out of range",
+                ));
+            }
+            let axis = match a.word(next + 3)? {
+                "xplane" => 0,
+                "yplane" => 1,
+                "zplane" => 2,
+                other => {
+                    return Err(a.unsupported(next + 3, &format!("fix wall/gran primitive {other}")))
+                }
+            };
+            let position = a.real(next + 4)?;
+            if a.len() > next + 5 {
+                return Err(a.unsupported(
+                    next + 5,
+                    &format!("fix wall/gran keyword {}", a.word(next + 5)?),
+                ));
+            }
+            FixKind::WallGran(crate::engine::fixes::WallFix {
+                selection,
+                plane: crate::engine::granular::Plane { axis, position },
+                wall_type: wall_type as usize,
+                model: None,
+            })
+        }
         "freeze" => {
             if a.len() > 3 {
                 return Err(a.error(3, "Illegal fix freeze command"));
@@ -422,31 +461,34 @@ const MODEL_KEYS: &[&str] = &[
     "surface",
 ];
 
-fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
-    a.count(1..=usize::MAX, "pair_style gran model M tangential T ...")?;
-    if a.word(0)? != "gran" {
-        return Err(a.unsupported(0, &format!("pair_style {}", a.word(0)?)));
-    }
+/// Parse `model M tangential T ... [option on|off ...]` starting at argument `start`;
+/// returns the selection and the index after it.
+fn gran_models(
+    a: &Args,
+    start: usize,
+    default_tangential: &str,
+    what: &str,
+) -> std::result::Result<(crate::engine::granular::Selection, usize), Diagnostic> {
     let mut sel = crate::engine::granular::Selection {
         model: String::new(),
-        tangential: "no_history".into(),
+        tangential: default_tangential.into(),
         tangential_damping: true,
         limit_force: false,
     };
-    let mut i = 1;
+    let mut i = start;
     let mut last_key = None;
     while i < a.len() {
         let key = a.word(i)?;
         let Some(rank) = MODEL_KEYS.iter().position(|k| *k == key) else {
             break;
         };
-        if last_key.is_some_and(|l| rank <= l) {
+        if let Some(l) = last_key.filter(|&l| rank <= l) {
             return Err(a
                 .error(
                     i,
                     &format!(
-                        "Illegal pair_style gran command: '{key}' must come before '{}'",
-                        MODEL_KEYS[last_key.unwrap()]
+                        "Illegal {what} command: '{key}' must come before '{}'",
+                        MODEL_KEYS[l]
                     ),
                 )
                 .with_help(format!(
@@ -460,26 +502,50 @@ fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
             ("model", "hertz") => sel.model = value.into(),
             ("tangential", "history" | "no_history") => sel.tangential = value.into(),
             ("surface", "default") => {}
-            _ => return Err(a.unsupported(i + 1, &format!("pair_style gran {key} {value}"))),
+            _ => return Err(a.unsupported(i + 1, &format!("{what} {key} {value}"))),
         }
         i += 2;
     }
     if sel.model.is_empty() {
         return Err(a.error(
-            0,
+            start,
             "Invalid model specified (check for typos and enable at least one model)",
         ));
     }
     while i < a.len() {
         let key = a.word(i)?;
-        let on = a.word_in(i + 1, &["on", "off", "yes", "no"])?;
-        let on = matches!(on, "on" | "yes");
+        if !matches!(
+            key,
+            "tangential_damping"
+                | "limitForce"
+                | "heating_normal_hertz"
+                | "computeElasticPotential"
+                | "computeDissipatedEnergy"
+                | "disableNormalWhenBonded"
+                | "heating_tangential_history"
+        ) {
+            break;
+        }
+        let on = matches!(a.word_in(i + 1, &["on", "off", "yes", "no"])?, "on" | "yes");
         match key {
             "tangential_damping" => sel.tangential_damping = on,
             "limitForce" => sel.limit_force = on,
-            _ => return Err(a.unsupported(i, &format!("pair_style gran option {key}"))),
+            _ if !on => {}
+            _ => return Err(a.unsupported(i, &format!("{what} option {key}"))),
         }
         i += 2;
+    }
+    Ok((sel, i))
+}
+
+fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=usize::MAX, "pair_style gran model M tangential T ...")?;
+    if a.word(0)? != "gran" {
+        return Err(a.unsupported(0, &format!("pair_style {}", a.word(0)?)));
+    }
+    let (sel, next) = gran_models(a, 1, "no_history", "pair_style gran")?;
+    if next < a.len() {
+        return Err(a.unsupported(next, &format!("pair_style gran option {}", a.word(next)?)));
     }
     ctx.sim.pair_selection = Some(sel);
     ctx.sim.pair_coeff_set = false;

@@ -123,8 +123,22 @@ pub enum FixKind {
     Viscous(f64),
     /// `fix freeze`: force and torque zero (and infinite mass in contacts).
     Freeze,
+    /// `fix wall/gran ... primitive`: a granular plane wall.
+    WallGran(WallFix),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
+}
+
+/// A primitive granular wall: its models, the plane, and the built interaction.
+pub struct WallFix {
+    /// Selected contact models.
+    pub selection: crate::engine::granular::Selection,
+    /// The plane.
+    pub plane: crate::engine::granular::Plane,
+    /// The wall's atom type (for material coefficients).
+    pub wall_type: usize,
+    /// Built at each run from the current materials.
+    pub model: Option<Box<dyn crate::engine::granular::WallInteraction>>,
 }
 
 /// One defined fix.
@@ -153,10 +167,19 @@ pub fn initial_integrate(fixes: &[Fix], p: &mut Particles, step: i64, dt: f64) {
 }
 
 /// Run the `post_force` phase of all fixes.
-pub fn post_force(fixes: &[Fix], p: &mut Particles) {
+pub fn post_force(fixes: &mut [Fix], p: &mut Particles, dt: f64) {
     for fix in fixes {
         let g = fix.group;
-        match &fix.kind {
+        match &mut fix.kind {
+            FixKind::WallGran(wall) => {
+                if let Some(model) = wall.model.as_mut() {
+                    let w = model.history_width();
+                    let k = p.extra_index(&format!("history_{}", fix.id), w);
+                    let mut history = std::mem::take(&mut p.extra[k].data);
+                    model.compute(p, g, &mut history, dt);
+                    p.extra[k].data = history;
+                }
+            }
             FixKind::Gravity(grav) => grav.apply(p),
             FixKind::SetForce(f) => {
                 for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
@@ -177,7 +200,7 @@ pub fn post_force(fixes: &[Fix], p: &mut Particles) {
             FixKind::Viscous(gamma) => {
                 for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
                     for d in 0..3 {
-                        p.f[i][d] -= gamma * p.v[i][d];
+                        p.f[i][d] -= *gamma * p.v[i][d];
                     }
                 }
             }
@@ -244,7 +267,7 @@ mod tests {
         for step in 1..=200 {
             initial_integrate(&fixes, &mut p, step, dt);
             p.f[0] = [0.0; 3];
-            post_force(&fixes, &mut p);
+            post_force(&mut fixes, &mut p, dt);
             final_integrate(&fixes, &mut p, dt);
         }
         assert!((p.v[0][2] - a * omega).abs() < 1e-9);
@@ -269,9 +292,10 @@ mod tests {
             mk(FixKind::Viscous(0.5)),
             mk(FixKind::SetForce([None, Some(7.0), None])),
         ];
-        post_force(&fixes, &mut p);
+        let mut fixes = fixes;
+        post_force(&mut fixes, &mut p, 0.1);
         assert_eq!(p.f[0], [0.5, 7.0, 3.0]);
-        post_force(&[mk(FixKind::Freeze)], &mut p);
+        post_force(&mut [mk(FixKind::Freeze)], &mut p, 0.1);
         assert_eq!((p.f[0], p.torque[0]), ([0.0; 3], [0.0; 3]));
         assert_eq!(frozen_groups(&[mk(FixKind::Freeze)]), 1);
     }

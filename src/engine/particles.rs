@@ -28,6 +28,40 @@ pub struct Particles {
     pub density: Vec<f64>,
     /// Periodic image counts per direction.
     pub image: Vec<[i32; 3]>,
+    /// Extra per-particle arrays owned by fixes (e.g. wall contact history), kept in step
+    /// with the particles when they are reordered or removed.
+    pub extra: Vec<PerAtom>,
+}
+
+/// A named per-particle array of `width` doubles per particle.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PerAtom {
+    /// Name (e.g. `history_wall1`).
+    pub name: String,
+    /// Values per particle.
+    pub width: usize,
+    /// The values, particle-major.
+    pub data: Vec<f64>,
+}
+
+impl Particles {
+    /// Index of the extra array `name`, creating it (zero-filled) if needed.
+    pub fn extra_index(&mut self, name: &str, width: usize) -> usize {
+        if let Some(k) = self
+            .extra
+            .iter()
+            .position(|e| e.name == name && e.width == width)
+        {
+            return k;
+        }
+        self.extra.retain(|e| e.name != name);
+        self.extra.push(PerAtom {
+            name: name.to_string(),
+            width,
+            data: vec![0.0; width * self.len()],
+        });
+        self.extra.len() - 1
+    }
 }
 
 impl Particles {
@@ -56,6 +90,9 @@ impl Particles {
         self.mass.push(sphere_mass(radius, density));
         self.density.push(density);
         self.image.push([0; 3]);
+        for e in &mut self.extra {
+            e.data.extend(std::iter::repeat_n(0.0, e.width));
+        }
     }
 
     /// Remove the particles for which `remove` is true, keeping the others' order.
@@ -80,6 +117,16 @@ impl Particles {
         keep(&mut self.mass, remove);
         keep(&mut self.density, remove);
         keep(&mut self.image, remove);
+        for e in &mut self.extra {
+            let w = e.width;
+            let mut out = Vec::with_capacity(e.data.len());
+            for (i, r) in remove.iter().enumerate() {
+                if !r {
+                    out.extend_from_slice(&e.data[i * w..(i + 1) * w]);
+                }
+            }
+            e.data = out;
+        }
     }
 
     /// Reorder every array by `order` (new index -> old index), e.g. to sort by cell.
@@ -100,6 +147,13 @@ impl Particles {
         apply(&mut self.mass, order);
         apply(&mut self.density, order);
         apply(&mut self.image, order);
+        for e in &mut self.extra {
+            let w = e.width;
+            let old = std::mem::take(&mut e.data);
+            for &i in order {
+                e.data.extend_from_slice(&old[i * w..(i + 1) * w]);
+            }
+        }
     }
 
     /// Largest atom ID in use (0 when empty).

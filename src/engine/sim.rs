@@ -235,12 +235,19 @@ impl Simulation {
         Some((style, columns, values))
     }
 
-    /// Build the pair interaction from `pair_style` and the current material properties.
+    /// Build the contact models (pair and walls) from the current material properties.
     fn init_pair(&mut self) -> Result<(), String> {
-        use crate::engine::granular::{
-            self,
-            material::{Material, MaterialInput},
-        };
+        use crate::engine::granular::{self, material::Material};
+        for k in 0..self.fixes.len() {
+            if let FixKind::WallGran(wall) = &self.fixes[k].kind {
+                let material = Material::new(&self.material_input(&wall.selection.model)?)?;
+                let model =
+                    granular::build_wall(&wall.selection, material, wall.wall_type, wall.plane)?;
+                if let FixKind::WallGran(wall) = &mut self.fixes[k].kind {
+                    wall.model = Some(model);
+                }
+            }
+        }
         let Some(sel) = self.pair_selection.clone() else {
             self.pair = None;
             return Ok(());
@@ -251,8 +258,19 @@ impl Simulation {
         if !self.comm_vel {
             return Err("Pair granular requires ghost atoms store velocity".into());
         }
+        let material = Material::new(&self.material_input(&sel.model)?)?;
+        let frozen = fixes::frozen_groups(&self.fixes);
+        self.pair = Some(granular::build(&sel, material, frozen)?);
+        Ok(())
+    }
+
+    /// The per-type material inputs from the `fix property/global` definitions.
+    fn material_input(
+        &self,
+        model: &str,
+    ) -> Result<crate::engine::granular::material::MaterialInput, String> {
         let n = self.ntypes as usize;
-        let caller = format!("model {}", sel.model);
+        let caller = format!("model {model}");
         let get = |name: &str, per_pair: bool| -> Result<Vec<f64>, String> {
             let (_, _, values) = self.property(name).ok_or_else(|| {
                 format!("Could not locate a fix/property storing value(s) for {name} as requested by {caller}.")
@@ -265,18 +283,14 @@ impl Simulation {
             }
             Ok(values[..want].to_vec())
         };
-        let input = MaterialInput {
+        Ok(crate::engine::granular::material::MaterialInput {
             youngs: get("youngsModulus", false)?,
             poisson: get("poissonsRatio", false)?,
             restitution: get("coefficientRestitution", true)?,
             friction: get("coefficientFriction", true)?,
             soft: self.soft_hard.0,
             hard: self.soft_hard.1,
-        };
-        let material = Material::new(&input)?;
-        let frozen = fixes::frozen_groups(&self.fixes);
-        self.pair = Some(granular::build(&sel, material, frozen)?);
-        Ok(())
+        })
     }
 
     /// LIGGGHTS's `Neighbor::decide`: rebuild now?
@@ -324,7 +338,7 @@ impl Simulation {
         if let Some(pair) = self.pair.as_mut() {
             pair.compute(p, &self.list.pairs, &mut self.history, self.dt);
         }
-        fixes::post_force(&self.fixes, p);
+        fixes::post_force(&mut self.fixes, p, self.dt);
     }
 
     /// `run N`: a setup force evaluation, then N velocity-Verlet steps with output.

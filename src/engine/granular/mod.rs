@@ -213,3 +213,135 @@ pub fn build(
         }
     })
 }
+
+/// A flat primitive wall: the plane `x[axis] = position`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Plane {
+    /// 0, 1 or 2 for xplane, yplane, zplane.
+    pub axis: usize,
+    /// Position of the plane (length).
+    pub position: f64,
+}
+
+/// Wall contacts of particles with a primitive wall (`fix wall/gran ... primitive`).
+pub trait WallInteraction: Send {
+    /// Doubles of history per particle.
+    fn history_width(&self) -> usize;
+    /// Add wall forces to particles of `group`; `history` is per particle.
+    fn compute(&mut self, p: &mut Particles, group: u32, history: &mut [f64], dt: f64);
+}
+
+/// A primitive plane wall with normal model `N` and tangential model `T`.
+pub struct WallGran<N: NormalModel, T: TangentialModel> {
+    /// Normal model.
+    pub normal: N,
+    /// Tangential model.
+    pub tangential: T,
+    /// Coefficients (the wall has atom type `wall_type`).
+    pub material: Material,
+    /// The wall's atom type.
+    pub wall_type: usize,
+    /// The plane.
+    pub plane: Plane,
+}
+
+impl<N: NormalModel, T: TangentialModel> WallInteraction for WallGran<N, T> {
+    fn history_width(&self) -> usize {
+        T::HISTORY
+    }
+
+    fn compute(&mut self, p: &mut Particles, group: u32, history: &mut [f64], dt: f64) {
+        let w = T::HISTORY;
+        let ax = self.plane.axis;
+        for i in 0..p.len() {
+            if p.mask[i] & group == 0 {
+                continue;
+            }
+            let radi = p.radius[i];
+            let pos = p.x[i][ax];
+            // LIGGGHTS's plane contact: signed gap minus the radius (negative = overlap)
+            let gap = if pos > self.plane.position {
+                pos - self.plane.position - radi
+            } else {
+                self.plane.position - pos - radi
+            };
+            let h = &mut history[i * w..(i + 1) * w];
+            if gap > 0.0 {
+                h.iter_mut().for_each(|v| *v = 0.0);
+                continue;
+            }
+            let passed_deltan = -gap;
+            let mut delta = [0.0; 3];
+            delta[ax] = -(self.plane.position - pos);
+            let r = radi - passed_deltan;
+            let rinv = 1.0 / r;
+            let mut c = Contact {
+                itype: p.kind[i] as usize,
+                jtype: self.wall_type,
+                en: [delta[0] * rinv, delta[1] * rinv, delta[2] * rinv],
+                delta,
+                reff: radi,
+                meff: p.mass[i],
+                ..Contact::default()
+            };
+            // the default surface model for a wall (wall at rest)
+            let [enx, eny, enz] = c.en;
+            let v = p.v[i];
+            let vn = v[0] * enx + v[1] * eny + v[2] * enz;
+            let vt = [v[0] - vn * enx, v[1] - vn * eny, v[2] - vn * enz];
+            let deltan = radi - r;
+            let cr = radi - 0.5 * passed_deltan;
+            let om = p.omega[i];
+            let wr = [cr * om[0] * rinv, cr * om[1] * rinv, cr * om[2] * rinv];
+            let [dx, dy, dz] = delta;
+            c.vtr = [
+                vt[0] - (dz * wr[1] - dy * wr[2]),
+                vt[1] - (dx * wr[2] - dz * wr[0]),
+                vt[2] - (dy * wr[0] - dx * wr[1]),
+            ];
+            c.vn = vn;
+            c.deltan = deltan;
+            c.cri = cr;
+            self.normal.force(&mut c, &self.material);
+            self.tangential.force(&mut c, &self.material, h, dt);
+            for d in 0..3 {
+                p.f[i][d] += c.fi[d];
+                p.torque[i][d] += c.ti[d];
+            }
+        }
+    }
+}
+
+/// Build the monomorphised wall interaction for a selection.
+pub fn build_wall(
+    sel: &Selection,
+    material: Material,
+    wall_type: usize,
+    plane: Plane,
+) -> Result<Box<dyn WallInteraction>, String> {
+    let hertz = normal::Hertz {
+        tangential_damping: sel.tangential_damping,
+        limit_force: sel.limit_force,
+    };
+    Ok(match (sel.model.as_str(), sel.tangential.as_str()) {
+        ("hertz", "history") => Box::new(WallGran {
+            normal: hertz,
+            tangential: tangential::History,
+            material,
+            wall_type,
+            plane,
+        }),
+        ("hertz", "no_history") => Box::new(WallGran {
+            normal: hertz,
+            tangential: tangential::NoHistory,
+            material,
+            wall_type,
+            plane,
+        }),
+        (m, t) => {
+            return Err(format!(
+                "fix wall/gran model {m} tangential {t}: not supported yet"
+            ))
+        }
+    })
+}

@@ -256,7 +256,7 @@ mod tests {
             &domain,
             0,
         );
-        let fixes = vec![Fix {
+        let mut fixes = vec![Fix {
             id: "m".into(),
             style: "move".into(),
             group: 1,

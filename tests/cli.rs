@@ -100,7 +100,7 @@ fn unsupported_feature_exits_3_and_check_lists_every_item() {
     let dir = scratch("unsupported");
     std::fs::write(
         dir.join("in.t"),
-        "atom_style granular\n# comment\nregion b block 0 1 0 1 0 1\ncreate_box 1 b\nfix ins all insert/stream seed 10007\npair_style gran model hertz tangential history cohesion sjkr\ncompute s all stress/atom\n",
+        "atom_style granular\n# comment\nregion b block 0 1 0 1 0 1\ncreate_box 1 b\nfix ins all insert/stream seed 10007\npair_style gran model hertz tangential history cohesion washino/capillary/viscous\ncompute s all stress/atom\n",
     )
     .unwrap();
     let out = regolith(&dir, &["-in", "in.t", "-log", "none"], None);
@@ -110,7 +110,7 @@ fn unsupported_feature_exits_3_and_check_lists_every_item() {
     assert_eq!(
         text(&out.stdout),
         "in.t:5: fix insert/stream: not supported yet\n\
-         in.t:6: pair_style gran cohesion sjkr: not supported yet\n\
+         in.t:6: pair_style gran cohesion washino/capillary/viscous: not supported yet\n\
          in.t:7: compute stress/atom: not supported yet\n"
     );
 }

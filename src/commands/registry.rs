@@ -161,7 +161,8 @@ pub fn is_supported(cmd: &CommandLine) -> bool {
                         (Some("model"), Some(m)) => m == "hertz",
                         (Some("tangential"), Some(t)) => matches!(t, "history" | "no_history"),
                         (Some("surface"), Some(s)) => s == "default",
-                        (Some("cohesion" | "rolling_friction"), _) => false,
+                        (Some("cohesion"), Some(c)) => matches!(c, "sjkr" | "off"),
+                        (Some("rolling_friction"), Some(r)) => matches!(r, "cdt" | "epsd" | "off"),
                         _ => true,
                     })
         }

@@ -474,6 +474,10 @@ fn gran_models(
         tangential: default_tangential.into(),
         tangential_damping: true,
         limit_force: false,
+        cohesion: "off".into(),
+        rolling: "off".into(),
+        tangential_reduce: false,
+        torsion_torque: false,
     };
     let mut i = start;
     let mut last_key = None;
@@ -501,6 +505,8 @@ fn gran_models(
         match (key, value) {
             ("model", "hertz") => sel.model = value.into(),
             ("tangential", "history" | "no_history") => sel.tangential = value.into(),
+            ("cohesion", "sjkr" | "off") => sel.cohesion = value.into(),
+            ("rolling_friction", "cdt" | "epsd" | "off") => sel.rolling = value.into(),
             ("surface", "default") => {}
             _ => return Err(a.unsupported(i + 1, &format!("{what} {key} {value}"))),
         }
@@ -530,6 +536,8 @@ fn gran_models(
         match key {
             "tangential_damping" => sel.tangential_damping = on,
             "limitForce" => sel.limit_force = on,
+            "tangential_reduce" => sel.tangential_reduce = on,
+            "torsionTorque" => sel.torsion_torque = on,
             _ if !on => {}
             _ => return Err(a.unsupported(i, &format!("{what} option {key}"))),
         }

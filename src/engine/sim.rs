@@ -41,7 +41,15 @@ pub trait PairInteraction: Send {
     /// Doubles of history kept per listed pair (0 when the model keeps none).
     fn history_width(&self) -> usize;
     /// Add pair forces and torques to `p.f`/`p.torque` for the listed pairs.
-    fn compute(&mut self, p: &mut Particles, pairs: &[Pair], history: &mut [f64], dt: f64);
+    /// `update` is false in the setup evaluation: contact history is used but not advanced.
+    fn compute(
+        &mut self,
+        p: &mut Particles,
+        pairs: &[Pair],
+        history: &mut [f64],
+        dt: f64,
+        update: bool,
+    );
 }
 
 /// One `dump` command.
@@ -290,6 +298,9 @@ impl Simulation {
             friction: get("coefficientFriction", true)?,
             soft: self.soft_hard.0,
             hard: self.soft_hard.1,
+            cohesion: get("cohesionEnergyDensity", true).ok(),
+            rolling_friction: get("coefficientRollingFriction", true).ok(),
+            rolling_viscous: get("coefficientRollingViscousDamping", true).ok(),
         })
     }
 
@@ -331,14 +342,14 @@ impl Simulation {
         self.list.built_positions()
     }
 
-    fn compute_forces(&mut self) {
+    fn compute_forces(&mut self, update: bool) {
         let p = &mut self.particles;
         p.f.iter_mut().for_each(|f| *f = [0.0; 3]);
         p.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
         if let Some(pair) = self.pair.as_mut() {
-            pair.compute(p, &self.list.pairs, &mut self.history, self.dt);
+            pair.compute(p, &self.list.pairs, &mut self.history, self.dt, update);
         }
-        fixes::post_force(&mut self.fixes, p, self.dt);
+        fixes::post_force(&mut self.fixes, p, self.dt, update);
     }
 
     /// `run N`: a setup force evaluation, then N velocity-Verlet steps with output.
@@ -355,7 +366,8 @@ impl Simulation {
         // setup
         self.pbc_and_box()?;
         self.build_neighbors();
-        self.compute_forces();
+        // LIGGGHTS's setup evaluation does not advance contact history
+        self.compute_forces(false);
         self.thermo.run_start = first;
         self.thermo.header(out);
         self.thermo_line(out);
@@ -367,7 +379,7 @@ impl Simulation {
                 self.pbc_and_box()?;
                 self.build_neighbors();
             }
-            self.compute_forces();
+            self.compute_forces(true);
             fixes::final_integrate(&self.fixes, &mut self.particles, self.dt);
             if self.thermo.due(self.step, last) {
                 self.thermo_line(out);

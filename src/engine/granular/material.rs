@@ -9,6 +9,9 @@ pub struct Material {
     geff: Vec<f64>,
     betaeff: Vec<f64>,
     friction: Vec<f64>,
+    cohesion: Vec<f64>,
+    rolling_friction: Vec<f64>,
+    rolling_viscous: Vec<f64>,
 }
 
 /// The raw per-type inputs.
@@ -26,6 +29,12 @@ pub struct MaterialInput {
     pub soft: bool,
     /// `hard_particles yes`: allow E > 1e9.
     pub hard: bool,
+    /// cohesionEnergyDensity per type pair (energy/volume), if defined.
+    pub cohesion: Option<Vec<f64>>,
+    /// coefficientRollingFriction per type pair, if defined.
+    pub rolling_friction: Option<Vec<f64>>,
+    /// coefficientRollingViscousDamping per type pair, if defined.
+    pub rolling_viscous: Option<Vec<f64>>,
 }
 
 impl Material {
@@ -58,6 +67,9 @@ impl Material {
         }
         let mut m = Material {
             ntypes: n,
+            cohesion: input.cohesion.clone().unwrap_or_default(),
+            rolling_friction: input.rolling_friction.clone().unwrap_or_default(),
+            rolling_viscous: input.rolling_viscous.clone().unwrap_or_default(),
             ..Material::default()
         };
         for i in 0..n {
@@ -102,6 +114,44 @@ impl Material {
     #[inline(always)]
     pub fn betaeff(&self, i: usize, j: usize) -> f64 {
         self.at(&self.betaeff, i, j)
+    }
+
+    /// Error unless cohesionEnergyDensity is defined.
+    pub fn require_cohesion(&self, caller: &str) -> Result<(), String> {
+        if self.cohesion.len() != self.ntypes * self.ntypes {
+            return Err(format!("Could not locate a fix/property storing value(s) for cohesionEnergyDensity as requested by {caller}."));
+        }
+        Ok(())
+    }
+
+    /// Error unless the rolling coefficients are defined (viscous damping only if `viscous`).
+    pub fn require_rolling(&self, caller: &str, viscous: bool) -> Result<(), String> {
+        let nn = self.ntypes * self.ntypes;
+        if self.rolling_friction.len() != nn {
+            return Err(format!("Could not locate a fix/property storing value(s) for coefficientRollingFriction as requested by {caller}."));
+        }
+        if viscous && self.rolling_viscous.len() != nn {
+            return Err(format!("Could not locate a fix/property storing value(s) for coefficientRollingViscousDamping as requested by {caller}."));
+        }
+        Ok(())
+    }
+
+    /// Cohesion energy density (energy/volume).
+    #[inline(always)]
+    pub fn cohesion(&self, i: usize, j: usize) -> f64 {
+        self.at(&self.cohesion, i, j)
+    }
+
+    /// Rolling friction coefficient.
+    #[inline(always)]
+    pub fn rolling_friction(&self, i: usize, j: usize) -> f64 {
+        self.at(&self.rolling_friction, i, j)
+    }
+
+    /// Rolling viscous damping coefficient.
+    #[inline(always)]
+    pub fn rolling_viscous(&self, i: usize, j: usize) -> f64 {
+        self.at(&self.rolling_viscous, i, j)
     }
 
     /// Coulomb friction coefficient.

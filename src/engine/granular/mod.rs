@@ -3,15 +3,19 @@
 //! a separate monomorphised kernel, so a deck without history stores none and runs no
 //! history code. The arithmetic follows LIGGGHTS 3.8.0 operation by operation.
 
+pub mod cohesion;
 pub mod material;
 pub mod normal;
+pub mod rolling;
 pub mod tangential;
 
 use crate::engine::neighbor::Pair;
 use crate::engine::particles::Particles;
 use crate::engine::sim::PairInteraction;
+use cohesion::CohesionModel;
 use material::Material;
 use normal::NormalModel;
+use rolling::RollingModel;
 use tangential::TangentialModel;
 
 /// One touching pair as the sub-models see it (LIGGGHTS's `SurfacesIntersectData`).
@@ -57,27 +61,57 @@ pub struct Contact {
     pub ti: [f64; 3],
     /// Torque on j.
     pub tj: [f64; 3],
+    /// Radii (length).
+    pub radi: f64,
+    /// Radius of j (length).
+    pub radj: f64,
+    /// Centre distance (length).
+    pub r: f64,
+    /// Masses (mass).
+    pub mi: f64,
+    /// Mass of j.
+    pub mj: f64,
+    /// A wall contact (no particle j).
+    pub wall: bool,
+    /// Surface-model angular velocity term (1/time), used by rolling models at walls.
+    pub wr: [f64; 3],
+    /// omega_i - omega_j (1/time).
+    pub wrel: [f64; 3],
 }
 
-/// A granular pair interaction with normal model `N` and tangential model `T`.
-pub struct PairGran<N: NormalModel, T: TangentialModel> {
+/// A granular pair interaction composed of normal `N`, tangential `T`, cohesion `C` and
+/// rolling `R` sub-models.
+pub struct PairGran<N, T, C, R> {
     /// Normal model.
     pub normal: N,
     /// Tangential model.
     pub tangential: T,
+    /// Cohesion model.
+    pub cohesion: C,
+    /// Rolling-friction model.
+    pub rolling: R,
     /// Per-type-pair coefficients.
     pub material: Material,
     /// Group bits of frozen particles (infinite mass in contacts).
     pub frozen: u32,
 }
 
-impl<N: NormalModel, T: TangentialModel> PairInteraction for PairGran<N, T> {
+impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> PairInteraction
+    for PairGran<N, T, C, R>
+{
     fn history_width(&self) -> usize {
-        T::HISTORY
+        T::HISTORY + R::HISTORY
     }
 
-    fn compute(&mut self, p: &mut Particles, pairs: &[Pair], history: &mut [f64], dt: f64) {
-        let width = T::HISTORY;
+    fn compute(
+        &mut self,
+        p: &mut Particles,
+        pairs: &[Pair],
+        history: &mut [f64],
+        dt: f64,
+        update: bool,
+    ) {
+        let width = T::HISTORY + R::HISTORY;
         for (k, pair) in pairs.iter().enumerate() {
             let (i, j) = (pair.i as usize, pair.j as usize);
             let xj = [
@@ -111,12 +145,21 @@ impl<N: NormalModel, T: TangentialModel> PairInteraction for PairGran<N, T> {
                 delta: [delx, dely, delz],
                 reff: radi * radj / (radi + radj),
                 meff,
+                radi,
+                radj,
+                r,
+                mi,
+                mj,
                 ..Contact::default()
             };
             surface(&mut c, p, i, j, radi, radj, radsum, r, rinv);
             self.normal.force(&mut c, &self.material);
+            self.cohesion.force(&mut c, &self.material);
             let h = &mut history[k * width..(k + 1) * width];
-            self.tangential.force(&mut c, &self.material, h, dt);
+            let (ht, hr) = h.split_at_mut(T::HISTORY);
+            self.tangential
+                .force(&mut c, &self.material, ht, dt, update);
+            self.rolling.torque(&mut c, &self.material, hr, dt, update);
             for d in 0..3 {
                 p.f[i][d] += 1.0 * c.fi[d];
                 p.torque[i][d] += 1.0 * c.ti[d];
@@ -168,6 +211,8 @@ fn surface(
     c.deltan = deltan;
     c.cri = cri;
     c.crj = crj;
+    c.wr = [wr1, wr2, wr3];
+    c.wrel = [wi[0] - wj[0], wi[1] - wj[1], wi[2] - wj[2]];
 }
 
 /// The contact sub-models and options a `pair_style gran` line selects.
@@ -181,38 +226,100 @@ pub struct Selection {
     pub tangential_damping: bool,
     /// `limitForce` (default off).
     pub limit_force: bool,
+    /// Cohesion model name (`off` for none).
+    pub cohesion: String,
+    /// Rolling-friction model name (`off` for none).
+    pub rolling: String,
+    /// sjkr `tangential_reduce` (default off).
+    pub tangential_reduce: bool,
+    /// cdt/epsd `torsionTorque` (default off).
+    pub torsion_torque: bool,
 }
 
-/// Build the monomorphised interaction for a selection.
+/// Build the monomorphised interaction for a selection: one kernel per combination of
+/// sub-models, chosen here once per run.
 pub fn build(
     sel: &Selection,
     material: Material,
     frozen: u32,
 ) -> Result<Box<dyn PairInteraction>, String> {
-    let hertz = normal::Hertz {
-        tangential_damping: sel.tangential_damping,
-        limit_force: sel.limit_force,
-    };
-    Ok(match (sel.model.as_str(), sel.tangential.as_str()) {
-        ("hertz", "history") => Box::new(PairGran {
-            normal: hertz,
-            tangential: tangential::History,
-            material,
-            frozen,
-        }),
-        ("hertz", "no_history") => Box::new(PairGran {
-            normal: hertz,
-            tangential: tangential::NoHistory,
-            material,
-            frozen,
-        }),
-        (m, t) => {
-            return Err(format!(
-                "pair_style gran model {m} tangential {t}: not supported yet"
-            ))
-        }
-    })
+    macro_rules! pair {
+        ($t:expr, $c:expr, $r:expr) => {{
+            check_models(&$c, &$r, &material)?;
+            Box::new(PairGran {
+                normal: hertz(sel, &sel.model)?,
+                tangential: $t,
+                cohesion: $c,
+                rolling: $r,
+                material,
+                frozen,
+            }) as Box<dyn PairInteraction>
+        }};
+    }
+    dispatch!(sel, pair)
 }
+
+/// Checks each sub-model makes of the material tables.
+fn check_models<C: CohesionModel, R: RollingModel>(
+    _: &C,
+    _: &R,
+    m: &Material,
+) -> Result<(), String> {
+    C::check(m)?;
+    R::check(m)
+}
+
+fn hertz(sel: &Selection, model: &str) -> Result<normal::Hertz, String> {
+    match model {
+        "hertz" => Ok(normal::Hertz {
+            tangential_damping: sel.tangential_damping,
+            limit_force: sel.limit_force,
+        }),
+        m => Err(format!("model {m}: not supported yet")),
+    }
+}
+
+/// Expand `$make!(tangential, cohesion, rolling)` for the selected combination.
+macro_rules! dispatch {
+    ($sel:expr, $make:ident) => {{
+        let sjkr = cohesion::Sjkr {
+            tangential_reduce: $sel.tangential_reduce,
+        };
+        let cdt = rolling::Cdt {
+            torsion: $sel.torsion_torque,
+        };
+        let epsd = rolling::Epsd {
+            torsion: $sel.torsion_torque,
+        };
+        use cohesion::NoCohesion as NoC;
+        use rolling::NoRolling as NoR;
+        use tangential::{History as H, NoHistory as NH};
+        Ok(
+            match (
+                $sel.tangential.as_str(),
+                $sel.cohesion.as_str(),
+                $sel.rolling.as_str(),
+            ) {
+                ("history", "off", "off") => $make!(H, NoC, NoR),
+                ("history", "off", "cdt") => $make!(H, NoC, cdt),
+                ("history", "off", "epsd") => $make!(H, NoC, epsd),
+                ("history", "sjkr", "off") => $make!(H, sjkr, NoR),
+                ("history", "sjkr", "cdt") => $make!(H, sjkr, cdt),
+                ("history", "sjkr", "epsd") => $make!(H, sjkr, epsd),
+                ("no_history", "off", "off") => $make!(NH, NoC, NoR),
+                ("no_history", "off", "cdt") => $make!(NH, NoC, cdt),
+                ("no_history", "sjkr", "off") => $make!(NH, sjkr, NoR),
+                ("no_history", "sjkr", "cdt") => $make!(NH, sjkr, cdt),
+                (t, c, r) => {
+                    return Err(format!(
+                        "tangential {t} cohesion {c} rolling_friction {r}: not supported yet"
+                    ))
+                }
+            },
+        )
+    }};
+}
+use dispatch;
 
 /// A flat primitive wall: the plane `x[axis] = position`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -228,15 +335,26 @@ pub trait WallInteraction: Send {
     /// Doubles of history per particle.
     fn history_width(&self) -> usize;
     /// Add wall forces to particles of `group`; `history` is per particle.
-    fn compute(&mut self, p: &mut Particles, group: u32, history: &mut [f64], dt: f64);
+    fn compute(
+        &mut self,
+        p: &mut Particles,
+        group: u32,
+        history: &mut [f64],
+        dt: f64,
+        update: bool,
+    );
 }
 
-/// A primitive plane wall with normal model `N` and tangential model `T`.
-pub struct WallGran<N: NormalModel, T: TangentialModel> {
+/// A primitive plane wall composed of the same sub-models as pairs.
+pub struct WallGran<N, T, C, R> {
     /// Normal model.
     pub normal: N,
     /// Tangential model.
     pub tangential: T,
+    /// Cohesion model.
+    pub cohesion: C,
+    /// Rolling-friction model.
+    pub rolling: R,
     /// Coefficients (the wall has atom type `wall_type`).
     pub material: Material,
     /// The wall's atom type.
@@ -245,13 +363,22 @@ pub struct WallGran<N: NormalModel, T: TangentialModel> {
     pub plane: Plane,
 }
 
-impl<N: NormalModel, T: TangentialModel> WallInteraction for WallGran<N, T> {
+impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> WallInteraction
+    for WallGran<N, T, C, R>
+{
     fn history_width(&self) -> usize {
-        T::HISTORY
+        T::HISTORY + R::HISTORY
     }
 
-    fn compute(&mut self, p: &mut Particles, group: u32, history: &mut [f64], dt: f64) {
-        let w = T::HISTORY;
+    fn compute(
+        &mut self,
+        p: &mut Particles,
+        group: u32,
+        history: &mut [f64],
+        dt: f64,
+        update: bool,
+    ) {
+        let w = T::HISTORY + R::HISTORY;
         let ax = self.plane.axis;
         for i in 0..p.len() {
             if p.mask[i] & group == 0 {
@@ -282,6 +409,10 @@ impl<N: NormalModel, T: TangentialModel> WallInteraction for WallGran<N, T> {
                 delta,
                 reff: radi,
                 meff: p.mass[i],
+                radi,
+                r,
+                mi: p.mass[i],
+                wall: true,
                 ..Contact::default()
             };
             // the default surface model for a wall (wall at rest)
@@ -302,8 +433,13 @@ impl<N: NormalModel, T: TangentialModel> WallInteraction for WallGran<N, T> {
             c.vn = vn;
             c.deltan = deltan;
             c.cri = cr;
+            c.wr = wr;
             self.normal.force(&mut c, &self.material);
-            self.tangential.force(&mut c, &self.material, h, dt);
+            self.cohesion.force(&mut c, &self.material);
+            let (ht, hr) = h.split_at_mut(T::HISTORY);
+            self.tangential
+                .force(&mut c, &self.material, ht, dt, update);
+            self.rolling.torque(&mut c, &self.material, hr, dt, update);
             for d in 0..3 {
                 p.f[i][d] += c.fi[d];
                 p.torque[i][d] += c.ti[d];
@@ -319,29 +455,19 @@ pub fn build_wall(
     wall_type: usize,
     plane: Plane,
 ) -> Result<Box<dyn WallInteraction>, String> {
-    let hertz = normal::Hertz {
-        tangential_damping: sel.tangential_damping,
-        limit_force: sel.limit_force,
-    };
-    Ok(match (sel.model.as_str(), sel.tangential.as_str()) {
-        ("hertz", "history") => Box::new(WallGran {
-            normal: hertz,
-            tangential: tangential::History,
-            material,
-            wall_type,
-            plane,
-        }),
-        ("hertz", "no_history") => Box::new(WallGran {
-            normal: hertz,
-            tangential: tangential::NoHistory,
-            material,
-            wall_type,
-            plane,
-        }),
-        (m, t) => {
-            return Err(format!(
-                "fix wall/gran model {m} tangential {t}: not supported yet"
-            ))
-        }
-    })
+    macro_rules! wall {
+        ($t:expr, $c:expr, $r:expr) => {{
+            check_models(&$c, &$r, &material)?;
+            Box::new(WallGran {
+                normal: hertz(sel, &sel.model)?,
+                tangential: $t,
+                cohesion: $c,
+                rolling: $r,
+                material,
+                wall_type,
+                plane,
+            }) as Box<dyn WallInteraction>
+        }};
+    }
+    dispatch!(sel, wall)
 }

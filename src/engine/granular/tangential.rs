@@ -8,7 +8,7 @@ pub trait TangentialModel: Send {
     /// Doubles of per-contact history the model keeps.
     const HISTORY: usize;
     /// Compute the tangential force; `history` holds this contact's stored values.
-    fn force(&self, c: &mut Contact, m: &Material, history: &mut [f64], dt: f64);
+    fn force(&self, c: &mut Contact, m: &Material, history: &mut [f64], dt: f64, update: bool);
 }
 
 /// Torques of a tangential force (ft on i, -ft on j) about the particle centres.
@@ -42,7 +42,7 @@ impl TangentialModel for NoHistory {
     const HISTORY: usize = 0;
 
     #[inline(always)]
-    fn force(&self, c: &mut Contact, m: &Material, _: &mut [f64], _: f64) {
+    fn force(&self, c: &mut Contact, m: &Material, _: &mut [f64], _: f64, _: bool) {
         let xmu = m.friction(c.itype, c.jtype);
         let v = c.vtr;
         let vrel = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
@@ -66,15 +66,17 @@ impl TangentialModel for History {
     const HISTORY: usize = 3;
 
     #[inline(always)]
-    fn force(&self, c: &mut Contact, m: &Material, shear: &mut [f64], dt: f64) {
+    fn force(&self, c: &mut Contact, m: &Material, shear: &mut [f64], dt: f64, update: bool) {
         let [enx, eny, enz] = c.en;
-        shear[0] += c.vtr[0] * dt;
-        shear[1] += c.vtr[1] * dt;
-        shear[2] += c.vtr[2] * dt;
-        let rsht = shear[0] * enx + shear[1] * eny + shear[2] * enz;
-        shear[0] -= rsht * enx;
-        shear[1] -= rsht * eny;
-        shear[2] -= rsht * enz;
+        if update {
+            shear[0] += c.vtr[0] * dt;
+            shear[1] += c.vtr[1] * dt;
+            shear[2] += c.vtr[2] * dt;
+            let rsht = shear[0] * enx + shear[1] * eny + shear[2] * enz;
+            shear[0] -= rsht * enx;
+            shear[1] -= rsht * eny;
+            shear[2] -= rsht * enz;
+        }
         let shrmag = (shear[0] * shear[0] + shear[1] * shear[1] + shear[2] * shear[2]).sqrt();
         let kt = c.kt;
         let xmu = m.friction(c.itype, c.jtype);
@@ -87,8 +89,10 @@ impl TangentialModel for History {
                 for d in 0..3 {
                     ft[d] *= ratio;
                 }
-                for d in 0..3 {
-                    shear[d] = -ft[d] / kt;
+                if update {
+                    for d in 0..3 {
+                        shear[d] = -ft[d] / kt;
+                    }
                 }
             } else {
                 ft = [0.0; 3];

@@ -23,6 +23,9 @@ pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
         "region" => region(a, ctx),
         "create_box" => create_box(a, ctx),
         "create_atoms" => create_atoms(a, ctx),
+        "lattice" => lattice(a, ctx),
+        "displace_atoms" => displace_atoms(a, ctx),
+        "delete_atoms" => delete_atoms(a, ctx),
         "set" => set(a, ctx),
         "group" => group(a, ctx),
         "velocity" => velocity(a, ctx),
@@ -203,44 +206,269 @@ fn g(x: f64) -> String {
     crate::script::format::g(x)
 }
 
+fn lattice(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(2..=usize::MAX, "lattice sc|bcc|fcc|none SCALE")?;
+    let style = a.word(0)?;
+    let scale = a.real(1)?;
+    if scale <= 0.0 {
+        return Err(a.error(1, "Illegal lattice command"));
+    }
+    let basis: Vec<[f64; 3]> = match style {
+        "none" => Vec::new(),
+        "sc" => vec![[0.0; 3]],
+        "bcc" => vec![[0.0; 3], [0.5, 0.5, 0.5]],
+        "fcc" => vec![[0.0; 3], [0.5, 0.5, 0.0], [0.5, 0.0, 0.5], [0.0, 0.5, 0.5]],
+        "hcp" | "diamond" | "sq" | "sq2" | "hex" | "custom" => {
+            return Err(a.unsupported(0, &format!("lattice {style}")))
+        }
+        _ => {
+            return Err(a.keyword_error(
+                0,
+                &[
+                    "none", "sc", "bcc", "fcc", "hcp", "diamond", "sq", "sq2", "hex", "custom",
+                ],
+            ))
+        }
+    };
+    if a.len() > 2 {
+        return Err(a.unsupported(2, &format!("lattice keyword {}", a.word(2)?)));
+    }
+    ctx.sim.lattice = Some((scale, basis));
+    ctx.say(&format!(
+        "Lattice spacing in x,y,z = {} {} {}\n",
+        g(scale),
+        g(scale),
+        g(scale)
+    ));
+    Ok(())
+}
+
 fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
     if !ctx.sim.domain.exists {
         return Err(a.error(0, "Create_atoms command before simulation box is defined"));
     }
-    a.count(2..=usize::MAX, "create_atoms TYPE single X Y Z [units box]")?;
+    a.count(
+        2..=usize::MAX,
+        "create_atoms TYPE single X Y Z | box | region ID [units box|lattice]",
+    )?;
     let kind = a.int(0)?;
     if kind < 1 || kind > ctx.sim.ntypes as i64 {
         return Err(a.error(0, "Invalid atom type in create_atoms command"));
     }
-    if a.word(1)? != "single" {
-        return Err(a.unsupported(1, &format!("create_atoms {}", a.word(1)?)));
-    }
-    let x = [a.real(2)?, a.real(3)?, a.real(4)?];
-    let mut i = 5;
-    let mut box_units = false;
+    let style = a.word_in(1, &["single", "box", "region", "random"])?;
+    let mut i = match style {
+        "single" => 5,
+        "box" => 2,
+        "region" => 3,
+        _ => return Err(a.unsupported(1, "create_atoms random")),
+    };
+    let region = if style == "region" {
+        Some(
+            ctx.sim
+                .regions
+                .find(a.word(2)?)
+                .ok_or_else(|| a.error(2, "Create_atoms region ID does not exist"))?,
+        )
+    } else {
+        None
+    };
+    let mut lattice_units = ctx.sim.lattice.as_ref().is_some_and(|l| !l.1.is_empty());
     while i < a.len() {
         match a.word(i)? {
             "units" => {
-                box_units = a.word_in(i + 1, &["box", "lattice"])? == "box";
+                lattice_units = a.word_in(i + 1, &["box", "lattice"])? == "lattice";
                 i += 2;
             }
             _ => return Err(a.unsupported(i, &format!("create_atoms keyword {}", a.word(i)?))),
         }
     }
-    if !box_units {
-        return Err(a
-            .error(5, "Cannot create atoms with undefined lattice")
-            .with_help("add 'units box'"));
+    let d = ctx.sim.domain.clone();
+    let before = ctx.sim.particles.len();
+    let mut next_id = ctx.sim.particles.max_id() + 1;
+    if style == "single" {
+        let mut x = [a.real(2)?, a.real(3)?, a.real(4)?];
+        if lattice_units {
+            let (scale, basis) = ctx
+                .sim
+                .lattice
+                .clone()
+                .ok_or_else(|| a.error(1, "Cannot create atoms with undefined lattice"))?;
+            if basis.is_empty() {
+                return Err(a
+                    .error(1, "Cannot create atoms with undefined lattice")
+                    .with_help("add 'units box'"));
+            }
+            x = x.map(|c| c * scale);
+        }
+        if (0..3).all(|k| x[k] >= d.lo[k] && x[k] < d.hi[k]) {
+            ctx.sim.particles.push(next_id, kind as u32, x, 0.5, 1.0);
+        }
+    } else {
+        let Some((scale, basis)) = ctx.sim.lattice.clone().filter(|l| !l.1.is_empty()) else {
+            return Err(a.error(1, "Cannot create atoms with undefined lattice"));
+        };
+        // LIGGGHTS shrinks the insertion box slightly along periodic directions so exactly
+        // one of two boundary images is created
+        let mut lo = d.lo;
+        let mut hi = d.hi;
+        for k in 0..3 {
+            if d.periodic(k) {
+                let eps = d.length(k) * 1.0e-6;
+                lo[k] -= eps;
+                hi[k] -= 2.0 * eps;
+            }
+        }
+        let range = |k: usize| {
+            let (a0, a1) = (d.lo[k] / scale, d.hi[k] / scale);
+            let (mn, mx) = (a0.min(a1), a0.max(a1));
+            let mut l = mn as i64 - 1;
+            if mn < 0.0 {
+                l -= 1;
+            }
+            (l, mx as i64 + 1)
+        };
+        let ((ilo, ihi), (jlo, jhi), (klo, khi)) = (range(0), range(1), range(2));
+        for kk in klo..=khi {
+            for jj in jlo..=jhi {
+                for ii in ilo..=ihi {
+                    for b in &basis {
+                        let x = [
+                            (ii as f64 + b[0]) * scale,
+                            (jj as f64 + b[1]) * scale,
+                            (kk as f64 + b[2]) * scale,
+                        ];
+                        if let Some(r) = region {
+                            if !ctx.sim.regions.matches(r, x) {
+                                continue;
+                            }
+                        }
+                        if (0..3).any(|k| x[k] < lo[k] || x[k] >= hi[k]) {
+                            continue;
+                        }
+                        ctx.sim.particles.push(next_id, kind as u32, x, 0.5, 1.0);
+                        next_id += 1;
+                    }
+                }
+            }
+        }
     }
-    let d = &ctx.sim.domain;
-    let inside = (0..3).all(|k| x[k] >= d.lo[k] && x[k] < d.hi[k]);
-    let mut created = 0;
-    if inside {
-        let id = ctx.sim.particles.max_id() + 1;
-        ctx.sim.particles.push(id, kind as u32, x, 0.5, 1.0);
-        created = 1;
+    ctx.say(&format!(
+        "Created {} atoms\n",
+        ctx.sim.particles.len() - before
+    ));
+    Ok(())
+}
+
+fn displace_atoms(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(2..=usize::MAX, "displace_atoms GROUP move|random ...")?;
+    let bit = ctx
+        .sim
+        .group_bit(a.word(0)?)
+        .ok_or_else(|| a.error(0, "Could not find displace_atoms group ID"))?;
+    let style = a.word(1)?;
+    let nopt = match style {
+        "move" => 5,
+        "random" => 6,
+        other => return Err(a.unsupported(1, &format!("displace_atoms {other}"))),
+    };
+    let mut scale = 1.0;
+    let mut i = nopt;
+    while i < a.len() {
+        match (a.word(i)?, a.word(i + 1)?) {
+            ("units", "box") => scale = 1.0,
+            ("units", "lattice") => {
+                scale =
+                    ctx.sim.lattice.as_ref().map(|l| l.0).ok_or_else(|| {
+                        a.error(i + 1, "Use of displace_atoms with undefined lattice")
+                    })?
+            }
+            _ => return Err(a.keyword_error(i, &["units"])),
+        }
+        i += 2;
     }
-    ctx.say(&format!("Created {created} atoms\n"));
+    let del = [scale * a.real(2)?, scale * a.real(3)?, scale * a.real(4)?];
+    let p = &mut ctx.sim.particles;
+    if style == "random" {
+        let seed = a.int(5)?;
+        if !ctx.sim.seed_tolerant {
+            crate::script::random::check_seed(seed).map_err(|m| a.error(5, &m))?;
+        }
+        if seed <= 0 || seed > i32::MAX as i64 {
+            return Err(a.error(5, "Illegal displace_atoms random command"));
+        }
+        let mut rng =
+            crate::script::random::RanPark::new(seed as i32).map_err(|m| a.error(5, &m))?;
+        for k in 0..p.len() {
+            if p.mask[k] & bit != 0 {
+                rng.reset_at(seed as i32, p.x[k]);
+                for d in 0..3 {
+                    p.x[k][d] += del[d] * 2.0 * (rng.uniform() - 0.5);
+                }
+            }
+        }
+    } else {
+        for k in 0..p.len() {
+            if p.mask[k] & bit != 0 {
+                for d in 0..3 {
+                    p.x[k][d] += del[d];
+                }
+            }
+        }
+    }
+    let domain = ctx.sim.domain.clone();
+    for k in 0..p.len() {
+        domain.remap(&mut p.x[k], &mut p.image[k]);
+    }
+    Ok(())
+}
+
+fn delete_atoms(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(
+        2..=usize::MAX,
+        "delete_atoms group|region ID [compress yes|no]",
+    )?;
+    let p = &ctx.sim.particles;
+    let remove: Vec<bool> = match a.word(0)? {
+        "group" => {
+            let bit = ctx
+                .sim
+                .group_bit(a.word(1)?)
+                .ok_or_else(|| a.error(1, "Could not find delete_atoms group ID"))?;
+            p.mask.iter().map(|m| m & bit != 0).collect()
+        }
+        "region" => {
+            let r = ctx
+                .sim
+                .regions
+                .find(a.word(1)?)
+                .ok_or_else(|| a.error(1, "Could not find delete_atoms region ID"))?;
+            p.x.iter().map(|x| ctx.sim.regions.matches(r, *x)).collect()
+        }
+        other => return Err(a.unsupported(0, &format!("delete_atoms {other}"))),
+    };
+    let mut compress = true;
+    let mut i = 2;
+    while i < a.len() {
+        match a.word(i)? {
+            "compress" => compress = a.word_in(i + 1, &["yes", "no"])? == "yes",
+            other => return Err(a.unsupported(i, &format!("delete_atoms keyword {other}"))),
+        }
+        i += 2;
+    }
+    let before = p.len();
+    ctx.sim.particles.retain_by(&remove);
+    let p = &mut ctx.sim.particles;
+    if compress {
+        // IDs 1..N in memory order (LIGGGHTS's memory order also reflects its spatial sort)
+        for (k, id) in p.id.iter_mut().enumerate() {
+            *id = k as i64 + 1;
+        }
+    }
+    let after = p.len();
+    ctx.say(&format!(
+        "Deleted {} atoms, new total = {after}\n",
+        before - after
+    ));
     Ok(())
 }
 

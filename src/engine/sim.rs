@@ -82,6 +82,8 @@ pub struct Simulation {
     pub groups: Vec<String>,
     /// Number of atom types (`create_box N`).
     pub ntypes: u32,
+    /// The lattice: spacing (length) and basis points in lattice units.
+    pub lattice: Option<(f64, Vec<[f64; 3]>)>,
     /// Current step.
     pub step: i64,
     /// Time-step size (time units).
@@ -108,6 +110,8 @@ pub struct Simulation {
     pub soft_hard: (bool, bool),
     /// `communicate ... vel yes` (LIGGGHTS's pair gran requires it).
     pub comm_vel: bool,
+    /// `-seedtolerant`: random seeds need not be primes above 10000.
+    pub seed_tolerant: bool,
     /// Fixes in definition order.
     pub fixes: Vec<Fix>,
     /// Thermo output settings.
@@ -130,6 +134,7 @@ impl Default for Simulation {
             regions: Regions::default(),
             groups: vec!["all".to_string()],
             ntypes: 0,
+            lattice: None,
             step: 0,
             dt: 0.001,
             atime: 0.0,
@@ -145,6 +150,7 @@ impl Default for Simulation {
             pair_coeff_set: false,
             soft_hard: (false, false),
             comm_vel: false,
+            seed_tolerant: false,
             fixes: Vec::new(),
             thermo: Thermo::default(),
             dumps: Vec::new(),

@@ -147,6 +147,7 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                 plane: crate::engine::granular::Plane { axis, position },
                 wall_type: wall_type as usize,
                 model: None,
+                history_name: format!("history_{id}"),
             })
         }
         "freeze" => {

@@ -139,6 +139,8 @@ pub struct WallFix {
     pub wall_type: usize,
     /// Built at each run from the current materials.
     pub model: Option<Box<dyn crate::engine::granular::WallInteraction>>,
+    /// Name of the per-particle history array (`history_<fix ID>`, as in LIGGGHTS restarts).
+    pub history_name: String,
 }
 
 /// One defined fix.
@@ -174,7 +176,7 @@ pub fn post_force(fixes: &mut [Fix], p: &mut Particles, dt: f64, update: bool) {
             FixKind::WallGran(wall) => {
                 if let Some(model) = wall.model.as_mut() {
                     let w = model.history_width();
-                    let k = p.extra_index(&format!("history_{}", fix.id), w);
+                    let k = p.extra_index(&wall.history_name, w);
                     let mut history = std::mem::take(&mut p.extra[k].data);
                     model.compute(p, g, &mut history, dt, update);
                     p.extra[k].data = history;

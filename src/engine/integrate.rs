@@ -2,65 +2,33 @@
 //! rotation in LIGGGHTS's order of operations, plus uniform body forces (`fix gravity`).
 //! Every update is element-wise, so results do not depend on the thread count.
 
-use rayon::prelude::*;
-
 use crate::engine::particles::Particles;
 
 /// Moment-of-inertia prefactor of a solid sphere (I = 0.4 m r^2).
 pub const SPHERE_INERTIA: f64 = 0.4;
 
-/// Below this many particles the loops stay on one thread.
-const PARALLEL_MIN: usize = 4096;
-
 /// First half of a velocity-Verlet step for particles whose `mask` has `group` bits:
 /// half-kick v and omega with the current force and torque, then drift x by a full `dt`.
+/// (A plain loop: the work per particle is too small for threads to pay off.)
 pub fn initial_integrate(p: &mut Particles, group: u32, dt: f64) {
     let dtf = 0.5 * dt;
     let dtfrotate = dtf / SPHERE_INERTIA;
-    let body = |(((((x, v), omega), f), torque), ((mask, mass), radius)): (
-        (
-            (((&mut [f64; 3], &mut [f64; 3]), &mut [f64; 3]), &[f64; 3]),
-            &[f64; 3],
-        ),
-        ((&u32, &f64), &f64),
-    )| {
-        if mask & group == 0 {
-            return;
+    for i in 0..p.len() {
+        if p.mask[i] & group == 0 {
+            continue;
         }
+        let mass = p.mass[i];
         let dtfm = dtf / (mass * 1.0);
         for d in 0..3 {
-            v[d] += dtfm * f[d];
+            p.v[i][d] += dtfm * p.f[i][d];
         }
         for d in 0..3 {
-            x[d] += dt * v[d];
+            p.x[i][d] += dt * p.v[i][d];
         }
-        let dtirotate = dtfrotate / (radius * radius * mass);
+        let dtirotate = dtfrotate / (p.radius[i] * p.radius[i] * mass);
         for d in 0..3 {
-            omega[d] += dtirotate * torque[d];
+            p.omega[i][d] += dtirotate * p.torque[i][d];
         }
-    };
-    let n = p.len();
-    if n >= PARALLEL_MIN {
-        p.x.par_iter_mut()
-            .zip(p.v.par_iter_mut())
-            .zip(p.omega.par_iter_mut())
-            .zip(p.f.par_iter())
-            .zip(p.torque.par_iter())
-            .zip(
-                p.mask
-                    .par_iter()
-                    .zip(p.mass.par_iter())
-                    .zip(p.radius.par_iter()),
-            )
-            .for_each(body);
-    } else {
-        p.x.iter_mut()
-            .zip(p.v.iter_mut())
-            .zip(p.omega.iter_mut())
-            .zip(p.f.iter())
-            .zip(p.torque.iter())
-            .zip(p.mask.iter().zip(p.mass.iter()).zip(p.radius.iter()))
-            .for_each(body);
     }
 }
 

@@ -394,7 +394,9 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Wall
             };
             let h = &mut history[i * w..(i + 1) * w];
             if gap > 0.0 {
-                h.iter_mut().for_each(|v| *v = 0.0);
+                if h.iter().any(|v| *v != 0.0) {
+                    h.iter_mut().for_each(|v| *v = 0.0);
+                }
                 continue;
             }
             let passed_deltan = -gap;

@@ -136,7 +136,7 @@ fn check_follows_loops_once_and_includes() {
     std::fs::write(dir.join("in.inc"), "compute s all stress/atom\n").unwrap();
     std::fs::write(
         dir.join("in.t"),
-        "variable a loop 1000\nlabel top\ninclude in.inc\nnext a\njump SELF top\nprint done\n",
+        "region b block 0 1 0 1 0 1\ncreate_box 1 b\nvariable a loop 1000\nlabel top\ninclude in.inc\nnext a\njump SELF top\nprint done\n",
     )
     .unwrap();
     let out = regolith(&dir, &["check", "in.t"], None);

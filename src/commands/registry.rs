@@ -153,6 +153,9 @@ pub fn is_supported(cmd: &CommandLine) -> bool {
             .arg(2)
             .is_some_and(|s| crate::commands::sim_run::FIX_STYLES.contains(&s)),
         "dump" => cmd.arg(2) == Some("custom"),
+        "compute" => cmd
+            .arg(2)
+            .is_some_and(|s| crate::engine::computes::STYLES.contains(&s)),
         "pair_style" => {
             cmd.arg(0) == Some("gran")
                 && (1..cmd.nargs())

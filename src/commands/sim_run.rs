@@ -33,6 +33,8 @@ pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
         "dump_modify" => dump_modify(a, ctx),
         "undump" => undump(a, ctx),
         "run" => run(a, ctx),
+        "compute" => compute(a, ctx),
+        "uncompute" => uncompute(a, ctx),
         "pair_style" => pair_style(a, ctx),
         "pair_coeff" => pair_coeff(a, ctx),
         "soft_particles" | "hard_particles" => soft_hard(name, a, ctx),
@@ -586,5 +588,49 @@ fn soft_hard(name: &str, a: &Args, ctx: &mut Ctx) -> Result {
     } else {
         ctx.sim.soft_hard.1 = on;
     }
+    Ok(())
+}
+
+fn compute(a: &Args, ctx: &mut Ctx) -> Result {
+    use crate::engine::computes::{Compute, ComputeKind};
+    a.count(3..=usize::MAX, "compute ID GROUP STYLE ...")?;
+    let (id, group, style) = (a.word(0)?, a.word(1)?, a.word(2)?);
+    if !ctx.sim.domain.exists {
+        return Err(a.error(0, "Compute command before simulation box is defined"));
+    }
+    let bit = ctx
+        .sim
+        .group_bit(group)
+        .ok_or_else(|| a.error(1, "Could not find compute group ID"))?;
+    if ctx.sim.computes.iter().any(|c| c.id == id) {
+        return Err(a.error(0, "Reuse of compute ID"));
+    }
+    let kind = match style {
+        "erotate/sphere" => ComputeKind::ErotateSphere,
+        "ke" => ComputeKind::Ke,
+        other => return Err(a.unsupported(2, &format!("compute {other}"))),
+    };
+    if a.len() > 3 {
+        return Err(a.unsupported(3, &format!("compute {style} keywords")));
+    }
+    ctx.sim.computes.push(Compute {
+        id: id.into(),
+        style: style.into(),
+        group: bit,
+        kind,
+    });
+    Ok(())
+}
+
+fn uncompute(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=1, "uncompute ID")?;
+    let id = a.word(0)?;
+    let k = ctx
+        .sim
+        .computes
+        .iter()
+        .position(|c| c.id == id)
+        .ok_or_else(|| a.error(0, "Could not find uncompute ID"))?;
+    ctx.sim.computes.remove(k);
     Ok(())
 }

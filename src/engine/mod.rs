@@ -1,6 +1,7 @@
 //! The simulation engine: particles, box, regions, neighbours, contact models, fixes,
 //! computes and the integrator. Commands in [`crate::commands`] configure it.
 
+pub mod computes;
 pub mod domain;
 pub mod fixes;
 pub mod granular;

@@ -114,6 +114,8 @@ pub struct Simulation {
     pub seed_tolerant: bool,
     /// Fixes in definition order.
     pub fixes: Vec<Fix>,
+    /// Computes in definition order.
+    pub computes: Vec<crate::engine::computes::Compute>,
     /// Thermo output settings.
     pub thermo: Thermo,
     /// Dumps.
@@ -152,6 +154,7 @@ impl Default for Simulation {
             comm_vel: false,
             seed_tolerant: false,
             fixes: Vec::new(),
+            computes: Vec::new(),
             thermo: Thermo::default(),
             dumps: Vec::new(),
             run_bounds: None,
@@ -165,6 +168,19 @@ impl Default for Simulation {
 pub type Sink<'a> = &'a mut dyn FnMut(&str);
 
 impl Simulation {
+    /// Value of `c_ID` (index None) or `c_ID[i]`.
+    pub fn compute_value(&self, id: &str, index: Option<usize>) -> Result<f64, String> {
+        let c = self
+            .computes
+            .iter()
+            .find(|c| c.id == id)
+            .ok_or_else(|| format!("Could not find thermo/variable compute ID {id}"))?;
+        match index {
+            None => c.scalar(&self.particles),
+            Some(i) => c.vector(i, &self.particles),
+        }
+    }
+
     /// Bit mask of group `name`.
     pub fn group_bit(&self, name: &str) -> Option<u32> {
         self.groups

@@ -79,9 +79,17 @@ impl Thermo {
     pub fn set_style(&mut self, keywords: &[&str]) -> Result<(), String> {
         let mut fields = Vec::new();
         for k in keywords {
+            if let Some(rest) = k.strip_prefix("c_") {
+                // LIGGGHTS labels a compute column by its reference without the c_ prefix
+                fields.push(Field {
+                    keyword: k.to_string(),
+                    label: rest.to_string(),
+                    kind: Kind::Real,
+                });
+                continue;
+            }
             let Some(&(_, label, kind)) = KEYWORDS.iter().find(|e| e.0 == *k) else {
                 let known = crate::commands::THERMO_KEYWORDS.contains(k)
-                    || k.starts_with("c_")
                     || k.starts_with("f_")
                     || k.starts_with("v_");
                 return Err(if known {
@@ -176,6 +184,14 @@ pub fn keyword_value(keyword: &str, sim: &Simulation, thermo: &Thermo) -> Option
         "yhi" => d.hi[1],
         "zlo" => d.lo[2],
         "zhi" => d.hi[2],
+        k if k.starts_with("c_") => {
+            let body = &k[2..];
+            let (id, index) = match body.split_once('[') {
+                Some((id, rest)) => (id, rest.trim_end_matches(']').parse::<usize>().ok()),
+                None => (body, None),
+            };
+            return sim.compute_value(id, index).ok();
+        }
         _ => return None,
     })
 }
@@ -200,9 +216,11 @@ mod tests {
             .unwrap_err()
             .starts_with("Invalid keyword"));
         assert!(t
-            .set_style(&["c_x"])
+            .set_style(&["f_x"])
             .unwrap_err()
             .contains("not supported yet"));
+        t.set_style(&["step", "c_rke"]).unwrap();
+        assert_eq!(t.fields[1].label, "rke");
         assert!(t.due(100, 1000) == (t.every > 0) && t.due(1000, 1000));
     }
 }

@@ -92,12 +92,23 @@ impl ExprContext for Scope<'_> {
 
     fn compute(
         &mut self,
-        _: &str,
-        _: Option<usize>,
-        _: Option<usize>,
-        _: Option<usize>,
+        id: &str,
+        i: Option<usize>,
+        j: Option<usize>,
+        atom: Option<usize>,
     ) -> Result<f64, String> {
-        Err(self.no_state("Invalid compute ID in variable formula"))
+        if self.sys.mode == Mode::Check {
+            return Err(UNKNOWN_QUERY.to_string());
+        }
+        if j.is_some() || atom.is_some() {
+            return Err(format!(
+                "c_{id} with array or per-atom access: not supported yet"
+            ));
+        }
+        if !self.engine.sim.computes.iter().any(|c| c.id == id) {
+            return Err("Invalid compute ID in variable formula".into());
+        }
+        self.engine.sim.compute_value(id, i)
     }
 
     fn fix(

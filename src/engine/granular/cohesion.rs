@@ -4,7 +4,7 @@ use crate::engine::granular::material::Material;
 use crate::engine::granular::Contact;
 
 /// A cohesion model adds an attractive normal force to touching particles.
-pub trait CohesionModel: Send {
+pub trait CohesionModel: Send + Sync {
     /// Check that the material tables it needs exist.
     fn check(m: &Material) -> Result<(), String>;
     /// Add the cohesive force.

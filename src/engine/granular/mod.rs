@@ -9,6 +9,8 @@ pub mod normal;
 pub mod rolling;
 pub mod tangential;
 
+use rayon::prelude::*;
+
 use crate::engine::neighbor::Pair;
 use crate::engine::particles::Particles;
 use crate::engine::sim::PairInteraction;
@@ -94,6 +96,93 @@ pub struct PairGran<N, T, C, R> {
     pub material: Material,
     /// Group bits of frozen particles (infinite mass in contacts).
     pub frozen: u32,
+    /// Per-pair results of the current step (reused between steps).
+    pub results: Vec<PairResult>,
+}
+
+/// What one listed pair contributes: forces and torques on both particles.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PairResult {
+    /// The particles touch.
+    pub touching: bool,
+    /// Force on i (force).
+    pub fi: [f64; 3],
+    /// Force on j.
+    pub fj: [f64; 3],
+    /// Torque on i (force length).
+    pub ti: [f64; 3],
+    /// Torque on j.
+    pub tj: [f64; 3],
+}
+
+/// Below this many listed pairs the contact loop stays on one thread.
+const PARALLEL_PAIRS: usize = 2048;
+
+impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> PairGran<N, T, C, R> {
+    /// The contribution of one listed pair; `h` is its history.
+    #[inline(always)]
+    fn pair_result(
+        &self,
+        p: &Particles,
+        pair: &Pair,
+        h: &mut [f64],
+        dt: f64,
+        update: bool,
+    ) -> PairResult {
+        let (i, j) = (pair.i as usize, pair.j as usize);
+        let xj = [
+            p.x[j][0] + pair.shift[0],
+            p.x[j][1] + pair.shift[1],
+            p.x[j][2] + pair.shift[2],
+        ];
+        let delx = p.x[i][0] - xj[0];
+        let dely = p.x[i][1] - xj[1];
+        let delz = p.x[i][2] - xj[2];
+        let rsq = delx * delx + dely * dely + delz * delz;
+        let (radi, radj) = (p.radius[i], p.radius[j]);
+        let radsum = radi + radj;
+        if rsq >= radsum * radsum {
+            return PairResult::default();
+        }
+        let r = rsq.sqrt();
+        let rinv = 1.0 / r;
+        let (mi, mj) = (p.mass[i], p.mass[j]);
+        let mut meff = mi * mj / (mi + mj);
+        if p.mask[i] & self.frozen != 0 {
+            meff = mj;
+        }
+        if p.mask[j] & self.frozen != 0 {
+            meff = mi;
+        }
+        let mut c = Contact {
+            itype: p.kind[i] as usize,
+            jtype: p.kind[j] as usize,
+            en: [delx * rinv, dely * rinv, delz * rinv],
+            delta: [delx, dely, delz],
+            reff: radi * radj / (radi + radj),
+            meff,
+            radi,
+            radj,
+            r,
+            mi,
+            mj,
+            ..Contact::default()
+        };
+        surface(&mut c, p, i, j, radi, radj, radsum, r, rinv);
+        self.normal.force(&mut c, &self.material);
+        self.cohesion.force(&mut c, &self.material);
+        let (ht, hr) = h.split_at_mut(T::HISTORY);
+        self.tangential
+            .force(&mut c, &self.material, ht, dt, update);
+        self.rolling.torque(&mut c, &self.material, hr, dt, update);
+        PairResult {
+            touching: true,
+            fi: c.fi,
+            fj: c.fj,
+            ti: c.ti,
+            tj: c.tj,
+        }
+    }
 }
 
 impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> PairInteraction
@@ -112,63 +201,63 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         update: bool,
     ) {
         let width = T::HISTORY + R::HISTORY;
-        for (k, pair) in pairs.iter().enumerate() {
-            let (i, j) = (pair.i as usize, pair.j as usize);
-            let xj = [
-                p.x[j][0] + pair.shift[0],
-                p.x[j][1] + pair.shift[1],
-                p.x[j][2] + pair.shift[2],
-            ];
-            let delx = p.x[i][0] - xj[0];
-            let dely = p.x[i][1] - xj[1];
-            let delz = p.x[i][2] - xj[2];
-            let rsq = delx * delx + dely * dely + delz * delz;
-            let (radi, radj) = (p.radius[i], p.radius[j]);
-            let radsum = radi + radj;
-            if rsq >= radsum * radsum {
-                continue;
+        if pairs.len() < PARALLEL_PAIRS || rayon::current_num_threads() == 1 {
+            // one thread: compute and add each pair in list order (the same sums as below)
+            let mut empty: [f64; 0] = [];
+            for (k, pair) in pairs.iter().enumerate() {
+                let h = if width == 0 {
+                    &mut empty[..]
+                } else {
+                    &mut history[k * width..(k + 1) * width]
+                };
+                let res = self.pair_result(p, pair, h, dt, update);
+                if res.touching {
+                    add_pair(p, pair, &res);
+                }
             }
-            let r = rsq.sqrt();
-            let rinv = 1.0 / r;
-            let (mi, mj) = (p.mass[i], p.mass[j]);
-            let mut meff = mi * mj / (mi + mj);
-            if p.mask[i] & self.frozen != 0 {
-                meff = mj;
-            }
-            if p.mask[j] & self.frozen != 0 {
-                meff = mi;
-            }
-            let mut c = Contact {
-                itype: p.kind[i] as usize,
-                jtype: p.kind[j] as usize,
-                en: [delx * rinv, dely * rinv, delz * rinv],
-                delta: [delx, dely, delz],
-                reff: radi * radj / (radi + radj),
-                meff,
-                radi,
-                radj,
-                r,
-                mi,
-                mj,
-                ..Contact::default()
-            };
-            surface(&mut c, p, i, j, radi, radj, radsum, r, rinv);
-            self.normal.force(&mut c, &self.material);
-            self.cohesion.force(&mut c, &self.material);
-            let h = &mut history[k * width..(k + 1) * width];
-            let (ht, hr) = h.split_at_mut(T::HISTORY);
-            self.tangential
-                .force(&mut c, &self.material, ht, dt, update);
-            self.rolling.torque(&mut c, &self.material, hr, dt, update);
-            for d in 0..3 {
-                p.f[i][d] += 1.0 * c.fi[d];
-                p.torque[i][d] += 1.0 * c.ti[d];
-            }
-            for d in 0..3 {
-                p.f[j][d] += 1.0 * c.fj[d];
-                p.torque[j][d] += 1.0 * c.tj[d];
+            return;
+        }
+        let mut results = std::mem::take(&mut self.results);
+        results.clear();
+        results.resize(pairs.len(), PairResult::default());
+        // contact mechanics per pair are independent: compute them in parallel
+        {
+            let this = &*self;
+            let pr: &Particles = p;
+            if width == 0 {
+                results
+                    .par_iter_mut()
+                    .zip(pairs.par_iter())
+                    .for_each(|(res, pair)| *res = this.pair_result(pr, pair, &mut [], dt, update));
+            } else {
+                results
+                    .par_iter_mut()
+                    .zip(pairs.par_iter())
+                    .zip(history.par_chunks_mut(width))
+                    .for_each(|((res, pair), h)| *res = this.pair_result(pr, pair, h, dt, update));
             }
         }
+        // accumulation in list order: the same sums for any number of threads
+        for (res, pair) in results.iter().zip(pairs) {
+            if res.touching {
+                add_pair(p, pair, res);
+            }
+        }
+        self.results = results;
+    }
+}
+
+/// Add one pair's forces and torques to its two particles.
+#[inline(always)]
+fn add_pair(p: &mut Particles, pair: &Pair, res: &PairResult) {
+    let (i, j) = (pair.i as usize, pair.j as usize);
+    for d in 0..3 {
+        p.f[i][d] += 1.0 * res.fi[d];
+        p.torque[i][d] += 1.0 * res.ti[d];
+    }
+    for d in 0..3 {
+        p.f[j][d] += 1.0 * res.fj[d];
+        p.torque[j][d] += 1.0 * res.tj[d];
     }
 }
 
@@ -253,6 +342,7 @@ pub fn build(
                 rolling: $r,
                 material,
                 frozen,
+                results: Vec::new(),
             }) as Box<dyn PairInteraction>
         }};
     }

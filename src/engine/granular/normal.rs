@@ -4,7 +4,7 @@ use crate::engine::granular::material::Material;
 use crate::engine::granular::Contact;
 
 /// A normal model sets the normal force and the stiffness/damping the others use.
-pub trait NormalModel: Send {
+pub trait NormalModel: Send + Sync {
     /// Compute the normal force of a contact and add it to both particles.
     fn force(&self, c: &mut Contact, m: &Material);
 }

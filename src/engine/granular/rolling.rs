@@ -4,7 +4,7 @@ use crate::engine::granular::material::Material;
 use crate::engine::granular::Contact;
 
 /// A rolling model adds a torque resisting relative rolling.
-pub trait RollingModel: Send {
+pub trait RollingModel: Send + Sync {
     /// Doubles of per-contact history the model keeps.
     const HISTORY: usize;
     /// Check that the material tables it needs exist.

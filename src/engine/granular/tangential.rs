@@ -4,7 +4,7 @@ use crate::engine::granular::material::Material;
 use crate::engine::granular::Contact;
 
 /// A tangential model adds the friction force and its torques.
-pub trait TangentialModel: Send {
+pub trait TangentialModel: Send + Sync {
     /// Doubles of per-contact history the model keeps.
     const HISTORY: usize;
     /// Compute the tangential force; `history` holds this contact's stored values.

@@ -147,3 +147,28 @@ fn check_follows_loops_once_and_includes() {
     );
     assert_eq!(out.status.code(), Some(3));
 }
+
+#[test]
+fn check_does_not_blame_follow_on_effects_of_unsupported_commands() {
+    // the insertion fix is skipped in a dry run, so there are no atoms and no fix to remove:
+    // only the unsupported command itself is reported, yet later misspellings still are
+    let dir = scratch("diverged");
+    std::fs::write(
+        dir.join("in.t"),
+        "region b block 0 1 0 1 0 1\ncreate_box 1 b\nfix ins all insert/stream seed 10007\nunfix ins\n\
+         velocity all set 0 0 0\nfix g all gravty 9.81 vector 0 0 -1\n",
+    )
+    .unwrap();
+    let out = regolith(&dir, &["check", "in.t"], None);
+    let stdout = text(&out.stdout);
+    assert_eq!(stdout.lines().count(), 2, "{stdout}");
+    assert!(
+        stdout.starts_with("in.t:3: fix insert/stream: not supported yet\n"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("in.t:6: Invalid fix style: \"gravty\" (did you mean 'gravity'?)"),
+        "{stdout}"
+    );
+    assert_eq!(out.status.code(), Some(1));
+}

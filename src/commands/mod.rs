@@ -123,6 +123,9 @@ impl CommandLine {
 pub struct Engine {
     /// The simulation the commands build and run.
     pub sim: Simulation,
+    /// Check mode only: an unsupported command was skipped, so the engine state no longer
+    /// matches what LIGGGHTS would have; later commands are only name-checked.
+    pub diverged: bool,
     /// Current timestep number.
     pub timestep: i64,
     /// Time-step size (s in SI units).
@@ -143,6 +146,7 @@ impl Engine {
     pub fn new() -> Engine {
         Engine {
             sim: Simulation::default(),
+            diverged: false,
             timestep: 0,
             dt: 0.005,
             seed_tolerant: false,
@@ -172,6 +176,8 @@ impl Engine {
     ) -> Result<(), Diagnostic> {
         let _ = vars;
         validate_names(cmd)?;
+        let check = sys.mode == Mode::Check;
+        self.sim.seed_tolerant = self.seed_tolerant;
         let args = Args { cmd };
         let mut ctx = Ctx {
             sim: &mut self.sim,
@@ -183,7 +189,19 @@ impl Engine {
         if let Some(result) = handled {
             self.timestep = self.sim.step;
             self.dt = self.sim.dt;
+            if let Err(d) = &result {
+                if check && d.severity == crate::error::Severity::Unsupported {
+                    self.diverged = true;
+                } else if check && self.diverged {
+                    // the dry run's state no longer matches LIGGGHTS's: this error may be an
+                    // artefact of something skipped earlier, so only names are held against it
+                    return Ok(());
+                }
+            }
             return result;
+        }
+        if check {
+            self.diverged = true;
         }
         Err(Diagnostic::unsupported(registry::feature_name(cmd))
             .with_source(&cmd.text, Some(registry::feature_span(cmd))))

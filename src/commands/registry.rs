@@ -149,6 +149,13 @@ fn validate_gran_models(cmd: &CommandLine, start: usize) -> Result<(), Diagnosti
 /// Commands regolith executes (beyond the script language), and their supported styles.
 pub fn is_supported(cmd: &CommandLine) -> bool {
     match cmd.name() {
+        "fix" if cmd.arg(2) == Some("wall/gran") => {
+            gran_models_supported(cmd, 3)
+                && (0..cmd.nargs()).any(|k| {
+                    cmd.arg(k) == Some("primitive")
+                        && matches!(cmd.arg(k + 3), Some("xplane" | "yplane" | "zplane"))
+                })
+        }
         "fix" => cmd
             .arg(2)
             .is_some_and(|s| crate::commands::sim_run::FIX_STYLES.contains(&s)),
@@ -156,20 +163,9 @@ pub fn is_supported(cmd: &CommandLine) -> bool {
         "compute" => cmd
             .arg(2)
             .is_some_and(|s| crate::engine::computes::STYLES.contains(&s)),
-        "pair_style" => {
-            cmd.arg(0) == Some("gran")
-                && (1..cmd.nargs())
-                    .step_by(2)
-                    .all(|k| match (cmd.arg(k), cmd.arg(k + 1)) {
-                        (Some("model"), Some(m)) => m == "hertz",
-                        (Some("tangential"), Some(t)) => matches!(t, "history" | "no_history"),
-                        (Some("surface"), Some(s)) => s == "default",
-                        (Some("cohesion"), Some(c)) => matches!(c, "sjkr" | "off"),
-                        (Some("rolling_friction"), Some(r)) => matches!(r, "cdt" | "epsd" | "off"),
-                        _ => true,
-                    })
-        }
+        "pair_style" => cmd.arg(0) == Some("gran") && gran_models_supported(cmd, 1),
         "atom_style" => matches!(cmd.arg(0), Some("granular" | "sphere")),
+        "lattice" => matches!(cmd.arg(0), Some("none" | "sc" | "bcc" | "fcc")),
         "region" => matches!(
             cmd.arg(1),
             Some(
@@ -187,6 +183,26 @@ pub fn is_supported(cmd: &CommandLine) -> bool {
     }
 }
 
+/// Are the contact models named from argument `start` on ones regolith runs?
+fn gran_models_supported(cmd: &CommandLine, start: usize) -> bool {
+    let mut k = start;
+    while let (Some(key), Some(value)) = (cmd.arg(k), cmd.arg(k + 1)) {
+        let ok = match key {
+            "model" => value == "hertz",
+            "tangential" => matches!(value, "history" | "no_history"),
+            "cohesion" => matches!(value, "sjkr" | "off"),
+            "rolling_friction" => matches!(value, "cdt" | "epsd" | "off"),
+            "surface" => value == "default",
+            _ => break,
+        };
+        if !ok {
+            return false;
+        }
+        k += 2;
+    }
+    true
+}
+
 /// Commands with a native implementation (their keywords are checked when they run).
 pub const SUPPORTED_COMMANDS: &[&str] = &[
     "atom_modify",
@@ -195,20 +211,26 @@ pub const SUPPORTED_COMMANDS: &[&str] = &[
     "communicate",
     "create_atoms",
     "create_box",
+    "delete_atoms",
     "dimension",
+    "displace_atoms",
     "dump_modify",
     "group",
+    "hard_particles",
     "neigh_modify",
     "neighbor",
     "newton",
+    "pair_coeff",
     "processors",
     "reset_timestep",
     "run",
     "set",
+    "soft_particles",
     "thermo",
     "thermo_modify",
     "thermo_style",
     "timestep",
+    "uncompute",
     "undump",
     "unfix",
     "units",

@@ -17,8 +17,10 @@ pub const FIX_STYLES: &[&str] = &[
     "gravity",
     "move",
     "nve/sphere",
+    "property/global",
     "setforce",
     "viscous",
+    "wall/gran",
 ];
 
 /// Handle a run/output command; None if `name` is not one of them.

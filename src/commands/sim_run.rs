@@ -259,15 +259,12 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
 
 fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(1..=1, "unfix ID")?;
-    let id = a.word(0)?;
-    let i = ctx
-        .sim
-        .fixes
-        .iter()
-        .position(|f| f.id == id)
-        .ok_or_else(|| a.error(0, "Could not find fix ID to delete"))?;
-    ctx.sim.fixes.remove(i);
-    Ok(())
+    remove_by_id(
+        &mut ctx.sim.fixes,
+        |f| &f.id,
+        a,
+        "Could not find fix ID to delete",
+    )
 }
 
 fn thermo(a: &Args, ctx: &mut Ctx) -> Result {
@@ -422,15 +419,7 @@ fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
 
 fn undump(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(1..=1, "undump ID")?;
-    let id = a.word(0)?;
-    let k = ctx
-        .sim
-        .dumps
-        .iter()
-        .position(|d| d.id == id)
-        .ok_or_else(|| a.error(0, "Could not find undump ID"))?;
-    ctx.sim.dumps.remove(k);
-    Ok(())
+    remove_by_id(&mut ctx.sim.dumps, |d| &d.id, a, "Could not find undump ID")
 }
 
 fn run(a: &Args, ctx: &mut Ctx) -> Result {
@@ -626,13 +615,26 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
 
 fn uncompute(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(1..=1, "uncompute ID")?;
+    remove_by_id(
+        &mut ctx.sim.computes,
+        |c| &c.id,
+        a,
+        "Could not find uncompute ID",
+    )
+}
+
+/// Remove the item whose ID is the command's first argument, or fail with `missing`.
+fn remove_by_id<T>(
+    items: &mut Vec<T>,
+    id_of: impl Fn(&T) -> &String,
+    a: &Args,
+    missing: &str,
+) -> Result {
     let id = a.word(0)?;
-    let k = ctx
-        .sim
-        .computes
+    let k = items
         .iter()
-        .position(|c| c.id == id)
-        .ok_or_else(|| a.error(0, "Could not find uncompute ID"))?;
-    ctx.sim.computes.remove(k);
+        .position(|t| id_of(t) == id)
+        .ok_or_else(|| a.error(0, missing))?;
+    items.remove(k);
     Ok(())
 }

@@ -168,6 +168,33 @@ impl Default for Simulation {
 pub type Sink<'a> = &'a mut dyn FnMut(&str);
 
 impl Simulation {
+    /// The `end_of_step` phase: fixes that check or report every N steps.
+    fn end_of_step(&mut self, out: Sink<'_>) {
+        let (step, dt, skin) = (self.step, self.dt, self.neighbor.skin);
+        for fix in &mut self.fixes {
+            if let FixKind::CheckTimestep(c) = &mut fix.kind {
+                if step % c.every == 0 {
+                    for m in c.evaluate(&self.particles, fix.group, dt, skin) {
+                        out(&format!("WARNING: {m}\n"));
+                    }
+                }
+            }
+        }
+    }
+
+    /// Value of `f_ID[i]` (1-based) for fixes with a global vector.
+    pub fn fix_value(&self, id: &str, index: Option<usize>) -> Result<f64, String> {
+        let fix = self
+            .fixes
+            .iter()
+            .find(|f| f.id == id)
+            .ok_or_else(|| format!("Could not find fix ID {id}"))?;
+        match (&fix.kind, index) {
+            (FixKind::CheckTimestep(c), Some(i @ 1..=3)) => Ok(c.values[i - 1]),
+            _ => Err(format!("fix {id} ({}) has no such value", fix.style)),
+        }
+    }
+
     /// Value of `c_ID` (index None) or `c_ID[i]`.
     pub fn compute_value(&self, id: &str, index: Option<usize>) -> Result<f64, String> {
         let c = self
@@ -268,6 +295,39 @@ impl Simulation {
     /// Build the contact models (pair and walls) from the current material properties.
     fn init_pair(&mut self) -> Result<(), String> {
         use crate::engine::granular::{self, material::Material};
+        for k in 0..self.fixes.len() {
+            if let FixKind::CheckTimestep(_) = &self.fixes[k].kind {
+                let sel = self
+                    .pair_selection
+                    .clone()
+                    .ok_or("Fix check/timestep/gran can only be used together with: gran")?;
+                let input = self.material_input(&sel.model)?;
+                let material = Material::new(&input)?;
+                let n = self.ntypes as usize;
+                let materials = (0..n)
+                    .map(|t| {
+                        (
+                            input.youngs[t],
+                            input.poisson[t],
+                            material.yeff(t + 1, t + 1),
+                        )
+                    })
+                    .collect();
+                let every = self.thermo.every;
+                let prefix = format!("f_{}", self.fixes[k].id);
+                let in_thermo = self
+                    .thermo
+                    .fields
+                    .iter()
+                    .any(|f| f.keyword.starts_with(&prefix));
+                if let FixKind::CheckTimestep(c) = &mut self.fixes[k].kind {
+                    if in_thermo && every % c.every != 0 {
+                        return Err("Thermo and fix not computed at compatible times".into());
+                    }
+                    c.materials = materials;
+                }
+            }
+        }
         for k in 0..self.fixes.len() {
             if let FixKind::WallGran(wall) = &self.fixes[k].kind {
                 let material = Material::new(&self.material_input(&wall.selection.model)?)?;
@@ -403,6 +463,7 @@ impl Simulation {
             }
             self.compute_forces(true);
             fixes::final_integrate(&self.fixes, &mut self.particles, self.dt);
+            self.end_of_step(out);
             if self.thermo.due(self.step, last) {
                 self.thermo_line(out);
             }

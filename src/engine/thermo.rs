@@ -79,7 +79,7 @@ impl Thermo {
     pub fn set_style(&mut self, keywords: &[&str]) -> Result<(), String> {
         let mut fields = Vec::new();
         for k in keywords {
-            if let Some(rest) = k.strip_prefix("c_") {
+            if let Some(rest) = k.strip_prefix("c_").or_else(|| k.strip_prefix("f_")) {
                 // LIGGGHTS labels a compute column by its reference without the c_ prefix
                 fields.push(Field {
                     keyword: k.to_string(),
@@ -89,9 +89,7 @@ impl Thermo {
                 continue;
             }
             let Some(&(_, label, kind)) = KEYWORDS.iter().find(|e| e.0 == *k) else {
-                let known = crate::commands::THERMO_KEYWORDS.contains(k)
-                    || k.starts_with("f_")
-                    || k.starts_with("v_");
+                let known = crate::commands::THERMO_KEYWORDS.contains(k) || k.starts_with("v_");
                 return Err(if known {
                     format!("thermo keyword {k}: not supported yet")
                 } else {
@@ -184,13 +182,17 @@ pub fn keyword_value(keyword: &str, sim: &Simulation, thermo: &Thermo) -> Option
         "yhi" => d.hi[1],
         "zlo" => d.lo[2],
         "zhi" => d.hi[2],
-        k if k.starts_with("c_") => {
+        k if k.starts_with("c_") || k.starts_with("f_") => {
             let body = &k[2..];
             let (id, index) = match body.split_once('[') {
                 Some((id, rest)) => (id, rest.trim_end_matches(']').parse::<usize>().ok()),
                 None => (body, None),
             };
-            return sim.compute_value(id, index).ok();
+            return if k.starts_with('c') {
+                sim.compute_value(id, index).ok()
+            } else {
+                sim.fix_value(id, index).ok()
+            };
         }
         _ => return None,
     })
@@ -216,7 +218,7 @@ mod tests {
             .unwrap_err()
             .starts_with("Invalid keyword"));
         assert!(t
-            .set_style(&["f_x"])
+            .set_style(&["v_x"])
             .unwrap_err()
             .contains("not supported yet"));
         t.set_style(&["step", "c_rke"]).unwrap();

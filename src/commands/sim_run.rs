@@ -454,16 +454,56 @@ fn undump(a: &Args, ctx: &mut Ctx) -> Result {
 }
 
 fn run(a: &Args, ctx: &mut Ctx) -> Result {
-    a.count(1..=usize::MAX, "run N")?;
+    a.count(
+        1..=usize::MAX,
+        "run N [upto] [start N] [stop N] [post yes|no]",
+    )?;
     let n = a.int(0)?;
-    if n < 0 {
-        return Err(a.error(0, "Illegal run command"));
-    }
-    if a.len() > 1 {
-        return Err(a.unsupported(1, &format!("run keyword {}", a.word(1)?)));
+    let (mut upto, mut start, mut stop) = (false, None, None);
+    let mut i = 1;
+    while i < a.len() {
+        match a.word(i)? {
+            "upto" => {
+                upto = true;
+                i += 1;
+            }
+            "start" => {
+                start = Some(a.int(i + 1)?);
+                i += 2;
+            }
+            "stop" => {
+                stop = Some(a.int(i + 1)?);
+                i += 2;
+            }
+            "post" => {
+                // post no only shortens LIGGGHTS's timing summary, which regolith keeps short
+                a.word_in(i + 1, &["yes", "no"])?;
+                i += 2;
+            }
+            "pre" | "every" => return Err(a.unsupported(i, &format!("run keyword {}", a.word(i)?))),
+            _ => return Err(a.keyword_error(i, &["upto", "start", "stop", "pre", "post", "every"])),
+        }
     }
     if !ctx.sim.domain.exists {
         return Err(a.error(0, "Run command before simulation box is defined"));
+    }
+    let nsteps = if upto {
+        let delta = n - ctx.sim.step;
+        if delta < 0 {
+            return Err(a.error(0, "Invalid run command upto value"));
+        }
+        delta
+    } else {
+        if n < 0 {
+            return Err(a.error(0, "Invalid run command N value"));
+        }
+        n
+    };
+    if start.is_some_and(|s| s < 0 || s > ctx.sim.step) {
+        return Err(a.error(0, "Run command start value is after start of run"));
+    }
+    if stop.is_some_and(|s| s < ctx.sim.step + nsteps) {
+        return Err(a.error(0, "Run command stop value is before end of run"));
     }
     if ctx.sys.mode == Mode::Check {
         // a dry run validates the deck but never steps
@@ -472,9 +512,10 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     if ctx.sim.pair_selection.is_some() && !ctx.sim.pair_coeff_set {
         return Err(a.error(0, "All pair coeffs are not set"));
     }
+    ctx.sim.ramp_bounds = (start, stop);
     let out = &mut *ctx.out;
     let mut sink = |s: &str| out.both(s);
-    ctx.sim.run(n, &mut sink).map_err(|m| a.error(0, &m))
+    ctx.sim.run(nsteps, &mut sink).map_err(|m| a.error(0, &m))
 }
 
 /// The order LIGGGHTS requires for the model keywords of `pair_style gran`.

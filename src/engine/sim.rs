@@ -120,8 +120,10 @@ pub struct Simulation {
     pub thermo: Thermo,
     /// Dumps.
     pub dumps: Vec<Dump>,
-    /// First and last step of the run in progress.
+    /// First and last step of the run in progress (as `ramp()` sees them).
     pub run_bounds: Option<(i64, i64)>,
+    /// `run ... start N stop M`: override the bounds `ramp()` uses.
+    pub ramp_bounds: (Option<i64>, Option<i64>),
     /// Particles lost through fixed faces are dropped silently (`thermo_modify lost ignore`).
     pub lost_ignore: bool,
     /// Atom count at the last check (for the lost-atoms error).
@@ -158,6 +160,7 @@ impl Default for Simulation {
             thermo: Thermo::default(),
             dumps: Vec::new(),
             run_bounds: None,
+            ramp_bounds: (None, None),
             lost_ignore: false,
             natoms_expected: 0,
         }
@@ -442,7 +445,10 @@ impl Simulation {
         self.init_pair()?;
         let first = self.step;
         let last = self.step + nsteps;
-        self.run_bounds = Some((first, last));
+        self.run_bounds = Some((
+            self.ramp_bounds.0.unwrap_or(first),
+            self.ramp_bounds.1.unwrap_or(last),
+        ));
         self.atime_step = self.step;
         let started = std::time::Instant::now();
         // setup

@@ -188,7 +188,7 @@ fn gran_models_supported(cmd: &CommandLine, start: usize) -> bool {
     let mut k = start;
     while let (Some(key), Some(value)) = (cmd.arg(k), cmd.arg(k + 1)) {
         let ok = match key {
-            "model" => value == "hertz",
+            "model" => matches!(value, "hertz" | "hooke"),
             "tangential" => matches!(value, "history" | "no_history"),
             "cohesion" => matches!(value, "sjkr" | "off"),
             "rolling_friction" => matches!(value, "cdt" | "epsd" | "off"),

@@ -569,7 +569,7 @@ fn gran_models(
         last_key = Some(rank);
         let value = a.word(i + 1)?;
         match (key, value) {
-            ("model", "hertz") => sel.model = value.into(),
+            ("model", "hertz" | "hooke") => sel.model = value.into(),
             ("tangential", "history" | "no_history") => sel.tangential = value.into(),
             ("cohesion", "sjkr" | "off") => sel.cohesion = value.into(),
             ("rolling_friction", "cdt" | "epsd" | "off") => sel.rolling = value.into(),

@@ -386,6 +386,9 @@ impl Simulation {
             cohesion: get("cohesionEnergyDensity", true).ok(),
             rolling_friction: get("coefficientRollingFriction", true).ok(),
             rolling_viscous: get("coefficientRollingViscousDamping", true).ok(),
+            char_vel: self
+                .property("characteristicVelocity")
+                .and_then(|(_, _, v)| v.first().copied()),
         })
     }
 

@@ -12,6 +12,9 @@ pub struct Material {
     cohesion: Vec<f64>,
     rolling_friction: Vec<f64>,
     rolling_viscous: Vec<f64>,
+    restitution_log: Vec<f64>,
+    /// characteristicVelocity (length/time), NaN when not defined.
+    pub char_vel: f64,
 }
 
 /// The raw per-type inputs.
@@ -35,6 +38,8 @@ pub struct MaterialInput {
     pub rolling_friction: Option<Vec<f64>>,
     /// coefficientRollingViscousDamping per type pair, if defined.
     pub rolling_viscous: Option<Vec<f64>>,
+    /// characteristicVelocity (length/time), if defined.
+    pub char_vel: Option<f64>,
 }
 
 impl Material {
@@ -70,6 +75,7 @@ impl Material {
             cohesion: input.cohesion.clone().unwrap_or_default(),
             rolling_friction: input.rolling_friction.clone().unwrap_or_default(),
             rolling_viscous: input.rolling_viscous.clone().unwrap_or_default(),
+            char_vel: input.char_vel.unwrap_or(f64::NAN),
             ..Material::default()
         };
         for i in 0..n {
@@ -88,6 +94,7 @@ impl Material {
                 m.betaeff
                     .push(log_e / (log_e.powf(2.) + std::f64::consts::PI.powf(2.)).sqrt());
                 m.friction.push(input.friction[i * n + j]);
+                m.restitution_log.push(log_e);
             }
         }
         Ok(m)
@@ -134,6 +141,20 @@ impl Material {
             return Err(format!("Could not locate a fix/property storing value(s) for coefficientRollingViscousDamping as requested by {caller}."));
         }
         Ok(())
+    }
+
+    /// characteristicVelocity, or LIGGGHTS's error if the deck defines none.
+    pub fn characteristic_velocity(&self, caller: &str) -> Result<f64, String> {
+        if self.char_vel.is_nan() {
+            return Err(format!("Could not locate a fix/property storing value(s) for characteristicVelocity as requested by {caller}."));
+        }
+        Ok(self.char_vel)
+    }
+
+    /// ln(coefficient of restitution) of a type pair.
+    #[inline(always)]
+    pub fn restitution_log(&self, i: usize, j: usize) -> f64 {
+        self.at(&self.restitution_log, i, j)
     }
 
     /// Cohesion energy density (energy/volume).

@@ -333,10 +333,10 @@ pub fn build(
     frozen: u32,
 ) -> Result<Box<dyn PairInteraction>, String> {
     macro_rules! pair {
-        ($t:expr, $c:expr, $r:expr) => {{
-            check_models(&$c, &$r, &material)?;
+        ($n:expr, $t:expr, $c:expr, $r:expr) => {{
+            check_models(&$n, &$c, &$r, &material)?;
             Box::new(PairGran {
-                normal: hertz(sel, &sel.model)?,
+                normal: $n,
                 tangential: $t,
                 cohesion: $c,
                 rolling: $r,
@@ -350,28 +350,45 @@ pub fn build(
 }
 
 /// Checks each sub-model makes of the material tables.
-fn check_models<C: CohesionModel, R: RollingModel>(
+fn check_models<N: NormalModel, C: CohesionModel, R: RollingModel>(
+    _: &N,
     _: &C,
     _: &R,
     m: &Material,
 ) -> Result<(), String> {
+    N::check(m)?;
     C::check(m)?;
     R::check(m)
 }
 
-fn hertz(sel: &Selection, model: &str) -> Result<normal::Hertz, String> {
-    match model {
-        "hertz" => Ok(normal::Hertz {
-            tangential_damping: sel.tangential_damping,
-            limit_force: sel.limit_force,
-        }),
-        m => Err(format!("model {m}: not supported yet")),
-    }
-}
-
-/// Expand `$make!(tangential, cohesion, rolling)` for the selected combination.
+/// Expand `$make!(normal, tangential, cohesion, rolling)` for the selected combination: one
+/// monomorphised kernel per combination, chosen here once per run.
 macro_rules! dispatch {
     ($sel:expr, $make:ident) => {{
+        match $sel.model.as_str() {
+            "hertz" => {
+                let n = normal::Hertz {
+                    tangential_damping: $sel.tangential_damping,
+                    limit_force: $sel.limit_force,
+                };
+                dispatch_rest!($sel, $make, n)
+            }
+            "hooke" => {
+                let n = normal::Hooke {
+                    tangential_damping: $sel.tangential_damping,
+                    limit_force: $sel.limit_force,
+                };
+                dispatch_rest!($sel, $make, n)
+            }
+            m => Err(format!("model {m}: not supported yet")),
+        }
+    }};
+}
+use dispatch;
+
+/// The tangential, cohesion and rolling part of [`dispatch`].
+macro_rules! dispatch_rest {
+    ($sel:expr, $make:ident, $n:expr) => {{
         let sjkr = cohesion::Sjkr {
             tangential_reduce: $sel.tangential_reduce,
         };
@@ -390,16 +407,16 @@ macro_rules! dispatch {
                 $sel.cohesion.as_str(),
                 $sel.rolling.as_str(),
             ) {
-                ("history", "off", "off") => $make!(H, NoC, NoR),
-                ("history", "off", "cdt") => $make!(H, NoC, cdt),
-                ("history", "off", "epsd") => $make!(H, NoC, epsd),
-                ("history", "sjkr", "off") => $make!(H, sjkr, NoR),
-                ("history", "sjkr", "cdt") => $make!(H, sjkr, cdt),
-                ("history", "sjkr", "epsd") => $make!(H, sjkr, epsd),
-                ("no_history", "off", "off") => $make!(NH, NoC, NoR),
-                ("no_history", "off", "cdt") => $make!(NH, NoC, cdt),
-                ("no_history", "sjkr", "off") => $make!(NH, sjkr, NoR),
-                ("no_history", "sjkr", "cdt") => $make!(NH, sjkr, cdt),
+                ("history", "off", "off") => $make!($n, H, NoC, NoR),
+                ("history", "off", "cdt") => $make!($n, H, NoC, cdt),
+                ("history", "off", "epsd") => $make!($n, H, NoC, epsd),
+                ("history", "sjkr", "off") => $make!($n, H, sjkr, NoR),
+                ("history", "sjkr", "cdt") => $make!($n, H, sjkr, cdt),
+                ("history", "sjkr", "epsd") => $make!($n, H, sjkr, epsd),
+                ("no_history", "off", "off") => $make!($n, NH, NoC, NoR),
+                ("no_history", "off", "cdt") => $make!($n, NH, NoC, cdt),
+                ("no_history", "sjkr", "off") => $make!($n, NH, sjkr, NoR),
+                ("no_history", "sjkr", "cdt") => $make!($n, NH, sjkr, cdt),
                 (t, c, r) => {
                     return Err(format!(
                         "tangential {t} cohesion {c} rolling_friction {r}: not supported yet"
@@ -409,7 +426,7 @@ macro_rules! dispatch {
         )
     }};
 }
-use dispatch;
+use dispatch_rest;
 
 /// A flat primitive wall: the plane `x[axis] = position`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -548,10 +565,10 @@ pub fn build_wall(
     plane: Plane,
 ) -> Result<Box<dyn WallInteraction>, String> {
     macro_rules! wall {
-        ($t:expr, $c:expr, $r:expr) => {{
-            check_models(&$c, &$r, &material)?;
+        ($n:expr, $t:expr, $c:expr, $r:expr) => {{
+            check_models(&$n, &$c, &$r, &material)?;
             Box::new(WallGran {
-                normal: hertz(sel, &sel.model)?,
+                normal: $n,
                 tangential: $t,
                 cohesion: $c,
                 rolling: $r,

@@ -5,6 +5,10 @@ use crate::engine::granular::Contact;
 
 /// A normal model sets the normal force and the stiffness/damping the others use.
 pub trait NormalModel: Send + Sync {
+    /// Check that the material tables it needs exist.
+    fn check(_m: &Material) -> Result<(), String> {
+        Ok(())
+    }
     /// Compute the normal force of a contact and add it to both particles.
     fn force(&self, c: &mut Contact, m: &Material);
 }
@@ -38,6 +42,56 @@ impl NormalModel for Hertz {
         } else {
             0.0
         };
+        let fn_damping = -gamman * c.vn;
+        let fn_contact = kn * c.deltan;
+        let mut fn_total = fn_damping + fn_contact;
+        if self.limit_force && fn_total < 0.0 {
+            fn_total = 0.0;
+        }
+        c.fn_total = fn_total;
+        c.kn = kn;
+        c.kt = kt;
+        c.gamman = gamman;
+        c.gammat = gammat;
+        for d in 0..3 {
+            c.fi[d] += fn_total * c.en[d];
+        }
+        for d in 0..3 {
+            c.fj[d] += -c.fi[d];
+        }
+    }
+}
+
+/// Hooke (`model hooke`): a linear spring whose stiffness gives the Hertz collision time at
+/// the characteristic velocity, and a damping set by the restitution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hooke {
+    /// Damp the tangential spring with the normal damping (`tangential_damping on`).
+    pub tangential_damping: bool,
+    /// Never let the normal force attract (`limitForce on`).
+    pub limit_force: bool,
+}
+
+impl NormalModel for Hooke {
+    fn check(m: &Material) -> Result<(), String> {
+        m.characteristic_velocity("model hooke").map(|_| ())
+    }
+
+    #[inline(always)]
+    fn force(&self, c: &mut Contact, m: &Material) {
+        let (it, jt) = (c.itype, c.jtype);
+        let sqrtval = c.reff.sqrt();
+        let yeff = m.yeff(it, jt);
+        let cv = m.char_vel;
+        let meff = c.meff;
+        let kn =
+            16. / 15. * sqrtval * yeff * (15. * meff * cv * cv / (16. * sqrtval * yeff)).powf(0.2);
+        let kt = kn;
+        let ln_e = m.restitution_log(it, jt);
+        let ln_sq = ln_e * ln_e;
+        let gamman =
+            (4. * meff * kn * ln_sq / (ln_sq + std::f64::consts::PI * std::f64::consts::PI)).sqrt();
+        let gammat = if self.tangential_damping { gamman } else { 0.0 };
         let fn_damping = -gamman * c.vn;
         let fn_contact = kn * c.deltan;
         let mut fn_total = fn_damping + fn_contact;

@@ -153,7 +153,17 @@ pub fn is_supported(cmd: &CommandLine) -> bool {
             gran_models_supported(cmd, 3)
                 && (0..cmd.nargs()).any(|k| {
                     cmd.arg(k) == Some("primitive")
-                        && matches!(cmd.arg(k + 3), Some("xplane" | "yplane" | "zplane"))
+                        && matches!(
+                            cmd.arg(k + 3),
+                            Some(
+                                "xplane"
+                                    | "yplane"
+                                    | "zplane"
+                                    | "xcylinder"
+                                    | "ycylinder"
+                                    | "zcylinder"
+                            )
+                        )
                 })
         }
         "fix" => cmd

@@ -162,24 +162,39 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                     "Illegal fix wall/gran command: wall type out of range",
                 ));
             }
-            let axis = match a.word(next + 3)? {
-                "xplane" => 0,
-                "yplane" => 1,
-                "zplane" => 2,
+            use crate::engine::granular::Primitive;
+            let shape_word = a.word(next + 3)?;
+            let axis = |c: char| (c as usize) - ('x' as usize);
+            let (shape, used) = match shape_word {
+                "xplane" | "yplane" | "zplane" => (
+                    Primitive::Plane {
+                        axis: axis(shape_word.chars().next().unwrap()),
+                        position: a.real(next + 4)?,
+                    },
+                    5,
+                ),
+                "xcylinder" | "ycylinder" | "zcylinder" => (
+                    Primitive::Cylinder {
+                        axis: axis(shape_word.chars().next().unwrap()),
+                        radius: a.real(next + 4)?,
+                        c1: a.real(next + 5)?,
+                        c2: a.real(next + 6)?,
+                    },
+                    7,
+                ),
                 other => {
                     return Err(a.unsupported(next + 3, &format!("fix wall/gran primitive {other}")))
                 }
             };
-            let position = a.real(next + 4)?;
-            if a.len() > next + 5 {
+            if a.len() > next + used {
                 return Err(a.unsupported(
-                    next + 5,
-                    &format!("fix wall/gran keyword {}", a.word(next + 5)?),
+                    next + used,
+                    &format!("fix wall/gran keyword {}", a.word(next + used)?),
                 ));
             }
             FixKind::WallGran(crate::engine::fixes::WallFix {
                 selection,
-                plane: crate::engine::granular::Plane { axis, position },
+                plane: shape,
                 wall_type: wall_type as usize,
                 model: None,
                 history_name: format!("history_{id}"),

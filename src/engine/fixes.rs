@@ -239,7 +239,7 @@ pub struct WallFix {
     /// Selected contact models.
     pub selection: crate::engine::granular::Selection,
     /// The plane.
-    pub plane: crate::engine::granular::Plane,
+    pub plane: crate::engine::granular::Primitive,
     /// The wall's atom type (for material coefficients).
     pub wall_type: usize,
     /// Built at each run from the current materials.

@@ -428,13 +428,72 @@ macro_rules! dispatch_rest {
 }
 use dispatch_rest;
 
-/// A flat primitive wall: the plane `x[axis] = position`.
+/// A primitive wall (`primitive type T xplane|...|zcylinder ...`), lengths in box units.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Plane {
-    /// 0, 1 or 2 for xplane, yplane, zplane.
-    pub axis: usize,
-    /// Position of the plane (length).
-    pub position: f64,
+pub enum Primitive {
+    /// The plane `x[axis] = position`.
+    Plane {
+        /// 0, 1 or 2 for xplane, yplane, zplane.
+        axis: usize,
+        /// Position of the plane.
+        position: f64,
+    },
+    /// An infinite cylinder along `axis` through (c1, c2) in the other two coordinates.
+    Cylinder {
+        /// 0, 1 or 2 for xcylinder, ycylinder, zcylinder.
+        axis: usize,
+        /// Radius.
+        radius: f64,
+        /// Centre coordinate along the axis after `axis` (cyclically).
+        c1: f64,
+        /// Centre coordinate along the second axis after `axis`.
+        c2: f64,
+    },
+}
+
+impl Primitive {
+    /// LIGGGHTS's contact resolution: the gap (negative when overlapping) and the vector from
+    /// the particle centre towards the wall.
+    #[inline(always)]
+    fn resolve(&self, pos: [f64; 3], r: f64) -> (f64, [f64; 3]) {
+        let mut delta = [0.0; 3];
+        match *self {
+            Primitive::Plane { axis, position } => {
+                delta[axis] = position - pos[axis];
+                let gap = if pos[axis] > position {
+                    pos[axis] - position - r
+                } else {
+                    position - pos[axis] - r
+                };
+                (gap, delta)
+            }
+            Primitive::Cylinder {
+                axis,
+                radius,
+                c1,
+                c2,
+            } => {
+                let (y, z) = ((axis + 1) % 3, (axis + 2) % 3);
+                let dy = pos[y] - c1;
+                let dz = pos[z] - c2;
+                let dist = (dy * dy + dz * dz).sqrt();
+                if dist.abs() < 1e-13 {
+                    return (0.0, delta);
+                }
+                if dist > radius {
+                    let fact = (dist - radius) / dist;
+                    delta[y] = -dy * fact;
+                    delta[z] = -dz * fact;
+                    (dist - radius - r, delta)
+                } else {
+                    let fact = (radius - dist) / dist;
+                    delta[y] = dy * fact;
+                    delta[z] = dz * fact;
+                    (radius - dist - r, delta)
+                }
+            }
+        }
+    }
 }
 
 /// Wall contacts of particles with a primitive wall (`fix wall/gran ... primitive`).
@@ -466,8 +525,8 @@ pub struct WallGran<N, T, C, R> {
     pub material: Material,
     /// The wall's atom type.
     pub wall_type: usize,
-    /// The plane.
-    pub plane: Plane,
+    /// The wall's shape.
+    pub plane: Primitive,
 }
 
 impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> WallInteraction
@@ -486,19 +545,13 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Wall
         update: bool,
     ) {
         let w = T::HISTORY + R::HISTORY;
-        let ax = self.plane.axis;
         for i in 0..p.len() {
             if p.mask[i] & group == 0 {
                 continue;
             }
             let radi = p.radius[i];
-            let pos = p.x[i][ax];
-            // LIGGGHTS's plane contact: signed gap minus the radius (negative = overlap)
-            let gap = if pos > self.plane.position {
-                pos - self.plane.position - radi
-            } else {
-                self.plane.position - pos - radi
-            };
+            // LIGGGHTS's primitive contact: gap (negative = overlap) and centre-to-wall vector
+            let (gap, towards) = self.plane.resolve(p.x[i], radi);
             let h = &mut history[i * w..(i + 1) * w];
             if gap > 0.0 {
                 if h.iter().any(|v| *v != 0.0) {
@@ -507,8 +560,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Wall
                 continue;
             }
             let passed_deltan = -gap;
-            let mut delta = [0.0; 3];
-            delta[ax] = -(self.plane.position - pos);
+            let delta = [-towards[0], -towards[1], -towards[2]];
             let r = radi - passed_deltan;
             let rinv = 1.0 / r;
             let mut c = Contact {
@@ -562,7 +614,7 @@ pub fn build_wall(
     sel: &Selection,
     material: Material,
     wall_type: usize,
-    plane: Plane,
+    plane: Primitive,
 ) -> Result<Box<dyn WallInteraction>, String> {
     macro_rules! wall {
         ($n:expr, $t:expr, $c:expr, $r:expr) => {{

@@ -172,3 +172,33 @@ fn check_does_not_blame_follow_on_effects_of_unsupported_commands() {
     );
     assert_eq!(out.status.code(), Some(1));
 }
+
+#[test]
+fn blow_up_guard_stops_with_step_atoms_and_cause() {
+    // stiff spheres driven together with a time step far beyond the Hertz time
+    let dir = scratch("blowup");
+    std::fs::write(
+        dir.join("in.t"),
+        "atom_style granular\natom_modify map array\nboundary f f f\nnewton off\n\
+         communicate single vel yes\nunits si\nregion b block -1 1 -1 1 -1 1 units box\n\
+         create_box 1 b\nneighbor 0.01 bin\nneigh_modify delay 0\nhard_particles yes\n\
+         fix m1 all property/global youngsModulus peratomtype 1e11\n\
+         fix m2 all property/global poissonsRatio peratomtype 0.3\n\
+         fix m3 all property/global coefficientRestitution peratomtypepair 1 0.9\n\
+         fix m4 all property/global coefficientFriction peratomtypepair 1 0.5\n\
+         pair_style gran model hertz tangential history\npair_coeff * *\n\
+         create_atoms 1 single -0.04 0 0 units box\ncreate_atoms 1 single 0.04 0 0 units box\n\
+         set group all diameter 0.05 density 7800\nset atom 1 vx 5\nset atom 2 vx -5\n\
+         fix i all nve/sphere\ntimestep 1e-3\nrun 50\n",
+    )
+    .unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"], None);
+    assert_eq!(out.status.code(), Some(1));
+    let err = text(&out.stderr);
+    assert!(err.contains("blow-up at step"), "{err}");
+    assert!(
+        err.contains("atoms 1 and 2") || err.contains("atom 1") || err.contains("atom 2"),
+        "{err}"
+    );
+    assert!(err.contains("time step"), "{err}");
+}

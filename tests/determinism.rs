@@ -10,7 +10,7 @@ boundary p p f
 newton off
 communicate single vel yes
 units si
-region reg block 0 0.036 0 0.036 0 0.03 units box
+region reg block 0 0.0372 0 0.0372 0 0.03 units box
 create_box 1 reg
 neighbor 0.0005 bin
 neigh_modify delay 0
@@ -25,7 +25,7 @@ pair_style gran model hertz tangential history cohesion sjkr rolling_friction ep
 pair_coeff * *
 fix floor all wall/gran model hertz tangential history cohesion sjkr rolling_friction epsd primitive type 1 zplane 0.0
 lattice sc 0.00248
-region pile block 0 0.036 0 0.036 0.0013 0.02 units box
+region pile block 0 0.0372 0 0.0372 0.0013 0.02 units box
 create_atoms 1 region pile
 set group all diameter 0.0025 density 2500
 displace_atoms all random 0.00003 0.00003 0.00003 15485863

@@ -40,6 +40,10 @@ impl Default for NeighborSettings {
 pub trait PairInteraction: Send {
     /// Doubles of history kept per listed pair (0 when the model keeps none).
     fn history_width(&self) -> usize;
+    /// The largest overlap of the last evaluation as (overlap / smaller radius, i, j).
+    fn worst_overlap(&self) -> Option<(f64, u32, u32)> {
+        None
+    }
     /// Add pair forces and torques to `p.f`/`p.torque` for the listed pairs.
     /// `update` is false in the setup evaluation: contact history is used but not advanced.
     fn compute(
@@ -167,10 +171,58 @@ impl Default for Simulation {
     }
 }
 
+/// Overlap, as a fraction of the smaller radius, beyond which a run is stopped as blown up.
+pub const MAX_OVERLAP: f64 = 0.5;
+
 /// Where the time loop writes screen/log text.
 pub type Sink<'a> = &'a mut dyn FnMut(&str);
 
 impl Simulation {
+    /// The blow-up guard: stop when a position, velocity or force is not finite, or when two
+    /// particles overlap by more than [`MAX_OVERLAP`] of the smaller radius.
+    fn guard(&self) -> Result<(), String> {
+        let p = &self.particles;
+        let bad = (0..p.len()).find(|&i| {
+            !(p.x[i]
+                .iter()
+                .chain(&p.v[i])
+                .chain(&p.f[i])
+                .all(|v| v.is_finite()))
+        });
+        if let Some(i) = bad {
+            return Err(format!(
+                "blow-up at step {}: atom {} has a non-finite position, velocity or force (x = {:?}, v = {:?}, f = {:?}); \
+                 the time step is probably too large for the stiffness (check Young's modulus, or use fix check/timestep/gran)",
+                self.step, p.id[i], p.x[i], p.v[i], p.f[i]
+            ));
+        }
+        let dt = self.dt;
+        let runaway = (0..p.len()).find(|&i| {
+            let v = p.v[i];
+            (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() * dt > p.radius[i] && p.radius[i] > 0.0
+        });
+        if let Some(i) = runaway {
+            return Err(format!(
+                "blow-up at step {}: atom {} moves further than its radius in one time step (|v| dt > r); \
+                 the time step is probably too large for the stiffness (check Young's modulus, or use fix check/timestep/gran)",
+                self.step, p.id[i]
+            ));
+        }
+        if let Some((ratio, i, j)) = self.pair.as_ref().and_then(|m| m.worst_overlap()) {
+            if ratio > MAX_OVERLAP {
+                return Err(format!(
+                    "blow-up at step {}: atoms {} and {} overlap by {:.0} % of the smaller radius; \
+                     the time step is probably too large for the stiffness, or particles were created overlapping",
+                    self.step,
+                    p.id[i as usize],
+                    p.id[j as usize],
+                    ratio * 100.0
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// The `end_of_step` phase: fixes that check or report every N steps.
     fn end_of_step(&mut self, out: Sink<'_>) {
         let (step, dt, skin) = (self.step, self.dt, self.neighbor.skin);
@@ -459,6 +511,7 @@ impl Simulation {
         self.build_neighbors();
         // LIGGGHTS's setup evaluation does not advance contact history
         self.compute_forces(false);
+        self.guard()?;
         self.thermo.run_start = first;
         self.thermo.header(out);
         self.thermo_line(out);
@@ -466,11 +519,14 @@ impl Simulation {
         for _ in 0..nsteps {
             self.step += 1;
             fixes::initial_integrate(&self.fixes, &mut self.particles, self.step, self.dt);
+            // a runaway shows first in the half-kicked velocities, before atoms are wrapped or lost
+            self.guard()?;
             if self.decide() {
                 self.pbc_and_box()?;
                 self.build_neighbors();
             }
             self.compute_forces(true);
+            self.guard()?;
             fixes::final_integrate(&self.fixes, &mut self.particles, self.dt);
             self.end_of_step(out);
             if self.thermo.due(self.step, last) {

@@ -98,6 +98,8 @@ pub struct PairGran<N, T, C, R> {
     pub frozen: u32,
     /// Per-pair results of the current step (reused between steps).
     pub results: Vec<PairResult>,
+    /// The largest overlap of the last evaluation: (ratio to the smaller radius, i, j).
+    pub worst: Option<(f64, u32, u32)>,
 }
 
 /// What one listed pair contributes: forces and torques on both particles.
@@ -113,12 +115,21 @@ pub struct PairResult {
     pub ti: [f64; 3],
     /// Torque on j.
     pub tj: [f64; 3],
+    /// Overlap as a fraction of the smaller radius (for the blow-up guard).
+    pub overlap_ratio: f64,
 }
 
 /// Below this many listed pairs the contact loop stays on one thread.
 const PARALLEL_PAIRS: usize = 2048;
 
 impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> PairGran<N, T, C, R> {
+    #[inline(always)]
+    fn note_overlap(&mut self, pair: &Pair, ratio: f64) {
+        if self.worst.is_none_or(|w| ratio > w.0) {
+            self.worst = Some((ratio, pair.i, pair.j));
+        }
+    }
+
     /// The contribution of one listed pair; `h` is its history.
     #[inline(always)]
     fn pair_result(
@@ -181,6 +192,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             fj: c.fj,
             ti: c.ti,
             tj: c.tj,
+            overlap_ratio: c.deltan / radi.min(radj),
         }
     }
 }
@@ -192,6 +204,10 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         T::HISTORY + R::HISTORY
     }
 
+    fn worst_overlap(&self) -> Option<(f64, u32, u32)> {
+        self.worst
+    }
+
     fn compute(
         &mut self,
         p: &mut Particles,
@@ -201,6 +217,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         update: bool,
     ) {
         let width = T::HISTORY + R::HISTORY;
+        self.worst = None;
         if pairs.len() < PARALLEL_PAIRS || rayon::current_num_threads() == 1 {
             // one thread: compute and add each pair in list order (the same sums as below)
             let mut empty: [f64; 0] = [];
@@ -213,6 +230,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
                 let res = self.pair_result(p, pair, h, dt, update);
                 if res.touching {
                     add_pair(p, pair, &res);
+                    self.note_overlap(pair, res.overlap_ratio);
                 }
             }
             return;
@@ -241,6 +259,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         for (res, pair) in results.iter().zip(pairs) {
             if res.touching {
                 add_pair(p, pair, res);
+                self.note_overlap(pair, res.overlap_ratio);
             }
         }
         self.results = results;
@@ -343,6 +362,7 @@ pub fn build(
                 material,
                 frozen,
                 results: Vec::new(),
+                worst: None,
             }) as Box<dyn PairInteraction>
         }};
     }

@@ -199,7 +199,7 @@ fn gran_models_supported(cmd: &CommandLine, start: usize) -> bool {
     while let (Some(key), Some(value)) = (cmd.arg(k), cmd.arg(k + 1)) {
         let ok = match key {
             "model" => matches!(value, "hertz" | "hooke"),
-            "tangential" => matches!(value, "history" | "no_history"),
+            "tangential" => matches!(value, "history" | "no_history" | "history_total_cap"),
             "cohesion" => matches!(value, "sjkr" | "off"),
             "rolling_friction" => matches!(value, "cdt" | "epsd" | "off"),
             "surface" => value == "default",

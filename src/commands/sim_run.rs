@@ -585,7 +585,9 @@ fn gran_models(
         let value = a.word(i + 1)?;
         match (key, value) {
             ("model", "hertz" | "hooke") => sel.model = value.into(),
-            ("tangential", "history" | "no_history") => sel.tangential = value.into(),
+            ("tangential", "history" | "no_history" | "history_total_cap") => {
+                sel.tangential = value.into()
+            }
             ("cohesion", "sjkr" | "off") => sel.cohesion = value.into(),
             ("rolling_friction", "cdt" | "epsd" | "off") => sel.rolling = value.into(),
             ("surface", "default") => {}

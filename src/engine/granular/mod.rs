@@ -420,7 +420,7 @@ macro_rules! dispatch_rest {
         };
         use cohesion::NoCohesion as NoC;
         use rolling::NoRolling as NoR;
-        use tangential::{History as H, NoHistory as NH};
+        use tangential::{History as H, HistoryTotalCap as HC, NoHistory as NH};
         Ok(
             match (
                 $sel.tangential.as_str(),
@@ -433,6 +433,10 @@ macro_rules! dispatch_rest {
                 ("history", "sjkr", "off") => $make!($n, H, sjkr, NoR),
                 ("history", "sjkr", "cdt") => $make!($n, H, sjkr, cdt),
                 ("history", "sjkr", "epsd") => $make!($n, H, sjkr, epsd),
+                ("history_total_cap", "off", "off") => $make!($n, HC, NoC, NoR),
+                ("history_total_cap", "sjkr", "epsd") => $make!($n, HC, sjkr, epsd),
+                ("history_total_cap", "off", "epsd") => $make!($n, HC, NoC, epsd),
+                ("history_total_cap", "off", "cdt") => $make!($n, HC, NoC, cdt),
                 ("no_history", "off", "off") => $make!($n, NH, NoC, NoR),
                 ("no_history", "off", "cdt") => $make!($n, NH, NoC, cdt),
                 ("no_history", "sjkr", "off") => $make!($n, NH, sjkr, NoR),

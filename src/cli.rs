@@ -20,6 +20,8 @@ pub struct DeckOptions {
     pub nocite: bool,
     /// `-seedtolerant`: accept random seeds that are not large primes.
     pub seed_tolerant: bool,
+    /// regolith extension `-zero_restitution`: allow coefficients of restitution down to 0.
+    pub zero_restitution: bool,
     /// `-restart RESTART DATAFILE`: convert a restart file to a data file and exit.
     pub restart_to_data: Option<(String, String)>,
     /// `-help`.
@@ -73,6 +75,7 @@ pub const FLAGS: &[&str] = &[
     "-uid",
     "-thermo",
     "-wb",
+    "-zero_restitution",
 ];
 
 fn usage(message: impl Into<String>, help: Option<String>) -> UsageError {
@@ -140,6 +143,10 @@ pub fn parse_deck_flags(args: &[String]) -> Result<DeckOptions, UsageError> {
             }
             "-seedtolerant" | "-st" => {
                 o.seed_tolerant = true;
+                i += 1;
+            }
+            "-zero_restitution" => {
+                o.zero_restitution = true;
                 i += 1;
             }
             "-help" | "-h" => {

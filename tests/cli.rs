@@ -202,3 +202,45 @@ fn blow_up_guard_stops_with_step_atoms_and_cause() {
     );
     assert!(err.contains("time step"), "{err}");
 }
+
+#[test]
+fn zero_restitution_needs_the_extension_flag_and_then_kills_the_rebound() {
+    let dir = scratch("zero_e");
+    std::fs::write(
+        dir.join("in.t"),
+        "atom_style granular\natom_modify map array\nboundary f f f\nnewton off\n\
+         communicate single vel yes\nunits si\nregion b block -1 1 -1 1 -1 1 units box\n\
+         create_box 1 b\nneighbor 0.001 bin\nneigh_modify delay 0\n\
+         fix m1 all property/global youngsModulus peratomtype 5e6\n\
+         fix m2 all property/global poissonsRatio peratomtype 0.2\n\
+         fix m3 all property/global coefficientRestitution peratomtypepair 1 0.0\n\
+         fix m4 all property/global coefficientFriction peratomtypepair 1 0.5\n\
+         pair_style gran model hertz tangential history\npair_coeff * *\n\
+         create_atoms 1 single -0.0101 0 0 units box\ncreate_atoms 1 single 0.0101 0 0 units box\n\
+         set group all diameter 0.02 density 2500\nset atom 1 vx 0.5\nset atom 2 vx -0.5\n\
+         fix i all nve/sphere\ntimestep 1e-6\nrun 20000\n\
+         print \"rebound $(vx[2]-vx[1])\"\n",
+    )
+    .unwrap();
+    let refused = regolith(&dir, &["-in", "in.t", "-log", "none"], None);
+    assert_eq!(refused.status.code(), Some(1));
+    assert!(
+        text(&refused.stderr).contains("-zero_restitution"),
+        "{}",
+        text(&refused.stderr)
+    );
+    let out = regolith(
+        &dir,
+        &["-in", "in.t", "-log", "none", "-zero_restitution"],
+        None,
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("rebound "))
+        .expect("rebound printed");
+    let rebound: f64 = line[8..].trim().parse().unwrap();
+    // approach speed 1 m/s; critically damped contact: separation speed nearly zero
+    assert!((0.0..0.05).contains(&rebound), "{line}");
+}

@@ -116,6 +116,8 @@ pub struct Simulation {
     pub comm_vel: bool,
     /// `-seedtolerant`: random seeds need not be primes above 10000.
     pub seed_tolerant: bool,
+    /// regolith extension `-zero_restitution`: restitution may go down to 0.
+    pub zero_restitution: bool,
     /// Fixes in definition order.
     pub fixes: Vec<Fix>,
     /// Computes in definition order.
@@ -159,6 +161,7 @@ impl Default for Simulation {
             soft_hard: (false, false),
             comm_vel: false,
             seed_tolerant: false,
+            zero_restitution: false,
             fixes: Vec::new(),
             computes: Vec::new(),
             thermo: Thermo::default(),
@@ -435,6 +438,7 @@ impl Simulation {
             friction: get("coefficientFriction", true)?,
             soft: self.soft_hard.0,
             hard: self.soft_hard.1,
+            zero_restitution: self.zero_restitution,
             cohesion: get("cohesionEnergyDensity", true).ok(),
             rolling_friction: get("coefficientRollingFriction", true).ok(),
             rolling_viscous: get("coefficientRollingViscousDamping", true).ok(),

@@ -32,6 +32,8 @@ pub struct MaterialInput {
     pub soft: bool,
     /// `hard_particles yes`: allow E > 1e9.
     pub hard: bool,
+    /// regolith extension (`-zero_restitution`): allow 0 <= e <= 0.05.
+    pub zero_restitution: bool,
     /// cohesionEnergyDensity per type pair (energy/volume), if defined.
     pub cohesion: Option<Vec<f64>>,
     /// coefficientRollingFriction per type pair, if defined.
@@ -66,8 +68,9 @@ impl Material {
             }
         }
         for &e in &input.restitution {
-            if e <= 0.05 || e > 1.0 {
-                return Err("0.05 < coefficientRestitution <= 1 required".into());
+            let low_ok = input.zero_restitution && e >= 0.0;
+            if (e <= 0.05 && !low_ok) || e > 1.0 {
+                return Err("0.05 < coefficientRestitution <= 1 required (regolith: run with -zero_restitution to allow values down to 0)".into());
             }
         }
         let mut m = Material {
@@ -91,8 +94,13 @@ impl Material {
                 m.geff
                     .push(1. / (2. * (2. - vi) * (1. + vi) / yi + 2. * (2. - vj) * (1. + vj) / yj));
                 let log_e = input.restitution[i * n + j].ln();
-                m.betaeff
-                    .push(log_e / (log_e.powf(2.) + std::f64::consts::PI.powf(2.)).sqrt());
+                // e = 0 (extension) is the limit of critical damping: beta = -1
+                let beta = if log_e.is_infinite() {
+                    -1.0
+                } else {
+                    log_e / (log_e.powf(2.) + std::f64::consts::PI.powf(2.)).sqrt()
+                };
+                m.betaeff.push(beta);
                 m.friction.push(input.friction[i * n + j]);
                 m.restitution_log.push(log_e);
             }
@@ -179,5 +187,43 @@ impl Material {
     #[inline(always)]
     pub fn friction(&self, i: usize, j: usize) -> f64 {
         self.at(&self.friction, i, j)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn input(e: f64, zero: bool) -> MaterialInput {
+        MaterialInput {
+            youngs: vec![5e6],
+            poisson: vec![0.2],
+            restitution: vec![e],
+            friction: vec![0.5],
+            soft: false,
+            hard: false,
+            cohesion: None,
+            rolling_friction: None,
+            rolling_viscous: None,
+            char_vel: None,
+            zero_restitution: zero,
+        }
+    }
+
+    #[test]
+    fn restitution_limits_and_zero_extension() {
+        assert!(Material::new(&input(0.0, false))
+            .unwrap_err()
+            .contains("0.05 < coefficientRestitution <= 1"));
+        assert!(Material::new(&input(1.01, true)).is_err());
+        let m = Material::new(&input(0.0, true)).unwrap();
+        assert_eq!(m.betaeff(1, 1), -1.0);
+        let tiny = Material::new(&input(1e-300, true)).unwrap();
+        assert!((tiny.betaeff(1, 1) + 1.0).abs() < 1e-4);
+        let half = Material::new(&input(0.5, false)).unwrap();
+        let l = 0.5f64.ln();
+        assert!(
+            (half.betaeff(1, 1) - l / (l * l + std::f64::consts::PI.powi(2)).sqrt()).abs() < 1e-15
+        );
     }
 }

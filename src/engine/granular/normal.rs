@@ -89,8 +89,12 @@ impl NormalModel for Hooke {
         let kt = kn;
         let ln_e = m.restitution_log(it, jt);
         let ln_sq = ln_e * ln_e;
-        let gamman =
-            (4. * meff * kn * ln_sq / (ln_sq + std::f64::consts::PI * std::f64::consts::PI)).sqrt();
+        let gamman = if ln_e.is_infinite() {
+            // e = 0 (extension): the limit of the expression below, critical damping
+            (4. * meff * kn).sqrt()
+        } else {
+            (4. * meff * kn * ln_sq / (ln_sq + std::f64::consts::PI * std::f64::consts::PI)).sqrt()
+        };
         let gammat = if self.tangential_damping { gamman } else { 0.0 };
         let fn_damping = -gamman * c.vn;
         let fn_contact = kn * c.deltan;

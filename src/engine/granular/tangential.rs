@@ -168,6 +168,7 @@ mod tests {
             rolling_friction: None,
             rolling_viscous: None,
             char_vel: None,
+            zero_restitution: false,
         })
         .unwrap()
     }

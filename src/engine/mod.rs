@@ -2,6 +2,7 @@
 //! computes and the integrator. Commands in [`crate::commands`] configure it.
 
 pub mod computes;
+pub mod contact;
 pub mod domain;
 pub mod fixes;
 pub mod granular;

@@ -6,6 +6,9 @@ use crate::commands::suggest::did_you_mean;
 use crate::commands::CommandLine;
 use crate::error::Diagnostic;
 
+/// Commands LIGGGHTS 3.8.0 lacks that regolith accepts (newer LAMMPS spellings users type).
+pub const EXTENSION_COMMANDS: &[&str] = &["comm_modify"];
+
 /// Commands whose argument at `index` (0-based, after the command name) is a style name.
 const STYLED: &[(&str, usize, NameKind, &str)] = &[
     ("atom_style", 0, NameKind::AtomStyle, "atom_style STYLE ..."),
@@ -66,7 +69,7 @@ fn unknown(kind: NameKind, word: &str, cmd: &CommandLine, index: usize) -> Diagn
 /// Check that the command and any style or contact sub-model it names exist in LIGGGHTS 3.8.0.
 pub fn validate_names(cmd: &CommandLine) -> Result<(), Diagnostic> {
     let name = cmd.name();
-    if !names::COMMANDS.contains(&name) {
+    if !names::COMMANDS.contains(&name) && !EXTENSION_COMMANDS.contains(&name) {
         let help =
             did_you_mean(name, names::COMMANDS).unwrap_or_else(|| "a LIGGGHTS command".into());
         return Err(

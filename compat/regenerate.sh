@@ -10,31 +10,47 @@ if ! command -v liggghts >/dev/null; then
     exit 1
 fi
 
-# Script-language decks: compat/script/in.NAME, side files in compat/script/NAME.inputs/.
-# References: NAME.out (stdout without the banner line), NAME.status (exit status),
-# NAME.log (log file without the banner line) and NAME.files/ (every file the deck wrote).
+# Script-language decks (tests/compat_script.rs compares regolith against these).
+#   compat/script/in.NAME          the deck; run as `liggghts -in <absolute path> -log none -echo none`
+#                                  in a fresh empty directory, environment without REGOLITH_COMPAT_*
+#   compat/script/NAME.inputs/     optional side files, copied into that directory first
+# References written here:
+#   NAME.out     stdout minus the banner line; cut after the first line starting with ERROR
+#                (LIGGGHTS follows it with a random "tip of the day" from a dangling pointer)
+#   NAME.status  exit status (error->all, error->one and quit all give 1)
+#   NAME.files/  every file the deck created or changed in its directory (log, print, shell)
+# Decks named err_* end in a LIGGGHTS error. stdout is line-buffered (stdbuf -oL), as on a
+# terminal: otherwise MPI_Abort (error->one) loses buffered output and output of `shell`
+# subprocesses lands before earlier prints.
 script_references() {
     local dir="$here/script"
+    command -v stdbuf >/dev/null || { echo "stdbuf (coreutils) not found" >&2; exit 1; }
+    local compat_vars=()
+    mapfile -t compat_vars < <(env | sed -n 's/^\(REGOLITH_COMPAT_[A-Za-z0-9_]*\)=.*/-u\n\1/p')
+    # start from scratch (deck names must not end in .out, .status, .files or .inputs)
+    find "$dir" -maxdepth 1 -type f \( -name '*.out' -o -name '*.status' \) ! -name 'in.*' -delete
+    find "$dir" -maxdepth 1 -type d -name '*.files' ! -name 'in.*' -exec rm -rf {} +
+    local deck
     for deck in "$dir"/in.*; do
         local name="${deck##*/in.}"
         local work
         work="$(mktemp -d)"
-        cp "$deck" "$work/"
         if [ -d "$dir/$name.inputs" ]; then cp -r "$dir/$name.inputs/." "$work/"; fi
         local status=0
-        (cd "$work" && env -u REGOLITH_COMPAT_SET liggghts -in "in.$name" -log log.txt \
-            > stdout.txt 2> /dev/null) || status=$?
-        tail -n +2 "$work/stdout.txt" | tr -d '\000' > "$dir/$name.out"
+        (cd "$work" && env "${compat_vars[@]}" stdbuf -oL liggghts -in "$deck" -log none -echo none \
+            > "$work.stdout" 2> /dev/null) || status=$?
+        tail -n +2 "$work.stdout" | tr -d '\000' | awk 'cut { next } { print } /^ERROR/ { cut = 1 }' > "$dir/$name.out"
+        rm -f "$work.stdout"
         echo "$status" > "$dir/$name.status"
-        if [ -f "$work/log.txt" ]; then tail -n +2 "$work/log.txt" | tr -d '\000' > "$dir/$name.log"; else rm -f "$dir/$name.log"; fi
-        rm -rf "$dir/$name.files"
         (
             cd "$work"
-            rm -f stdout.txt log.txt "in.$name"
+            # keep what the deck created or changed; drop untouched side files and empty dirs
             if [ -d "$dir/$name.inputs" ]; then
-                (cd "$dir/$name.inputs" && find . -type f) | while read -r f; do rm -f "$f"; done
+                (cd "$dir/$name.inputs" && find . -type f) | while read -r f; do
+                    if cmp -s "$f" "$dir/$name.inputs/$f"; then rm -f "$f"; fi
+                done
             fi
-            find . -type d -empty -delete
+            find . -mindepth 1 -type d -empty -delete
             if [ -n "$(find . -mindepth 1 -print -quit)" ]; then
                 mkdir -p "$dir/$name.files"
                 cp -r . "$dir/$name.files/"

@@ -549,19 +549,45 @@ impl Interpreter {
         if args[1] != "then" {
             return Err(at_arg(illegal("if", "'then' after the condition"), cmd, 1));
         }
-        // split into (condition, commands) branches; `else` has no condition
-        let mut branches: Vec<(Option<String>, Vec<String>)> = Vec::new();
-        let mut i = 2;
+        // LIGGGHTS reads the branches lazily: a true branch runs without the rest being
+        // looked at, and only reaching the end after a false `elif` is an error
+        let scan = |from: usize| {
+            let mut k = from;
+            while k < args.len() && args[k] != "elif" && args[k] != "else" {
+                k += 1;
+            }
+            k
+        };
         let mut condition = Some(args[0].clone());
+        let mut first = 2;
+        let mut end = scan(first);
         loop {
-            let start = i;
-            while i < args.len() && args[i] != "elif" && args[i] != "else" {
-                i += 1;
+            let truth = match &condition {
+                None => Some(true),
+                Some(c) => self.condition(c)?,
+            };
+            let commands = &args[first..end];
+            match truth {
+                Some(true) => {
+                    if commands.is_empty() || commands.iter().any(String::is_empty) {
+                        return Err(illegal("if", "a non-empty command for each branch"));
+                    }
+                    return self.run_branch(commands);
+                }
+                Some(false) => {}
+                None => {
+                    // check mode, condition unknown: check this branch's commands without
+                    // acting on them and keep looking at the others
+                    self.uncertain = true;
+                    for c in commands {
+                        self.check_only(c);
+                    }
+                }
             }
-            branches.push((condition.take(), args[start..i].to_vec()));
-            if i >= args.len() {
-                break;
+            if condition.is_some() && first == 2 && end == args.len() {
+                return Ok(()); // no elif or else
             }
+            let i = end;
             if i + 2 > args.len() {
                 return Err(at_arg(
                     illegal(
@@ -569,40 +595,18 @@ impl Interpreter {
                         "a condition and command after elif, a command after else",
                     ),
                     cmd,
-                    i,
+                    i.min(args.len().saturating_sub(1)),
                 ));
             }
             if args[i] == "elif" {
                 condition = Some(args[i + 1].clone());
-                i += 2;
+                first = i + 2;
             } else {
-                i += 1;
+                condition = None;
+                first = i + 1;
             }
+            end = scan(first);
         }
-        for (condition, commands) in branches {
-            let truth = match condition {
-                None => Some(true),
-                Some(c) => self.condition(&c)?,
-            };
-            match truth {
-                Some(false) => continue,
-                Some(true) => {
-                    if commands.is_empty() || commands.iter().any(String::is_empty) {
-                        return Err(illegal("if", "a non-empty command for each branch"));
-                    }
-                    return self.run_branch(&commands);
-                }
-                None => {
-                    // check mode, condition unknown: check this branch's commands without
-                    // acting on them and keep looking at the others
-                    self.uncertain = true;
-                    for c in &commands {
-                        self.check_only(c);
-                    }
-                }
-            }
-        }
-        Ok(())
     }
 
     /// Evaluate an `if`/`elif` condition; None when check mode cannot know it.
@@ -700,8 +704,15 @@ impl Interpreter {
             i += 2;
         }
         let line = if newline { format!("{text}\n") } else { text };
-        for (name, append) in &files {
-            self.sys.write(name, &line, *append).map_err(|e| {
+        // as LIGGGHTS: each file/append keyword opens its file (file truncates), but only the
+        // last one opened receives the text
+        for (k, (name, append)) in files.iter().enumerate() {
+            let content = if k + 1 == files.len() {
+                line.as_str()
+            } else {
+                ""
+            };
+            self.sys.write(name, content, *append).map_err(|e| {
                 Diagnostic::error(format!("Cannot open print file {name}")).with_help(e)
             })?;
         }

@@ -89,8 +89,8 @@ pub struct Variable {
     /// Its style.
     pub style: Style,
     values: Vec<String>,
-    which: usize,
-    count: usize,
+    which: i64,
+    count: i64,
     pad: usize,
     file: Option<FileValues>,
 }
@@ -239,13 +239,13 @@ impl Variables {
                     _ => Style::Universe,
                 };
                 let mut v = new(style, rest.to_vec());
-                v.count = rest.len();
+                v.count = rest.len() as i64;
                 let (worlds, me) = host.partitions();
                 if style == Style::World {
-                    if v.count != worlds {
+                    if v.count != worlds as i64 {
                         return Err("World variable count doesn't match # of partitions".into());
                     }
-                    v.which = me;
+                    v.which = me as i64;
                 }
                 if style == Style::Universe {
                     self.universe_checks(&v, host)?;
@@ -279,9 +279,10 @@ impl Variables {
                     }
                     _ => return Err(illegal()),
                 };
+                // LIGGGHTS stores which = N1 - 1 and count = N2, so N1 may be negative
                 let mut v = new(Style::Loop, Vec::new());
-                v.count = last as usize;
-                v.which = (first - 1).max(0) as usize;
+                v.count = last;
+                v.which = first - 1;
                 if padded {
                     v.pad = pad_width(last);
                 }
@@ -298,7 +299,7 @@ impl Variables {
                 }
                 let n = parse_int(&rest[0])?;
                 let mut v = new(Style::Uloop, Vec::new());
-                v.count = n.max(0) as usize;
+                v.count = n.max(0);
                 if padded {
                     v.pad = pad_width(n);
                 }
@@ -358,7 +359,7 @@ impl Variables {
 
     fn universe_checks(&self, v: &Variable, host: &mut dyn VariableHost) -> Result<(), String> {
         let (worlds, me) = host.partitions();
-        if v.count < worlds {
+        if v.count < worlds as i64 {
             return Err("Universe/uloop variable count < # of partitions".into());
         }
         let _ = me;
@@ -426,7 +427,7 @@ impl Variables {
                     None => true,
                 },
                 Style::Universe | Style::Uloop => {
-                    v.which = universe_index.unwrap_or(0);
+                    v.which = universe_index.unwrap_or(0) as i64;
                     v.which >= v.count
                 }
                 _ => false,
@@ -451,7 +452,7 @@ impl Variables {
         }
         Some(match v.style {
             Style::Index | Style::World | Style::Universe | Style::String | Style::File => {
-                Value::Text(v.values[v.which].clone())
+                Value::Text(v.values[v.which.max(0) as usize].clone())
             }
             Style::Loop | Style::Uloop => {
                 let n = v.which + 1;

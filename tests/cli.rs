@@ -244,3 +244,24 @@ fn zero_restitution_needs_the_extension_flag_and_then_kills_the_rebound() {
     // approach speed 1 m/s; critically damped contact: separation speed nearly zero
     assert!((0.0..0.05).contains(&rebound), "{line}");
 }
+
+#[test]
+fn check_handles_lattice_regions_and_script_commands_in_unknown_branches() {
+    let dir = scratch("lattice_if");
+    std::fs::write(
+        dir.join("in.t"),
+        "atom_style granular\nlattice sc 0.002\nregion b block 0 10 0 10 0 10 units lattice\n\
+         create_box 1 b\nvariable s equal step\nlabel again\n\
+         if \"${s} > 5\" then \"variable s delete\" \"jump SELF done\"\nlabel done\n\
+         compute r all reduce max x\n",
+    )
+    .unwrap();
+    let out = regolith(&dir, &["check", "in.t"], None);
+    // only the genuinely unsupported compute: the lattice region is fine, and the script
+    // commands inside the branch a dry run cannot decide are the interpreter's own
+    assert_eq!(
+        text(&out.stdout),
+        "in.t:9: compute reduce: not supported yet\n"
+    );
+    assert_eq!(out.status.code(), Some(3));
+}

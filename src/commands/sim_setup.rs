@@ -154,7 +154,12 @@ fn region(a: &Args, ctx: &mut Ctx) -> Result {
     let d = &ctx.sim.domain;
     let rctx = RegionContext {
         bounds: d.exists.then_some((d.lo, d.hi)),
-        lattice: None,
+        lattice: ctx
+            .sim
+            .lattice
+            .as_ref()
+            .filter(|l| !l.1.is_empty() || l.0 > 0.0)
+            .map(|l| [l.0; 3]),
     };
     ctx.sim.regions.define(&words, rctx).map_err(|m| {
         if m.ends_with("not supported yet") {

@@ -15,6 +15,23 @@ use crate::script::system::{Mode, System};
 use crate::script::variables::{c_atof, Value, Variables};
 use crate::script::{expr, format};
 
+/// Commands the interpreter executes itself (the script language).
+pub const SCRIPT_COMMANDS: &[&str] = &[
+    "clear",
+    "echo",
+    "if",
+    "include",
+    "jump",
+    "label",
+    "log",
+    "next",
+    "partition",
+    "print",
+    "quit",
+    "shell",
+    "variable",
+];
+
 /// How deeply `include` may nest input files.
 pub const MAX_INCLUDE_DEPTH: usize = 64;
 
@@ -652,8 +669,8 @@ impl Interpreter {
         let Ok(words) = line::split_words(&stripped) else {
             return;
         };
-        if words.is_empty() {
-            return;
+        if words.is_empty() || SCRIPT_COMMANDS.contains(&words[0].text.as_str()) {
+            return; // the interpreter's own commands: nothing for the engine to check
         }
         let cmd = CommandLine {
             words,

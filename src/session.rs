@@ -51,7 +51,7 @@ pub fn check_deck(source: Source, opts: &DeckOptions) -> Vec<Diagnostic> {
 /// Check a deck as if run from folder `cwd` (default: the current directory).
 pub fn check_deck_in(source: Source, opts: &DeckOptions, cwd: Option<&Path>) -> Vec<Diagnostic> {
     let mut interp = Interpreter::new(Mode::Check, Output::silent());
-    interp.engine.seed_tolerant = opts.seed_tolerant;
+    interp.engine.sim.seed_tolerant = opts.seed_tolerant;
     interp.engine.sim.zero_restitution = opts.zero_restitution;
     if let Some(dir) = cwd {
         interp.sys.cwd = dir.to_path_buf();
@@ -157,7 +157,7 @@ pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
     };
     out.both(&banner());
     let mut interp = Interpreter::new(Mode::Run, out);
-    interp.engine.seed_tolerant = opts.seed_tolerant;
+    interp.engine.sim.seed_tolerant = opts.seed_tolerant;
     interp.engine.sim.zero_restitution = opts.zero_restitution;
     for (name, values) in &opts.vars {
         if let Err(d) = interp.set_command_line_variable(name, values) {

@@ -126,13 +126,6 @@ pub struct Engine {
     /// Check mode only: an unsupported command was skipped, so the engine state no longer
     /// matches what LIGGGHTS would have; later commands are only name-checked.
     pub diverged: bool,
-    /// Current timestep number.
-    pub timestep: i64,
-    /// Time-step size (s in SI units).
-    pub dt: f64,
-    /// Accept random seeds that are not primes above 10000 (`-seedtolerant`).
-    pub seed_tolerant: bool,
-    property_globals: Vec<String>,
 }
 
 impl Default for Engine {
@@ -147,18 +140,16 @@ impl Engine {
         Engine {
             sim: Simulation::default(),
             diverged: false,
-            timestep: 0,
-            dt: 0.005,
-            seed_tolerant: false,
-            property_globals: Vec::new(),
         }
     }
 
     /// The `clear` command: forget the simulation, keep the variables and settings.
     pub fn clear(&mut self) {
-        let tolerant = self.seed_tolerant;
+        // command-line switches survive `clear`
+        let (tolerant, zero_e) = (self.sim.seed_tolerant, self.sim.zero_restitution);
         *self = Engine::new();
-        self.seed_tolerant = tolerant;
+        self.sim.seed_tolerant = tolerant;
+        self.sim.zero_restitution = zero_e;
     }
 
     /// Whether `create_box` (or a restart/data file) has defined the simulation box.
@@ -177,7 +168,6 @@ impl Engine {
         let _ = vars;
         validate_names(cmd)?;
         let check = sys.mode == Mode::Check;
-        self.sim.seed_tolerant = self.seed_tolerant;
         let args = Args { cmd };
         let mut ctx = Ctx {
             sim: &mut self.sim,
@@ -187,8 +177,6 @@ impl Engine {
         let handled = sim_setup::execute(cmd.name(), &args, &mut ctx)
             .or_else(|| sim_run::execute(cmd.name(), &args, &mut ctx));
         if let Some(result) = handled {
-            self.timestep = self.sim.step;
-            self.dt = self.sim.dt;
             if let Err(d) = &result {
                 if check && d.severity == crate::error::Severity::Unsupported {
                     self.diverged = true;
@@ -218,7 +206,7 @@ impl Engine {
 
     /// True if a `fix property/global` with this variable name exists (the `if property_X` test).
     pub fn has_property_global(&self, name: &str) -> bool {
-        self.property_globals.iter().any(|p| p == name)
+        self.sim.property(name).is_some()
     }
 
     /// Group functions of formulas: `count(g)`, `mass(g)`, `xcm(g,dim)`, `vcm(g,dim)`,

@@ -3,7 +3,7 @@
 
 use crate::commands::{Args, Ctx};
 use crate::engine::domain::parse_boundary;
-use crate::engine::numbers::{inumeric, numeric};
+use crate::engine::numbers::inumeric;
 use crate::engine::region::RegionContext;
 use crate::error::Diagnostic;
 
@@ -832,9 +832,4 @@ fn reset_timestep(a: &Args, ctx: &mut Ctx) -> Result {
     }
     ctx.sim.reset_timestep(n);
     Ok(())
-}
-
-/// `numeric` on a word, for callers outside this module.
-pub fn real(word: &str) -> std::result::Result<f64, String> {
-    numeric(word)
 }

@@ -26,6 +26,19 @@ pub struct Compute {
     pub kind: ComputeKind,
 }
 
+/// Translational kinetic energy of the particles in `group`, summed as LIGGGHTS's
+/// `compute ke` does: 0.5 * sum m v^2 (energy).
+pub fn kinetic_energy(p: &Particles, group: u32) -> f64 {
+    let mut sum = 0.0;
+    for i in 0..p.len() {
+        if p.mask[i] & group != 0 {
+            let v = p.v[i];
+            sum += p.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        }
+    }
+    sum * 0.5
+}
+
 /// Compute styles regolith evaluates.
 pub const STYLES: &[&str] = &["erotate/sphere", "ke"];
 
@@ -46,16 +59,7 @@ impl Compute {
                 }
                 sum * (0.5 * 1.0 * SPHERE_INERTIA)
             }
-            ComputeKind::Ke => {
-                let mut sum = 0.0;
-                for i in 0..p.len() {
-                    if p.mask[i] & self.group != 0 {
-                        let v = p.v[i];
-                        sum += p.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-                    }
-                }
-                sum * (0.5 * 1.0)
-            }
+            ComputeKind::Ke => kinetic_energy(p, self.group),
         })
     }
 

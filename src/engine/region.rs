@@ -86,6 +86,20 @@ fn cross_axes(axis: usize) -> (usize, usize) {
     }
 }
 
+/// Bounds of a body of revolution along `axis`: radius `r` around (c1, c2), from lo to hi.
+fn axial_box(axis: usize, c1: f64, c2: f64, r: f64, lo: f64, hi: f64) -> ([f64; 3], [f64; 3]) {
+    let (a1, a2) = cross_axes(axis);
+    let mut l = [0.0; 3];
+    let mut h = [0.0; 3];
+    l[axis] = lo;
+    h[axis] = hi;
+    l[a1] = c1 - r;
+    h[a1] = c1 + r;
+    l[a2] = c2 - r;
+    h[a2] = c2 + r;
+    (l, h)
+}
+
 /// What a region definition needs to know about the box and lattice.
 #[derive(Debug, Clone, Copy)]
 pub struct RegionContext {
@@ -360,18 +374,7 @@ impl Regions {
                 radius,
                 lo,
                 hi,
-            } => {
-                let (a1, a2) = cross_axes(*axis);
-                let mut l = [0.0; 3];
-                let mut h = [0.0; 3];
-                l[*axis] = *lo;
-                h[*axis] = *hi;
-                l[a1] = c1 - radius;
-                h[a1] = c1 + radius;
-                l[a2] = c2 - radius;
-                h[a2] = c2 + radius;
-                Some((l, h))
-            }
+            } => Some(axial_box(*axis, *c1, *c2, *radius, *lo, *hi)),
             Shape::Sphere { centre, radius } => Some((
                 [centre[0] - radius, centre[1] - radius, centre[2] - radius],
                 [centre[0] + radius, centre[1] + radius, centre[2] + radius],
@@ -384,19 +387,7 @@ impl Regions {
                 radhi,
                 lo,
                 hi,
-            } => {
-                let (a1, a2) = cross_axes(*axis);
-                let r = radlo.max(*radhi);
-                let mut l = [0.0; 3];
-                let mut h = [0.0; 3];
-                l[*axis] = *lo;
-                h[*axis] = *hi;
-                l[a1] = c1 - r;
-                h[a1] = c1 + r;
-                l[a2] = c2 - r;
-                h[a2] = c2 + r;
-                Some((l, h))
-            }
+            } => Some(axial_box(*axis, *c1, *c2, radlo.max(*radhi), *lo, *hi)),
             Shape::Prism { .. } | Shape::Plane { .. } => None,
             Shape::Intersect(m) => {
                 let boxes: Vec<_> = m.iter().filter_map(|&i| self.extent(i)).collect();

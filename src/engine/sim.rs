@@ -181,35 +181,36 @@ pub const MAX_OVERLAP: f64 = 0.5;
 pub type Sink<'a> = &'a mut dyn FnMut(&str);
 
 impl Simulation {
-    /// The blow-up guard: stop when a position, velocity or force is not finite, or when two
-    /// particles overlap by more than [`MAX_OVERLAP`] of the smaller radius.
-    fn guard(&self) -> Result<(), String> {
+    /// The blow-up guard on motion, run after each half-kick (before atoms are wrapped or
+    /// lost): a position or velocity that is not finite, or a particle that moves more than
+    /// its radius in one step, stops the run. One pass over the particles.
+    fn guard_motion(&self) -> Result<(), String> {
         let p = &self.particles;
-        let bad = (0..p.len()).find(|&i| {
-            !(p.x[i]
-                .iter()
-                .chain(&p.v[i])
-                .chain(&p.f[i])
-                .all(|v| v.is_finite()))
-        });
-        if let Some(i) = bad {
-            return Err(format!(
-                "blow-up at step {}: atom {} has a non-finite position, velocity or force (x = {:?}, v = {:?}, f = {:?}); \
-                 the time step is probably too large for the stiffness (check Young's modulus, or use fix check/timestep/gran)",
-                self.step, p.id[i], p.x[i], p.v[i], p.f[i]
-            ));
-        }
         let dt = self.dt;
-        let runaway = (0..p.len()).find(|&i| {
+        for i in 0..p.len() {
             let v = p.v[i];
-            (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() * dt > p.radius[i] && p.radius[i] > 0.0
-        });
-        if let Some(i) = runaway {
-            return Err(format!(
-                "blow-up at step {}: atom {} moves further than its radius in one time step (|v| dt > r); \
-                 the time step is probably too large for the stiffness (check Young's modulus, or use fix check/timestep/gran)",
-                self.step, p.id[i]
-            ));
+            if !p.x[i].iter().chain(&v).all(|c| c.is_finite()) {
+                return Err(self.non_finite(i));
+            }
+            if p.radius[i] > 0.0
+                && (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() * dt > p.radius[i]
+            {
+                return Err(format!(
+                    "blow-up at step {}: atom {} moves further than its radius in one time step (|v| dt > r); \
+                     the time step is probably too large for the stiffness (check Young's modulus, or use fix check/timestep/gran)",
+                    self.step, p.id[i]
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The blow-up guard on forces, run after each force evaluation: a force that is not
+    /// finite, or two particles overlapping by more than [`MAX_OVERLAP`] of the smaller radius.
+    fn guard_forces(&self) -> Result<(), String> {
+        let p = &self.particles;
+        if let Some(i) = (0..p.len()).find(|&i| !p.f[i].iter().all(|c| c.is_finite())) {
+            return Err(self.non_finite(i));
         }
         if let Some((ratio, i, j)) = self.pair.as_ref().and_then(|m| m.worst_overlap()) {
             if ratio > MAX_OVERLAP {
@@ -224,6 +225,15 @@ impl Simulation {
             }
         }
         Ok(())
+    }
+
+    fn non_finite(&self, i: usize) -> String {
+        let p = &self.particles;
+        format!(
+            "blow-up at step {}: atom {} has a non-finite position, velocity or force (x = {:?}, v = {:?}, f = {:?}); \
+             the time step is probably too large for the stiffness (check Young's modulus, or use fix check/timestep/gran)",
+            self.step, p.id[i], p.x[i], p.v[i], p.f[i]
+        )
     }
 
     /// The `end_of_step` phase: fixes that check or report every N steps.
@@ -515,7 +525,8 @@ impl Simulation {
         self.build_neighbors();
         // LIGGGHTS's setup evaluation does not advance contact history
         self.compute_forces(false);
-        self.guard()?;
+        self.guard_motion()?;
+        self.guard_forces()?;
         self.thermo.run_start = first;
         self.thermo.header(out);
         self.thermo_line(out);
@@ -524,13 +535,13 @@ impl Simulation {
             self.step += 1;
             fixes::initial_integrate(&self.fixes, &mut self.particles, self.step, self.dt);
             // a runaway shows first in the half-kicked velocities, before atoms are wrapped or lost
-            self.guard()?;
+            self.guard_motion()?;
             if self.decide() {
                 self.pbc_and_box()?;
                 self.build_neighbors();
             }
             self.compute_forces(true);
-            self.guard()?;
+            self.guard_forces()?;
             fixes::final_integrate(&self.fixes, &mut self.particles, self.dt);
             self.end_of_step(out);
             if self.thermo.due(self.step, last) {

@@ -147,18 +147,6 @@ impl Thermo {
     }
 }
 
-/// Kinetic energy of translation, summed as LIGGGHTS's `compute ke` does (mass units x
-/// velocity^2).
-pub fn kinetic_energy(sim: &Simulation) -> f64 {
-    let p = &sim.particles;
-    let mut ke = 0.0;
-    for i in 0..p.len() {
-        let v = p.v[i];
-        ke += p.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    }
-    ke * 0.5
-}
-
 /// The value of a thermo keyword, or None if regolith does not evaluate it.
 pub fn keyword_value(keyword: &str, sim: &Simulation, thermo: &Thermo) -> Option<f64> {
     let d = &sim.domain;
@@ -171,7 +159,7 @@ pub fn keyword_value(keyword: &str, sim: &Simulation, thermo: &Thermo) -> Option
         "dt" => sim.dt,
         "time" => sim.time(),
         "cpu" => thermo.started.elapsed().as_secs_f64(),
-        "ke" => norm(kinetic_energy(sim)),
+        "ke" => norm(crate::engine::computes::kinetic_energy(&sim.particles, 1)),
         "vol" => d.length(0) * d.length(1) * d.length(2),
         "lx" => d.length(0),
         "ly" => d.length(1),

@@ -12,7 +12,7 @@ use crate::error::{Diagnostic, Location, Severity};
 use crate::script::line::{self, LexError, VarRef, Word};
 use crate::script::scope::{Scope, UNKNOWN_QUERY};
 use crate::script::system::{Mode, System};
-use crate::script::variables::{c_atof, Value, Variables};
+use crate::script::variables::{Value, Variables};
 use crate::script::{expr, format};
 
 /// Commands the interpreter executes itself (the script language).
@@ -828,9 +828,4 @@ pub fn bounds(text: &str, nmax: i64) -> Result<(i64, i64), String> {
         return Err(bad());
     }
     Ok((lo, hi))
-}
-
-/// Value of an equal-style or plain variable as a number (C `atof` of its text).
-pub fn numeric_text(text: &str) -> f64 {
-    c_atof(text)
 }

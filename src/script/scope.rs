@@ -146,7 +146,7 @@ impl ExprContext for Scope<'_> {
     }
 
     fn timestep(&self) -> i64 {
-        self.engine.timestep
+        self.engine.sim.step
     }
 
     fn run_bounds(&self) -> Option<(i64, i64)> {
@@ -154,11 +154,11 @@ impl ExprContext for Scope<'_> {
     }
 
     fn dt(&self) -> f64 {
-        self.engine.dt
+        self.engine.sim.dt
     }
 
     fn rng(&mut self, seed: i32, per_atom: bool) -> Result<&mut RanMars, String> {
-        let tolerant = self.engine.seed_tolerant;
+        let tolerant = self.engine.sim.seed_tolerant;
         let slot = if per_atom {
             &mut self.vars.random_atom
         } else {

@@ -201,10 +201,16 @@ fn gran_models_supported(cmd: &CommandLine, start: usize) -> bool {
     let mut k = start;
     while let (Some(key), Some(value)) = (cmd.arg(k), cmd.arg(k + 1)) {
         let ok = match key {
-            "model" => matches!(value, "hertz" | "hooke"),
-            "tangential" => matches!(value, "history" | "no_history" | "history_total_cap"),
-            "cohesion" => matches!(value, "sjkr" | "off"),
-            "rolling_friction" => matches!(value, "cdt" | "epsd" | "off"),
+            "model" => matches!(
+                value,
+                "hertz" | "hooke" | "hertz/stiffness" | "hooke/stiffness"
+            ),
+            "tangential" => matches!(
+                value,
+                "history" | "no_history" | "history_total_cap" | "off"
+            ),
+            "cohesion" => matches!(value, "sjkr" | "sjkr2" | "off"),
+            "rolling_friction" => matches!(value, "cdt" | "epsd" | "epsd2" | "epsd3" | "off"),
             "surface" => value == "default",
             _ => break,
         };

@@ -186,16 +186,44 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                     return Err(a.unsupported(next + 3, &format!("fix wall/gran primitive {other}")))
                 }
             };
-            if a.len() > next + used {
-                return Err(a.unsupported(
-                    next + used,
-                    &format!("fix wall/gran keyword {}", a.word(next + used)?),
-                ));
+            // general keywords, then on/off model settings in any order
+            let mut selection = selection;
+            let mut shear = None;
+            let mut k = next + used;
+            while k < a.len() {
+                match a.word(k)? {
+                    "shear" => {
+                        let dim = match a.word(k + 1)? {
+                            "x" => 0,
+                            "y" => 1,
+                            "z" => 2,
+                            _ => return Err(a.error(k + 1, "Fix wall/gran: illegal 'shear' dim")),
+                        };
+                        shear = Some((dim, a.real(k + 2)?));
+                        k += 3;
+                    }
+                    "store_force" | "store_force_contact" | "store_force_contact_stress" => {
+                        if a.word_in(k + 1, &["yes", "no"])? == "yes" {
+                            return Err(
+                                a.unsupported(k, &format!("fix wall/gran {} yes", a.word(k)?))
+                            );
+                        }
+                        k += 2;
+                    }
+                    _ => break,
+                }
             }
+            let rest: Vec<&str> = (k..a.len())
+                .map(|i| a.word(i))
+                .collect::<std::result::Result<_, _>>()?;
+            selection
+                .apply_settings(&rest)
+                .map_err(|m| a.error(k, &format!("Fix wall/gran: {m}")))?;
             FixKind::WallGran(crate::engine::fixes::WallFix {
                 selection,
                 plane: shape,
                 wall_type: wall_type as usize,
+                shear,
                 model: None,
                 history_name: format!("history_{id}"),
             })
@@ -533,100 +561,52 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     ctx.sim.run(nsteps, &mut sink).map_err(|m| a.error(0, &m))
 }
 
-/// The order LIGGGHTS requires for the model keywords of `pair_style gran`.
-const MODEL_KEYS: &[&str] = &[
-    "model",
-    "tangential",
-    "cohesion",
-    "rolling_friction",
-    "surface",
-];
-
-/// Parse `model M tangential T ... [option on|off ...]` starting at argument `start`;
-/// returns the selection and the index after it.
+/// Parse `model M tangential T ... [option on|off ...]` starting at argument `start` in
+/// LIGGGHTS's fixed keyword order; returns the selection and the index after the on/off
+/// settings. Without a `tangential` keyword the model is `default_tangential`.
 fn gran_models(
     a: &Args,
     start: usize,
     default_tangential: &str,
     what: &str,
 ) -> std::result::Result<(crate::engine::granular::Selection, usize), Diagnostic> {
-    let mut sel = crate::engine::granular::Selection {
-        model: String::new(),
-        tangential: default_tangential.into(),
-        tangential_damping: true,
-        limit_force: false,
-        cohesion: "off".into(),
-        rolling: "off".into(),
-        tangential_reduce: false,
-        torsion_torque: false,
-    };
-    let mut i = start;
-    let mut last_key = None;
-    while i < a.len() {
-        let key = a.word(i)?;
-        let Some(rank) = MODEL_KEYS.iter().position(|k| *k == key) else {
-            break;
-        };
-        if let Some(l) = last_key.filter(|&l| rank <= l) {
-            return Err(a
-                .error(
-                    i,
-                    &format!(
-                        "Illegal {what} command: '{key}' must come before '{}'",
-                        MODEL_KEYS[l]
-                    ),
-                )
-                .with_help(format!(
-                    "model keywords go in the order {}",
-                    MODEL_KEYS.join(", ")
-                )));
-        }
-        last_key = Some(rank);
-        let value = a.word(i + 1)?;
-        match (key, value) {
-            ("model", "hertz" | "hooke") => sel.model = value.into(),
-            ("tangential", "history" | "no_history" | "history_total_cap") => {
-                sel.tangential = value.into()
-            }
-            ("cohesion", "sjkr" | "off") => sel.cohesion = value.into(),
-            ("rolling_friction", "cdt" | "epsd" | "off") => sel.rolling = value.into(),
-            ("surface", "default") => {}
-            _ => return Err(a.unsupported(i + 1, &format!("{what} {key} {value}"))),
-        }
-        i += 2;
+    use crate::engine::granular::Selection;
+    let words: Vec<&str> = (start..a.len())
+        .map(|i| a.word(i))
+        .collect::<std::result::Result<_, _>>()?;
+    let (mut sel, used) = Selection::select(&words).map_err(|m| a.error(start, &m))?;
+    if !words[..used].contains(&"tangential") {
+        sel.tangential = default_tangential.into();
     }
-    if sel.model.is_empty() {
+    if sel.normal == "off" {
         return Err(a.error(
             start,
             "Invalid model specified (check for typos and enable at least one model)",
         ));
     }
-    while i < a.len() {
-        let key = a.word(i)?;
-        if !matches!(
-            key,
-            "tangential_damping"
-                | "limitForce"
-                | "heating_normal_hertz"
-                | "computeElasticPotential"
-                | "computeDissipatedEnergy"
-                | "disableNormalWhenBonded"
-                | "heating_tangential_history"
-        ) {
-            break;
-        }
-        let on = matches!(a.word_in(i + 1, &["on", "off", "yes", "no"])?, "on" | "yes");
-        match key {
-            "tangential_damping" => sel.tangential_damping = on,
-            "limitForce" => sel.limit_force = on,
-            "tangential_reduce" => sel.tangential_reduce = on,
-            "torsionTorque" => sel.torsion_torque = on,
-            _ if !on => {}
-            _ => return Err(a.unsupported(i, &format!("{what} option {key}"))),
-        }
-        i += 2;
+    // on/off settings follow until the first word that is not a setting name
+    let mut end = used;
+    while end + 1 < words.len() && matches!(words[end + 1], "on" | "off" | "yes" | "no") {
+        end += 2;
     }
-    Ok((sel, i))
+    let settings: Vec<&str> = words[used..end]
+        .iter()
+        .map(|w| match *w {
+            "yes" => "on",
+            "no" => "off",
+            w => w,
+        })
+        .collect();
+    sel.apply_settings(&settings).map_err(|m| {
+        a.error(start + used, &m).with_help(format!(
+            "{what}: model keywords go in the order model, tangential, cohesion, rolling_friction, surface, then on/off settings"
+        ))
+    })?;
+    crate::engine::contact::AnyContactModel::new(&sel).map_err(|m| {
+        let m = m.trim_end_matches(" is not supported by regolith");
+        a.unsupported(start, &format!("{what} {m}"))
+    })?;
+    Ok((sel, start + end))
 }
 
 fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {

@@ -242,6 +242,9 @@ pub struct WallFix {
     pub plane: crate::engine::granular::Primitive,
     /// The wall's atom type (for material coefficients).
     pub wall_type: usize,
+    /// `shear dim vshear`: the wall surface moves along `dim` at `vshear` (m/s); for a
+    /// cylinder sheared across its axis, it turns about the axis at `vshear` (rad/s).
+    pub shear: Option<(usize, f64)>,
     /// Built at each run from the current materials.
     pub model: Option<Box<dyn crate::engine::granular::WallInteraction>>,
     /// Name of the per-particle history array (`history_<fix ID>`, as in LIGGGHTS restarts).

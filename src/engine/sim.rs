@@ -362,23 +362,35 @@ impl Simulation {
 
     /// Build the contact models (pair and walls) from the current material properties.
     fn init_pair(&mut self) -> Result<(), String> {
-        use crate::engine::granular::{self, material::Material};
+        use crate::engine::contact::material::mix_yeff;
+        use crate::engine::granular;
+        let input = self.material_input();
         for k in 0..self.fixes.len() {
             if let FixKind::CheckTimestep(_) = &self.fixes[k].kind {
-                let sel = self
-                    .pair_selection
+                if self.pair_selection.is_none() {
+                    return Err(
+                        "Fix check/timestep/gran can only be used together with: gran".into(),
+                    );
+                }
+                let missing = |name: &str| {
+                    format!("Could not locate a fix/property storing value(s) for {name} as requested by fix check/timestep/gran.")
+                };
+                let youngs = input
+                    .youngs_modulus
                     .clone()
-                    .ok_or("Fix check/timestep/gran can only be used together with: gran")?;
-                let input = self.material_input(&sel.model)?;
-                let material = Material::new(&input)?;
+                    .ok_or_else(|| missing("youngsModulus"))?;
+                let poisson = input
+                    .poissons_ratio
+                    .clone()
+                    .ok_or_else(|| missing("poissonsRatio"))?;
                 let n = self.ntypes as usize;
+                if youngs.len() < n || poisson.len() < n {
+                    return Err("fix check/timestep/gran: youngsModulus and poissonsRatio need one value per atom type".into());
+                }
                 let materials = (0..n)
                     .map(|t| {
-                        (
-                            input.youngs[t],
-                            input.poisson[t],
-                            material.yeff(t + 1, t + 1),
-                        )
+                        let (y, nu) = (youngs[t], poisson[t]);
+                        (y, nu, mix_yeff(y, y, nu, nu))
                     })
                     .collect();
                 let every = self.thermo.every;
@@ -396,17 +408,19 @@ impl Simulation {
                 }
             }
         }
+        let two_d = false; // `dimension 2` is rejected at parse time
         for k in 0..self.fixes.len() {
             if let FixKind::WallGran(wall) = &self.fixes[k].kind {
-                let material = Material::new(&self.material_input(&wall.selection.model)?)?;
+                let mut sel = wall.selection.clone();
+                sel.options.two_d = two_d;
                 let model =
-                    granular::build_wall(&wall.selection, material, wall.wall_type, wall.plane)?;
+                    granular::build_wall(&sel, &input, wall.wall_type, wall.plane, wall.shear)?;
                 if let FixKind::WallGran(wall) = &mut self.fixes[k].kind {
                     wall.model = Some(model);
                 }
             }
         }
-        let Some(sel) = self.pair_selection.clone() else {
+        let Some(mut sel) = self.pair_selection.clone() else {
             self.pair = None;
             return Ok(());
         };
@@ -416,46 +430,42 @@ impl Simulation {
         if !self.comm_vel {
             return Err("Pair granular requires ghost atoms store velocity".into());
         }
-        let material = Material::new(&self.material_input(&sel.model)?)?;
+        sel.options.two_d = two_d;
         let frozen = fixes::frozen_groups(&self.fixes);
-        self.pair = Some(granular::build(&sel, material, frozen)?);
+        self.pair = Some(granular::build(&sel, &input, frozen)?);
         Ok(())
     }
 
-    /// The per-type material inputs from the `fix property/global` definitions.
-    fn material_input(
-        &self,
-        model: &str,
-    ) -> Result<crate::engine::granular::material::MaterialInput, String> {
-        let n = self.ntypes as usize;
-        let caller = format!("model {model}");
-        let get = |name: &str, per_pair: bool| -> Result<Vec<f64>, String> {
-            let (_, _, values) = self.property(name).ok_or_else(|| {
-                format!("Could not locate a fix/property storing value(s) for {name} as requested by {caller}.")
-            })?;
-            let want = if per_pair { n * n } else { n };
-            if values.len() < want {
-                return Err(format!(
-                    "fix property/global {name}: expected {want} values for {n} atom types"
-                ));
-            }
-            Ok(values[..want].to_vec())
-        };
-        Ok(crate::engine::granular::material::MaterialInput {
-            youngs: get("youngsModulus", false)?,
-            poisson: get("poissonsRatio", false)?,
-            restitution: get("coefficientRestitution", true)?,
-            friction: get("coefficientFriction", true)?,
-            soft: self.soft_hard.0,
-            hard: self.soft_hard.1,
-            zero_restitution: self.zero_restitution,
-            cohesion: get("cohesionEnergyDensity", true).ok(),
-            rolling_friction: get("coefficientRollingFriction", true).ok(),
-            rolling_viscous: get("coefficientRollingViscousDamping", true).ok(),
-            char_vel: self
-                .property("characteristicVelocity")
-                .and_then(|(_, _, v)| v.first().copied()),
-        })
+    /// The material inputs from the `fix property/global` definitions (each present one,
+    /// whether or not a model will ask for it).
+    fn material_input(&self) -> crate::engine::contact::MaterialInput {
+        let table = |name: &str| self.property(name).map(|(_, _, v)| v);
+        let scalar = |name: &str| table(name).and_then(|v| v.first().copied());
+        crate::engine::contact::MaterialInput {
+            ntypes: self.ntypes as usize,
+            units: crate::engine::contact::UnitStyle::Si,
+            soft_particles: self.soft_hard.0,
+            hard_particles: self.soft_hard.1,
+            allow_zero_restitution: self.zero_restitution,
+            youngs_modulus: table("youngsModulus"),
+            poissons_ratio: table("poissonsRatio"),
+            coefficient_restitution: table("coefficientRestitution"),
+            coefficient_friction: table("coefficientFriction"),
+            coefficient_rolling_friction: table("coefficientRollingFriction"),
+            coefficient_rolling_viscous_damping: table("coefficientRollingViscousDamping"),
+            cohesion_energy_density: table("cohesionEnergyDensity"),
+            characteristic_velocity: scalar("characteristicVelocity"),
+            rolling_stiffness: scalar("rollingStiffness"),
+            kn: table("kn"),
+            kt: table("kt"),
+            gamman: table("gamman"),
+            gammat: table("gammat"),
+            gamman_abs: table("gamman_abs"),
+            gammat_abs: table("gammat_abs"),
+            fluid_viscosity: table("FluidViscosity"),
+            maximum_restitution: table("MaximumRestitution"),
+            critical_stokes: table("CriticalStokes"),
+        }
     }
 
     /// LIGGGHTS's `Neighbor::decide`: rebuild now?

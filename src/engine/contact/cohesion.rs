@@ -9,7 +9,7 @@ use super::material::{PairCoeffs, Property};
 use super::Contact;
 
 /// A cohesion model adds an attractive normal force after the normal model ran.
-pub trait CohesionModel: Send + Sync {
+pub trait CohesionModel: Send + Sync + Copy + 'static {
     /// Doubles of per-contact history the model keeps.
     const HISTORY_LEN: usize = 0;
     /// Add the cohesive force of a touching contact.

@@ -344,10 +344,10 @@ impl Bases {
                 for &e in &v {
                     if inp.allow_zero_restitution {
                         if e < 0.0 || e > 1.0 {
-                            return Err("0 <= coefficientRestitution <= 1 required (regolith extension allow_zero_restitution)".into());
+                            return Err("0 <= coefficientRestitution <= 1 required (regolith extension -zero_restitution)".into());
                         }
                     } else if e <= 0.05 || e > 1.0 {
-                        return Err("0.05 < coefficientRestitution <= 1 required".into());
+                        return Err("0.05 < coefficientRestitution <= 1 required (regolith: run with -zero_restitution to allow values down to 0)".into());
                     }
                 }
                 self.restitution = Some(v);
@@ -577,7 +577,7 @@ mod tests {
         i.coefficient_restitution = Some(vec![0.05, 0.6, 0.6, 0.7]);
         assert_eq!(
             Material::new(&i, HERTZ).unwrap_err(),
-            "0.05 < coefficientRestitution <= 1 required"
+            "0.05 < coefficientRestitution <= 1 required (regolith: run with -zero_restitution to allow values down to 0)"
         );
         i.coefficient_restitution = Some(vec![1.01, 0.6, 0.6, 0.7]);
         assert!(Material::new(&i, HERTZ).is_err());

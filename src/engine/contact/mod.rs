@@ -5,10 +5,8 @@
 //! `ContactModel::surfacesIntersect` calls them, with per-type-pair coefficients from
 //! [`material`].
 //!
-//! Status: a complete, golden-tested sub-model library (it also covers hertz/stiffness,
-//! hooke/stiffness, sjkr2, epsd2, epsd3 and more options), not yet reachable from decks. The
-//! running engine uses [`crate::engine::granular`], whose kernels are to be rebased onto this
-//! library so that each model exists once.
+//! The force loops over pairs and primitive walls are in [`crate::engine::granular`]; they
+//! wrap one [`ContactModel`] per run (see [`ContactKernel`]).
 //!
 //! The arithmetic reproduces LIGGGHTS operation by operation (same formulas, same
 //! association, same order of accumulation into the force and torque sums), so forces agree
@@ -890,6 +888,16 @@ any_contact_model! {
     HertzFrictionless: Hertz(Hertz), Off(NoTangential), Off(NoCohesion), Off(NoRolling);
     /// hertz, history_total_cap (regolith extension).
     HertzTotalCap: Hertz(Hertz), TotalCap(HistoryTotalCap), Off(NoCohesion), Off(NoRolling);
+    /// hertz, history_total_cap, cohesion sjkr, rolling epsd (the lunar study, corrected).
+    HertzTotalCapSjkrEpsd: Hertz(Hertz), TotalCap(HistoryTotalCap), Sjkr(Sjkr), Epsd(Epsd);
+    /// hertz, history_total_cap, rolling epsd.
+    HertzTotalCapEpsd: Hertz(Hertz), TotalCap(HistoryTotalCap), Off(NoCohesion), Epsd(Epsd);
+    /// hertz, history_total_cap, rolling cdt.
+    HertzTotalCapCdt: Hertz(Hertz), TotalCap(HistoryTotalCap), Off(NoCohesion), Cdt(Cdt);
+    /// hertz, history, rolling epsd3.
+    HertzHistoryEpsd3: Hertz(Hertz), History(History), Off(NoCohesion), Epsd3(Epsd3);
+    /// hertz, no_history, rolling cdt.
+    HertzNoHistoryCdt: Hertz(Hertz), NoHistory(NoHistory), Off(NoCohesion), Cdt(Cdt);
     /// hertz, history_total_cap, rolling epsd2.
     HertzTotalCapEpsd2: Hertz(Hertz), TotalCap(HistoryTotalCap), Off(NoCohesion), Epsd2(Epsd2);
     /// hooke, history.

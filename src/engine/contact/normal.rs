@@ -13,7 +13,7 @@ use super::Contact;
 
 /// A normal model: sets `c.normal_force`, `kn`, `kt`, `gamman`, `gammat` and adds the
 /// normal force to `c.fi` (and `c.fj` for particle pairs).
-pub trait NormalModel: Send + Sync {
+pub trait NormalModel: Send + Sync + Copy + 'static {
     /// Doubles of per-contact history the model keeps.
     const HISTORY_LEN: usize = 0;
     /// Compute the normal force of a touching contact.

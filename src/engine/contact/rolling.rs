@@ -12,7 +12,7 @@ use super::normal::reff;
 use super::{Contact, Vec3};
 
 /// A rolling model adds a rolling-resistance torque after the tangential model ran.
-pub trait RollingModel: Send + Sync {
+pub trait RollingModel: Send + Sync + Copy + 'static {
     /// Doubles of per-contact history the model keeps (the maximum, for run-time enums).
     const HISTORY_LEN: usize;
     /// Doubles of history this instance uses.

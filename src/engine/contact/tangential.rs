@@ -13,7 +13,7 @@ use super::material::{PairCoeffs, Property};
 use super::{Contact, Vec3};
 
 /// A tangential model adds the friction force at the contact point and its torques.
-pub trait TangentialModel: Send + Sync {
+pub trait TangentialModel: Send + Sync + Copy + 'static {
     /// Doubles of per-contact history the model keeps (the maximum, for run-time enums).
     const HISTORY_LEN: usize;
     /// Doubles of history this instance uses (equal to `HISTORY_LEN` for concrete models).

@@ -358,9 +358,12 @@ fn thermo_style(a: &Args, ctx: &mut Ctx) -> Result {
         "custom" => (1..a.len())
             .map(|i| a.word(i))
             .collect::<std::result::Result<_, _>>()?,
-        "multi" => return Err(a.unsupported(0, "thermo_style multi")),
+        "multi" => vec!["step", "atoms", "ke", "cpu"],
         _ => return Err(a.keyword_error(0, &["one", "custom", "multi"])),
     };
+    if a.word(0)? != "custom" && a.len() > 1 {
+        return Err(a.error(1, "Illegal thermo_style command"));
+    }
     ctx.sim.thermo.set_style(&words).map_err(|m| {
         let at = words
             .iter()
@@ -373,6 +376,11 @@ fn thermo_style(a: &Args, ctx: &mut Ctx) -> Result {
         }
     })?;
     // LIGGGHTS: a new thermo_style resets thermo_modify settings
+    let t = &mut ctx.sim.thermo;
+    t.multi = a.word(0)? == "multi";
+    t.int_format = None;
+    t.float_format = None;
+    t.column_formats = vec![None; t.fields.len()];
     ctx.sim.thermo.norm = false;
     ctx.sim.lost_ignore = false;
     Ok(())
@@ -388,6 +396,36 @@ fn thermo_modify(a: &Args, ctx: &mut Ctx) -> Result {
             }
             "flush" => {
                 a.word_in(i + 1, &["yes", "no"])?;
+            }
+            "line" => ctx.sim.thermo.multi = a.word_in(i + 1, &["one", "multi"])? == "multi",
+            "format" => {
+                let which = a.word(i + 1)?;
+                let spec = a.word(i + 2)?.to_string();
+                let probe = if which == "int" { 1.0 } else { 0.5 };
+                crate::script::format::with_spec(&spec, probe)
+                    .map_err(|m| a.error(i + 2, &format!("thermo_modify format: {m}")))?;
+                let t = &mut ctx.sim.thermo;
+                match which {
+                    "int" => {
+                        if !spec.contains('d') {
+                            return Err(a.error(
+                                i + 2,
+                                "Thermo_modify int format does not contain d character",
+                            ));
+                        }
+                        t.int_format = Some(spec)
+                    }
+                    "float" => t.float_format = Some(spec),
+                    n => {
+                        let k = n.parse::<i64>().unwrap_or(0) - 1;
+                        if k < 0 || k as usize >= t.fields.len() {
+                            return Err(a.error(i + 1, "Illegal thermo_modify command"));
+                        }
+                        t.column_formats.resize(t.fields.len(), None);
+                        t.column_formats[k as usize] = Some(spec);
+                    }
+                }
+                i += 1;
             }
             other => return Err(a.unsupported(i, &format!("thermo_modify {other}"))),
         }
@@ -426,9 +464,24 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
             }
             if let Some(k) = names
                 .iter()
-                .position(|n| n.starts_with("c_") || n.starts_with("f_") || n.starts_with("v_"))
+                .position(|n| n.starts_with("f_") || n.starts_with("v_"))
             {
-                return Err(a.unsupported(5 + k, "dump columns of computes, fixes and variables"));
+                return Err(a.unsupported(5 + k, "dump columns of fixes and variables"));
+            }
+            for (k, n) in names.iter().enumerate() {
+                if let Some(body) = n.strip_prefix("c_") {
+                    let (cid, index) = split_reference(body).ok_or_else(|| {
+                        a.error(5 + k, "Invalid attribute in dump custom command")
+                    })?;
+                    let c = ctx
+                        .sim
+                        .computes
+                        .iter()
+                        .find(|c| c.id == cid)
+                        .ok_or_else(|| a.error(5 + k, "Could not find dump custom compute ID"))?;
+                    crate::engine::computes::column_of(c, index)
+                        .map_err(|m| a.error(5 + k, &format!("Dump custom: {m}")))?;
+                }
             }
             Layout::new(&names).map_err(|m| {
                 let k = names
@@ -450,6 +503,14 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
         handle: None,
     });
     Ok(())
+}
+
+/// `ID` or `ID[N]` of a `c_`/`f_` reference: the ID and the 1-based index.
+pub fn split_reference(body: &str) -> Option<(&str, Option<usize>)> {
+    match body.split_once('[') {
+        Some((id, rest)) => Some((id, Some(rest.strip_suffix(']')?.parse().ok()?))),
+        None => Some((body, None)),
+    }
 }
 
 fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
@@ -665,14 +726,68 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
     if ctx.sim.computes.iter().any(|c| c.id == id) {
         return Err(a.error(0, "Reuse of compute ID"));
     }
+    let no_keywords = |kind: ComputeKind| {
+        if a.len() > 3 {
+            Err(a.error(3, &format!("Illegal compute {style} command")))
+        } else {
+            Ok(kind)
+        }
+    };
     let kind = match style {
-        "erotate/sphere" => ComputeKind::ErotateSphere,
-        "ke" => ComputeKind::Ke,
+        "erotate/sphere" => no_keywords(ComputeKind::ErotateSphere)?,
+        "ke" => no_keywords(ComputeKind::Ke)?,
+        "ke/atom" => no_keywords(ComputeKind::KeAtom)?,
+        "contact/atom" => {
+            let mut skin = 0.0;
+            if a.len() > 3 {
+                if a.len() != 5 {
+                    return Err(a.error(3, "Illegal compute contact/atom command"));
+                }
+                if a.word(3)? != "skin" {
+                    return Err(a.error(
+                        3,
+                        "Illegal compute contact/atom command, expecting keyword 'skin'",
+                    ));
+                }
+                skin = a.real(4)?;
+            }
+            ComputeKind::ContactAtom { skin }
+        }
+        "com" => no_keywords(ComputeKind::Com)?,
+        "stress/atom" => {
+            let (mut ke, mut pair) = (a.len() == 3, a.len() == 3);
+            for i in 3..a.len() {
+                match a.word(i)? {
+                    "ke" => ke = true,
+                    "pair" | "virial" => pair = true,
+                    // no bonds, angles, kspace or virial-contributing fixes exist in a
+                    // granular run: these parts are zero
+                    "bond" | "angle" | "dihedral" | "improper" | "kspace" | "fix" => {}
+                    _ => return Err(a.error(i, "Illegal compute stress/atom command")),
+                }
+            }
+            ComputeKind::StressAtom { ke, pair }
+        }
+        "property/atom" => {
+            if a.len() < 4 {
+                return Err(a.error(2, "Illegal compute property/atom command"));
+            }
+            let mut cols = Vec::new();
+            for i in 3..a.len() {
+                let w = a.word(i)?;
+                let col = match crate::io::dump::Column::parse(w) {
+                    Ok(crate::io::dump::Column::Reference(_)) | Err(_) => {
+                        return Err(a.unsupported(i, &format!("compute property/atom {w}")))
+                    }
+                    Ok(c) => c,
+                };
+                cols.push(col);
+            }
+            ComputeKind::PropertyAtom(cols)
+        }
+        "reduce" => compute_reduce(a, ctx)?,
         other => return Err(a.unsupported(2, &format!("compute {other}"))),
     };
-    if a.len() > 3 {
-        return Err(a.unsupported(3, &format!("compute {style} keywords")));
-    }
     ctx.sim.computes.push(Compute {
         id: id.into(),
         style: style.into(),
@@ -680,6 +795,64 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
         kind,
     });
     Ok(())
+}
+
+/// `compute ID GROUP reduce MODE input1 input2 ...` (inputs: atom attributes or per-atom
+/// computes `c_ID`, `c_ID[N]`).
+fn compute_reduce(
+    a: &Args,
+    ctx: &Ctx,
+) -> std::result::Result<crate::engine::computes::ComputeKind, Diagnostic> {
+    use crate::engine::computes::{column_of, ComputeKind, Input, ReduceMode};
+    if a.len() < 5 {
+        return Err(a.error(2, "Illegal compute reduce command"));
+    }
+    let mode = match a.word(3)? {
+        "sum" => ReduceMode::Sum,
+        "min" => ReduceMode::Min,
+        "max" => ReduceMode::Max,
+        "ave" => ReduceMode::Ave,
+        "region" => return Err(a.unsupported(3, "compute reduce/region")),
+        _ => return Err(a.error(3, "Illegal compute reduce command")),
+    };
+    let mut inputs = Vec::new();
+    for i in 4..a.len() {
+        let w = a.word(i)?;
+        if w == "replace" {
+            return Err(a.unsupported(i, "compute reduce replace"));
+        }
+        if let Some(body) = w.strip_prefix("c_") {
+            let (id, index) = match body.split_once('[') {
+                Some((id, rest)) => {
+                    let k = rest
+                        .strip_suffix(']')
+                        .and_then(|k| k.parse::<usize>().ok())
+                        .ok_or_else(|| a.error(i, "Illegal compute reduce command"))?;
+                    (id, Some(k))
+                }
+                None => (body, None),
+            };
+            let c = ctx
+                .sim
+                .computes
+                .iter()
+                .find(|c| c.id == id)
+                .ok_or_else(|| a.error(i, "Compute ID for compute reduce does not exist"))?;
+            column_of(c, index).map_err(|m| a.error(i, &m))?;
+            inputs.push(Input::Compute(id.to_string(), index));
+            continue;
+        }
+        if w.starts_with("f_") || w.starts_with("v_") {
+            return Err(a.unsupported(i, "compute reduce of fixes and variables"));
+        }
+        match crate::io::dump::Column::parse(w) {
+            Ok(crate::io::dump::Column::Reference(_)) | Err(_) => {
+                return Err(a.error(i, "Illegal compute reduce command"))
+            }
+            Ok(c) => inputs.push(Input::Atom(c)),
+        }
+    }
+    Ok(ComputeKind::Reduce { mode, inputs })
 }
 
 fn uncompute(a: &Args, ctx: &mut Ctx) -> Result {

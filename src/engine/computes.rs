@@ -1,8 +1,11 @@
 //! Computes (`compute ID group style`): global quantities evaluated on demand for thermo
 //! output, formulas and dumps, with LIGGGHTS's arithmetic.
 
+use crate::engine::domain::Domain;
 use crate::engine::integrate::SPHERE_INERTIA;
 use crate::engine::particles::Particles;
+use crate::engine::sim::Simulation;
+use crate::io::dump::Column;
 
 /// What a compute calculates.
 #[derive(Debug, Clone, PartialEq)]
@@ -11,6 +14,71 @@ pub enum ComputeKind {
     ErotateSphere,
     /// `ke`: translational kinetic energy, 0.5 m v^2 summed (energy).
     Ke,
+    /// `ke/atom`: 0.5 m v^2 per atom (energy).
+    KeAtom,
+    /// `stress/atom`: per-atom stress times volume, xx yy zz xy xz yz (pressure volume =
+    /// force length), with the kinetic and/or pair-virial parts.
+    StressAtom {
+        /// Include -m v_a v_b.
+        ke: bool,
+        /// Include the pair virial -1/2 sum del_a F_b.
+        pair: bool,
+    },
+    /// `property/atom`: atom attributes as per-atom columns.
+    PropertyAtom(Vec<Column>),
+    /// `contact/atom [skin S]`: neighbours within the sum of radii plus S (length, default 0).
+    ContactAtom {
+        /// Extra distance (length).
+        skin: f64,
+    },
+    /// `reduce`: sum, min, max or average over the group of per-atom inputs.
+    Reduce {
+        /// The reduction.
+        mode: ReduceMode,
+        /// One value per input.
+        inputs: Vec<Input>,
+    },
+    /// `com`: centre of mass of the group, unwrapped (length), a 3-vector.
+    Com,
+}
+
+/// The reductions of `compute reduce`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ReduceMode {
+    /// Sum over the atoms.
+    Sum,
+    /// Minimum.
+    Min,
+    /// Maximum.
+    Max,
+    /// Average (sum over count).
+    Ave,
+}
+
+/// A per-atom input of `compute reduce`.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Input {
+    /// An atom attribute (x, vx, fx, ...).
+    Atom(Column),
+    /// A per-atom compute `c_ID` or column `c_ID[N]` (1-based).
+    Compute(String, Option<usize>),
+}
+
+/// Per-atom values of a compute: `columns` values per particle, row-major in particle
+/// order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PerAtom {
+    /// Values per particle.
+    pub columns: usize,
+    /// The values (particle-major).
+    pub values: Vec<f64>,
+}
+
+impl PerAtom {
+    /// The value of column `col` (0-based) for particle `i`.
+    pub fn get(&self, i: usize, col: usize) -> f64 {
+        self.values[i * self.columns + col]
+    }
 }
 
 /// One defined compute.
@@ -40,12 +108,41 @@ pub fn kinetic_energy(p: &Particles, group: u32) -> f64 {
 }
 
 /// Compute styles regolith evaluates.
-pub const STYLES: &[&str] = &["erotate/sphere", "ke"];
+pub const STYLES: &[&str] = &[
+    "com",
+    "contact/atom",
+    "erotate/sphere",
+    "ke",
+    "ke/atom",
+    "property/atom",
+    "reduce",
+    "stress/atom",
+];
 
 impl Compute {
+    /// Number of per-atom values per particle (0 if the compute is not per-atom).
+    pub fn per_atom_columns(&self) -> usize {
+        match &self.kind {
+            ComputeKind::KeAtom | ComputeKind::ContactAtom { .. } => 1,
+            ComputeKind::StressAtom { .. } => 6,
+            ComputeKind::PropertyAtom(c) => c.len(),
+            _ => 0,
+        }
+    }
+
+    /// True for computes with a global vector (`c_ID[N]` in thermo and formulas).
+    pub fn vector_len(&self) -> usize {
+        match &self.kind {
+            ComputeKind::Com => 3,
+            ComputeKind::Reduce { inputs, .. } if inputs.len() > 1 => inputs.len(),
+            _ => 0,
+        }
+    }
+
     /// The compute's global scalar.
-    pub fn scalar(&self, p: &Particles) -> Result<f64, String> {
-        Ok(match self.kind {
+    pub fn scalar(&self, sim: &Simulation) -> Result<f64, String> {
+        let p = &sim.particles;
+        Ok(match &self.kind {
             ComputeKind::ErotateSphere => {
                 let mut sum = 0.0;
                 for i in 0..p.len() {
@@ -60,16 +157,206 @@ impl Compute {
                 sum * (0.5 * 1.0 * SPHERE_INERTIA)
             }
             ComputeKind::Ke => kinetic_energy(p, self.group),
+            ComputeKind::Reduce { mode, inputs } if inputs.len() == 1 => {
+                self.reduce(sim, *mode, &inputs[0])?
+            }
+            _ => {
+                return Err(format!(
+                    "Compute {} ({}) does not calculate a scalar",
+                    self.id, self.style
+                ))
+            }
         })
     }
 
     /// Element `index` (1-based) of the compute's global vector.
-    pub fn vector(&self, index: usize, _p: &Particles) -> Result<f64, String> {
-        Err(format!(
-            "Compute {} ({}) has no global vector; c_{}[{index}] is invalid",
-            self.id, self.style, self.id
-        ))
+    pub fn vector(&self, index: usize, sim: &Simulation) -> Result<f64, String> {
+        if index == 0 || index > self.vector_len() {
+            return Err(format!(
+                "Compute {} ({}) has no global vector element {index}",
+                self.id, self.style
+            ));
+        }
+        match &self.kind {
+            ComputeKind::Com => {
+                Ok(center_of_mass(&sim.particles, &sim.domain, self.group)[index - 1])
+            }
+            ComputeKind::Reduce { mode, inputs } => self.reduce(sim, *mode, &inputs[index - 1]),
+            _ => unreachable!("vector_len is 0"),
+        }
     }
+
+    /// LIGGGHTS's `compute reduce` of one input over the group (atom order).
+    fn reduce(&self, sim: &Simulation, mode: ReduceMode, input: &Input) -> Result<f64, String> {
+        let p = &sim.particles;
+        let values: Box<dyn Fn(usize) -> f64> = match input {
+            Input::Atom(col) => {
+                let col = col.clone();
+                Box::new(move |i| col.value(p, &sim.domain, i))
+            }
+            Input::Compute(id, index) => {
+                let c =
+                    sim.computes.iter().find(|c| &c.id == id).ok_or_else(|| {
+                        format!("Compute ID {id} for compute reduce does not exist")
+                    })?;
+                let data = c.per_atom(sim)?;
+                let col = column_of(c, *index)?;
+                Box::new(move |i| data.get(i, col))
+            }
+        };
+        let (mut acc, mut count) = match mode {
+            ReduceMode::Sum | ReduceMode::Ave => (0.0, 0usize),
+            ReduceMode::Min => (f64::MAX, 0),
+            ReduceMode::Max => (-f64::MAX, 0),
+        };
+        for i in 0..p.len() {
+            if p.mask[i] & self.group == 0 {
+                continue;
+            }
+            let v = values(i);
+            count += 1;
+            match mode {
+                ReduceMode::Sum | ReduceMode::Ave => acc += v,
+                ReduceMode::Min => acc = acc.min(v),
+                ReduceMode::Max => acc = acc.max(v),
+            }
+        }
+        if mode == ReduceMode::Ave {
+            acc = if count > 0 { acc / count as f64 } else { 0.0 };
+        }
+        Ok(acc)
+    }
+
+    /// The compute's per-atom values (for dumps and `compute reduce`).
+    pub fn per_atom(&self, sim: &Simulation) -> Result<PerAtom, String> {
+        let p = &sim.particles;
+        let n = p.len();
+        let group = self.group;
+        let columns = self.per_atom_columns();
+        let mut values = vec![0.0; n * columns];
+        match &self.kind {
+            ComputeKind::KeAtom => {
+                for i in 0..n {
+                    if p.mask[i] & group != 0 {
+                        let v = p.v[i];
+                        values[i] =
+                            0.5 * 1.0 * p.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+                    }
+                }
+            }
+            ComputeKind::StressAtom { ke, pair } => {
+                for i in 0..n {
+                    if p.mask[i] & group == 0 {
+                        continue;
+                    }
+                    let mut s = [0.0; 6];
+                    if *pair {
+                        if let Some(w) = sim.virial.get(i) {
+                            for k in 0..6 {
+                                s[k] += w[k];
+                            }
+                        }
+                    }
+                    if *ke {
+                        let m = 1.0 * p.mass[i];
+                        let v = p.v[i];
+                        s[0] += m * v[0] * v[0];
+                        s[1] += m * v[1] * v[1];
+                        s[2] += m * v[2] * v[2];
+                        s[3] += m * v[0] * v[1];
+                        s[4] += m * v[0] * v[2];
+                        s[5] += m * v[1] * v[2];
+                    }
+                    for k in 0..6 {
+                        values[i * 6 + k] = s[k] * -1.0;
+                    }
+                }
+            }
+            ComputeKind::PropertyAtom(cols) => {
+                for i in 0..n {
+                    if p.mask[i] & group != 0 {
+                        for (k, c) in cols.iter().enumerate() {
+                            values[i * columns + k] = c.value(p, &sim.domain, i);
+                        }
+                    }
+                }
+            }
+            ComputeKind::ContactAtom { skin } => {
+                // LIGGGHTS counts pairs of a fresh neighbour list closer than the radii plus
+                // `skin`, for both partners
+                let skin = *skin;
+                let mut list = crate::engine::neighbor::NeighborList::default();
+                list.build(&p.x, &p.radius, sim.neighbor.skin.max(skin), &sim.domain);
+                for pair in &list.pairs {
+                    let (i, j) = (pair.i as usize, pair.j as usize);
+                    if p.mask[i] & group == 0 && p.mask[j] & group == 0 {
+                        continue;
+                    }
+                    let mut rsq = 0.0;
+                    for d in 0..3 {
+                        let del = p.x[i][d] - (p.x[j][d] + pair.shift[d]);
+                        rsq += del * del;
+                    }
+                    let radsum = p.radius[i] + p.radius[j] + skin;
+                    if rsq <= radsum * radsum {
+                        values[i] += 1.0;
+                        values[j] += 1.0;
+                    }
+                }
+            }
+            _ => {
+                return Err(format!(
+                    "Compute {} ({}) does not calculate per-atom values",
+                    self.id, self.style
+                ))
+            }
+        }
+        Ok(PerAtom { columns, values })
+    }
+}
+
+/// The 0-based column of `c_ID` / `c_ID[N]` of a per-atom compute, with LIGGGHTS's checks.
+pub fn column_of(c: &Compute, index: Option<usize>) -> Result<usize, String> {
+    let cols = c.per_atom_columns();
+    match index {
+        _ if cols == 0 => Err(format!(
+            "Compute {} ({}) does not calculate per-atom values",
+            c.id, c.style
+        )),
+        None if cols == 1 => Ok(0),
+        None => Err(format!(
+            "Compute {} ({}) calculates a per-atom array: give a column, c_{}[N]",
+            c.id, c.style, c.id
+        )),
+        Some(k) if cols == 1 || k == 0 || k > cols => Err(format!(
+            "Compute {} ({}) has no per-atom column {k}",
+            c.id, c.style
+        )),
+        Some(k) => Ok(k - 1),
+    }
+}
+
+/// Centre of mass of `group` with unwrapped positions (length), as LIGGGHTS's `xcm`.
+pub fn center_of_mass(p: &Particles, domain: &Domain, group: u32) -> [f64; 3] {
+    let mut cm = [0.0; 3];
+    let mut mass = 0.0;
+    for i in 0..p.len() {
+        if p.mask[i] & group == 0 {
+            continue;
+        }
+        let m = p.mass[i];
+        for d in 0..3 {
+            let xu = p.x[i][d] + p.image[i][d] as f64 * domain.length(d);
+            cm[d] += xu * m;
+        }
+        mass += m;
+    }
+    if mass > 0.0 {
+        for c in &mut cm {
+            *c /= mass;
+        }
+    }
+    cm
 }
 
 #[cfg(test)]
@@ -88,16 +375,19 @@ mod tests {
         );
         p.v[0] = [3.0, 4.0, 0.0];
         p.omega[0] = [0.0, 0.0, 2.0];
+        let mut sim = Simulation::default();
+        sim.particles = p;
+        let p = &sim;
         let c = |kind| Compute {
             id: "c".into(),
             style: "x".into(),
             group: 1,
             kind,
         };
-        assert!((c(ComputeKind::Ke).scalar(&p).unwrap() - 0.5 * 25.0).abs() < 1e-12);
+        assert!((c(ComputeKind::Ke).scalar(p).unwrap() - 0.5 * 25.0).abs() < 1e-12);
         // 0.5 * 0.4 m r^2 w^2 with m = 1
         assert!(
-            (c(ComputeKind::ErotateSphere).scalar(&p).unwrap() - 0.5 * 0.4 * 0.25 * 4.0).abs()
+            (c(ComputeKind::ErotateSphere).scalar(p).unwrap() - 0.5 * 0.4 * 0.25 * 4.0).abs()
                 < 1e-12
         );
     }

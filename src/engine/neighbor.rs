@@ -190,7 +190,10 @@ impl NeighborList {
 }
 
 /// Carry per-pair contact history from the old pair list to the new one, matching pairs by
-/// the atom IDs they join (and the periodic shift). Pairs not in the old list start at zero.
+/// the atom IDs they join, as LIGGGHTS matches contact partners by tag: a pair keeps its
+/// history when one of its atoms is wrapped across a periodic face. Only if the same two
+/// atoms touch through two images (a box narrower than two diameters) does the periodic
+/// shift decide. Pairs not in the old list start at zero.
 pub fn carry_history(
     old_pairs: &[Pair],
     old_history: &[f64],
@@ -203,28 +206,40 @@ pub fn carry_history(
     if width == 0 || old_pairs.is_empty() {
         return out;
     }
+    // oriented from the lower ID to the higher one
     let key = |p: &Pair, ids: &[i64]| {
         let (a, b) = (ids[p.i as usize], ids[p.j as usize]);
         let sign = if a <= b { 1.0 } else { -1.0 };
         let s = p.shift.map(|v| (v * sign + 0.0).to_bits());
-        (a.min(b), a.max(b), s)
+        ((a.min(b), a.max(b)), s)
     };
-    let mut index: std::collections::HashMap<(i64, i64, [u64; 3]), (usize, bool)> =
+    let mut index: std::collections::HashMap<(i64, i64), Vec<(usize, bool, [u64; 3])>> =
         std::collections::HashMap::with_capacity(old_pairs.len());
     for (k, p) in old_pairs.iter().enumerate() {
         let swapped = old_ids[p.i as usize] > old_ids[p.j as usize];
-        index.insert(key(p, old_ids), (k, swapped));
+        let (atoms, shift) = key(p, old_ids);
+        index.entry(atoms).or_default().push((k, swapped, shift));
     }
     for (k, p) in new_pairs.iter().enumerate() {
-        if let Some(&(old, old_swapped)) = index.get(&key(p, ids)) {
-            let swapped = ids[p.i as usize] > ids[p.j as usize];
-            let src = &old_history[old * width..(old + 1) * width];
-            let dst = &mut out[k * width..(k + 1) * width];
-            dst.copy_from_slice(src);
-            if swapped != old_swapped {
-                // the pair is seen from the other particle now: vectors flip sign
-                dst.iter_mut().for_each(|v| *v = -*v);
-            }
+        let (atoms, shift) = key(p, ids);
+        let Some(found) = index.get(&atoms) else {
+            continue;
+        };
+        let pick = if found.len() == 1 {
+            Some(found[0])
+        } else {
+            found.iter().copied().find(|f| f.2 == shift)
+        };
+        let Some((old, old_swapped, _)) = pick else {
+            continue;
+        };
+        let swapped = ids[p.i as usize] > ids[p.j as usize];
+        let src = &old_history[old * width..(old + 1) * width];
+        let dst = &mut out[k * width..(k + 1) * width];
+        dst.copy_from_slice(src);
+        if swapped != old_swapped {
+            // the pair is seen from the other particle now: vectors flip sign
+            dst.iter_mut().for_each(|v| *v = -*v);
         }
     }
     out

@@ -46,6 +46,8 @@ pub trait PairInteraction: Send {
     }
     /// Add pair forces and torques to `p.f`/`p.torque` for the listed pairs.
     /// `update` is false in the setup evaluation: contact history is used but not advanced.
+    /// With `virial`, each pair also adds half its virial del_a F_b to both particles
+    /// (xx yy zz xy xz yz, force length).
     fn compute(
         &mut self,
         p: &mut Particles,
@@ -53,6 +55,7 @@ pub trait PairInteraction: Send {
         history: &mut [f64],
         dt: f64,
         update: bool,
+        virial: Option<&mut [[f64; 6]]>,
     );
 }
 
@@ -122,6 +125,11 @@ pub struct Simulation {
     pub fixes: Vec<Fix>,
     /// Computes in definition order.
     pub computes: Vec<crate::engine::computes::Compute>,
+    /// Per-particle pair virial of the last force evaluation (xx yy zz xy xz yz, force
+    /// length); empty unless a `compute stress/atom` needs it.
+    pub virial: Vec<[f64; 6]>,
+    /// When the time-stepping loop of the current run started (None during setup).
+    pub loop_clock: Option<std::time::Instant>,
     /// Thermo output settings.
     pub thermo: Thermo,
     /// Dumps.
@@ -166,6 +174,8 @@ impl Default for Simulation {
             computes: Vec::new(),
             thermo: Thermo::default(),
             dumps: Vec::new(),
+            virial: Vec::new(),
+            loop_clock: None,
             run_bounds: None,
             ramp_bounds: (None, None),
             lost_ignore: false,
@@ -271,9 +281,28 @@ impl Simulation {
             .find(|c| c.id == id)
             .ok_or_else(|| format!("Could not find thermo/variable compute ID {id}"))?;
         match index {
-            None => c.scalar(&self.particles),
-            Some(i) => c.vector(i, &self.particles),
+            None => c.scalar(self),
+            Some(i) => c.vector(i, self),
         }
+    }
+
+    /// The per-atom values behind a dump column `c_ID` / `c_ID[N]`, and its column.
+    fn dump_reference(
+        &self,
+        name: &str,
+    ) -> Result<(crate::engine::computes::PerAtom, usize), String> {
+        let body = name.strip_prefix("c_").ok_or_else(|| {
+            format!("dump column {name}: only per-atom computes are supported yet")
+        })?;
+        let (id, index) = crate::commands::sim_run::split_reference(body)
+            .ok_or_else(|| format!("Invalid attribute {name} in dump custom command"))?;
+        let c = self
+            .computes
+            .iter()
+            .find(|c| c.id == id)
+            .ok_or_else(|| format!("Could not find dump custom compute ID {id}"))?;
+        let col = crate::engine::computes::column_of(c, index)?;
+        Ok((c.per_atom(self)?, col))
     }
 
     /// Bit mask of group `name`.
@@ -510,8 +539,30 @@ impl Simulation {
         let p = &mut self.particles;
         p.f.iter_mut().for_each(|f| *f = [0.0; 3]);
         p.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
+        let tally = self.computes.iter().any(|c| {
+            matches!(
+                c.kind,
+                crate::engine::computes::ComputeKind::StressAtom { pair: true, .. }
+            )
+        });
+        self.virial.clear();
+        if tally {
+            self.virial.resize(p.len(), [0.0; 6]);
+        }
         if let Some(pair) = self.pair.as_mut() {
-            pair.compute(p, &self.list.pairs, &mut self.history, self.dt, update);
+            let virial = if tally {
+                Some(&mut self.virial[..])
+            } else {
+                None
+            };
+            pair.compute(
+                p,
+                &self.list.pairs,
+                &mut self.history,
+                self.dt,
+                update,
+                virial,
+            );
         }
         fixes::post_force(&mut self.fixes, p, self.dt, update);
     }
@@ -541,6 +592,7 @@ impl Simulation {
         self.thermo.header(out);
         self.thermo_line(out);
         self.write_dumps(true)?;
+        self.loop_clock = Some(std::time::Instant::now());
         for _ in 0..nsteps {
             self.step += 1;
             fixes::initial_integrate(&self.fixes, &mut self.particles, self.step, self.dt);
@@ -560,6 +612,7 @@ impl Simulation {
             self.write_dumps(false)?;
         }
         self.run_bounds = None;
+        self.loop_clock = None;
         self.atime += (self.step - self.atime_step) as f64 * self.dt;
         self.atime_step = self.step;
         out(&format!(
@@ -586,7 +639,8 @@ impl Simulation {
 
     fn thermo_line(&mut self, out: Sink<'_>) {
         let values = self.thermo.values(self);
-        self.thermo.line(&values, out);
+        let cpu = self.loop_clock.map_or(0.0, |t| t.elapsed().as_secs_f64());
+        self.thermo.line(&values, self.step, cpu, out);
     }
 
     fn write_dumps(&mut self, setup: bool) -> Result<(), String> {
@@ -608,10 +662,20 @@ impl Simulation {
                         .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
                 }
             }
+            // per-atom values of the compute columns, evaluated once per snapshot
+            let mut columns = Vec::new();
+            for col in &self.dumps[k].layout.columns {
+                if let crate::io::dump::Column::Reference(name) = col {
+                    columns.push(self.dump_reference(name)?);
+                }
+            }
+            let dump = &mut self.dumps[k];
             let mut text = Vec::new();
             let p = &self.particles;
             dump.layout
-                .write_snapshot(&mut text, step, p, dump.group, &self.domain, |_, _| 0.0)
+                .write_snapshot(&mut text, step, p, dump.group, &self.domain, |c, i| {
+                    columns[c].0.get(i, columns[c].1)
+                })
                 .map_err(|e| e.to_string())?;
             if multi {
                 // one file per snapshot, written whole: temp file then rename

@@ -56,6 +56,14 @@ pub struct Thermo {
     pub norm: bool,
     /// Step at which the current run started (for `elapsed`).
     pub run_start: i64,
+    /// `thermo_style multi` (or `thermo_modify line multi`): labelled values, three per line.
+    pub multi: bool,
+    /// `thermo_modify format int` (a C format).
+    pub int_format: Option<String>,
+    /// `thermo_modify format float`.
+    pub float_format: Option<String>,
+    /// `thermo_modify format N` per column (index N-1).
+    pub column_formats: Vec<Option<String>>,
     started: std::time::Instant,
 }
 
@@ -66,6 +74,10 @@ impl Default for Thermo {
             fields: Vec::new(),
             norm: false,
             run_start: 0,
+            multi: false,
+            int_format: None,
+            float_format: None,
+            column_formats: Vec::new(),
             started: std::time::Instant::now(),
         };
         t.set_style(&["step", "atoms", "ke", "cpu"])
@@ -111,8 +123,11 @@ impl Thermo {
         step == last || (self.every > 0 && step % self.every == 0)
     }
 
-    /// Print the header line.
+    /// Print the header line (none in multi-line style).
     pub fn header(&self, out: Sink<'_>) {
+        if self.multi {
+            return;
+        }
         let mut line = String::new();
         for f in &self.fields {
             match f.kind {
@@ -132,14 +147,44 @@ impl Thermo {
             .collect()
     }
 
-    /// Print one line of values.
-    pub fn line(&self, values: &[f64], out: Sink<'_>) {
+    /// The C format of column `k`, as LIGGGHTS picks it: per column, else per type, else
+    /// the default of the line style.
+    fn column_format(&self, k: usize) -> &str {
+        if let Some(Some(f)) = self.column_formats.get(k) {
+            return f;
+        }
+        match (self.fields[k].kind, self.multi) {
+            (Kind::Real, _) if self.float_format.is_some() => self.float_format.as_deref().unwrap(),
+            (Kind::Int, _) if self.int_format.is_some() => self.int_format.as_deref().unwrap(),
+            (Kind::Real, false) => "%14.8g",
+            (Kind::Real, true) => "%14.4f",
+            (Kind::Int, false) => "%8d",
+            (Kind::Int, true) => "%14d",
+        }
+    }
+
+    /// Print one line of values (`cpu` is the loop time so far, for the multi-line banner).
+    pub fn line(&self, values: &[f64], step: i64, cpu: f64, out: Sink<'_>) {
         let mut line = String::new();
-        for (f, v) in self.fields.iter().zip(values) {
-            match f.kind {
-                Kind::Real => line.push_str(&format::with_spec("%14.8g", *v).unwrap_or_default()),
-                Kind::Int => line.push_str(&format!("{:>8}", *v as i64)),
+        if self.multi {
+            line.push_str(&format!(
+                "---------------- Step {step:>8} ----- CPU = {} (sec) ----------------",
+                format::with_spec("%11.4f", cpu).unwrap_or_default()
+            ));
+        }
+        for (k, (f, v)) in self.fields.iter().zip(values).enumerate() {
+            if self.multi {
+                if k % 3 == 0 {
+                    line.push('\n');
+                }
+                line.push_str(&format!("{:<8} = ", f.label));
             }
+            let spec = self.column_format(k);
+            let text = match f.kind {
+                Kind::Real => format::with_spec(spec, *v),
+                Kind::Int => format::with_spec(spec, (*v as i64) as f64),
+            };
+            line.push_str(&text.unwrap_or_default());
             line.push(' ');
         }
         line.push('\n');
@@ -196,7 +241,9 @@ mod tests {
         t.set_style(&["step", "atoms", "ke"]).unwrap();
         let mut text = String::new();
         t.header(&mut |s| text.push_str(s));
-        t.line(&[0.0, 2.0, 9.0320789e-05], &mut |s| text.push_str(s));
+        t.line(&[0.0, 2.0, 9.0320789e-05], 0, 0.0, &mut |s| {
+            text.push_str(s)
+        });
         assert_eq!(
             text,
             "    Step    Atoms         KinEng \n       0        2  9.0320789e-05 \n"
@@ -209,6 +256,37 @@ mod tests {
             .set_style(&["v_x"])
             .unwrap_err()
             .contains("not supported yet"));
+        // thermo_style multi, then user formats (layouts printed by Debian's LIGGGHTS)
+        t.set_style(&["step", "atoms", "ke", "cpu"]).unwrap();
+        t.multi = true;
+        let mut text = String::new();
+        t.header(&mut |s| text.push_str(s));
+        t.line(&[2.0, 1.0, 0.0052359878, 0.0], 2, 0.0, &mut |s| {
+            text.push_str(s)
+        });
+        assert_eq!(
+            text,
+            "---------------- Step        2 ----- CPU =      0.0000 (sec) ----------------\n\
+             Step     =              2 Atoms    =              1 KinEng   =         0.0052 \n\
+             CPU      =         0.0000 \n"
+        );
+        t.set_style(&["step", "atoms", "ke", "vol"]).unwrap();
+        t.int_format = Some("%5d".into());
+        t.column_formats = vec![None, None, Some("%12.5e".into()), None];
+        let mut text = String::new();
+        t.line(&[4.0, 1.0, 0.0052359878, 8.0], 4, 0.0, &mut |s| {
+            text.push_str(s)
+        });
+        assert!(text.ends_with(
+            "Step     =     4 Atoms    =     1 KinEng   =  5.23599e-03 \nVolume   =         8.0000 \n"
+        ));
+        t.multi = false;
+        t.float_format = Some("%.10g".into());
+        let mut text = String::new();
+        t.line(&[4.0, 1.0, 0.0052359878, 8.0], 4, 0.0, &mut |s| {
+            text.push_str(s)
+        });
+        assert_eq!(text, "    4     1  5.23599e-03 8 \n");
         t.set_style(&["step", "c_rke"]).unwrap();
         assert_eq!(t.fields[1].label, "rke");
         assert!(t.due(100, 1000) == (t.every > 0) && t.due(1000, 1000));

@@ -78,6 +78,29 @@ impl Column {
         })
     }
 
+    /// The value of an atom column for particle `i` (`Reference` columns give NaN: their
+    /// values come from the compute, fix or variable).
+    #[inline]
+    pub fn value(&self, p: &Particles, domain: &Domain, i: usize) -> f64 {
+        match self {
+            Column::Id => p.id[i] as f64,
+            Column::Type => p.kind[i] as f64,
+            Column::X(d) => p.x[i][*d],
+            Column::Scaled(d) => (p.x[i][*d] - domain.lo[*d]) / domain.length(*d),
+            Column::Unwrapped(d) => p.x[i][*d] + p.image[i][*d] as f64 * domain.length(*d),
+            Column::Image(d) => p.image[i][*d] as f64,
+            Column::V(d) => p.v[i][*d],
+            Column::F(d) => p.f[i][*d],
+            Column::Omega(d) => p.omega[i][*d],
+            Column::Torque(d) => p.torque[i][*d],
+            Column::Radius => p.radius[i],
+            Column::Diameter => 2.0 * p.radius[i],
+            Column::Mass => p.mass[i],
+            Column::Density => p.density[i],
+            Column::Reference(_) => f64::NAN,
+        }
+    }
+
     /// True for the columns LIGGGHTS prints as integers.
     pub fn is_integer(&self) -> bool {
         matches!(self, Column::Id | Column::Type | Column::Image(_))
@@ -191,24 +214,11 @@ impl Layout {
             let mut reference = 0;
             for (k, col) in self.columns.iter().enumerate() {
                 let value = match col {
-                    Column::Id => p.id[i] as f64,
-                    Column::Type => p.kind[i] as f64,
-                    Column::X(d) => p.x[i][*d],
-                    Column::Scaled(d) => (p.x[i][*d] - domain.lo[*d]) / domain.length(*d),
-                    Column::Unwrapped(d) => p.x[i][*d] + p.image[i][*d] as f64 * domain.length(*d),
-                    Column::Image(d) => p.image[i][*d] as f64,
-                    Column::V(d) => p.v[i][*d],
-                    Column::F(d) => p.f[i][*d],
-                    Column::Omega(d) => p.omega[i][*d],
-                    Column::Torque(d) => p.torque[i][*d],
-                    Column::Radius => p.radius[i],
-                    Column::Diameter => 2.0 * p.radius[i],
-                    Column::Mass => p.mass[i],
-                    Column::Density => p.density[i],
                     Column::Reference(_) => {
                         reference += 1;
                         extra(reference - 1, i)
                     }
+                    col => col.value(p, domain, i),
                 };
                 match &self.format {
                     Some(convs) => line.push_str(&format::format_one(&convs[k], value)),

@@ -123,6 +123,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         history: &mut [f64],
         dt: f64,
         update: bool,
+        mut virial: Option<&mut [[f64; 6]]>,
     ) {
         let width = self.model.history_len();
         self.worst = None;
@@ -137,7 +138,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
                 };
                 let res = self.pair_result(p, pair, h, dt, update);
                 if res.touching {
-                    add_pair(p, pair, &res);
+                    add_pair(p, pair, &res, virial.as_deref_mut());
                     self.note_overlap(pair, res.overlap_ratio);
                 }
             }
@@ -166,7 +167,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         // accumulation in list order: the same sums for any number of threads
         for (res, pair) in results.iter().zip(pairs) {
             if res.touching {
-                add_pair(p, pair, res);
+                add_pair(p, pair, res, virial.as_deref_mut());
                 self.note_overlap(pair, res.overlap_ratio);
             }
         }
@@ -174,10 +175,33 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
     }
 }
 
-/// Add one pair's forces and torques to its two particles.
+/// Add one pair's forces and torques to its two particles, and half its virial to each
+/// when asked (LIGGGHTS's `ev_tally_xyz` with del = x_i - x_j and F the force on i).
 #[inline(always)]
-fn add_pair(p: &mut Particles, pair: &Pair, res: &PairResult) {
+fn add_pair(p: &mut Particles, pair: &Pair, res: &PairResult, virial: Option<&mut [[f64; 6]]>) {
     let (i, j) = (pair.i as usize, pair.j as usize);
+    if let Some(w) = virial {
+        let del = [
+            p.x[i][0] - (p.x[j][0] + pair.shift[0]),
+            p.x[i][1] - (p.x[j][1] + pair.shift[1]),
+            p.x[i][2] - (p.x[j][2] + pair.shift[2]),
+        ];
+        let f = res.fi;
+        let v = [
+            del[0] * f[0],
+            del[1] * f[1],
+            del[2] * f[2],
+            del[0] * f[1],
+            del[0] * f[2],
+            del[1] * f[2],
+        ];
+        for k in 0..6 {
+            w[i][k] += 0.5 * v[k];
+        }
+        for k in 0..6 {
+            w[j][k] += 0.5 * v[k];
+        }
+    }
     for d in 0..3 {
         p.f[i][d] += res.fi[d];
         p.torque[i][d] += res.ti[d];

@@ -277,7 +277,7 @@ pub fn initial_integrate(fixes: &[Fix], p: &mut Particles, step: i64, dt: f64) {
 }
 
 /// Run the `post_force` phase of all fixes.
-pub fn post_force(fixes: &mut [Fix], p: &mut Particles, dt: f64, update: bool) {
+pub fn post_force(fixes: &mut [Fix], p: &mut Particles, dt: f64, update: bool, list: (u64, f64)) {
     for fix in fixes {
         let g = fix.group;
         match &mut fix.kind {
@@ -286,7 +286,7 @@ pub fn post_force(fixes: &mut [Fix], p: &mut Particles, dt: f64, update: bool) {
                     let w = model.history_width();
                     let k = p.extra_index(&wall.history_name, w);
                     let mut history = std::mem::take(&mut p.extra[k].data);
-                    model.compute(p, g, &mut history, dt, update);
+                    model.compute(p, g, &mut history, dt, update, list);
                     p.extra[k].data = history;
                 }
             }
@@ -377,7 +377,7 @@ mod tests {
         for step in 1..=200 {
             initial_integrate(&fixes, &mut p, step, dt);
             p.f[0] = [0.0; 3];
-            post_force(&mut fixes, &mut p, dt, true);
+            post_force(&mut fixes, &mut p, dt, true, (0, 0.0));
             final_integrate(&fixes, &mut p, dt);
         }
         assert!((p.v[0][2] - a * omega).abs() < 1e-9);
@@ -403,9 +403,9 @@ mod tests {
             mk(FixKind::SetForce([None, Some(7.0), None])),
         ];
         let mut fixes = fixes;
-        post_force(&mut fixes, &mut p, 0.1, true);
+        post_force(&mut fixes, &mut p, 0.1, true, (0, 0.0));
         assert_eq!(p.f[0], [0.5, 7.0, 3.0]);
-        post_force(&mut [mk(FixKind::Freeze)], &mut p, 0.1, true);
+        post_force(&mut [mk(FixKind::Freeze)], &mut p, 0.1, true, (0, 0.0));
         assert_eq!((p.f[0], p.torque[0]), ([0.0; 3], [0.0; 3]));
         assert_eq!(frozen_groups(&[mk(FixKind::Freeze)]), 1);
     }

@@ -564,7 +564,8 @@ impl Simulation {
                 virial,
             );
         }
-        fixes::post_force(&mut self.fixes, p, self.dt, update);
+        let list = (self.list.builds, self.neighbor.skin);
+        fixes::post_force(&mut self.fixes, p, self.dt, update, list);
     }
 
     /// `run N`: a setup force evaluation, then N velocity-Verlet steps with output.

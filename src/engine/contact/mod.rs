@@ -390,7 +390,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
     /// (at least `history_len()` doubles). Not touching: zero output, history untouched
     /// (LIGGGHTS keeps it until the next neighbour-list build drops the pair; call
     /// [`Self::surfaces_close`] to reset it where LIGGGHTS's `surfacesClose` would).
-    #[inline]
+    #[inline(always)]
     pub fn pair_force(&self, p: &PairInput, history: &mut [f64]) -> PairOutput {
         let delx = p.xi[0] - p.xj[0];
         let dely = p.xi[1] - p.xj[1];
@@ -448,7 +448,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
     /// Force and torque of a primitive wall on one particle; `history` is the particle's
     /// values for this wall. Not touching (gap > 0): zero output and the history is reset,
     /// as `fix wall/gran` does for primitive walls.
-    #[inline]
+    #[inline(always)]
     pub fn wall_force(&self, w: &WallInput, history: &mut [f64]) -> WallOutput {
         if !(w.gap <= 0.0) {
             let n = self.history_len();

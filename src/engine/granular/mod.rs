@@ -69,15 +69,24 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         update: bool,
     ) -> PairResult {
         let (i, j) = (pair.i as usize, pair.j as usize);
+        let xi = p.x[i];
+        let xj = [
+            p.x[j][0] + pair.shift[0],
+            p.x[j][1] + pair.shift[1],
+            p.x[j][2] + pair.shift[2],
+        ];
+        let (radi, radj) = (p.radius[i], p.radius[j]);
+        // most listed pairs do not touch: leave before loading anything else
+        let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
+        let radsum = radi + radj;
+        if !(del[0] * del[0] + del[1] * del[1] + del[2] * del[2] < radsum * radsum) {
+            return PairResult::default();
+        }
         let input = PairInput {
-            xi: p.x[i],
-            xj: [
-                p.x[j][0] + pair.shift[0],
-                p.x[j][1] + pair.shift[1],
-                p.x[j][2] + pair.shift[2],
-            ],
-            radi: p.radius[i],
-            radj: p.radius[j],
+            xi,
+            xj,
+            radi,
+            radj,
             mi: p.mass[i],
             mj: p.mass[j],
             frozen_i: p.mask[i] & self.frozen != 0,
@@ -351,7 +360,9 @@ impl Primitive {
 pub trait WallInteraction: Send {
     /// Doubles of history per particle.
     fn history_width(&self) -> usize;
-    /// Add wall forces to particles of `group`; `history` is per particle.
+    /// Add wall forces to particles of `group`; `history` is per particle. `list` is the
+    /// neighbour list's build count and skin (length): the wall keeps its own list of the
+    /// particles within the skin and refreshes it whenever the pair list was rebuilt.
     fn compute(
         &mut self,
         p: &mut Particles,
@@ -359,6 +370,7 @@ pub trait WallInteraction: Send {
         history: &mut [f64],
         dt: f64,
         update: bool,
+        list: (u64, f64),
     );
 }
 
@@ -374,6 +386,10 @@ pub struct WallGran<N, T, C, R> {
     pub shape: Primitive,
     /// `shear dim vshear` (dimension, m/s) if the wall surface moves.
     pub shear: Option<(usize, f64)>,
+    /// Particles closer to the wall than the skin at the last list build.
+    pub near: Vec<u32>,
+    /// The pair-list build count `near` belongs to.
+    pub near_build: Option<u64>,
 }
 
 impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> WallInteraction
@@ -390,13 +406,40 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Wall
         history: &mut [f64],
         dt: f64,
         update: bool,
+        list: (u64, f64),
     ) {
         let w = self.model.history_len();
-        for i in 0..p.len() {
-            if p.mask[i] & group == 0 {
+        if self.near_build != Some(list.0) {
+            // refresh the wall's neighbour list; particles leaving it are apart: reset them
+            let old = std::mem::take(&mut self.near);
+            for i in 0..p.len() {
+                if p.mask[i] & group != 0 && self.shape.resolve(p.x[i], p.radius[i]).0 < list.1 {
+                    self.near.push(i as u32);
+                }
+            }
+            if w > 0 {
+                for &i in &old {
+                    let i = i as usize;
+                    if i < p.len() && self.near.binary_search(&(i as u32)).is_err() {
+                        history[i * w..(i + 1) * w]
+                            .iter_mut()
+                            .for_each(|v| *v = 0.0);
+                    }
+                }
+            }
+            self.near_build = Some(list.0);
+        }
+        for k in 0..self.near.len() {
+            let i = self.near[k] as usize;
+            let (gap, to_wall) = self.shape.resolve(p.x[i], p.radius[i]);
+            let h = &mut history[i * w..(i + 1) * w];
+            if !(gap <= 0.0) {
+                // apart: the history is reset (written only if it holds something)
+                if h.iter().any(|v| *v != 0.0) {
+                    h.iter_mut().for_each(|v| *v = 0.0);
+                }
                 continue;
             }
-            let (gap, to_wall) = self.shape.resolve(p.x[i], p.radius[i]);
             let input = WallInput {
                 x: p.x[i],
                 gap,
@@ -445,6 +488,8 @@ pub fn build_wall(
                 wall_type: self.1,
                 shape: self.2,
                 shear: self.3,
+                near: Vec::new(),
+                near_build: None,
             })
         }
     }

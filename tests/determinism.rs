@@ -47,6 +47,8 @@ fn run(threads: usize, tag: &str) -> Vec<u8> {
     let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
         .args(["-in", "in.deck", "-log", "none"])
         .env("RAYON_NUM_THREADS", threads.to_string())
+        // take the parallel contact loop even for this small pile
+        .env("REGOLITH_PARALLEL_PAIRS", "0")
         .current_dir(&dir)
         .output()
         .unwrap();

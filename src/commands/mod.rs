@@ -27,6 +27,8 @@ pub struct Ctx<'a> {
     pub sys: &'a mut System,
     /// Screen and log.
     pub out: &'a mut Output,
+    /// The deck's variables (for commands that evaluate them while running).
+    pub vars: &'a mut Variables,
 }
 
 impl Ctx<'_> {
@@ -162,10 +164,9 @@ impl Engine {
         &mut self,
         cmd: &CommandLine,
         sys: &mut System,
-        vars: &Variables,
+        vars: &mut Variables,
         out: &mut Output,
     ) -> Result<(), Diagnostic> {
-        let _ = vars;
         validate_names(cmd)?;
         let check = sys.mode == Mode::Check;
         let args = Args { cmd };
@@ -173,6 +174,7 @@ impl Engine {
             sim: &mut self.sim,
             sys,
             out,
+            vars,
         };
         let handled = sim_setup::execute(cmd.name(), &args, &mut ctx)
             .or_else(|| sim_run::execute(cmd.name(), &args, &mut ctx));
@@ -209,6 +211,13 @@ impl Engine {
         self.sim.property(name).is_some()
     }
 
+    /// Group functions of formulas (see [`Simulation::group_function`]).
+    pub fn group_function(&self, name: &str, args: &[String], mode: Mode) -> Result<f64, String> {
+        self.sim.group_function(name, args, mode)
+    }
+}
+
+impl Simulation {
     /// Group functions of formulas: `count(g)`, `mass(g)`, `xcm(g,dim)`, `vcm(g,dim)`,
     /// `fcm(g,dim)`, `bound(g,xmin|xmax|...)`, `ke(g)`, each with an optional region.
     pub fn group_function(&self, name: &str, args: &[String], mode: Mode) -> Result<f64, String> {
@@ -216,7 +225,7 @@ impl Engine {
             return Err(crate::script::scope::UNKNOWN_QUERY.to_string());
         }
         let invalid = || "Invalid group function in variable formula".to_string();
-        let sim = &self.sim;
+        let sim = self;
         let bit = sim
             .group_bit(args.first().map(String::as_str).unwrap_or(""))
             .ok_or("Group ID in variable formula does not exist")?;
@@ -300,13 +309,17 @@ impl Engine {
     }
 
     /// A thermo keyword's current value for formulas (None: not a keyword regolith evaluates).
-    pub fn thermo_value(&self, name: &str) -> Option<f64> {
-        crate::engine::thermo::keyword_value(name, &self.sim, &self.sim.thermo)
+    pub fn thermo_value(
+        &self,
+        name: &str,
+        vars: &mut dyn crate::engine::sim::VariableSource,
+    ) -> Option<f64> {
+        crate::engine::thermo::keyword_value(name, self, &self.thermo, vars)
     }
 
     /// Per-atom keyword of the atom with ID `id` (`x[N]` in formulas).
     pub fn atom_value_by_id(&self, name: &str, id: usize) -> Result<f64, String> {
-        let p = &self.sim.particles;
+        let p = &self.particles;
         let i =
             p.id.iter()
                 .position(|&t| t == id as i64)

@@ -243,23 +243,67 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
             FixKind::Freeze
         }
         "setforce" | "addforce" => {
-            a.count(6..=6, &format!("fix ID GROUP {style} FX FY FZ"))?;
-            let mut v = [None; 3];
-            for (d, slot) in v.iter_mut().enumerate() {
+            use crate::engine::fixes::{ForceFix, ForceValue};
+            a.count(
+                6..=usize::MAX,
+                &format!("fix ID GROUP {style} FX FY FZ [region ID]"),
+            )?;
+            let mut values = [ForceValue::Null, ForceValue::Null, ForceValue::Null];
+            for (d, slot) in values.iter_mut().enumerate() {
                 let w = a.word(3 + d)?;
-                if w.starts_with("v_") {
-                    return Err(a.unsupported(3 + d, &format!("fix {style} with variables")));
-                }
-                if w != "NULL" {
-                    *slot = Some(a.real(3 + d)?);
+                if let Some(name) = w.strip_prefix("v_") {
+                    // the variable's style decides how it is evaluated, as in LIGGGHTS
+                    *slot = match ctx.vars.get(name).map(|v| v.style) {
+                        Some(crate::script::variables::Style::Equal) => {
+                            ForceValue::Equal(name.into())
+                        }
+                        Some(crate::script::variables::Style::Atom) => {
+                            ForceValue::Atom(name.into())
+                        }
+                        Some(_) => {
+                            return Err(a.error(
+                                3 + d,
+                                &format!("Variable {name} for fix {style} is invalid style"),
+                            ))
+                        }
+                        None => {
+                            return Err(a.error(
+                                3 + d,
+                                &format!("Variable name for fix {style} does not exist"),
+                            ))
+                        }
+                    };
+                } else if w != "NULL" {
+                    *slot = ForceValue::Constant(a.real(3 + d)?);
                 } else if style == "addforce" {
                     return Err(a.error(3 + d, "Illegal fix addforce command"));
                 }
             }
+            let mut region = None;
+            let mut i = 6;
+            while i < a.len() {
+                match a.word(i)? {
+                    "region" => {
+                        let id = a.word(i + 1)?;
+                        region = Some(ctx.sim.regions.find(id).ok_or_else(|| {
+                            a.error(i + 1, &format!("Region ID for fix {style} does not exist"))
+                        })?);
+                        i += 2;
+                    }
+                    w => {
+                        return Err(a.unsupported(i, &format!("fix {style} keyword {w}")));
+                    }
+                }
+            }
+            let f = ForceFix {
+                values,
+                region,
+                resolved: Vec::new(),
+            };
             if style == "setforce" {
-                FixKind::SetForce(v)
+                FixKind::SetForce(f)
             } else {
-                FixKind::AddForce(v.map(|c| c.unwrap_or(0.0)))
+                FixKind::AddForce(f)
             }
         }
         "viscous" => {
@@ -462,11 +506,23 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                     .error(4, "Illegal dump custom command")
                     .with_help("list the columns to dump"));
             }
-            if let Some(k) = names
-                .iter()
-                .position(|n| n.starts_with("f_") || n.starts_with("v_"))
-            {
-                return Err(a.unsupported(5 + k, "dump columns of fixes and variables"));
+            if let Some(k) = names.iter().position(|n| n.starts_with("f_")) {
+                return Err(a.unsupported(5 + k, "dump columns of fixes"));
+            }
+            for (k, n) in names.iter().enumerate() {
+                if let Some(var) = n.strip_prefix("v_") {
+                    match ctx.vars.get(var).map(|v| v.style) {
+                        Some(crate::script::variables::Style::Atom) => {}
+                        Some(_) => {
+                            return Err(
+                                a.error(5 + k, "Dump custom variable is not atom-style variable")
+                            )
+                        }
+                        None => {
+                            return Err(a.error(5 + k, "Could not find dump custom variable name"))
+                        }
+                    }
+                }
             }
             for (k, n) in names.iter().enumerate() {
                 if let Some(body) = n.strip_prefix("c_") {
@@ -619,7 +675,13 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     ctx.sim.ramp_bounds = (start, stop);
     let out = &mut *ctx.out;
     let mut sink = |s: &str| out.both(s);
-    ctx.sim.run(nsteps, &mut sink).map_err(|m| a.error(0, &m))
+    let mut vars = crate::script::scope::RunVariables {
+        vars: &mut *ctx.vars,
+        sys: &mut *ctx.sys,
+    };
+    ctx.sim
+        .run(nsteps, &mut sink, &mut vars)
+        .map_err(|m| a.error(0, &m))
 }
 
 /// Parse `model M tangential T ... [option on|off ...]` starting at argument `start` in
@@ -842,8 +904,19 @@ fn compute_reduce(
             inputs.push(Input::Compute(id.to_string(), index));
             continue;
         }
-        if w.starts_with("f_") || w.starts_with("v_") {
-            return Err(a.unsupported(i, "compute reduce of fixes and variables"));
+        if let Some(name) = w.strip_prefix("v_") {
+            match ctx.vars.get(name).map(|v| v.style) {
+                Some(crate::script::variables::Style::Atom) => {}
+                Some(_) => {
+                    return Err(a.error(i, "Compute reduce variable is not atom-style variable"))
+                }
+                None => return Err(a.error(i, "Variable name for compute reduce does not exist")),
+            }
+            inputs.push(Input::Variable(name.to_string()));
+            continue;
+        }
+        if w.starts_with("f_") {
+            return Err(a.unsupported(i, "compute reduce of fixes"));
         }
         match crate::io::dump::Column::parse(w) {
             Ok(crate::io::dump::Column::Reference(_)) | Err(_) => {

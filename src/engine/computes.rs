@@ -4,7 +4,7 @@
 use crate::engine::domain::Domain;
 use crate::engine::integrate::SPHERE_INERTIA;
 use crate::engine::particles::Particles;
-use crate::engine::sim::Simulation;
+use crate::engine::sim::{Simulation, VariableSource};
 use crate::io::dump::Column;
 
 /// What a compute calculates.
@@ -62,6 +62,8 @@ pub enum Input {
     Atom(Column),
     /// A per-atom compute `c_ID` or column `c_ID[N]` (1-based).
     Compute(String, Option<usize>),
+    /// An atom-style variable `v_name`.
+    Variable(String),
 }
 
 /// Per-atom values of a compute: `columns` values per particle, row-major in particle
@@ -140,7 +142,7 @@ impl Compute {
     }
 
     /// The compute's global scalar.
-    pub fn scalar(&self, sim: &Simulation) -> Result<f64, String> {
+    pub fn scalar(&self, sim: &Simulation, vars: &mut dyn VariableSource) -> Result<f64, String> {
         let p = &sim.particles;
         Ok(match &self.kind {
             ComputeKind::ErotateSphere => {
@@ -158,7 +160,7 @@ impl Compute {
             }
             ComputeKind::Ke => kinetic_energy(p, self.group),
             ComputeKind::Reduce { mode, inputs } if inputs.len() == 1 => {
-                self.reduce(sim, *mode, &inputs[0])?
+                self.reduce(sim, *mode, &inputs[0], vars)?
             }
             _ => {
                 return Err(format!(
@@ -170,7 +172,12 @@ impl Compute {
     }
 
     /// Element `index` (1-based) of the compute's global vector.
-    pub fn vector(&self, index: usize, sim: &Simulation) -> Result<f64, String> {
+    pub fn vector(
+        &self,
+        index: usize,
+        sim: &Simulation,
+        vars: &mut dyn VariableSource,
+    ) -> Result<f64, String> {
         if index == 0 || index > self.vector_len() {
             return Err(format!(
                 "Compute {} ({}) has no global vector element {index}",
@@ -181,13 +188,21 @@ impl Compute {
             ComputeKind::Com => {
                 Ok(center_of_mass(&sim.particles, &sim.domain, self.group)[index - 1])
             }
-            ComputeKind::Reduce { mode, inputs } => self.reduce(sim, *mode, &inputs[index - 1]),
+            ComputeKind::Reduce { mode, inputs } => {
+                self.reduce(sim, *mode, &inputs[index - 1], vars)
+            }
             _ => unreachable!("vector_len is 0"),
         }
     }
 
     /// LIGGGHTS's `compute reduce` of one input over the group (atom order).
-    fn reduce(&self, sim: &Simulation, mode: ReduceMode, input: &Input) -> Result<f64, String> {
+    fn reduce(
+        &self,
+        sim: &Simulation,
+        mode: ReduceMode,
+        input: &Input,
+        vars: &mut dyn VariableSource,
+    ) -> Result<f64, String> {
         let p = &sim.particles;
         let values: Box<dyn Fn(usize) -> f64> = match input {
             Input::Atom(col) => {
@@ -199,9 +214,13 @@ impl Compute {
                     sim.computes.iter().find(|c| &c.id == id).ok_or_else(|| {
                         format!("Compute ID {id} for compute reduce does not exist")
                     })?;
-                let data = c.per_atom(sim)?;
+                let data = c.per_atom(sim, vars)?;
                 let col = column_of(c, *index)?;
                 Box::new(move |i| data.get(i, col))
+            }
+            Input::Variable(name) => {
+                let data = vars.atom(sim, name)?;
+                Box::new(move |i| data[i])
             }
         };
         let (mut acc, mut count) = match mode {
@@ -228,7 +247,12 @@ impl Compute {
     }
 
     /// The compute's per-atom values (for dumps and `compute reduce`).
-    pub fn per_atom(&self, sim: &Simulation) -> Result<PerAtom, String> {
+    pub fn per_atom(
+        &self,
+        sim: &Simulation,
+        vars: &mut dyn VariableSource,
+    ) -> Result<PerAtom, String> {
+        let _ = vars; // no per-atom compute of regolith reads variables yet
         let p = &sim.particles;
         let n = p.len();
         let group = self.group;
@@ -384,10 +408,11 @@ mod tests {
             group: 1,
             kind,
         };
-        assert!((c(ComputeKind::Ke).scalar(p).unwrap() - 0.5 * 25.0).abs() < 1e-12);
+        let nv = &mut crate::engine::sim::NoVariables;
+        assert!((c(ComputeKind::Ke).scalar(p, nv).unwrap() - 0.5 * 25.0).abs() < 1e-12);
         // 0.5 * 0.4 m r^2 w^2 with m = 1
         assert!(
-            (c(ComputeKind::ErotateSphere).scalar(p).unwrap() - 0.5 * 0.4 * 0.25 * 4.0).abs()
+            (c(ComputeKind::ErotateSphere).scalar(p, nv).unwrap() - 0.5 * 0.4 * 0.25 * 4.0).abs()
                 < 1e-12
         );
     }

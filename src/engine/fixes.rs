@@ -116,9 +116,9 @@ pub enum FixKind {
     /// `fix gravity`.
     Gravity(Gravity),
     /// `fix setforce fx fy fz` (None: leave that component).
-    SetForce([Option<f64>; 3]),
+    SetForce(ForceFix),
     /// `fix addforce fx fy fz` (force units).
-    AddForce([f64; 3]),
+    AddForce(ForceFix),
     /// `fix viscous gamma`: f -= gamma v (force/velocity units).
     Viscous(f64),
     /// `fix freeze`: force and torque zero (and infinite mass in contacts).
@@ -276,6 +276,60 @@ pub fn initial_integrate(fixes: &[Fix], p: &mut Particles, step: i64, dt: f64) {
     }
 }
 
+/// One component of `fix setforce`/`addforce` (force units).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ForceValue {
+    /// `NULL` (setforce: leave the component alone).
+    Null,
+    /// A number.
+    Constant(f64),
+    /// `v_name` of an equal-style variable (evaluated each step).
+    Equal(String),
+    /// `v_name` of an atom-style variable (evaluated each step, per atom).
+    Atom(String),
+}
+
+/// `fix setforce`/`addforce`: three components and an optional region.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ForceFix {
+    /// x, y, z components.
+    pub values: [ForceValue; 3],
+    /// `region ID`: only particles inside (region index).
+    pub region: Option<usize>,
+    /// Per-particle components of this step when variables or a region are involved
+    /// (None: leave / add nothing), filled by the simulation before `post_force`.
+    pub resolved: Vec<[Option<f64>; 3]>,
+}
+
+impl ForceFix {
+    /// True if the components must be evaluated per step and particle.
+    pub fn needs_resolving(&self) -> bool {
+        self.region.is_some()
+            || self
+                .values
+                .iter()
+                .any(|v| matches!(v, ForceValue::Equal(_) | ForceValue::Atom(_)))
+    }
+
+    /// The constant components (None for NULL); only valid without variables.
+    fn constants(&self) -> [Option<f64>; 3] {
+        self.values.clone().map(|v| match v {
+            ForceValue::Constant(c) => Some(c),
+            _ => None,
+        })
+    }
+
+    /// The components for particle `i`.
+    #[inline]
+    fn at(&self, i: usize, constants: &[Option<f64>; 3]) -> [Option<f64>; 3] {
+        if self.resolved.is_empty() {
+            *constants
+        } else {
+            self.resolved[i]
+        }
+    }
+}
+
 /// Run the `post_force` phase of all fixes.
 pub fn post_force(fixes: &mut [Fix], p: &mut Particles, dt: f64, update: bool, list: (u64, f64)) {
     for fix in fixes {
@@ -292,18 +346,24 @@ pub fn post_force(fixes: &mut [Fix], p: &mut Particles, dt: f64, update: bool, l
             }
             FixKind::Gravity(grav) => grav.apply(p),
             FixKind::SetForce(f) => {
+                let c = f.constants();
                 for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
+                    let v = f.at(i, &c);
                     for d in 0..3 {
-                        if let Some(v) = f[d] {
+                        if let Some(v) = v[d] {
                             p.f[i][d] = v;
                         }
                     }
                 }
             }
             FixKind::AddForce(f) => {
+                let c = f.constants();
                 for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
+                    let v = f.at(i, &c);
                     for d in 0..3 {
-                        p.f[i][d] += f[d];
+                        if let Some(v) = v[d] {
+                            p.f[i][d] += v;
+                        }
                     }
                 }
             }
@@ -398,9 +458,21 @@ mod tests {
             args: vec![],
         };
         let fixes = vec![
-            mk(FixKind::AddForce([1.0, 2.0, 3.0])),
+            mk(FixKind::AddForce(ForceFix {
+                values: [1.0, 2.0, 3.0].map(ForceValue::Constant),
+                region: None,
+                resolved: Vec::new(),
+            })),
             mk(FixKind::Viscous(0.5)),
-            mk(FixKind::SetForce([None, Some(7.0), None])),
+            mk(FixKind::SetForce(ForceFix {
+                values: [
+                    ForceValue::Null,
+                    ForceValue::Constant(7.0),
+                    ForceValue::Null,
+                ],
+                region: None,
+                resolved: Vec::new(),
+            })),
         ];
         let mut fixes = fixes;
         post_force(&mut fixes, &mut p, 0.1, true, (0, 0.0));

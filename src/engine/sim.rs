@@ -59,6 +59,26 @@ pub trait PairInteraction: Send {
     );
 }
 
+/// The deck's variables as the running simulation reads them.
+pub trait VariableSource {
+    /// The value of equal-style variable `name`.
+    fn equal(&mut self, sim: &Simulation, name: &str) -> Result<f64, String>;
+    /// The values of atom-style variable `name`, one per particle in particle order.
+    fn atom(&mut self, sim: &Simulation, name: &str) -> Result<Vec<f64>, String>;
+}
+
+/// No variables (unit tests and tools that run without a deck).
+pub struct NoVariables;
+
+impl VariableSource for NoVariables {
+    fn equal(&mut self, _: &Simulation, name: &str) -> Result<f64, String> {
+        Err(format!("Variable name {name} does not exist"))
+    }
+    fn atom(&mut self, _: &Simulation, name: &str) -> Result<Vec<f64>, String> {
+        Err(format!("Variable name {name} does not exist"))
+    }
+}
+
 /// One `dump` command.
 pub struct Dump {
     /// The dump ID.
@@ -274,26 +294,37 @@ impl Simulation {
     }
 
     /// Value of `c_ID` (index None) or `c_ID[i]`.
-    pub fn compute_value(&self, id: &str, index: Option<usize>) -> Result<f64, String> {
+    pub fn compute_value(
+        &self,
+        id: &str,
+        index: Option<usize>,
+        vars: &mut dyn VariableSource,
+    ) -> Result<f64, String> {
         let c = self
             .computes
             .iter()
             .find(|c| c.id == id)
             .ok_or_else(|| format!("Could not find thermo/variable compute ID {id}"))?;
         match index {
-            None => c.scalar(self),
-            Some(i) => c.vector(i, self),
+            None => c.scalar(self, vars),
+            Some(i) => c.vector(i, self, vars),
         }
     }
 
-    /// The per-atom values behind a dump column `c_ID` / `c_ID[N]`, and its column.
+    /// The per-atom values behind a dump column `c_ID` / `c_ID[N]` / `v_name`, and its
+    /// column.
     fn dump_reference(
         &self,
         name: &str,
+        vars: &mut dyn VariableSource,
     ) -> Result<(crate::engine::computes::PerAtom, usize), String> {
-        let body = name.strip_prefix("c_").ok_or_else(|| {
-            format!("dump column {name}: only per-atom computes are supported yet")
-        })?;
+        if let Some(var) = name.strip_prefix("v_") {
+            let values = vars.atom(self, var)?;
+            return Ok((crate::engine::computes::PerAtom { columns: 1, values }, 0));
+        }
+        let body = name
+            .strip_prefix("c_")
+            .ok_or_else(|| format!("dump column {name}: fix columns are not supported yet"))?;
         let (id, index) = crate::commands::sim_run::split_reference(body)
             .ok_or_else(|| format!("Invalid attribute {name} in dump custom command"))?;
         let c = self
@@ -302,7 +333,7 @@ impl Simulation {
             .find(|c| c.id == id)
             .ok_or_else(|| format!("Could not find dump custom compute ID {id}"))?;
         let col = crate::engine::computes::column_of(c, index)?;
-        Ok((c.per_atom(self)?, col))
+        Ok((c.per_atom(self, vars)?, col))
     }
 
     /// Bit mask of group `name`.
@@ -535,7 +566,46 @@ impl Simulation {
         self.list.built_positions()
     }
 
-    fn compute_forces(&mut self, update: bool) {
+    /// Evaluate the variables and regions of `fix setforce`/`addforce` for this step.
+    fn resolve_force_fixes(&mut self, vars: &mut dyn VariableSource) -> Result<(), String> {
+        use crate::engine::fixes::ForceValue;
+        for k in 0..self.fixes.len() {
+            let f = match &self.fixes[k].kind {
+                FixKind::SetForce(f) | FixKind::AddForce(f) if f.needs_resolving() => f,
+                _ => continue,
+            };
+            let n = self.particles.len();
+            let mut columns: Vec<Option<Vec<f64>>> = Vec::with_capacity(3);
+            for v in &f.values {
+                columns.push(match v {
+                    ForceValue::Null => None,
+                    ForceValue::Constant(c) => Some(vec![*c; n]),
+                    ForceValue::Equal(name) => Some(vec![vars.equal(self, name)?; n]),
+                    ForceValue::Atom(name) => Some(vars.atom(self, name)?),
+                });
+            }
+            let region = f.region;
+            let mut resolved = vec![[None; 3]; n];
+            for (i, r) in resolved.iter_mut().enumerate() {
+                if region.is_some_and(|g| !self.regions.matches(g, self.particles.x[i])) {
+                    continue;
+                }
+                for d in 0..3 {
+                    r[d] = columns[d].as_ref().map(|c| c[i]);
+                }
+            }
+            if let FixKind::SetForce(f) | FixKind::AddForce(f) = &mut self.fixes[k].kind {
+                f.resolved = resolved;
+            }
+        }
+        Ok(())
+    }
+
+    fn compute_forces(
+        &mut self,
+        update: bool,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), String> {
         let p = &mut self.particles;
         p.f.iter_mut().for_each(|f| *f = [0.0; 3]);
         p.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
@@ -564,12 +634,19 @@ impl Simulation {
                 virial,
             );
         }
+        self.resolve_force_fixes(vars)?;
         let list = (self.list.builds, self.neighbor.skin);
-        fixes::post_force(&mut self.fixes, p, self.dt, update, list);
+        fixes::post_force(&mut self.fixes, &mut self.particles, self.dt, update, list);
+        Ok(())
     }
 
     /// `run N`: a setup force evaluation, then N velocity-Verlet steps with output.
-    pub fn run(&mut self, nsteps: i64, out: Sink<'_>) -> Result<(), String> {
+    pub fn run(
+        &mut self,
+        nsteps: i64,
+        out: Sink<'_>,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), String> {
         if !self.domain.exists {
             return Err("Run command before simulation box is defined".into());
         }
@@ -586,13 +663,13 @@ impl Simulation {
         self.pbc_and_box()?;
         self.build_neighbors();
         // LIGGGHTS's setup evaluation does not advance contact history
-        self.compute_forces(false);
+        self.compute_forces(false, vars)?;
         self.guard_motion()?;
         self.guard_forces()?;
         self.thermo.run_start = first;
         self.thermo.header(out);
-        self.thermo_line(out);
-        self.write_dumps(true)?;
+        self.thermo_line(out, vars)?;
+        self.write_dumps(true, vars)?;
         self.loop_clock = Some(std::time::Instant::now());
         for _ in 0..nsteps {
             self.step += 1;
@@ -603,14 +680,14 @@ impl Simulation {
                 self.pbc_and_box()?;
                 self.build_neighbors();
             }
-            self.compute_forces(true);
+            self.compute_forces(true, vars)?;
             self.guard_forces()?;
             fixes::final_integrate(&self.fixes, &mut self.particles, self.dt);
             self.end_of_step(out);
             if self.thermo.due(self.step, last) {
-                self.thermo_line(out);
+                self.thermo_line(out, vars)?;
             }
-            self.write_dumps(false)?;
+            self.write_dumps(false, vars)?;
         }
         self.run_bounds = None;
         self.loop_clock = None;
@@ -638,13 +715,14 @@ impl Simulation {
         }
     }
 
-    fn thermo_line(&mut self, out: Sink<'_>) {
-        let values = self.thermo.values(self);
+    fn thermo_line(&mut self, out: Sink<'_>, vars: &mut dyn VariableSource) -> Result<(), String> {
+        let values = self.thermo.values(self, vars)?;
         let cpu = self.loop_clock.map_or(0.0, |t| t.elapsed().as_secs_f64());
         self.thermo.line(&values, self.step, cpu, out);
+        Ok(())
     }
 
-    fn write_dumps(&mut self, setup: bool) -> Result<(), String> {
+    fn write_dumps(&mut self, setup: bool, vars: &mut dyn VariableSource) -> Result<(), String> {
         use std::io::Write;
         let step = self.step;
         for k in 0..self.dumps.len() {
@@ -667,7 +745,7 @@ impl Simulation {
             let mut columns = Vec::new();
             for col in &self.dumps[k].layout.columns {
                 if let crate::io::dump::Column::Reference(name) = col {
-                    columns.push(self.dump_reference(name)?);
+                    columns.push(self.dump_reference(name, vars)?);
                 }
             }
             let dump = &mut self.dumps[k];

@@ -1,7 +1,7 @@
 //! Thermo output (`thermo`, `thermo_style`, `thermo_modify`): column headers right-aligned,
 //! integers as `%8d`, reals as `%14.8g`, each followed by a blank, as LIGGGHTS prints them.
 
-use crate::engine::sim::{Simulation, Sink};
+use crate::engine::sim::{Simulation, Sink, VariableSource};
 use crate::script::format;
 
 /// Whether a column holds an integer or a real number.
@@ -91,7 +91,11 @@ impl Thermo {
     pub fn set_style(&mut self, keywords: &[&str]) -> Result<(), String> {
         let mut fields = Vec::new();
         for k in keywords {
-            if let Some(rest) = k.strip_prefix("c_").or_else(|| k.strip_prefix("f_")) {
+            if let Some(rest) = k
+                .strip_prefix("c_")
+                .or_else(|| k.strip_prefix("f_"))
+                .or_else(|| k.strip_prefix("v_"))
+            {
                 // LIGGGHTS labels a compute column by its reference without the c_ prefix
                 fields.push(Field {
                     keyword: k.to_string(),
@@ -101,7 +105,7 @@ impl Thermo {
                 continue;
             }
             let Some(&(_, label, kind)) = KEYWORDS.iter().find(|e| e.0 == *k) else {
-                let known = crate::commands::THERMO_KEYWORDS.contains(k) || k.starts_with("v_");
+                let known = crate::commands::THERMO_KEYWORDS.contains(k);
                 return Err(if known {
                     format!("thermo keyword {k}: not supported yet")
                 } else {
@@ -140,10 +144,18 @@ impl Thermo {
     }
 
     /// The current values of every column.
-    pub fn values(&self, sim: &Simulation) -> Vec<f64> {
+    pub fn values(
+        &self,
+        sim: &Simulation,
+        vars: &mut dyn VariableSource,
+    ) -> Result<Vec<f64>, String> {
         self.fields
             .iter()
-            .map(|f| keyword_value(&f.keyword, sim, self).unwrap_or(0.0))
+            .map(|f| match f.keyword.strip_prefix("v_") {
+                Some(name) => vars.equal(sim, name),
+                None => keyword_value(&f.keyword, sim, self, vars)
+                    .ok_or_else(|| format!("Thermo keyword {}: no value", f.keyword)),
+            })
             .collect()
     }
 
@@ -193,7 +205,12 @@ impl Thermo {
 }
 
 /// The value of a thermo keyword, or None if regolith does not evaluate it.
-pub fn keyword_value(keyword: &str, sim: &Simulation, thermo: &Thermo) -> Option<f64> {
+pub fn keyword_value(
+    keyword: &str,
+    sim: &Simulation,
+    thermo: &Thermo,
+    vars: &mut dyn VariableSource,
+) -> Option<f64> {
     let d = &sim.domain;
     let n = sim.particles.len() as f64;
     let norm = |v: f64| if thermo.norm && n > 0.0 { v / n } else { v };
@@ -222,7 +239,7 @@ pub fn keyword_value(keyword: &str, sim: &Simulation, thermo: &Thermo) -> Option
                 None => (body, None),
             };
             return if k.starts_with('c') {
-                sim.compute_value(id, index).ok()
+                sim.compute_value(id, index, vars).ok()
             } else {
                 sim.fix_value(id, index).ok()
             };
@@ -253,9 +270,11 @@ mod tests {
             .unwrap_err()
             .starts_with("Invalid keyword"));
         assert!(t
-            .set_style(&["v_x"])
+            .set_style(&["fmax"])
             .unwrap_err()
             .contains("not supported yet"));
+        t.set_style(&["v_x"]).unwrap();
+        assert_eq!(t.fields[0].label, "x");
         // thermo_style multi, then user formats (layouts printed by Debian's LIGGGHTS)
         t.set_style(&["step", "atoms", "ke", "cpu"]).unwrap();
         t.multi = true;

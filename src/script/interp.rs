@@ -314,14 +314,14 @@ impl Interpreter {
                         None => Err("Substitution for illegal variable".to_string()),
                         Some(Value::Text(t)) => Ok(t),
                         Some(Value::Formula(f)) => {
-                            let mut scope = Scope::new(vars, sys, engine);
+                            let mut scope = Scope::new(vars, sys, &engine.sim);
                             expr::evaluate(&f, &mut scope)
                                 .map(|x| format::g_precision(x, 15))
                                 .map_err(|e| e.message)
                         }
                     },
                     VarRef::Immediate(e) => {
-                        let mut scope = Scope::new(vars, sys, engine);
+                        let mut scope = Scope::new(vars, sys, &engine.sim);
                         expr::evaluate(e, &mut scope)
                             .map(|x| format::g_precision(x, 20))
                             .map_err(|e| e.message)
@@ -416,7 +416,7 @@ impl Interpreter {
             "variable" => self.variable(cmd, &args),
             _ => self
                 .engine
-                .execute(cmd, &mut self.sys, &self.vars, &mut self.out),
+                .execute(cmd, &mut self.sys, &mut self.vars, &mut self.out),
         }
     }
 

@@ -1,8 +1,11 @@
 //! What a formula sees while it is evaluated: the deck's variables, the files and
 //! environment, and the engine's state (thermo values, computes, fixes, groups, atoms).
 
-use crate::commands::Engine;
-use crate::script::expr::{self, ExprContext};
+use std::collections::HashMap;
+use std::rc::Rc;
+
+use crate::engine::sim::{Simulation, VariableSource};
+use crate::script::expr::{self, Expr, ExprContext, RefKind};
 use crate::script::format::g_precision;
 use crate::script::random::{check_seed, RanMars};
 use crate::script::system::{Mode, System};
@@ -17,19 +20,105 @@ pub struct Scope<'a> {
     pub vars: &'a mut Variables,
     /// Files and environment.
     pub sys: &'a mut System,
-    /// The engine's state.
-    pub engine: &'a Engine,
+    /// The simulation's state.
+    pub sim: &'a Simulation,
     active: Vec<String>,
+    /// Per-atom vectors evaluated during this scope (atom-style variables `v_name`,
+    /// per-atom computes `c_ID`), so a formula reading them for every atom evaluates each
+    /// once.
+    per_atom: HashMap<String, Rc<Vec<f64>>>,
 }
 
 impl<'a> Scope<'a> {
-    /// A scope over the interpreter's variables, system and engine.
-    pub fn new(vars: &'a mut Variables, sys: &'a mut System, engine: &'a Engine) -> Scope<'a> {
+    /// A scope over the interpreter's variables, system and simulation.
+    pub fn new(vars: &'a mut Variables, sys: &'a mut System, sim: &'a Simulation) -> Scope<'a> {
         Scope {
             vars,
             sys,
-            engine,
+            sim,
             active: Vec::new(),
+            per_atom: HashMap::new(),
+        }
+    }
+
+    /// The values of atom-style variable `name` for every particle (particle order).
+    pub fn atom_variable(&mut self, name: &str) -> Result<Rc<Vec<f64>>, String> {
+        let key = format!("v_{name}");
+        if let Some(v) = self.per_atom.get(&key) {
+            return Ok(v.clone());
+        }
+        let formula = match self.vars.get(name) {
+            None => return Err(format!("Variable name {name} does not exist")),
+            Some(v) if v.style != Style::Atom => {
+                return Err(format!("Variable {name} is not atom-style"))
+            }
+            Some(_) => self.vars.atom_formula(name).expect("atom style"),
+        };
+        if self.active.iter().any(|a| a == name) {
+            return Err("Variable has circular dependency".into());
+        }
+        self.active.push(name.to_string());
+        let result = (|| {
+            let e = Expr::parse_atom(&formula, self).map_err(|e| e.message)?;
+            let n = self.sim.particles.len();
+            let mut values = Vec::with_capacity(n);
+            for i in 0..n {
+                values.push(e.eval(self, Some(i)).map_err(|e| e.message)?);
+            }
+            Ok::<_, String>(values)
+        })();
+        self.active.pop();
+        let values = Rc::new(result?);
+        self.per_atom.insert(key, values.clone());
+        Ok(values)
+    }
+
+    /// The per-atom values of compute `id` (cached for this scope) and its column.
+    fn atom_compute(
+        &mut self,
+        id: &str,
+        i: Option<usize>,
+    ) -> Result<(Rc<Vec<f64>>, usize, usize), String> {
+        let c = self
+            .sim
+            .computes
+            .iter()
+            .find(|c| c.id == id)
+            .ok_or("Invalid compute ID in variable formula")?;
+        let col = crate::engine::computes::column_of(c, i)?;
+        let cols = c.per_atom_columns();
+        let key = format!("c_{id}");
+        if let Some(v) = self.per_atom.get(&key) {
+            return Ok((v.clone(), cols, col));
+        }
+        let sim = self.sim;
+        let data = Rc::new(c.per_atom(sim, self)?.values);
+        self.per_atom.insert(key, data.clone());
+        Ok((data, cols, col))
+    }
+
+    /// An equal-style variable's value as LIGGGHTS's `compute_equal` gives it (no text
+    /// round trip).
+    pub fn equal_variable(&mut self, name: &str) -> Result<f64, String> {
+        match self.vars.get(name) {
+            None => return Err(format!("Variable name {name} does not exist")),
+            Some(v) if matches!(v.style, Style::Atom | Style::AtomFile) => {
+                return Err(format!("Variable {name} is not equal-style"))
+            }
+            _ => {}
+        }
+        match self.vars.retrieve(name, self.sys) {
+            None => Err(format!("Variable {name}: invalid evaluation")),
+            Some(Value::Text(t)) => Ok(c_atof(&t)),
+            Some(Value::Formula(f)) => {
+                if self.active.iter().any(|a| a == name) {
+                    return Err("Variable has circular dependency".into());
+                }
+                self.active.push(name.to_string());
+                let r = expr::evaluate(&f, self).map_err(|e| e.message);
+                self.active.pop();
+                r
+            }
         }
     }
 
@@ -60,8 +149,26 @@ impl ExprContext for Scope<'_> {
             (Style::Atom | Style::AtomFile, None) if atom.is_none() => {
                 Err("Atom-style variable in equal-style variable formula".into())
             }
-            (Style::Atom | Style::AtomFile, _) => {
-                Err(self.no_state("Atom-style variables need atoms"))
+            (Style::Atom, None) => {
+                let i = atom.expect("checked above");
+                if self.sys.mode == Mode::Check {
+                    return Err(UNKNOWN_QUERY.to_string());
+                }
+                Ok(self.atom_variable(name)?[i])
+            }
+            (Style::Atom, Some(id)) => {
+                if self.sys.mode == Mode::Check {
+                    return Err(UNKNOWN_QUERY.to_string());
+                }
+                let p = &self.sim.particles;
+                let i =
+                    p.id.iter()
+                        .position(|&t| t == id as i64)
+                        .ok_or("Variable atom ID is not currently defined")?;
+                Ok(self.atom_variable(name)?[i])
+            }
+            (Style::AtomFile, _) => {
+                Err(self.no_state("atomfile-style variables: not supported yet"))
             }
             (_, Some(_)) => Err("Mismatched variable in variable formula".into()),
             (_, None) => match self.vars.retrieve(name, self.sys) {
@@ -85,8 +192,8 @@ impl ExprContext for Scope<'_> {
         if self.sys.mode == Mode::Check {
             return Err(UNKNOWN_QUERY.to_string());
         }
-        self.engine
-            .thermo_value(name)
+        let sim = self.sim;
+        sim.thermo_value(name, self)
             .ok_or_else(|| format!("thermo keyword {name} in a formula: not supported yet"))
     }
 
@@ -100,15 +207,25 @@ impl ExprContext for Scope<'_> {
         if self.sys.mode == Mode::Check {
             return Err(UNKNOWN_QUERY.to_string());
         }
-        if j.is_some() || atom.is_some() {
-            return Err(format!(
-                "c_{id} with array or per-atom access: not supported yet"
-            ));
+        if j.is_some() {
+            return Err(format!("c_{id}[i][j]: not supported yet"));
         }
-        if !self.engine.sim.computes.iter().any(|c| c.id == id) {
+        if let Some(a) = atom {
+            let is_per_atom = self
+                .sim
+                .computes
+                .iter()
+                .any(|c| c.id == id && c.per_atom_columns() > 0);
+            if is_per_atom {
+                let (data, cols, col) = self.atom_compute(id, i)?;
+                return Ok(data[a * cols + col]);
+            }
+        }
+        if !self.sim.computes.iter().any(|c| c.id == id) {
             return Err("Invalid compute ID in variable formula".into());
         }
-        self.engine.sim.compute_value(id, i)
+        let sim = self.sim;
+        sim.compute_value(id, i, self)
     }
 
     fn fix(
@@ -122,43 +239,46 @@ impl ExprContext for Scope<'_> {
     }
 
     fn group_function(&mut self, name: &str, args: &[String]) -> Result<f64, String> {
-        self.engine.group_function(name, args, self.sys.mode)
+        self.sim.group_function(name, args, self.sys.mode)
     }
 
     fn special_function(&mut self, _: &str, _: &[String], _: Option<usize>) -> Result<f64, String> {
         Err(self.no_state("Invalid special function in variable formula"))
     }
 
-    fn atom_value(&mut self, _: &str, _: usize) -> Result<f64, String> {
-        Err(self.no_state("Variable evaluation before simulation box is defined"))
+    fn atom_value(&mut self, name: &str, atom: usize) -> Result<f64, String> {
+        if self.sys.mode == Mode::Check || atom >= self.sim.particles.len() {
+            return Err(self.no_state("Variable evaluation before simulation box is defined"));
+        }
+        crate::commands::atom_keyword(&self.sim.particles, name, atom)
     }
 
     fn atom_value_by_id(&mut self, name: &str, id: usize) -> Result<f64, String> {
         if self.sys.mode == Mode::Check {
             return Err(UNKNOWN_QUERY.to_string());
         }
-        self.engine.atom_value_by_id(name, id)
+        self.sim.atom_value_by_id(name, id)
     }
 
     fn box_exists(&self) -> bool {
         // in check mode the box never exists; formulas needing it are "unknown", not errors
-        self.sys.mode == Mode::Check || self.engine.box_exists()
+        self.sys.mode == Mode::Check || self.sim.domain.exists
     }
 
     fn timestep(&self) -> i64 {
-        self.engine.sim.step
+        self.sim.step
     }
 
     fn run_bounds(&self) -> Option<(i64, i64)> {
-        self.engine.sim.run_bounds
+        self.sim.run_bounds
     }
 
     fn dt(&self) -> f64 {
-        self.engine.sim.dt
+        self.sim.dt
     }
 
     fn rng(&mut self, seed: i32, per_atom: bool) -> Result<&mut RanMars, String> {
-        let tolerant = self.engine.sim.seed_tolerant;
+        let tolerant = self.sim.seed_tolerant;
         let slot = if per_atom {
             &mut self.vars.random_atom
         } else {
@@ -171,5 +291,58 @@ impl ExprContext for Scope<'_> {
             *slot = Some(RanMars::new(seed)?);
         }
         Ok(slot.as_mut().expect("just made"))
+    }
+
+    fn is_per_atom_ref(
+        &mut self,
+        kind: RefKind,
+        name: &str,
+        _i: Option<usize>,
+        _j: Option<usize>,
+    ) -> bool {
+        match kind {
+            RefKind::Variable => self
+                .vars
+                .get(name)
+                .is_some_and(|v| matches!(v.style, Style::Atom | Style::AtomFile)),
+            RefKind::Compute => self
+                .sim
+                .computes
+                .iter()
+                .any(|c| c.id == name && c.per_atom_columns() > 0),
+            RefKind::Fix => false,
+        }
+    }
+}
+
+impl VariableSource for Scope<'_> {
+    fn equal(&mut self, _sim: &Simulation, name: &str) -> Result<f64, String> {
+        self.equal_variable(name)
+    }
+
+    fn atom(&mut self, _sim: &Simulation, name: &str) -> Result<Vec<f64>, String> {
+        Ok(self.atom_variable(name)?.as_ref().clone())
+    }
+}
+
+/// The deck's variables as a running simulation reads them (thermo `v_` columns, dump
+/// `v_` columns, fixes and computes with variable inputs): each request evaluates in a
+/// fresh [`Scope`] over the simulation's current state.
+pub struct RunVariables<'a> {
+    /// The deck's variables.
+    pub vars: &'a mut Variables,
+    /// Files and environment.
+    pub sys: &'a mut System,
+}
+
+impl VariableSource for RunVariables<'_> {
+    fn equal(&mut self, sim: &Simulation, name: &str) -> Result<f64, String> {
+        Scope::new(self.vars, self.sys, sim).equal_variable(name)
+    }
+
+    fn atom(&mut self, sim: &Simulation, name: &str) -> Result<Vec<f64>, String> {
+        let mut scope = Scope::new(self.vars, self.sys, sim);
+        let v = scope.atom_variable(name)?;
+        Ok(v.as_ref().clone())
     }
 }

@@ -464,6 +464,12 @@ impl Variables {
         })
     }
 
+    /// The formula of an atom-style variable.
+    pub fn atom_formula(&self, name: &str) -> Option<String> {
+        let v = self.get(name)?;
+        (v.style == Style::Atom).then(|| v.values[0].clone())
+    }
+
     /// Names of all defined variables (for suggestions).
     pub fn names(&self) -> Vec<&str> {
         self.vars.iter().map(|v| v.name.as_str()).collect()

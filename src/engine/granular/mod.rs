@@ -47,8 +47,17 @@ pub struct PairResult {
     pub overlap_ratio: f64,
 }
 
-/// Below this many listed pairs the contact loop stays on one thread.
-const PARALLEL_PAIRS: usize = 2048;
+/// Below this many listed pairs the contact loop stays on one thread (the fork-join cost of
+/// a parallel pass is larger than the work); `REGOLITH_PARALLEL_PAIRS` overrides it.
+fn parallel_pairs() -> usize {
+    static LIMIT: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
+    *LIMIT.get_or_init(|| {
+        std::env::var("REGOLITH_PARALLEL_PAIRS")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(20_000)
+    })
+}
 
 impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> PairGran<N, T, C, R> {
     #[inline(always)]
@@ -136,7 +145,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
     ) {
         let width = self.model.history_len();
         self.worst = None;
-        if pairs.len() < PARALLEL_PAIRS || rayon::current_num_threads() == 1 {
+        if pairs.len() < parallel_pairs() || rayon::current_num_threads() == 1 {
             // one thread: compute and add each pair in list order (the same sums as below)
             let mut empty: [f64; 0] = [];
             for (k, pair) in pairs.iter().enumerate() {

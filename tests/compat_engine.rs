@@ -14,21 +14,22 @@ fn engine_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("compat/engine")
 }
 
-/// Thermo blocks: a header line starting with `Step` and the numeric lines after it.
+/// Run blocks as compat/regenerate.sh cuts them from LIGGGHTS's screen output: from each
+/// header line starting with `Step` up to (not including) `Loop time`, so lines that fixes
+/// print during a run (fix print, warnings) are compared too.
 fn thermo_lines(stdout: &str) -> Vec<String> {
     let mut out = Vec::new();
     let mut inside = false;
     for line in stdout.lines() {
+        if line.starts_with("Loop time") {
+            inside = false;
+        }
+        if inside {
+            out.push(line.to_string());
+        }
         if line.trim_start().starts_with("Step ") {
             inside = true;
             out.push(line.to_string());
-        } else if inside
-            && !line.trim().is_empty()
-            && line.split_whitespace().all(|w| w.parse::<f64>().is_ok())
-        {
-            out.push(line.to_string());
-        } else {
-            inside = false;
         }
     }
     out

@@ -17,6 +17,7 @@ pub const FIX_STYLES: &[&str] = &[
     "gravity",
     "move",
     "nve/sphere",
+    "print",
     "property/global",
     "setforce",
     "viscous",
@@ -305,6 +306,61 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
             } else {
                 FixKind::AddForce(f)
             }
+        }
+        "print" => {
+            a.count(
+                5..=usize::MAX,
+                "fix ID GROUP print N \"text\" [file F] [screen yes|no] [title T]",
+            )?;
+            let every = a.int(3)?;
+            if every <= 0 {
+                return Err(a.error(3, "Illegal fix print command"));
+            }
+            let text = a.word(4)?.to_string();
+            let (mut screen, mut file, mut title) = (true, None, None);
+            let mut i = 5;
+            while i < a.len() {
+                match a.word(i)? {
+                    kw @ ("file" | "append") => {
+                        let name = a.word(i + 1)?;
+                        if ctx.sys.mode == crate::script::system::Mode::Run {
+                            let f = std::fs::OpenOptions::new()
+                                .create(true)
+                                .write(true)
+                                .append(kw == "append")
+                                .truncate(kw == "file")
+                                .open(name)
+                                .map_err(|_| {
+                                    a.error(i + 1, &format!("Cannot open fix print file {name}"))
+                                })?;
+                            file = Some(std::io::BufWriter::new(f));
+                        }
+                    }
+                    "screen" => screen = a.word_in(i + 1, &["yes", "no"])? == "yes",
+                    "title" => title = Some(a.word(i + 1)?.to_string()),
+                    _ => return Err(a.error(i, "Illegal fix print command")),
+                }
+                i += 2;
+            }
+            if let Some(f) = file.as_mut() {
+                use std::io::Write;
+                let head = match title.as_deref() {
+                    Some("none") => None,
+                    Some(t) => Some(t.to_string()),
+                    None => Some(format!("# Fix print output for fix {id}")),
+                };
+                if let Some(h) = head {
+                    writeln!(f, "{h}")
+                        .and_then(|_| f.flush())
+                        .map_err(|e| a.error(0, &format!("fix print: {e}")))?;
+                }
+            }
+            FixKind::Print(crate::engine::fixes::PrintFix {
+                every,
+                text,
+                screen,
+                file,
+            })
         }
         "viscous" => {
             a.count(4..=4, "fix ID GROUP viscous GAMMA")?;

@@ -732,7 +732,57 @@ fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
     if ctx.sim.particles.is_empty() {
         return Err(a.error(0, "Velocity command with no atoms existing"));
     }
-    match a.word(1)? {
+    let style = a.word(1)?;
+    let first_option = match style {
+        "set" => 5,
+        "ramp" => 8,
+        "zero" => 3,
+        "create" => {
+            return Err(a
+                .error(1, "Illegal velocity command")
+                .with_help("LIGGGHTS 3.8.0 has velocity set, ramp and zero"))
+        }
+        other => {
+            return Err(a
+                .keyword_error(1, &["set", "ramp", "zero"])
+                .with_help(format!("velocity {other}")))
+        }
+    };
+    a.count(
+        first_option..=usize::MAX,
+        "velocity GROUP set VX VY VZ | ramp VDIM VLO VHI DIM CLO CHI | zero linear|angular",
+    )?;
+    // options (LIGGGHTS's defaults: units box, sum no)
+    let (mut sum, mut lattice_units) = (false, false);
+    let mut i = first_option;
+    while i < a.len() {
+        match a.word(i)? {
+            "sum" => sum = a.word_in(i + 1, &["yes", "no"])? == "yes",
+            "units" => lattice_units = a.word_in(i + 1, &["box", "lattice"])? == "lattice",
+            "dist" => {
+                a.word_in(i + 1, &["uniform", "gaussian"])?;
+            }
+            "mom" | "rot" => {
+                a.word_in(i + 1, &["yes", "no"])?;
+            }
+            "loop" => {
+                a.word_in(i + 1, &["all", "local", "geom"])?;
+            }
+            "rigid" => return Err(a.unsupported(i, "velocity rigid")),
+            _ => return Err(a.error(i, "Illegal velocity command")),
+        }
+        i += 2;
+    }
+    let scale = if lattice_units {
+        match &ctx.sim.lattice {
+            Some((spacing, _)) => *spacing,
+            None => return Err(a.error(0, "Use of velocity with undefined lattice")),
+        }
+    } else {
+        1.0
+    };
+    let sim = &mut *ctx.sim;
+    match style {
         "set" => {
             let mut v = [None; 3];
             for (d, slot) in v.iter_mut().enumerate() {
@@ -741,34 +791,174 @@ fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
                     if w.starts_with("v_") {
                         return Err(a.unsupported(2 + d, "velocity set with variables"));
                     }
-                    *slot = Some(a.real(2 + d)?);
+                    *slot = Some(scale * a.real(2 + d)?);
                 }
             }
-            let mut i = 5;
-            while i < a.len() {
-                match (a.word(i)?, a.word(i + 1)?) {
-                    ("units", "box") => {}
-                    ("sum", "no") => {}
-                    _ => return Err(a.unsupported(i, &format!("velocity keyword {}", a.word(i)?))),
-                }
-                i += 2;
-            }
-            let p = &mut ctx.sim.particles;
+            let p = &mut sim.particles;
             for k in 0..p.len() {
                 if p.mask[k] & bit != 0 {
                     for d in 0..3 {
                         if let Some(value) = v[d] {
-                            p.v[k][d] = value;
+                            if sum {
+                                p.v[k][d] += value;
+                            } else {
+                                p.v[k][d] = value;
+                            }
                         }
                     }
                 }
             }
-            Ok(())
         }
-        "create" => Err(a
-            .error(1, "Illegal velocity command")
-            .with_help("LIGGGHTS 3.8.0 has velocity set, ramp and zero")),
-        other => Err(a.unsupported(1, &format!("velocity {other}"))),
+        "ramp" => {
+            let dim = |k: usize, names: &[&str]| -> std::result::Result<usize, Diagnostic> {
+                let w = a.word(k)?;
+                names
+                    .iter()
+                    .position(|n| *n == w)
+                    .ok_or_else(|| a.error(k, "Illegal velocity command"))
+            };
+            let vdim = dim(2, &["vx", "vy", "vz"])?;
+            let (vlo, vhi) = (scale * a.real(3)?, scale * a.real(4)?);
+            let cdim = dim(5, &["x", "y", "z"])?;
+            let (clo, chi) = (scale * a.real(6)?, scale * a.real(7)?);
+            let p = &mut sim.particles;
+            for k in 0..p.len() {
+                if p.mask[k] & bit != 0 {
+                    let fraction = ((p.x[k][cdim] - clo) / (chi - clo)).max(0.0).min(1.0);
+                    let vramp = vlo + fraction * (vhi - vlo);
+                    if sum {
+                        p.v[k][vdim] += vramp;
+                    } else {
+                        p.v[k][vdim] = vramp;
+                    }
+                }
+            }
+        }
+        _ => {
+            let members: Vec<usize> = (0..sim.particles.len())
+                .filter(|&k| sim.particles.mask[k] & bit != 0)
+                .collect();
+            if members.is_empty() {
+                return Err(a.error(0, "Cannot zero momentum of no atoms"));
+            }
+            match a.word_in(2, &["linear", "angular", "angularIndividual"])? {
+                "linear" => zero_momentum(sim, &members),
+                "angular" => zero_rotation(sim, &members),
+                _ => {
+                    for &k in &members {
+                        sim.particles.omega[k] = [0.0; 3];
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `velocity zero linear`: subtract the group's centre-of-mass velocity.
+fn zero_momentum(sim: &mut crate::engine::sim::Simulation, members: &[usize]) {
+    let p = &mut sim.particles;
+    let mass: f64 = members.iter().fold(0.0, |s, &k| s + p.mass[k]);
+    let mut vcm = [0.0; 3];
+    for &k in members {
+        for d in 0..3 {
+            vcm[d] += p.v[k][d] * p.mass[k];
+        }
+    }
+    if mass > 0.0 {
+        for c in &mut vcm {
+            *c /= mass;
+        }
+    }
+    for &k in members {
+        for d in 0..3 {
+            p.v[k][d] -= vcm[d];
+        }
+    }
+}
+
+/// `velocity zero angular`: remove the group's rigid rotation about its centre of mass
+/// (point masses, unwrapped positions), as LIGGGHTS's group angmom/inertia/omega do.
+fn zero_rotation(sim: &mut crate::engine::sim::Simulation, members: &[usize]) {
+    let domain = &sim.domain;
+    let p = &mut sim.particles;
+    let unwrap = |p: &crate::engine::particles::Particles, k: usize| -> [f64; 3] {
+        let mut u = [0.0; 3];
+        for d in 0..3 {
+            u[d] = p.x[k][d] + p.image[k][d] as f64 * domain.length(d);
+        }
+        u
+    };
+    let mass: f64 = members.iter().fold(0.0, |s, &k| s + p.mass[k]);
+    let mut cm = [0.0; 3];
+    for &k in members {
+        let u = unwrap(p, k);
+        for d in 0..3 {
+            cm[d] += u[d] * p.mass[k];
+        }
+    }
+    if mass > 0.0 {
+        for c in &mut cm {
+            *c /= mass;
+        }
+    }
+    let mut l = [0.0; 3];
+    let mut t = [[0.0; 3]; 3];
+    for &k in members {
+        let u = unwrap(p, k);
+        let (dx, dy, dz) = (u[0] - cm[0], u[1] - cm[1], u[2] - cm[2]);
+        let m = p.mass[k];
+        let v = p.v[k];
+        l[0] += m * (dy * v[2] - dz * v[1]);
+        l[1] += m * (dz * v[0] - dx * v[2]);
+        l[2] += m * (dx * v[1] - dy * v[0]);
+        t[0][0] += m * (dy * dy + dz * dz);
+        t[1][1] += m * (dx * dx + dz * dz);
+        t[2][2] += m * (dx * dx + dy * dy);
+        t[0][1] -= m * dx * dy;
+        t[1][2] -= m * dy * dz;
+        t[0][2] -= m * dx * dz;
+    }
+    t[1][0] = t[0][1];
+    t[2][1] = t[1][2];
+    t[2][0] = t[0][2];
+    // the adjugate, divided by the determinant when it is positive (as LIGGGHTS does)
+    let mut inv = [
+        [
+            t[1][1] * t[2][2] - t[1][2] * t[2][1],
+            -(t[0][1] * t[2][2] - t[0][2] * t[2][1]),
+            t[0][1] * t[1][2] - t[0][2] * t[1][1],
+        ],
+        [
+            -(t[1][0] * t[2][2] - t[1][2] * t[2][0]),
+            t[0][0] * t[2][2] - t[0][2] * t[2][0],
+            -(t[0][0] * t[1][2] - t[0][2] * t[1][0]),
+        ],
+        [
+            t[1][0] * t[2][1] - t[1][1] * t[2][0],
+            -(t[0][0] * t[2][1] - t[0][1] * t[2][0]),
+            t[0][0] * t[1][1] - t[0][1] * t[1][0],
+        ],
+    ];
+    let det =
+        t[0][0] * t[1][1] * t[2][2] + t[0][1] * t[1][2] * t[2][0] + t[0][2] * t[1][0] * t[2][1]
+            - t[0][0] * t[1][2] * t[2][1]
+            - t[0][1] * t[1][0] * t[2][2]
+            - t[2][0] * t[1][1] * t[0][2];
+    if det > 0.0 {
+        for row in &mut inv {
+            for x in row.iter_mut() {
+                *x /= det;
+            }
+        }
+    }
+    let w = [0, 1, 2].map(|r| inv[r][0] * l[0] + inv[r][1] * l[1] + inv[r][2] * l[2]);
+    for &k in members {
+        let u = unwrap(p, k);
+        let (dx, dy, dz) = (u[0] - cm[0], u[1] - cm[1], u[2] - cm[2]);
+        p.v[k][0] -= w[1] * dz - w[2] * dy;
+        p.v[k][1] -= w[2] * dx - w[0] * dz;
+        p.v[k][2] -= w[0] * dy - w[1] * dx;
     }
 }
 

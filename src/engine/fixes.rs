@@ -127,6 +127,8 @@ pub enum FixKind {
     WallGran(WallFix),
     /// `fix check/timestep/gran`: time step as a fraction of Rayleigh and Hertz times.
     CheckTimestep(CheckTimestep),
+    /// `print N "text" [file F | append F] [screen yes|no] [title T]`.
+    Print(PrintFix),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
 }
@@ -273,6 +275,34 @@ pub fn initial_integrate(fixes: &[Fix], p: &mut Particles, step: i64, dt: f64) {
             FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt),
             _ => {}
         }
+    }
+}
+
+/// `fix print`: a line with variables substituted every `every` steps.
+pub struct PrintFix {
+    /// Print every this many steps.
+    pub every: i64,
+    /// The text, `$` references still in it.
+    pub text: String,
+    /// Also print to screen and log.
+    pub screen: bool,
+    /// The output file, if any.
+    pub file: Option<std::io::BufWriter<std::fs::File>>,
+}
+
+impl PrintFix {
+    /// Write one substituted line where the fix sends it.
+    pub fn emit(&mut self, line: &str, out: &mut dyn FnMut(&str)) -> Result<(), String> {
+        use std::io::Write;
+        if self.screen {
+            out(&format!("{line}\n"));
+        }
+        if let Some(f) = self.file.as_mut() {
+            writeln!(f, "{line}")
+                .and_then(|_| f.flush())
+                .map_err(|e| format!("fix print: {e}"))?;
+        }
+        Ok(())
     }
 }
 

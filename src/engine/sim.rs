@@ -65,6 +65,15 @@ pub trait VariableSource {
     fn equal(&mut self, sim: &Simulation, name: &str) -> Result<f64, String>;
     /// The values of atom-style variable `name`, one per particle in particle order.
     fn atom(&mut self, sim: &Simulation, name: &str) -> Result<Vec<f64>, String>;
+    /// `text` with its `$x`, `${name}` and `$(formula)` references replaced.
+    fn substitute(&mut self, sim: &Simulation, text: &str) -> Result<String, String> {
+        let _ = sim;
+        if text.contains('$') {
+            Err(format!("cannot substitute variables in '{text}' here"))
+        } else {
+            Ok(text.to_string())
+        }
+    }
 }
 
 /// No variables (unit tests and tools that run without a deck).
@@ -267,17 +276,27 @@ impl Simulation {
     }
 
     /// The `end_of_step` phase: fixes that check or report every N steps.
-    fn end_of_step(&mut self, out: Sink<'_>) {
+    fn end_of_step(&mut self, out: Sink<'_>, vars: &mut dyn VariableSource) -> Result<(), String> {
         let (step, dt, skin) = (self.step, self.dt, self.neighbor.skin);
-        for fix in &mut self.fixes {
-            if let FixKind::CheckTimestep(c) = &mut fix.kind {
-                if step % c.every == 0 {
+        for k in 0..self.fixes.len() {
+            let fix = &mut self.fixes[k];
+            match &mut fix.kind {
+                FixKind::CheckTimestep(c) if step % c.every == 0 => {
                     for m in c.evaluate(&self.particles, fix.group, dt, skin) {
                         out(&format!("WARNING: {m}\n"));
                     }
                 }
+                FixKind::Print(pf) if step % pf.every == 0 => {
+                    let text = pf.text.clone();
+                    let line = vars.substitute(self, &text)?;
+                    if let FixKind::Print(pf) = &mut self.fixes[k].kind {
+                        pf.emit(&line, out)?;
+                    }
+                }
+                _ => {}
             }
         }
+        Ok(())
     }
 
     /// Value of `f_ID[i]` (1-based) for fixes with a global vector.
@@ -683,7 +702,7 @@ impl Simulation {
             self.compute_forces(true, vars)?;
             self.guard_forces()?;
             fixes::final_integrate(&self.fixes, &mut self.particles, self.dt);
-            self.end_of_step(out);
+            self.end_of_step(out, vars)?;
             if self.thermo.due(self.step, last) {
                 self.thermo_line(out, vars)?;
             }

@@ -64,7 +64,6 @@ pub struct Thermo {
     pub float_format: Option<String>,
     /// `thermo_modify format N` per column (index N-1).
     pub column_formats: Vec<Option<String>>,
-    started: std::time::Instant,
 }
 
 impl Default for Thermo {
@@ -78,7 +77,6 @@ impl Default for Thermo {
             int_format: None,
             float_format: None,
             column_formats: Vec::new(),
-            started: std::time::Instant::now(),
         };
         t.set_style(&["step", "atoms", "ke", "cpu"])
             .expect("default style is valid");
@@ -220,7 +218,7 @@ pub fn keyword_value(
         "atoms" => n,
         "dt" => sim.dt,
         "time" => sim.time(),
-        "cpu" => thermo.started.elapsed().as_secs_f64(),
+        "cpu" => sim.loop_clock.map_or(0.0, |t| t.elapsed().as_secs_f64()),
         "ke" => norm(crate::engine::computes::kinetic_energy(&sim.particles, 1)),
         "vol" => d.length(0) * d.length(1) * d.length(2),
         "lx" => d.length(0),

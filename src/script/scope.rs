@@ -336,6 +336,34 @@ pub struct RunVariables<'a> {
 }
 
 impl VariableSource for RunVariables<'_> {
+    fn substitute(&mut self, sim: &Simulation, text: &str) -> Result<String, String> {
+        let vars = &mut *self.vars;
+        let sys = &mut *self.sys;
+        crate::script::line::substitute(
+            text,
+            |r| match r {
+                crate::script::line::VarRef::Named(name) => match vars.retrieve(name, sys) {
+                    None => Err("Substitution for illegal variable".to_string()),
+                    Some(Value::Text(t)) => Ok(t),
+                    Some(Value::Formula(f)) => {
+                        let mut scope = Scope::new(vars, sys, sim);
+                        expr::evaluate(&f, &mut scope)
+                            .map(|x| g_precision(x, 15))
+                            .map_err(|e| e.message)
+                    }
+                },
+                crate::script::line::VarRef::Immediate(e) => {
+                    let mut scope = Scope::new(vars, sys, sim);
+                    expr::evaluate(e, &mut scope)
+                        .map(|x| g_precision(x, 20))
+                        .map_err(|e| e.message)
+                }
+            },
+            |_| {},
+        )
+        .map_err(|e| format!("{e:?}"))
+    }
+
     fn equal(&mut self, sim: &Simulation, name: &str) -> Result<f64, String> {
         Scope::new(self.vars, self.sys, sim).equal_variable(name)
     }

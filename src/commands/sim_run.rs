@@ -613,6 +613,8 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
         layout,
         last_written: None,
         handle: None,
+        first: false,
+        pad: 0,
     });
     Ok(())
 }
@@ -647,6 +649,14 @@ fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
                 .layout
                 .set_format(a.word(i + 1)?)
                 .map_err(|m| a.error(i + 1, &m))?,
+            "first" => dump.first = a.word_in(i + 1, &["yes", "no"])? == "yes",
+            "pad" => {
+                let n = a.int(i + 1)?;
+                if n < 0 {
+                    return Err(a.error(i + 1, "Illegal dump_modify command"));
+                }
+                dump.pad = n as usize;
+            }
             "every" => {
                 let n = a.int(i + 1)?;
                 if n <= 0 {

@@ -265,17 +265,21 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
         "single" => 5,
         "box" => 2,
         "region" => 3,
-        _ => return Err(a.unsupported(1, "create_atoms random")),
+        _ => 5,
     };
-    let region = if style == "region" {
-        Some(
-            ctx.sim
-                .regions
-                .find(a.word(2)?)
-                .ok_or_else(|| a.error(2, "Create_atoms region ID does not exist"))?,
-        )
-    } else {
-        None
+    let region_word = match style {
+        "region" => Some(a.word(2)?),
+        "random" => Some(a.word(4)?).filter(|w| *w != "NULL"),
+        _ => None,
+    };
+    let region = match region_word {
+        Some(w) => Some(ctx.sim.regions.find(w).ok_or_else(|| {
+            a.error(
+                if style == "region" { 2 } else { 4 },
+                "Create_atoms region ID does not exist",
+            )
+        })?),
+        None => None,
     };
     let mut lattice_units = ctx.sim.lattice.as_ref().is_some_and(|l| !l.1.is_empty());
     while i < a.len() {
@@ -290,7 +294,47 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
     let d = ctx.sim.domain.clone();
     let before = ctx.sim.particles.len();
     let mut next_id = ctx.sim.particles.max_id() + 1;
-    if style == "single" {
+    if style == "random" {
+        // N positions uniform in the box (cut to the region's extent), redrawn until
+        // inside the region, from one Park-Miller stream seeded by the deck
+        let count = a.int(2)?;
+        let seed = a.int(3)?;
+        if count < 0 {
+            return Err(a.error(2, "Illegal create_atoms command"));
+        }
+        if !ctx.sim.seed_tolerant {
+            crate::script::random::check_seed(seed).map_err(|m| a.error(3, &m))?;
+        }
+        if seed <= 0 || seed > i32::MAX as i64 {
+            return Err(a.error(3, "Illegal create_atoms command"));
+        }
+        let mut rng =
+            crate::script::random::RanPark::new(seed as i32).map_err(|m| a.error(3, &m))?;
+        let (mut lo, mut hi) = (d.lo, d.hi);
+        if let Some((elo, ehi)) = region.and_then(|r| ctx.sim.regions.extent(r)) {
+            for k in 0..3 {
+                lo[k] = lo[k].max(elo[k]);
+                hi[k] = hi[k].min(ehi[k]);
+            }
+        }
+        if (0..3).any(|k| lo[k] > hi[k]) {
+            return Err(a.error(4, "No overlap of box and region for create_atoms"));
+        }
+        for _ in 0..count {
+            let x = loop {
+                let x = [
+                    lo[0] + rng.uniform() * (hi[0] - lo[0]),
+                    lo[1] + rng.uniform() * (hi[1] - lo[1]),
+                    lo[2] + rng.uniform() * (hi[2] - lo[2]),
+                ];
+                if region.is_none_or(|r| ctx.sim.regions.matches(r, x)) {
+                    break x;
+                }
+            };
+            ctx.sim.particles.push(next_id, kind as u32, x, 0.5, 1.0);
+            next_id += 1;
+        }
+    } else if style == "single" {
         let mut x = [a.real(2)?, a.real(3)?, a.real(4)?];
         if lattice_units {
             let (scale, basis) = ctx
@@ -531,6 +575,33 @@ fn set(a: &Args, ctx: &mut Ctx) -> Result {
     let mut i = 2;
     while i < a.len() {
         let key = a.word(i)?;
+        if key == "type/fraction" {
+            // each selected atom draws from a generator reseeded by its position
+            let t = a.int(i + 1)?;
+            let fraction = a.real(i + 2)?;
+            let seed = a.int(i + 3)?;
+            if t <= 0 || t > ctx.sim.ntypes as i64 || !(0.0..=1.0).contains(&fraction) {
+                return Err(a.error(i + 1, "Invalid value in set command"));
+            }
+            if seed <= 0 || seed > i32::MAX as i64 {
+                return Err(a.error(i + 3, "Invalid random number seed in set command"));
+            }
+            let mut rng =
+                crate::script::random::RanPark::new(12345787).map_err(|m| a.error(i + 3, &m))?;
+            let p = &mut ctx.sim.particles;
+            let mut count = 0;
+            for &k in &atoms {
+                rng.reset_at(seed as i32, p.x[k]);
+                if rng.uniform() > fraction {
+                    continue;
+                }
+                p.kind[k] = t as u32;
+                count += 1;
+            }
+            ctx.say(&format!("  {count} settings made for {key}\n"));
+            i += 4;
+            continue;
+        }
         let value = a.real(i + 1)?;
         let p = &mut ctx.sim.particles;
         for &k in &atoms {
@@ -581,8 +652,20 @@ fn set(a: &Args, ctx: &mut Ctx) -> Result {
                     return Err(a.keyword_error(
                         i,
                         &[
-                            "diameter", "density", "mass", "type", "x", "y", "z", "vx", "vy", "vz",
-                            "omegax", "omegay", "omegaz",
+                            "diameter",
+                            "density",
+                            "mass",
+                            "type",
+                            "type/fraction",
+                            "x",
+                            "y",
+                            "z",
+                            "vx",
+                            "vy",
+                            "vz",
+                            "omegax",
+                            "omegay",
+                            "omegaz",
                         ],
                     ))
                 }
@@ -646,7 +729,6 @@ fn group(a: &Args, ctx: &mut Ctx) -> Result {
             (0..n).map(|i| sim.regions.matches(r, p.x[i])).collect()
         }
         "type" | "id" => {
-            let mut sel = vec![false; n];
             let values: Vec<i64> = (0..n)
                 .map(|i| {
                     if style == "type" {
@@ -656,26 +738,52 @@ fn group(a: &Args, ctx: &mut Ctx) -> Result {
                     }
                 })
                 .collect();
-            if a.len() == 5 && matches!(a.word(2)?, "<" | ">" | "<=" | ">=" | "==" | "!=" | "<>") {
-                return Err(a.unsupported(2, "group type/id with a comparison"));
-            }
-            for k in 2..a.len() {
-                let w = a.word(k)?;
-                let (lo, hi) = match w.split_once(':') {
-                    Some((l, h)) => (
-                        inumeric(l).map_err(|m| a.error(k, &m))?,
-                        inumeric(h).map_err(|m| a.error(k, &m))?,
-                    ),
-                    None => {
-                        let v = a.int(k)?;
-                        (v, v)
-                    }
-                };
-                for (s, v) in sel.iter_mut().zip(&values) {
-                    *s |= *v >= lo && *v <= hi;
+            let op = a.word(2)?;
+            let mut sel = vec![false; n];
+            // LIGGGHTS 3.8.0 tests only these operators; `==` and `!=` fall through to the
+            // list of values, where atoi reads them as 0 (so `type != 1` selects type 1)
+            if a.len() > 3 && matches!(op, "<" | ">" | "<=" | ">=" | "<>") {
+                let want = if op == "<>" { 5 } else { 4 };
+                if a.len() != want {
+                    return Err(a.error(2, "Illegal group command"));
                 }
+                let bound = |k: usize| inumeric(a.word(k)?).map_err(|m| a.error(k, &m));
+                let v1 = bound(3)?;
+                let v2 = if op == "<>" { bound(4)? } else { 0 };
+                sel = values
+                    .iter()
+                    .map(|&v| match op {
+                        "<" => v < v1,
+                        ">" => v > v1,
+                        "<=" => v <= v1,
+                        ">=" => v >= v1,
+                        "==" => v == v1,
+                        "!=" => v != v1,
+                        _ => v >= v1 && v <= v2,
+                    })
+                    .collect();
+                sel
+            } else {
+                // values and ranges a:b[:step], read with C's atoi as LIGGGHTS does
+                let atoi = |t: &str| crate::script::variables::c_atof(t).trunc() as i64;
+                for k in 2..a.len() {
+                    let w = a.word(k)?;
+                    let parts: Vec<&str> = w.split(':').collect();
+                    let (lo, hi, step) = if parts.len() > 1 {
+                        let step = parts.get(2).map_or(1, |t| atoi(t));
+                        (atoi(parts[0]), atoi(parts[1]), step)
+                    } else {
+                        (atoi(w), atoi(w), 1)
+                    };
+                    if step == 0 {
+                        return Err(a.error(k, "Illegal group command"));
+                    }
+                    for (s, v) in sel.iter_mut().zip(&values) {
+                        *s |= *v >= lo && *v <= hi && (*v - lo) % step == 0;
+                    }
+                }
+                sel
             }
-            sel
         }
         "subtract" | "union" | "intersect" => {
             let mut bits = Vec::new();

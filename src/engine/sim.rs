@@ -104,6 +104,10 @@ pub struct Dump {
     pub last_written: Option<i64>,
     /// The open file for single-file dumps.
     pub handle: Option<std::io::BufWriter<std::fs::File>>,
+    /// `dump_modify first yes`: write at the first run's setup even off the interval.
+    pub first: bool,
+    /// `dump_modify pad N`: the step in `*` file names padded with zeros to N digits.
+    pub pad: usize,
 }
 
 /// Everything the engine simulates.
@@ -745,15 +749,18 @@ impl Simulation {
         use std::io::Write;
         let step = self.step;
         for k in 0..self.dumps.len() {
-            let due = step % self.dumps[k].every == 0 && self.dumps[k].last_written != Some(step);
+            let d = &self.dumps[k];
+            let due = (step % d.every == 0 || (setup && d.first && d.last_written.is_none()))
+                && d.last_written != Some(step);
             if !due {
                 continue;
             }
-            let _ = setup;
             let dump = &mut self.dumps[k];
             dump.last_written = Some(step);
             let multi = dump.file.contains('*');
-            let name = dump.file.replace('*', &step.to_string());
+            let name = dump
+                .file
+                .replace('*', &format!("{step:0width$}", width = dump.pad));
             if let Some(dir) = std::path::Path::new(&name).parent() {
                 if !dir.as_os_str().is_empty() {
                     std::fs::create_dir_all(dir)

@@ -172,7 +172,7 @@ pub fn is_supported(cmd: &CommandLine) -> bool {
         "fix" => cmd
             .arg(2)
             .is_some_and(|s| crate::commands::sim_run::FIX_STYLES.contains(&s)),
-        "dump" => cmd.arg(2) == Some("custom"),
+        "dump" => matches!(cmd.arg(2), Some("custom" | "local")),
         "compute" => cmd
             .arg(2)
             .is_some_and(|s| crate::engine::computes::STYLES.contains(&s)),

@@ -603,6 +603,50 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                 a.error(5 + k, &m)
             })?
         }
+        "local" => {
+            let names: Vec<&str> = (5..a.len())
+                .map(|i| a.word(i))
+                .collect::<std::result::Result<_, _>>()?;
+            if names.is_empty() {
+                return Err(a.error(4, "Illegal dump local command"));
+            }
+            let mut cols = Vec::new();
+            for (k, n) in names.iter().enumerate() {
+                let body = n
+                    .strip_prefix("c_")
+                    .ok_or_else(|| a.unsupported(5 + k, &format!("dump local column {n}")))?;
+                let (cid, index) = split_reference(body)
+                    .ok_or_else(|| a.error(5 + k, "Invalid attribute in dump local command"))?;
+                let c = ctx
+                    .sim
+                    .computes
+                    .iter()
+                    .find(|c| c.id == cid)
+                    .ok_or_else(|| a.error(5 + k, "Could not find dump local compute ID"))?;
+                if !matches!(
+                    c.kind,
+                    crate::engine::computes::ComputeKind::PairGranLocal(_)
+                ) {
+                    return Err(a.error(5 + k, "Dump local compute does not compute local info"));
+                }
+                cols.push((cid.to_string(), index.unwrap_or(1).max(1) - 1));
+            }
+            let mut layout = Layout::new(&[]).expect("no columns");
+            layout.names = names.iter().map(|s| s.to_string()).collect();
+            ctx.sim.dumps.push(Dump {
+                id: id.to_string(),
+                group: bit,
+                every,
+                file: ctx.sys.resolve(file).to_string_lossy().into_owned(),
+                layout,
+                local: Some(cols),
+                last_written: None,
+                handle: None,
+                first: false,
+                pad: 0,
+            });
+            return Ok(());
+        }
         other => return Err(a.unsupported(2, &format!("dump {other}"))),
     };
     ctx.sim.dumps.push(Dump {
@@ -611,6 +655,7 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
         every,
         file: ctx.sys.resolve(file).to_string_lossy().into_owned(),
         layout,
+        local: None,
         last_written: None,
         handle: None,
         first: false,
@@ -914,6 +959,45 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
             ComputeKind::PropertyAtom(cols)
         }
         "reduce" => compute_reduce(a, ctx)?,
+        "pair/gran/local" => {
+            use crate::engine::computes::LocalField;
+            if ctx.sim.step > 0 {
+                return Err(a.error(
+                    2,
+                    "Compute pair/gran/local: Need to define this compute before first run",
+                ));
+            }
+            let mut fields = Vec::new();
+            for i in 3..a.len() {
+                let w = a.word(i)?;
+                match LocalField::parse(w) {
+                    Some(f) => fields.push(f),
+                    None if w == "verbose" => {}
+                    None if matches!(w, "heatFlux" | "ms_id") => {
+                        return Err(a.unsupported(i, &format!("compute pair/gran/local {w}")))
+                    }
+                    None => {
+                        return Err(
+                            a.error(i, "Compute pair/gran/local: illegal/unrecognized keyword")
+                        )
+                    }
+                }
+            }
+            if a.len() == 3 {
+                fields = LocalField::defaults();
+            }
+            if ctx
+                .sim
+                .computes
+                .iter()
+                .any(|c| matches!(c.kind, ComputeKind::PairGranLocal(_)))
+            {
+                return Err(a.error(2, "Pair gran allows only one compute of type pair/local"));
+            }
+            fields.sort();
+            fields.dedup();
+            ComputeKind::PairGranLocal(fields)
+        }
         other => return Err(a.unsupported(2, &format!("compute {other}"))),
     };
     ctx.sim.computes.push(Compute {

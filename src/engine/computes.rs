@@ -40,6 +40,77 @@ pub enum ComputeKind {
     },
     /// `com`: centre of mass of the group, unwrapped (length), a 3-vector.
     Com,
+    /// `pair/gran/local`: one row per touching pair with the selected fields.
+    PairGranLocal(Vec<LocalField>),
+}
+
+/// The per-contact fields of `compute pair/gran/local`, in LIGGGHTS's column order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum LocalField {
+    /// `pos`: x_i, x_j (6 columns, length).
+    Pos,
+    /// `vel`: v_i, v_j (6 columns, velocity).
+    Vel,
+    /// `id`: ID of i, ID of j, 1 if the contact crosses a periodic face (3 columns).
+    Id,
+    /// `force`: force on i (3 columns, force).
+    Force,
+    /// `force_normal`: its component along x_j - x_i (3 columns).
+    ForceNormal,
+    /// `force_tangential`: the rest (3 columns).
+    ForceTangential,
+    /// `torque`: torque on i (3 columns, force length).
+    Torque,
+    /// `torque_normal` (3 columns).
+    TorqueNormal,
+    /// `torque_tangential` (3 columns).
+    TorqueTangential,
+    /// `history`: the contact history values.
+    History,
+    /// `contactArea`: the circular lens area (area).
+    ContactArea,
+    /// `delta`: overlap (length).
+    Delta,
+    /// `contactPoint`: (x_i r_j + x_j r_i)/(r_i + r_j) (3 columns, length).
+    ContactPoint,
+}
+
+impl LocalField {
+    /// Parse a keyword of `compute pair/gran/local`.
+    pub fn parse(word: &str) -> Option<LocalField> {
+        Some(match word {
+            "pos" => LocalField::Pos,
+            "vel" => LocalField::Vel,
+            "id" => LocalField::Id,
+            "force" => LocalField::Force,
+            "force_normal" => LocalField::ForceNormal,
+            "force_tangential" => LocalField::ForceTangential,
+            "torque" => LocalField::Torque,
+            "torque_normal" => LocalField::TorqueNormal,
+            "torque_tangential" => LocalField::TorqueTangential,
+            "history" => LocalField::History,
+            "contactArea" => LocalField::ContactArea,
+            "delta" => LocalField::Delta,
+            "contactPoint" => LocalField::ContactPoint,
+            _ => return None,
+        })
+    }
+
+    /// LIGGGHTS's selection without keywords: pos vel id force torque history contactArea.
+    pub fn defaults() -> Vec<LocalField> {
+        use LocalField::*;
+        vec![Pos, Vel, Id, Force, Torque, History, ContactArea]
+    }
+
+    /// Columns this field adds (`history` adds the model's history length).
+    pub fn width(self, history: usize) -> usize {
+        match self {
+            LocalField::Pos | LocalField::Vel => 6,
+            LocalField::History => history,
+            LocalField::ContactArea | LocalField::Delta => 1,
+            _ => 3,
+        }
+    }
 }
 
 /// The reductions of `compute reduce`.
@@ -112,6 +183,7 @@ pub fn kinetic_energy(p: &Particles, group: u32) -> f64 {
 /// Compute styles regolith evaluates.
 pub const STYLES: &[&str] = &[
     "com",
+    "pair/gran/local",
     "contact/atom",
     "erotate/sphere",
     "ke",
@@ -244,6 +316,117 @@ impl Compute {
             acc = if count > 0 { acc / count as f64 } else { 0.0 };
         }
         Ok(acc)
+    }
+
+    /// Rows of a local compute: (columns per row, values row-major).
+    pub fn local(&self, sim: &Simulation) -> Result<(usize, Vec<f64>), String> {
+        let ComputeKind::PairGranLocal(fields) = &self.kind else {
+            return Err(format!(
+                "Compute {} ({}) does not calculate local values",
+                self.id, self.style
+            ));
+        };
+        let Some(pair) = sim.pair.as_ref() else {
+            return Err("compute pair/gran/local needs a granular pair style".into());
+        };
+        let width = pair.history_width();
+        let ncols: usize = fields.iter().map(|f| f.width(width)).sum();
+        let p = &sim.particles;
+        let pairs = &sim.list.pairs;
+        let mut out = Vec::new();
+        for (k, fi, ti, fj, tj) in pair.contacts(
+            p,
+            pairs,
+            &sim.history,
+            sim.dt,
+            (&sim.force_time_state.0, &sim.force_time_state.1),
+        ) {
+            let pr = &pairs[k];
+            let (mut i, mut j) = (pr.i as usize, pr.j as usize);
+            if p.mask[i] & self.group == 0 || p.mask[j] & self.group == 0 {
+                continue;
+            }
+            let periodic = pr.shift != [0.0; 3];
+            // across a periodic face LIGGGHTS reports the pair from the atom with the
+            // larger ID (its ghost partner carries the shift)
+            let mut shift = pr.shift;
+            let (mut f, mut t, mut sign) = (fi, ti, 1.0);
+            if periodic && p.id[i] < p.id[j] {
+                std::mem::swap(&mut i, &mut j);
+                shift = shift.map(|v| -v);
+                f = fj;
+                t = tj;
+                sign = -1.0;
+            }
+            let xi = p.x[i];
+            let xj_ghost = [
+                p.x[j][0] + shift[0],
+                p.x[j][1] + shift[1],
+                p.x[j][2] + shift[2],
+            ];
+            let split = |v: [f64; 3]| {
+                let mut n = [
+                    xj_ghost[0] - xi[0],
+                    xj_ghost[1] - xi[1],
+                    xj_ghost[2] - xi[2],
+                ];
+                let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                if len > 0.0 {
+                    n = n.map(|c| c / len);
+                }
+                let m = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+                let vn = n.map(|c| c * m);
+                (vn, [v[0] - vn[0], v[1] - vn[1], v[2] - vn[2]])
+            };
+            let (ri, rj) = (p.radius[i], p.radius[j]);
+            let del = [
+                xi[0] - xj_ghost[0],
+                xi[1] - xj_ghost[1],
+                xi[2] - xj_ghost[2],
+            ];
+            let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+            let r = rsq.sqrt();
+            for field in fields {
+                match field {
+                    LocalField::Pos => {
+                        out.extend_from_slice(&xi);
+                        out.extend_from_slice(&p.x[j]);
+                    }
+                    LocalField::Vel => {
+                        out.extend_from_slice(&p.v[i]);
+                        out.extend_from_slice(&p.v[j]);
+                    }
+                    LocalField::Id => {
+                        out.push(p.id[i] as f64);
+                        out.push(p.id[j] as f64);
+                        out.push(if periodic { 1.0 } else { 0.0 });
+                    }
+                    LocalField::Force => out.extend_from_slice(&f),
+                    LocalField::ForceNormal => out.extend_from_slice(&split(f).0),
+                    LocalField::ForceTangential => out.extend_from_slice(&split(f).1),
+                    LocalField::Torque => out.extend_from_slice(&t),
+                    LocalField::TorqueNormal => out.extend_from_slice(&split(t).0),
+                    LocalField::TorqueTangential => out.extend_from_slice(&split(t).1),
+                    LocalField::History => out.extend(
+                        sim.history[k * width..(k + 1) * width]
+                            .iter()
+                            .map(|h| h * sign),
+                    ),
+                    LocalField::ContactArea => out.push(
+                        -std::f64::consts::PI / 4.0
+                            * ((r - ri - rj) * (r + ri - rj) * (r - ri + rj) * (r + ri + rj))
+                            / rsq,
+                    ),
+                    LocalField::Delta => out.push(ri + rj - r),
+                    LocalField::ContactPoint => {
+                        for d in 0..3 {
+                            out.push((xi[d] * rj + xj_ghost[d] * ri) / (ri + rj));
+                        }
+                    }
+                }
+            }
+        }
+        Ok((ncols, out))
     }
 
     /// The compute's per-atom values (for dumps and `compute reduce`).

@@ -44,6 +44,20 @@ pub trait PairInteraction: Send {
     fn worst_overlap(&self) -> Option<(f64, u32, u32)> {
         None
     }
+    /// The touching listed pairs re-evaluated in the current state without advancing
+    /// history (what `compute pair/gran/local` reports): (pair index, force on i, torque
+    /// on i, force on j, torque on j).
+    /// `ghost` holds velocities and angular velocities from the last force evaluation:
+    /// for a pair across a periodic face the atom with the lower ID is LIGGGHTS's ghost,
+    /// whose velocities were last communicated then.
+    fn contacts(
+        &self,
+        p: &Particles,
+        pairs: &[Pair],
+        history: &[f64],
+        dt: f64,
+        ghost: (&[[f64; 3]], &[[f64; 3]]),
+    ) -> Vec<(usize, [f64; 3], [f64; 3], [f64; 3], [f64; 3])>;
     /// Add pair forces and torques to `p.f`/`p.torque` for the listed pairs.
     /// `update` is false in the setup evaluation: contact history is used but not advanced.
     /// With `virial`, each pair also adds half its virial del_a F_b to both particles
@@ -100,6 +114,9 @@ pub struct Dump {
     pub file: String,
     /// Columns and formats.
     pub layout: Layout,
+    /// `dump local`: (compute ID, 0-based column) per column instead of the layout's
+    /// per-atom columns.
+    pub local: Option<Vec<(String, usize)>>,
     /// Last step written (a step is never written twice).
     pub last_written: Option<i64>,
     /// The open file for single-file dumps.
@@ -136,7 +153,8 @@ pub struct Simulation {
     pub neighbor: NeighborSettings,
     /// The current list and the history of its pairs.
     pub list: NeighborList,
-    history: Vec<f64>,
+    /// Contact history of the listed pairs (`history_width` doubles per pair).
+    pub history: Vec<f64>,
     list_ids: Vec<i64>,
     ago: u64,
     box_at_build: ([f64; 3], [f64; 3]),
@@ -161,6 +179,9 @@ pub struct Simulation {
     /// Per-particle pair virial of the last force evaluation (xx yy zz xy xz yz, force
     /// length); empty unless a `compute stress/atom` needs it.
     pub virial: Vec<[f64; 6]>,
+    /// Velocities and angular velocities at the last force evaluation (kept only while a
+    /// `compute pair/gran/local` exists).
+    pub force_time_state: (Vec<[f64; 3]>, Vec<[f64; 3]>),
     /// When the time-stepping loop of the current run started (None during setup).
     pub loop_clock: Option<std::time::Instant>,
     /// Thermo output settings.
@@ -209,6 +230,7 @@ impl Default for Simulation {
             dumps: Vec::new(),
             virial: Vec::new(),
             loop_clock: None,
+            force_time_state: (Vec::new(), Vec::new()),
             run_bounds: None,
             ramp_bounds: (None, None),
             lost_ignore: false,
@@ -657,6 +679,14 @@ impl Simulation {
                 virial,
             );
         }
+        if self.computes.iter().any(|c| {
+            matches!(
+                c.kind,
+                crate::engine::computes::ComputeKind::PairGranLocal(_)
+            )
+        }) {
+            self.force_time_state = (self.particles.v.clone(), self.particles.omega.clone());
+        }
         self.resolve_force_fixes(vars)?;
         let list = (self.list.builds, self.neighbor.skin);
         fixes::post_force(&mut self.fixes, &mut self.particles, self.dt, update, list);
@@ -745,8 +775,41 @@ impl Simulation {
         Ok(())
     }
 
-    fn write_dumps(&mut self, setup: bool, vars: &mut dyn VariableSource) -> Result<(), String> {
+    /// Write one snapshot's text to dump `k`'s file (one file per step for `*` names,
+    /// written whole through a temporary file).
+    fn write_dump_text(&mut self, k: usize, step: i64, text: &[u8]) -> Result<(), String> {
         use std::io::Write;
+        let dump = &mut self.dumps[k];
+        let multi = dump.file.contains('*');
+        let name = dump
+            .file
+            .replace('*', &format!("{step:0width$}", width = dump.pad));
+        if let Some(dir) = std::path::Path::new(&name).parent() {
+            if !dir.as_os_str().is_empty() {
+                std::fs::create_dir_all(dir)
+                    .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
+            }
+        }
+        if multi {
+            let tmp = format!("{name}.tmp");
+            std::fs::write(&tmp, text).map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
+            std::fs::rename(&tmp, &name)
+                .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
+        } else {
+            if dump.handle.is_none() {
+                let f = std::fs::File::create(&name)
+                    .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
+                dump.handle = Some(std::io::BufWriter::new(f));
+            }
+            let h = dump.handle.as_mut().expect("opened above");
+            h.write_all(text)
+                .and_then(|_| h.flush())
+                .map_err(|e| format!("{name}: {e}"))?;
+        }
+        Ok(())
+    }
+
+    fn write_dumps(&mut self, setup: bool, vars: &mut dyn VariableSource) -> Result<(), String> {
         let step = self.step;
         for k in 0..self.dumps.len() {
             let d = &self.dumps[k];
@@ -755,17 +818,31 @@ impl Simulation {
             if !due {
                 continue;
             }
-            let dump = &mut self.dumps[k];
-            dump.last_written = Some(step);
-            let multi = dump.file.contains('*');
-            let name = dump
-                .file
-                .replace('*', &format!("{step:0width$}", width = dump.pad));
-            if let Some(dir) = std::path::Path::new(&name).parent() {
-                if !dir.as_os_str().is_empty() {
-                    std::fs::create_dir_all(dir)
-                        .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
+            self.dumps[k].last_written = Some(step);
+            if let Some(cols) = self.dumps[k].local.clone() {
+                let mut data = Vec::new();
+                for (cid, col) in &cols {
+                    let c = self
+                        .computes
+                        .iter()
+                        .find(|c| &c.id == cid)
+                        .ok_or_else(|| format!("Could not find dump local compute ID {cid}"))?;
+                    let (ncols, rows) = c.local(self)?;
+                    data.push((ncols, rows, *col));
                 }
+                let nrows = data.first().map_or(0, |d| d.1.len() / d.0.max(1));
+                let mut text = Vec::new();
+                crate::io::dump::write_local(
+                    &mut text,
+                    step,
+                    &self.domain,
+                    &self.dumps[k].layout.names,
+                    nrows,
+                    |r, c| data[c].1[r * data[c].0 + data[c].2],
+                )
+                .map_err(|e| e.to_string())?;
+                self.write_dump_text(k, step, &text)?;
+                continue;
             }
             // per-atom values of the compute columns, evaluated once per snapshot
             let mut columns = Vec::new();
@@ -782,24 +859,7 @@ impl Simulation {
                     columns[c].0.get(i, columns[c].1)
                 })
                 .map_err(|e| e.to_string())?;
-            if multi {
-                // one file per snapshot, written whole: temp file then rename
-                let tmp = format!("{name}.tmp");
-                std::fs::write(&tmp, &text)
-                    .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
-                std::fs::rename(&tmp, &name)
-                    .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
-            } else {
-                if dump.handle.is_none() {
-                    let f = std::fs::File::create(&name)
-                        .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
-                    dump.handle = Some(std::io::BufWriter::new(f));
-                }
-                let h = dump.handle.as_mut().expect("opened above");
-                h.write_all(&text)
-                    .and_then(|_| h.flush())
-                    .map_err(|e| format!("{name}: {e}"))?;
-            }
+            self.write_dump_text(k, step, &text)?;
         }
         Ok(())
     }

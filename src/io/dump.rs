@@ -233,6 +233,47 @@ impl Layout {
     }
 }
 
+/// Write one `dump local` snapshot in LIGGGHTS's layout: `NUMBER OF ENTRIES`, the box,
+/// `ITEM: ENTRIES` with the column names, then `%g` values each followed by a blank.
+pub fn write_local(
+    out: &mut impl Write,
+    step: i64,
+    domain: &Domain,
+    names: &[String],
+    rows: usize,
+    value: impl Fn(usize, usize) -> f64,
+) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "ITEM: TIMESTEP\n{step}\nITEM: NUMBER OF ENTRIES\n{rows}"
+    )?;
+    writeln!(out, "ITEM: BOX BOUNDS {}", domain.boundary_label())?;
+    for d in 0..3 {
+        writeln!(
+            out,
+            "{} {}",
+            format::g(domain.lo[d]),
+            format::g(domain.hi[d])
+        )?;
+    }
+    let mut header = String::from("ITEM: ENTRIES ");
+    for n in names {
+        header.push_str(n);
+        header.push(' ');
+    }
+    writeln!(out, "{header}")?;
+    let mut line = String::new();
+    for r in 0..rows {
+        line.clear();
+        for c in 0..names.len() {
+            line.push_str(&format::g(value(r, c)));
+            line.push(' ');
+        }
+        writeln!(out, "{line}")?;
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

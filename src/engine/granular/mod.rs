@@ -134,6 +134,41 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         self.worst
     }
 
+    fn contacts(
+        &self,
+        p: &Particles,
+        pairs: &[Pair],
+        history: &[f64],
+        dt: f64,
+        ghost: (&[[f64; 3]], &[[f64; 3]]),
+    ) -> Vec<(usize, [f64; 3], [f64; 3], [f64; 3], [f64; 3])> {
+        let width = self.model.history_len();
+        let mut h = vec![0.0; width];
+        let mut out = Vec::new();
+        let mut scratch: Option<Particles> = None;
+        for (k, pair) in pairs.iter().enumerate() {
+            h.copy_from_slice(&history[k * width..(k + 1) * width]);
+            let (i, j) = (pair.i as usize, pair.j as usize);
+            let r = if pair.shift != [0.0; 3] && ghost.0.len() == p.len() {
+                // the ghost side keeps the velocities of the last force evaluation
+                let g = if p.id[i] < p.id[j] { i } else { j };
+                let q = scratch.get_or_insert_with(|| p.clone());
+                q.v[g] = ghost.0[g];
+                q.omega[g] = ghost.1[g];
+                let r = self.pair_result(q, pair, &mut h, dt, false);
+                q.v[g] = p.v[g];
+                q.omega[g] = p.omega[g];
+                r
+            } else {
+                self.pair_result(p, pair, &mut h, dt, false)
+            };
+            if r.touching {
+                out.push((k, r.fi, r.ti, r.fj, r.tj));
+            }
+        }
+        out
+    }
+
     fn compute(
         &mut self,
         p: &mut Particles,

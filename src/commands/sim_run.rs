@@ -393,10 +393,58 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                         8,
                     )
                 }
-                other => return Err(a.unsupported(3, &format!("fix move {other}"))),
+                "rotate" => {
+                    a.count(
+                        11..=usize::MAX,
+                        "fix ID GROUP move rotate Px Py Pz Rx Ry Rz PERIOD",
+                    )?;
+                    let point = [a.real(4)?, a.real(5)?, a.real(6)?];
+                    let axis = [a.real(7)?, a.real(8)?, a.real(9)?];
+                    let period = a.real(10)?;
+                    if period <= 0.0 {
+                        return Err(a.error(10, "Illegal fix move command"));
+                    }
+                    let len = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+                    if len == 0.0 {
+                        return Err(a.error(7, "Zero length rotation vector with fix move"));
+                    }
+                    (
+                        Motion::Rotate {
+                            point,
+                            axis: axis.map(|c| c / len),
+                            omega: 2.0 * std::f64::consts::PI / period,
+                        },
+                        11,
+                    )
+                }
+                "variable" => return Err(a.unsupported(3, "fix move variable")),
+                _ => return Err(a.error(3, "Illegal fix move command")),
             };
-            if a.len() > used {
-                return Err(a.unsupported(used, "fix move keywords"));
+            // `units lattice` scales lengths and velocities by the lattice spacing
+            let mut motion = motion;
+            let mut i = used;
+            while i < a.len() {
+                match a.word(i)? {
+                    "units" => {
+                        if a.word_in(i + 1, &["box", "lattice"])? == "lattice" {
+                            let scale = ctx.sim.lattice.as_ref().map(|l| l.0).ok_or_else(|| {
+                                a.error(i + 1, "Use of fix move with undefined lattice")
+                            })?;
+                            let sc = |v: &mut [Option<f64>; 3]| {
+                                v.iter_mut().for_each(|c| *c = c.map(|x| x * scale))
+                            };
+                            match &mut motion {
+                                Motion::Linear(v) => sc(v),
+                                Motion::Wiggle { amplitude, .. } => sc(amplitude),
+                                Motion::Rotate { point, .. } => {
+                                    point.iter_mut().for_each(|c| *c *= scale)
+                                }
+                            }
+                        }
+                        i += 2;
+                    }
+                    _ => return Err(a.error(i, "Illegal fix move command")),
+                }
             }
             let sim = &ctx.sim;
             FixKind::Move(Move::new(
@@ -482,7 +530,7 @@ fn thermo_style(a: &Args, ctx: &mut Ctx) -> Result {
     t.float_format = None;
     t.column_formats = vec![None; t.fields.len()];
     ctx.sim.thermo.norm = false;
-    ctx.sim.lost_ignore = false;
+    ctx.sim.lost_ignore = true;
     Ok(())
 }
 

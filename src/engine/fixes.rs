@@ -15,7 +15,18 @@ pub enum Motion {
     Linear([Option<f64>; 3]),
     /// `wiggle Ax Ay Az period`: x = x0 + A sin(2 pi t / period).
     Wiggle {
+        /// Amplitudes (length); None components are integrated.
         amplitude: [Option<f64>; 3],
+        /// 2 pi / period (1/time).
+        omega: f64,
+    },
+    /// `rotate Px Py Pz Rx Ry Rz period`: rotation about the axis through P along R.
+    Rotate {
+        /// A point on the axis (length).
+        point: [f64; 3],
+        /// Unit vector along the axis.
+        axis: [f64; 3],
+        /// 2 pi / period (1/time).
         omega: f64,
     },
 }
@@ -56,12 +67,53 @@ impl Move {
         match &self.motion {
             Motion::Linear(v) => v.map(|c| c.is_some()),
             Motion::Wiggle { amplitude, .. } => amplitude.map(|c| c.is_some()),
+            Motion::Rotate { .. } => [true; 3],
         }
     }
 
     fn initial_integrate(&self, p: &mut Particles, group: u32, step: i64, dt: f64) {
         let delta = (step - self.start_step) as f64 * dt;
         let dtf = 0.5 * dt;
+        if let Motion::Rotate {
+            point,
+            axis: r,
+            omega,
+        } = self.motion
+        {
+            // X = P + C + A cos(wt) + B sin(wt), V = w R x (A cos(wt) + B sin(wt))
+            let arg = omega * delta;
+            let (sine, cosine) = (arg.sin(), arg.cos());
+            for i in 0..p.len() {
+                if p.mask[i] & group == 0 {
+                    continue;
+                }
+                let x0 = self.origin.get(&p.id[i]).copied().unwrap_or([0.0; 3]);
+                let d = [x0[0] - point[0], x0[1] - point[1], x0[2] - point[2]];
+                let ddotr = d[0] * r[0] + d[1] * r[1] + d[2] * r[2];
+                let c = [ddotr * r[0], ddotr * r[1], ddotr * r[2]];
+                let a = [d[0] - c[0], d[1] - c[1], d[2] - c[2]];
+                let b = [
+                    r[1] * a[2] - r[2] * a[1],
+                    r[2] * a[0] - r[0] * a[2],
+                    r[0] * a[1] - r[1] * a[0],
+                ];
+                let disp = [
+                    a[0] * cosine + b[0] * sine,
+                    a[1] * cosine + b[1] * sine,
+                    a[2] * cosine + b[2] * sine,
+                ];
+                for k in 0..3 {
+                    p.x[i][k] = point[k] + c[k] + disp[k];
+                }
+                p.v[i] = [
+                    omega * (r[1] * disp[2] - r[2] * disp[1]),
+                    omega * (r[2] * disp[0] - r[0] * disp[2]),
+                    omega * (r[0] * disp[1] - r[1] * disp[0]),
+                ];
+                p.omega[i] = [omega * r[0], omega * r[1], omega * r[2]];
+            }
+            return;
+        }
         for i in 0..p.len() {
             if p.mask[i] & group == 0 {
                 continue;
@@ -74,6 +126,7 @@ impl Move {
                         let arg = omega * delta;
                         (a * omega * arg.cos(), x0[d] + a * arg.sin())
                     }),
+                    Motion::Rotate { .. } => unreachable!("handled above"),
                 };
                 match set {
                     Some((v, x)) => {

@@ -192,7 +192,7 @@ pub struct Simulation {
     pub run_bounds: Option<(i64, i64)>,
     /// `run ... start N stop M`: override the bounds `ramp()` uses.
     pub ramp_bounds: (Option<i64>, Option<i64>),
-    /// Particles lost through fixed faces are dropped silently (`thermo_modify lost ignore`).
+    /// Particles lost through fixed faces are dropped silently (LIGGGHTS's default, `thermo_modify lost ignore`).
     pub lost_ignore: bool,
     /// Atom count at the last check (for the lost-atoms error).
     pub natoms_expected: usize,
@@ -233,7 +233,7 @@ impl Default for Simulation {
             force_time_state: (Vec::new(), Vec::new()),
             run_bounds: None,
             ramp_bounds: (None, None),
-            lost_ignore: false,
+            lost_ignore: true,
             natoms_expected: 0,
         }
     }

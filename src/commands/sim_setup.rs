@@ -15,7 +15,7 @@ pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
         "atom_style" => atom_style(a, ctx),
         "atom_modify" => atom_modify(a),
         "boundary" => boundary(a, ctx),
-        "units" => units(a),
+        "units" => units(a, ctx),
         "dimension" => dimension(a),
         "newton" => one_of(a, "newton", &["on", "off"], 1..=2),
         "communicate" | "comm_modify" => communicate(a, ctx),
@@ -81,15 +81,25 @@ fn boundary(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
-fn units(a: &Args) -> Result {
-    a.count(1..=1, "units si")?;
-    match a.word(0)? {
-        "si" => Ok(()),
-        "cgs" | "lj" | "real" | "metal" | "micro" | "nano" | "electron" => {
-            Err(a.unsupported(0, &format!("units {}", a.word(0)?)))
-        }
-        _ => Err(a.error(0, "Illegal units command")),
+fn units(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=1, "units si|cgs")?;
+    if ctx.sim.domain.exists {
+        return Err(a.error(0, "Units command after simulation box is defined"));
     }
+    use crate::engine::contact::UnitStyle;
+    // LIGGGHTS's defaults per style: time step 1e-8 and a neighbour skin of 1 mm
+    let (style, skin) = match a.word(0)? {
+        "si" => (UnitStyle::Si, 0.001),
+        "cgs" => (UnitStyle::Cgs, 0.1),
+        "lj" | "real" | "metal" | "micro" | "nano" | "electron" => {
+            return Err(a.unsupported(0, &format!("units {}", a.word(0)?)))
+        }
+        _ => return Err(a.error(0, "Illegal units command")),
+    };
+    ctx.sim.units = style;
+    ctx.sim.dt = 1.0e-8;
+    ctx.sim.neighbor.skin = skin;
+    Ok(())
 }
 
 fn dimension(a: &Args) -> Result {

@@ -192,6 +192,8 @@ pub struct Simulation {
     pub run_bounds: Option<(i64, i64)>,
     /// `run ... start N stop M`: override the bounds `ramp()` uses.
     pub ramp_bounds: (Option<i64>, Option<i64>),
+    /// `units si` or `cgs` (only the material limits and defaults differ).
+    pub units: crate::engine::contact::UnitStyle,
     /// Particles lost through fixed faces are dropped silently (LIGGGHTS's default, `thermo_modify lost ignore`).
     pub lost_ignore: bool,
     /// Atom count at the last check (for the lost-atoms error).
@@ -234,6 +236,7 @@ impl Default for Simulation {
             run_bounds: None,
             ramp_bounds: (None, None),
             lost_ignore: true,
+            units: crate::engine::contact::UnitStyle::Si,
             natoms_expected: 0,
         }
     }
@@ -548,7 +551,7 @@ impl Simulation {
         let scalar = |name: &str| table(name).and_then(|v| v.first().copied());
         crate::engine::contact::MaterialInput {
             ntypes: self.ntypes as usize,
-            units: crate::engine::contact::UnitStyle::Si,
+            units: self.units,
             soft_particles: self.soft_hard.0,
             hard_particles: self.soft_hard.1,
             allow_zero_restitution: self.zero_restitution,

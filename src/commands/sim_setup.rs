@@ -13,7 +13,7 @@ type Result = std::result::Result<(), Diagnostic>;
 pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
     Some(match name {
         "atom_style" => atom_style(a, ctx),
-        "atom_modify" => atom_modify(a),
+        "atom_modify" => atom_modify(a, ctx),
         "boundary" => boundary(a, ctx),
         "units" => units(a, ctx),
         "dimension" => dimension(a),
@@ -50,7 +50,7 @@ fn atom_style(a: &Args, ctx: &mut Ctx) -> Result {
     }
 }
 
-fn atom_modify(a: &Args) -> Result {
+fn atom_modify(a: &Args, ctx: &mut Ctx) -> Result {
     let mut i = 0;
     while i < a.len() {
         match a.word(i)? {
@@ -59,9 +59,15 @@ fn atom_modify(a: &Args) -> Result {
                 i += 2;
             }
             "sort" => {
-                // regolith orders particles itself; atom IDs are never affected by sorting
-                a.int(i + 1)?;
-                a.real(i + 2)?;
+                // the particle order matters: it decides the summation order of forces
+                // and the IDs `delete_atoms compress` hands out
+                let every = a.int(i + 1)?;
+                let binsize = a.real(i + 2)?;
+                if every < 0 || binsize < 0.0 {
+                    return Err(a.error(i + 1, "Illegal atom_modify command"));
+                }
+                ctx.sim.sort_every = every;
+                ctx.sim.sort_binsize = binsize;
                 i += 3;
             }
             "first" => return Err(a.unsupported(i, "atom_modify first")),

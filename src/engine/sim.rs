@@ -192,6 +192,12 @@ pub struct Simulation {
     pub run_bounds: Option<(i64, i64)>,
     /// `run ... start N stop M`: override the bounds `ramp()` uses.
     pub ramp_bounds: (Option<i64>, Option<i64>),
+    /// `atom_modify sort N binsize`: reorder particles spatially every N steps (0: never).
+    pub sort_every: i64,
+    /// Sort bin size (length; 0: half the neighbour cutoff).
+    pub sort_binsize: f64,
+    /// The next step at which particles are sorted.
+    next_sort: i64,
     /// `units si` or `cgs` (only the material limits and defaults differ).
     pub units: crate::engine::contact::UnitStyle,
     /// Particles lost through fixed faces are dropped silently (LIGGGHTS's default, `thermo_modify lost ignore`).
@@ -237,6 +243,9 @@ impl Default for Simulation {
             ramp_bounds: (None, None),
             lost_ignore: true,
             units: crate::engine::contact::UnitStyle::Si,
+            sort_every: 1000,
+            sort_binsize: 0.0,
+            next_sort: 0,
             natoms_expected: 0,
         }
     }
@@ -395,6 +404,77 @@ impl Simulation {
     /// Simulated time at the current step (time units).
     pub fn time(&self) -> f64 {
         self.atime + (self.step - self.atime_step) as f64 * self.dt
+    }
+
+    /// LIGGGHTS's spatial sort of the particle arrays (`Atom::sort`): bins of half the
+    /// neighbour cutoff over the box, x fastest, particles in their previous order inside
+    /// a bin. Without a pair style LIGGGHTS refuses to sort (bin size 0); regolith then
+    /// keeps the order.
+    fn sort_particles(&mut self) {
+        self.next_sort = (self.step / self.sort_every) * self.sort_every + self.sort_every;
+        let binsize = if self.sort_binsize > 0.0 {
+            self.sort_binsize
+        } else {
+            0.5 * self.neighbor_cutoff()
+        };
+        if binsize <= 0.0 {
+            return;
+        }
+        let (lo, hi) = (self.domain.lo, self.domain.hi);
+        let bininv = 1.0 / binsize;
+        let mut nbin = [1usize; 3];
+        let mut inv = [0.0; 3];
+        for d in 0..3 {
+            nbin[d] = (((hi[d] - lo[d]) * bininv) as i64).max(1) as usize;
+            inv[d] = nbin[d] as f64 / (hi[d] - lo[d]);
+        }
+        if nbin[0] * nbin[1] * nbin[2] == 1 {
+            return;
+        }
+        let p = &self.particles;
+        let bin_of = |x: &[f64; 3]| {
+            let mut b = [0usize; 3];
+            for d in 0..3 {
+                let k = ((x[d] - lo[d]) * inv[d]) as i64;
+                b[d] = k.clamp(0, nbin[d] as i64 - 1) as usize;
+            }
+            (b[2] * nbin[1] + b[1]) * nbin[0] + b[0]
+        };
+        let mut order: Vec<usize> = (0..p.len()).collect();
+        order.sort_by_key(|&i| bin_of(&p.x[i]));
+        if order.iter().enumerate().any(|(k, &i)| k != i) {
+            self.particles.permute(&order);
+        }
+    }
+
+    /// LIGGGHTS's largest neighbour cutoff: for each type pair the sum of the largest radii
+    /// (frozen particles only with moving ones), plus the skin; 0 without a pair style.
+    fn neighbor_cutoff(&self) -> f64 {
+        if self.pair_selection.is_none() {
+            return 0.0;
+        }
+        let n = self.ntypes as usize + 1;
+        let frozen = fixes::frozen_groups(&self.fixes);
+        let (mut dynamic, mut still) = (vec![0.0f64; n], vec![0.0f64; n]);
+        let p = &self.particles;
+        for i in 0..p.len() {
+            let t = (p.kind[i] as usize).min(n - 1);
+            if p.mask[i] & frozen != 0 {
+                still[t] = still[t].max(p.radius[i]);
+            } else {
+                dynamic[t] = dynamic[t].max(p.radius[i]);
+            }
+        }
+        let mut cut: f64 = 0.0;
+        for i in 1..n {
+            for j in 1..n {
+                let c = (dynamic[i] + dynamic[j])
+                    .max(still[i] + dynamic[j])
+                    .max(dynamic[i] + still[j]);
+                cut = cut.max(c);
+            }
+        }
+        cut + self.neighbor.skin
     }
 
     /// Wrap periodic coordinates, drop particles outside fixed faces, shrink-wrap the box.
@@ -717,6 +797,9 @@ impl Simulation {
         let started = std::time::Instant::now();
         // setup
         self.pbc_and_box()?;
+        if self.sort_every > 0 {
+            self.sort_particles();
+        }
         self.build_neighbors();
         // LIGGGHTS's setup evaluation does not advance contact history
         self.compute_forces(false, vars)?;
@@ -734,6 +817,9 @@ impl Simulation {
             self.guard_motion()?;
             if self.decide() {
                 self.pbc_and_box()?;
+                if self.sort_every > 0 && self.step >= self.next_sort {
+                    self.sort_particles();
+                }
                 self.build_neighbors();
             }
             self.compute_forces(true, vars)?;

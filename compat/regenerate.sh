@@ -61,11 +61,11 @@ script_references() {
     done
 }
 
-# Engine decks: compat/engine/in.NAME (side files in NAME.inputs/). References in NAME.ref/:
+# Engine decks (`regenerate.sh engine [NAME]` rebuilds one): compat/engine/in.NAME (side files in NAME.inputs/). References in NAME.ref/:
 # every file the deck writes (dumps) and thermo.txt, the thermo lines of its runs.
 engine_references() {
     local dir="$here/engine"
-    for deck in "$dir"/in.*; do
+    for deck in "$dir"/in.${2:-*}; do
         local name="${deck##*/in.}"
         local work
         work="$(mktemp -d)"
@@ -93,4 +93,4 @@ engine_references() {
 }
 
 [ "${1:-all}" = engine ] || script_references
-[ "${1:-all}" = script ] || engine_references
+[ "${1:-all}" = script ] || engine_references "$@"

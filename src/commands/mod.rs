@@ -32,6 +32,29 @@ pub struct Ctx<'a> {
 }
 
 impl Ctx<'_> {
+    /// Evaluate variable region radii before regions are matched: at most once per step, or
+    /// unconditionally (`definition`) when a region is defined.
+    pub fn reshape_regions(&mut self, definition: bool) -> std::result::Result<(), String> {
+        if self.sys.mode != Mode::Run
+            || self
+                .sim
+                .regions
+                .list
+                .iter()
+                .all(|r| r.radius_variable.is_none())
+        {
+            return Ok(());
+        }
+        let step = (!definition).then_some(self.sim.step);
+        let mut regions = std::mem::take(&mut self.sim.regions);
+        let result = {
+            let mut scope = crate::script::scope::Scope::new(self.vars, self.sys, self.sim);
+            regions.reshape(step, &mut |name| scope.equal_variable(name))
+        };
+        self.sim.regions = regions;
+        result
+    }
+
     /// Print an informational line to screen and log (not in check mode).
     pub fn say(&mut self, text: &str) {
         if self.sys.mode == Mode::Run {

@@ -253,27 +253,7 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
             for (d, slot) in values.iter_mut().enumerate() {
                 let w = a.word(3 + d)?;
                 if let Some(name) = w.strip_prefix("v_") {
-                    // the variable's style decides how it is evaluated, as in LIGGGHTS
-                    *slot = match ctx.vars.get(name).map(|v| v.style) {
-                        Some(crate::script::variables::Style::Equal) => {
-                            ForceValue::Equal(name.into())
-                        }
-                        Some(crate::script::variables::Style::Atom) => {
-                            ForceValue::Atom(name.into())
-                        }
-                        Some(_) => {
-                            return Err(a.error(
-                                3 + d,
-                                &format!("Variable {name} for fix {style} is invalid style"),
-                            ))
-                        }
-                        None => {
-                            return Err(a.error(
-                                3 + d,
-                                &format!("Variable name for fix {style} does not exist"),
-                            ))
-                        }
-                    };
+                    *slot = variable_value(&a, ctx, 3 + d, name, style)?;
                 } else if w != "NULL" {
                     *slot = ForceValue::Constant(a.real(3 + d)?);
                 } else if style == "addforce" {
@@ -417,7 +397,30 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                         11,
                     )
                 }
-                "variable" => return Err(a.unsupported(3, "fix move variable")),
+                "variable" => {
+                    use crate::engine::fixes::ForceValue;
+                    a.count(
+                        10..=usize::MAX,
+                        "fix ID GROUP move variable DX DY DZ VX VY VZ",
+                    )?;
+                    let mut slots: [ForceValue; 6] = Default::default();
+                    for (k, slot) in slots.iter_mut().enumerate() {
+                        let w = a.word(4 + k)?;
+                        if let Some(name) = w.strip_prefix("v_") {
+                            *slot = variable_value(&a, ctx, 4 + k, name, "move")?;
+                        } else if w != "NULL" {
+                            return Err(a.error(4 + k, "Illegal fix move command"));
+                        }
+                    }
+                    let [dx, dy, dz, vx, vy, vz] = slots;
+                    (
+                        Motion::Variable {
+                            displace: [dx, dy, dz],
+                            velocity: [vx, vy, vz],
+                        },
+                        10,
+                    )
+                }
                 _ => return Err(a.error(3, "Illegal fix move command")),
             };
             // `units lattice` scales lengths and velocities by the lattice spacing
@@ -439,6 +442,8 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                                 Motion::Rotate { point, .. } => {
                                     point.iter_mut().for_each(|c| *c *= scale)
                                 }
+                                // LIGGGHTS scales variable motion by neither
+                                Motion::Variable { .. } => {}
                             }
                         }
                         i += 2;
@@ -775,10 +780,10 @@ fn undump(a: &Args, ctx: &mut Ctx) -> Result {
 fn run(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(
         1..=usize::MAX,
-        "run N [upto] [start N] [stop N] [post yes|no]",
+        "run N [upto] [start N] [stop N] [pre yes|no] [post yes|no] [every M c1 c2 ...]",
     )?;
     let n = a.int(0)?;
-    let (mut upto, mut start, mut stop) = (false, None, None);
+    let (mut upto, mut start, mut stop, mut pre) = (false, None, None, true);
     let mut i = 1;
     while i < a.len() {
         match a.word(i)? {
@@ -799,7 +804,12 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
                 a.word_in(i + 1, &["yes", "no"])?;
                 i += 2;
             }
-            "pre" | "every" => return Err(a.unsupported(i, &format!("run keyword {}", a.word(i)?))),
+            "pre" => {
+                pre = a.word_in(i + 1, &["yes", "no"])? == "yes";
+                i += 2;
+            }
+            // the interpreter splits `every` runs into chunks before they get here
+            "every" => return Err(a.error(i, "Illegal run command")),
             _ => return Err(a.keyword_error(i, &["upto", "start", "stop", "pre", "post", "every"])),
         }
     }
@@ -839,7 +849,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         sys: &mut *ctx.sys,
     };
     ctx.sim
-        .run(nsteps, &mut sink, &mut vars)
+        .run_with_setup(nsteps, pre, &mut sink, &mut vars)
         .map_err(|m| a.error(0, &m))
 }
 
@@ -1150,4 +1160,25 @@ fn remove_by_id<T>(
         .ok_or_else(|| a.error(0, missing))?;
     items.remove(k);
     Ok(())
+}
+
+/// A `v_name` argument of a fix: equal- or atom-style, its style read as LIGGGHTS reads it.
+fn variable_value(
+    a: &Args,
+    ctx: &Ctx,
+    at: usize,
+    name: &str,
+    style: &str,
+) -> std::result::Result<crate::engine::fixes::ForceValue, Diagnostic> {
+    use crate::engine::fixes::ForceValue;
+    use crate::script::variables::Style;
+    match ctx.vars.get(name).map(|v| v.style) {
+        Some(Style::Equal) => Ok(ForceValue::Equal(name.into())),
+        Some(Style::Atom) => Ok(ForceValue::Atom(name.into())),
+        Some(_) => Err(a.error(
+            at,
+            &format!("Variable {name} for fix {style} is invalid style"),
+        )),
+        None => Err(a.error(at, &format!("Variable name for fix {style} does not exist"))),
+    }
 }

@@ -6,6 +6,7 @@ use crate::engine::domain::parse_boundary;
 use crate::engine::numbers::inumeric;
 use crate::engine::region::RegionContext;
 use crate::error::Diagnostic;
+use crate::script::system::Mode;
 
 type Result = std::result::Result<(), Diagnostic>;
 
@@ -183,7 +184,25 @@ fn region(a: &Args, ctx: &mut Ctx) -> Result {
         } else {
             a.error(1, &m)
         }
-    })
+    })?;
+    let index = ctx.sim.regions.list.len() - 1;
+    if let Some(name) = ctx.sim.regions.radius_variable(index) {
+        let style = a.word(1)?;
+        let at = (2..a.len()).find(|&i| a.word(i).is_ok_and(|w| w.starts_with("v_")));
+        let problem = match ctx.vars.get(name).map(|v| v.style) {
+            None => Some(format!("Variable name for region {style} does not exist")),
+            Some(crate::script::variables::Style::Equal) => None,
+            Some(_) => Some(format!("Variable for region {style} is invalid style")),
+        };
+        if let Some(m) = problem {
+            ctx.sim.regions.list.pop();
+            return Err(a.error(at.unwrap_or(1), &m));
+        }
+        if ctx.sys.mode == Mode::Run {
+            ctx.reshape_regions(true).map_err(|m| a.error(1, &m))?;
+        }
+    }
+    Ok(())
 }
 
 fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
@@ -251,10 +270,24 @@ fn lattice(a: &Args, ctx: &mut Ctx) -> Result {
             ))
         }
     };
-    if a.len() > 2 {
-        return Err(a.unsupported(2, &format!("lattice keyword {}", a.word(2)?)));
+    let mut origin = [0.0; 3];
+    let mut i = 2;
+    while i < a.len() {
+        match a.word(i)? {
+            "origin" => {
+                for (k, o) in origin.iter_mut().enumerate() {
+                    *o = a.real(i + 1 + k)?;
+                    if !(0.0..1.0).contains(o) {
+                        return Err(a.error(i + 1 + k, "Illegal lattice command"));
+                    }
+                }
+                i += 4;
+            }
+            w => return Err(a.unsupported(i, &format!("lattice keyword {w}"))),
+        }
     }
     ctx.sim.lattice = Some((scale, basis));
+    ctx.sim.lattice_origin = origin;
     ctx.say(&format!(
         "Lattice spacing in x,y,z = {} {} {}\n",
         g(scale),
@@ -265,6 +298,7 @@ fn lattice(a: &Args, ctx: &mut Ctx) -> Result {
 }
 
 fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
+    ctx.reshape_regions(false).map_err(|m| a.error(0, &m))?;
     if !ctx.sim.domain.exists {
         return Err(a.error(0, "Create_atoms command before simulation box is defined"));
     }
@@ -363,7 +397,8 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
                     .error(1, "Cannot create atoms with undefined lattice")
                     .with_help("add 'units box'"));
             }
-            x = x.map(|c| c * scale);
+            let o = ctx.sim.lattice_origin;
+            x = [0, 1, 2].map(|k| x[k] * scale + scale * o[k]);
         }
         if (0..3).all(|k| x[k] >= d.lo[k] && x[k] < d.hi[k]) {
             ctx.sim.particles.push(next_id, kind as u32, x, 0.5, 1.0);
@@ -397,10 +432,11 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
             for jj in jlo..=jhi {
                 for ii in ilo..=ihi {
                     for b in &basis {
+                        let o = ctx.sim.lattice_origin;
                         let x = [
-                            (ii as f64 + b[0]) * scale,
-                            (jj as f64 + b[1]) * scale,
-                            (kk as f64 + b[2]) * scale,
+                            (ii as f64 + b[0]) * scale + scale * o[0],
+                            (jj as f64 + b[1]) * scale + scale * o[1],
+                            (kk as f64 + b[2]) * scale + scale * o[2],
                         ];
                         if let Some(r) = region {
                             if !ctx.sim.regions.matches(r, x) {
@@ -488,6 +524,7 @@ fn displace_atoms(a: &Args, ctx: &mut Ctx) -> Result {
 }
 
 fn delete_atoms(a: &Args, ctx: &mut Ctx) -> Result {
+    ctx.reshape_regions(false).map_err(|m| a.error(0, &m))?;
     a.count(
         2..=usize::MAX,
         "delete_atoms group|region ID [compress yes|no]",
@@ -579,6 +616,7 @@ fn selection(a: &Args, ctx: &Ctx) -> std::result::Result<Vec<usize>, Diagnostic>
 }
 
 fn set(a: &Args, ctx: &mut Ctx) -> Result {
+    ctx.reshape_regions(false).map_err(|m| a.error(0, &m))?;
     if !ctx.sim.domain.exists {
         return Err(a.error(0, "Set command before simulation box is defined"));
     }
@@ -694,6 +732,7 @@ fn set(a: &Args, ctx: &mut Ctx) -> Result {
 }
 
 fn group(a: &Args, ctx: &mut Ctx) -> Result {
+    ctx.reshape_regions(false).map_err(|m| a.error(0, &m))?;
     a.count(
         2..=usize::MAX,
         "group ID region|type|id|subtract|union|intersect|delete|clear ...",
@@ -1113,10 +1152,46 @@ fn neigh_modify(a: &Args, ctx: &mut Ctx) -> Result {
             "one" | "page" => {
                 positive(a, i + 1)?;
             }
-            "exclude" | "include" | "binsize" | "contact_distance_factor" => {
+            "exclude" => {
+                match a.word(i + 1)? {
+                    "type" => {
+                        let (t1, t2) = (a.int(i + 2)?, a.int(i + 3)?);
+                        let ntypes = ctx.sim.ntypes as i64;
+                        if !(1..=ntypes).contains(&t1) || !(1..=ntypes).contains(&t2) {
+                            return Err(a.error(i + 2, "Illegal neigh_modify command"));
+                        }
+                        ctx.sim.neighbor.exclude_types.push((t1 as u32, t2 as u32));
+                        i += 4;
+                    }
+                    "group" => {
+                        let mut bits = [0u32; 2];
+                        for (k, b) in bits.iter_mut().enumerate() {
+                            let name = a.word(i + 2 + k)?;
+                            *b = ctx.sim.group_bit(name).ok_or_else(|| {
+                                a.error(i + 2 + k, "Invalid group ID in neigh_modify command")
+                            })?;
+                        }
+                        ctx.sim.neighbor.exclude_groups.push((bits[0], bits[1]));
+                        i += 4;
+                    }
+                    "none" => {
+                        ctx.sim.neighbor.exclude_types.clear();
+                        ctx.sim.neighbor.exclude_groups.clear();
+                        i += 2;
+                    }
+                    "molecule" => return Err(a.unsupported(i + 1, "neigh_modify exclude molecule")),
+                    _ => return Err(a.keyword_error(i + 1, &["type", "group", "molecule", "none"])),
+                }
+                continue;
+            }
+            "include" | "binsize" | "contact_distance_factor" => {
                 return Err(a.unsupported(i, &format!("neigh_modify {}", a.word(i)?)))
             }
-            _ => return Err(a.keyword_error(i, &["every", "delay", "check", "one", "page"])),
+            _ => {
+                return Err(
+                    a.keyword_error(i, &["every", "delay", "check", "one", "page", "exclude"])
+                )
+            }
         }
         i += 2;
     }

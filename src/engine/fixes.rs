@@ -29,6 +29,14 @@ pub enum Motion {
         /// 2 pi / period (1/time).
         omega: f64,
     },
+    /// `variable dx dy dz vx vy vz`: displacements from the start position and velocities
+    /// from equal- or atom-style variables (NULL: not given).
+    Variable {
+        /// Displacement variables (length).
+        displace: [ForceValue; 3],
+        /// Velocity variables (length/time).
+        velocity: [ForceValue; 3],
+    },
 }
 
 /// A `fix move`: the motion, where each atom started (unwrapped) and the start step.
@@ -40,6 +48,8 @@ pub struct Move {
     pub origin: HashMap<i64, [f64; 3]>,
     /// The step the fix was defined at (its time origin).
     pub start_step: i64,
+    /// `move variable`: this step's displacement and velocity values per local atom.
+    pub resolved: Vec<[Option<f64>; 6]>,
 }
 
 impl Move {
@@ -59,6 +69,7 @@ impl Move {
             motion,
             origin,
             start_step: step,
+            resolved: Vec::new(),
         }
     }
 
@@ -68,10 +79,46 @@ impl Move {
             Motion::Linear(v) => v.map(|c| c.is_some()),
             Motion::Wiggle { amplitude, .. } => amplitude.map(|c| c.is_some()),
             Motion::Rotate { .. } => [true; 3],
+            Motion::Variable { displace, velocity } => {
+                [0, 1, 2].map(|d| !displace[d].is_null() || !velocity[d].is_null())
+            }
+        }
+    }
+
+    /// `move variable`: x = x0 + dx where dx is given, v = vx where vx is given (with no dx,
+    /// x advances by dt vx); components with neither are integrated (LIGGGHTS's order).
+    fn variable_integrate(&self, p: &mut Particles, group: u32, dt: f64) {
+        let dtf = 0.5 * dt;
+        for i in 0..p.len() {
+            if p.mask[i] & group == 0 {
+                continue;
+            }
+            let x0 = self.origin.get(&p.id[i]).copied().unwrap_or([0.0; 3]);
+            let r = self.resolved.get(i).copied().unwrap_or([None; 6]);
+            for d in 0..3 {
+                match (r[d], r[3 + d]) {
+                    (Some(dx), Some(v)) => {
+                        p.v[i][d] = v;
+                        p.x[i][d] = x0[d] + dx;
+                    }
+                    (Some(dx), None) => p.x[i][d] = x0[d] + dx,
+                    (None, Some(v)) => {
+                        p.v[i][d] = v;
+                        p.x[i][d] += dt * p.v[i][d];
+                    }
+                    (None, None) => {
+                        p.v[i][d] += dtf / p.mass[i] * p.f[i][d];
+                        p.x[i][d] += dt * p.v[i][d];
+                    }
+                }
+            }
         }
     }
 
     fn initial_integrate(&self, p: &mut Particles, group: u32, step: i64, dt: f64) {
+        if matches!(self.motion, Motion::Variable { .. }) {
+            return self.variable_integrate(p, group, dt);
+        }
         let delta = (step - self.start_step) as f64 * dt;
         let dtf = 0.5 * dt;
         if let Motion::Rotate {
@@ -126,7 +173,9 @@ impl Move {
                         let arg = omega * delta;
                         (a * omega * arg.cos(), x0[d] + a * arg.sin())
                     }),
-                    Motion::Rotate { .. } => unreachable!("handled above"),
+                    Motion::Rotate { .. } | Motion::Variable { .. } => {
+                        unreachable!("handled above")
+                    }
                 };
                 match set {
                     Some((v, x)) => {
@@ -360,9 +409,10 @@ impl PrintFix {
 }
 
 /// One component of `fix setforce`/`addforce` (force units).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub enum ForceValue {
     /// `NULL` (setforce: leave the component alone).
+    #[default]
     Null,
     /// A number.
     Constant(f64),
@@ -370,6 +420,13 @@ pub enum ForceValue {
     Equal(String),
     /// `v_name` of an atom-style variable (evaluated each step, per atom).
     Atom(String),
+}
+
+impl ForceValue {
+    /// True for `NULL`.
+    pub fn is_null(&self) -> bool {
+        matches!(self, ForceValue::Null)
+    }
 }
 
 /// `fix setforce`/`addforce`: three components and an optional region.

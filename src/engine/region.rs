@@ -59,6 +59,10 @@ pub struct Region {
     pub shape: Shape,
     /// `side in` (true) or `side out`.
     pub interior: bool,
+    /// A radius given as `v_name`: the equal-style variable and its length scale.
+    pub radius_variable: Option<(String, f64)>,
+    /// The step the variable radius was last evaluated at (once per step, as LIGGGHTS).
+    pub shaped_at: Option<i64>,
 }
 
 /// All regions defined so far, in order.
@@ -164,11 +168,13 @@ impl Regions {
             }
             Ok(scale[d] * numeric(w)?)
         };
-        let plain = |w: &str| -> Result<f64, String> {
-            if w.starts_with("v_") {
-                return Err("region with variable size (v_): not supported yet".into());
+        let mut radius_variable = None;
+        let mut plain = |w: &str, scale: f64| -> Result<f64, String> {
+            if let Some(name) = w.strip_prefix("v_") {
+                radius_variable = Some((name.to_string(), scale));
+                return Ok(0.0);
             }
-            numeric(w)
+            Ok(scale * numeric(w)?)
         };
         let shape = match style {
             "block" => {
@@ -189,10 +195,10 @@ impl Regions {
                 let c1 = scale[a1] * numeric(geometry[1])?;
                 let c2 = scale[a2] * numeric(geometry[2])?;
                 if style == "cylinder" {
-                    let radius = scale[a1] * plain(geometry[3])?;
+                    let radius = plain(geometry[3], scale[0])?;
                     let lo = coord(geometry[4], axis, true)?;
                     let hi = coord(geometry[5], axis, false)?;
-                    if radius <= 0.0 {
+                    if radius <= 0.0 && radius_variable.is_none() {
                         return Err("Illegal region cylinder command".into());
                     }
                     Shape::Cylinder {
@@ -227,7 +233,7 @@ impl Regions {
                 for d in 0..3 {
                     centre[d] = scale[d] * numeric(geometry[d])?;
                 }
-                let radius = scale[0] * plain(geometry[3])?;
+                let radius = plain(geometry[3], scale[0])?;
                 if radius < 0.0 {
                     return Err("Illegal region sphere command".into());
                 }
@@ -295,7 +301,49 @@ impl Regions {
             style: style.to_string(),
             shape,
             interior,
+            radius_variable,
+            shaped_at: None,
         });
+        Ok(())
+    }
+
+    /// The variable a region's radius follows, if any (checked and first evaluated when the
+    /// region is defined).
+    pub fn radius_variable(&self, index: usize) -> Option<&str> {
+        self.list[index]
+            .radius_variable
+            .as_ref()
+            .map(|(n, _)| n.as_str())
+    }
+
+    /// Re-evaluate variable radii at most once per step (`None`: unconditionally, as at
+    /// definition), with `equal` evaluating an equal-style variable.
+    pub fn reshape(
+        &mut self,
+        step: Option<i64>,
+        equal: &mut dyn FnMut(&str) -> Result<f64, String>,
+    ) -> Result<(), String> {
+        for r in &mut self.list {
+            let Some((name, scale)) = &r.radius_variable else {
+                continue;
+            };
+            if step.is_some() && r.shaped_at == step {
+                continue;
+            }
+            let value = equal(name)?;
+            if value < 0.0 {
+                return Err("Variable evaluation in region gave bad value".into());
+            }
+            match &mut r.shape {
+                Shape::Sphere { radius, .. } | Shape::Cylinder { radius, .. } => {
+                    *radius = scale * value
+                }
+                _ => {}
+            }
+            if step.is_some() {
+                r.shaped_at = step;
+            }
+        }
         Ok(())
     }
 

@@ -22,6 +22,10 @@ pub struct NeighborSettings {
     pub delay: u64,
     /// Rebuild only when something moved more than half the skin.
     pub check: bool,
+    /// `neigh_modify exclude type M N`: type pairs never listed.
+    pub exclude_types: Vec<(u32, u32)>,
+    /// `neigh_modify exclude group A B`: group-bit pairs never listed (either order).
+    pub exclude_groups: Vec<(u32, u32)>,
 }
 
 impl Default for NeighborSettings {
@@ -32,6 +36,8 @@ impl Default for NeighborSettings {
             every: 1,
             delay: 10,
             check: true,
+            exclude_types: Vec::new(),
+            exclude_groups: Vec::new(),
         }
     }
 }
@@ -129,6 +135,8 @@ pub struct Dump {
 
 /// Everything the engine simulates.
 pub struct Simulation {
+    /// A run has been set up before (`run ... pre no` only skips setup after the first).
+    pub has_run: bool,
     /// The particles.
     pub particles: Particles,
     /// The box.
@@ -141,6 +149,8 @@ pub struct Simulation {
     pub ntypes: u32,
     /// The lattice: spacing (length) and basis points in lattice units.
     pub lattice: Option<(f64, Vec<[f64; 3]>)>,
+    /// `lattice ... origin x y z`: the lattice's shift in lattice units (0 <= x < 1).
+    pub lattice_origin: [f64; 3],
     /// Current step.
     pub step: i64,
     /// Time-step size (time units).
@@ -209,12 +219,14 @@ pub struct Simulation {
 impl Default for Simulation {
     fn default() -> Self {
         Simulation {
+            has_run: false,
             particles: Particles::default(),
             domain: Domain::default(),
             regions: Regions::default(),
             groups: vec!["all".to_string()],
             ntypes: 0,
             lattice: None,
+            lattice_origin: [0.0; 3],
             step: 0,
             dt: 0.001,
             atime: 0.0,
@@ -518,6 +530,22 @@ impl Simulation {
             self.neighbor.skin,
             &self.domain,
         );
+        let n = &self.neighbor;
+        if !n.exclude_types.is_empty() || !n.exclude_groups.is_empty() {
+            let p = &self.particles;
+            self.list.pairs.retain(|pair| {
+                let (i, j) = (pair.i as usize, pair.j as usize);
+                let (ti, tj) = (p.kind[i], p.kind[j]);
+                let (mi, mj) = (p.mask[i], p.mask[j]);
+                !n.exclude_types
+                    .iter()
+                    .any(|&(a, b)| (ti == a && tj == b) || (ti == b && tj == a))
+                    && !n
+                        .exclude_groups
+                        .iter()
+                        .any(|&(a, b)| (mi & a != 0 && mj & b != 0) || (mi & b != 0 && mj & a != 0))
+            });
+        }
         self.history = carry_history(
             &old_pairs,
             &self.history,
@@ -697,6 +725,17 @@ impl Simulation {
     /// Evaluate the variables and regions of `fix setforce`/`addforce` for this step.
     fn resolve_force_fixes(&mut self, vars: &mut dyn VariableSource) -> Result<(), String> {
         use crate::engine::fixes::ForceValue;
+        if self
+            .regions
+            .list
+            .iter()
+            .any(|r| r.radius_variable.is_some())
+        {
+            let mut regions = std::mem::take(&mut self.regions);
+            let result = regions.reshape(Some(self.step), &mut |name| vars.equal(self, name));
+            self.regions = regions;
+            result?;
+        }
         for k in 0..self.fixes.len() {
             let f = match &self.fixes[k].kind {
                 FixKind::SetForce(f) | FixKind::AddForce(f) if f.needs_resolving() => f,
@@ -724,6 +763,39 @@ impl Simulation {
             }
             if let FixKind::SetForce(f) | FixKind::AddForce(f) = &mut self.fixes[k].kind {
                 f.resolved = resolved;
+            }
+        }
+        Ok(())
+    }
+
+    /// Evaluate the variables of `fix move variable` for this step (before the moves).
+    fn resolve_move_fixes(&mut self, vars: &mut dyn VariableSource) -> Result<(), String> {
+        use crate::engine::fixes::ForceValue;
+        for k in 0..self.fixes.len() {
+            let values: Vec<ForceValue> = match &self.fixes[k].kind {
+                FixKind::Move(m) => match &m.motion {
+                    fixes::Motion::Variable { displace, velocity } => {
+                        displace.iter().chain(velocity.iter()).cloned().collect()
+                    }
+                    _ => continue,
+                },
+                _ => continue,
+            };
+            let n = self.particles.len();
+            let mut columns: Vec<Option<Vec<f64>>> = Vec::with_capacity(6);
+            for v in &values {
+                columns.push(match v {
+                    ForceValue::Null => None,
+                    ForceValue::Constant(c) => Some(vec![*c; n]),
+                    ForceValue::Equal(name) => Some(vec![vars.equal(self, name)?; n]),
+                    ForceValue::Atom(name) => Some(vars.atom(self, name)?),
+                });
+            }
+            let resolved: Vec<[Option<f64>; 6]> = (0..n)
+                .map(|i| std::array::from_fn(|c| columns[c].as_ref().map(|col| col[i])))
+                .collect();
+            if let FixKind::Move(m) = &mut self.fixes[k].kind {
+                m.resolved = resolved;
             }
         }
         Ok(())
@@ -783,6 +855,18 @@ impl Simulation {
         out: Sink<'_>,
         vars: &mut dyn VariableSource,
     ) -> Result<(), String> {
+        self.run_with_setup(nsteps, true, out, vars)
+    }
+
+    /// `run N pre yes|no`: with `pre no` after the first run, the atoms, neighbour list and
+    /// forces of the last step are kept (LIGGGHTS then only sets up output).
+    pub fn run_with_setup(
+        &mut self,
+        nsteps: i64,
+        pre: bool,
+        out: Sink<'_>,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), String> {
         if !self.domain.exists {
             return Err("Run command before simulation box is defined".into());
         }
@@ -796,15 +880,18 @@ impl Simulation {
         self.atime_step = self.step;
         let started = std::time::Instant::now();
         // setup
-        self.pbc_and_box()?;
-        if self.sort_every > 0 {
-            self.sort_particles();
+        if pre || !self.has_run {
+            self.pbc_and_box()?;
+            if self.sort_every > 0 {
+                self.sort_particles();
+            }
+            self.build_neighbors();
+            // LIGGGHTS's setup evaluation does not advance contact history
+            self.compute_forces(false, vars)?;
+            self.guard_motion()?;
+            self.guard_forces()?;
         }
-        self.build_neighbors();
-        // LIGGGHTS's setup evaluation does not advance contact history
-        self.compute_forces(false, vars)?;
-        self.guard_motion()?;
-        self.guard_forces()?;
+        self.has_run = true;
         self.thermo.run_start = first;
         self.thermo.header(out);
         self.thermo_line(out, vars)?;
@@ -812,6 +899,7 @@ impl Simulation {
         self.loop_clock = Some(std::time::Instant::now());
         for _ in 0..nsteps {
             self.step += 1;
+            self.resolve_move_fixes(vars)?;
             fixes::initial_integrate(&self.fixes, &mut self.particles, self.step, self.dt);
             // a runaway shows first in the half-kicked velocities, before atoms are wrapped or lost
             self.guard_motion()?;

@@ -405,6 +405,7 @@ impl Interpreter {
             }
             "partition" => self.partition(cmd, &args),
             "print" => self.print(&args),
+            "run" if args.iter().any(|w| w == "every") => self.run_every(&args),
             "quit" => {
                 if !args.is_empty() {
                     return Err(illegal("quit", "no arguments"));
@@ -418,6 +419,83 @@ impl Interpreter {
                 .engine
                 .execute(cmd, &mut self.sys, &mut self.vars, &mut self.out),
         }
+    }
+
+    /// `run N [keywords] every M c1 c2 ...`: runs of M steps (the last one shorter), each
+    /// followed by the commands (`NULL`: none), as LIGGGHTS's run command does.
+    fn run_every(&mut self, args: &[String]) -> Result<(), Diagnostic> {
+        let bad = || {
+            illegal(
+                "run",
+                "run N [upto] [start N] [stop N] [pre yes|no] [post yes|no] every M c1 c2 ...",
+            )
+        };
+        let n: i64 = args[0].parse().map_err(|_| bad())?;
+        let mut keep = Vec::new();
+        let (mut upto, mut pre) = (false, true);
+        let mut i = 1;
+        while args[i] != "every" {
+            match args[i].as_str() {
+                "upto" => {
+                    upto = true;
+                    i += 1;
+                }
+                "start" | "stop" | "post" | "pre" if i + 1 < args.len() => {
+                    if args[i] == "pre" {
+                        pre = args[i + 1] == "yes";
+                    } else {
+                        keep.push(format!("{} {}", args[i], args[i + 1]));
+                    }
+                    i += 2;
+                }
+                _ => return Err(bad()),
+            }
+        }
+        let every: i64 = match args.get(i + 1).map(|w| w.parse()) {
+            Some(Ok(m)) if m > 0 => m,
+            _ => return Err(bad()),
+        };
+        let mut commands: Vec<String> = args[i + 2..].to_vec();
+        if commands.len() == 1 && commands[0] == "NULL" {
+            commands.clear();
+        }
+        let step = self.engine.sim.step;
+        let nsteps = if upto { n - step } else { n };
+        if nsteps < 0 {
+            let what = if upto { "upto value" } else { "N value" };
+            return Err(Diagnostic::error(format!("Invalid run command {what}")));
+        }
+        let mut left = nsteps;
+        let mut first = true;
+        while left > 0 || first {
+            let chunk = left.min(every);
+            let pre_word = if pre || first { "yes" } else { "no" };
+            let text = format!("run {chunk} pre {pre_word} {}", keep.join(" "));
+            let words = line::split_words(&text).map_err(|e| lex_error(e, &text))?;
+            let cmd = CommandLine {
+                words,
+                text: text.clone(),
+                location: self.location.clone(),
+            };
+            self.engine
+                .execute(&cmd, &mut self.sys, &mut self.vars, &mut self.out)?;
+            for c in &commands {
+                if self.sys.mode == Mode::Check {
+                    self.check_only(c);
+                } else {
+                    self.execute_line(c, false)?;
+                }
+                if self.quit {
+                    return Ok(());
+                }
+            }
+            left -= chunk;
+            first = false;
+            if self.sys.mode == Mode::Check {
+                break; // one chunk checks every command
+            }
+        }
+        Ok(())
     }
 
     fn variable(&mut self, cmd: &CommandLine, args: &[String]) -> Result<(), Diagnostic> {

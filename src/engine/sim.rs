@@ -336,6 +336,16 @@ impl Simulation {
                         out(&format!("WARNING: {m}\n"));
                     }
                 }
+                FixKind::AveTime(at) if at.next == step => {
+                    let inputs = at.inputs.clone();
+                    let values = inputs
+                        .iter()
+                        .map(|input| self.ave_input(input, vars))
+                        .collect::<Result<Vec<f64>, String>>()?;
+                    if let FixKind::AveTime(at) = &mut self.fixes[k].kind {
+                        at.sample(step, &values)?;
+                    }
+                }
                 FixKind::Print(pf) if step % pf.every == 0 => {
                     let text = pf.text.clone();
                     let line = vars.substitute(self, &text)?;
@@ -344,6 +354,38 @@ impl Simulation {
                     }
                 }
                 _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// One input value of `fix ave/time`.
+    fn ave_input(
+        &self,
+        input: &fixes::AveInput,
+        vars: &mut dyn VariableSource,
+    ) -> Result<f64, String> {
+        match input {
+            fixes::AveInput::Compute(id, i) => self.compute_value(id, *i, vars),
+            fixes::AveInput::Fix(id, i) => self.fix_value(id, *i),
+            fixes::AveInput::Variable(name) => vars.equal(self, name),
+        }
+    }
+
+    /// `fix ave/time` samples due at setup (LIGGGHTS runs end_of_step there too).
+    fn setup_averages(&mut self, vars: &mut dyn VariableSource) -> Result<(), String> {
+        let step = self.step;
+        for k in 0..self.fixes.len() {
+            let inputs = match &self.fixes[k].kind {
+                FixKind::AveTime(at) if at.next == step => at.inputs.clone(),
+                _ => continue,
+            };
+            let values = inputs
+                .iter()
+                .map(|input| self.ave_input(input, vars))
+                .collect::<Result<Vec<f64>, String>>()?;
+            if let FixKind::AveTime(at) = &mut self.fixes[k].kind {
+                at.sample(step, &values)?;
             }
         }
         Ok(())
@@ -358,6 +400,7 @@ impl Simulation {
             .ok_or_else(|| format!("Could not find fix ID {id}"))?;
         match (&fix.kind, index) {
             (FixKind::CheckTimestep(c), Some(i @ 1..=3)) => Ok(c.values[i - 1]),
+            (FixKind::AveTime(at), i) if at.value(i).is_some() => Ok(at.value(i).unwrap_or(0.0)),
             _ => Err(format!("fix {id} ({}) has no such value", fix.style)),
         }
     }
@@ -892,6 +935,7 @@ impl Simulation {
             self.guard_forces()?;
         }
         self.has_run = true;
+        self.setup_averages(vars)?;
         self.thermo.run_start = first;
         self.thermo.header(out);
         self.thermo_line(out, vars)?;

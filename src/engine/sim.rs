@@ -135,6 +135,8 @@ pub struct Dump {
 
 /// Everything the engine simulates.
 pub struct Simulation {
+    /// The energy guard's last look: (step, kinetic energy).
+    pub energy_watch: Option<(i64, f64)>,
     /// A run has been set up before (`run ... pre no` only skips setup after the first).
     pub has_run: bool,
     /// The particles.
@@ -219,6 +221,7 @@ pub struct Simulation {
 impl Default for Simulation {
     fn default() -> Self {
         Simulation {
+            energy_watch: None,
             has_run: false,
             particles: Particles::default(),
             domain: Domain::default(),
@@ -269,6 +272,18 @@ pub const MAX_OVERLAP: f64 = 0.5;
 /// Where the time loop writes screen/log text.
 pub type Sink<'a> = &'a mut dyn FnMut(&str);
 
+/// How often the energy guard looks (steps).
+pub const ENERGY_WATCH_STEPS: i64 = 1000;
+/// Kinetic-energy growth between two looks that, with fast particles, means a blow-up.
+pub const ENERGY_GROWTH: f64 = 1.0e4;
+
+/// Energy `now` against `before` with the fastest particle covering `per_step` radii per
+/// step: a runaway when the energy grew more than [`ENERGY_GROWTH`]-fold and
+/// `per_step > 0.1`.
+pub fn energy_runaway(before: f64, now: f64, per_step: f64) -> bool {
+    before > 0.0 && now > ENERGY_GROWTH * before && per_step > 0.1
+}
+
 impl Simulation {
     /// The blow-up guard on motion, run after each half-kick (before atoms are wrapped or
     /// lost): a position or velocity that is not finite, or a particle that moves more than
@@ -288,6 +303,41 @@ impl Simulation {
                     "blow-up at step {}: atom {} moves further than its radius in one time step (|v| dt > r); \
                      the time step is probably too large for the stiffness (check Young's modulus, or use fix check/timestep/gran)",
                     self.step, p.id[i]
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The blow-up guard on energy, every [`ENERGY_WATCH_STEPS`] steps: the kinetic energy grew
+    /// more than [`ENERGY_GROWTH`]-fold since the last look while the fastest particle covers
+    /// more than a tenth of its radius per step. (Driven motion, such as a piston, raises the
+    /// energy too, but not at that speed per step.)
+    fn guard_energy(&mut self) -> Result<(), String> {
+        let p = &self.particles;
+        let mut energy = 0.0;
+        let mut fastest = (0.0, 0usize);
+        for i in 0..p.len() {
+            let v2 = p.v[i][0] * p.v[i][0] + p.v[i][1] * p.v[i][1] + p.v[i][2] * p.v[i][2];
+            energy += 0.5 * p.mass[i] * v2;
+            if p.radius[i] > 0.0 {
+                let per_step = v2.sqrt() * self.dt / p.radius[i];
+                if per_step > fastest.0 {
+                    fastest = (per_step, i);
+                }
+            }
+        }
+        let before = self.energy_watch.replace((self.step, energy));
+        if let Some((step, e0)) = before {
+            if energy_runaway(e0, energy, fastest.0) {
+                return Err(format!(
+                    "blow-up at step {}: kinetic energy grew {:.1e}-fold since step {} and atom {} moves {:.2} radii per step; \
+                     the time step is probably too large for the stiffness (check Young's modulus, or use fix check/timestep/gran)",
+                    self.step,
+                    energy / e0,
+                    step,
+                    p.id[fastest.1],
+                    fastest.0
                 ));
             }
         }
@@ -935,6 +985,7 @@ impl Simulation {
             self.guard_forces()?;
         }
         self.has_run = true;
+        self.energy_watch = None;
         self.setup_averages(vars)?;
         self.thermo.run_start = first;
         self.thermo.header(out);
@@ -957,6 +1008,9 @@ impl Simulation {
             self.compute_forces(true, vars)?;
             self.guard_forces()?;
             fixes::final_integrate(&self.fixes, &mut self.particles, self.dt);
+            if self.step % ENERGY_WATCH_STEPS == 0 {
+                self.guard_energy()?;
+            }
             self.end_of_step(out, vars)?;
             if self.thermo.due(self.step, last) {
                 self.thermo_line(out, vars)?;
@@ -1083,5 +1137,22 @@ impl Simulation {
             self.write_dump_text(k, step, &text)?;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod guard_tests {
+    use super::energy_runaway;
+
+    #[test]
+    fn energy_runaway_needs_growth_and_speed() {
+        // a piston kick: energy up 1e9-fold, but particles move 1 % of a radius per step
+        assert!(!energy_runaway(1e-12, 1e-3, 0.01));
+        // fast but steady
+        assert!(!energy_runaway(1.0, 2.0, 0.5));
+        // runaway
+        assert!(energy_runaway(1e-6, 1.0, 0.2));
+        // from rest nothing is compared
+        assert!(!energy_runaway(0.0, 1.0, 0.9));
     }
 }

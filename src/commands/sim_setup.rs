@@ -527,7 +527,7 @@ fn delete_atoms(a: &Args, ctx: &mut Ctx) -> Result {
     ctx.reshape_regions(false).map_err(|m| a.error(0, &m))?;
     a.count(
         2..=usize::MAX,
-        "delete_atoms group|region ID [compress yes|no]",
+        "delete_atoms group|region ID | overlap CUT G1 G2 [compress yes|no]",
     )?;
     let p = &ctx.sim.particles;
     let remove: Vec<bool> = match a.word(0)? {
@@ -546,10 +546,35 @@ fn delete_atoms(a: &Args, ctx: &mut Ctx) -> Result {
                 .ok_or_else(|| a.error(1, "Could not find delete_atoms region ID"))?;
             p.x.iter().map(|x| ctx.sim.regions.matches(r, *x)).collect()
         }
-        other => return Err(a.unsupported(0, &format!("delete_atoms {other}"))),
+        "overlap" => {
+            a.count(4..=usize::MAX, "delete_atoms overlap CUTOFF GROUP1 GROUP2")?;
+            let cut = a.real(1)?;
+            let mut bits = [0u32; 2];
+            for (k, b) in bits.iter_mut().enumerate() {
+                *b = ctx
+                    .sim
+                    .group_bit(a.word(2 + k)?)
+                    .ok_or_else(|| a.error(2 + k, "Could not find delete_atoms group ID"))?;
+            }
+            if ctx.sys.mode == Mode::Run {
+                ctx.out.screen("System init for delete_atoms ...\n");
+            }
+            if ctx.sim.pair_selection.is_none() {
+                return Err(a.error(0, "Delete_atoms requires a pair style be defined"));
+            }
+            if cut > ctx.sim.neighbor_cutoff() {
+                return Err(a.error(1, "Delete_atoms cutoff > neighbor cutoff"));
+            }
+            ctx.sim
+                .overlapping(cut, bits[0], bits[1])
+                .map_err(|m| a.error(0, &m))?
+        }
+        "porosity" => return Err(a.unsupported(0, "delete_atoms porosity")),
+        _ => return Err(a.keyword_error(0, &["group", "region", "overlap", "porosity"])),
     };
+    let p = &ctx.sim.particles;
     let mut compress = true;
-    let mut i = 2;
+    let mut i = if a.word(0)? == "overlap" { 4 } else { 2 };
     while i < a.len() {
         match a.word(i)? {
             "compress" => compress = a.word_in(i + 1, &["yes", "no"])? == "yes",

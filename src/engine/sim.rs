@@ -554,7 +554,7 @@ impl Simulation {
 
     /// LIGGGHTS's largest neighbour cutoff: for each type pair the sum of the largest radii
     /// (frozen particles only with moving ones), plus the skin; 0 without a pair style.
-    fn neighbor_cutoff(&self) -> f64 {
+    pub fn neighbor_cutoff(&self) -> f64 {
         if self.pair_selection.is_none() {
             return 0.0;
         }
@@ -650,6 +650,55 @@ impl Simulation {
         self.list_ids = self.particles.id.clone();
         self.ago = 0;
         self.box_at_build = (self.domain.lo, self.domain.hi);
+    }
+
+    /// `delete_atoms overlap CUT G1 G2`: which atoms go. In memory order, an atom of G1 goes
+    /// when an atom of G2 that has not gone lies closer than `cut`; across a periodic
+    /// boundary only the lower ID of a pair counts as gone (LIGGGHTS's rule for ghosts).
+    pub fn overlapping(&self, cut: f64, g1: u32, g2: u32) -> Result<Vec<bool>, String> {
+        let p = &self.particles;
+        let n = p.len();
+        let mut list = crate::engine::neighbor::NeighborList::default();
+        let reach = vec![0.5 * cut; n];
+        let mut x = p.x.clone();
+        for xi in &mut x {
+            let mut image = [0; 3];
+            self.domain.remap(xi, &mut image);
+        }
+        list.build(&x, &reach, 0.0, &self.domain);
+        // partners of each atom, both directions: (partner, across a periodic boundary)
+        let mut partners: Vec<Vec<(usize, bool)>> = vec![Vec::new(); n];
+        for pair in &list.pairs {
+            let (i, j) = (pair.i as usize, pair.j as usize);
+            let d = [0, 1, 2].map(|k| x[i][k] - (x[j][k] + pair.shift[k]));
+            if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= cut * cut || i == j {
+                continue;
+            }
+            let periodic = pair.shift != [0.0; 3];
+            partners[i].push((j, periodic));
+            partners[j].push((i, periodic));
+        }
+        let mut gone = vec![false; n];
+        for i in 0..n {
+            if p.mask[i] & g1 == 0 {
+                continue;
+            }
+            for &(j, periodic) in &partners[i] {
+                if p.mask[j] & g2 == 0 {
+                    continue;
+                }
+                if !periodic {
+                    if gone[j] {
+                        continue;
+                    }
+                } else if p.mask[i] & g2 != 0 && p.mask[j] & g1 != 0 && p.id[i] > p.id[j] {
+                    continue;
+                }
+                gone[i] = true;
+                break;
+            }
+        }
+        Ok(gone)
     }
 
     /// Values of a `fix property/global` by its variable name: (style, columns, values).

@@ -9,6 +9,9 @@ use crate::error::Diagnostic;
 /// Commands LIGGGHTS 3.8.0 lacks that regolith accepts (newer LAMMPS spellings users type).
 pub const EXTENSION_COMMANDS: &[&str] = &["comm_modify"];
 
+/// Dump styles Debian's LIGGGHTS 3.8.0 build lacks that regolith writes (LAMMPS's layout).
+pub const EXTENSION_DUMP_STYLES: &[&str] = &["atom"];
+
 /// Commands whose argument at `index` (0-based, after the command name) is a style name.
 const STYLED: &[(&str, usize, NameKind, &str)] = &[
     ("atom_style", 0, NameKind::AtomStyle, "atom_style STYLE ..."),
@@ -91,6 +94,8 @@ pub fn validate_names(cmd: &CommandLine) -> Result<(), Diagnostic> {
     }
     if kind == NameKind::FixStyle && style.starts_with("mesh/surface") {
         validate_mesh_modules(style, cmd, index)?;
+    } else if kind == NameKind::DumpStyle && EXTENSION_DUMP_STYLES.contains(&style) {
+        // accepted beyond LIGGGHTS
     } else if !names::names(kind).contains(&style) {
         return Err(unknown(kind, style, cmd, index));
     }

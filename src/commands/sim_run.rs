@@ -518,6 +518,7 @@ fn thermo_style(a: &Args, ctx: &mut Ctx) -> Result {
     if a.word(0)? != "custom" && a.len() > 1 {
         return Err(a.error(1, "Illegal thermo_style command"));
     }
+    ctx.sim.thermo.custom = a.word(0)? == "custom";
     ctx.sim.thermo.set_style(&words).map_err(|m| {
         let at = words
             .iter()
@@ -603,11 +604,31 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.error(3, "Illegal dump command"));
     }
     let file = a.word(4)?;
-    if file.ends_with(".gz") {
-        return Err(a.unsupported(4, "gzip dump files"));
+    let mut dump_style = crate::engine::sim::DumpStyle::Text;
+    if style == "custom/vtk" {
+        if file.ends_with(".gz") {
+            return Err(a.error(4, "dump custom/vtk files cannot be gzipped"));
+        }
+        if [".vtu", ".vtp", ".pvtu", ".pvtp", ".vtm"]
+            .iter()
+            .any(|e| file.ends_with(e))
+        {
+            return Err(a.unsupported(4, "dump custom/vtk XML files (.vtu/.vtp)"));
+        }
     }
     let layout = match style {
-        "custom" => {
+        "atom" | "xyz" => {
+            a.count(5..=5, &format!("dump ID GROUP {style} N FILE"))?;
+            if style == "xyz" {
+                dump_style = crate::engine::sim::DumpStyle::Xyz(Vec::new());
+                Layout::new(&[]).expect("no columns")
+            } else {
+                let mut l = Layout::new(&["id", "type", "xs", "ys", "zs"]).expect("known columns");
+                l.no_trailing_blank = true;
+                l
+            }
+        }
+        "custom" | "custom/vtk" => {
             let names: Vec<&str> = (5..a.len())
                 .map(|i| a.word(i))
                 .collect::<std::result::Result<_, _>>()?;
@@ -649,13 +670,18 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                         .map_err(|m| a.error(5 + k, &format!("Dump custom: {m}")))?;
                 }
             }
-            Layout::new(&names).map_err(|m| {
+            let layout = Layout::new(&names).map_err(|m| {
                 let k = names
                     .iter()
                     .position(|n| m.contains(&format!(" {n} ")))
                     .unwrap_or(0);
                 a.error(5 + k, &m)
-            })?
+            })?;
+            if style == "custom/vtk" {
+                dump_style =
+                    crate::engine::sim::DumpStyle::Vtk(crate::io::vtk::fields(&layout.names));
+            }
+            layout
         }
         "local" => {
             let names: Vec<&str> = (5..a.len())
@@ -698,6 +724,7 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                 handle: None,
                 first: false,
                 pad: 0,
+                style: crate::engine::sim::DumpStyle::Text,
             });
             return Ok(());
         }
@@ -714,6 +741,7 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
         handle: None,
         first: false,
         pad: 0,
+        style: dump_style,
     });
     Ok(())
 }
@@ -765,6 +793,25 @@ fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
             }
             "flush" => {
                 a.word_in(i + 1, &["yes", "no"])?;
+            }
+            "element" => {
+                let n = ctx.sim.ntypes as usize;
+                if i + n >= a.len() {
+                    return Err(a.error(i, "Dump modify element names do not match atom types"));
+                }
+                let names: Vec<String> = (i + 1..=i + n)
+                    .map(|k| a.word(k).map(str::to_string))
+                    .collect::<std::result::Result<_, _>>()?;
+                if let crate::engine::sim::DumpStyle::Xyz(e) = &mut ctx.sim.dumps[k].style {
+                    *e = names;
+                }
+                i += n + 1;
+                continue;
+            }
+            "binary" if matches!(dump.style, crate::engine::sim::DumpStyle::Vtk(_)) => {
+                if a.word_in(i + 1, &["yes", "no"])? == "yes" {
+                    return Err(a.unsupported(i, "dump_modify binary yes (binary VTK)"));
+                }
             }
             other => return Err(a.unsupported(i, &format!("dump_modify {other}"))),
         }

@@ -131,6 +131,20 @@ pub struct Dump {
     pub first: bool,
     /// `dump_modify pad N`: the step in `*` file names padded with zeros to N digits.
     pub pad: usize,
+    /// The dump style.
+    pub style: DumpStyle,
+}
+
+/// How a dump writes its snapshots.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DumpStyle {
+    /// `custom` (and `atom`, whose columns are fixed): `ITEM:` text; `local` dumps too.
+    Text,
+    /// `xyz`: count, comment line, then `element x y z`; element names per type
+    /// (`dump_modify element`, else the type number).
+    Xyz(Vec<String>),
+    /// `custom/vtk`: legacy VTK polydata with these fields, plus a bounding-box file.
+    Vtk(Vec<crate::io::vtk::Field>),
 }
 
 /// Everything the engine simulates.
@@ -1037,6 +1051,7 @@ impl Simulation {
         self.energy_watch = None;
         self.setup_averages(vars)?;
         self.thermo.run_start = first;
+        self.thermo.prepare_run(self.domain.shrinks());
         self.thermo.header(out);
         self.thermo_line(out, vars)?;
         self.write_dumps(true, vars)?;
@@ -1105,19 +1120,38 @@ impl Simulation {
         use std::io::Write;
         let dump = &mut self.dumps[k];
         let multi = dump.file.contains('*');
-        let name = dump
-            .file
-            .replace('*', &format!("{step:0width$}", width = dump.pad));
+        let step_text = format!("{step:0width$}", width = dump.pad);
+        let name = dump.file.replace('*', &step_text);
         if let Some(dir) = std::path::Path::new(&name).parent() {
             if !dir.as_os_str().is_empty() {
                 std::fs::create_dir_all(dir)
                     .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
             }
         }
-        if multi {
-            let tmp = format!("{name}.tmp");
-            std::fs::write(&tmp, text).map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
-            std::fs::rename(&tmp, &name)
+        // a .gz name gets gzip: one complete gzip member per snapshot, so the file is
+        // valid after every snapshot (gzip readers concatenate members)
+        let gzip = name.ends_with(".gz");
+        let packed;
+        let text = if gzip {
+            let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+            enc.write_all(text).map_err(|e| format!("{name}: {e}"))?;
+            packed = enc.finish().map_err(|e| format!("{name}: {e}"))?;
+            &packed[..]
+        } else {
+            text
+        };
+        if let DumpStyle::Vtk(_) = dump.style {
+            // one snapshot per file (overwritten without `*`), and the box beside it
+            let mut bbox = Vec::new();
+            crate::io::vtk::write_bounding_box(&mut bbox, &self.domain)
+                .map_err(|e| e.to_string())?;
+            crate::io::write_atomically(&name, text)
+                .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
+            let box_name = crate::io::vtk::bounding_box_name(&dump.file, &step_text);
+            crate::io::write_atomically(&box_name, &bbox)
+                .map_err(|e| format!("Cannot open dump file {box_name}: {e}"))?;
+        } else if multi {
+            crate::io::write_atomically(&name, text)
                 .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
         } else {
             if dump.handle.is_none() {
@@ -1178,11 +1212,68 @@ impl Simulation {
             let dump = &mut self.dumps[k];
             let mut text = Vec::new();
             let p = &self.particles;
-            dump.layout
-                .write_snapshot(&mut text, step, p, dump.group, &self.domain, |c, i| {
-                    columns[c].0.get(i, columns[c].1)
-                })
-                .map_err(|e| e.to_string())?;
+            match &dump.style {
+                DumpStyle::Text => dump
+                    .layout
+                    .write_snapshot(&mut text, step, p, dump.group, &self.domain, |c, i| {
+                        columns[c].0.get(i, columns[c].1)
+                    })
+                    .map_err(|e| e.to_string())?,
+                DumpStyle::Xyz(elements) => {
+                    use std::io::Write;
+                    let atoms: Vec<usize> = (0..p.len())
+                        .filter(|&i| p.mask[i] & dump.group != 0)
+                        .collect();
+                    let mut w = || -> std::io::Result<()> {
+                        writeln!(text, "{}\nAtoms. Timestep: {step}", atoms.len())?;
+                        for &i in &atoms {
+                            let t = p.kind[i] as usize;
+                            let element = elements
+                                .get(t.wrapping_sub(1))
+                                .cloned()
+                                .unwrap_or_else(|| t.to_string());
+                            let g = crate::script::format::g;
+                            let x = p.x[i];
+                            writeln!(text, "{element} {} {} {}", g(x[0]), g(x[1]), g(x[2]))?;
+                        }
+                        Ok(())
+                    };
+                    w().map_err(|e| e.to_string())?;
+                }
+                DumpStyle::Vtk(fields) => {
+                    let mut atoms: Vec<usize> = (0..p.len())
+                        .filter(|&i| p.mask[i] & dump.group != 0)
+                        .collect();
+                    if dump.layout.sort_by_id {
+                        atoms.sort_by_key(|&i| p.id[i]);
+                    }
+                    // column index -> index among the reference columns
+                    let cols = &dump.layout.columns;
+                    let mut reference = vec![usize::MAX; cols.len()];
+                    let mut r = 0;
+                    for (c, col) in cols.iter().enumerate() {
+                        if let crate::io::dump::Column::Reference(_) = col {
+                            reference[c] = r;
+                            r += 1;
+                        }
+                    }
+                    let domain = &self.domain;
+                    crate::io::vtk::write_particles(
+                        &mut text,
+                        &atoms,
+                        fields,
+                        |i| p.x[i],
+                        |c, i| match &cols[c] {
+                            crate::io::dump::Column::Reference(_) => {
+                                let (values, col) = &columns[reference[c]];
+                                values.get(i, *col)
+                            }
+                            other => other.value(p, domain, i),
+                        },
+                    )
+                    .map_err(|e| e.to_string())?;
+                }
+            }
             self.write_dump_text(k, step, &text)?;
         }
         Ok(())

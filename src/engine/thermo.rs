@@ -64,6 +64,10 @@ pub struct Thermo {
     pub float_format: Option<String>,
     /// `thermo_modify format N` per column (index N-1).
     pub column_formats: Vec<Option<String>>,
+    /// Style `custom` (styles `one` and `multi` gain a Volume column when the box changes).
+    pub custom: bool,
+    /// The last column is the Volume column added at run start.
+    pub auto_volume: bool,
 }
 
 impl Default for Thermo {
@@ -77,6 +81,8 @@ impl Default for Thermo {
             int_format: None,
             float_format: None,
             column_formats: Vec::new(),
+            custom: false,
+            auto_volume: false,
         };
         t.set_style(&["step", "atoms", "ke", "cpu"])
             .expect("default style is valid");
@@ -117,7 +123,25 @@ impl Thermo {
             });
         }
         self.fields = fields;
+        self.auto_volume = false;
         Ok(())
+    }
+
+    /// At run start, as LIGGGHTS: styles other than `custom` get a Volume column when the
+    /// box can change (a shrink-wrapped face).
+    pub fn prepare_run(&mut self, box_changes: bool) {
+        if self.auto_volume {
+            self.fields.pop();
+            self.auto_volume = false;
+        }
+        if box_changes && !self.custom {
+            self.fields.push(Field {
+                keyword: "vol".into(),
+                label: "Volume".into(),
+                kind: Kind::Real,
+            });
+            self.auto_volume = true;
+        }
     }
 
     /// Is a thermo line due at `step` of a run ending at `last`?

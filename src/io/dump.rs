@@ -129,6 +129,9 @@ pub struct Layout {
     pub format: Option<Vec<Conversion>>,
     /// Sort atoms by ID (`dump_modify sort id`).
     pub sort_by_id: bool,
+    /// Values separated by single blanks without a trailing one (LAMMPS's `dump atom`);
+    /// LIGGGHTS's `dump custom` ends every name and value with a blank.
+    pub no_trailing_blank: bool,
 }
 
 impl Layout {
@@ -143,6 +146,7 @@ impl Layout {
             columns,
             format: None,
             sort_by_id: false,
+            no_trailing_blank: false,
         })
     }
 
@@ -207,6 +211,9 @@ impl Layout {
             header.push_str(n);
             header.push(' ');
         }
+        if self.no_trailing_blank {
+            header.pop();
+        }
         writeln!(out, "{header}")?;
         let mut line = String::with_capacity(16 * self.columns.len());
         for &i in &atoms {
@@ -226,6 +233,9 @@ impl Layout {
                     None => line.push_str(&format::g(value)),
                 }
                 line.push(' ');
+            }
+            if self.no_trailing_blank {
+                line.pop();
             }
             writeln!(out, "{line}")?;
         }

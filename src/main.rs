@@ -44,10 +44,25 @@ enum Command {
         #[arg(required = true, trailing_var_arg = true, allow_hyphen_values = true)]
         args: Vec<String>,
     },
-    /// Compare two dumps or logs (not supported yet).
+    /// Compare two dumps (text or gzip, a file or a `*` series) atom by atom, or the thermo
+    /// columns of two logs. Exit 0 within tolerance, 1 outside, 2 on unreadable input.
     Diff {
-        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
-        args: Vec<String>,
+        /// First dump or log.
+        a: String,
+        /// Second dump or log.
+        b: String,
+        /// Relative tolerance: values agree when |a-b| <= atol + rtol max(|a|,|b|).
+        #[arg(long, default_value_t = 1e-6)]
+        rtol: f64,
+        /// Absolute tolerance (units of each column).
+        #[arg(long, default_value_t = 0.0)]
+        atol: f64,
+        /// Only these columns, comma-separated (default: all shared columns but id).
+        #[arg(long, value_delimiter = ',')]
+        columns: Option<Vec<String>>,
+        /// Only these steps: N, A:B, or a comma list of them.
+        #[arg(long)]
+        steps: Option<String>,
     },
     /// Convert restart, data, dump and VTK files (not supported yet).
     Convert {
@@ -158,7 +173,42 @@ fn main() -> ExitCode {
             }
             exit(worst)
         }
-        Command::Diff { .. } | Command::Convert { .. } | Command::Bench { .. } => {
+        Command::Diff {
+            a,
+            b,
+            rtol,
+            atol,
+            columns,
+            steps,
+        } => {
+            let steps = match steps
+                .map(|s| regolith::io::diff::parse_steps(&s))
+                .transpose()
+            {
+                Ok(s) => s,
+                Err(m) => {
+                    eprintln!("ERROR: {m}");
+                    return ExitCode::from(2);
+                }
+            };
+            let opts = regolith::io::diff::DiffOptions {
+                rtol,
+                atol,
+                columns,
+                steps,
+            };
+            match regolith::io::diff::diff(&a, &b, &opts) {
+                Ok(mut report) => {
+                    print!("{}", report.render(&a, &b));
+                    ExitCode::from(if report.agrees() { 0 } else { 1 })
+                }
+                Err(m) => {
+                    eprintln!("ERROR: {m}");
+                    ExitCode::from(2)
+                }
+            }
+        }
+        Command::Convert { .. } | Command::Bench { .. } => {
             let name = args[1].as_str();
             eprintln!("ERROR: regolith {name}: not supported yet");
             exit(ExitStatus::Unsupported)

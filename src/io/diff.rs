@@ -1,0 +1,538 @@
+//! `regolith diff A B`: two dumps (text or gzip, one file or a `*` series, from regolith or
+//! LIGGGHTS) compared atom by atom (matched by ID), step by step and column by column; or
+//! the thermo columns of two logs (or screen captures), matched by run and step. A value
+//! pair agrees when |a - b| <= atol + rtol max(|a|, |b|).
+
+use std::collections::BTreeMap;
+use std::io::Read;
+
+use crate::io::dump_compare::{parse, Snapshot};
+
+/// What to compare and how closely.
+#[derive(Debug, Clone)]
+pub struct DiffOptions {
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance (units of each column).
+    pub atol: f64,
+    /// Only these columns (None: every column both files have, except `id`).
+    pub columns: Option<Vec<String>>,
+    /// Only steps in these inclusive ranges (None: all).
+    pub steps: Option<Vec<(i64, i64)>>,
+}
+
+impl Default for DiffOptions {
+    fn default() -> Self {
+        DiffOptions {
+            rtol: 1e-6,
+            atol: 0.0,
+            columns: None,
+            steps: None,
+        }
+    }
+}
+
+/// Parse `--steps` text: `N`, `A:B`, or a comma list of them.
+pub fn parse_steps(text: &str) -> Result<Vec<(i64, i64)>, String> {
+    text.split(',')
+        .map(|part| {
+            let bad = || format!("--steps: expected N, A:B or a comma list of them, got '{part}'");
+            match part.split_once(':') {
+                Some((a, b)) => {
+                    let lo = if a.is_empty() {
+                        i64::MIN
+                    } else {
+                        a.parse().map_err(|_| bad())?
+                    };
+                    let hi = if b.is_empty() {
+                        i64::MAX
+                    } else {
+                        b.parse().map_err(|_| bad())?
+                    };
+                    Ok((lo, hi))
+                }
+                None => {
+                    let n = part.trim().parse().map_err(|_| bad())?;
+                    Ok((n, n))
+                }
+            }
+        })
+        .collect()
+}
+
+/// One compared value that disagrees (or the worst one).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Entry {
+    /// The step.
+    pub step: i64,
+    /// Atom ID (0 for thermo rows).
+    pub id: i64,
+    /// Column name.
+    pub column: String,
+    /// Value in A.
+    pub a: f64,
+    /// Value in B.
+    pub b: f64,
+    /// |a - b| / max(|a|, |b|) (0 when both are 0).
+    pub rel: f64,
+}
+
+/// Per-column summary.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ColumnStats {
+    /// Values compared.
+    pub count: usize,
+    /// Values outside tolerance.
+    pub outside: usize,
+    /// Largest relative deviation.
+    pub max_rel: f64,
+    /// Largest absolute deviation.
+    pub max_abs: f64,
+}
+
+/// The outcome of a comparison.
+#[derive(Debug, Clone, Default)]
+pub struct Report {
+    /// Per column, in first-seen order.
+    pub columns: Vec<(String, ColumnStats)>,
+    /// The worst entries by relative deviation (at most 10).
+    pub worst: Vec<Entry>,
+    /// Structural differences: steps, atoms or columns only in one file.
+    pub mismatches: Vec<String>,
+    /// Steps compared.
+    pub steps: usize,
+}
+
+impl Report {
+    /// True when every value is within tolerance and nothing is missing.
+    pub fn agrees(&self) -> bool {
+        self.mismatches.is_empty() && self.columns.iter().all(|(_, s)| s.outside == 0)
+    }
+
+    /// Largest relative and absolute deviation over all columns.
+    pub fn maxima(&self) -> (f64, f64) {
+        self.columns.iter().fold((0.0, 0.0), |(r, a), (_, s)| {
+            (f64::max(r, s.max_rel), f64::max(a, s.max_abs))
+        })
+    }
+
+    fn add(&mut self, opts: &DiffOptions, e: Entry) {
+        let abs = (e.a - e.b).abs();
+        let k = match self.columns.iter().position(|(n, _)| *n == e.column) {
+            Some(k) => k,
+            None => {
+                self.columns
+                    .push((e.column.clone(), ColumnStats::default()));
+                self.columns.len() - 1
+            }
+        };
+        let s = &mut self.columns[k].1;
+        s.count += 1;
+        let both_nan = e.a.is_nan() && e.b.is_nan();
+        let outside = !both_nan && !(abs <= opts.atol + opts.rtol * e.a.abs().max(e.b.abs()));
+        if outside {
+            s.outside += 1;
+        }
+        s.max_abs = s.max_abs.max(abs);
+        s.max_rel = s.max_rel.max(e.rel);
+        if e.rel > 0.0 || outside {
+            self.worst.push(e);
+            if self.worst.len() > 40 {
+                self.trim_worst();
+            }
+        }
+    }
+
+    fn trim_worst(&mut self) {
+        self.worst.sort_by(|x, y| {
+            y.rel
+                .partial_cmp(&x.rel)
+                .unwrap_or(std::cmp::Ordering::Equal)
+        });
+        self.worst.truncate(10);
+    }
+
+    /// The human-readable report; its last line gives the maxima.
+    pub fn render(&mut self, name_a: &str, name_b: &str) -> String {
+        self.trim_worst();
+        let mut out = format!("A: {name_a}\nB: {name_b}\n{} steps compared\n", self.steps);
+        for m in self.mismatches.iter().take(20) {
+            out.push_str(&format!("mismatch: {m}\n"));
+        }
+        if self.mismatches.len() > 20 {
+            out.push_str(&format!(
+                "... {} more mismatches\n",
+                self.mismatches.len() - 20
+            ));
+        }
+        out.push_str(&format!(
+            "{:<16} {:>10} {:>10} {:>13} {:>13}\n",
+            "column", "values", "outside", "max rel", "max abs"
+        ));
+        for (name, s) in &self.columns {
+            out.push_str(&format!(
+                "{:<16} {:>10} {:>10} {:>13.6e} {:>13.6e}\n",
+                name, s.count, s.outside, s.max_rel, s.max_abs
+            ));
+        }
+        if !self.worst.is_empty() {
+            out.push_str("worst values (step, atom, column: A vs B):\n");
+            for e in &self.worst {
+                out.push_str(&format!(
+                    "  step {} atom {} {}: {:.17e} vs {:.17e} (rel {:.3e})\n",
+                    e.step, e.id, e.column, e.a, e.b, e.rel
+                ));
+            }
+        }
+        let (rel, abs) = self.maxima();
+        let at = self
+            .worst
+            .first()
+            .map(|e| format!(" (step {}, atom {}, {})", e.step, e.id, e.column))
+            .unwrap_or_default();
+        out.push_str(&format!(
+            "max relative deviation {rel:.6e}{at}; max absolute deviation {abs:.6e}\n"
+        ));
+        out
+    }
+}
+
+fn relative(a: f64, b: f64) -> f64 {
+    let scale = a.abs().max(b.abs());
+    if scale == 0.0 {
+        0.0
+    } else {
+        (a - b).abs() / scale
+    }
+}
+
+fn wanted_step(opts: &DiffOptions, step: i64) -> bool {
+    opts.steps
+        .as_ref()
+        .is_none_or(|r| r.iter().any(|&(lo, hi)| step >= lo && step <= hi))
+}
+
+fn wanted_column(opts: &DiffOptions, name: &str) -> bool {
+    match &opts.columns {
+        Some(c) => c.iter().any(|n| n == name),
+        None => name != "id",
+    }
+}
+
+/// Compare two parsed dumps.
+pub fn compare_dumps(a: &[Snapshot], b: &[Snapshot], opts: &DiffOptions) -> Report {
+    let mut r = Report::default();
+    let by_step: BTreeMap<i64, &Snapshot> = b.iter().map(|s| (s.step, s)).collect();
+    for sa in a.iter().filter(|s| wanted_step(opts, s.step)) {
+        let Some(sb) = by_step.get(&sa.step) else {
+            r.mismatches.push(format!("step {} only in A", sa.step));
+            continue;
+        };
+        r.steps += 1;
+        let cols: Vec<(usize, usize, &String)> = sa
+            .columns
+            .iter()
+            .enumerate()
+            .filter(|(_, n)| wanted_column(opts, n))
+            .filter_map(|(ca, n)| match sb.columns.iter().position(|c| c == n) {
+                Some(cb) => Some((ca, cb, n)),
+                None => {
+                    r.mismatches
+                        .push(format!("step {}: column {n} only in A", sa.step));
+                    None
+                }
+            })
+            .collect();
+        if let Some(want) = &opts.columns {
+            for n in want.iter().filter(|n| !sa.columns.contains(n)) {
+                r.mismatches
+                    .push(format!("step {}: column {n} not in A", sa.step));
+            }
+        }
+        for (id, ra) in &sa.rows {
+            let Some(rb) = sb.rows.get(id) else {
+                r.mismatches
+                    .push(format!("step {}: atom {id} only in A", sa.step));
+                continue;
+            };
+            for &(ca, cb, name) in &cols {
+                let (x, y) = (ra[ca], rb[cb]);
+                r.add(
+                    opts,
+                    Entry {
+                        step: sa.step,
+                        id: *id,
+                        column: name.clone(),
+                        a: x,
+                        b: y,
+                        rel: relative(x, y),
+                    },
+                );
+            }
+        }
+        for id in sb.rows.keys().filter(|id| !sa.rows.contains_key(id)) {
+            r.mismatches
+                .push(format!("step {}: atom {id} only in B", sa.step));
+        }
+    }
+    for sb in b.iter().filter(|s| wanted_step(opts, s.step)) {
+        if !a.iter().any(|s| s.step == sb.step) {
+            r.mismatches.push(format!("step {} only in B", sb.step));
+        }
+    }
+    r
+}
+
+/// Thermo rows of a log or screen capture: (run index, step) -> column name -> value.
+/// `CPU` columns (wall-clock time) are left out.
+pub fn parse_thermo(text: &str) -> BTreeMap<(usize, i64), BTreeMap<String, f64>> {
+    let mut out = BTreeMap::new();
+    let mut header: Option<Vec<String>> = None;
+    let mut run = 0;
+    for line in text.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        if words.first() == Some(&"Step") {
+            header = Some(words.iter().map(|w| w.to_string()).collect());
+            run += 1;
+            continue;
+        }
+        if line.starts_with("Loop time") {
+            header = None;
+            continue;
+        }
+        let Some(h) = &header else { continue };
+        let values: Vec<f64> = words.iter().filter_map(|w| w.parse().ok()).collect();
+        if values.len() != h.len() || values.len() != words.len() {
+            continue; // warnings and prints inside a run
+        }
+        let step = values[0] as i64;
+        let row = h
+            .iter()
+            .zip(&values)
+            .skip(1)
+            .filter(|(n, _)| n.as_str() != "CPU")
+            .map(|(n, v)| (n.clone(), *v))
+            .collect();
+        out.insert((run, step), row);
+    }
+    out
+}
+
+/// Compare the thermo output of two logs.
+pub fn compare_logs(a: &str, b: &str, opts: &DiffOptions) -> Report {
+    let (ta, tb) = (parse_thermo(a), parse_thermo(b));
+    let mut r = Report::default();
+    for ((run, step), ra) in ta.iter().filter(|((_, s), _)| wanted_step(opts, *s)) {
+        let Some(rb) = tb.get(&(*run, *step)) else {
+            r.mismatches
+                .push(format!("run {run} step {step} only in A"));
+            continue;
+        };
+        r.steps += 1;
+        for (name, x) in ra.iter().filter(|(n, _)| wanted_column(opts, n)) {
+            let Some(y) = rb.get(name) else {
+                r.mismatches
+                    .push(format!("run {run} step {step}: column {name} only in A"));
+                continue;
+            };
+            r.add(
+                opts,
+                Entry {
+                    step: *step,
+                    id: 0,
+                    column: name.clone(),
+                    a: *x,
+                    b: *y,
+                    rel: relative(*x, *y),
+                },
+            );
+        }
+    }
+    for (run, step) in tb.keys().filter(|(_, s)| wanted_step(opts, *s)) {
+        if !ta.contains_key(&(*run, *step)) {
+            r.mismatches
+                .push(format!("run {run} step {step} only in B"));
+        }
+    }
+    r
+}
+
+/// The text of a file, gunzipped when it starts with the gzip magic bytes.
+pub fn read_text(path: &str) -> Result<String, String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{path}: {e}"))?;
+    if bytes.starts_with(&[0x1f, 0x8b]) {
+        let mut s = String::new();
+        flate2::read::MultiGzDecoder::new(&bytes[..])
+            .read_to_string(&mut s)
+            .map_err(|e| format!("{path}: corrupted gzip data ({e})"))?;
+        return Ok(s);
+    }
+    String::from_utf8(bytes).map_err(|_| format!("{path}: not a text file (nor gzip)"))
+}
+
+/// The files a name stands for: itself, or for a name with `*`, every file in its folder
+/// that matches, ordered by the number in place of the `*`.
+pub fn expand(pattern: &str) -> Result<Vec<String>, String> {
+    let Some(star) = pattern.find('*') else {
+        return Ok(vec![pattern.to_string()]);
+    };
+    let (dir, file) = match pattern[..star].rfind('/') {
+        Some(k) => (&pattern[..k], &pattern[k + 1..]),
+        None => (".", pattern),
+    };
+    let (prefix, suffix) = file.split_once('*').expect("has a star");
+    let mut found = Vec::new();
+    for e in std::fs::read_dir(dir).map_err(|e| format!("{pattern}: {e}"))? {
+        let name = e.map_err(|e| format!("{pattern}: {e}"))?.file_name();
+        let Some(name) = name.to_str() else { continue };
+        if let Some(mid) = name
+            .strip_prefix(prefix)
+            .and_then(|r| r.strip_suffix(suffix))
+        {
+            if let Ok(n) = mid.parse::<i64>() {
+                let path = if dir == "." && !pattern.starts_with("./") {
+                    name.to_string()
+                } else {
+                    format!("{dir}/{name}")
+                };
+                found.push((n, path));
+            }
+        }
+    }
+    if found.is_empty() {
+        return Err(format!("{pattern}: no file matches"));
+    }
+    found.sort();
+    Ok(found.into_iter().map(|(_, p)| p).collect())
+}
+
+/// What a file holds.
+pub enum Loaded {
+    /// Dump snapshots.
+    Dump(Vec<Snapshot>),
+    /// Log or screen text with thermo output.
+    Log(String),
+}
+
+/// Read a dump (series) or log.
+pub fn load(pattern: &str) -> Result<Loaded, String> {
+    let files = expand(pattern)?;
+    let first = read_text(&files[0])?;
+    if first.trim_start().starts_with("ITEM: TIMESTEP") {
+        let mut snaps = Vec::new();
+        for (k, f) in files.iter().enumerate() {
+            let text = if k == 0 { first.clone() } else { read_text(f)? };
+            snaps.extend(parse(&text).map_err(|m| format!("{f}: {m}"))?);
+        }
+        return Ok(Loaded::Dump(snaps));
+    }
+    if first
+        .lines()
+        .any(|l| l.split_whitespace().next() == Some("Step"))
+    {
+        if files.len() > 1 {
+            return Err(format!("{pattern}: a `*` series must be dumps"));
+        }
+        return Ok(Loaded::Log(first));
+    }
+    Err(format!(
+        "{}: neither a text dump (no 'ITEM: TIMESTEP') nor a log with thermo output (no 'Step' header)",
+        files[0]
+    ))
+}
+
+/// Run a comparison of two files; Err for unreadable input.
+pub fn diff(a: &str, b: &str, opts: &DiffOptions) -> Result<Report, String> {
+    match (load(a)?, load(b)?) {
+        (Loaded::Dump(x), Loaded::Dump(y)) => Ok(compare_dumps(&x, &y, opts)),
+        (Loaded::Log(x), Loaded::Log(y)) => Ok(compare_logs(&x, &y, opts)),
+        _ => Err(format!("{a} and {b}: one is a dump, the other a log")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const DUMP: &str = "ITEM: TIMESTEP\n5\nITEM: NUMBER OF ATOMS\n2\nITEM: BOX BOUNDS ff ff ff\n0 1\n0 1\n0 1\nITEM: ATOMS id x fx \n2 0.5 1 \n1 0.25 0 \n";
+
+    #[test]
+    fn tolerances_and_worst_entries() {
+        let a = parse(DUMP).unwrap();
+        let b = parse(&DUMP.replace("0.25", "0.2500001")).unwrap();
+        let mut r = compare_dumps(&a, &b, &DiffOptions::default());
+        assert!(r.agrees()); // 4e-7 is inside the default rtol 1e-6
+        assert!((r.maxima().0 - 4e-7 / 1.000_000_4).abs() < 1e-12);
+        let text = r.render("a", "b");
+        assert!(
+            text.lines()
+                .last()
+                .unwrap()
+                .starts_with("max relative deviation 3.999998e-7 (step 5, atom 1, x)"),
+            "{text}"
+        );
+        let loose = DiffOptions {
+            rtol: 1e-6,
+            ..Default::default()
+        };
+        let strict = DiffOptions {
+            rtol: 1e-7,
+            ..Default::default()
+        };
+        assert!(compare_dumps(&a, &b, &loose).agrees());
+        assert!(!compare_dumps(&a, &b, &strict).agrees());
+        let only_fx = DiffOptions {
+            rtol: 0.0,
+            columns: Some(vec!["fx".into()]),
+            ..Default::default()
+        };
+        assert!(compare_dumps(&a, &b, &only_fx).agrees());
+        let other_step = DiffOptions {
+            rtol: 0.0,
+            steps: Some(vec![(6, 10)]),
+            ..Default::default()
+        };
+        assert_eq!(compare_dumps(&a, &b, &other_step).steps, 0);
+    }
+
+    #[test]
+    fn missing_atoms_and_steps_are_mismatches() {
+        let a = parse(DUMP).unwrap();
+        let fewer = DUMP
+            .replace("ATOMS\n2", "ATOMS\n1")
+            .replace("1 0.25 0 \n", "");
+        let b = parse(&fewer).unwrap();
+        let r = compare_dumps(&a, &b, &DiffOptions::default());
+        assert_eq!(r.mismatches, vec!["step 5: atom 1 only in A".to_string()]);
+        let c = parse(&DUMP.replace("TIMESTEP\n5", "TIMESTEP\n6")).unwrap();
+        assert_eq!(
+            compare_dumps(&a, &c, &DiffOptions::default())
+                .mismatches
+                .len(),
+            2
+        );
+    }
+
+    #[test]
+    fn thermo_of_logs() {
+        let a = "x\n    Step    Atoms         KinEng            CPU \n       0       75  4.0906154e-05              0 \n    1000       73  4.3873333e-05     0.01 \nLoop time of 1\n";
+        let b = a.replace("4.3873333e-05     0.01", "4.3873334e-05     0.03");
+        let r = compare_logs(a, &b, &DiffOptions::default());
+        assert_eq!(r.steps, 2);
+        assert!(r.agrees()); // 2.3e-8 relative, CPU ignored
+        let r = compare_logs(
+            a,
+            &b,
+            &DiffOptions {
+                rtol: 1e-9,
+                ..Default::default()
+            },
+        );
+        assert!(!r.agrees());
+        assert_eq!(
+            parse_steps("0:500,700").unwrap(),
+            vec![(0, 500), (700, 700)]
+        );
+        assert!(parse_steps("a:b").is_err());
+    }
+}

@@ -1,0 +1,74 @@
+//! `regolith diff` from the command line: exit 0 within tolerance, 1 outside, 2 on
+//! unreadable input; gzip and `*` series read like plain dumps; the last line gives the
+//! maxima.
+
+use std::io::Write;
+use std::process::Command;
+
+const DUMP: &str = "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n2\nITEM: BOX BOUNDS pp ff ff\n0 1\n0 1\n0 1\nITEM: ATOMS id x fx \n1 0.25 1e-3 \n2 0.5 -2 \n";
+
+fn diff(dir: &std::path::Path, args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
+        .arg("diff")
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn exit_statuses_and_formats() {
+    let dir = std::env::temp_dir().join(format!("regolith-cli-diff-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("a.dump"), DUMP).unwrap();
+    // the same atoms in another order, fx off by 2e-7 relative, gzipped
+    let b = "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n2\nITEM: BOX BOUNDS pp ff ff\n0 1\n0 1\n0 1\nITEM: ATOMS id x fx \n2 0.5 -2.0000004 \n1 0.25 1e-3 \n";
+    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+    gz.write_all(b.as_bytes()).unwrap();
+    std::fs::write(dir.join("b.dump.gz"), gz.finish().unwrap()).unwrap();
+    std::fs::write(dir.join("s0.dump"), DUMP).unwrap();
+    std::fs::write(
+        dir.join("s10.dump"),
+        DUMP.replace("TIMESTEP\n0", "TIMESTEP\n10"),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("t.dump"),
+        format!("{DUMP}{}", DUMP.replace("TIMESTEP\n0", "TIMESTEP\n10")),
+    )
+    .unwrap();
+
+    let (code, out, _) = diff(&dir, &["a.dump", "b.dump.gz"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        out.lines()
+            .last()
+            .unwrap()
+            .starts_with("max relative deviation 2.000000e-7 (step 0, atom 2, fx)"),
+        "{out}"
+    );
+    let (code, _, _) = diff(&dir, &["a.dump", "b.dump.gz", "--rtol", "1e-8"]);
+    assert_eq!(code, 1);
+    let (code, _, _) = diff(
+        &dir,
+        &["a.dump", "b.dump.gz", "--rtol", "0", "--columns", "x"],
+    );
+    assert_eq!(code, 0);
+    let (code, out, _) = diff(&dir, &["s*.dump", "t.dump", "--rtol", "0"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("2 steps compared"), "{out}");
+    let (code, _, err) = diff(&dir, &["a.dump", "missing.dump"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("missing.dump"), "{err}");
+    std::fs::write(dir.join("broken.gz"), [0x1f, 0x8b, 8, 0, 1, 2]).unwrap();
+    let (code, _, err) = diff(&dir, &["a.dump", "broken.gz"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("corrupted gzip"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

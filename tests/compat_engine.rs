@@ -78,6 +78,13 @@ fn check_deck(name: &str) -> Vec<String> {
     std::fs::create_dir_all(&work).unwrap();
     let deck = format!("in.{name}");
     std::fs::copy(dir.join(&deck), work.join(&deck)).unwrap();
+    let inputs = dir.join(format!("{name}.inputs"));
+    if inputs.is_dir() {
+        for e in std::fs::read_dir(&inputs).unwrap() {
+            let e = e.unwrap();
+            std::fs::copy(e.path(), work.join(e.file_name())).unwrap();
+        }
+    }
     let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
         .args(["-in", &deck, "-log", "none"])
         .current_dir(&work)
@@ -139,8 +146,34 @@ fn check_deck(name: &str) -> Vec<String> {
             continue;
         }
         if !want.starts_with("ITEM:") {
-            // not a dump: printed values, compared exactly
+            // not a dump: printed values, compared exactly (a data file's title line names
+            // the program that wrote it)
             let got = std::fs::read_to_string(work.join(f)).unwrap_or_default();
+            let title = "LAMMPS data file via write_data";
+            if want.starts_with(title) && got.starts_with(title) {
+                // data files: the same words, numbers within RTOL (17 printed digits show
+                // the round-off of periodic pairs)
+                let body = |t: &str| {
+                    t.split_once('\n')
+                        .map(|(_, b)| b.split_whitespace().map(str::to_string).collect::<Vec<_>>())
+                        .unwrap_or_default()
+                };
+                let (a, b) = (body(&want), body(&got));
+                let close = |x: &String, y: &String| match (x.parse::<f64>(), y.parse::<f64>()) {
+                    (Ok(u), Ok(v)) => (u - v).abs() <= ATOL.max(RTOL * u.abs().max(v.abs())),
+                    _ => x == y,
+                };
+                if a.len() != b.len() || !a.iter().zip(&b).all(|(x, y)| close(x, y)) {
+                    let k = a.iter().zip(&b).take_while(|(x, y)| close(x, y)).count();
+                    problems.push(format!(
+                        "{} differs at word {k}: liggghts {:?}, regolith {:?}",
+                        f.display(),
+                        a.get(k),
+                        b.get(k)
+                    ));
+                }
+                continue;
+            }
             if got != want {
                 problems.push(format!(
                     "{} differs:\n  liggghts: {want:?}\n  regolith: {got:?}",

@@ -34,6 +34,8 @@ pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
         "neigh_modify" => neigh_modify(a, ctx),
         "timestep" => timestep(a, ctx),
         "reset_timestep" => reset_timestep(a, ctx),
+        "read_data" => read_data(a, ctx),
+        "write_data" => write_data(a, ctx),
         _ => return None,
     })
 }
@@ -1246,4 +1248,89 @@ fn reset_timestep(a: &Args, ctx: &mut Ctx) -> Result {
     }
     ctx.sim.reset_timestep(n);
     Ok(())
+}
+
+/// `read_data FILE`: box, atom types, atoms and velocities of a granular data file.
+fn read_data(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=1, "read_data FILE")?;
+    if ctx.sim.domain.exists {
+        return Err(a.error(0, "Cannot read_data after simulation box is defined"));
+    }
+    let name = a.word(0)?;
+    let text = if name.ends_with(".gz") {
+        crate::io::diff::read_text(&ctx.sys.resolve(name).to_string_lossy())
+    } else {
+        ctx.sys.read(name)
+    }
+    .map_err(|m| a.error(0, &format!("Cannot open file {name}: {m}")))?;
+    let data = crate::io::data::parse(&text, name).map_err(|m| a.error(0, &m))?;
+    let sim = &mut *ctx.sim;
+    sim.domain.create(data.lo, data.hi);
+    sim.ntypes = data.ntypes;
+    for atom in &data.atoms {
+        let mut x = atom.x;
+        let mut image = atom.image;
+        for d in 0..3 {
+            let inside = x[d] >= data.lo[d] && x[d] < data.hi[d];
+            if !inside && !sim.domain.periodic(d) {
+                return Err(a.error(
+                    0,
+                    &format!(
+                        "Did not assign all atoms correctly: {name}: atom {} at ({}, {}, {}) lies outside the box",
+                        atom.id, x[0], x[1], x[2]
+                    ),
+                ));
+            }
+        }
+        sim.domain.remap(&mut x, &mut image);
+        sim.particles
+            .push(atom.id, atom.kind, x, 0.5 * atom.diameter, atom.density);
+        let i = sim.particles.len() - 1;
+        let p = &mut sim.particles;
+        p.image[i] = image;
+        p.v[i] = atom.v;
+        p.omega[i] = atom.omega;
+        if atom.diameter == 0.0 {
+            p.mass[i] = atom.density; // a point particle's density column is its mass
+        }
+    }
+    let (lo, hi) = (data.lo, data.hi);
+    ctx.say(&format!(
+        "Reading data file ...\n  orthogonal box = ({} {} {}) to ({} {} {})\n  1 by 1 by 1 MPI processor grid\n  {} atoms\n",
+        g(lo[0]),
+        g(lo[1]),
+        g(lo[2]),
+        g(hi[0]),
+        g(hi[1]),
+        g(hi[2]),
+        data.atoms.len()
+    ));
+    if data.velocities > 0 {
+        ctx.say(&format!("  {} velocities\n", data.velocities));
+    }
+    Ok(())
+}
+
+/// `write_data FILE`: the granular data file of the current state, written atomically.
+fn write_data(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=1, "write_data FILE")?;
+    if !ctx.sim.domain.exists {
+        return Err(a.error(0, "Write_data command before simulation box is defined"));
+    }
+    let name = a.word(0)?;
+    if ctx.sys.mode != Mode::Run {
+        return Ok(());
+    }
+    // as LIGGGHTS: positions wrapped and the box shrink-wrapped before writing
+    ctx.sim.pbc_and_box().map_err(|m| a.error(0, &m))?;
+    let text = crate::io::data::write(
+        &ctx.sim.particles,
+        &ctx.sim.domain,
+        ctx.sim.ntypes,
+        ctx.sim.step,
+        concat!("regolith ", env!("CARGO_PKG_VERSION")),
+    );
+    let path = ctx.sys.resolve(name).to_string_lossy().into_owned();
+    crate::io::write_atomically(&path, text.as_bytes())
+        .map_err(|e| a.error(0, &format!("Cannot open data file {name}: {e}")))
 }

@@ -597,10 +597,25 @@ impl Simulation {
     }
 
     /// Wrap periodic coordinates, drop particles outside fixed faces, shrink-wrap the box.
-    fn pbc_and_box(&mut self) -> Result<(), String> {
+    /// Wrap periodic positions, shrink-wrap the box around the atoms, drop lost atoms (LIGGGHTS's
+    /// pbc, reset_box and exchange, as at a re-neighbouring or before writing a file).
+    pub fn pbc_and_box(&mut self) -> Result<(), String> {
         let p = &mut self.particles;
         for i in 0..p.len() {
             self.domain.remap(&mut p.x[i], &mut p.image[i]);
+        }
+        // as LIGGGHTS: the box shrink-wraps around every atom first (reset_box), then atoms
+        // outside a fixed face are lost (exchange)
+        if self.domain.shrinks() && !p.is_empty() {
+            let mut lo = [f64::INFINITY; 3];
+            let mut hi = [f64::NEG_INFINITY; 3];
+            for x in &p.x {
+                for d in 0..3 {
+                    lo[d] = lo[d].min(x[d]);
+                    hi[d] = hi[d].max(x[d]);
+                }
+            }
+            self.domain.shrink_wrap(lo, hi)?;
         }
         let lost: Vec<bool> = p.x.iter().map(|x| !self.domain.contains(*x)).collect();
         if lost.iter().any(|&l| l) {
@@ -613,17 +628,6 @@ impl Simulation {
                 ));
             }
             p.retain_by(&lost);
-        }
-        if self.domain.shrinks() && !p.is_empty() {
-            let mut lo = [f64::INFINITY; 3];
-            let mut hi = [f64::NEG_INFINITY; 3];
-            for x in &p.x {
-                for d in 0..3 {
-                    lo[d] = lo[d].min(x[d]);
-                    hi[d] = hi[d].max(x[d]);
-                }
-            }
-            self.domain.shrink_wrap(lo, hi)?;
         }
         Ok(())
     }

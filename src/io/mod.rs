@@ -1,5 +1,6 @@
 //! Files regolith writes and reads: dumps (and, later, logs, restarts and data files).
 
+pub mod data;
 pub mod diff;
 pub mod dump;
 pub mod dump_compare;

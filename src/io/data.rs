@@ -1,0 +1,279 @@
+//! LAMMPS/LIGGGHTS data files for the granular (sphere) atom style: `read_data` and
+//! `write_data`. Layout as Debian's LIGGGHTS 3.8.0 writes it: a title line, `N atoms`,
+//! `N atom types`, the box bounds with `%.16e`, then `Atoms` rows
+//! `id type diameter density x y z ix iy iz` and `Velocities` rows
+//! `id vx vy vz omegax omegay omegaz`, in memory order. 17 significant digits make a round
+//! trip exact.
+
+use std::fmt::Write as _;
+
+use crate::engine::domain::Domain;
+use crate::engine::particles::Particles;
+
+/// One atom of a data file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DataAtom {
+    /// Atom ID.
+    pub id: i64,
+    /// Atom type (1-based).
+    pub kind: u32,
+    /// Diameter (length).
+    pub diameter: f64,
+    /// Density (mass/length^3; the mass itself for a diameter of 0).
+    pub density: f64,
+    /// Position (length).
+    pub x: [f64; 3],
+    /// Image counts (0 when the file has none).
+    pub image: [i32; 3],
+    /// Velocity (length/time), zero unless a Velocities section gives it.
+    pub v: [f64; 3],
+    /// Angular velocity (1/time).
+    pub omega: [f64; 3],
+}
+
+/// The contents of a data file.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct DataFile {
+    /// Number of atom types.
+    pub ntypes: u32,
+    /// Box lower bounds (length).
+    pub lo: [f64; 3],
+    /// Box upper bounds (length).
+    pub hi: [f64; 3],
+    /// The atoms in file order.
+    pub atoms: Vec<DataAtom>,
+    /// Number of Velocities lines read.
+    pub velocities: usize,
+}
+
+fn number<T: std::str::FromStr>(w: &str, at: &str, what: &str) -> Result<T, String> {
+    w.parse()
+        .map_err(|_| format!("{at}: expected {what}, found '{w}'"))
+}
+
+/// Parse a data file; errors name `path` and the line.
+pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut data = DataFile::default();
+    let mut natoms: Option<usize> = None;
+    let mut bounds = [None; 3];
+    let strip = |l: &str| l.split('#').next().unwrap_or("").trim().to_string();
+    // header: the first line is a title; then keyword lines until one is not
+    let mut k = 1;
+    while k < lines.len() {
+        let l = strip(lines[k]);
+        let at = format!("{path}:{}", k + 1);
+        if l.is_empty() {
+            k += 1;
+            continue;
+        }
+        let w: Vec<&str> = l.split_whitespace().collect();
+        match w.as_slice() {
+            [n, "atoms"] => natoms = Some(number(n, &at, "an atom count")?),
+            [n, "atom", "types"] => data.ntypes = number(n, &at, "a type count")?,
+            [lo, hi, axis @ ("xlo" | "ylo" | "zlo"), _] => {
+                let d = ["xlo", "ylo", "zlo"]
+                    .iter()
+                    .position(|a| a == axis)
+                    .unwrap_or(0);
+                bounds[d] = Some((number(lo, &at, "a number")?, number(hi, &at, "a number")?));
+            }
+            [_, _, _, "xy", "xz", "yz"] => {
+                return Err(format!("{at}: triclinic boxes are not supported yet"))
+            }
+            [n, what, ..]
+                if matches!(
+                    *what,
+                    "bonds"
+                        | "angles"
+                        | "dihedrals"
+                        | "impropers"
+                        | "extra"
+                        | "ellipsoids"
+                        | "lines"
+                        | "triangles"
+                        | "bond"
+                        | "angle"
+                        | "dihedral"
+                        | "improper"
+                ) =>
+            {
+                if n.parse::<i64>().map_or(true, |n| n != 0) {
+                    return Err(format!(
+                        "{at}: '{l}': molecular data is not supported by atom_style granular"
+                    ));
+                }
+            }
+            _ => break,
+        }
+        k += 1;
+    }
+    let natoms = natoms.ok_or_else(|| format!("{path}: no 'N atoms' line in the header"))?;
+    if data.ntypes == 0 {
+        return Err(format!("{path}: no 'N atom types' line in the header"));
+    }
+    for (d, b) in bounds.iter().enumerate() {
+        let (lo, hi) = b.ok_or_else(|| {
+            format!(
+                "{path}: no '{} {}' line in the header",
+                ["xlo", "ylo", "zlo"][d],
+                ["xhi", "yhi", "zhi"][d]
+            )
+        })?;
+        if lo >= hi {
+            return Err(format!("{path}: box bounds {lo} {hi} are empty"));
+        }
+        data.lo[d] = lo;
+        data.hi[d] = hi;
+    }
+    // body: sections, each a keyword line, one skipped line, then its rows
+    let mut index = std::collections::HashMap::new();
+    while k < lines.len() {
+        let l = strip(lines[k]);
+        let at = format!("{path}:{}", k + 1);
+        if l.is_empty() {
+            k += 1;
+            continue;
+        }
+        let section = l.clone();
+        k += 2;
+        match section.as_str() {
+            "Atoms" => {
+                for r in 0..natoms {
+                    let line = lines
+                        .get(k + r)
+                        .ok_or_else(|| format!("{path}: Atoms section ends after {r} of {natoms} atoms"))?;
+                    let at = format!("{path}:{}", k + r + 1);
+                    let text = strip(line);
+                    let w: Vec<&str> = text.split_whitespace().collect();
+                    if w.len() != 7 && w.len() != 10 {
+                        return Err(format!(
+                            "{at}: expected 'id type diameter density x y z [ix iy iz]' (7 or 10 values), found {}",
+                            w.len()
+                        ));
+                    }
+                    let kind: u32 = number(w[1], &at, "an atom type")?;
+                    if kind < 1 || kind > data.ntypes {
+                        return Err(format!("{at}: atom type {kind} outside 1..{}", data.ntypes));
+                    }
+                    let mut atom = DataAtom {
+                        id: number(w[0], &at, "an atom ID")?,
+                        kind,
+                        diameter: number(w[2], &at, "a diameter")?,
+                        density: number(w[3], &at, "a density")?,
+                        x: [0.0; 3],
+                        image: [0; 3],
+                        v: [0.0; 3],
+                        omega: [0.0; 3],
+                    };
+                    for d in 0..3 {
+                        atom.x[d] = number(w[4 + d], &at, "a coordinate")?;
+                        if w.len() == 10 {
+                            atom.image[d] = number(w[7 + d], &at, "an image count")?;
+                        }
+                    }
+                    if atom.diameter < 0.0 || atom.density <= 0.0 {
+                        return Err(format!("{at}: diameter must be >= 0 and density > 0"));
+                    }
+                    if index.insert(atom.id, data.atoms.len()).is_some() {
+                        return Err(format!("{at}: atom ID {} appears twice", atom.id));
+                    }
+                    data.atoms.push(atom);
+                }
+                k += natoms;
+            }
+            "Velocities" => {
+                for r in 0..natoms {
+                    let line = lines.get(k + r).ok_or_else(|| {
+                        format!("{path}: Velocities section ends after {r} of {natoms} atoms")
+                    })?;
+                    let at = format!("{path}:{}", k + r + 1);
+                    let text = strip(line);
+                    let w: Vec<&str> = text.split_whitespace().collect();
+                    if w.len() != 7 {
+                        return Err(format!(
+                            "{at}: expected 'id vx vy vz omegax omegay omegaz', found {} values",
+                            w.len()
+                        ));
+                    }
+                    let id: i64 = number(w[0], &at, "an atom ID")?;
+                    let i = *index.get(&id).ok_or_else(|| {
+                        format!("{at}: velocity of atom {id}, which the Atoms section lacks (Atoms must come first)")
+                    })?;
+                    for d in 0..3 {
+                        data.atoms[i].v[d] = number(w[1 + d], &at, "a velocity")?;
+                        data.atoms[i].omega[d] = number(w[4 + d], &at, "an angular velocity")?;
+                    }
+                }
+                data.velocities = natoms;
+                k += natoms;
+            }
+            other => {
+                return Err(format!(
+                    "{at}: section '{other}' is not supported yet (granular data files have Atoms and Velocities)"
+                ))
+            }
+        }
+    }
+    if data.atoms.len() != natoms && natoms > 0 {
+        return Err(format!(
+            "{path}: the header promises {natoms} atoms but there is no Atoms section"
+        ));
+    }
+    Ok(data)
+}
+
+fn e16(x: f64) -> String {
+    crate::script::format::with_spec("%.16e", x).unwrap_or_else(|_| x.to_string())
+}
+
+/// The data file LIGGGHTS's `write_data` writes for these particles at `step`.
+pub fn write(p: &Particles, domain: &Domain, ntypes: u32, step: i64, version: &str) -> String {
+    let mut s = format!(
+        "LAMMPS data file via write_data, version {version}, timestep = {step}\n\n{} atoms\n{ntypes} atom types\n\n",
+        p.len()
+    );
+    for (d, axis) in ["x", "y", "z"].iter().enumerate() {
+        let _ = writeln!(
+            s,
+            "{} {} {axis}lo {axis}hi",
+            e16(domain.lo[d]),
+            e16(domain.hi[d])
+        );
+    }
+    s.push_str("\nAtoms\n\n");
+    for i in 0..p.len() {
+        let x = p.x[i];
+        let im = p.image[i];
+        let _ = writeln!(
+            s,
+            "{} {} {} {} {} {} {} {} {} {}",
+            p.id[i],
+            p.kind[i],
+            e16(2.0 * p.radius[i]),
+            e16(p.density[i]),
+            e16(x[0]),
+            e16(x[1]),
+            e16(x[2]),
+            im[0],
+            im[1],
+            im[2]
+        );
+    }
+    s.push_str("\nVelocities\n\n");
+    for i in 0..p.len() {
+        let (v, w) = (p.v[i], p.omega[i]);
+        let _ = writeln!(
+            s,
+            "{} {} {} {} {} {} {}",
+            p.id[i],
+            e16(v[0]),
+            e16(v[1]),
+            e16(v[2]),
+            e16(w[0]),
+            e16(w[1]),
+            e16(w[2])
+        );
+    }
+    s
+}

@@ -92,5 +92,20 @@ engine_references() {
     done
 }
 
-[ "${1:-all}" = engine ] || script_references
-[ "${1:-all}" = script ] || engine_references "$@"
+# Restart and data files of one settled bed (tests/convert.rs, engine deck restart_continue):
+#   compat/convert/in.make_bed  pours and settles it, then write_restart bed.restart and
+#                               write_data bed.data (the same state in both files)
+convert_references() {
+    local work
+    work="$(mktemp -d)"
+    cp "$here/convert/in.make_bed" "$work/"
+    (cd "$work" && liggghts -in in.make_bed -log none > /dev/null 2>&1)
+    cp "$work/bed.restart" "$work/bed.data" "$here/convert/"
+    cp "$work/bed.restart" "$here/engine/restart_continue.inputs/bed.restart"
+    rm -rf "$work"
+    echo "convert: bed.restart, bed.data"
+}
+
+[ "${1:-all}" = engine ] || [ "${1:-all}" = convert ] || script_references
+[ "${1:-all}" = engine ] || [ "${1:-all}" = script ] || convert_references
+[ "${1:-all}" = script ] || [ "${1:-all}" = convert ] || engine_references "$@"

@@ -64,10 +64,22 @@ enum Command {
         #[arg(long)]
         steps: Option<String>,
     },
-    /// Convert restart, data, dump and VTK files (not supported yet).
+    /// Convert between LIGGGHTS restart files, data files, text dumps (gzip for .gz) and VTK:
+    /// restart -> data|dump|vtk|restart, data -> restart|dump|vtk, dump -> vtk.
     Convert {
-        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
-        args: Vec<String>,
+        /// Input file (a `%` restart name reads the base and per-processor files).
+        input: String,
+        /// Output file (`*` in a VTK name becomes the step).
+        output: String,
+        /// Input format if the name does not say: restart, data, dump.
+        #[arg(long)]
+        from: Option<String>,
+        /// Output format if the name does not say: restart, data, dump, vtk.
+        #[arg(long)]
+        to: Option<String>,
+        /// Boundary of a data file's box (data files carry none), e.g. "p p f"; default "p p p".
+        #[arg(long)]
+        boundary: Option<String>,
     },
     /// Measure speed on built-in scenes (not supported yet).
     Bench {
@@ -208,7 +220,34 @@ fn main() -> ExitCode {
                 }
             }
         }
-        Command::Convert { .. } | Command::Bench { .. } => {
+        Command::Convert {
+            input,
+            output,
+            from,
+            to,
+            boundary,
+        } => {
+            use regolith::io::convert::{convert, ConvertOptions, Format};
+            let parse = |w: Option<String>| w.map(|w| Format::parse(&w)).transpose();
+            let opts = match (parse(from), parse(to)) {
+                (Ok(from), Ok(to)) => ConvertOptions { from, to, boundary },
+                (Err(m), _) | (_, Err(m)) => {
+                    eprintln!("ERROR: {m}");
+                    return ExitCode::from(2);
+                }
+            };
+            match convert(&input, &output, &opts) {
+                Ok(summary) => {
+                    println!("{summary}");
+                    ExitCode::from(0)
+                }
+                Err(m) => {
+                    eprintln!("ERROR: {m}");
+                    ExitCode::from(1)
+                }
+            }
+        }
+        Command::Bench { .. } => {
             let name = args[1].as_str();
             eprintln!("ERROR: regolith {name}: not supported yet");
             exit(ExitStatus::Unsupported)

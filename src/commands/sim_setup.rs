@@ -35,6 +35,9 @@ pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
         "timestep" => timestep(a, ctx),
         "reset_timestep" => reset_timestep(a, ctx),
         "read_data" => read_data(a, ctx),
+        "read_restart" => read_restart(a, ctx),
+        "write_restart" => write_restart(a, ctx),
+        "restart" => restart(a, ctx),
         "write_data" => write_data(a, ctx),
         _ => return None,
     })
@@ -1333,4 +1336,104 @@ fn write_data(a: &Args, ctx: &mut Ctx) -> Result {
     let path = ctx.sys.resolve(name).to_string_lossy().into_owned();
     crate::io::write_atomically(&path, text.as_bytes())
         .map_err(|e| a.error(0, &format!("Cannot open data file {name}: {e}")))
+}
+
+/// `read_restart FILE` (a `*` picks the largest step, a `%` the multi-file form).
+fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=1, "read_restart FILE")?;
+    if ctx.sim.domain.exists {
+        return Err(a.error(0, "Cannot read_restart after simulation box is defined"));
+    }
+    let name = a.word(0)?;
+    let mut path = ctx.sys.resolve(name).to_string_lossy().into_owned();
+    if path.contains('*') {
+        path = crate::io::diff::expand(&path)
+            .map_err(|_| a.error(0, "Found no restart file matching pattern"))?
+            .pop()
+            .expect("expand returns at least one file");
+    }
+    let r = crate::io::restart::read(&path).map_err(|m| a.error(0, &m))?;
+    ctx.say("Reading restart file ...\n");
+    let pair = ctx.sim.load_restart(&r).map_err(|m| a.error(0, &m))?;
+    let (lo, hi) = (ctx.sim.domain.lo, ctx.sim.domain.hi);
+    ctx.say(&format!(
+        "  orthogonal box = ({} {} {}) to ({} {} {})\n  1 by 1 by 1 MPI processor grid\n  {} atoms\n",
+        g(lo[0]),
+        g(lo[1]),
+        g(lo[2]),
+        g(hi[0]),
+        g(hi[1]),
+        g(hi[2]),
+        ctx.sim.particles.len()
+    ));
+    // the pair style stored in the file, as LIGGGHTS recreates it (decks usually repeat it)
+    if let Some(words) = pair {
+        for text in [format!("pair_style {words}"), "pair_coeff * *".to_string()] {
+            let words = crate::script::line::split_words(&text)
+                .map_err(|_| a.error(0, "restart: bad stored pair style"))?;
+            let cmd = crate::commands::CommandLine {
+                words,
+                text: text.clone(),
+                location: a.cmd.location.clone(),
+            };
+            let args = Args { cmd: &cmd };
+            if let Some(result) = crate::commands::sim_run::execute(cmd.name(), &args, ctx) {
+                result?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `write_restart FILE`: the current state, atomically, after wrapping positions and the
+/// box as LIGGGHTS does.
+fn write_restart(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=1, "write_restart FILE")?;
+    if !ctx.sim.domain.exists {
+        return Err(a.error(0, "Write_restart command before simulation box is defined"));
+    }
+    if ctx.sys.mode != Mode::Run {
+        return Ok(());
+    }
+    let path = ctx.sys.resolve(a.word(0)?).to_string_lossy().into_owned();
+    let path = path.replace('*', &ctx.sim.step.to_string());
+    ctx.sim.save_restart(&path).map_err(|m| a.error(0, &m))
+}
+
+/// `restart 0` | `restart N ROOT` (`*` becomes the step; without one, `.STEP` is
+/// appended) | `restart N FILE1 FILE2` (written in turn).
+fn restart(a: &Args, ctx: &mut Ctx) -> Result {
+    use crate::engine::sim::RestartOutput;
+    a.count(1..=3, "restart 0 | restart N ROOT | restart N FILE1 FILE2")?;
+    if a.word(0)?.starts_with("v_") {
+        return Err(a.unsupported(0, "restart with a variable interval"));
+    }
+    let every = a.int(0)?;
+    if every == 0 {
+        if a.len() != 1 {
+            return Err(a.error(0, "Illegal restart command"));
+        }
+        ctx.sim.restart_output = None;
+        return Ok(());
+    }
+    if every < 0 || a.len() == 1 {
+        return Err(a.error(0, "Illegal restart command"));
+    }
+    let resolve = |w: &str| ctx.sys.resolve(w).to_string_lossy().into_owned();
+    let files = if a.len() == 2 {
+        let mut root = resolve(a.word(1)?);
+        if !root.contains('*') {
+            root.push_str(".*");
+        }
+        vec![root]
+    } else {
+        vec![resolve(a.word(1)?), resolve(a.word(2)?)]
+    };
+    ctx.sim.restart_output = Some(RestartOutput {
+        every,
+        files,
+        toggle: 0,
+        last: None,
+    });
+    Ok(())
 }

@@ -135,6 +135,19 @@ pub struct Dump {
     pub style: DumpStyle,
 }
 
+/// The `restart` command's periodic restart files.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RestartOutput {
+    /// Write every this many steps.
+    pub every: i64,
+    /// One name with `*` for the step, or two names written in turn.
+    pub files: Vec<String>,
+    /// Which of two files comes next.
+    pub toggle: usize,
+    /// Last step written.
+    pub last: Option<i64>,
+}
+
 /// How a dump writes its snapshots.
 #[derive(Debug, Clone, PartialEq)]
 pub enum DumpStyle {
@@ -149,6 +162,10 @@ pub enum DumpStyle {
 
 /// Everything the engine simulates.
 pub struct Simulation {
+    /// `restart N ...`: periodic restart files.
+    pub restart_output: Option<RestartOutput>,
+    /// Pair contact history from `read_restart`, applied at the next neighbour build.
+    pub pending_history: Option<crate::engine::restart_state::PendingHistory>,
     /// The energy guard's last look: (step, kinetic energy).
     pub energy_watch: Option<(i64, f64)>,
     /// A run has been set up before (`run ... pre no` only skips setup after the first).
@@ -235,6 +252,8 @@ pub struct Simulation {
 impl Default for Simulation {
     fn default() -> Self {
         Simulation {
+            restart_output: None,
+            pending_history: None,
             energy_watch: None,
             has_run: false,
             particles: Particles::default(),
@@ -665,6 +684,9 @@ impl Simulation {
             &self.list_ids,
             width,
         );
+        if let Some(pending) = self.pending_history.take() {
+            self.apply_pending_history(pending, width);
+        }
         self.list_ids = self.particles.id.clone();
         self.ago = 0;
         self.box_at_build = (self.domain.lo, self.domain.hi);
@@ -1084,6 +1106,7 @@ impl Simulation {
                 self.thermo_line(out, vars)?;
             }
             self.write_dumps(false, vars)?;
+            self.periodic_restart()?;
         }
         self.run_bounds = None;
         self.loop_clock = None;
@@ -1096,6 +1119,37 @@ impl Simulation {
             self.particles.len()
         ));
         Ok(())
+    }
+
+    /// Write the current state as a restart file (`write_restart`): pair history taken from
+    /// the current list, then positions wrapped and the box reset as LIGGGHTS does.
+    pub fn save_restart(&mut self, path: &str) -> Result<(), String> {
+        let partners = self.contact_partners();
+        self.pbc_and_box()?;
+        let r = self.to_restart(&partners);
+        crate::io::restart::write(&r, path)
+    }
+
+    /// The `restart` command's files, due at multiples of its interval (not at setup).
+    fn periodic_restart(&mut self) -> Result<(), String> {
+        let Some(out) = self.restart_output.as_mut() else {
+            return Ok(());
+        };
+        if self.step % out.every != 0 || out.last == Some(self.step) {
+            return Ok(());
+        }
+        out.last = Some(self.step);
+        let path = if out.files.len() == 1 {
+            out.files[0].replace('*', &self.step.to_string())
+        } else {
+            let p = out.files[out.toggle].clone();
+            out.toggle = 1 - out.toggle;
+            p
+        };
+        // written from the current state without re-wrapping (the run goes on)
+        let partners = self.contact_partners();
+        let r = self.to_restart(&partners);
+        crate::io::restart::write(&r, &path)
     }
 
     /// `reset_timestep N`: bring the elapsed time up to date, then jump to step N.

@@ -1,9 +1,11 @@
 //! Files regolith writes and reads: dumps (and, later, logs, restarts and data files).
 
+pub mod convert;
 pub mod data;
 pub mod diff;
 pub mod dump;
 pub mod dump_compare;
+pub mod restart;
 pub mod vtk;
 
 /// Write `bytes` to `path` through a temporary file in the same folder and a rename, so a

@@ -95,6 +95,8 @@ engine_references() {
 # Restart and data files of one settled bed (tests/convert.rs, engine deck restart_continue):
 #   compat/convert/in.make_bed  pours and settles it, then write_restart bed.restart and
 #                               write_data bed.data (the same state in both files)
+# compat/engine/liggghts_reads.inputs/regolith.restart is regolith's own bed.restart of
+# in.make_bed (`regolith -in in.make_bed`); tests/convert.rs keeps it current.
 convert_references() {
     local work
     work="$(mktemp -d)"

@@ -39,7 +39,7 @@ fn restart_conversions() {
     // restart -> data: LIGGGHTS's own write_data of the same state, after the title line
     let (code, out, err) = regolith(&dir, &["convert", "bed.restart", "out.data"]);
     assert_eq!(code, 0, "{err}");
-    assert!(out.contains("65 atoms, step 3000"), "{out}");
+    assert!(out.contains("125 atoms, step 3000"), "{out}");
     let ours = std::fs::read_to_string(dir.join("out.data")).unwrap();
     assert_eq!(body(&ours), body(&liggghts_data));
 
@@ -80,13 +80,13 @@ fn restart_conversions() {
     let (code, _, err) = regolith(&dir, &["convert", "bed.restart", "bed.vtk"]);
     assert_eq!(code, 0, "{err}");
     let vtk = std::fs::read_to_string(dir.join("bed.vtk")).unwrap();
-    assert!(vtk.starts_with("# vtk DataFile Version 5.1\n") && vtk.contains("POINTS 65 float\n"));
+    assert!(vtk.starts_with("# vtk DataFile Version 5.1\n") && vtk.contains("POINTS 125 float\n"));
     assert!(dir.join("bed_boundingBox.vtk").exists());
     let (code, _, err) = regolith(&dir, &["convert", "a.dump", "snap*.vtk"]);
     assert_eq!(code, 0, "{err}");
     assert!(std::fs::read_to_string(dir.join("snap3000.vtk"))
         .unwrap()
-        .contains("omega 3 65 double"));
+        .contains("omega 3 125 double"));
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -123,5 +123,24 @@ fn broken_restart_files_are_refused_without_output() {
         assert!(err.contains(name) && err.contains(message), "{name}: {err}");
         assert!(!dir.join("out.data").exists(), "{name}: partial output");
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn regolith_writes_the_restart_liggghts_was_given() {
+    // compat/engine/in.liggghts_reads has LIGGGHTS continue from this file; it must stay
+    // exactly what regolith writes for compat/convert/in.make_bed
+    let dir = std::env::temp_dir().join(format!("regolith-writes-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(convert_dir().join("in.make_bed"), dir.join("in.make_bed")).unwrap();
+    let (code, _, err) = regolith(&dir, &["-in", "in.make_bed", "-log", "none"]);
+    assert_eq!(code, 0, "{err}");
+    let committed = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("compat/engine/liggghts_reads.inputs/regolith.restart");
+    assert!(
+        std::fs::read(dir.join("bed.restart")).unwrap() == std::fs::read(committed).unwrap(),
+        "regolith's restart of in.make_bed changed: rerun compat/regenerate.sh after copying it"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -116,11 +116,24 @@ fn run_with(opts: DeckOptions) -> ExitCode {
         let _ = Cli::command().print_long_help();
         return exit(ExitStatus::Success);
     }
-    if opts.restart_to_data.is_some() {
-        eprintln!(
-            "ERROR: -restart: not supported yet (restart files come with `regolith convert`)"
-        );
-        return exit(ExitStatus::Unsupported);
+    if let Some((restart, data)) = &opts.restart_to_data {
+        // `liggghts -r RESTART DATAFILE`: convert and exit
+        use regolith::io::convert::{convert, ConvertOptions, Format};
+        let o = ConvertOptions {
+            from: Some(Format::Restart),
+            to: Some(Format::Data),
+            boundary: None,
+        };
+        return match convert(restart, data, &o) {
+            Ok(summary) => {
+                println!("{summary}");
+                exit(ExitStatus::Success)
+            }
+            Err(m) => {
+                eprintln!("ERROR: {m}");
+                exit(ExitStatus::DeckError)
+            }
+        };
     }
     exit(session::run_deck(&opts))
 }

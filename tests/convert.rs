@@ -144,3 +144,17 @@ fn regolith_writes_the_restart_liggghts_was_given() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn dash_r_converts_like_liggghts() {
+    let dir = std::env::temp_dir().join(format!("regolith-dash-r-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let restart = convert_dir().join("bed.restart");
+    let (code, _, err) = regolith(&dir, &["-r", restart.to_str().unwrap(), "r.data"]);
+    assert_eq!(code, 0, "{err}");
+    let ours = std::fs::read_to_string(dir.join("r.data")).unwrap();
+    let theirs = std::fs::read_to_string(convert_dir().join("bed.data")).unwrap();
+    assert_eq!(body(&ours), body(&theirs));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -48,7 +48,7 @@ fn gzip_and_atom_dumps_hold_the_text_dump() {
     let read = |n: &str| std::fs::read(dir.join(n)).unwrap();
     let plain = String::from_utf8(read("plain.txt")).unwrap();
     assert_eq!(plain.matches("ITEM: TIMESTEP").count(), 4);
-    // a single .gz file: one gzip member per snapshot, together the plain text
+    // a single .gz file: one gzip stream, flushed at every snapshot, holding the plain text
     assert_eq!(gunzip(&read("packed.txt.gz")), plain);
     // per-step files: each the matching snapshot
     let snapshots: Vec<String> = plain

@@ -126,7 +126,7 @@ pub struct Dump {
     /// Last step written (a step is never written twice).
     pub last_written: Option<i64>,
     /// The open file for single-file dumps.
-    pub handle: Option<std::io::BufWriter<std::fs::File>>,
+    pub handle: Option<DumpFile>,
     /// `dump_modify first yes`: write at the first run's setup even off the interval.
     pub first: bool,
     /// `dump_modify pad N`: the step in `*` file names padded with zeros to N digits.
@@ -146,6 +146,30 @@ pub struct RestartOutput {
     pub toggle: usize,
     /// Last step written.
     pub last: Option<i64>,
+}
+
+/// The open file of a single-file dump.
+pub enum DumpFile {
+    /// Plain text.
+    Plain(std::io::BufWriter<std::fs::File>),
+    /// One gzip stream for the whole run, sync-flushed after every snapshot (readable so
+    /// far at any time; finished when the dump is closed).
+    Gzip(flate2::write::GzEncoder<std::io::BufWriter<std::fs::File>>),
+}
+
+impl std::io::Write for DumpFile {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        match self {
+            DumpFile::Plain(f) => f.write(buf),
+            DumpFile::Gzip(g) => g.write(buf),
+        }
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        match self {
+            DumpFile::Plain(f) => f.flush(),
+            DumpFile::Gzip(g) => g.flush(),
+        }
+    }
 }
 
 /// How a dump writes its snapshots.
@@ -1186,11 +1210,10 @@ impl Simulation {
                     .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
             }
         }
-        // a .gz name gets gzip: one complete gzip member per snapshot, so the file is
-        // valid after every snapshot (gzip readers concatenate members)
+        // a .gz name gets gzip: a whole file per snapshot for `*` names, else one stream
         let gzip = name.ends_with(".gz");
         let packed;
-        let text = if gzip {
+        let text = if gzip && multi {
             let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
             enc.write_all(text).map_err(|e| format!("{name}: {e}"))?;
             packed = enc.finish().map_err(|e| format!("{name}: {e}"))?;
@@ -1215,7 +1238,15 @@ impl Simulation {
             if dump.handle.is_none() {
                 let f = std::fs::File::create(&name)
                     .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
-                dump.handle = Some(std::io::BufWriter::new(f));
+                let f = std::io::BufWriter::new(f);
+                dump.handle = Some(if gzip {
+                    DumpFile::Gzip(flate2::write::GzEncoder::new(
+                        f,
+                        flate2::Compression::default(),
+                    ))
+                } else {
+                    DumpFile::Plain(f)
+                });
             }
             let h = dump.handle.as_mut().expect("opened above");
             h.write_all(text)

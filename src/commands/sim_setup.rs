@@ -1413,7 +1413,7 @@ fn restart(a: &Args, ctx: &mut Ctx) -> Result {
         if a.len() != 1 {
             return Err(a.error(0, "Illegal restart command"));
         }
-        ctx.sim.restart_output = None;
+        ctx.sim.restart_output = [None, None];
         return Ok(());
     }
     if every < 0 || a.len() == 1 {
@@ -1429,7 +1429,8 @@ fn restart(a: &Args, ctx: &mut Ctx) -> Result {
     } else {
         vec![resolve(a.word(1)?), resolve(a.word(2)?)]
     };
-    ctx.sim.restart_output = Some(RestartOutput {
+    let slot = files.len() - 1;
+    ctx.sim.restart_output[slot] = Some(RestartOutput {
         every,
         files,
         toggle: 0,

@@ -216,9 +216,9 @@ impl Simulation {
         }
     }
 
-    /// Touching pairs' history per atom ID: the pair's first atom holds the values, the
-    /// second the negated copy (LIGGGHTS's pre_exchange). Uses the current list and
-    /// positions, so call it before positions are re-wrapped.
+    /// Pair history per atom ID for every listed pair that has touched (non-zero history):
+    /// the pair's first atom holds the values, the second the negated copy (LIGGGHTS's
+    /// pre_exchange). Uses the current list, so call it before the list is rebuilt.
     pub fn contact_partners(&self) -> HashMap<i64, Vec<(i64, Vec<f64>)>> {
         let mut out: HashMap<i64, Vec<(i64, Vec<f64>)>> = HashMap::new();
         let width = self.pair.as_ref().map_or(0, |p| p.history_width());
@@ -231,12 +231,13 @@ impl Simulation {
             if i >= p.len() || j >= p.len() {
                 continue;
             }
-            let d = [0, 1, 2].map(|c| p.x[i][c] - p.x[j][c] - pair.shift[c]);
-            let dist = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-            if dist >= p.radius[i] + p.radius[j] {
+            // LIGGGHTS keeps a pair's history (and stores it) from its first touch for as
+            // long as the pair stays listed, touching or not: a pair with history is one
+            // that touched
+            let h = &self.history[k * width..(k + 1) * width];
+            if h.iter().all(|v| *v == 0.0) {
                 continue;
             }
-            let h = &self.history[k * width..(k + 1) * width];
             out.entry(p.id[i]).or_default().push((p.id[j], h.to_vec()));
             out.entry(p.id[j])
                 .or_default()

@@ -186,8 +186,8 @@ pub enum DumpStyle {
 
 /// Everything the engine simulates.
 pub struct Simulation {
-    /// `restart N ...`: periodic restart files.
-    pub restart_output: Option<RestartOutput>,
+    /// `restart N ROOT` and `restart N FILE1 FILE2` (both may be active).
+    pub restart_output: [Option<RestartOutput>; 2],
     /// Pair contact history from `read_restart`, applied at the next neighbour build.
     pub pending_history: Option<crate::engine::restart_state::PendingHistory>,
     /// The energy guard's last look: (step, kinetic energy).
@@ -276,7 +276,7 @@ pub struct Simulation {
 impl Default for Simulation {
     fn default() -> Self {
         Simulation {
-            restart_output: None,
+            restart_output: [None, None],
             pending_history: None,
             energy_watch: None,
             has_run: false,
@@ -710,6 +710,19 @@ impl Simulation {
         );
         if let Some(pending) = self.pending_history.take() {
             self.apply_pending_history(pending, width);
+        }
+        // as LIGGGHTS's granular list build: a pair keeps its history only if it touches
+        // at the build (separated pairs keep stale values until then, and lose them now)
+        if width > 0 {
+            let p = &self.particles;
+            for (k, pair) in self.list.pairs.iter().enumerate() {
+                let (i, j) = (pair.i as usize, pair.j as usize);
+                let d = [0, 1, 2].map(|c| p.x[i][c] - p.x[j][c] - pair.shift[c]);
+                let radsum = p.radius[i] + p.radius[j];
+                if !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < radsum * radsum) {
+                    self.history[k * width..(k + 1) * width].fill(0.0);
+                }
+            }
         }
         self.list_ids = self.particles.id.clone();
         self.ago = 0;
@@ -1156,24 +1169,30 @@ impl Simulation {
 
     /// The `restart` command's files, due at multiples of its interval (not at setup).
     fn periodic_restart(&mut self) -> Result<(), String> {
-        let Some(out) = self.restart_output.as_mut() else {
-            return Ok(());
-        };
-        if self.step % out.every != 0 || out.last == Some(self.step) {
+        let mut paths = Vec::new();
+        for out in self.restart_output.iter_mut().flatten() {
+            if self.step % out.every != 0 || out.last == Some(self.step) {
+                continue;
+            }
+            out.last = Some(self.step);
+            paths.push(if out.files.len() == 1 {
+                out.files[0].replace('*', &self.step.to_string())
+            } else {
+                let p = out.files[out.toggle].clone();
+                out.toggle = 1 - out.toggle;
+                p
+            });
+        }
+        if paths.is_empty() {
             return Ok(());
         }
-        out.last = Some(self.step);
-        let path = if out.files.len() == 1 {
-            out.files[0].replace('*', &self.step.to_string())
-        } else {
-            let p = out.files[out.toggle].clone();
-            out.toggle = 1 - out.toggle;
-            p
-        };
         // written from the current state without re-wrapping (the run goes on)
         let partners = self.contact_partners();
         let r = self.to_restart(&partners);
-        crate::io::restart::write(&r, &path)
+        for path in paths {
+            crate::io::restart::write(&r, &path)?;
+        }
+        Ok(())
     }
 
     /// `reset_timestep N`: bring the elapsed time up to date, then jump to step N.

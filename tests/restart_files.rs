@@ -1,0 +1,93 @@
+//! Restart files regolith writes: a run split by `write_restart` / `read_restart` continues
+//! as the uninterrupted run (pair and wall history carried), `restart N root` writes one
+//! file per interval with the step in the name, `restart N a b` alternates two files, and
+//! every file written reads back.
+
+use std::path::Path;
+use std::process::Command;
+
+const SETUP: &str = "atom_modify map array\nneighbor 0.001 bin\nneigh_modify delay 0\n\
+fix m1 all property/global youngsModulus peratomtype 5e6\n\
+fix m2 all property/global poissonsRatio peratomtype 0.3\n\
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5\n\
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.7\n\
+fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.3\n\
+fix m6 all property/global coefficientRollingViscousDamping peratomtypepair 1 0.5\n\
+pair_style gran model hertz tangential history rolling_friction epsd\npair_coeff * *\n\
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0\n\
+fix gr all gravity 9.81 vector 0 0 -1\nfix integr all nve/sphere\ntimestep 1e-5\n\
+thermo 100\n";
+
+const HEAD: &str = "units si\natom_style granular\nboundary p p f\nnewton off\n\
+communicate single vel yes\n";
+
+fn run(dir: &Path, name: &str, deck: &str) {
+    std::fs::write(dir.join(name), deck).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
+        .args(["-in", name, "-log", "none"])
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{name}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn split_runs_continue_and_restart_files_rotate() {
+    let dir = std::env::temp_dir().join(format!("regolith-restarts-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let create = "region reg block 0 0.02 0 0.02 0 0.04 units box\ncreate_box 1 reg\n\
+        lattice sc 0.004 origin 0.5 0.5 0.5\nregion fill block 0 5 0 5 0 4 units lattice\n\
+        create_atoms 1 region fill\nset group all diameter 0.0038 density 2500\n\
+        displace_atoms all random 0.0001 0.0001 0.0001 10007 units box\n";
+    let dump = "dump d all custom 4000 end.dump id x y z vx vy vz fx fy fz omegax omegay omegaz\n\
+        dump_modify d format \"%d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\" sort id\n";
+    // uninterrupted: 4000 steps (contacts with the floor and each other form by then)
+    run(
+        &dir,
+        "in.whole",
+        &format!("{HEAD}{create}{SETUP}restart 1000 r.*\nrestart 1500 a.rst b.rst\nrun 3000\n{dump}run 1000\n"),
+    );
+    std::fs::rename(dir.join("end.dump"), dir.join("whole.dump")).unwrap();
+    for f in ["r.1000", "r.2000", "r.3000", "a.rst", "b.rst"] {
+        assert!(dir.join(f).exists(), "{f} not written");
+    }
+    // a.rst was written at step 1500, b.rst at 3000 (a is next in turn at 4500)
+    // split: the restart of step 3000 read into a fresh deck, then 1000 steps
+    run(
+        &dir,
+        "in.split",
+        &format!("{HEAD}read_restart r.3000\n{SETUP}{dump}run 1000\n"),
+    );
+    let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
+        .args([
+            "diff",
+            "whole.dump",
+            "end.dump",
+            "--steps",
+            "4000",
+            "--rtol",
+            "1e-9",
+        ])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let report = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{report}");
+    assert!(report.contains("1 steps compared"), "{report}");
+    // the alternating pair: b.rst holds step 3000, a.rst step 1500
+    for (f, step) in [("a.rst", 1500), ("b.rst", 3000), ("r.2000", 2000)] {
+        let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
+            .args(["convert", f, &format!("{f}.data"), "--from", "restart"])
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        let summary = String::from_utf8_lossy(&out.stdout);
+        assert!(summary.contains(&format!("step {step}")), "{f}: {summary}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

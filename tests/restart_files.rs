@@ -91,3 +91,19 @@ fn split_runs_continue_and_restart_files_rotate() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_deck_that_writes_then_reads_a_restart_checks_and_runs() {
+    let dir = std::env::temp_dir().join(format!("regolith-restart-check-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let deck = format!(
+        "{HEAD}region reg block 0 0.02 0 0.02 0 0.04 units box\ncreate_box 1 reg\n\
+         create_atoms 1 single 0.01 0.01 0.01\nset group all diameter 0.002 density 2500\n\
+         write_restart mid.restart\nclear\n{HEAD}read_restart mid.restart\nprint \"atoms $(atoms)\"\n"
+    );
+    // the check before running must see the restart the deck writes (it does not exist yet)
+    run(&dir, "in.deck", &deck);
+    assert!(dir.join("mid.restart").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

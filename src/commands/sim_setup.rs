@@ -1352,7 +1352,12 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
             .pop()
             .expect("expand returns at least one file");
     }
-    let r = crate::io::restart::read(&path).map_err(|m| a.error(0, &m))?;
+    let r = match ctx.sys.kept_binary(std::path::Path::new(&path)) {
+        // check mode: a restart this deck wrote earlier
+        Some(bytes) => crate::io::restart::Restart::parse(bytes, &path, None),
+        None => crate::io::restart::read(&path),
+    }
+    .map_err(|m| a.error(0, &m))?;
     ctx.say("Reading restart file ...\n");
     let pair = ctx.sim.load_restart(&r).map_err(|m| a.error(0, &m))?;
     let (lo, hi) = (ctx.sim.domain.lo, ctx.sim.domain.hi);
@@ -1392,11 +1397,15 @@ fn write_restart(a: &Args, ctx: &mut Ctx) -> Result {
     if !ctx.sim.domain.exists {
         return Err(a.error(0, "Write_restart command before simulation box is defined"));
     }
-    if ctx.sys.mode != Mode::Run {
-        return Ok(());
-    }
     let path = ctx.sys.resolve(a.word(0)?).to_string_lossy().into_owned();
     let path = path.replace('*', &ctx.sim.step.to_string());
+    if ctx.sys.mode != Mode::Run {
+        // check mode: keep the file in memory for a later read_restart of the same deck
+        let partners = ctx.sim.contact_partners();
+        let bytes = ctx.sim.to_restart(&partners).to_bytes();
+        ctx.sys.keep_binary(std::path::Path::new(&path), bytes);
+        return Ok(());
+    }
     ctx.sim.save_restart(&path).map_err(|m| a.error(0, &m))
 }
 

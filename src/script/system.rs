@@ -24,6 +24,7 @@ pub struct System {
     /// Working directory for relative names (changed by `shell cd`).
     pub cwd: PathBuf,
     overlay_files: HashMap<PathBuf, Option<String>>,
+    overlay_binary: HashMap<PathBuf, Vec<u8>>,
     overlay_env: HashMap<String, String>,
 }
 
@@ -34,6 +35,7 @@ impl System {
             mode,
             cwd: std::env::current_dir().unwrap_or_else(|_| PathBuf::from(".")),
             overlay_files: HashMap::new(),
+            overlay_binary: HashMap::new(),
             overlay_env: HashMap::new(),
         }
     }
@@ -57,6 +59,16 @@ impl System {
         std::fs::read(&path)
             .map(|b| String::from_utf8_lossy(&b).into_owned())
             .map_err(|e| format!("{name}: {e}"))
+    }
+
+    /// Check mode: remember a binary file (a restart) the deck would write.
+    pub fn keep_binary(&mut self, path: &Path, bytes: Vec<u8>) {
+        self.overlay_binary.insert(path.to_path_buf(), bytes);
+    }
+
+    /// Check mode: a binary file the deck wrote earlier, if any.
+    pub fn kept_binary(&self, path: &Path) -> Option<&[u8]> {
+        self.overlay_binary.get(path).map(Vec::as_slice)
     }
 
     /// Write (or append to) a text file.

@@ -29,6 +29,8 @@ fn ovito_and_vtk_read_our_files() {
             "dump x all xyz 10 post/x.xyz\n\
              dump t all custom 10 post/t.dump id type x y z vx vy vz radius c_s[1]\n\
              dump s all custom 10 post/all.dump.gz id type x y z vx vy vz radius\n\
+             dump xp all custom/vtk 10 post/p*.vtp id type x y z vx vy vz radius\n\
+             dump xu all custom/vtk 10 post/u*.vtu id type x y z vx vy vz radius\n\
              dump g all custom 10 post/g*.dump.gz id type x y z vx vy vz radius\n",
         );
     std::fs::write(dir.join("in.deck"), deck).unwrap();

@@ -609,11 +609,17 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
         if file.ends_with(".gz") {
             return Err(a.error(4, "dump custom/vtk files cannot be gzipped"));
         }
-        if [".vtu", ".vtp", ".pvtu", ".pvtp", ".vtm"]
-            .iter()
-            .any(|e| file.ends_with(e))
-        {
-            return Err(a.unsupported(4, "dump custom/vtk XML files (.vtu/.vtp)"));
+        if [".pvtu", ".pvtp", ".vtm"].iter().any(|e| file.ends_with(e)) {
+            return Err(a.unsupported(
+                4,
+                "dump custom/vtk parallel or multiblock files (.pvtu/.pvtp/.vtm)",
+            ));
+        }
+        if crate::io::vtk::Flavor::of(file).is_none() {
+            return Err(a.error(
+                4,
+                "dump custom/vtk: the file name must end in .vtk, .vtp or .vtu",
+            ));
         }
     }
     let layout = match style {

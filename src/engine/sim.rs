@@ -1243,8 +1243,13 @@ impl Simulation {
         if let DumpStyle::Vtk(_) = dump.style {
             // one snapshot per file (overwritten without `*`), and the box beside it
             let mut bbox = Vec::new();
-            crate::io::vtk::write_bounding_box(&mut bbox, &self.domain)
-                .map_err(|e| e.to_string())?;
+            match crate::io::vtk::Flavor::of(&dump.file) {
+                Some(crate::io::vtk::Flavor::Legacy) | None => {
+                    crate::io::vtk::write_bounding_box(&mut bbox, &self.domain)
+                }
+                Some(_) => crate::io::vtk::write_bounding_box_xml(&mut bbox, &self.domain),
+            }
+            .map_err(|e| e.to_string())?;
             crate::io::write_atomically(&name, text)
                 .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
             let box_name = crate::io::vtk::bounding_box_name(&dump.file, &step_text);
@@ -1366,19 +1371,20 @@ impl Simulation {
                         }
                     }
                     let domain = &self.domain;
-                    crate::io::vtk::write_particles(
-                        &mut text,
-                        &atoms,
-                        fields,
-                        |i| p.x[i],
-                        |c, i| match &cols[c] {
-                            crate::io::dump::Column::Reference(_) => {
-                                let (values, col) = &columns[reference[c]];
-                                values.get(i, *col)
-                            }
-                            other => other.value(p, domain, i),
-                        },
-                    )
+                    let value = |c: usize, i: usize| match &cols[c] {
+                        crate::io::dump::Column::Reference(_) => {
+                            let (values, col) = &columns[reference[c]];
+                            values.get(i, *col)
+                        }
+                        other => other.value(p, domain, i),
+                    };
+                    use crate::io::vtk::{write_particles, write_particles_xml, Flavor};
+                    match Flavor::of(&dump.file) {
+                        Some(f @ (Flavor::PolyData | Flavor::Unstructured)) => {
+                            write_particles_xml(&mut text, f, &atoms, fields, |i| p.x[i], value)
+                        }
+                        _ => write_particles(&mut text, &atoms, fields, |i| p.x[i], value),
+                    }
                     .map_err(|e| e.to_string())?;
                 }
             }

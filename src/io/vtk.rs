@@ -195,9 +195,159 @@ pub fn write_bounding_box(out: &mut impl Write, domain: &Domain) -> std::io::Res
     Ok(())
 }
 
+/// The VTK file flavours a dump name can ask for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Flavor {
+    /// `.vtk`: legacy ASCII, byte-identical to LIGGGHTS's.
+    Legacy,
+    /// `.vtp`: XML polydata (ASCII).
+    PolyData,
+    /// `.vtu`: XML unstructured grid of vertex cells (ASCII).
+    Unstructured,
+}
+
+impl Flavor {
+    /// The flavour of a file name (None: not a VTK name regolith writes).
+    pub fn of(name: &str) -> Option<Flavor> {
+        if name.ends_with(".vtk") {
+            Some(Flavor::Legacy)
+        } else if name.ends_with(".vtp") {
+            Some(Flavor::PolyData)
+        } else if name.ends_with(".vtu") {
+            Some(Flavor::Unstructured)
+        } else {
+            None
+        }
+    }
+}
+
+fn xml_escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+fn xml_array(
+    out: &mut impl Write,
+    kind: &str,
+    name: &str,
+    components: usize,
+    count: usize,
+    mut value: impl FnMut(usize) -> String,
+) -> std::io::Result<()> {
+    let comps = if components > 1 {
+        format!(" NumberOfComponents=\"{components}\"")
+    } else {
+        String::new()
+    };
+    writeln!(
+        out,
+        "        <DataArray type=\"{kind}\" Name=\"{}\"{comps} format=\"ascii\">",
+        xml_escape(name)
+    )?;
+    for start in (0..count).step_by(6) {
+        let line: Vec<String> = (start..(start + 6).min(count)).map(&mut value).collect();
+        writeln!(out, "          {}", line.join(" "))?;
+    }
+    writeln!(out, "        </DataArray>")
+}
+
+/// One snapshot as an XML file (`.vtp` polydata or `.vtu` unstructured grid), the same
+/// fields as the legacy file, full double precision.
+pub fn write_particles_xml(
+    out: &mut impl Write,
+    flavor: Flavor,
+    atoms: &[usize],
+    fields: &[Field],
+    position: impl Fn(usize) -> [f64; 3],
+    value: impl Fn(usize, usize) -> f64,
+) -> std::io::Result<()> {
+    let n = atoms.len();
+    let (kind, piece) = match flavor {
+        Flavor::Unstructured => (
+            "UnstructuredGrid",
+            format!("<Piece NumberOfPoints=\"{n}\" NumberOfCells=\"{n}\">"),
+        ),
+        _ => (
+            "PolyData",
+            format!(
+                "<Piece NumberOfPoints=\"{n}\" NumberOfVerts=\"{n}\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">"
+            ),
+        ),
+    };
+    writeln!(
+        out,
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"{kind}\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n  <{kind}>\n    {piece}\n      <PointData>"
+    )?;
+    for f in fields {
+        let width = f.columns.len();
+        let t = if f.integer { "Int32" } else { "Float64" };
+        xml_array(out, t, &f.name, width, width * n, |k| {
+            let v = value(f.columns[k % width], atoms[k / width]);
+            if f.integer {
+                (v as i64).to_string()
+            } else {
+                g_precision(v, 17)
+            }
+        })?;
+    }
+    writeln!(
+        out,
+        "      </PointData>\n      <CellData>\n      </CellData>\n      <Points>"
+    )?;
+    xml_array(out, "Float32", "Points", 3, 3 * n, |k| {
+        g_precision(position(atoms[k / 3])[k % 3] as f32 as f64, 9)
+    })?;
+    writeln!(out, "      </Points>")?;
+    let section = if flavor == Flavor::Unstructured {
+        "Cells"
+    } else {
+        "Verts"
+    };
+    writeln!(out, "      <{section}>")?;
+    xml_array(out, "Int64", "connectivity", 1, n, |k| k.to_string())?;
+    xml_array(out, "Int64", "offsets", 1, n, |k| (k + 1).to_string())?;
+    if flavor == Flavor::Unstructured {
+        xml_array(out, "UInt8", "types", 1, n, |_| "1".to_string())?;
+    }
+    writeln!(
+        out,
+        "      </{section}>\n    </Piece>\n  </{kind}>\n</VTKFile>"
+    )
+}
+
+/// The box as an XML rectilinear grid (`.vtr`).
+pub fn write_bounding_box_xml(out: &mut impl Write, domain: &Domain) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"RectilinearGrid\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n  <RectilinearGrid WholeExtent=\"0 1 0 1 0 1\">\n    <Piece Extent=\"0 1 0 1 0 1\">\n      <PointData>\n      </PointData>\n      <CellData>\n      </CellData>\n      <Coordinates>"
+    )?;
+    for (d, axis) in ["x", "y", "z"].iter().enumerate() {
+        xml_array(out, "Float64", axis, 1, 2, |k| {
+            g_precision(if k == 0 { domain.lo[d] } else { domain.hi[d] }, 17)
+        })?;
+    }
+    writeln!(
+        out,
+        "      </Coordinates>\n    </Piece>\n  </RectilinearGrid>\n</VTKFile>"
+    )
+}
+
 /// File name of the bounding-box companion of dump file `name` at a (padded) step:
-/// `d*.vtk` gives `dboundingBox_<step>.vtk`, `single.vtk` gives `single_boundingBox.vtk`.
+/// `d*.vtk` gives `dboundingBox_<step>.vtk`, `single.vtk` gives `single_boundingBox.vtk`;
+/// XML dumps get a `.vtr` box.
 pub fn bounding_box_name(name: &str, step_text: &str) -> String {
+    let legacy = bounding_box_name_legacy(name, step_text);
+    match Flavor::of(name) {
+        Some(Flavor::PolyData) | Some(Flavor::Unstructured) => {
+            format!("{}.vtr", &legacy[..legacy.len() - 4])
+        }
+        _ => legacy,
+    }
+}
+
+fn bounding_box_name_legacy(name: &str, step_text: &str) -> String {
     if name.contains('*') {
         return name.replace('*', &format!("boundingBox_{step_text}"));
     }

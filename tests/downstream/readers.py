@@ -50,4 +50,26 @@ box.SetFileName("post/dboundingBox_20.vtk")
 box.Update()
 assert box.GetOutput().IsA("vtkRectilinearGrid")
 assert box.GetOutput().GetBounds()[1] == 1.0
+for name, cls, box_name in [
+    ("post/p20.vtp", vtk.vtkXMLPolyDataReader, "post/pboundingBox_20.vtr"),
+    ("post/u20.vtu", vtk.vtkXMLUnstructuredGridReader, "post/uboundingBox_20.vtr"),
+]:
+    xml = cls()
+    xml.SetFileName(name)
+    xml.Update()
+    grid = xml.GetOutput()
+    assert grid.GetNumberOfPoints() == 36 and grid.GetNumberOfCells() == 36, name
+    pdata = grid.GetPointData()
+    ids = pdata.GetArray("id")
+    vel = pdata.GetArray("v")
+    assert vel.GetNumberOfComponents() == 3, name
+    for n in range(36):
+        assert vel.GetTuple3(n) == arrays["v"].GetTuple3(n) or all(
+            abs(a - b) <= 1e-9 * abs(b) + 1e-15 for a, b in zip(vel.GetTuple3(n), arrays["v"].GetTuple3(n))
+        ), (name, n)
+        assert ids.GetValue(n) == arrays["id"].GetValue(n)
+    box_xml = vtk.vtkXMLRectilinearGridReader()
+    box_xml.SetFileName(box_name)
+    box_xml.Update()
+    assert box_xml.GetOutput().GetBounds()[1] == 1.0, box_name
 print("downstream readers: ok")

@@ -146,6 +146,7 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
             }
             FixKind::Settings
         }
+        "mesh/surface" | "mesh/surface/planar" => mesh_surface(a, ctx, style)?,
         "wall/gran" => {
             let (selection, next) = gran_models(a, 3, "history", "fix wall/gran")?;
             if a.word(next)? != "primitive" {
@@ -633,6 +634,26 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                 l.no_trailing_blank = true;
                 l
             }
+        }
+        "mesh/stl" => {
+            let ids: Vec<String> = (5..a.len())
+                .map(|i| a.word(i).map(str::to_string))
+                .collect::<std::result::Result<_, _>>()?;
+            for (k, id) in ids.iter().enumerate() {
+                let is_mesh = ctx
+                    .sim
+                    .fixes
+                    .iter()
+                    .any(|f| &f.id == id && matches!(f.kind, FixKind::Mesh(_)));
+                if !is_mesh {
+                    return Err(a.error(
+                        5 + k,
+                        "Could not find fix mesh/surface ID for dump mesh/stl",
+                    ));
+                }
+            }
+            dump_style = crate::engine::sim::DumpStyle::MeshStl(ids);
+            Layout::new(&[]).expect("no columns")
         }
         "custom" | "custom/vtk" => {
             let names: Vec<&str> = (5..a.len())
@@ -1393,4 +1414,128 @@ fn ave_time(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, D
         fix.file = Some(f);
     }
     Ok(FixKind::AveTime(fix))
+}
+
+/// `fix ID GROUP mesh/surface[/planar] file F type T [scale f] [move x y z]
+/// [rotate axis x y z angle deg] [curvature deg] [curvature_tolerant yes|no]
+/// [precision p] [heal auto_remove_duplicates|no] [verbose yes|no]`.
+fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<FixKind, Diagnostic> {
+    use crate::io::stl::MeshOp;
+    a.count(
+        5..=usize::MAX,
+        &format!("fix ID GROUP {style} file FILE type T ..."),
+    )?;
+    match a.word(3)? {
+        "file" => {}
+        "fix" => return Err(a.unsupported(3, "fix mesh/surface fix (meshes from another fix)")),
+        _ => return Err(a.keyword_error(3, &["file", "fix"])),
+    }
+    let file = a.word(4)?.to_string();
+    let (mut wall_type, mut ops) = (None, Vec::new());
+    let mut i = 5;
+    while i < a.len() {
+        match a.word(i)? {
+            "type" => {
+                let t = a.int(i + 1)?;
+                if t < 1 || t > ctx.sim.ntypes as i64 {
+                    return Err(a.error(i + 1, "Fix mesh: type is out of range"));
+                }
+                wall_type = Some(t as usize);
+                i += 2;
+            }
+            "scale" => {
+                ops.push(MeshOp::Scale(a.real(i + 1)?));
+                i += 2;
+            }
+            "move" => {
+                ops.push(MeshOp::Move([
+                    a.real(i + 1)?,
+                    a.real(i + 2)?,
+                    a.real(i + 3)?,
+                ]));
+                i += 4;
+            }
+            "rotate" => {
+                if a.word(i + 1)? != "axis" || a.word(i + 5)? != "angle" {
+                    return Err(a
+                        .error(i, "Illegal fix mesh/surface command")
+                        .with_help("expected: rotate axis AX AY AZ angle DEGREES"));
+                }
+                ops.push(MeshOp::Rotate {
+                    axis: [a.real(i + 2)?, a.real(i + 3)?, a.real(i + 4)?],
+                    degrees: a.real(i + 6)?,
+                });
+                i += 7;
+            }
+            "curvature" | "precision" => {
+                let v = a.real(i + 1)?;
+                if v <= 0.0 {
+                    return Err(a.error(i + 1, "Illegal fix mesh/surface command"));
+                }
+                i += 2;
+            }
+            "curvature_tolerant" | "verbose" => {
+                a.word_in(i + 1, &["yes", "no"])?;
+                i += 2;
+            }
+            "heal" => {
+                a.word_in(i + 1, &["auto_remove_duplicates", "no"])?;
+                i += 2;
+            }
+            w @ ("temperature"
+            | "mass_temperature"
+            | "surface_vel"
+            | "surface_ang_vel"
+            | "region"
+            | "extrude_planar"
+            | "element_exclusion_list"
+            | "min_feature_length") => {
+                return Err(a.unsupported(i, &format!("fix mesh/surface {w}")))
+            }
+            _ => {
+                return Err(a.keyword_error(
+                    i,
+                    &[
+                        "type",
+                        "scale",
+                        "move",
+                        "rotate",
+                        "curvature",
+                        "curvature_tolerant",
+                        "precision",
+                        "heal",
+                        "verbose",
+                        "temperature",
+                        "surface_vel",
+                    ],
+                ))
+            }
+        }
+    }
+    let wall_type = wall_type.ok_or_else(|| a.error(2, "Fix mesh: must define type"))?;
+    ctx.say(&format!(
+        "\nReading STL file '{file}' (mesh processing step 1/3) \n"
+    ));
+    let path = ctx.sys.resolve(&file).to_string_lossy().into_owned();
+    let mut triangles = crate::io::stl::read(&path).map_err(|m| a.error(4, &m))?;
+    crate::io::stl::transform(&mut triangles, &ops);
+    let normals: Vec<[f64; 3]> = triangles.iter().map(crate::io::stl::normal).collect();
+    let d = &ctx.sim.domain;
+    let size = (0..3).map(|k| d.length(k)).fold(0.0, f64::max);
+    crate::io::stl::check(&triangles, &file, Some(size)).map_err(|m| a.error(4, &m))?;
+    if style == "mesh/surface/planar" {
+        let n0 = crate::io::stl::normal(&triangles[0]);
+        let p0 = triangles[0][0];
+        let off = |v: [f64; 3]| (0..3).map(|k| (v[k] - p0[k]) * n0[k]).sum::<f64>().abs();
+        let scale = size.max(f64::MIN_POSITIVE);
+        if triangles.iter().flatten().any(|v| off(*v) > 1e-8 * scale) {
+            return Err(a.error(4, "Fix mesh/surface/planar: the mesh is not planar"));
+        }
+    }
+    Ok(FixKind::Mesh(crate::engine::fixes::MeshFix {
+        file,
+        wall_type,
+        triangles,
+        normals,
+    }))
 }

@@ -233,6 +233,8 @@ pub enum FixKind {
     Print(PrintFix),
     /// `fix ave/time` (scalar mode).
     AveTime(AveTime),
+    /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
+    Mesh(MeshFix),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
 }
@@ -810,4 +812,17 @@ impl AveTime {
             0.0
         })
     }
+}
+
+/// `fix mesh/surface file F type T [scale|move|rotate ...] [curvature ...]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshFix {
+    /// The file it was read from.
+    pub file: String,
+    /// The wall's atom type (material).
+    pub wall_type: usize,
+    /// Triangles after scale/move/rotate (length).
+    pub triangles: Vec<crate::io::stl::Triangle>,
+    /// Unit normals of the transformed triangles.
+    pub normals: Vec<[f64; 3]>,
 }

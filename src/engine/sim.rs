@@ -182,6 +182,8 @@ pub enum DumpStyle {
     Xyz(Vec<String>),
     /// `custom/vtk`: legacy VTK polydata with these fields, plus a bounding-box file.
     Vtk(Vec<crate::io::vtk::Field>),
+    /// `mesh/stl`: the triangles of these mesh fixes (all when empty) as ASCII STL.
+    MeshStl(Vec<String>),
 }
 
 /// Everything the engine simulates.
@@ -1090,6 +1092,7 @@ impl Simulation {
             return Err("Run command before simulation box is defined".into());
         }
         self.init_pair()?;
+        self.check_meshes_in_box()?;
         let first = self.step;
         let last = self.step + nsteps;
         self.run_bounds = Some((
@@ -1155,6 +1158,39 @@ impl Simulation {
             nsteps,
             self.particles.len()
         ));
+        Ok(())
+    }
+
+    /// LIGGGHTS's check at setup: mesh triangles whose centre lies outside the box (along
+    /// directions with fixed or periodic faces) are an error.
+    fn check_meshes_in_box(&self) -> Result<(), String> {
+        let d = &self.domain;
+        for f in &self.fixes {
+            let FixKind::Mesh(m) = &f.kind else { continue };
+            let lost = m
+                .triangles
+                .iter()
+                .filter(|t| {
+                    (0..3).any(|k| {
+                        let c = (t[0][k] + t[1][k] + t[2][k]) / 3.0;
+                        let fixed = d.boundary[k].iter().all(|b| {
+                            matches!(
+                                b,
+                                crate::engine::domain::Boundary::Fixed
+                                    | crate::engine::domain::Boundary::Periodic
+                            )
+                        });
+                        fixed && !(c >= d.lo[k] && c < d.hi[k])
+                    })
+                })
+                .count();
+            if lost > 0 {
+                return Err(format!(
+                    "Mesh (id {}): {lost} mesh elements have been lost / left the domain. \nPlease use 'boundary m m m' or scale/translate/rotate the mesh or change its dynamics",
+                    f.id
+                ));
+            }
+        }
         Ok(())
     }
 
@@ -1255,7 +1291,7 @@ impl Simulation {
             let box_name = crate::io::vtk::bounding_box_name(&dump.file, &step_text);
             crate::io::write_atomically(&box_name, &bbox)
                 .map_err(|e| format!("Cannot open dump file {box_name}: {e}"))?;
-        } else if multi {
+        } else if multi || matches!(dump.style, DumpStyle::MeshStl(_)) {
             crate::io::write_atomically(&name, text)
                 .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
         } else {
@@ -1352,6 +1388,20 @@ impl Simulation {
                         Ok(())
                     };
                     w().map_err(|e| e.to_string())?;
+                }
+                DumpStyle::MeshStl(ids) => {
+                    let (mut triangles, mut normals) = (Vec::new(), Vec::new());
+                    for f in &self.fixes {
+                        if let FixKind::Mesh(m) = &f.kind {
+                            if ids.is_empty() || ids.contains(&f.id) {
+                                triangles.extend_from_slice(&m.triangles);
+                                normals.extend_from_slice(&m.normals);
+                            }
+                        }
+                    }
+                    text.extend_from_slice(
+                        crate::io::stl::write_ascii(&triangles, &normals).as_bytes(),
+                    );
                 }
                 DumpStyle::Vtk(fields) => {
                     let mut atoms: Vec<usize> = (0..p.len())

@@ -6,6 +6,7 @@ pub mod diff;
 pub mod dump;
 pub mod dump_compare;
 pub mod restart;
+pub mod stl;
 pub mod vtk;
 
 /// Write `bytes` to `path` through a temporary file in the same folder and a rename, so a

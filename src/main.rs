@@ -81,10 +81,21 @@ enum Command {
         #[arg(long)]
         boundary: Option<String>,
     },
-    /// Measure speed on built-in scenes (not supported yet).
+    /// Time a scene (built-in: settled_bed, struck_chain; or a deck path) and print loop
+    /// times and particle-steps per second; --liggghts times Debian's LIGGGHTS too.
     Bench {
-        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
-        args: Vec<String>,
+        /// Built-in scene name or deck file.
+        #[arg(default_value = "settled_bed")]
+        scene: String,
+        /// Runs per program (interleaved with LIGGGHTS's).
+        #[arg(long, default_value_t = 1)]
+        repeat: usize,
+        /// Also run `liggghts` on the same deck.
+        #[arg(long)]
+        liggghts: bool,
+        /// Deck variables: --var NAME VALUE (repeatable).
+        #[arg(long = "var", num_args = 2, value_names = ["NAME", "VALUE"], action = clap::ArgAction::Append)]
+        vars: Vec<String>,
     },
 }
 
@@ -260,10 +271,31 @@ fn main() -> ExitCode {
                 }
             }
         }
-        Command::Bench { .. } => {
-            let name = args[1].as_str();
-            eprintln!("ERROR: regolith {name}: not supported yet");
-            exit(ExitStatus::Unsupported)
+        Command::Bench {
+            scene,
+            repeat,
+            liggghts,
+            vars,
+        } => {
+            let opts = regolith::bench::BenchOptions {
+                scene,
+                repeat: repeat.max(1),
+                liggghts,
+                vars: vars
+                    .chunks(2)
+                    .map(|c| (c[0].clone(), c.get(1).cloned().unwrap_or_default()))
+                    .collect(),
+            };
+            match regolith::bench::bench(&opts) {
+                Ok(report) => {
+                    print!("{report}");
+                    ExitCode::from(0)
+                }
+                Err(m) => {
+                    eprintln!("ERROR: {m}");
+                    ExitCode::from(1)
+                }
+            }
         }
     }
 }

@@ -147,6 +147,11 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
             FixKind::Settings
         }
         "mesh/surface" | "mesh/surface/planar" => mesh_surface(a, ctx, style)?,
+        "particletemplate/sphere" => particle_template(a, ctx, &id)?,
+        "particledistribution/discrete"
+        | "particledistribution/discrete/numberbased"
+        | "particledistribution/discrete/massbased" => distribution(a, ctx, style)?,
+        "insert/pack" => insert_pack(a, ctx, &id)?,
         "wall/gran" => {
             let (selection, next) = gran_models(a, 3, "history", "fix wall/gran")?;
             if a.word(next)? != "primitive" {
@@ -1538,4 +1543,354 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
         triangles,
         normals,
     }))
+}
+
+fn seed_arg(a: &Args, ctx: &Ctx, i: usize) -> std::result::Result<i32, Diagnostic> {
+    let seed = a.int(i)?;
+    if !ctx.sim.seed_tolerant {
+        crate::script::random::check_seed(seed).map_err(|m| a.error(i, &m))?;
+    }
+    if seed <= 0 || seed > i32::MAX as i64 {
+        return Err(a.error(i, "Invalid seed for Park random # generator"));
+    }
+    Ok(seed as i32)
+}
+
+/// `fix ID GROUP particletemplate/sphere SEED atom_type T density constant D radius constant R`.
+fn particle_template(
+    a: &Args,
+    ctx: &mut Ctx,
+    id: &str,
+) -> std::result::Result<FixKind, Diagnostic> {
+    a.count(4..=usize::MAX, "fix ID GROUP particletemplate/sphere SEED atom_type T density constant D radius constant R")?;
+    seed_arg(a, ctx, 3)?;
+    let (mut atom_type, mut density, mut radius) = (1u32, None, None);
+    let mut i = 4;
+    while i < a.len() {
+        match a.word(i)? {
+            "atom_type" => {
+                let t = a.int(i + 1)?;
+                if t < 1 || t > ctx.sim.ntypes as i64 {
+                    return Err(
+                        a.error(i + 1, "Fix particletemplate/sphere: atom type out of range")
+                    );
+                }
+                atom_type = t as u32;
+                i += 2;
+            }
+            w @ ("density" | "radius") => {
+                match a.word(i + 1)? {
+                    "constant" => {}
+                    style @ ("gaussian" | "lognormal" | "uniform") => {
+                        return Err(a.unsupported(
+                            i + 1,
+                            &format!("fix particletemplate/sphere {w} {style}"),
+                        ))
+                    }
+                    _ => {
+                        return Err(a.error(
+                            i + 1,
+                            "Illegal fix particletemplate/sphere command: expected 'constant'",
+                        ))
+                    }
+                }
+                let v = a.real(i + 2)?;
+                if v <= 0.0 {
+                    return Err(a.error(
+                        i + 2,
+                        &format!("Fix particletemplate/sphere: {w} must be > 0"),
+                    ));
+                }
+                if w == "density" {
+                    density = Some(v);
+                } else {
+                    radius = Some(v);
+                }
+                i += 3;
+            }
+            _ => return Err(a.keyword_error(i, &["atom_type", "density", "radius"])),
+        }
+    }
+    let density = density
+        .ok_or_else(|| a.error(2, "Fix particletemplate/sphere: have to define 'density'"))?;
+    let radius =
+        radius.ok_or_else(|| a.error(2, "Fix particletemplate/sphere: have to define 'radius'"))?;
+    Ok(FixKind::Template(crate::engine::insert::Template::new(
+        id, atom_type, radius, density,
+    )))
+}
+
+/// `fix ID GROUP particledistribution/discrete SEED N T1 W1 ... TN WN`.
+fn distribution(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<FixKind, Diagnostic> {
+    a.count(
+        7..=usize::MAX,
+        &format!("fix ID GROUP {style} SEED N TEMPLATE1 WEIGHT1 ..."),
+    )?;
+    let seed = seed_arg(a, ctx, 3)?;
+    let n = a.int(4)?;
+    if n < 1 || a.len() != 5 + 2 * n as usize {
+        return Err(a.error(
+            4,
+            &format!("Illegal fix {style} command: expected N template/weight pairs"),
+        ));
+    }
+    let mut templates = Vec::new();
+    let mut weights = Vec::new();
+    for k in 0..n as usize {
+        let tid = a.word(5 + 2 * k)?;
+        let t = ctx
+            .sim
+            .fixes
+            .iter()
+            .find_map(|f| match &f.kind {
+                FixKind::Template(t) if f.id == tid => Some(t.clone()),
+                _ => None,
+            })
+            .ok_or_else(|| {
+                a.error(
+                    5 + 2 * k,
+                    &format!("Fix {style}: could not find fix particletemplate {tid}"),
+                )
+            })?;
+        let w = a.real(6 + 2 * k)?;
+        if w <= 0.0 {
+            return Err(a.error(6 + 2 * k, &format!("Fix {style}: weights must be > 0")));
+        }
+        templates.push(t);
+        weights.push(w);
+    }
+    let number_based = style.ends_with("numberbased");
+    crate::engine::insert::Distribution::new(seed, templates, &weights, number_based)
+        .map(FixKind::Distribution)
+        .map_err(|m| a.error(3, &m))
+}
+
+/// `fix ID GROUP insert/pack seed S distributiontemplate D [keywords]`.
+fn insert_pack(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, Diagnostic> {
+    use crate::engine::insert::{InsertPack, Target, Velocity};
+    a.count(
+        5..=usize::MAX,
+        "fix ID GROUP insert/pack seed S distributiontemplate D region R ...",
+    )?;
+    let mut seed = None;
+    let mut dist = None;
+    let (mut region, mut target, mut every) = (None, None, None);
+    let mut start = None;
+    let (mut overlap, mut all_in, mut maxattempt, mut ntry_mc, mut check_dist, mut verbose) =
+        (true, false, 50i64, 100000i64, true, true);
+    let mut velocity = Velocity::Constant([0.0; 3]);
+    let mut omega = [0.0; 3];
+    let mut i = 3;
+    let yes = |a: &Args, k: usize| a.word_in(k, &["yes", "no"]).map(|w| w == "yes");
+    while i < a.len() {
+        match a.word(i)? {
+            "seed" => {
+                seed = Some(seed_arg(a, ctx, i + 1)?);
+                i += 2;
+            }
+            "distributiontemplate" => {
+                let d = a.word(i + 1)?;
+                if !ctx
+                    .sim
+                    .fixes
+                    .iter()
+                    .any(|f| f.id == d && matches!(f.kind, FixKind::Distribution(_)))
+                {
+                    return Err(a.error(i + 1, "Fix insert: distributiontemplate must be a fix particledistribution/discrete"));
+                }
+                dist = Some(d.to_string());
+                i += 2;
+            }
+            "region" => {
+                let r = a.word(i + 1)?;
+                let k =
+                    ctx.sim.regions.find(r).ok_or_else(|| {
+                        a.error(i + 1, "Fix insert/pack: region ID does not exist")
+                    })?;
+                let reg = &ctx.sim.regions.list[k];
+                let ok = reg.interior
+                    && matches!(
+                        reg.shape,
+                        crate::engine::region::Shape::Block { .. }
+                            | crate::engine::region::Shape::Cylinder { .. }
+                    )
+                    && reg.radius_variable.is_none();
+                if !ok {
+                    return Err(a.unsupported(
+                        i + 1,
+                        "fix insert/pack into regions other than block and cylinder (side in)",
+                    ));
+                }
+                region = Some((k, r.to_string()));
+                i += 2;
+            }
+            "particles_in_region" => {
+                let n = a.int(i + 1)?;
+                if n <= 0 {
+                    return Err(a.error(i + 1, "Fix insert/pack: particles_in_region must be > 0"));
+                }
+                target = Some(Target::Count(n));
+                i += 2;
+            }
+            "volumefraction_region" => {
+                let f = a.real(i + 1)?;
+                if !(0.0..=1.0).contains(&f) {
+                    return Err(a.error(
+                        i + 1,
+                        "Fix insert/pack: volumefraction_region must be between 0 and 1",
+                    ));
+                }
+                target = Some(Target::VolumeFraction(f));
+                i += 2;
+            }
+            "mass_in_region" => {
+                let m = a.real(i + 1)?;
+                if m <= 0.0 {
+                    return Err(a.error(i + 1, "Fix insert/pack: mass_in_region must be > 0"));
+                }
+                target = Some(Target::Mass(m));
+                i += 2;
+            }
+            "insert_every" | "every" => {
+                every = Some(if a.word(i + 1)? == "once" {
+                    0
+                } else {
+                    a.int(i + 1)?
+                });
+                i += 2;
+            }
+            "start" => {
+                let st = a.int(i + 1)?;
+                if st < ctx.sim.step + 1 {
+                    return Err(a.error(
+                        i + 1,
+                        "Fix insert: 'start' step can not be before current step",
+                    ));
+                }
+                start = Some(st);
+                i += 2;
+            }
+            "overlapcheck" => {
+                overlap = yes(a, i + 1)?;
+                i += 2;
+            }
+            "all_in" => {
+                all_in = yes(a, i + 1)?;
+                i += 2;
+            }
+            "check_dist_from_subdomain_border" => {
+                check_dist = yes(a, i + 1)?;
+                i += 2;
+            }
+            "verbose" => {
+                verbose = yes(a, i + 1)?;
+                i += 2;
+            }
+            "warn_region" => {
+                yes(a, i + 1)?;
+                i += 2;
+            }
+            "maxattempt" => {
+                maxattempt = a.int(i + 1)?;
+                i += 2;
+            }
+            "ntry_mc" => {
+                ntry_mc = a.int(i + 1)?;
+                if ntry_mc < 1000 {
+                    return Err(a.error(i + 1, "Fix insert/pack: ntry_mc must be > 1000"));
+                }
+                i += 2;
+            }
+            "random_distribute" => {
+                if a.word_in(i + 1, &["exact", "uncorrelated"])? == "uncorrelated" {
+                    return Err(
+                        a.unsupported(i + 1, "fix insert/pack random_distribute uncorrelated")
+                    );
+                }
+                i += 2;
+            }
+            "vel" => {
+                let v = [a.real(i + 2)?, a.real(i + 3)?, a.real(i + 4)?];
+                match a.word_in(i + 1, &["constant", "uniform", "gaussian"])? {
+                    "constant" => {
+                        velocity = Velocity::Constant(v);
+                        i += 5;
+                    }
+                    style => {
+                        let d = [a.real(i + 5)?, a.real(i + 6)?, a.real(i + 7)?];
+                        velocity = if style == "uniform" {
+                            Velocity::Uniform(v, d)
+                        } else {
+                            Velocity::Gaussian(v, d)
+                        };
+                        i += 8;
+                    }
+                }
+            }
+            "omega" => {
+                a.word_in(i + 1, &["constant"])?;
+                omega = [a.real(i + 2)?, a.real(i + 3)?, a.real(i + 4)?];
+                i += 5;
+            }
+            w @ ("orientation" | "set_property" | "compress_tags" | "nparticles" | "mass"
+            | "massrate" | "particlerate" | "insert_every_time") => {
+                return Err(a.unsupported(i, &format!("fix insert/pack {w}")))
+            }
+            _ => {
+                return Err(a.keyword_error(
+                    i,
+                    &[
+                        "seed",
+                        "distributiontemplate",
+                        "region",
+                        "particles_in_region",
+                        "volumefraction_region",
+                        "mass_in_region",
+                        "insert_every",
+                        "start",
+                        "overlapcheck",
+                        "all_in",
+                        "maxattempt",
+                        "ntry_mc",
+                        "vel",
+                        "omega",
+                        "check_dist_from_subdomain_border",
+                        "verbose",
+                        "warn_region",
+                    ],
+                ))
+            }
+        }
+    }
+    let seed = seed.ok_or_else(|| a.error(2, "Fix insert: have to define 'seed'"))?;
+    let distribution =
+        dist.ok_or_else(|| a.error(2, "Fix insert: have to define a 'distributiontemplate'"))?;
+    let (region, region_id) =
+        region.ok_or_else(|| a.error(2, "Fix insert/pack: must define an insertion region"))?;
+    let target = target.ok_or_else(|| a.error(2, "Fix insert/pack: must define exactly one keyword out of 'volumefraction_region', 'particles_in_region', and 'mass_in_region'"))?;
+    let every = every.ok_or_else(|| a.error(2, "Fix insert/pack: must define 'insert_every'"))?;
+    Ok(FixKind::InsertPack(Box::new(InsertPack {
+        id: id.to_string(),
+        distribution,
+        region,
+        region_id,
+        target,
+        every,
+        next: Some(start.unwrap_or(ctx.sim.step + 1)),
+        overlapcheck: overlap,
+        all_in,
+        maxattempt,
+        ntry_mc,
+        check_dist,
+        verbose,
+        velocity,
+        omega,
+        rng: crate::script::random::RanPark::new(seed).map_err(|m| a.error(3, &m))?,
+        seed,
+        region_rng: crate::script::random::RanPark::new(3012211).expect("positive seed"),
+        region_volume: 0.0,
+        set_up: false,
+        inserted: 0,
+        inserted_mass: 0.0,
+    })))
 }

@@ -235,6 +235,12 @@ pub enum FixKind {
     AveTime(AveTime),
     /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
     Mesh(MeshFix),
+    /// `fix particletemplate/sphere`.
+    Template(crate::engine::insert::Template),
+    /// `fix particledistribution/discrete...`.
+    Distribution(crate::engine::insert::Distribution),
+    /// `fix insert/pack`.
+    InsertPack(Box<crate::engine::insert::InsertPack>),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
 }

@@ -6,6 +6,7 @@ pub mod contact;
 pub mod domain;
 pub mod fixes;
 pub mod granular;
+pub mod insert;
 pub mod integrate;
 pub mod neighbor;
 pub mod numbers;

@@ -1115,6 +1115,7 @@ impl Simulation {
         }
         self.has_run = true;
         self.energy_watch = None;
+        self.setup_insertions(out)?;
         self.setup_averages(vars)?;
         self.thermo.run_start = first;
         self.thermo.prepare_run(self.domain.shrinks());
@@ -1128,6 +1129,9 @@ impl Simulation {
             fixes::initial_integrate(&self.fixes, &mut self.particles, self.step, self.dt);
             // a runaway shows first in the half-kicked velocities, before atoms are wrapped or lost
             self.guard_motion()?;
+            // LIGGGHTS inserts in pre_exchange: after the first half-step, before the list
+            // decision (a changed atom count forces the rebuild)
+            self.insert_particles(out)?;
             if self.decide() {
                 self.pbc_and_box()?;
                 if self.sort_every > 0 && self.step >= self.next_sort {
@@ -1158,6 +1162,117 @@ impl Simulation {
             nsteps,
             self.particles.len()
         ));
+        Ok(())
+    }
+
+    fn insert_world(&self) -> (Vec<[f64; 3]>, [bool; 3], bool) {
+        let periodic = [0, 1, 2].map(|d| self.domain.periodic(d));
+        (self.particles.x.clone(), periodic, self.domain.shrinks())
+    }
+
+    /// First run's setup of `fix insert/pack`: region generator and volume.
+    fn setup_insertions(&mut self, out: Sink<'_>) -> Result<(), String> {
+        for k in 0..self.fixes.len() {
+            let FixKind::InsertPack(ins) = &self.fixes[k].kind else {
+                continue;
+            };
+            let dist_id = ins.distribution.clone();
+            let Some(dk) = self.fixes.iter().position(|f| f.id == dist_id) else {
+                return Err(format!("Fix insert: could not find distribution {dist_id}"));
+            };
+            let FixKind::Distribution(dist) = &self.fixes[dk].kind else {
+                return Err(format!(
+                    "Fix insert: {dist_id} is not a particle distribution"
+                ));
+            };
+            let dist = dist.clone();
+            let (x, periodic, box_changes) = self.insert_world();
+            let world = crate::engine::insert::World {
+                x: &x,
+                radius: &self.particles.radius,
+                mass: &self.particles.mass,
+                lo: self.domain.lo,
+                hi: self.domain.hi,
+                periodic,
+                box_changes,
+            };
+            let regions = self.regions.clone();
+            let lines = match &mut self.fixes[k].kind {
+                FixKind::InsertPack(ins) => ins.setup(&regions, &dist, &world)?,
+                _ => unreachable!(),
+            };
+            for l in lines {
+                out(&format!("{l}\n"));
+            }
+        }
+        Ok(())
+    }
+
+    /// `fix insert/pack` insertions due at this step.
+    fn insert_particles(&mut self, out: Sink<'_>) -> Result<(), String> {
+        let step = self.step;
+        for k in 0..self.fixes.len() {
+            let due =
+                matches!(&self.fixes[k].kind, FixKind::InsertPack(ins) if ins.next == Some(step));
+            if !due {
+                continue;
+            }
+            let FixKind::InsertPack(ins) = &self.fixes[k].kind else {
+                unreachable!()
+            };
+            let dist_id = ins.distribution.clone();
+            let group = self.fixes[k].group;
+            let dk = self
+                .fixes
+                .iter()
+                .position(|f| f.id == dist_id)
+                .ok_or_else(|| format!("Fix insert: could not find distribution {dist_id}"))?;
+            let FixKind::Distribution(dist) = &self.fixes[dk].kind else {
+                return Err(format!(
+                    "Fix insert: {dist_id} is not a particle distribution"
+                ));
+            };
+            let mut dist = dist.clone();
+            let (x, periodic, box_changes) = self.insert_world();
+            let regions = self.regions.clone();
+            let (placed, lines) = {
+                let world = crate::engine::insert::World {
+                    x: &x,
+                    radius: &self.particles.radius,
+                    mass: &self.particles.mass,
+                    lo: self.domain.lo,
+                    hi: self.domain.hi,
+                    periodic,
+                    box_changes,
+                };
+                match &mut self.fixes[k].kind {
+                    FixKind::InsertPack(ins) => ins.insert(step, &regions, &mut dist, &world),
+                    _ => unreachable!(),
+                }
+            };
+            let omega = match &self.fixes[k].kind {
+                FixKind::InsertPack(ins) => ins.omega,
+                _ => [0.0; 3],
+            };
+            if let FixKind::Distribution(d) = &mut self.fixes[dk].kind {
+                *d = dist.clone();
+            }
+            let mut tag = self.particles.max_id();
+            for (t, xp, v) in placed {
+                let tpl = &dist.templates[t];
+                tag += 1;
+                self.particles
+                    .push(tag, tpl.atom_type, xp, tpl.radius, tpl.density);
+                let i = self.particles.len() - 1;
+                self.particles.mass[i] = tpl.mass;
+                self.particles.v[i] = v;
+                self.particles.omega[i] = omega;
+                self.particles.mask[i] |= group;
+            }
+            for l in lines {
+                out(&format!("{l}\n"));
+            }
+        }
         Ok(())
     }
 

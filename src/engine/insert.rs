@@ -1,0 +1,618 @@
+//! Particle insertion as LIGGGHTS 3.8.0 does it (docs/notes/insertion.md): sphere templates,
+//! discrete distributions and `fix insert/pack`, with LIGGGHTS's three Park-Miller streams
+//! (region: positions and the Monte Carlo region volume; fix: targets and velocities;
+//! distribution: leftover particles), its draw order, placement order, overlap rule and
+//! messages, so that inserted atoms agree with LIGGGHTS's bit for bit.
+
+use crate::engine::region::{Regions, Shape};
+use crate::script::random::RanPark;
+
+/// `fix particletemplate/sphere`: one particle kind.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Template {
+    /// Fix ID.
+    pub id: String,
+    /// Atom type of inserted particles.
+    pub atom_type: u32,
+    /// Radius (length).
+    pub radius: f64,
+    /// Density (mass/length^3).
+    pub density: f64,
+    /// Volume, r^3 4 pi / 3 (length^3).
+    pub volume: f64,
+    /// Mass (mass).
+    pub mass: f64,
+}
+
+impl Template {
+    /// A template with LIGGGHTS's volume and mass arithmetic.
+    pub fn new(id: &str, atom_type: u32, radius: f64, density: f64) -> Template {
+        let volume = radius * radius * radius * 4.0 * std::f64::consts::PI / 3.0;
+        Template {
+            id: id.to_string(),
+            atom_type,
+            radius,
+            density,
+            volume,
+            mass: density * volume,
+        }
+    }
+}
+
+/// `fix particledistribution/discrete[/numberbased|/massbased]`.
+#[derive(Debug, Clone)]
+pub struct Distribution {
+    /// Its generator (leftover particles).
+    pub rng: RanPark,
+    /// The templates.
+    pub templates: Vec<Template>,
+    /// Number fractions.
+    pub weights: Vec<f64>,
+    /// Templates by decreasing volume (insertion order).
+    pub order: Vec<usize>,
+    /// Expected volume per particle (length^3).
+    pub volume_expect: f64,
+    /// Expected mass per particle (mass).
+    pub mass_expect: f64,
+    /// Largest radius (length).
+    pub max_radius: f64,
+}
+
+impl Distribution {
+    /// From templates and weights (mass fractions unless `number_based`).
+    pub fn new(
+        seed: i32,
+        templates: Vec<Template>,
+        weights: &[f64],
+        number_based: bool,
+    ) -> Result<Distribution, String> {
+        let rng = RanPark::new(seed)?;
+        let mut s = 0.0;
+        for x in weights {
+            s += x;
+        }
+        let mut w: Vec<f64> = weights.iter().map(|x| x / s).collect();
+        if !number_based {
+            w = w.iter().zip(&templates).map(|(x, t)| x / t.mass).collect();
+            let mut s = 0.0;
+            for x in &w {
+                s += x;
+            }
+            w = w.iter().map(|x| x / s).collect();
+        }
+        let (mut volume_expect, mut mass_expect) = (0.0, 0.0);
+        for (t, x) in templates.iter().zip(&w) {
+            volume_expect += t.volume * x;
+            mass_expect += t.mass * x;
+        }
+        // bubble sort by decreasing volume, as LIGGGHTS orders its templates
+        let nt = templates.len();
+        let mut order: Vec<usize> = (0..nt).collect();
+        let mut n = nt;
+        loop {
+            let mut swapped = false;
+            for i in 0..nt.saturating_sub(1) {
+                if templates[order[i]].volume < templates[order[i + 1]].volume {
+                    order.swap(i, i + 1);
+                    swapped = true;
+                }
+            }
+            n = n.saturating_sub(1);
+            if !(swapped && n > 0) {
+                break;
+            }
+        }
+        let max_radius = templates.iter().map(|t| t.radius).fold(0.0, f64::max);
+        Ok(Distribution {
+            rng,
+            templates,
+            weights: w,
+            order,
+            volume_expect,
+            mass_expect,
+            max_radius,
+        })
+    }
+
+    /// The templates of `n` particles, largest first (`random_distribute exact`).
+    pub fn list(&mut self, n: i64) -> Vec<usize> {
+        let nt = self.templates.len();
+        let mut count: Vec<i64> = self.weights.iter().map(|w| (n as f64 * w) as i64).collect();
+        let rem: Vec<f64> = (0..nt)
+            .map(|i| n as f64 * self.weights[i] - count[i] as f64)
+            .collect();
+        let gap = n - count.iter().sum::<i64>();
+        for _ in 0..gap {
+            let r = self.rng.uniform() * gap as f64;
+            let (mut j, mut rsum) = (0, rem[0]);
+            while rsum < r && j < nt - 1 {
+                j += 1;
+                rsum += rem[j];
+            }
+            count[j] += 1;
+        }
+        let mut out = Vec::new();
+        for &i in &self.order {
+            out.extend(std::iter::repeat_n(i, count[i].max(0) as usize));
+        }
+        out
+    }
+}
+
+/// How much `insert/pack` keeps in its region.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Target {
+    /// `particles_in_region N`.
+    Count(i64),
+    /// `volumefraction_region f`.
+    VolumeFraction(f64),
+    /// `mass_in_region m` (mass).
+    Mass(f64),
+}
+
+/// Velocities of inserted particles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Velocity {
+    /// `vel constant vx vy vz`.
+    Constant([f64; 3]),
+    /// `vel uniform vx vy vz dvx dvy dvz`.
+    Uniform([f64; 3], [f64; 3]),
+    /// `vel gaussian vx vy vz sx sy sz`.
+    Gaussian([f64; 3], [f64; 3]),
+}
+
+/// `fix insert/pack`.
+#[derive(Debug, Clone)]
+pub struct InsertPack {
+    /// Fix ID (for messages).
+    pub id: String,
+    /// The distribution fix's ID.
+    pub distribution: String,
+    /// The region's index.
+    pub region: usize,
+    /// The region's ID (for messages).
+    pub region_id: String,
+    /// The target.
+    pub target: Target,
+    /// Steps between insertions (0: once).
+    pub every: i64,
+    /// The next insertion step (None: no more).
+    pub next: Option<i64>,
+    /// `overlapcheck`.
+    pub overlapcheck: bool,
+    /// `all_in`.
+    pub all_in: bool,
+    /// `maxattempt`.
+    pub maxattempt: i64,
+    /// `ntry_mc`.
+    pub ntry_mc: i64,
+    /// `check_dist_from_subdomain_border`.
+    pub check_dist: bool,
+    /// `verbose`.
+    pub verbose: bool,
+    /// Velocity of new particles.
+    pub velocity: Velocity,
+    /// Angular velocity of new particles (1/time).
+    pub omega: [f64; 3],
+    /// The fix generator.
+    pub rng: RanPark,
+    /// The seed (`getSeed`).
+    pub seed: i32,
+    /// The region generator.
+    pub region_rng: RanPark,
+    /// Monte Carlo region volume (length^3).
+    pub region_volume: f64,
+    /// Setup done (first run).
+    pub set_up: bool,
+    /// Particles inserted so far.
+    pub inserted: i64,
+    /// Their mass (mass).
+    pub inserted_mass: f64,
+}
+
+/// A new particle: template index, position and velocity.
+pub type NewParticle = (usize, [f64; 3], [f64; 3]);
+
+/// Number of interior faces of a block or cylinder closer than `cut` to `x` (0 outside).
+pub fn surface_interior(shape: &Shape, x: [f64; 3], cut: f64) -> usize {
+    match shape {
+        Shape::Block { lo, hi } => {
+            if !(0..3).all(|d| x[d] >= lo[d] && x[d] <= hi[d]) {
+                return 0;
+            }
+            (0..3)
+                .map(|d| (x[d] - lo[d] < cut) as usize + (hi[d] - x[d] < cut) as usize)
+                .sum()
+        }
+        Shape::Cylinder {
+            axis,
+            c1,
+            c2,
+            radius,
+            lo,
+            hi,
+        } => {
+            let (a1, a2) = cross_axes(*axis);
+            let (d1, d2) = (x[a1] - c1, x[a2] - c2);
+            let r = (d1 * d1 + d2 * d2).sqrt();
+            let a = x[*axis];
+            if r > *radius || a < *lo || a > *hi {
+                return 0;
+            }
+            (radius - r < cut && r > 0.0) as usize
+                + (a - lo < cut) as usize
+                + (hi - a < cut) as usize
+        }
+        _ => 0,
+    }
+}
+
+/// Whether `x` lies outside a block or cylinder but closer than `cut` to its surface.
+pub fn surface_exterior(shape: &Shape, x: [f64; 3], cut: f64) -> bool {
+    let dist = |p: [f64; 3]| {
+        let d = [x[0] - p[0], x[1] - p[1], x[2] - p[2]];
+        (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+    };
+    match shape {
+        Shape::Block { lo, hi } => {
+            if (0..3).any(|d| x[d] <= lo[d] - cut || x[d] >= hi[d] + cut) {
+                return false;
+            }
+            if (0..3).all(|d| x[d] > lo[d] && x[d] < hi[d]) {
+                return false;
+            }
+            let p = [0, 1, 2].map(|d| x[d].clamp(lo[d], hi[d]));
+            dist(p) < cut
+        }
+        Shape::Cylinder {
+            axis,
+            c1,
+            c2,
+            radius,
+            lo,
+            hi,
+        } => {
+            let (a1, a2) = cross_axes(*axis);
+            let (d1, d2) = (x[a1] - c1, x[a2] - c2);
+            let r = (d1 * d1 + d2 * d2).sqrt();
+            let a = x[*axis];
+            if r >= radius + cut || a <= lo - cut || a >= hi + cut {
+                return false;
+            }
+            if r < *radius && a > *lo && a < *hi {
+                return false;
+            }
+            let mut p = x;
+            if r > *radius {
+                p[a1] = c1 + (x[a1] - c1) * radius / r;
+                p[a2] = c2 + (x[a2] - c2) * radius / r;
+            }
+            p[*axis] = a.clamp(*lo, *hi);
+            dist(p) < cut
+        }
+        _ => false,
+    }
+}
+
+fn cross_axes(axis: usize) -> (usize, usize) {
+    match axis {
+        0 => (1, 2),
+        1 => (0, 2),
+        _ => (0, 1),
+    }
+}
+
+/// A block or cylinder's bounding box.
+fn extent(shape: &Shape) -> ([f64; 3], [f64; 3]) {
+    match shape {
+        Shape::Block { lo, hi } => (*lo, *hi),
+        Shape::Cylinder {
+            axis,
+            c1,
+            c2,
+            radius,
+            lo,
+            hi,
+        } => {
+            let (a1, a2) = cross_axes(*axis);
+            let (mut l, mut h) = ([0.0; 3], [0.0; 3]);
+            l[*axis] = *lo;
+            h[*axis] = *hi;
+            l[a1] = c1 - radius;
+            h[a1] = c1 + radius;
+            l[a2] = c2 - radius;
+            h[a2] = c2 + radius;
+            (l, h)
+        }
+        _ => ([0.0; 3], [0.0; 3]),
+    }
+}
+
+fn inside(shape: &Shape, x: [f64; 3]) -> bool {
+    match shape {
+        Shape::Block { lo, hi } => (0..3).all(|d| x[d] >= lo[d] && x[d] <= hi[d]),
+        Shape::Cylinder {
+            axis,
+            c1,
+            c2,
+            radius,
+            lo,
+            hi,
+        } => {
+            let (a1, a2) = cross_axes(*axis);
+            let (d1, d2) = (x[a1] - c1, x[a2] - c2);
+            (d1 * d1 + d2 * d2).sqrt() <= *radius && x[*axis] >= *lo && x[*axis] <= *hi
+        }
+        _ => false,
+    }
+}
+
+/// What an insertion needs to know about the particles and the box.
+pub struct World<'a> {
+    /// Positions (length).
+    pub x: &'a [[f64; 3]],
+    /// Radii (length).
+    pub radius: &'a [f64],
+    /// Masses (mass).
+    pub mass: &'a [f64],
+    /// Box bounds (length).
+    pub lo: [f64; 3],
+    /// Box bounds (length).
+    pub hi: [f64; 3],
+    /// Periodic directions.
+    pub periodic: [bool; 3],
+    /// The box can change (a shrink-wrapped face).
+    pub box_changes: bool,
+}
+
+impl InsertPack {
+    fn shape<'r>(&self, regions: &'r Regions) -> &'r Shape {
+        &regions.list[self.region].shape
+    }
+
+    /// The Monte Carlo region volume with the region generator (3 draws per sample).
+    fn volume_mc(&mut self, shape: &Shape, w: &World, max_radius: f64) {
+        let (elo, ehi) = extent(shape);
+        let mut hits = 0i64;
+        for _ in 0..self.ntry_mc {
+            let mut p = [0.0; 3];
+            for d in 0..3 {
+                p[d] = elo[d] + self.region_rng.uniform() * (ehi[d] - elo[d]);
+            }
+            if !(0..3).all(|d| p[d] >= w.lo[d] && p[d] <= w.hi[d]) {
+                continue;
+            }
+            if inside(shape, p) {
+                hits += 1;
+            }
+        }
+        let _ = max_radius;
+        let vbox = (ehi[0] - elo[0]) * (ehi[1] - elo[1]) * (ehi[2] - elo[2]);
+        self.region_volume = hits as f64 / self.ntry_mc as f64 * vbox;
+    }
+
+    /// First run's setup: reseed the region generator and measure the region. Returns the
+    /// lines LIGGGHTS prints.
+    pub fn setup(
+        &mut self,
+        regions: &Regions,
+        dist: &Distribution,
+        w: &World,
+    ) -> Result<Vec<String>, String> {
+        if self.set_up {
+            return Ok(Vec::new());
+        }
+        self.set_up = true;
+        let shape = self.shape(regions).clone();
+        self.region_rng.reset(self.seed + 12)?;
+        self.volume_mc(&shape, w, dist.max_radius);
+        if self.region_volume <= 0.0 {
+            return Err("Fix insert: Region volume calculation with MC failed".into());
+        }
+        Ok(vec![
+            format!(
+                "INFO: Resetting random generator for region {}",
+                self.region_id
+            ),
+            format!(
+                "INFO: Particle insertion {}: inserting every {} steps",
+                self.id, self.every
+            ),
+        ])
+    }
+
+    /// One insertion at `step` (due when `self.next == Some(step)`): the new particles in
+    /// placement order, and the lines LIGGGHTS prints.
+    pub fn insert(
+        &mut self,
+        step: i64,
+        regions: &Regions,
+        dist: &mut Distribution,
+        w: &World,
+    ) -> (Vec<NewParticle>, Vec<String>) {
+        let mut lines = Vec::new();
+        let shape = self.shape(regions).clone();
+        self.next = if self.every > 0 {
+            Some(step + self.every)
+        } else {
+            None
+        };
+        // how many: the region's content now
+        let (mut np, mut vol, mut mass) = (0i64, 0.0, 0.0);
+        for i in 0..w.x.len() {
+            if regions.matches(self.region, w.x[i]) {
+                np += 1;
+                let r = w.radius[i];
+                vol += 4.0 * std::f64::consts::PI / 3.0 * r * r * r;
+                mass += w.mass[i];
+            }
+        }
+        let (mut n, mut ratio) = match self.target {
+            Target::VolumeFraction(f) => (
+                ((f * self.region_volume - vol) / dist.volume_expect + self.rng.uniform()) as i64,
+                vol / (f * self.region_volume),
+            ),
+            Target::Count(c) => (c - np, np as f64 / c as f64),
+            Target::Mass(m) => (
+                ((m - mass) / dist.mass_expect + self.rng.uniform()) as i64,
+                mass / m,
+            ),
+        };
+        n = n.max(0);
+        ratio = ratio.clamp(0.0, 1.0);
+        if w.box_changes {
+            self.volume_mc(&shape, w, dist.max_radius);
+        }
+        let list = dist.list(n);
+        if list.is_empty() {
+            return (Vec::new(), lines);
+        }
+        let nlist = list.len() as i64;
+        let maxrad = dist.max_radius;
+        // existing atoms near the region (periodic images too), then placed ones
+        let (elo, ehi) = extent(&shape);
+        let bblo = [0, 1, 2].map(|d| elo[d].max(w.lo[d]) - 2.0 * maxrad);
+        let bbhi = [0, 1, 2].map(|d| ehi[d].min(w.hi[d]) + 2.0 * maxrad);
+        let mut near: Vec<([f64; 3], f64)> = Vec::new();
+        if self.overlapcheck {
+            let len = [0, 1, 2].map(|d| w.hi[d] - w.lo[d]);
+            let shifts = |d: usize| {
+                if w.periodic[d] {
+                    vec![0.0, -len[d], len[d]]
+                } else {
+                    vec![0.0]
+                }
+            };
+            for i in 0..w.x.len() {
+                let cut = if self.all_in {
+                    maxrad
+                } else {
+                    w.radius[i] + maxrad
+                };
+                for sx in shifts(0) {
+                    for sy in shifts(1) {
+                        for sz in shifts(2) {
+                            let x = [w.x[i][0] + sx, w.x[i][1] + sy, w.x[i][2] + sz];
+                            if !(inside(&shape, x) || surface_exterior(&shape, x, cut)) {
+                                continue;
+                            }
+                            if !(0..3).all(|d| x[d] >= bblo[d] && x[d] <= bbhi[d]) {
+                                continue;
+                            }
+                            near.push((x, w.radius[i]));
+                        }
+                    }
+                }
+            }
+        }
+        let maxtry = if ratio >= 1.0 {
+            nlist * self.maxattempt
+        } else {
+            ((nlist * self.maxattempt) as f64 / (1.0 - ratio)) as i64
+        };
+        let lo = [0, 1, 2].map(|d| elo[d].max(w.lo[d]));
+        let hi = [0, 1, 2].map(|d| ehi[d].min(w.hi[d]));
+        let diff = [0, 1, 2].map(|d| hi[d] - lo[d]);
+        let all_in = self.all_in;
+        let gen = |rng: &mut RanPark, rb: f64| loop {
+            let p = [
+                lo[0] + rng.uniform() * diff[0],
+                lo[1] + rng.uniform() * diff[1],
+                lo[2] + rng.uniform() * diff[2],
+            ];
+            if all_in {
+                if inside(&shape, p) && surface_interior(&shape, p, rb) == 0 {
+                    return p;
+                }
+            } else if inside(&shape, p) {
+                return p;
+            }
+        };
+        let dist_sub = |p: [f64; 3]| {
+            let dlo = (0..3)
+                .map(|d| (w.lo[d] - p[d]).abs())
+                .fold(f64::INFINITY, f64::min);
+            let dhi = (0..3)
+                .map(|d| (w.hi[d] - p[d]).abs())
+                .fold(f64::INFINITY, f64::min);
+            if dlo < dhi {
+                dlo
+            } else {
+                dhi
+            }
+        };
+        let velocity = |rng: &mut RanPark| match self.velocity {
+            Velocity::Constant(v) => v,
+            Velocity::Uniform(v, dv) => {
+                [0, 1, 2].map(|d| v[d] + dv[d] * 2.0 * (rng.uniform() - 0.50))
+            }
+            Velocity::Gaussian(v, s) => [0, 1, 2].map(|d| v[d] + s[d] * rng.gaussian()),
+        };
+        let mut placed: Vec<NewParticle> = Vec::new();
+        let mut ntry = 0i64;
+        let nl = nlist as usize;
+        if self.overlapcheck {
+            while ntry < maxtry && placed.len() < nl {
+                let t = list[placed.len()];
+                let rb = dist.templates[t].radius;
+                if self.verbose && nl >= 10 && placed.len() % (nl / 10) == 0 {
+                    lines.push(format!(
+                        "insertion: proc 0 at {} %",
+                        10 * placed.len() / (nl / 10)
+                    ));
+                }
+                let mut done = false;
+                while !done && ntry < maxtry {
+                    let mut p;
+                    loop {
+                        p = gen(&mut self.region_rng, rb);
+                        ntry += 1;
+                        if !(self.check_dist && ntry < maxtry && dist_sub(p) < rb) {
+                            break;
+                        }
+                    }
+                    if ntry == maxtry {
+                        break;
+                    }
+                    let v = velocity(&mut self.rng);
+                    let clear = near.iter().all(|(q, rq)| {
+                        let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+                        let rs = rb + rq;
+                        !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= rs * rs)
+                    });
+                    if clear {
+                        near.push((p, rb));
+                        placed.push((t, p, v));
+                        done = true;
+                    }
+                }
+            }
+        } else {
+            for (k, &t) in list.iter().enumerate() {
+                if self.verbose && nl >= 10 && k % (nl / 10) == 0 {
+                    lines.push(format!("insertion: proc 0 at {} %", 10 * k / (nl / 10)));
+                }
+                let p = gen(&mut self.region_rng, dist.templates[t].radius);
+                let v = velocity(&mut self.rng);
+                placed.push((t, p, v));
+            }
+        }
+        let m: f64 = placed.iter().map(|(t, _, _)| dist.templates[*t].mass).sum();
+        self.inserted += placed.len() as i64;
+        self.inserted_mass += m;
+        if self.verbose {
+            lines.push(format!(
+                "INFO: Particle insertion {}: inserted {} particle templates (mass {}) at step {step}\n - a total of {} particle templates (mass {}) inserted so far.",
+                self.id,
+                placed.len(),
+                crate::script::format::with_spec("%e", m).unwrap_or_default(),
+                self.inserted,
+                crate::script::format::with_spec("%e", self.inserted_mass).unwrap_or_default()
+            ));
+        }
+        if (placed.len() as i64) < nlist {
+            lines.push("WARNING: Particle insertion: Less insertions than requested (./src/fix_insert.cpp:814)".into());
+        }
+        (placed, lines)
+    }
+}

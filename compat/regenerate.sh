@@ -84,6 +84,7 @@ engine_references() {
             rm -f stdout.txt "in.$name"
             if [ -d "$dir/$name.inputs" ]; then
                 (cd "$dir/$name.inputs" && find . -type f) | while read -r f; do rm -f "$f"; done
+                find . -mindepth 1 -type d -empty -delete
             fi
             cp -r . "$dir/$name.ref/"
         )

@@ -71,6 +71,18 @@ fn files_below(dir: &Path, base: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
+fn copy_tree(from: &Path, to: &Path) {
+    for e in std::fs::read_dir(from).unwrap() {
+        let e = e.unwrap();
+        if e.path().is_dir() {
+            std::fs::create_dir_all(to.join(e.file_name())).unwrap();
+            copy_tree(&e.path(), &to.join(e.file_name()));
+        } else {
+            std::fs::copy(e.path(), to.join(e.file_name())).unwrap();
+        }
+    }
+}
+
 fn check_deck(name: &str) -> Vec<String> {
     let dir = engine_dir();
     let work = std::env::temp_dir().join(format!("regolith-engine-{}-{name}", std::process::id()));
@@ -80,10 +92,7 @@ fn check_deck(name: &str) -> Vec<String> {
     std::fs::copy(dir.join(&deck), work.join(&deck)).unwrap();
     let inputs = dir.join(format!("{name}.inputs"));
     if inputs.is_dir() {
-        for e in std::fs::read_dir(&inputs).unwrap() {
-            let e = e.unwrap();
-            std::fs::copy(e.path(), work.join(e.file_name())).unwrap();
-        }
+        copy_tree(&inputs, &work);
     }
     let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
         .args(["-in", &deck, "-log", "none"])

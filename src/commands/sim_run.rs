@@ -152,6 +152,7 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
         | "particledistribution/discrete/numberbased"
         | "particledistribution/discrete/massbased" => distribution(a, ctx, style)?,
         "insert/pack" => insert_pack(a, ctx, &id)?,
+        "insert/stream" => insert_stream(a, ctx, &id)?,
         "wall/gran" => {
             let (selection, next) = gran_models(a, 3, "history", "fix wall/gran")?;
             if a.word(next)? != "primitive" {
@@ -1893,4 +1894,178 @@ fn insert_pack(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind
         inserted: 0,
         inserted_mass: 0.0,
     })))
+}
+
+/// `fix ID GROUP insert/stream seed S distributiontemplate D nparticles N particlerate R
+/// insertion_face MESH extrude_length L|insert_every N vel ... [overlapcheck ...]`.
+fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, Diagnostic> {
+    use crate::engine::insert::Velocity;
+    a.count(5..=usize::MAX, "fix ID GROUP insert/stream seed S distributiontemplate D nparticles N particlerate R insertion_face MESH extrude_length L ...")?;
+    let (mut seed, mut dist, mut face, mut extrude, mut every) = (None, None, None, None, None);
+    let (mut total, mut rate) = (None, None);
+    let (mut overlap, mut maxattempt, mut ntry_mc, mut verbose) = (true, 50i64, 100000i64, true);
+    let mut velocity = Velocity::Constant([0.0; 3]);
+    let mut omega = [0.0; 3];
+    let mut start = ctx.sim.step + 1;
+    let mut i = 3;
+    let yes = |a: &Args, k: usize| a.word_in(k, &["yes", "no"]).map(|w| w == "yes");
+    while i < a.len() {
+        match a.word(i)? {
+            "seed" => {
+                seed = Some(seed_arg(a, ctx, i + 1)?);
+                i += 2;
+            }
+            "distributiontemplate" => {
+                let d = a.word(i + 1)?;
+                if !ctx
+                    .sim
+                    .fixes
+                    .iter()
+                    .any(|f| f.id == d && matches!(f.kind, FixKind::Distribution(_)))
+                {
+                    return Err(a.error(i + 1, "Fix insert: distributiontemplate must be a fix particledistribution/discrete"));
+                }
+                dist = Some(d.to_string());
+                i += 2;
+            }
+            "insertion_face" => {
+                let m = a.word(i + 1)?;
+                let tri = ctx.sim.fixes.iter().find_map(|f| match &f.kind {
+                    FixKind::Mesh(mesh) if f.id == m => Some(mesh.triangles.clone()),
+                    _ => None,
+                });
+                face = Some(tri.ok_or_else(|| {
+                    a.error(
+                        i + 1,
+                        "Fix insert/stream: could not find the insertion_face mesh",
+                    )
+                })?);
+                i += 2;
+            }
+            "extrude_length" => {
+                extrude = Some(a.real(i + 1)?);
+                i += 2;
+            }
+            "insert_every" | "every" => {
+                every = Some(a.int(i + 1)?);
+                i += 2;
+            }
+            "nparticles" => {
+                total = Some(a.int(i + 1)?);
+                i += 2;
+            }
+            "particlerate" => {
+                rate = Some(a.real(i + 1)?);
+                i += 2;
+            }
+            "start" => {
+                start = a.int(i + 1)?;
+                i += 2;
+            }
+            "overlapcheck" => {
+                overlap = yes(a, i + 1)?;
+                i += 2;
+            }
+            "verbose" => {
+                verbose = yes(a, i + 1)?;
+                i += 2;
+            }
+            "maxattempt" => {
+                maxattempt = a.int(i + 1)?;
+                i += 2;
+            }
+            "ntry_mc" => {
+                ntry_mc = a.int(i + 1)?;
+                i += 2;
+            }
+            "vel" => {
+                let v = [a.real(i + 2)?, a.real(i + 3)?, a.real(i + 4)?];
+                match a.word_in(i + 1, &["constant", "uniform", "gaussian"])? {
+                    "constant" => {
+                        velocity = Velocity::Constant(v);
+                        i += 5;
+                    }
+                    style => {
+                        let d = [a.real(i + 5)?, a.real(i + 6)?, a.real(i + 7)?];
+                        velocity = if style == "uniform" {
+                            Velocity::Uniform(v, d)
+                        } else {
+                            Velocity::Gaussian(v, d)
+                        };
+                        i += 8;
+                    }
+                }
+            }
+            "omega" => {
+                a.word_in(i + 1, &["constant"])?;
+                omega = [a.real(i + 2)?, a.real(i + 3)?, a.real(i + 4)?];
+                i += 5;
+            }
+            "all_in" => {
+                if yes(a, i + 1)? {
+                    return Err(a.unsupported(i, "fix insert/stream all_in yes"));
+                }
+                i += 2;
+            }
+            w @ ("mass" | "massrate" | "duration" | "duration_time" | "parallel"
+            | "orientation" | "set_property" | "compress_tags" | "random_distribute"
+            | "insert_every_time") => {
+                return Err(a.unsupported(i, &format!("fix insert/stream {w}")))
+            }
+            _ => {
+                return Err(a.keyword_error(
+                    i,
+                    &[
+                        "seed",
+                        "distributiontemplate",
+                        "nparticles",
+                        "particlerate",
+                        "insertion_face",
+                        "extrude_length",
+                        "insert_every",
+                        "vel",
+                        "omega",
+                        "overlapcheck",
+                        "maxattempt",
+                        "ntry_mc",
+                        "verbose",
+                        "start",
+                        "all_in",
+                    ],
+                ))
+            }
+        }
+    }
+    let need = |what: &str| a.error(2, &format!("Fix insert/stream: have to define '{what}'"));
+    let seed = seed.ok_or_else(|| need("seed"))?;
+    let distribution = dist.ok_or_else(|| need("distributiontemplate"))?;
+    let triangles = face.ok_or_else(|| need("insertion_face"))?;
+    let total = total.ok_or_else(|| need("nparticles"))?;
+    let rate = rate.ok_or_else(|| need("particlerate"))?;
+    if extrude.is_some() == every.is_some() {
+        return Err(a.error(
+            2,
+            "Fix insert/stream: must define either 'insert_every' or 'extrude_length'",
+        ));
+    }
+    Ok(FixKind::InsertStream(Box::new(
+        crate::engine::fixes::StreamFix {
+            id: id.to_string(),
+            seed,
+            distribution,
+            triangles,
+            extrude,
+            every,
+            total,
+            rate,
+            velocity,
+            omega,
+            overlapcheck: overlap,
+            maxattempt,
+            ntry_mc,
+            verbose,
+            start,
+            state: None,
+        },
+    )))
 }

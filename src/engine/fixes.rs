@@ -241,6 +241,8 @@ pub enum FixKind {
     Distribution(crate::engine::insert::Distribution),
     /// `fix insert/pack`.
     InsertPack(Box<crate::engine::insert::InsertPack>),
+    /// `fix insert/stream` (None until its first setup computes the face geometry).
+    InsertStream(Box<StreamFix>),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
 }
@@ -831,4 +833,41 @@ pub struct MeshFix {
     pub triangles: Vec<crate::io::stl::Triangle>,
     /// Unit normals of the transformed triangles.
     pub normals: Vec<[f64; 3]>,
+}
+
+/// `fix insert/stream` as given, and its state once set up.
+#[derive(Debug, Clone)]
+pub struct StreamFix {
+    /// Fix ID.
+    pub id: String,
+    /// Seed of the fix generator.
+    pub seed: i32,
+    /// The distribution fix's ID.
+    pub distribution: String,
+    /// The insertion face's triangles.
+    pub triangles: Vec<crate::io::stl::Triangle>,
+    /// `extrude_length` (length), if given.
+    pub extrude: Option<f64>,
+    /// `insert_every`, if given.
+    pub every: Option<i64>,
+    /// `nparticles`.
+    pub total: i64,
+    /// `particlerate` (1/time).
+    pub rate: f64,
+    /// `vel`.
+    pub velocity: crate::engine::insert::Velocity,
+    /// `omega constant`.
+    pub omega: [f64; 3],
+    /// `overlapcheck`.
+    pub overlapcheck: bool,
+    /// `maxattempt`.
+    pub maxattempt: i64,
+    /// `ntry_mc`.
+    pub ntry_mc: i64,
+    /// `verbose`.
+    pub verbose: bool,
+    /// The first insertion step.
+    pub start: i64,
+    /// The running insertion, after setup.
+    pub state: Option<crate::engine::insert::InsertStream>,
 }

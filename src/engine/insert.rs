@@ -616,3 +616,338 @@ impl InsertPack {
         (placed, lines)
     }
 }
+
+/// A triangle mesh as an insertion face: LIGGGHTS's area-weighted triangle choice and
+/// barycentric sampling, with the mesh's own generator (seed 179424799, never reset).
+#[derive(Debug, Clone)]
+pub struct Face {
+    /// The triangles (length).
+    pub triangles: Vec<crate::io::stl::Triangle>,
+    /// Cumulative areas.
+    pub acc: Vec<f64>,
+    /// Total area (length^2).
+    pub total: f64,
+    /// The mesh generator.
+    pub rng: RanPark,
+}
+
+impl Face {
+    /// From a mesh's triangles.
+    pub fn new(triangles: Vec<crate::io::stl::Triangle>) -> Face {
+        let mut acc = Vec::with_capacity(triangles.len());
+        let mut total = 0.0;
+        for t in &triangles {
+            let mut ev = [[0.0; 3]; 3];
+            let mut len = [0.0; 3];
+            for j in 0..3 {
+                let d = [0, 1, 2].map(|k| t[(j + 1) % 3][k] - t[j][k]);
+                len[j] = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                let inv = 1.0 / len[j];
+                ev[j] = d.map(|c| inv * c);
+            }
+            let c = [
+                ev[0][1] * ev[1][2] - ev[0][2] * ev[1][1],
+                ev[0][2] * ev[1][0] - ev[0][0] * ev[1][2],
+                ev[0][0] * ev[1][1] - ev[0][1] * ev[1][0],
+            ];
+            let a = 0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt() * len[0] * len[1];
+            acc.push(match acc.last() {
+                Some(l) => l + a,
+                None => a,
+            });
+            total += a;
+        }
+        Face {
+            triangles,
+            acc,
+            total: total + 0.0,
+            rng: RanPark::new(179424799).expect("positive seed"),
+        }
+    }
+
+    fn search(&self, a: f64, lo: usize, hi: usize) -> usize {
+        let acc = &self.acc;
+        if (lo < 1 || a > acc[lo - 1]) && a <= acc[lo] {
+            return lo;
+        }
+        if (hi < 1 || a > acc[hi - 1]) && a <= acc[hi] {
+            return hi;
+        }
+        let mid = (lo + hi) / 2;
+        if a > acc[mid] {
+            self.search(a, mid, hi)
+        } else {
+            self.search(a, lo, mid)
+        }
+    }
+
+    /// A random point on the face.
+    pub fn random_point(&mut self) -> [f64; 3] {
+        let r = self.rng.uniform() * self.total;
+        let c = self.search(r, 0, self.triangles.len() - 1);
+        let (u, v) = loop {
+            let u = self.rng.uniform();
+            let v = self.rng.uniform();
+            if !(u + v > 1.0) {
+                break (u, v);
+            }
+        };
+        let (b0, b1, b2) = (1.0 - u - v, v, u);
+        let n = &self.triangles[c];
+        [0, 1, 2].map(|k| b0 * n[0][k] + b1 * n[1][k] + b2 * n[2][k])
+    }
+
+    /// Whether `x`'s projection lies on the face (barycentric test, tolerance 1e-8).
+    pub fn covers(&self, x: [f64; 3]) -> bool {
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        self.triangles.iter().any(|t| {
+            let v0 = [0, 1, 2].map(|k| t[2][k] - t[0][k]);
+            let v1 = [0, 1, 2].map(|k| t[1][k] - t[0][k]);
+            let v2 = [0, 1, 2].map(|k| x[k] - t[0][k]);
+            let (d00, d01, d02, d11, d12) = (
+                dot(v0, v0),
+                dot(v0, v1),
+                dot(v0, v2),
+                dot(v1, v1),
+                dot(v1, v2),
+            );
+            let inv = 1.0 / (d00 * d11 - d01 * d01);
+            let u = (d11 * d02 - d01 * d12) * inv;
+            let v = (d00 * d12 - d01 * d02) * inv;
+            u > -1e-8 && v > -1e-8 && u + v < 1.0 + 1e-8
+        })
+    }
+}
+
+/// One particle on its way from an insertion face: moved at `v_normal` until released.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Release {
+    /// Atom ID.
+    pub id: i64,
+    /// Where it was inserted (length).
+    pub x: [f64; 3],
+    /// The insertion step.
+    pub inserted: i64,
+    /// The release step.
+    pub release: i64,
+    /// Velocity after release (length/time).
+    pub v_final: [f64; 3],
+}
+
+/// `fix insert/stream`.
+#[derive(Debug, Clone)]
+pub struct InsertStream {
+    /// Fix ID.
+    pub id: String,
+    /// The distribution fix's ID.
+    pub distribution: String,
+    /// The insertion face.
+    pub face: Face,
+    /// Unit face normal, pointing along the insertion velocity.
+    pub normal: [f64; 3],
+    /// Velocity component along the normal (length/time).
+    pub v_normal: [f64; 3],
+    /// First node of the first triangle.
+    pub p_ref: [f64; 3],
+    /// Extrusion length (length).
+    pub extrude: f64,
+    /// Steps between insertions.
+    pub every: i64,
+    /// Particles per insertion (mean).
+    pub per_insertion: f64,
+    /// Total to insert.
+    pub total: i64,
+    /// `vel` of the released particles.
+    pub velocity: Velocity,
+    /// Angular velocity after release (1/time).
+    pub omega: [f64; 3],
+    /// `overlapcheck`.
+    pub overlapcheck: bool,
+    /// `maxattempt`.
+    pub maxattempt: i64,
+    /// `ntry_mc`.
+    pub ntry_mc: i64,
+    /// `verbose`.
+    pub verbose: bool,
+    /// The fix generator.
+    pub rng: RanPark,
+    /// The next insertion step.
+    pub next: Option<i64>,
+    /// First insertion done (the face measurement runs at the first and, if the box can
+    /// change, every insertion).
+    pub measured: bool,
+    /// Particles inserted so far.
+    pub inserted: i64,
+    /// Their mass (mass).
+    pub inserted_mass: f64,
+    /// Particles not yet released.
+    pub moving: Vec<Release>,
+}
+
+impl InsertStream {
+    /// The setup line LIGGGHTS prints.
+    pub fn setup_lines(&self, dist: &Distribution, dt: f64) -> Vec<String> {
+        let rate = self.per_insertion / (self.every as f64 * dt);
+        let f = |spec: &str, v: f64| crate::script::format::with_spec(spec, v).unwrap_or_default();
+        vec![format!(
+            "INFO: Particle insertion {}: {} particles every {} steps - particle rate {}  (mass rate {})\n      {} particles (mass {}) within {} steps",
+            self.id,
+            f("%f", self.per_insertion),
+            self.every,
+            f("%f", rate),
+            f("%e", rate * dist.mass_expect),
+            self.total,
+            f("%e", self.total as f64 * dist.mass_expect),
+            ((self.total as f64 / self.per_insertion).ceil() as i64 - 1).max(0) * self.every
+        )]
+    }
+
+    /// One insertion at `step`: new particles (template, position, velocity = v_normal) and
+    /// the lines LIGGGHTS prints; the release data of the new atoms is recorded by
+    /// [`InsertStream::record`] once they have IDs.
+    pub fn insert(
+        &mut self,
+        step: i64,
+        dist: &mut Distribution,
+        w: &World,
+        box_changes: bool,
+    ) -> (Vec<NewParticle>, Vec<String>) {
+        let mut lines = Vec::new();
+        let mut n = (self.per_insertion + self.rng.uniform()) as i64;
+        if self.inserted + n > self.total {
+            n = self.total - self.inserted;
+        }
+        if self.inserted + n >= self.total {
+            n = (self.total - self.inserted).max(0);
+        }
+        if !self.measured || box_changes {
+            for _ in 0..self.ntry_mc {
+                self.face.random_point();
+                self.rng.uniform();
+            }
+            self.measured = true;
+        }
+        let list = dist.list(n);
+        let maxrad = dist.max_radius;
+        let nrm = self.normal;
+        let mut near: Vec<([f64; 3], f64)> = Vec::new();
+        if self.overlapcheck {
+            for i in 0..w.x.len() {
+                let x = w.x[i];
+                let dn = (x[0] - self.p_ref[0]) * nrm[0]
+                    + (x[1] - self.p_ref[1]) * nrm[1]
+                    + (x[2] - self.p_ref[2]) * nrm[2];
+                if dn > maxrad || dn < -(self.extrude + 3.0 * maxrad) {
+                    continue;
+                }
+                if self
+                    .face
+                    .covers([x[0] + nrm[0] * dn, x[1] + nrm[1] * dn, x[2] + nrm[2] * dn])
+                {
+                    near.push((x, w.radius[i]));
+                }
+            }
+        }
+        let in_sub = |p: [f64; 3]| (0..3).all(|d| p[d] >= w.lo[d] && p[d] < w.hi[d]);
+        let dist_sub = |p: [f64; 3]| {
+            let dlo = (0..3)
+                .map(|d| (w.lo[d] - p[d]).abs())
+                .fold(f64::INFINITY, f64::min);
+            let dhi = (0..3)
+                .map(|d| (w.hi[d] - p[d]).abs())
+                .fold(f64::INFINITY, f64::min);
+            if dlo < dhi {
+                dlo
+            } else {
+                dhi
+            }
+        };
+        let maxtry = list.len() as i64 * self.maxattempt;
+        let mut ntry = 0;
+        let mut placed: Vec<NewParticle> = Vec::new();
+        while ntry < maxtry && placed.len() < list.len() {
+            let t = list[placed.len()];
+            let rad = dist.templates[t].radius;
+            let mut done = false;
+            while !done && ntry < maxtry {
+                let mut p;
+                loop {
+                    p = self.face.random_point();
+                    let r = if self.overlapcheck {
+                        -(self.rng.uniform() * self.extrude + rad + 0.0)
+                    } else {
+                        -(self.rng.uniform() * (self.extrude - 2.0 * rad) + rad + 0.0)
+                    };
+                    p = [p[0] + nrm[0] * r, p[1] + nrm[1] * r, p[2] + nrm[2] * r];
+                    ntry += 1;
+                    let bad = !in_sub(p) || (self.overlapcheck && dist_sub(p) < rad);
+                    if !(ntry < maxtry && bad) {
+                        break;
+                    }
+                }
+                if ntry < maxtry {
+                    let clear = !self.overlapcheck
+                        || near.iter().all(|(q, rq)| {
+                            let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+                            let rs = rad + rq;
+                            !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= rs * rs)
+                        });
+                    if clear {
+                        near.push((p, rad));
+                        placed.push((t, p, self.v_normal));
+                        done = true;
+                    }
+                }
+            }
+        }
+        let m: f64 = placed.iter().map(|(t, _, _)| dist.templates[*t].mass).sum();
+        self.inserted += placed.len() as i64;
+        self.inserted_mass += m;
+        self.next = if self.inserted < self.total {
+            Some(step + self.every)
+        } else {
+            None
+        };
+        if self.verbose {
+            lines.push(format!(
+                "INFO: Particle insertion {}: inserted {} particle templates (mass {}) at step {step}\n - a total of {} particle templates (mass {}) inserted so far.",
+                self.id,
+                placed.len(),
+                crate::script::format::with_spec("%e", m).unwrap_or_default(),
+                self.inserted,
+                crate::script::format::with_spec("%e", self.inserted_mass).unwrap_or_default()
+            ));
+        }
+        if (placed.len() as i64) < n {
+            lines.push("WARNING: Particle insertion: Less insertions than requested (./src/fix_insert.cpp:814)".into());
+        }
+        (placed, lines)
+    }
+
+    /// Release data of the atoms just inserted (ID, position), final velocities drawn now.
+    pub fn record(&mut self, step: i64, dt: f64, atoms: &[(i64, [f64; 3])]) {
+        let vn = {
+            let v = self.v_normal;
+            (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+        };
+        for &(id, x) in atoms {
+            let rel = [0, 1, 2].map(|k| self.p_ref[k] - x[k]);
+            let dn = rel[0] * self.normal[0] + rel[1] * self.normal[1] + rel[2] * self.normal[2];
+            let steps = ((dn + 1e-14) / (vn * dt)) as i64;
+            let v_final = match self.velocity {
+                Velocity::Constant(v) => v,
+                Velocity::Uniform(v, dv) => {
+                    [0, 1, 2].map(|d| v[d] + dv[d] * 2.0 * (self.rng.uniform() - 0.50))
+                }
+                Velocity::Gaussian(v, s) => [0, 1, 2].map(|d| v[d] + s[d] * self.rng.gaussian()),
+            };
+            self.moving.push(Release {
+                id,
+                x,
+                inserted: step,
+                release: step + steps,
+                v_final,
+            });
+        }
+    }
+}

@@ -436,6 +436,7 @@ impl Simulation {
 
     /// The `end_of_step` phase: fixes that check or report every N steps.
     fn end_of_step(&mut self, out: Sink<'_>, vars: &mut dyn VariableSource) -> Result<(), String> {
+        self.move_streams();
         let (step, dt, skin) = (self.step, self.dt, self.neighbor.skin);
         for k in 0..self.fixes.len() {
             let fix = &mut self.fixes[k];
@@ -1132,6 +1133,7 @@ impl Simulation {
             // LIGGGHTS inserts in pre_exchange: after the first half-step, before the list
             // decision (a changed atom count forces the rebuild)
             self.insert_particles(out)?;
+            self.insert_streams(out)?;
             if self.decide() {
                 self.pbc_and_box()?;
                 if self.sort_every > 0 && self.step >= self.next_sort {
@@ -1170,8 +1172,216 @@ impl Simulation {
         (self.particles.x.clone(), periodic, self.domain.shrinks())
     }
 
+    /// First run's setup of `fix insert/stream`: face normal, normal velocity, interval.
+    fn setup_streams(&mut self, out: Sink<'_>) -> Result<(), String> {
+        use crate::engine::insert::{Face, InsertStream, Velocity};
+        let dt = self.dt;
+        for k in 0..self.fixes.len() {
+            let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
+                continue;
+            };
+            if sf.state.is_some() {
+                continue;
+            }
+            let dist = self
+                .fixes
+                .iter()
+                .find_map(|f| match &f.kind {
+                    FixKind::Distribution(d) if f.id == sf.distribution => Some(d.clone()),
+                    _ => None,
+                })
+                .ok_or_else(|| {
+                    format!(
+                        "Fix insert: could not find distribution {}",
+                        sf.distribution
+                    )
+                })?;
+            let t = sf.triangles[0];
+            let mut ev = [[0.0; 3]; 2];
+            for (j, e) in ev.iter_mut().enumerate() {
+                let d = [0, 1, 2].map(|c| t[j + 1][c] - t[j][c]);
+                let inv = 1.0 / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                *e = d.map(|c| inv * c);
+            }
+            let c = [
+                ev[0][1] * ev[1][2] - ev[0][2] * ev[1][1],
+                ev[0][2] * ev[1][0] - ev[0][0] * ev[1][2],
+                ev[0][0] * ev[1][1] - ev[0][1] * ev[1][0],
+            ];
+            let inv = 1.0 / (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+            let mut n = c.map(|x| inv * x);
+            let v = match sf.velocity {
+                Velocity::Constant(v) | Velocity::Uniform(v, _) | Velocity::Gaussian(v, _) => v,
+            };
+            if v[0] * n[0] + v[1] * n[1] + v[2] * n[2] < 0.0 {
+                n = n.map(|x| x * -1.0);
+            }
+            let dot = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+            let v_normal = n.map(|x| x * dot);
+            let vn =
+                (v_normal[0] * v_normal[0] + v_normal[1] * v_normal[1] + v_normal[2] * v_normal[2])
+                    .sqrt();
+            if vn < 1e-3 {
+                return Err(format!("Fix insert/stream (id {}): insertion velocity projected on face normal is < 1e-3", sf.id));
+            }
+            let (every, extrude) = match (sf.extrude, sf.every) {
+                (Some(l), _) => (((l + 1e-14) / (dt * vn)) as i64, l),
+                (None, Some(e)) => (e, e as f64 * dt * vn),
+                _ => unreachable!("checked when the fix was defined"),
+            };
+            if every <= 0 {
+                return Err(format!("Fix insert/stream (id {}): extrude_length too small for the insertion velocity", sf.id));
+            }
+            let state = InsertStream {
+                id: sf.id.clone(),
+                distribution: sf.distribution.clone(),
+                face: Face::new(sf.triangles.clone()),
+                normal: n,
+                v_normal,
+                p_ref: t[0],
+                extrude,
+                every,
+                per_insertion: sf.rate * (every as f64 * dt),
+                total: sf.total,
+                velocity: sf.velocity,
+                omega: sf.omega,
+                overlapcheck: sf.overlapcheck,
+                maxattempt: sf.maxattempt,
+                ntry_mc: sf.ntry_mc,
+                verbose: sf.verbose,
+                rng: crate::script::random::RanPark::new(sf.seed)?,
+                next: Some(sf.start),
+                measured: false,
+                inserted: 0,
+                inserted_mass: 0.0,
+                moving: Vec::new(),
+            };
+            for l in state.setup_lines(&dist, dt) {
+                out(&format!("{l}\n"));
+            }
+            if let FixKind::InsertStream(sf) = &mut self.fixes[k].kind {
+                sf.state = Some(state);
+            }
+        }
+        Ok(())
+    }
+
+    /// `fix insert/stream` insertions due at this step.
+    fn insert_streams(&mut self, out: Sink<'_>) -> Result<(), String> {
+        let step = self.step;
+        for k in 0..self.fixes.len() {
+            let due = matches!(&self.fixes[k].kind, FixKind::InsertStream(sf) if sf.state.as_ref().is_some_and(|s| s.next == Some(step)));
+            if !due {
+                continue;
+            }
+            let group = self.fixes[k].group;
+            let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
+                unreachable!()
+            };
+            let dist_id = sf.distribution.clone();
+            let dk = self
+                .fixes
+                .iter()
+                .position(|f| f.id == dist_id)
+                .ok_or_else(|| format!("Fix insert: could not find distribution {dist_id}"))?;
+            let FixKind::Distribution(dist) = &self.fixes[dk].kind else {
+                return Err(format!(
+                    "Fix insert: {dist_id} is not a particle distribution"
+                ));
+            };
+            let mut dist = dist.clone();
+            let (x, periodic, box_changes) = self.insert_world();
+            let (placed, lines) = {
+                let world = crate::engine::insert::World {
+                    x: &x,
+                    radius: &self.particles.radius,
+                    mass: &self.particles.mass,
+                    lo: self.domain.lo,
+                    hi: self.domain.hi,
+                    periodic,
+                    box_changes,
+                };
+                match &mut self.fixes[k].kind {
+                    FixKind::InsertStream(sf) => sf.state.as_mut().expect("set up").insert(
+                        step,
+                        &mut dist,
+                        &world,
+                        box_changes,
+                    ),
+                    _ => unreachable!(),
+                }
+            };
+            if let FixKind::Distribution(d) = &mut self.fixes[dk].kind {
+                *d = dist.clone();
+            }
+            let mut tag = self.particles.max_id();
+            let mut new = Vec::new();
+            for (t, xp, v) in placed {
+                let tpl = &dist.templates[t];
+                tag += 1;
+                self.particles
+                    .push(tag, tpl.atom_type, xp, tpl.radius, tpl.density);
+                let i = self.particles.len() - 1;
+                self.particles.mass[i] = tpl.mass;
+                self.particles.v[i] = v;
+                self.particles.mask[i] |= group;
+                new.push((tag, xp));
+            }
+            let dt = self.dt;
+            if let FixKind::InsertStream(sf) = &mut self.fixes[k].kind {
+                sf.state.as_mut().expect("set up").record(step, dt, &new);
+            }
+            for l in lines {
+                out(&format!("{l}\n"));
+            }
+        }
+        Ok(())
+    }
+
+    /// `fix insert/stream`'s end of step: particles not yet released move at the normal
+    /// velocity from where they were inserted, without forces; at the release step they
+    /// get their final velocity and spin.
+    fn move_streams(&mut self) {
+        let (step, dt) = (self.step, self.dt);
+        let mut index: Option<std::collections::HashMap<i64, usize>> = None;
+        for k in 0..self.fixes.len() {
+            let FixKind::InsertStream(sf) = &mut self.fixes[k].kind else {
+                continue;
+            };
+            let Some(state) = sf.state.as_mut() else {
+                continue;
+            };
+            if state.moving.is_empty() {
+                continue;
+            }
+            let p = &mut self.particles;
+            let map = index
+                .get_or_insert_with(|| p.id.iter().enumerate().map(|(i, id)| (*id, i)).collect());
+            let (vn, omega) = (state.v_normal, state.omega);
+            state.moving.retain(|r| {
+                let Some(&i) = map.get(&r.id) else {
+                    return false;
+                };
+                let s = step.min(r.release);
+                let te = (s - r.inserted) as f64 * dt;
+                p.x[i] = [0, 1, 2].map(|d| r.x[d] + vn[d] * te);
+                p.f[i] = [0.0; 3];
+                p.torque[i] = [0.0; 3];
+                if step >= r.release {
+                    p.v[i] = r.v_final;
+                    p.omega[i] = omega;
+                    return false;
+                }
+                p.v[i] = vn;
+                p.omega[i] = [0.0; 3];
+                true
+            });
+        }
+    }
+
     /// First run's setup of `fix insert/pack`: region generator and volume.
     fn setup_insertions(&mut self, out: Sink<'_>) -> Result<(), String> {
+        self.setup_streams(out)?;
         for k in 0..self.fixes.len() {
             let FixKind::InsertPack(ins) = &self.fixes[k].kind else {
                 continue;

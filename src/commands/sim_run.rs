@@ -151,7 +151,7 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
         "particledistribution/discrete"
         | "particledistribution/discrete/numberbased"
         | "particledistribution/discrete/massbased" => distribution(a, ctx, style)?,
-        "insert/pack" => insert_pack(a, ctx, &id)?,
+        "insert/pack" | "insert/rate/region" => insert_pack(a, ctx, &id, style)?,
         "insert/stream" => insert_stream(a, ctx, &id)?,
         "wall/gran" => {
             let (selection, next) = gran_models(a, 3, "history", "fix wall/gran")?;
@@ -1667,7 +1667,14 @@ fn distribution(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
 }
 
 /// `fix ID GROUP insert/pack seed S distributiontemplate D [keywords]`.
-fn insert_pack(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, Diagnostic> {
+fn insert_pack(
+    a: &Args,
+    ctx: &mut Ctx,
+    id: &str,
+    style: &str,
+) -> std::result::Result<FixKind, Diagnostic> {
+    let rate_style = style == "insert/rate/region";
+    let (mut nparticles, mut particlerate): (Option<i64>, Option<f64>) = (None, None);
     use crate::engine::insert::{InsertPack, Target, Velocity};
     a.count(
         5..=usize::MAX,
@@ -1833,9 +1840,17 @@ fn insert_pack(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind
                 omega = [a.real(i + 2)?, a.real(i + 3)?, a.real(i + 4)?];
                 i += 5;
             }
+            "nparticles" if rate_style => {
+                nparticles = Some(a.int(i + 1)?);
+                i += 2;
+            }
+            "particlerate" if rate_style => {
+                particlerate = Some(a.real(i + 1)?);
+                i += 2;
+            }
             w @ ("orientation" | "set_property" | "compress_tags" | "nparticles" | "mass"
             | "massrate" | "particlerate" | "insert_every_time") => {
-                return Err(a.unsupported(i, &format!("fix insert/pack {w}")))
+                return Err(a.unsupported(i, &format!("fix {style} {w}")))
             }
             _ => {
                 return Err(a.keyword_error(
@@ -1868,7 +1883,23 @@ fn insert_pack(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind
         dist.ok_or_else(|| a.error(2, "Fix insert: have to define a 'distributiontemplate'"))?;
     let (region, region_id) =
         region.ok_or_else(|| a.error(2, "Fix insert/pack: must define an insertion region"))?;
-    let target = target.ok_or_else(|| a.error(2, "Fix insert/pack: must define exactly one keyword out of 'volumefraction_region', 'particles_in_region', and 'mass_in_region'"))?;
+    let rate = if rate_style {
+        if target.is_some() {
+            return Err(a.error(2, "Fix insert/rate/region: particles_in_region, volumefraction_region and mass_in_region are insert/pack keywords"));
+        }
+        let n = nparticles
+            .ok_or_else(|| a.error(2, "Fix insert/rate/region: have to define 'nparticles'"))?;
+        let r = particlerate
+            .ok_or_else(|| a.error(2, "Fix insert/rate/region: have to define 'particlerate'"))?;
+        Some((n, r))
+    } else {
+        None
+    };
+    let target = match (rate, target) {
+        (Some(_), _) => Target::Count(1),
+        (None, Some(t)) => t,
+        (None, None) => return Err(a.error(2, "Fix insert/pack: must define exactly one keyword out of 'volumefraction_region', 'particles_in_region', and 'mass_in_region'")),
+    };
     let every = every.ok_or_else(|| a.error(2, "Fix insert/pack: must define 'insert_every'"))?;
     Ok(FixKind::InsertPack(Box::new(InsertPack {
         id: id.to_string(),
@@ -1893,6 +1924,8 @@ fn insert_pack(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind
         set_up: false,
         inserted: 0,
         inserted_mass: 0.0,
+        rate,
+        per_insertion: 0.0,
     })))
 }
 

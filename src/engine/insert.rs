@@ -208,6 +208,10 @@ pub struct InsertPack {
     pub inserted: i64,
     /// Their mass (mass).
     pub inserted_mass: f64,
+    /// `insert/rate/region`: (nparticles, particlerate in 1/time).
+    pub rate: Option<(i64, f64)>,
+    /// `insert/rate/region`: particles per insertion (mean), from the rate at setup.
+    pub per_insertion: f64,
 }
 
 /// A new particle: template index, position and velocity.
@@ -398,6 +402,7 @@ impl InsertPack {
         regions: &Regions,
         dist: &Distribution,
         w: &World,
+        dt: f64,
     ) -> Result<Vec<String>, String> {
         if self.set_up {
             return Ok(Vec::new());
@@ -409,16 +414,39 @@ impl InsertPack {
         if self.region_volume <= 0.0 {
             return Err("Fix insert: Region volume calculation with MC failed".into());
         }
-        Ok(vec![
-            format!(
-                "INFO: Resetting random generator for region {}",
-                self.region_id
-            ),
-            format!(
+        let mut lines = vec![format!(
+            "INFO: Resetting random generator for region {}",
+            self.region_id
+        )];
+        match self.rate {
+            None => lines.push(format!(
                 "INFO: Particle insertion {}: inserting every {} steps",
                 self.id, self.every
-            ),
-        ])
+            )),
+            Some((total, rate)) => {
+                self.per_insertion = rate * (self.every as f64 * dt);
+                let f = |spec: &str, v: f64| {
+                    crate::script::format::with_spec(spec, v).unwrap_or_default()
+                };
+                let within = if total as f64 <= self.per_insertion {
+                    0
+                } else {
+                    (total as f64 / self.per_insertion) as i64 * self.every
+                };
+                lines.push(format!(
+                    "INFO: Particle insertion {}: {} particles every {} steps - particle rate {}  (mass rate {})\n      {} particles (mass {}) within {} steps",
+                    self.id,
+                    f("%f", self.per_insertion),
+                    self.every,
+                    f("%f", rate),
+                    f("%e", rate * dist.mass_expect),
+                    total,
+                    f("%e", total as f64 * dist.mass_expect),
+                    within
+                ));
+            }
+        }
+        Ok(lines)
     }
 
     /// One insertion at `step` (due when `self.next == Some(step)`): the new particles in
@@ -447,19 +475,31 @@ impl InsertPack {
                 mass += w.mass[i];
             }
         }
-        let (mut n, mut ratio) = match self.target {
-            Target::VolumeFraction(f) => (
-                ((f * self.region_volume - vol) / dist.volume_expect + self.rng.uniform()) as i64,
-                vol / (f * self.region_volume),
-            ),
-            Target::Count(c) => (c - np, np as f64 / c as f64),
-            Target::Mass(m) => (
-                ((m - mass) / dist.mass_expect + self.rng.uniform()) as i64,
-                mass / m,
-            ),
+        let (mut n, mut ratio) = match (self.rate, self.target) {
+            (Some((total, _)), _) => {
+                let mut n = (self.per_insertion + self.rng.uniform()) as i64;
+                if self.inserted + n > total {
+                    n = total - self.inserted;
+                }
+                (n, f64::NAN)
+            }
+            (None, target) => match target {
+                Target::VolumeFraction(f) => (
+                    ((f * self.region_volume - vol) / dist.volume_expect + self.rng.uniform())
+                        as i64,
+                    vol / (f * self.region_volume),
+                ),
+                Target::Count(c) => (c - np, np as f64 / c as f64),
+                Target::Mass(m) => (
+                    ((m - mass) / dist.mass_expect + self.rng.uniform()) as i64,
+                    mass / m,
+                ),
+            },
         };
         n = n.max(0);
-        ratio = ratio.clamp(0.0, 1.0);
+        if !ratio.is_nan() {
+            ratio = ratio.clamp(0.0, 1.0);
+        }
         if w.box_changes {
             self.volume_mc(&shape, w, dist.max_radius);
         }
@@ -505,7 +545,7 @@ impl InsertPack {
                 }
             }
         }
-        let maxtry = if ratio >= 1.0 {
+        let maxtry = if ratio.is_nan() || ratio >= 1.0 {
             nlist * self.maxattempt
         } else {
             ((nlist * self.maxattempt) as f64 / (1.0 - ratio)) as i64
@@ -600,6 +640,11 @@ impl InsertPack {
         let m: f64 = placed.iter().map(|(t, _, _)| dist.templates[*t].mass).sum();
         self.inserted += placed.len() as i64;
         self.inserted_mass += m;
+        if let Some((total, _)) = self.rate {
+            if self.inserted >= total {
+                self.next = None;
+            }
+        }
         if self.verbose {
             lines.push(format!(
                 "INFO: Particle insertion {}: inserted {} particle templates (mass {}) at step {step}\n - a total of {} particle templates (mass {}) inserted so far.",

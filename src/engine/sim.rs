@@ -1408,7 +1408,7 @@ impl Simulation {
             };
             let regions = self.regions.clone();
             let lines = match &mut self.fixes[k].kind {
-                FixKind::InsertPack(ins) => ins.setup(&regions, &dist, &world)?,
+                FixKind::InsertPack(ins) => ins.setup(&regions, &dist, &world, self.dt)?,
                 _ => unreachable!(),
             };
             for l in lines {

@@ -1566,6 +1566,7 @@ fn particle_template(
     a.count(4..=usize::MAX, "fix ID GROUP particletemplate/sphere SEED atom_type T density constant D radius constant R")?;
     seed_arg(a, ctx, 3)?;
     let (mut atom_type, mut density, mut radius) = (1u32, None, None);
+    let mut volume_limit = 1e-12;
     let mut i = 4;
     while i < a.len() {
         match a.word(i)? {
@@ -1609,16 +1610,39 @@ fn particle_template(
                 }
                 i += 3;
             }
-            _ => return Err(a.keyword_error(i, &["atom_type", "density", "radius"])),
+            "volume_limit" => {
+                volume_limit = a.real(i + 1)?;
+                if volume_limit <= 0.0 {
+                    return Err(a.error(
+                        i + 1,
+                        "Fix particletemplate/sphere: volume_limit > 0 required",
+                    ));
+                }
+                i += 2;
+            }
+            "relative" => {
+                if a.word_in(i + 1, &["yes", "no"])? == "yes" {
+                    return Err(a.unsupported(i, "fix particletemplate/sphere relative yes"));
+                }
+                i += 2;
+            }
+            _ => {
+                return Err(a.keyword_error(
+                    i,
+                    &["atom_type", "density", "radius", "volume_limit", "relative"],
+                ))
+            }
         }
     }
     let density = density
         .ok_or_else(|| a.error(2, "Fix particletemplate/sphere: have to define 'density'"))?;
     let radius =
         radius.ok_or_else(|| a.error(2, "Fix particletemplate/sphere: have to define 'radius'"))?;
-    Ok(FixKind::Template(crate::engine::insert::Template::new(
-        id, atom_type, radius, density,
-    )))
+    let template = crate::engine::insert::Template::new(id, atom_type, radius, density);
+    if template.volume < volume_limit {
+        return Err(a.error(2, "Fix particletemplate/sphere: Volume expectancy too small. Change 'volume_limit' or particle size in the simulation"));
+    }
+    Ok(FixKind::Template(template))
 }
 
 /// `fix ID GROUP particledistribution/discrete SEED N T1 W1 ... TN WN`.

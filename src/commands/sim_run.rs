@@ -151,8 +151,14 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
         "particledistribution/discrete"
         | "particledistribution/discrete/numberbased"
         | "particledistribution/discrete/massbased" => distribution(a, ctx, style)?,
-        "insert/pack" | "insert/rate/region" => insert_pack(a, ctx, &id, style)?,
-        "insert/stream" => insert_stream(a, ctx, &id)?,
+        "insert/pack" | "insert/rate/region" => {
+            ctx.sim.inserts_atoms = true;
+            insert_pack(a, ctx, &id, style)?
+        }
+        "insert/stream" => {
+            ctx.sim.inserts_atoms = true;
+            insert_stream(a, ctx, &id)?
+        }
         "wall/gran" => {
             let (selection, next) = gran_models(a, 3, "history", "fix wall/gran")?;
             if a.word(next)? != "primitive" {
@@ -1740,17 +1746,24 @@ fn insert_pack(
                         a.error(i + 1, "Fix insert/pack: region ID does not exist")
                     })?;
                 let reg = &ctx.sim.regions.list[k];
+                let simple = |k: usize| {
+                    let r = &ctx.sim.regions.list[k];
+                    r.radius_variable.is_none()
+                        && matches!(
+                            r.shape,
+                            crate::engine::region::Shape::Block { .. }
+                                | crate::engine::region::Shape::Cylinder { .. }
+                        )
+                };
                 let ok = reg.interior
-                    && matches!(
-                        reg.shape,
-                        crate::engine::region::Shape::Block { .. }
-                            | crate::engine::region::Shape::Cylinder { .. }
-                    )
-                    && reg.radius_variable.is_none();
+                    && match &reg.shape {
+                        crate::engine::region::Shape::Intersect(m) => m.iter().all(|&k| simple(k)),
+                        _ => simple(k),
+                    };
                 if !ok {
                     return Err(a.unsupported(
                         i + 1,
-                        "fix insert/pack into regions other than block and cylinder (side in)",
+                        "fix insert/pack into regions other than blocks, cylinders and their intersections (side in)",
                     ));
                 }
                 region = Some((k, r.to_string()));

@@ -922,7 +922,8 @@ fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
         .sim
         .group_bit(a.word(0)?)
         .ok_or_else(|| a.error(0, "Could not find velocity group ID"))?;
-    if ctx.sim.particles.is_empty() {
+    // a check cannot know atoms that insertion fixes would have added by now
+    if ctx.sim.particles.is_empty() && !(ctx.sys.mode == Mode::Check && ctx.sim.inserts_atoms) {
         return Err(a.error(0, "Velocity command with no atoms existing"));
     }
     let style = a.word(1)?;

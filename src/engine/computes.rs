@@ -297,8 +297,8 @@ impl Compute {
         };
         let (mut acc, mut count) = match mode {
             ReduceMode::Sum | ReduceMode::Ave => (0.0, 0usize),
-            ReduceMode::Min => (f64::MAX, 0),
-            ReduceMode::Max => (-f64::MAX, 0),
+            ReduceMode::Min => (1.0e20, 0), // LIGGGHTS's BIG: what an empty group reduces to,
+            ReduceMode::Max => (-1.0e20, 0),
         };
         for i in 0..p.len() {
             if p.mask[i] & self.group == 0 {

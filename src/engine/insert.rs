@@ -298,18 +298,57 @@ pub fn surface_exterior(shape: &Shape, x: [f64; 3], cut: f64) -> bool {
     }
 }
 
-fn cross_axes(axis: usize) -> (usize, usize) {
-    match axis {
-        0 => (1, 2),
-        1 => (0, 2),
-        _ => (0, 1),
-    }
+/// Contacts (vectors from the surface point to `x`) of `x` with region `index`'s surface
+/// within `cut`, honouring `side` as LIGGGHTS's `Region::surface` does; intersections keep a
+/// sub-region's contact only where its surface point lies in all the other sub-regions.
+pub fn surface_contacts(regions: &Regions, index: usize, x: [f64; 3], cut: f64) -> Vec<[f64; 3]> {
+    let r = &regions.list[index];
+    surface_contacts_side(regions, index, x, cut, r.interior)
 }
 
-/// A block or cylinder's bounding box.
-fn extent(shape: &Shape) -> ([f64; 3], [f64; 3]) {
-    match shape {
-        Shape::Block { lo, hi } => (*lo, *hi),
+fn surface_contacts_side(
+    regions: &Regions,
+    index: usize,
+    x: [f64; 3],
+    cut: f64,
+    interior: bool,
+) -> Vec<[f64; 3]> {
+    let r = &regions.list[index];
+    let mut out = Vec::new();
+    match &r.shape {
+        Shape::Block { lo, hi } => {
+            if interior {
+                if !(0..3).all(|d| x[d] >= lo[d] && x[d] <= hi[d]) {
+                    return out;
+                }
+                for d in 0..3 {
+                    let delta = x[d] - lo[d];
+                    if delta < cut {
+                        let mut v = [0.0; 3];
+                        v[d] = delta;
+                        out.push(v);
+                    }
+                    let delta = hi[d] - x[d];
+                    if delta < cut {
+                        let mut v = [0.0; 3];
+                        v[d] = -delta;
+                        out.push(v);
+                    }
+                }
+            } else {
+                if (0..3).any(|d| x[d] <= lo[d] - cut || x[d] >= hi[d] + cut) {
+                    return out;
+                }
+                if (0..3).all(|d| x[d] > lo[d] && x[d] < hi[d]) {
+                    return out;
+                }
+                let p = [0, 1, 2].map(|d| x[d].clamp(lo[d], hi[d]));
+                let v = [x[0] - p[0], x[1] - p[1], x[2] - p[2]];
+                if (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() < cut {
+                    out.push(v);
+                }
+            }
+        }
         Shape::Cylinder {
             axis,
             c1,
@@ -319,16 +358,87 @@ fn extent(shape: &Shape) -> ([f64; 3], [f64; 3]) {
             hi,
         } => {
             let (a1, a2) = cross_axes(*axis);
-            let (mut l, mut h) = ([0.0; 3], [0.0; 3]);
-            l[*axis] = *lo;
-            h[*axis] = *hi;
-            l[a1] = c1 - radius;
-            h[a1] = c1 + radius;
-            l[a2] = c2 - radius;
-            h[a2] = c2 + radius;
-            (l, h)
+            let (d1, d2) = (x[a1] - c1, x[a2] - c2);
+            let rr = (d1 * d1 + d2 * d2).sqrt();
+            let a = x[*axis];
+            if interior {
+                if rr > *radius || a < *lo || a > *hi {
+                    return out;
+                }
+                let delta = radius - rr;
+                if delta < cut && rr > 0.0 {
+                    let mut v = [0.0; 3];
+                    v[a1] = d1 * (1.0 - radius / rr);
+                    v[a2] = d2 * (1.0 - radius / rr);
+                    out.push(v);
+                }
+                let delta = a - lo;
+                if delta < cut {
+                    let mut v = [0.0; 3];
+                    v[*axis] = delta;
+                    out.push(v);
+                }
+                let delta = hi - a;
+                if delta < cut {
+                    let mut v = [0.0; 3];
+                    v[*axis] = -delta;
+                    out.push(v);
+                }
+            } else {
+                if rr >= radius + cut || a <= lo - cut || a >= hi + cut {
+                    return out;
+                }
+                if rr < *radius && a > *lo && a < *hi {
+                    return out;
+                }
+                let mut p = x;
+                if rr > *radius {
+                    p[a1] = c1 + d1 * radius / rr;
+                    p[a2] = c2 + d2 * radius / rr;
+                }
+                p[*axis] = if a < *lo {
+                    *lo
+                } else if a > *hi {
+                    *hi
+                } else {
+                    a
+                };
+                let v = [x[0] - p[0], x[1] - p[1], x[2] - p[2]];
+                if (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() < cut {
+                    out.push(v);
+                }
+            }
         }
-        _ => ([0.0; 3], [0.0; 3]),
+        Shape::Intersect(members) => {
+            // interior: sub-region contacts whose point is in all the others; exterior:
+            // with every sub-region's side flipped, points in none of the others
+            for (k, &m) in members.iter().enumerate() {
+                let side = regions.list[m].interior == interior;
+                for v in surface_contacts_side(regions, m, x, cut, side) {
+                    let p = [x[0] - v[0], x[1] - v[1], x[2] - v[2]];
+                    // with the sides flipped for the exterior, "in none of the flipped others"
+                    // is again "in all of the others"
+                    let keep = members
+                        .iter()
+                        .enumerate()
+                        .filter(|(j, _)| *j != k)
+                        .all(|(_, &o)| regions.matches(o, p));
+                    if keep {
+                        out.push(v);
+                    }
+                }
+            }
+        }
+        _ => {}
+    }
+    out
+}
+
+fn cross_axes(axis: usize) -> (usize, usize) {
+    match axis {
+        0 => (1, 2),
+        1 => (0, 2),
+        _ => (0, 1),
     }
 }
 
@@ -375,8 +485,8 @@ impl InsertPack {
     }
 
     /// The Monte Carlo region volume with the region generator (3 draws per sample).
-    fn volume_mc(&mut self, shape: &Shape, w: &World, max_radius: f64) {
-        let (elo, ehi) = extent(shape);
+    fn volume_mc(&mut self, regions: &Regions, w: &World, max_radius: f64) {
+        let (elo, ehi) = regions.extent(self.region).unwrap_or(([0.0; 3], [0.0; 3]));
         let mut hits = 0i64;
         for _ in 0..self.ntry_mc {
             let mut p = [0.0; 3];
@@ -386,7 +496,7 @@ impl InsertPack {
             if !(0..3).all(|d| p[d] >= w.lo[d] && p[d] <= w.hi[d]) {
                 continue;
             }
-            if inside(shape, p) {
+            if regions.matches(self.region, p) {
                 hits += 1;
             }
         }
@@ -408,9 +518,8 @@ impl InsertPack {
             return Ok(Vec::new());
         }
         self.set_up = true;
-        let shape = self.shape(regions).clone();
         self.region_rng.reset(self.seed + 12)?;
-        self.volume_mc(&shape, w, dist.max_radius);
+        self.volume_mc(regions, w, dist.max_radius);
         if self.region_volume <= 0.0 {
             return Err("Fix insert: Region volume calculation with MC failed".into());
         }
@@ -501,7 +610,7 @@ impl InsertPack {
             ratio = ratio.clamp(0.0, 1.0);
         }
         if w.box_changes {
-            self.volume_mc(&shape, w, dist.max_radius);
+            self.volume_mc(regions, w, dist.max_radius);
         }
         let list = dist.list(n);
         if list.is_empty() {
@@ -510,7 +619,8 @@ impl InsertPack {
         let nlist = list.len() as i64;
         let maxrad = dist.max_radius;
         // existing atoms near the region (periodic images too), then placed ones
-        let (elo, ehi) = extent(&shape);
+        let (elo, ehi) = regions.extent(self.region).unwrap_or(([0.0; 3], [0.0; 3]));
+        let exact_near = matches!(shape, Shape::Block { .. } | Shape::Cylinder { .. });
         let bblo = [0, 1, 2].map(|d| elo[d].max(w.lo[d]) - 2.0 * maxrad);
         let bbhi = [0, 1, 2].map(|d| ehi[d].min(w.hi[d]) + 2.0 * maxrad);
         let mut near: Vec<([f64; 3], f64)> = Vec::new();
@@ -533,7 +643,11 @@ impl InsertPack {
                     for sy in shifts(1) {
                         for sz in shifts(2) {
                             let x = [w.x[i][0] + sx, w.x[i][1] + sy, w.x[i][2] + sz];
-                            if !(inside(&shape, x) || surface_exterior(&shape, x, cut)) {
+                            // an atom farther than cut outside the region cannot touch a
+                            // new particle, so intersections keep a superset
+                            if exact_near
+                                && !(inside(&shape, x) || surface_exterior(&shape, x, cut))
+                            {
                                 continue;
                             }
                             if !(0..3).all(|d| x[d] >= bblo[d] && x[d] <= bbhi[d]) {
@@ -554,6 +668,7 @@ impl InsertPack {
         let hi = [0, 1, 2].map(|d| ehi[d].min(w.hi[d]));
         let diff = [0, 1, 2].map(|d| hi[d] - lo[d]);
         let all_in = self.all_in;
+        let region = self.region;
         let gen = |rng: &mut RanPark, rb: f64| loop {
             let p = [
                 lo[0] + rng.uniform() * diff[0],
@@ -561,10 +676,11 @@ impl InsertPack {
                 lo[2] + rng.uniform() * diff[2],
             ];
             if all_in {
-                if inside(&shape, p) && surface_interior(&shape, p, rb) == 0 {
+                if regions.matches(region, p) && surface_contacts(regions, region, p, rb).is_empty()
+                {
                     return p;
                 }
-            } else if inside(&shape, p) {
+            } else if regions.matches(region, p) {
                 return p;
             }
         };

@@ -188,6 +188,8 @@ pub enum DumpStyle {
 
 /// Everything the engine simulates.
 pub struct Simulation {
+    /// An insertion fix has been defined (a check run cannot know the atoms it adds).
+    pub inserts_atoms: bool,
     /// `restart N ROOT` and `restart N FILE1 FILE2` (both may be active).
     pub restart_output: [Option<RestartOutput>; 2],
     /// Pair contact history from `read_restart`, applied at the next neighbour build.
@@ -278,6 +280,7 @@ pub struct Simulation {
 impl Default for Simulation {
     fn default() -> Self {
         Simulation {
+            inserts_atoms: false,
             restart_output: [None, None],
             pending_history: None,
             energy_watch: None,

@@ -330,6 +330,7 @@ impl Compute {
             return Err("compute pair/gran/local needs a granular pair style".into());
         };
         let width = pair.history_width();
+        let flips = pair.history_flips();
         let ncols: usize = fields.iter().map(|f| f.width(width)).sum();
         let p = &sim.particles;
         let pairs = &sim.list.pairs;
@@ -410,7 +411,8 @@ impl Compute {
                     LocalField::History => out.extend(
                         sim.history[k * width..(k + 1) * width]
                             .iter()
-                            .map(|h| h * sign),
+                            .zip(&flips)
+                            .map(|(h, &f)| if f { h * sign } else { *h }),
                     ),
                     LocalField::ContactArea => out.push(
                         -std::f64::consts::PI / 4.0

@@ -243,8 +243,21 @@ pub enum FixKind {
     InsertPack(Box<crate::engine::insert::InsertPack>),
     /// `fix insert/stream` (None until its first setup computes the face geometry).
     InsertStream(Box<StreamFix>),
+    /// `fix adapt N atom diameter v_name`: particle diameters from a variable.
+    Adapt(Adapt),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
+}
+
+/// `fix adapt N atom diameter v_name [scale yes|no] [reset yes|no]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Adapt {
+    /// Apply every this many steps (0: only at the setup of each run).
+    pub every: i64,
+    /// The diameter (length), or the factor on the current diameter with `scale yes`.
+    pub diameter: ForceValue,
+    /// `scale yes`: the variable multiplies the current diameter.
+    pub scale: bool,
 }
 
 /// `fix check/timestep/gran N rayleigh_limit hertz_limit [warn yes|no] [error yes|no] [vmax V]`.

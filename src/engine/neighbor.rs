@@ -24,6 +24,8 @@ pub struct NeighborList {
     pub pairs: Vec<Pair>,
     /// Positions at the last build (for the half-skin rebuild test).
     built_at: Vec<[f64; 3]>,
+    /// Reaches (radii) at the last build (for the rebuild test when radii change).
+    built_reach: Vec<f64>,
     /// Number of builds so far.
     pub builds: u64,
 }
@@ -32,6 +34,11 @@ impl NeighborList {
     /// Positions of the particles when the list was last built.
     pub fn built_positions(&self) -> &[[f64; 3]] {
         &self.built_at
+    }
+
+    /// Radii (reaches) of the particles when the list was last built.
+    pub fn built_reaches(&self) -> &[f64] {
+        &self.built_reach
     }
 
     /// Should the list be rebuilt (LIGGGHTS `check yes`: a particle moved more than skin/2)?
@@ -52,6 +59,8 @@ impl NeighborList {
         self.pairs.clear();
         self.built_at.clear();
         self.built_at.extend_from_slice(x);
+        self.built_reach.clear();
+        self.built_reach.extend_from_slice(reach);
         self.builds += 1;
         let n = x.len();
         if n == 0 {
@@ -200,8 +209,9 @@ pub fn carry_history(
     new_pairs: &[Pair],
     ids: &[i64],
     old_ids: &[i64],
-    width: usize,
+    flips: &[bool],
 ) -> Vec<f64> {
+    let width = flips.len();
     let mut out = vec![0.0; new_pairs.len() * width];
     if width == 0 || old_pairs.is_empty() {
         return out;
@@ -239,7 +249,11 @@ pub fn carry_history(
         dst.copy_from_slice(src);
         if swapped != old_swapped {
             // the pair is seen from the other particle now: vectors flip sign
-            dst.iter_mut().for_each(|v| *v = -*v);
+            for (v, &flip) in dst.iter_mut().zip(flips) {
+                if flip {
+                    *v = -*v;
+                }
+            }
         }
     }
     out
@@ -308,9 +322,9 @@ mod tests {
             j: 1,
             shift: [0.0; 3],
         }];
-        let carried = carry_history(&old, &hist, &new, &[9, 5], &[5, 9], 3);
+        let carried = carry_history(&old, &hist, &new, &[9, 5], &[5, 9], &[true; 3]);
         assert_eq!(carried, vec![-1.0, -2.0, -3.0]);
-        let fresh = carry_history(&old, &hist, &new, &[9, 7], &[5, 9], 3);
+        let fresh = carry_history(&old, &hist, &new, &[9, 7], &[5, 9], &[true; 3]);
         assert_eq!(fresh, vec![0.0; 3]);
     }
 }

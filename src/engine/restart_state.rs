@@ -190,6 +190,10 @@ impl Simulation {
         if width == 0 || pending.width != width {
             return;
         }
+        let flips = self
+            .pair
+            .as_ref()
+            .map_or(vec![true; width], |p| p.history_flips());
         let ids = &self.particles.id;
         for (k, pair) in self.list.pairs.iter().enumerate() {
             let (ti, tj) = (ids[pair.i as usize], ids[pair.j as usize]);
@@ -210,7 +214,7 @@ impl Simulation {
                     .iter_mut()
                     .enumerate()
                 {
-                    *x = sign * v[d];
+                    *x = if flips[d] { sign * v[d] } else { v[d] };
                 }
             }
         }
@@ -226,6 +230,7 @@ impl Simulation {
         if width == 0 || self.history.len() != self.list.pairs.len() * width {
             return out;
         }
+        let flips = self.pair.as_ref().map_or(Vec::new(), |p| p.history_flips());
         for (k, pair) in self.list.pairs.iter().enumerate() {
             let (i, j) = (pair.i as usize, pair.j as usize);
             if i >= p.len() || j >= p.len() {
@@ -239,9 +244,13 @@ impl Simulation {
                 continue;
             }
             out.entry(p.id[i]).or_default().push((p.id[j], h.to_vec()));
-            out.entry(p.id[j])
-                .or_default()
-                .push((p.id[i], h.iter().map(|v| -v).collect()));
+            out.entry(p.id[j]).or_default().push((
+                p.id[i],
+                h.iter()
+                    .zip(&flips)
+                    .map(|(v, &f)| if f { -v } else { *v })
+                    .collect(),
+            ));
         }
         out
     }

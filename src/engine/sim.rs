@@ -46,6 +46,8 @@ impl Default for NeighborSettings {
 pub trait PairInteraction: Send {
     /// Doubles of history kept per listed pair (0 when the model keeps none).
     fn history_width(&self) -> usize;
+    /// Per history value: does it change sign when the pair is seen from the other atom?
+    fn history_flips(&self) -> Vec<bool>;
     /// The largest overlap of the last evaluation as (overlap / smaller radius, i, j).
     fn worst_overlap(&self) -> Option<(f64, u32, u32)> {
         None
@@ -706,13 +708,14 @@ impl Simulation {
                         .any(|&(a, b)| (mi & a != 0 && mj & b != 0) || (mi & b != 0 && mj & a != 0))
             });
         }
+        let flips = self.pair.as_ref().map_or(Vec::new(), |p| p.history_flips());
         self.history = carry_history(
             &old_pairs,
             &self.history,
             &self.list.pairs,
             &self.particles.id,
             &self.list_ids,
-            width,
+            &flips,
         );
         if let Some(pending) = self.pending_history.take() {
             self.apply_pending_history(pending, width);
@@ -906,6 +909,9 @@ impl Simulation {
             fluid_viscosity: table("FluidViscosity"),
             maximum_restitution: table("MaximumRestitution"),
             critical_stokes: table("CriticalStokes"),
+            max_elastic_stiffness: table("coefficientMaxElasticStiffness"),
+            adhesion_stiffness: table("coefficientAdhesionStiffness"),
+            plasticity_depth: table("coefficientPlasticityDepth"),
         }
     }
 
@@ -933,6 +939,19 @@ impl Simulation {
             trigger = 0.5 * (n.skin - (d1 + d2));
         }
         let limit = trigger * trigger;
+        if self.radii_vary() {
+            // LIGGGHTS's test when a fix changes radii: growth eats into the skin too
+            let delta = limit.sqrt();
+            let p = &self.particles;
+            return (0..p.len()).any(|i| {
+                let (a, b) = (p.x[i], self.list.built_positions()[i]);
+                let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+                let rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                let delr = p.radius[i] - self.list.built_reaches()[i];
+                let delrsq = delr * delr;
+                delrsq > limit || rsq > limit - 2. * delr * delta + delrsq
+            });
+        }
         self.particles
             .x
             .iter()
@@ -941,6 +960,58 @@ impl Simulation {
                 let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
                 d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > limit
             })
+    }
+
+    /// A fix changes particle radii during runs (`fix adapt ... atom diameter`).
+    fn radii_vary(&self) -> bool {
+        self.fixes
+            .iter()
+            .any(|f| matches!(f.kind, FixKind::Adapt(_)))
+    }
+
+    /// `fix adapt ... atom diameter v_name` (LIGGGHTS's pre_force, and setup_pre_force when
+    /// `setup`): every N steps set the diameters of the group's particles from the variable,
+    /// keeping each particle's density.
+    fn adapt_radii(&mut self, setup: bool, vars: &mut dyn VariableSource) -> Result<(), String> {
+        use crate::engine::fixes::ForceValue;
+        use std::f64::consts::PI;
+        for k in 0..self.fixes.len() {
+            let FixKind::Adapt(ad) = &self.fixes[k].kind else {
+                continue;
+            };
+            if !setup && (ad.every == 0 || self.step % ad.every != 0) {
+                continue;
+            }
+            let (group, scale) = (self.fixes[k].group, ad.scale);
+            let values = match &ad.diameter {
+                ForceValue::Equal(name) => {
+                    let name = name.clone();
+                    vec![vars.equal(self, &name)?; self.particles.len()]
+                }
+                ForceValue::Atom(name) => {
+                    let name = name.clone();
+                    vars.atom(self, &name)?
+                }
+                ForceValue::Constant(c) => vec![*c; self.particles.len()],
+                ForceValue::Null => continue,
+            };
+            let p = &mut self.particles;
+            for i in 0..p.len() {
+                if p.mask[i] & group == 0 {
+                    continue;
+                }
+                let r = p.radius[i];
+                let density = p.mass[i] / (4.0 * PI / 3.0 * r * r * r);
+                let mut value = values[i];
+                if scale {
+                    value *= r * 2.0;
+                }
+                let r = 0.5 * value;
+                p.radius[i] = r;
+                p.mass[i] = 4.0 * PI / 3.0 * r * r * r * density;
+            }
+        }
+        Ok(())
     }
 
     fn list_positions(&self) -> &[[f64; 3]] {
@@ -1112,6 +1183,7 @@ impl Simulation {
                 self.sort_particles();
             }
             self.build_neighbors();
+            self.adapt_radii(true, vars)?;
             // LIGGGHTS's setup evaluation does not advance contact history
             self.compute_forces(false, vars)?;
             self.guard_motion()?;
@@ -1144,6 +1216,7 @@ impl Simulation {
                 }
                 self.build_neighbors();
             }
+            self.adapt_radii(false, vars)?;
             self.compute_forces(true, vars)?;
             self.guard_forces()?;
             fixes::final_integrate(&self.fixes, &mut self.particles, self.dt);
@@ -1663,6 +1736,12 @@ impl Simulation {
                         .find(|c| &c.id == cid)
                         .ok_or_else(|| format!("Could not find dump local compute ID {cid}"))?;
                     let (ncols, rows) = c.local(self)?;
+                    if *col >= ncols.max(1) {
+                        return Err(format!(
+                            "Dump local compute vector is accessed out-of-range: c_{cid}[{}] of a compute with {ncols} column(s)",
+                            col + 1
+                        ));
+                    }
                     data.push((ncols, rows, *col));
                 }
                 let nrows = data.first().map_or(0, |d| d.1.len() / d.0.max(1));

@@ -77,6 +77,12 @@ pub struct MaterialInput {
     pub maximum_restitution: Option<Vec<f64>>,
     /// `CriticalStokes peratomtypepair` (dimensionless), for `viscous on`.
     pub critical_stokes: Option<Vec<f64>>,
+    /// `coefficientMaxElasticStiffness peratomtypepair` (dimensionless), for hooke/hysteresis.
+    pub max_elastic_stiffness: Option<Vec<f64>>,
+    /// `coefficientAdhesionStiffness peratomtypepair` (dimensionless), for hooke/hysteresis.
+    pub adhesion_stiffness: Option<Vec<f64>>,
+    /// `coefficientPlasticityDepth peratomtypepair` (dimensionless), for hooke/hysteresis.
+    pub plasticity_depth: Option<Vec<f64>>,
 }
 
 /// A derived per-type-pair quantity a sub-model asks for (LIGGGHTS's registry names).
@@ -120,6 +126,12 @@ pub enum Property {
     CoeffStc,
     /// `coeffRestMax`: MaximumRestitution (stored as its logarithm).
     CoeffRestMax,
+    /// `kn2kcMax`: coefficientMaxElasticStiffness (k2Max / kn, dimensionless).
+    CoeffMaxElasticStiffness,
+    /// `kn2kc`: coefficientAdhesionStiffness (kc / kn, dimensionless).
+    CoeffAdhesionStiffness,
+    /// `phiF`: coefficientPlasticityDepth (dimensionless).
+    CoeffPlasticityDepth,
 }
 
 /// Every coefficient of one type pair, in SI units; quantities no selected model asked for
@@ -164,6 +176,12 @@ pub struct PairCoeffs {
     pub critical_stokes: f64,
     /// ln(MaximumRestitution) for hooke `viscous on` (dimensionless).
     pub log_coeff_rest_max: f64,
+    /// k2Max / kn of hooke/hysteresis (dimensionless).
+    pub kn_to_k2_max: f64,
+    /// kc / kn of hooke/hysteresis (dimensionless).
+    pub kn_to_kc: f64,
+    /// Plasticity depth phiF of hooke/hysteresis (dimensionless).
+    pub phi_f: f64,
 }
 
 /// Per-type-pair coefficient tables, indexed by 1-based atom types.
@@ -194,6 +212,9 @@ enum Base {
     FluidViscosity,
     CriticalStokes,
     MaxRestitution,
+    MaxElasticStiffness,
+    AdhesionStiffness,
+    PlasticityDepth,
 }
 
 impl Property {
@@ -217,6 +238,9 @@ impl Property {
             Property::CoeffMu => &[Base::FluidViscosity],
             Property::CoeffStc => &[Base::CriticalStokes],
             Property::CoeffRestMax => &[Base::MaxRestitution],
+            Property::CoeffMaxElasticStiffness => &[Base::MaxElasticStiffness],
+            Property::CoeffAdhesionStiffness => &[Base::AdhesionStiffness],
+            Property::CoeffPlasticityDepth => &[Base::PlasticityDepth],
         }
     }
 }
@@ -243,6 +267,9 @@ impl Base {
             Base::FluidViscosity => "FluidViscosity",
             Base::CriticalStokes => "CriticalStokes",
             Base::MaxRestitution => "MaximumRestitution",
+            Base::MaxElasticStiffness => "coefficientMaxElasticStiffness",
+            Base::AdhesionStiffness => "coefficientAdhesionStiffness",
+            Base::PlasticityDepth => "coefficientPlasticityDepth",
         }
     }
 }
@@ -302,6 +329,9 @@ struct Bases {
     fluid_viscosity: Option<Vec<f64>>,
     critical_stokes: Option<Vec<f64>>,
     max_restitution: Option<Vec<f64>>,
+    max_elastic_stiffness: Option<Vec<f64>>,
+    adhesion_stiffness: Option<Vec<f64>>,
+    plasticity_depth: Option<Vec<f64>>,
 }
 
 impl Bases {
@@ -416,6 +446,17 @@ impl Bases {
             Base::GammanAbs if self.gamman_abs.is_none() => {
                 self.gamman_abs = Some(inp.per_pair(&inp.gamman_abs, base, caller)?)
             }
+            Base::MaxElasticStiffness if self.max_elastic_stiffness.is_none() => {
+                self.max_elastic_stiffness =
+                    Some(inp.per_pair(&inp.max_elastic_stiffness, base, caller)?)
+            }
+            Base::AdhesionStiffness if self.adhesion_stiffness.is_none() => {
+                self.adhesion_stiffness =
+                    Some(inp.per_pair(&inp.adhesion_stiffness, base, caller)?)
+            }
+            Base::PlasticityDepth if self.plasticity_depth.is_none() => {
+                self.plasticity_depth = Some(inp.per_pair(&inp.plasticity_depth, base, caller)?)
+            }
             Base::GammatAbs if self.gammat_abs.is_none() => {
                 self.gammat_abs = Some(inp.per_pair(&inp.gammat_abs, base, caller)?)
             }
@@ -488,6 +529,9 @@ impl Material {
                 p.fluid_viscosity = at(&b.fluid_viscosity);
                 p.critical_stokes = at(&b.critical_stokes);
                 p.log_coeff_rest_max = b.max_restitution.as_ref().map_or(0.0, |t| t[k].ln());
+                p.kn_to_k2_max = at(&b.max_elastic_stiffness);
+                p.kn_to_kc = at(&b.adhesion_stiffness);
+                p.phi_f = at(&b.plasticity_depth);
             }
         }
         Ok(Material { ntypes: n, pairs })

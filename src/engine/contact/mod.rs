@@ -20,8 +20,9 @@
 //! parsed `pair_style gran` selection onto one of the monomorphised combinations once per
 //! run and falls back to run-time enums ([`DynContactModel`]) for any other combination.
 //!
-//! History per contact is `[tangential (T::HISTORY_LEN), rolling (R::HISTORY_LEN)]`, the
-//! order LIGGGHTS registers it (shearx..z, then r_torquex..z_old).
+//! History per contact is `[normal (N::HISTORY_LEN), tangential (T::HISTORY_LEN), rolling
+//! (R::HISTORY_LEN)]`, the order LIGGGHTS registers it (deltaMax of hooke/hysteresis, then
+//! shearx..z, then r_torquex..z_old).
 
 // Component loops index several arrays the way LIGGGHTS writes them out per component, and
 // negated comparisons keep LIGGGHTS's behaviour for NaN.
@@ -44,7 +45,9 @@ use std::f64::consts::PI;
 
 pub use cohesion::{AnyCohesion, CohesionModel, NoCohesion, Sjkr, Sjkr2};
 pub use material::{Material, MaterialInput, PairCoeffs, Property, UnitStyle};
-pub use normal::{AnyNormal, Hertz, HertzStiffness, Hooke, HookeStiffness, NormalModel};
+pub use normal::{
+    AnyNormal, Hertz, HertzStiffness, Hooke, HookeHysteresis, HookeStiffness, NormalModel,
+};
 pub use rolling::{AnyRolling, Cdt, Epsd, Epsd2, Epsd3, NoRolling, RollingModel};
 pub use surface::{DefaultSurface, SurfaceModel};
 pub use tangential::{
@@ -344,8 +347,8 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
     /// Doubles of history per contact the type reserves (tangential, then rolling; the
     /// normal and cohesion models regolith implements keep none, which is checked here).
     pub const HISTORY_LEN: usize = {
-        assert!(N::HISTORY_LEN == 0 && C::HISTORY_LEN == 0);
-        T::HISTORY_LEN + R::HISTORY_LEN
+        assert!(C::HISTORY_LEN == 0);
+        N::HISTORY_LEN + T::HISTORY_LEN + R::HISTORY_LEN
     };
 
     /// Combine four sub-models.
@@ -358,10 +361,19 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
         }
     }
 
-    /// Doubles of history per contact this instance uses (tangential, then rolling).
+    /// Doubles of history per contact this instance uses (normal, tangential, then rolling,
+    /// LIGGGHTS's order).
     #[inline(always)]
     pub fn history_len(&self) -> usize {
-        self.tangential.history_len() + self.rolling.history_len()
+        self.normal.history_len() + self.tangential.history_len() + self.rolling.history_len()
+    }
+
+    /// For each history value, whether it changes sign when the pair is seen from its other
+    /// particle: the normal model says; tangential shear and rolling torques are vectors.
+    pub fn history_flips(&self) -> Vec<bool> {
+        let mut v = self.normal.history_flips().to_vec();
+        v.resize(self.history_len(), true);
+        v
     }
 
     /// The coefficients the sub-models need, in LIGGGHTS's `connectToProperties` order
@@ -379,7 +391,8 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
     #[inline(always)]
     fn intersect(&self, c: &mut Contact, m: &PairCoeffs, history: &mut [f64]) {
         DefaultSurface.surfaces_intersect(c);
-        self.normal.surfaces_intersect(c, m);
+        let (hn, history) = history.split_at_mut(self.normal.history_len());
+        self.normal.surfaces_intersect(c, m, hn);
         self.cohesion.surfaces_intersect(c, m);
         let (ht, hr) = history.split_at_mut(self.tangential.history_len());
         self.tangential.surfaces_intersect(c, m, ht);
@@ -497,6 +510,8 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
     /// distance; resets the tangential and rolling history.
     #[inline]
     pub fn surfaces_close(&self, history: &mut [f64]) {
+        let (hn, history) = history.split_at_mut(self.normal.history_len());
+        self.normal.surfaces_close(hn);
         let (ht, hr) = history.split_at_mut(self.tangential.history_len());
         self.tangential.surfaces_close(ht);
         self.rolling.surfaces_close(hr);
@@ -680,6 +695,17 @@ impl ModelSelection {
                 ("heating_tracking", false),
                 ("disableNormalWhenBonded", false),
             ]),
+            // LIGGGHTS registers hooke's settings but its hysteresis force ignores limitForce
+            // and ktToKnUser: regolith refuses `on` rather than ignore it
+            "hooke/hysteresis" => s.extend([
+                ("viscous", true),
+                ("tangential_damping", true),
+                ("limitForce", false),
+                ("ktToKnUser", false),
+                ("heating_normal_hooke", false),
+                ("heating_tracking", false),
+                ("disableNormalWhenBonded", false),
+            ]),
             "hertz/stiffness" => s.extend([("tangential_damping", true), ("limitForce", true)]),
             "hooke/stiffness" => s.extend([
                 ("tangential_damping", true),
@@ -779,6 +805,14 @@ impl ModelSelection {
                 tangential_damping: o.tangential_damping,
                 absolute_damping: o.absolute_damping,
                 limit_force: o.limit_force,
+            }),
+            "hooke/hysteresis" => AnyNormal::HookeHysteresis(HookeHysteresis {
+                hooke: Hooke {
+                    tangential_damping: o.tangential_damping,
+                    limit_force: false,
+                    viscous: o.viscous,
+                    kt_to_kn: false,
+                },
             }),
             n => return Err(unsupported("model", n)),
         };
@@ -904,6 +938,8 @@ any_contact_model! {
     HookeHistory: Hooke(Hooke), History(History), Off(NoCohesion), Off(NoRolling);
     /// hooke, no_history.
     HookeNoHistory: Hooke(Hooke), NoHistory(NoHistory), Off(NoCohesion), Off(NoRolling);
+    /// hooke/hysteresis, history.
+    HookeHysteresisHistory: HookeHysteresis(HookeHysteresis), History(History), Off(NoCohesion), Off(NoRolling);
     /// hertz/stiffness, history.
     HertzStiffnessHistory: HertzStiffness(HertzStiffness), History(History), Off(NoCohesion), Off(NoRolling);
     /// hooke/stiffness, history.

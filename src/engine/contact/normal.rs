@@ -14,10 +14,27 @@ use super::Contact;
 /// A normal model: sets `c.normal_force`, `kn`, `kt`, `gamman`, `gammat` and adds the
 /// normal force to `c.fi` (and `c.fj` for particle pairs).
 pub trait NormalModel: Send + Sync + Copy + 'static {
-    /// Doubles of per-contact history the model keeps.
+    /// Doubles of per-contact history the model keeps (the maximum, for run-time enums).
     const HISTORY_LEN: usize = 0;
-    /// Compute the normal force of a touching contact.
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs);
+    /// Doubles of history this instance uses.
+    #[inline(always)]
+    fn history_len(&self) -> usize {
+        Self::HISTORY_LEN
+    }
+    /// For each history value: does it change sign when the contact is seen from the other
+    /// particle (LIGGGHTS's `newtonflag` of `add_history_value`)?
+    fn history_flips(&self) -> &'static [bool] {
+        &[]
+    }
+    /// Compute the normal force of a touching contact; `history` holds this model's values.
+    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, history: &mut [f64]);
+    /// The surfaces separated (`surfacesClose`): reset the history.
+    #[inline(always)]
+    fn surfaces_close(&self, history: &mut [f64]) {
+        for h in history.iter_mut().take(self.history_len()) {
+            *h = 0.0;
+        }
+    }
     /// The coefficients the model needs, with LIGGGHTS's caller name, in request order.
     fn properties(&self, out: &mut Vec<(Property, &'static str)>);
 }
@@ -98,7 +115,7 @@ impl Default for Hertz {
 
 impl NormalModel for Hertz {
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs) {
+    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, _: &mut [f64]) {
         let reff = reff(c);
         let meff = c.meff;
         let sqrtval = (reff * c.deltan).sqrt();
@@ -162,7 +179,7 @@ impl Default for Hooke {
 
 impl NormalModel for Hooke {
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs) {
+    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, _: &mut [f64]) {
         let reff = reff(c);
         let meff = c.meff;
         let sqrtval = reff.sqrt();
@@ -238,7 +255,7 @@ impl Default for HertzStiffness {
 
 impl NormalModel for HertzStiffness {
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs) {
+    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, _: &mut [f64]) {
         let meff = c.meff;
         let reff = reff(c);
         let polyhertz = (reff * c.deltan).sqrt();
@@ -296,7 +313,7 @@ impl Default for HookeStiffness {
 
 impl NormalModel for HookeStiffness {
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs) {
+    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, _: &mut [f64]) {
         let meff = c.meff;
         let kn = m.kn;
         let kt = m.kt;
@@ -335,6 +352,100 @@ impl NormalModel for HookeStiffness {
     }
 }
 
+/// `model hooke/hysteresis` (Walton-Braun): loading along kn (model hooke's stiffness), unloading
+/// and reloading along k2, which grows from kn to k2Max = kn coefficientMaxElasticStiffness as
+/// the largest overlap deltaMax grows to deltaMaxLim = k2Max/(k2Max - kn) phiF 2 R*, and an
+/// adhesive branch -kc d with kc = kn coefficientAdhesionStiffness. Keeps deltaMax (m) as
+/// history. Its damping is model hooke's, written as LIGGGHTS's hysteresis model writes it.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct HookeHysteresis {
+    /// The model hooke options it inherits (`tangential_damping`, `viscous`).
+    pub hooke: Hooke,
+}
+
+impl NormalModel for HookeHysteresis {
+    const HISTORY_LEN: usize = 1;
+
+    /// deltaMax is a length, the same from both particles.
+    fn history_flips(&self) -> &'static [bool] {
+        &[false]
+    }
+
+    #[inline(always)]
+    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, history: &mut [f64]) {
+        let reff = reff(c);
+        let meff = c.meff;
+        let deltan = c.deltan;
+        let log_e = if self.hooke.viscous {
+            let stokes = meff * c.vn / (6.0 * PI * m.fluid_viscosity * reff * reff);
+            m.log_coeff_rest_max + m.critical_stokes / stokes
+        } else {
+            m.coeff_rest_log
+        };
+        let sqrtval = reff.sqrt();
+        let cv = m.char_vel;
+        let kn = 16. / 15.
+            * sqrtval
+            * m.yeff
+            * (15. * meff * cv * cv / (16. * sqrtval * m.yeff)).powf(0.2);
+        let kt = kn;
+        let gamman = (4. * meff * kn / (1. + (PI / log_e) * (PI / log_e))).sqrt();
+        let gammat = if self.hooke.tangential_damping {
+            gamman
+        } else {
+            0.0
+        };
+        let k2_max = kn * m.kn_to_k2_max;
+        let kc = kn * m.kn_to_kc;
+        // the largest overlap so far (LIGGGHTS raises it even when history is frozen)
+        if deltan > history[0] {
+            history[0] = deltan;
+        }
+        let delta_max = history[0];
+        let delta_max_lim = (k2_max / (k2_max - kn)) * m.phi_f * 2. * reff;
+        let adhesive_delta_max = || {
+            0.5 * (deltan
+                + (deltan * deltan + 4. * ((kn + kc) * deltan * delta_max_lim / (k2_max - kn)))
+                    .sqrt())
+        };
+        let f_hys;
+        if delta_max >= delta_max_lim {
+            // beyond the plastic limit: no kn branch any more
+            let f_tmp = k2_max * (deltan - delta_max_lim) + kn * delta_max_lim;
+            if f_tmp >= -kc * deltan {
+                f_hys = f_tmp;
+            } else {
+                f_hys = -kc * deltan;
+                if c.update_history {
+                    history[0] = adhesive_delta_max();
+                }
+            }
+        } else {
+            let k2 = kn + (k2_max - kn) * delta_max / delta_max_lim;
+            let f_tmp = k2 * (deltan - delta_max) + kn * delta_max;
+            if f_tmp >= kn * deltan {
+                f_hys = kn * deltan;
+            } else if f_tmp > -kc * deltan {
+                f_hys = f_tmp;
+            } else {
+                f_hys = -kc * deltan;
+                if c.update_history {
+                    history[0] = adhesive_delta_max();
+                }
+            }
+        }
+        let fn_damping = -gamman * c.vn;
+        finish(c, fn_damping, f_hys, false, kn, kt, gamman, gammat);
+    }
+
+    fn properties(&self, out: &mut Vec<(Property, &'static str)>) {
+        self.hooke.properties(out);
+        out.push((Property::CoeffMaxElasticStiffness, "model hooke/hysteresis"));
+        out.push((Property::CoeffAdhesionStiffness, "model hooke/hysteresis"));
+        out.push((Property::CoeffPlasticityDepth, "model hooke/hysteresis"));
+    }
+}
+
 /// Any normal model, chosen at run time (the fallback for combinations that are not
 /// monomorphised; one `match` per call).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -347,16 +458,36 @@ pub enum AnyNormal {
     HertzStiffness(HertzStiffness),
     /// `model hooke/stiffness`.
     HookeStiffness(HookeStiffness),
+    /// `model hooke/hysteresis`.
+    HookeHysteresis(HookeHysteresis),
 }
 
 impl NormalModel for AnyNormal {
+    const HISTORY_LEN: usize = HookeHysteresis::HISTORY_LEN;
+
     #[inline]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs) {
+    fn history_len(&self) -> usize {
         match self {
-            AnyNormal::Hertz(n) => n.surfaces_intersect(c, m),
-            AnyNormal::Hooke(n) => n.surfaces_intersect(c, m),
-            AnyNormal::HertzStiffness(n) => n.surfaces_intersect(c, m),
-            AnyNormal::HookeStiffness(n) => n.surfaces_intersect(c, m),
+            AnyNormal::HookeHysteresis(n) => n.history_len(),
+            _ => 0,
+        }
+    }
+
+    fn history_flips(&self) -> &'static [bool] {
+        match self {
+            AnyNormal::HookeHysteresis(n) => n.history_flips(),
+            _ => &[],
+        }
+    }
+
+    #[inline]
+    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, h: &mut [f64]) {
+        match self {
+            AnyNormal::Hertz(n) => n.surfaces_intersect(c, m, h),
+            AnyNormal::Hooke(n) => n.surfaces_intersect(c, m, h),
+            AnyNormal::HertzStiffness(n) => n.surfaces_intersect(c, m, h),
+            AnyNormal::HookeStiffness(n) => n.surfaces_intersect(c, m, h),
+            AnyNormal::HookeHysteresis(n) => n.surfaces_intersect(c, m, h),
         }
     }
 
@@ -366,6 +497,7 @@ impl NormalModel for AnyNormal {
             AnyNormal::Hooke(n) => n.properties(out),
             AnyNormal::HertzStiffness(n) => n.properties(out),
             AnyNormal::HookeStiffness(n) => n.properties(out),
+            AnyNormal::HookeHysteresis(n) => n.properties(out),
         }
     }
 }
@@ -396,7 +528,7 @@ mod tests {
         };
         let d = 1e-4;
         let mut c = contact(d, 0.0);
-        Hertz::default().surfaces_intersect(&mut c, &m);
+        Hertz::default().surfaces_intersect(&mut c, &m, &mut []);
         let rstar: f64 = 0.01 * 0.02 / 0.03;
         let expect = 4.0 / 3.0 * 7e7 * rstar.sqrt() * d.powf(1.5);
         assert!((c.normal_force - expect).abs() < 1e-12 * expect);
@@ -405,7 +537,7 @@ mod tests {
         // kt = 8 G* sqrt(R* d); damping opposes approach (vn < 0 pushes apart harder)
         assert!((c.kt - 8.0 * 3e7 * (rstar * d).sqrt()).abs() < 1e-9 * c.kt);
         let mut c2 = contact(d, -0.1);
-        Hertz::default().surfaces_intersect(&mut c2, &m);
+        Hertz::default().surfaces_intersect(&mut c2, &m, &mut []);
         assert!(c2.normal_force > c.normal_force);
         assert!(c.gamman > 0.0 && c.gammat > 0.0);
     }
@@ -419,14 +551,14 @@ mod tests {
             ..PairCoeffs::default()
         };
         let mut c = contact(1e-7, 5.0);
-        Hertz::default().surfaces_intersect(&mut c, &m);
+        Hertz::default().surfaces_intersect(&mut c, &m, &mut []);
         assert!(c.normal_force < 0.0);
         let mut c = contact(1e-7, 5.0);
         let h = Hertz {
             limit_force: true,
             ..Hertz::default()
         };
-        h.surfaces_intersect(&mut c, &m);
+        h.surfaces_intersect(&mut c, &m, &mut []);
         assert_eq!(c.normal_force, 0.0);
     }
 
@@ -440,14 +572,14 @@ mod tests {
             ..PairCoeffs::default()
         };
         let mut c = contact(1e-4, -0.1);
-        Hooke::default().surfaces_intersect(&mut c, &m);
+        Hooke::default().surfaces_intersect(&mut c, &m, &mut []);
         assert_eq!(c.gamman, (4.0 * c.meff * c.kn).sqrt());
         let tiny = PairCoeffs {
             coeff_rest_log: (1e-300f64).ln(),
             ..m
         };
         let mut c2 = contact(1e-4, -0.1);
-        Hooke::default().surfaces_intersect(&mut c2, &tiny);
+        Hooke::default().surfaces_intersect(&mut c2, &tiny, &mut []);
         assert!((c2.gamman - c.gamman).abs() < 1e-4 * c.gamman);
         // Hertz uses betaeff = -1 from the material tables, which is finite
         let h = PairCoeffs {
@@ -457,7 +589,7 @@ mod tests {
             ..PairCoeffs::default()
         };
         let mut c3 = contact(1e-4, -0.1);
-        Hertz::default().surfaces_intersect(&mut c3, &h);
+        Hertz::default().surfaces_intersect(&mut c3, &h, &mut []);
         assert!(c3.gamman.is_finite() && c3.gamman > 0.0);
     }
 
@@ -471,7 +603,7 @@ mod tests {
             ..PairCoeffs::default()
         };
         let mut c = contact(1e-3, -0.2);
-        HookeStiffness::default().surfaces_intersect(&mut c, &m);
+        HookeStiffness::default().surfaces_intersect(&mut c, &m, &mut []);
         assert!((c.normal_force - (2e4 * 1e-3 + 0.003 * 50.0 * 0.2)).abs() < 1e-12);
         assert_eq!(c.gammat, 0.003 * 20.0);
         let mut c = contact(1e-3, -0.2);
@@ -479,7 +611,7 @@ mod tests {
             tangential_damping: false,
             ..HookeStiffness::default()
         }
-        .surfaces_intersect(&mut c, &m);
+        .surfaces_intersect(&mut c, &m, &mut []);
         assert_eq!(c.gammat, 0.0);
     }
 }

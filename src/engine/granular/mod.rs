@@ -130,6 +130,10 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         self.model.history_len()
     }
 
+    fn history_flips(&self) -> Vec<bool> {
+        self.model.history_flips()
+    }
+
     fn worst_overlap(&self) -> Option<(f64, u32, u32)> {
         self.worst
     }

@@ -2080,12 +2080,32 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
                 every = Some(a.int(i + 1)?);
                 i += 2;
             }
-            "nparticles" => {
-                total = Some(a.int(i + 1)?);
+            w @ ("nparticles" | "mass") => {
+                if a.word(i + 1)? == "INF" {
+                    return Err(a.unsupported(i + 1, &format!("fix insert/stream {w} INF")));
+                }
+                if total.is_some() {
+                    return Err(a.error(
+                        i,
+                        "Fix insert/stream: must not define both 'nparticles' and 'mass'",
+                    ));
+                }
+                total = Some(if w == "mass" {
+                    Err(a.real(i + 1)?)
+                } else {
+                    Ok(a.int(i + 1)?)
+                });
                 i += 2;
             }
-            "particlerate" => {
-                rate = Some(a.real(i + 1)?);
+            w @ ("particlerate" | "massrate") => {
+                if rate.is_some() {
+                    return Err(a.error(
+                        i,
+                        "Fix insert/stream: must not define both 'particlerate' and 'massrate'",
+                    ));
+                }
+                let r = a.real(i + 1)?;
+                rate = Some(if w == "massrate" { Err(r) } else { Ok(r) });
                 i += 2;
             }
             "start" => {
@@ -2137,9 +2157,8 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
                 }
                 i += 2;
             }
-            w @ ("mass" | "massrate" | "duration" | "duration_time" | "parallel"
-            | "orientation" | "set_property" | "compress_tags" | "random_distribute"
-            | "insert_every_time") => {
+            w @ ("duration" | "duration_time" | "parallel" | "orientation" | "set_property"
+            | "compress_tags" | "random_distribute" | "insert_every_time") => {
                 return Err(a.unsupported(i, &format!("fix insert/stream {w}")))
             }
             _ => {
@@ -2149,7 +2168,9 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
                         "seed",
                         "distributiontemplate",
                         "nparticles",
+                        "mass",
                         "particlerate",
+                        "massrate",
                         "insertion_face",
                         "extrude_length",
                         "insert_every",
@@ -2170,8 +2191,18 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
     let seed = seed.ok_or_else(|| need("seed"))?;
     let distribution = dist.ok_or_else(|| need("distributiontemplate"))?;
     let triangles = face.ok_or_else(|| need("insertion_face"))?;
-    let total = total.ok_or_else(|| need("nparticles"))?;
-    let rate = rate.ok_or_else(|| need("particlerate"))?;
+    let total = total.ok_or_else(|| {
+        a.error(
+            2,
+            "Fix insert/stream: must define either 'nparticles' or 'mass'",
+        )
+    })?;
+    let rate = rate.ok_or_else(|| {
+        a.error(
+            2,
+            "Fix insert/stream: must define either 'massrate' or 'particlerate'",
+        )
+    })?;
     if extrude.is_some() == every.is_some() {
         return Err(a.error(
             2,

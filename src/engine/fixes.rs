@@ -863,10 +863,10 @@ pub struct StreamFix {
     pub extrude: Option<f64>,
     /// `insert_every`, if given.
     pub every: Option<i64>,
-    /// `nparticles`.
-    pub total: i64,
-    /// `particlerate` (1/time).
-    pub rate: f64,
+    /// `nparticles N` (Ok) or `mass M` (Err, mass units).
+    pub total: Result<i64, f64>,
+    /// `particlerate R` (Ok, 1/time) or `massrate R` (Err, mass/time).
+    pub rate: Result<f64, f64>,
     /// `vel`.
     pub velocity: crate::engine::insert::Velocity,
     /// `omega constant`.

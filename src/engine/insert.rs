@@ -916,6 +916,8 @@ pub struct InsertStream {
     pub every: i64,
     /// Particles per insertion (mean).
     pub per_insertion: f64,
+    /// Particle rate (1/time) and mass rate (mass/time), as LIGGGHTS prints them.
+    pub rates: (f64, f64),
     /// Total to insert.
     pub total: i64,
     /// `vel` of the released particles.
@@ -947,8 +949,8 @@ pub struct InsertStream {
 
 impl InsertStream {
     /// The setup line LIGGGHTS prints.
-    pub fn setup_lines(&self, dist: &Distribution, dt: f64) -> Vec<String> {
-        let rate = self.per_insertion / (self.every as f64 * dt);
+    pub fn setup_lines(&self, dist: &Distribution) -> Vec<String> {
+        let (rate, mass_rate) = self.rates;
         let f = |spec: &str, v: f64| crate::script::format::with_spec(spec, v).unwrap_or_default();
         vec![format!(
             "INFO: Particle insertion {}: {} particles every {} steps - particle rate {}  (mass rate {})\n      {} particles (mass {}) within {} steps",
@@ -956,7 +958,7 @@ impl InsertStream {
             f("%f", self.per_insertion),
             self.every,
             f("%f", rate),
-            f("%e", rate * dist.mass_expect),
+            f("%e", mass_rate),
             self.total,
             f("%e", self.total as f64 * dist.mass_expect),
             ((self.total as f64 / self.per_insertion).ceil() as i64 - 1).max(0) * self.every

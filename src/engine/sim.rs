@@ -657,16 +657,26 @@ impl Simulation {
         }
         // as LIGGGHTS: the box shrink-wraps around every atom first (reset_box), then atoms
         // outside a fixed face are lost (exchange)
-        if self.domain.shrinks() && !p.is_empty() {
+        // around every mesh node too (LIGGGHTS's FixMesh::box_extent)
+        let meshes = self.fixes.iter().filter_map(|f| match &f.kind {
+            FixKind::Mesh(m) => Some(m),
+            _ => None,
+        });
+        let nodes = meshes.flat_map(|m| m.triangles.iter().flatten());
+        if self.domain.shrinks() {
             let mut lo = [f64::INFINITY; 3];
             let mut hi = [f64::NEG_INFINITY; 3];
-            for x in &p.x {
+            let mut any = false;
+            for x in p.x.iter().chain(nodes) {
+                any = true;
                 for d in 0..3 {
                     lo[d] = lo[d].min(x[d]);
                     hi[d] = hi[d].max(x[d]);
                 }
             }
-            self.domain.shrink_wrap(lo, hi)?;
+            if any {
+                self.domain.shrink_wrap(lo, hi)?;
+            }
         }
         let lost: Vec<bool> = p.x.iter().map(|x| !self.domain.contains(*x)).collect();
         if lost.iter().any(|&l| l) {
@@ -1308,6 +1318,21 @@ impl Simulation {
             if every <= 0 {
                 return Err(format!("Fix insert/stream (id {}): extrude_length too small for the insertion velocity", sf.id));
             }
+            // nparticles from mass, and the other rate, from the expected particle mass
+            let me = dist.mass_expect;
+            let total = match sf.total {
+                Ok(n) => n,
+                Err(mass) => {
+                    if mass / me > 2.0e9 {
+                        return Err(format!("Fix insert/stream (id {}): you are attempting to insert more than 2e9 particles. Reduce the mass to be inserted or increase the particle diameter", sf.id));
+                    }
+                    ((mass + 1e-14) / me) as i64
+                }
+            };
+            let rates = match sf.rate {
+                Ok(n) => (n, n * me),
+                Err(m) => (m / me, m),
+            };
             let state = InsertStream {
                 id: sf.id.clone(),
                 distribution: sf.distribution.clone(),
@@ -1317,8 +1342,9 @@ impl Simulation {
                 p_ref: t[0],
                 extrude,
                 every,
-                per_insertion: sf.rate * (every as f64 * dt),
-                total: sf.total,
+                per_insertion: rates.0 * (every as f64 * dt),
+                rates,
+                total,
                 velocity: sf.velocity,
                 omega: sf.omega,
                 overlapcheck: sf.overlapcheck,
@@ -1332,7 +1358,7 @@ impl Simulation {
                 inserted_mass: 0.0,
                 moving: Vec::new(),
             };
-            for l in state.setup_lines(&dist, dt) {
+            for l in state.setup_lines(&dist) {
                 out(&format!("{l}\n"));
             }
             if let FixKind::InsertStream(sf) = &mut self.fixes[k].kind {

@@ -406,6 +406,23 @@ pub fn expand(pattern: &str) -> Result<Vec<String>, String> {
     Ok(found.into_iter().map(|(_, p)| p).collect())
 }
 
+/// The last run of digits in a file name (0 if none): the step of a `*` series file.
+fn step_of_name(path: &str) -> i64 {
+    let name = path.rsplit('/').next().unwrap_or(path);
+    let digits: String = name
+        .chars()
+        .rev()
+        .skip_while(|c| !c.is_ascii_digit())
+        .take_while(|c| c.is_ascii_digit())
+        .collect();
+    digits
+        .chars()
+        .rev()
+        .collect::<String>()
+        .parse()
+        .unwrap_or(0)
+}
+
 /// What a file holds.
 pub enum Loaded {
     /// Dump snapshots.
@@ -418,6 +435,18 @@ pub enum Loaded {
 pub fn load(pattern: &str) -> Result<Loaded, String> {
     let files = expand(pattern)?;
     let first = read_text(&files[0])?;
+    if first.starts_with("# vtk DataFile") {
+        // legacy VTK particle files: the step is the last number in the file name
+        let mut snaps = Vec::new();
+        for (k, f) in files.iter().enumerate() {
+            let text = if k == 0 { first.clone() } else { read_text(f)? };
+            snaps.push(
+                crate::io::dump_compare::parse_vtk(&text, step_of_name(f))
+                    .map_err(|m| format!("{f}: {m}"))?,
+            );
+        }
+        return Ok(Loaded::Dump(snaps));
+    }
     if first.trim_start().starts_with("ITEM: TIMESTEP") {
         let mut snaps = Vec::new();
         for (k, f) in files.iter().enumerate() {
@@ -436,7 +465,7 @@ pub fn load(pattern: &str) -> Result<Loaded, String> {
         return Ok(Loaded::Log(first));
     }
     Err(format!(
-        "{}: neither a text dump (no 'ITEM: TIMESTEP') nor a log with thermo output (no 'Step' header)",
+        "{}: neither a text dump (no 'ITEM: TIMESTEP'), a legacy VTK file, nor a log with thermo output (no 'Step' header)",
         files[0]
     ))
 }

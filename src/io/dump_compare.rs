@@ -99,6 +99,145 @@ pub fn parse(text: &str) -> Result<Vec<Snapshot>, String> {
     Ok(out)
 }
 
+/// Parse a legacy ASCII VTK particle file (`dump custom/vtk`, `dump vtk`) as one snapshot at
+/// `step`: columns x y z from POINTS, then every point array of the FIELD (or SCALARS and
+/// VECTORS) sections, a 3-component array `v` giving `vx vy vz`. Atoms are keyed by `id`.
+pub fn parse_vtk(text: &str, step: i64) -> Result<Snapshot, String> {
+    let tokens: Vec<(usize, &str)> = text
+        .lines()
+        .enumerate()
+        .skip(2)
+        .flat_map(|(n, l)| l.split_whitespace().map(move |w| (n + 1, w)))
+        .collect();
+    let mut t = Tokens { tokens, at: 0 };
+    let mut npoints = None;
+    let mut columns: Vec<String> = Vec::new();
+    let mut data: Vec<Vec<f64>> = Vec::new();
+    let mut add = |name: &str, ncomp: usize, values: Vec<f64>, n: usize| {
+        for c in 0..ncomp {
+            columns.push(match (ncomp, name) {
+                (1, _) => name.to_string(),
+                (3, "points") => ["x", "y", "z"][c].to_string(),
+                (3, _) => format!("{name}{}", ["x", "y", "z"][c]),
+                _ => format!("{name}[{}]", c + 1),
+            });
+            data.push((0..n).map(|i| values[i * ncomp + c]).collect());
+        }
+    };
+    while let Ok((n, w)) = t.next("") {
+        match w {
+            "ASCII" => {}
+            "BINARY" => return Err(format!("line {n}: binary VTK files are not supported")),
+            "DATASET" => {
+                t.next("a dataset type")?;
+            }
+            "POINTS" => {
+                let np = t.count("a point count")?;
+                t.next("a data type")?;
+                npoints = Some(np);
+                add("points", 3, t.numbers(3 * np)?, np);
+            }
+            "VERTICES" | "CELLS" | "LINES" | "POLYGONS" => {
+                let (rows, size) = (t.count("a count")?, t.count("a size")?);
+                // the 5.1 layout has OFFSETS and CONNECTIVITY blocks of `rows` and `size`
+                // entries; the older one `size` numbers
+                if t.peek() == Some("OFFSETS") {
+                    t.skip(2 + rows)?;
+                    t.skip(2 + size)?;
+                } else {
+                    t.skip(size)?;
+                }
+            }
+            "POINT_DATA" => {
+                let np = t.count("a point count")?;
+                if npoints.is_some_and(|p| p != np) {
+                    return Err(format!("line {n}: POINT_DATA {np} does not match POINTS"));
+                }
+            }
+            "CELL_DATA" => break,
+            "FIELD" => {
+                t.next("a field name")?;
+                for _ in 0..t.count("an array count")? {
+                    let (_, name) = t.next("an array name")?;
+                    let ncomp = t.count("a component count")?;
+                    let nt = t.count("a tuple count")?;
+                    t.next("a data type")?;
+                    add(name, ncomp, t.numbers(ncomp * nt)?, nt);
+                }
+            }
+            "SCALARS" | "VECTORS" => {
+                let (_, name) = t.next("an array name")?;
+                t.next("a data type")?;
+                let ncomp = if w == "VECTORS" { 3 } else { 1 };
+                if t.peek() == Some("LOOKUP_TABLE") {
+                    t.skip(2)?;
+                }
+                let np = npoints.unwrap_or(0);
+                add(name, ncomp, t.numbers(ncomp * np)?, np);
+            }
+            other => return Err(format!("line {n}: unexpected '{other}'")),
+        }
+    }
+    let id_col = columns
+        .iter()
+        .position(|c| c == "id")
+        .ok_or("VTK file has no id array")?;
+    let np = npoints.ok_or("VTK file has no POINTS")?;
+    let mut rows = BTreeMap::new();
+    for i in 0..np {
+        let row: Vec<f64> = data.iter().map(|c| c[i]).collect();
+        rows.insert(row[id_col] as i64, row);
+    }
+    Ok(Snapshot {
+        step,
+        bounds: [[0.0; 2]; 3],
+        columns,
+        rows,
+    })
+}
+
+/// A cursor over the words of a file, with their line numbers.
+struct Tokens<'a> {
+    tokens: Vec<(usize, &'a str)>,
+    at: usize,
+}
+
+impl<'a> Tokens<'a> {
+    fn next(&mut self, what: &str) -> Result<(usize, &'a str), String> {
+        let t = self
+            .tokens
+            .get(self.at)
+            .copied()
+            .ok_or_else(|| format!("file ends early: expected {what}"))?;
+        self.at += 1;
+        Ok(t)
+    }
+    fn peek(&self) -> Option<&'a str> {
+        self.tokens.get(self.at).map(|t| t.1)
+    }
+    fn skip(&mut self, n: usize) -> Result<(), String> {
+        if self.at + n > self.tokens.len() {
+            return Err("file ends early".into());
+        }
+        self.at += n;
+        Ok(())
+    }
+    fn count(&mut self, what: &str) -> Result<usize, String> {
+        let (n, w) = self.next(what)?;
+        w.parse()
+            .map_err(|_| format!("line {n}: expected {what}, found '{w}'"))
+    }
+    fn numbers(&mut self, k: usize) -> Result<Vec<f64>, String> {
+        (0..k)
+            .map(|_| {
+                let (n, w) = self.next("a value")?;
+                w.parse()
+                    .map_err(|_| format!("line {n}: expected a number, found '{w}'"))
+            })
+            .collect()
+    }
+}
+
 /// The largest deviation found between two dumps.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Deviation {
@@ -187,5 +326,19 @@ mod tests {
         assert_eq!(compare(&a, &c, 0.0).mismatches.len(), 2);
         assert!(parse("ITEM: TIMESTEP\nx\n").is_err());
         assert!(parse(&DUMP.replace("0.5 ", "nan? ")).is_err());
+    }
+
+    /// A LIGGGHTS `dump custom/vtk` file (VTK 5.1 layout), two atoms.
+    const VTK: &str = "# vtk DataFile Version 5.1\nGenerated by LIGGGHTS\nASCII\nDATASET POLYDATA\nPOINTS 2 float\n0.1 0.2 0.3 1 2 3 \nVERTICES 3 2\nOFFSETS vtktypeint64\n0 1 2 \nCONNECTIVITY vtktypeint64\n0 1 \nPOINT_DATA 2\nFIELD FieldData 2\nid 1 2 int\n7 4 \nv 3 2 double\n1 2 3 4 5 6 \n";
+
+    #[test]
+    fn legacy_vtk_particles() {
+        let s = parse_vtk(VTK, 300).unwrap();
+        assert_eq!(s.columns, ["x", "y", "z", "id", "vx", "vy", "vz"]);
+        assert_eq!(s.rows[&4], vec![1.0, 2.0, 3.0, 4.0, 4.0, 5.0, 6.0]);
+        assert_eq!(s.rows[&7][..3], [0.1, 0.2, 0.3]);
+        assert_eq!(s.step, 300);
+        assert!(parse_vtk(&VTK.replace("id 1 2", "ident 1 2"), 0).is_err());
+        assert!(parse_vtk(&VTK.replace("4 5 6", "4 5"), 0).is_err());
     }
 }

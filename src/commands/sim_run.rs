@@ -59,482 +59,498 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
         .sim
         .group_bit(group)
         .ok_or_else(|| a.error(1, "Could not find fix group ID"))?;
-    let kind = match style {
-        "nve/sphere" => {
-            if a.len() > 3 {
-                return Err(a.unsupported(3, "fix nve/sphere keywords"));
-            }
-            FixKind::NveSphere
-        }
-        "gravity" => {
-            a.count(4..=usize::MAX, "fix ID GROUP gravity MAG vector X Y Z")?;
-            let magnitude = a.real(3)?;
-            match a.word(4)? {
-                "vector" => {
-                    a.count(8..=8, "fix ID GROUP gravity MAG vector X Y Z")?;
-                    let dir = [a.real(5)?, a.real(6)?, a.real(7)?];
-                    FixKind::Gravity(
-                        Gravity::along(magnitude, dir, bit).map_err(|m| a.error(5, &m))?,
-                    )
+    let kind = 'style: {
+        match style {
+            "nve/sphere" => {
+                if a.len() > 3 {
+                    return Err(a.unsupported(3, "fix nve/sphere keywords"));
                 }
-                other => return Err(a.unsupported(4, &format!("fix gravity {other}"))),
+                FixKind::NveSphere
             }
-        }
-        "check/timestep/gran" => {
-            a.count(6..=usize::MAX, "fix ID GROUP check/timestep/gran N RAYLEIGH_LIMIT HERTZ_LIMIT [warn yes|no] [error yes|no] [vmax V]")?;
-            let every = a.int(3)?;
-            if every <= 0 {
-                return Err(a.error(3, "Illegal fix check/timestep/gran command"));
-            }
-            let mut c = crate::engine::fixes::CheckTimestep {
-                every,
-                rayleigh_limit: a.real(4)?,
-                hertz_limit: a.real(5)?,
-                warn: true,
-                error: false,
-                vmax_user: 0.0,
-                values: [0.0; 3],
-                materials: Vec::new(),
-            };
-            let mut i = 6;
-            while i < a.len() {
-                match a.word(i)? {
-                    "warn" => c.warn = a.word_in(i + 1, &["yes", "no"])? == "yes",
-                    "error" => c.error = a.word_in(i + 1, &["yes", "no"])? == "yes",
-                    "vmax" => c.vmax_user = a.real(i + 1)?,
-                    _ => return Err(a.keyword_error(i, &["warn", "error", "vmax"])),
-                }
-                i += 2;
-            }
-            if c.error {
-                return Err(a.unsupported(6, "fix check/timestep/gran error yes"));
-            }
-            FixKind::CheckTimestep(c)
-        }
-        "property/global" => {
-            a.count(
-                6..=usize::MAX,
-                "fix ID GROUP property/global NAME STYLE VALUES...",
-            )?;
-            let style = a.word_in(
-                4,
-                &[
-                    "scalar",
-                    "vector",
-                    "peratomtype",
-                    "atomtype",
-                    "peratomtypepair",
-                    "atomtypepair",
-                    "matrix",
-                ],
-            )?;
-            let first_value = if matches!(style, "peratomtypepair" | "atomtypepair" | "matrix") {
-                6
-            } else {
-                5
-            };
-            if matches!(style, "peratomtypepair" | "atomtypepair" | "matrix") {
-                let n = a.int(5)?;
-                if n < 1 {
-                    return Err(a.error(5, "Illegal fix property/global command"));
-                }
-                if (a.len() - first_value) as i64 % n != 0 {
-                    return Err(a.error(5, "Fix property/global: the number of default values must be a multiple of nCols."));
-                }
-            }
-            for i in first_value..a.len() {
-                a.real(i)?;
-            }
-            FixKind::Settings
-        }
-        "mesh/surface" | "mesh/surface/planar" => mesh_surface(a, ctx, style)?,
-        "particletemplate/sphere" => particle_template(a, ctx, &id)?,
-        "particledistribution/discrete"
-        | "particledistribution/discrete/numberbased"
-        | "particledistribution/discrete/massbased" => distribution(a, ctx, style)?,
-        "insert/pack" | "insert/rate/region" => {
-            ctx.sim.inserts_atoms = true;
-            insert_pack(a, ctx, &id, style)?
-        }
-        "insert/stream" => {
-            ctx.sim.inserts_atoms = true;
-            insert_stream(a, ctx, &id)?
-        }
-        "wall/gran" => {
-            let (selection, next) = gran_models(a, 3, "history", "fix wall/gran")?;
-            if a.word(next)? != "primitive" {
-                return Err(a.unsupported(next, &format!("fix wall/gran {}", a.word(next)?)));
-            }
-            if a.word(next + 1)? != "type" {
-                return Err(a
-                    .error(next + 1, "Illegal fix wall/gran command")
-                    .with_help("expected: primitive type T xplane|yplane|zplane POS"));
-            }
-            let wall_type = a.int(next + 2)?;
-            if wall_type < 1 || wall_type > ctx.sim.ntypes as i64 {
-                return Err(a.error(
-                    next + 2,
-                    "Illegal fix wall/gran command: wall type out of range",
-                ));
-            }
-            use crate::engine::granular::Primitive;
-            let shape_word = a.word(next + 3)?;
-            let axis = |c: char| (c as usize) - ('x' as usize);
-            let (shape, used) = match shape_word {
-                "xplane" | "yplane" | "zplane" => (
-                    Primitive::Plane {
-                        axis: axis(shape_word.chars().next().unwrap()),
-                        position: a.real(next + 4)?,
-                    },
-                    5,
-                ),
-                "xcylinder" | "ycylinder" | "zcylinder" => (
-                    Primitive::Cylinder {
-                        axis: axis(shape_word.chars().next().unwrap()),
-                        radius: a.real(next + 4)?,
-                        c1: a.real(next + 5)?,
-                        c2: a.real(next + 6)?,
-                    },
-                    7,
-                ),
-                other => {
-                    return Err(a.unsupported(next + 3, &format!("fix wall/gran primitive {other}")))
-                }
-            };
-            // general keywords, then on/off model settings in any order
-            let mut selection = selection;
-            let mut shear = None;
-            let mut k = next + used;
-            while k < a.len() {
-                match a.word(k)? {
-                    "shear" => {
-                        let dim = match a.word(k + 1)? {
-                            "x" => 0,
-                            "y" => 1,
-                            "z" => 2,
-                            _ => return Err(a.error(k + 1, "Fix wall/gran: illegal 'shear' dim")),
-                        };
-                        shear = Some((dim, a.real(k + 2)?));
-                        k += 3;
+            "gravity" => {
+                a.count(4..=usize::MAX, "fix ID GROUP gravity MAG vector X Y Z")?;
+                let magnitude = a.real(3)?;
+                match a.word(4)? {
+                    "vector" => {
+                        a.count(8..=8, "fix ID GROUP gravity MAG vector X Y Z")?;
+                        let dir = [a.real(5)?, a.real(6)?, a.real(7)?];
+                        FixKind::Gravity(
+                            Gravity::along(magnitude, dir, bit).map_err(|m| a.error(5, &m))?,
+                        )
                     }
-                    "store_force" | "store_force_contact" | "store_force_contact_stress" => {
-                        if a.word_in(k + 1, &["yes", "no"])? == "yes" {
-                            return Err(
-                                a.unsupported(k, &format!("fix wall/gran {} yes", a.word(k)?))
-                            );
-                        }
-                        k += 2;
-                    }
-                    _ => break,
+                    other => return Err(a.unsupported(4, &format!("fix gravity {other}"))),
                 }
             }
-            let rest: Vec<&str> = (k..a.len())
-                .map(|i| a.word(i))
-                .collect::<std::result::Result<_, _>>()?;
-            selection
-                .apply_settings(&rest)
-                .map_err(|m| a.error(k, &format!("Fix wall/gran: {m}")))?;
-            FixKind::WallGran(crate::engine::fixes::WallFix {
-                selection,
-                plane: shape,
-                wall_type: wall_type as usize,
-                shear,
-                model: None,
-                history_name: format!("history_{id}"),
-            })
-        }
-        "freeze" => {
-            if a.len() > 3 {
-                return Err(a.error(3, "Illegal fix freeze command"));
-            }
-            if ctx
-                .sim
-                .fixes
-                .iter()
-                .any(|f| matches!(f.kind, FixKind::Freeze) && f.id != id)
-            {
-                return Err(a.error(2, "More than one fix freeze"));
-            }
-            FixKind::Freeze
-        }
-        "setforce" | "addforce" => {
-            use crate::engine::fixes::{ForceFix, ForceValue};
-            a.count(
-                6..=usize::MAX,
-                &format!("fix ID GROUP {style} FX FY FZ [region ID]"),
-            )?;
-            let mut values = [ForceValue::Null, ForceValue::Null, ForceValue::Null];
-            for (d, slot) in values.iter_mut().enumerate() {
-                let w = a.word(3 + d)?;
-                if let Some(name) = w.strip_prefix("v_") {
-                    *slot = variable_value(&a, ctx, 3 + d, name, style)?;
-                } else if w != "NULL" {
-                    *slot = ForceValue::Constant(a.real(3 + d)?);
-                } else if style == "addforce" {
-                    return Err(a.error(3 + d, "Illegal fix addforce command"));
+            "check/timestep/gran" => {
+                a.count(6..=usize::MAX, "fix ID GROUP check/timestep/gran N RAYLEIGH_LIMIT HERTZ_LIMIT [warn yes|no] [error yes|no] [vmax V]")?;
+                let every = a.int(3)?;
+                if every <= 0 {
+                    return Err(a.error(3, "Illegal fix check/timestep/gran command"));
                 }
-            }
-            let mut region = None;
-            let mut i = 6;
-            while i < a.len() {
-                match a.word(i)? {
-                    "region" => {
-                        let id = a.word(i + 1)?;
-                        region = Some(ctx.sim.regions.find(id).ok_or_else(|| {
-                            a.error(i + 1, &format!("Region ID for fix {style} does not exist"))
-                        })?);
-                        i += 2;
-                    }
-                    w => {
-                        return Err(a.unsupported(i, &format!("fix {style} keyword {w}")));
-                    }
-                }
-            }
-            let f = ForceFix {
-                values,
-                region,
-                resolved: Vec::new(),
-            };
-            if style == "setforce" {
-                FixKind::SetForce(f)
-            } else {
-                FixKind::AddForce(f)
-            }
-        }
-        "adapt" => {
-            use crate::engine::fixes::{Adapt, ForceValue};
-            a.count(
-                5..=usize::MAX,
-                "fix ID GROUP adapt N atom diameter v_name ...",
-            )?;
-            let every = a.int(3)?;
-            if every < 0 {
-                return Err(a.error(3, "Illegal fix adapt command"));
-            }
-            let mut diameter = None;
-            let (mut scale, mut i) = (false, 4);
-            while i < a.len() {
-                match a.word(i)? {
-                    "atom" => {
-                        a.count(
-                            i + 3..=usize::MAX,
-                            "fix ID GROUP adapt N atom diameter v_name",
-                        )?;
-                        match a.word(i + 1)? {
-                            "diameter" => {}
-                            "charge" => {
-                                return Err(
-                                    a.error(i + 1, "Fix adapt requires atom attribute charge")
-                                )
-                            }
-                            _ => return Err(a.error(i + 1, "Illegal fix adapt command")),
-                        }
-                        let Some(name) = a.word(i + 2)?.strip_prefix("v_") else {
-                            return Err(a.error(i + 2, "Illegal fix adapt command"));
-                        };
-                        diameter = Some(variable_value(&a, ctx, i + 2, name, "adapt")?);
-                        i += 3;
-                    }
-                    w @ ("pair" | "kspace") => {
-                        return Err(a.unsupported(i, &format!("fix adapt {w}")))
-                    }
-                    "scale" => {
-                        scale = a.word_in(i + 1, &["yes", "no"])? == "yes";
-                        i += 2;
-                    }
-                    // LIGGGHTS restores nothing for atom attributes: `reset` has no effect
-                    "reset" => {
-                        a.word_in(i + 1, &["yes", "no"])?;
-                        i += 2;
-                    }
-                    _ => return Err(a.error(i, "Illegal fix adapt command")),
-                }
-            }
-            let Some(diameter) = diameter else {
-                return Err(a.error(3, "Illegal fix adapt command"));
-            };
-            debug_assert!(!matches!(diameter, ForceValue::Null));
-            FixKind::Adapt(Adapt {
-                every,
-                diameter,
-                scale,
-            })
-        }
-        "print" => {
-            a.count(
-                5..=usize::MAX,
-                "fix ID GROUP print N \"text\" [file F] [screen yes|no] [title T]",
-            )?;
-            let every = a.int(3)?;
-            if every <= 0 {
-                return Err(a.error(3, "Illegal fix print command"));
-            }
-            let text = a.word(4)?.to_string();
-            let (mut screen, mut file, mut title) = (true, None, None);
-            let mut i = 5;
-            while i < a.len() {
-                match a.word(i)? {
-                    kw @ ("file" | "append") => {
-                        let name = a.word(i + 1)?;
-                        if ctx.sys.mode == crate::script::system::Mode::Run {
-                            let f = std::fs::OpenOptions::new()
-                                .create(true)
-                                .write(true)
-                                .append(kw == "append")
-                                .truncate(kw == "file")
-                                .open(name)
-                                .map_err(|_| {
-                                    a.error(i + 1, &format!("Cannot open fix print file {name}"))
-                                })?;
-                            file = Some(std::io::BufWriter::new(f));
-                        }
-                    }
-                    "screen" => screen = a.word_in(i + 1, &["yes", "no"])? == "yes",
-                    "title" => title = Some(a.word(i + 1)?.to_string()),
-                    _ => return Err(a.error(i, "Illegal fix print command")),
-                }
-                i += 2;
-            }
-            if let Some(f) = file.as_mut() {
-                use std::io::Write;
-                let head = match title.as_deref() {
-                    Some("none") => None,
-                    Some(t) => Some(t.to_string()),
-                    None => Some(format!("# Fix print output for fix {id}")),
+                let mut c = crate::engine::fixes::CheckTimestep {
+                    every,
+                    rayleigh_limit: a.real(4)?,
+                    hertz_limit: a.real(5)?,
+                    warn: true,
+                    error: false,
+                    vmax_user: 0.0,
+                    values: [0.0; 3],
+                    materials: Vec::new(),
                 };
-                if let Some(h) = head {
-                    writeln!(f, "{h}")
-                        .and_then(|_| f.flush())
-                        .map_err(|e| a.error(0, &format!("fix print: {e}")))?;
+                let mut i = 6;
+                while i < a.len() {
+                    match a.word(i)? {
+                        "warn" => c.warn = a.word_in(i + 1, &["yes", "no"])? == "yes",
+                        "error" => c.error = a.word_in(i + 1, &["yes", "no"])? == "yes",
+                        "vmax" => c.vmax_user = a.real(i + 1)?,
+                        _ => return Err(a.keyword_error(i, &["warn", "error", "vmax"])),
+                    }
+                    i += 2;
                 }
+                if c.error {
+                    return Err(a.unsupported(6, "fix check/timestep/gran error yes"));
+                }
+                FixKind::CheckTimestep(c)
             }
-            FixKind::Print(crate::engine::fixes::PrintFix {
-                every,
-                text,
-                screen,
-                file,
-            })
-        }
-        "ave/time" => ave_time(a, ctx, &id)?,
-        "viscous" => {
-            a.count(4..=4, "fix ID GROUP viscous GAMMA")?;
-            FixKind::Viscous(a.real(3)?)
-        }
-        "move" => {
-            let components = |from: usize| -> std::result::Result<[Option<f64>; 3], Diagnostic> {
-                let mut v = [None; 3];
-                for (d, slot) in v.iter_mut().enumerate() {
-                    let w = a.word(from + d)?;
-                    if w != "NULL" {
-                        *slot = Some(a.real(from + d)?);
+            "property/global" => {
+                a.count(
+                    6..=usize::MAX,
+                    "fix ID GROUP property/global NAME STYLE VALUES...",
+                )?;
+                let style = a.word_in(
+                    4,
+                    &[
+                        "scalar",
+                        "vector",
+                        "peratomtype",
+                        "atomtype",
+                        "peratomtypepair",
+                        "atomtypepair",
+                        "matrix",
+                    ],
+                )?;
+                let first_value = if matches!(style, "peratomtypepair" | "atomtypepair" | "matrix")
+                {
+                    6
+                } else {
+                    5
+                };
+                if matches!(style, "peratomtypepair" | "atomtypepair" | "matrix") {
+                    let n = a.int(5)?;
+                    if n < 1 {
+                        return Err(a.error(5, "Illegal fix property/global command"));
+                    }
+                    if (a.len() - first_value) as i64 % n != 0 {
+                        return Err(a.error(5, "Fix property/global: the number of default values must be a multiple of nCols."));
                     }
                 }
-                Ok(v)
-            };
-            let (motion, used) = match a.word(3)? {
-                "linear" => (Motion::Linear(components(4)?), 7),
-                "wiggle" => {
-                    let amplitude = components(4)?;
-                    let period = a.real(7)?;
-                    if period <= 0.0 {
-                        return Err(a.error(7, "Illegal fix move command"));
-                    }
-                    (
-                        Motion::Wiggle {
-                            amplitude,
-                            omega: 2.0 * std::f64::consts::PI / period,
+                for i in first_value..a.len() {
+                    a.real(i)?;
+                }
+                FixKind::Settings
+            }
+            "mesh/surface" | "mesh/surface/planar" => mesh_surface(a, ctx, style)?,
+            "particletemplate/sphere" => particle_template(a, ctx, &id)?,
+            "particledistribution/discrete"
+            | "particledistribution/discrete/numberbased"
+            | "particledistribution/discrete/massbased" => distribution(a, ctx, style)?,
+            "insert/pack" | "insert/rate/region" => {
+                ctx.sim.inserts_atoms = true;
+                insert_pack(a, ctx, &id, style)?
+            }
+            "insert/stream" => {
+                ctx.sim.inserts_atoms = true;
+                insert_stream(a, ctx, &id)?
+            }
+            "wall/gran" => {
+                let (selection, next) = gran_models(a, 3, "history", "fix wall/gran")?;
+                if a.word(next)? == "mesh" {
+                    break 'style mesh_wall(a, ctx, group, selection, next)?;
+                }
+                if a.word(next)? != "primitive" {
+                    return Err(a.keyword_error(next, &["primitive", "mesh"]));
+                }
+                if a.word(next + 1)? != "type" {
+                    return Err(a
+                        .error(next + 1, "Illegal fix wall/gran command")
+                        .with_help("expected: primitive type T xplane|yplane|zplane POS"));
+                }
+                let wall_type = a.int(next + 2)?;
+                if wall_type < 1 || wall_type > ctx.sim.ntypes as i64 {
+                    return Err(a.error(
+                        next + 2,
+                        "Illegal fix wall/gran command: wall type out of range",
+                    ));
+                }
+                use crate::engine::granular::Primitive;
+                let shape_word = a.word(next + 3)?;
+                let axis = |c: char| (c as usize) - ('x' as usize);
+                let (shape, used) = match shape_word {
+                    "xplane" | "yplane" | "zplane" => (
+                        Primitive::Plane {
+                            axis: axis(shape_word.chars().next().unwrap()),
+                            position: a.real(next + 4)?,
                         },
-                        8,
-                    )
-                }
-                "rotate" => {
-                    a.count(
-                        11..=usize::MAX,
-                        "fix ID GROUP move rotate Px Py Pz Rx Ry Rz PERIOD",
-                    )?;
-                    let point = [a.real(4)?, a.real(5)?, a.real(6)?];
-                    let axis = [a.real(7)?, a.real(8)?, a.real(9)?];
-                    let period = a.real(10)?;
-                    if period <= 0.0 {
-                        return Err(a.error(10, "Illegal fix move command"));
-                    }
-                    let len = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
-                    if len == 0.0 {
-                        return Err(a.error(7, "Zero length rotation vector with fix move"));
-                    }
-                    (
-                        Motion::Rotate {
-                            point,
-                            axis: axis.map(|c| c / len),
-                            omega: 2.0 * std::f64::consts::PI / period,
+                        5,
+                    ),
+                    "xcylinder" | "ycylinder" | "zcylinder" => (
+                        Primitive::Cylinder {
+                            axis: axis(shape_word.chars().next().unwrap()),
+                            radius: a.real(next + 4)?,
+                            c1: a.real(next + 5)?,
+                            c2: a.real(next + 6)?,
                         },
-                        11,
-                    )
+                        7,
+                    ),
+                    other => {
+                        return Err(
+                            a.unsupported(next + 3, &format!("fix wall/gran primitive {other}"))
+                        )
+                    }
+                };
+                // general keywords, then on/off model settings in any order
+                let mut selection = selection;
+                let mut shear = None;
+                let mut k = next + used;
+                while k < a.len() {
+                    match a.word(k)? {
+                        "shear" => {
+                            let dim = match a.word(k + 1)? {
+                                "x" => 0,
+                                "y" => 1,
+                                "z" => 2,
+                                _ => {
+                                    return Err(a.error(k + 1, "Fix wall/gran: illegal 'shear' dim"))
+                                }
+                            };
+                            shear = Some((dim, a.real(k + 2)?));
+                            k += 3;
+                        }
+                        "store_force" | "store_force_contact" | "store_force_contact_stress" => {
+                            if a.word_in(k + 1, &["yes", "no"])? == "yes" {
+                                return Err(
+                                    a.unsupported(k, &format!("fix wall/gran {} yes", a.word(k)?))
+                                );
+                            }
+                            k += 2;
+                        }
+                        _ => break,
+                    }
                 }
-                "variable" => {
-                    use crate::engine::fixes::ForceValue;
-                    a.count(
-                        10..=usize::MAX,
-                        "fix ID GROUP move variable DX DY DZ VX VY VZ",
-                    )?;
-                    let mut slots: [ForceValue; 6] = Default::default();
-                    for (k, slot) in slots.iter_mut().enumerate() {
-                        let w = a.word(4 + k)?;
-                        if let Some(name) = w.strip_prefix("v_") {
-                            *slot = variable_value(&a, ctx, 4 + k, name, "move")?;
-                        } else if w != "NULL" {
-                            return Err(a.error(4 + k, "Illegal fix move command"));
+                let rest: Vec<&str> = (k..a.len())
+                    .map(|i| a.word(i))
+                    .collect::<std::result::Result<_, _>>()?;
+                selection
+                    .apply_settings(&rest)
+                    .map_err(|m| a.error(k, &format!("Fix wall/gran: {m}")))?;
+                FixKind::WallGran(crate::engine::fixes::WallFix {
+                    selection,
+                    plane: shape,
+                    wall_type: wall_type as usize,
+                    shear,
+                    model: None,
+                    history_name: format!("history_{id}"),
+                })
+            }
+            "freeze" => {
+                if a.len() > 3 {
+                    return Err(a.error(3, "Illegal fix freeze command"));
+                }
+                if ctx
+                    .sim
+                    .fixes
+                    .iter()
+                    .any(|f| matches!(f.kind, FixKind::Freeze) && f.id != id)
+                {
+                    return Err(a.error(2, "More than one fix freeze"));
+                }
+                FixKind::Freeze
+            }
+            "setforce" | "addforce" => {
+                use crate::engine::fixes::{ForceFix, ForceValue};
+                a.count(
+                    6..=usize::MAX,
+                    &format!("fix ID GROUP {style} FX FY FZ [region ID]"),
+                )?;
+                let mut values = [ForceValue::Null, ForceValue::Null, ForceValue::Null];
+                for (d, slot) in values.iter_mut().enumerate() {
+                    let w = a.word(3 + d)?;
+                    if let Some(name) = w.strip_prefix("v_") {
+                        *slot = variable_value(&a, ctx, 3 + d, name, style)?;
+                    } else if w != "NULL" {
+                        *slot = ForceValue::Constant(a.real(3 + d)?);
+                    } else if style == "addforce" {
+                        return Err(a.error(3 + d, "Illegal fix addforce command"));
+                    }
+                }
+                let mut region = None;
+                let mut i = 6;
+                while i < a.len() {
+                    match a.word(i)? {
+                        "region" => {
+                            let id = a.word(i + 1)?;
+                            region = Some(ctx.sim.regions.find(id).ok_or_else(|| {
+                                a.error(i + 1, &format!("Region ID for fix {style} does not exist"))
+                            })?);
+                            i += 2;
+                        }
+                        w => {
+                            return Err(a.unsupported(i, &format!("fix {style} keyword {w}")));
                         }
                     }
-                    let [dx, dy, dz, vx, vy, vz] = slots;
-                    (
-                        Motion::Variable {
-                            displace: [dx, dy, dz],
-                            velocity: [vx, vy, vz],
-                        },
-                        10,
-                    )
                 }
-                _ => return Err(a.error(3, "Illegal fix move command")),
-            };
-            // `units lattice` scales lengths and velocities by the lattice spacing
-            let mut motion = motion;
-            let mut i = used;
-            while i < a.len() {
-                match a.word(i)? {
-                    "units" => {
-                        if a.word_in(i + 1, &["box", "lattice"])? == "lattice" {
-                            let scale = ctx.sim.lattice.as_ref().map(|l| l.0).ok_or_else(|| {
-                                a.error(i + 1, "Use of fix move with undefined lattice")
-                            })?;
-                            let sc = |v: &mut [Option<f64>; 3]| {
-                                v.iter_mut().for_each(|c| *c = c.map(|x| x * scale))
-                            };
-                            match &mut motion {
-                                Motion::Linear(v) => sc(v),
-                                Motion::Wiggle { amplitude, .. } => sc(amplitude),
-                                Motion::Rotate { point, .. } => {
-                                    point.iter_mut().for_each(|c| *c *= scale)
+                let f = ForceFix {
+                    values,
+                    region,
+                    resolved: Vec::new(),
+                };
+                if style == "setforce" {
+                    FixKind::SetForce(f)
+                } else {
+                    FixKind::AddForce(f)
+                }
+            }
+            "adapt" => {
+                use crate::engine::fixes::{Adapt, ForceValue};
+                a.count(
+                    5..=usize::MAX,
+                    "fix ID GROUP adapt N atom diameter v_name ...",
+                )?;
+                let every = a.int(3)?;
+                if every < 0 {
+                    return Err(a.error(3, "Illegal fix adapt command"));
+                }
+                let mut diameter = None;
+                let (mut scale, mut i) = (false, 4);
+                while i < a.len() {
+                    match a.word(i)? {
+                        "atom" => {
+                            a.count(
+                                i + 3..=usize::MAX,
+                                "fix ID GROUP adapt N atom diameter v_name",
+                            )?;
+                            match a.word(i + 1)? {
+                                "diameter" => {}
+                                "charge" => {
+                                    return Err(
+                                        a.error(i + 1, "Fix adapt requires atom attribute charge")
+                                    )
                                 }
-                                // LIGGGHTS scales variable motion by neither
-                                Motion::Variable { .. } => {}
+                                _ => return Err(a.error(i + 1, "Illegal fix adapt command")),
+                            }
+                            let Some(name) = a.word(i + 2)?.strip_prefix("v_") else {
+                                return Err(a.error(i + 2, "Illegal fix adapt command"));
+                            };
+                            diameter = Some(variable_value(&a, ctx, i + 2, name, "adapt")?);
+                            i += 3;
+                        }
+                        w @ ("pair" | "kspace") => {
+                            return Err(a.unsupported(i, &format!("fix adapt {w}")))
+                        }
+                        "scale" => {
+                            scale = a.word_in(i + 1, &["yes", "no"])? == "yes";
+                            i += 2;
+                        }
+                        // LIGGGHTS restores nothing for atom attributes: `reset` has no effect
+                        "reset" => {
+                            a.word_in(i + 1, &["yes", "no"])?;
+                            i += 2;
+                        }
+                        _ => return Err(a.error(i, "Illegal fix adapt command")),
+                    }
+                }
+                let Some(diameter) = diameter else {
+                    return Err(a.error(3, "Illegal fix adapt command"));
+                };
+                debug_assert!(!matches!(diameter, ForceValue::Null));
+                FixKind::Adapt(Adapt {
+                    every,
+                    diameter,
+                    scale,
+                })
+            }
+            "print" => {
+                a.count(
+                    5..=usize::MAX,
+                    "fix ID GROUP print N \"text\" [file F] [screen yes|no] [title T]",
+                )?;
+                let every = a.int(3)?;
+                if every <= 0 {
+                    return Err(a.error(3, "Illegal fix print command"));
+                }
+                let text = a.word(4)?.to_string();
+                let (mut screen, mut file, mut title) = (true, None, None);
+                let mut i = 5;
+                while i < a.len() {
+                    match a.word(i)? {
+                        kw @ ("file" | "append") => {
+                            let name = a.word(i + 1)?;
+                            if ctx.sys.mode == crate::script::system::Mode::Run {
+                                let f = std::fs::OpenOptions::new()
+                                    .create(true)
+                                    .write(true)
+                                    .append(kw == "append")
+                                    .truncate(kw == "file")
+                                    .open(name)
+                                    .map_err(|_| {
+                                        a.error(
+                                            i + 1,
+                                            &format!("Cannot open fix print file {name}"),
+                                        )
+                                    })?;
+                                file = Some(std::io::BufWriter::new(f));
                             }
                         }
-                        i += 2;
+                        "screen" => screen = a.word_in(i + 1, &["yes", "no"])? == "yes",
+                        "title" => title = Some(a.word(i + 1)?.to_string()),
+                        _ => return Err(a.error(i, "Illegal fix print command")),
                     }
-                    _ => return Err(a.error(i, "Illegal fix move command")),
+                    i += 2;
                 }
+                if let Some(f) = file.as_mut() {
+                    use std::io::Write;
+                    let head = match title.as_deref() {
+                        Some("none") => None,
+                        Some(t) => Some(t.to_string()),
+                        None => Some(format!("# Fix print output for fix {id}")),
+                    };
+                    if let Some(h) = head {
+                        writeln!(f, "{h}")
+                            .and_then(|_| f.flush())
+                            .map_err(|e| a.error(0, &format!("fix print: {e}")))?;
+                    }
+                }
+                FixKind::Print(crate::engine::fixes::PrintFix {
+                    every,
+                    text,
+                    screen,
+                    file,
+                })
             }
-            let sim = &ctx.sim;
-            FixKind::Move(Move::new(
-                motion,
-                &sim.particles,
-                bit,
-                &sim.domain,
-                sim.step,
-            ))
+            "ave/time" => ave_time(a, ctx, &id)?,
+            "viscous" => {
+                a.count(4..=4, "fix ID GROUP viscous GAMMA")?;
+                FixKind::Viscous(a.real(3)?)
+            }
+            "move" => {
+                let components =
+                    |from: usize| -> std::result::Result<[Option<f64>; 3], Diagnostic> {
+                        let mut v = [None; 3];
+                        for (d, slot) in v.iter_mut().enumerate() {
+                            let w = a.word(from + d)?;
+                            if w != "NULL" {
+                                *slot = Some(a.real(from + d)?);
+                            }
+                        }
+                        Ok(v)
+                    };
+                let (motion, used) = match a.word(3)? {
+                    "linear" => (Motion::Linear(components(4)?), 7),
+                    "wiggle" => {
+                        let amplitude = components(4)?;
+                        let period = a.real(7)?;
+                        if period <= 0.0 {
+                            return Err(a.error(7, "Illegal fix move command"));
+                        }
+                        (
+                            Motion::Wiggle {
+                                amplitude,
+                                omega: 2.0 * std::f64::consts::PI / period,
+                            },
+                            8,
+                        )
+                    }
+                    "rotate" => {
+                        a.count(
+                            11..=usize::MAX,
+                            "fix ID GROUP move rotate Px Py Pz Rx Ry Rz PERIOD",
+                        )?;
+                        let point = [a.real(4)?, a.real(5)?, a.real(6)?];
+                        let axis = [a.real(7)?, a.real(8)?, a.real(9)?];
+                        let period = a.real(10)?;
+                        if period <= 0.0 {
+                            return Err(a.error(10, "Illegal fix move command"));
+                        }
+                        let len =
+                            (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+                        if len == 0.0 {
+                            return Err(a.error(7, "Zero length rotation vector with fix move"));
+                        }
+                        (
+                            Motion::Rotate {
+                                point,
+                                axis: axis.map(|c| c / len),
+                                omega: 2.0 * std::f64::consts::PI / period,
+                            },
+                            11,
+                        )
+                    }
+                    "variable" => {
+                        use crate::engine::fixes::ForceValue;
+                        a.count(
+                            10..=usize::MAX,
+                            "fix ID GROUP move variable DX DY DZ VX VY VZ",
+                        )?;
+                        let mut slots: [ForceValue; 6] = Default::default();
+                        for (k, slot) in slots.iter_mut().enumerate() {
+                            let w = a.word(4 + k)?;
+                            if let Some(name) = w.strip_prefix("v_") {
+                                *slot = variable_value(&a, ctx, 4 + k, name, "move")?;
+                            } else if w != "NULL" {
+                                return Err(a.error(4 + k, "Illegal fix move command"));
+                            }
+                        }
+                        let [dx, dy, dz, vx, vy, vz] = slots;
+                        (
+                            Motion::Variable {
+                                displace: [dx, dy, dz],
+                                velocity: [vx, vy, vz],
+                            },
+                            10,
+                        )
+                    }
+                    _ => return Err(a.error(3, "Illegal fix move command")),
+                };
+                // `units lattice` scales lengths and velocities by the lattice spacing
+                let mut motion = motion;
+                let mut i = used;
+                while i < a.len() {
+                    match a.word(i)? {
+                        "units" => {
+                            if a.word_in(i + 1, &["box", "lattice"])? == "lattice" {
+                                let scale =
+                                    ctx.sim.lattice.as_ref().map(|l| l.0).ok_or_else(|| {
+                                        a.error(i + 1, "Use of fix move with undefined lattice")
+                                    })?;
+                                let sc = |v: &mut [Option<f64>; 3]| {
+                                    v.iter_mut().for_each(|c| *c = c.map(|x| x * scale))
+                                };
+                                match &mut motion {
+                                    Motion::Linear(v) => sc(v),
+                                    Motion::Wiggle { amplitude, .. } => sc(amplitude),
+                                    Motion::Rotate { point, .. } => {
+                                        point.iter_mut().for_each(|c| *c *= scale)
+                                    }
+                                    // LIGGGHTS scales variable motion by neither
+                                    Motion::Variable { .. } => {}
+                                }
+                            }
+                            i += 2;
+                        }
+                        _ => return Err(a.error(i, "Illegal fix move command")),
+                    }
+                }
+                let sim = &ctx.sim;
+                FixKind::Move(Move::new(
+                    motion,
+                    &sim.particles,
+                    bit,
+                    &sim.domain,
+                    sim.step,
+                ))
+            }
+            other => return Err(a.unsupported(2, &format!("fix {other}"))),
         }
-        other => return Err(a.unsupported(2, &format!("fix {other}"))),
     };
     let args: Vec<String> = (3..a.len())
         .map(|i| a.word(i).map(str::to_string))
@@ -1488,6 +1504,82 @@ fn ave_time(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, D
     Ok(FixKind::AveTime(fix))
 }
 
+/// `fix ID GROUP wall/gran model ... mesh n_meshes N meshes M1 .. MN [model settings]`.
+fn mesh_wall(
+    a: &Args,
+    ctx: &Ctx,
+    group: &str,
+    mut selection: crate::engine::granular::Selection,
+    at: usize,
+) -> std::result::Result<FixKind, Diagnostic> {
+    if a.word(at + 1)? != "n_meshes" {
+        return Err(a
+            .error(at + 1, "Fix wall/gran: expecting keyword 'n_meshes'")
+            .with_help("expected: mesh n_meshes N meshes ID1 ... IDN"));
+    }
+    let n = a.int(at + 2)?;
+    if n < 1 {
+        return Err(a.error(at + 2, "Fix wall/gran: 'n_meshes' must be > 0"));
+    }
+    if a.word(at + 3)? != "meshes" {
+        return Err(a.error(at + 3, "Fix wall/gran: expecting keyword 'meshes'"));
+    }
+    let mut meshes = Vec::new();
+    for k in 0..n as usize {
+        let id = a.word(at + 4 + k)?;
+        if !ctx
+            .sim
+            .fixes
+            .iter()
+            .any(|f| f.id == id && matches!(f.kind, FixKind::Mesh(_)))
+        {
+            return Err(a.error(
+                at + 4 + k,
+                &format!("Fix wall/gran: failed to find fix mesh/surface with ID {id}"),
+            ));
+        }
+        meshes.push(id.to_string());
+    }
+    if ctx
+        .sim
+        .fixes
+        .iter()
+        .any(|f| matches!(f.kind, FixKind::MeshWall(_)))
+    {
+        return Err(a.error(
+            0,
+            "More than one wall of type 'mesh' is not supported; list all meshes with n_meshes",
+        ));
+    }
+    let mut k = at + 4 + n as usize;
+    while k < a.len() {
+        match a.word(k)? {
+            w @ ("store_force" | "store_force_contact" | "store_force_contact_stress") => {
+                if a.word_in(k + 1, &["yes", "no"])? == "yes" {
+                    return Err(a.unsupported(k, &format!("fix wall/gran {w} yes")));
+                }
+                k += 2;
+            }
+            _ => break,
+        }
+    }
+    let rest: Vec<&str> = (k..a.len())
+        .map(|i| a.word(i))
+        .collect::<std::result::Result<_, _>>()?;
+    selection
+        .apply_settings(&rest)
+        .map_err(|m| a.error(k, &format!("Fix wall/gran: {m}")))?;
+    let group_index = ctx.sim.groups.iter().position(|g| g == group).unwrap_or(0) as u32;
+    Ok(FixKind::MeshWall(crate::engine::fixes::MeshWallFix {
+        selection,
+        meshes,
+        group_index,
+        model: None,
+        trackers: Vec::new(),
+        built: None,
+    }))
+}
+
 /// `fix ID GROUP mesh/surface[/planar] file F type T [scale f] [move x y z]
 /// [rotate axis x y z angle deg] [curvature deg] [curvature_tolerant yes|no]
 /// [precision p] [heal auto_remove_duplicates|no] [verbose yes|no]`.
@@ -1504,6 +1596,8 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
     }
     let file = a.word(4)?.to_string();
     let (mut wall_type, mut ops) = (None, Vec::new());
+    let mut settings = crate::engine::mesh::MeshSettings::default();
+    let (mut heal, mut surface_vel) = (false, None);
     let mut i = 5;
     while i < a.len() {
         match a.word(i)? {
@@ -1539,24 +1633,41 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
                 });
                 i += 7;
             }
-            "curvature" | "precision" => {
+            "curvature" => {
                 let v = a.real(i + 1)?;
-                if v <= 0.0 {
-                    return Err(a.error(i + 1, "Illegal fix mesh/surface command"));
+                if v <= 0.0 || v > 60.0 {
+                    return Err(a.error(i + 1, "Fix mesh: 0° < curvature < 60° required"));
                 }
+                settings.curvature = (v * std::f64::consts::PI / 180.).cos();
                 i += 2;
             }
-            "curvature_tolerant" | "verbose" => {
+            "precision" => {
+                let v = a.real(i + 1)?;
+                if v <= 0.0 || v > 0.001 {
+                    return Err(a.error(i + 1, "Fix mesh: 0 < precision < 0.001 required"));
+                }
+                settings.precision = v;
+                i += 2;
+            }
+            "curvature_tolerant" => {
+                settings.curvature_tolerant = a.word_in(i + 1, &["yes", "no"])? == "yes";
+                i += 2;
+            }
+            // only LIGGGHTS's extra screen output
+            "verbose" => {
                 a.word_in(i + 1, &["yes", "no"])?;
                 i += 2;
             }
             "heal" => {
-                a.word_in(i + 1, &["auto_remove_duplicates", "no"])?;
+                heal = a.word_in(i + 1, &["auto_remove_duplicates", "no"])? != "no";
                 i += 2;
+            }
+            "surface_vel" => {
+                surface_vel = Some([a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?]);
+                i += 4;
             }
             w @ ("temperature"
             | "mass_temperature"
-            | "surface_vel"
             | "surface_ang_vel"
             | "region"
             | "extrude_planar"
@@ -1591,7 +1702,21 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
     let path = ctx.sys.resolve(&file).to_string_lossy().into_owned();
     let mut triangles = crate::io::stl::read(&path).map_err(|m| a.error(4, &m))?;
     crate::io::stl::transform(&mut triangles, &ops);
-    let normals: Vec<[f64; 3]> = triangles.iter().map(crate::io::stl::normal).collect();
+    if heal {
+        // `heal auto_remove_duplicates`: a triangle with the nodes of an earlier one goes
+        let p = settings.precision;
+        let same = |x: [f64; 3], y: [f64; 3]| (0..3).all(|k| (x[k] - y[k]).abs() < p);
+        let mut kept: Vec<crate::io::stl::Triangle> = Vec::with_capacity(triangles.len());
+        for t in triangles {
+            let dup = kept
+                .iter()
+                .any(|u| t.iter().all(|n| u.iter().any(|m| same(*n, *m))));
+            if !dup {
+                kept.push(t);
+            }
+        }
+        triangles = kept;
+    }
     let d = &ctx.sim.domain;
     let size = (0..3).map(|k| d.length(k)).fold(0.0, f64::max);
     crate::io::stl::check(&triangles, &file, Some(size)).map_err(|m| a.error(4, &m))?;
@@ -1604,12 +1729,15 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
             return Err(a.error(4, "Fix mesh/surface/planar: the mesh is not planar"));
         }
     }
-    Ok(FixKind::Mesh(crate::engine::fixes::MeshFix {
+    let mut fix = crate::engine::fixes::MeshFix {
         file,
         wall_type,
-        triangles,
-        normals,
-    }))
+        mesh: crate::engine::mesh::TriMesh::new(&triangles, settings),
+        node_v: None,
+        surface_vel,
+    };
+    fix.set_surface_velocity();
+    Ok(FixKind::Mesh(fix))
 }
 
 fn seed_arg(a: &Args, ctx: &Ctx, i: usize) -> std::result::Result<i32, Diagnostic> {
@@ -2061,7 +2189,7 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
             "insertion_face" => {
                 let m = a.word(i + 1)?;
                 let tri = ctx.sim.fixes.iter().find_map(|f| match &f.kind {
-                    FixKind::Mesh(mesh) if f.id == m => Some(mesh.triangles.clone()),
+                    FixKind::Mesh(mesh) if f.id == m => Some(mesh.triangles().to_vec()),
                     _ => None,
                 });
                 face = Some(tri.ok_or_else(|| {

@@ -243,6 +243,8 @@ pub enum FixKind {
     InsertPack(Box<crate::engine::insert::InsertPack>),
     /// `fix insert/stream` (None until its first setup computes the face geometry).
     InsertStream(Box<StreamFix>),
+    /// `fix wall/gran ... mesh`: granular walls of triangle meshes.
+    MeshWall(MeshWallFix),
     /// `fix adapt N atom diameter v_name`: particle diameters from a variable.
     Adapt(Adapt),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
@@ -380,6 +382,22 @@ pub struct WallFix {
     pub history_name: String,
 }
 
+/// `fix wall/gran model ... mesh n_meshes N meshes ...`.
+pub struct MeshWallFix {
+    /// Selected contact models.
+    pub selection: crate::engine::granular::Selection,
+    /// IDs of the `fix mesh/surface` meshes, in the order given.
+    pub meshes: Vec<String>,
+    /// Index of the fix's group (LIGGGHTS ORs it into the mesh group bits).
+    pub group_index: u32,
+    /// Built at each run from the current materials.
+    pub model: Option<Box<dyn crate::engine::mesh_wall::MeshWallInteraction>>,
+    /// Contact bookkeeping per mesh (kept across runs).
+    pub trackers: Vec<crate::engine::mesh_wall::Tracker>,
+    /// The pair-list build the trackers' candidate lists belong to.
+    pub built: Option<u64>,
+}
+
 /// One defined fix.
 pub struct Fix {
     /// The fix ID.
@@ -392,6 +410,53 @@ pub struct Fix {
     pub kind: FixKind,
     /// Its arguments after the style (for settings fixes).
     pub args: Vec<String>,
+}
+
+/// The forces of the mesh wall fix `fixes[k]` on the particles.
+fn mesh_wall_force(
+    fixes: &mut [Fix],
+    k: usize,
+    p: &mut Particles,
+    dt: f64,
+    update: bool,
+    list: (u64, f64),
+    moving_skin: bool,
+) {
+    let mut kind = std::mem::replace(&mut fixes[k].kind, FixKind::Settings);
+    if let FixKind::MeshWall(w) = &mut kind {
+        if let Some(model) = w.model.as_ref() {
+            let refs: Vec<crate::engine::mesh_wall::MeshRef> = w
+                .meshes
+                .iter()
+                .filter_map(|id| {
+                    fixes.iter().find_map(|f| match &f.kind {
+                        FixKind::Mesh(m) if &f.id == id => {
+                            Some(crate::engine::mesh_wall::MeshRef {
+                                mesh: &m.mesh,
+                                wall_type: m.wall_type,
+                                group: f.group | w.group_index,
+                                node_v: m.node_v.as_deref(),
+                            })
+                        }
+                        _ => None,
+                    })
+                })
+                .collect();
+            if w.trackers.len() != refs.len() {
+                w.trackers = vec![Default::default(); refs.len()];
+                w.built = None;
+            }
+            if w.built != Some(list.0) {
+                let skin = if moving_skin { list.1 } else { 0.5 * list.1 };
+                for (tr, m) in w.trackers.iter_mut().zip(&refs) {
+                    tr.rebuild(p, m, skin);
+                }
+                w.built = Some(list.0);
+            }
+            model.compute(p, &refs, &mut w.trackers, dt, update);
+        }
+    }
+    fixes[k].kind = kind;
 }
 
 /// Run the `initial_integrate` phase of all fixes.
@@ -495,9 +560,23 @@ impl ForceFix {
     }
 }
 
-/// Run the `post_force` phase of all fixes.
-pub fn post_force(fixes: &mut [Fix], p: &mut Particles, dt: f64, update: bool, list: (u64, f64)) {
-    for fix in fixes {
+/// Run the `post_force` phase of all fixes. `list` is the pair list's build count and skin;
+/// `moving_skin` is whether mesh neighbour lists need the full skin (moving meshes or a
+/// changing box).
+pub fn post_force(
+    fixes: &mut [Fix],
+    p: &mut Particles,
+    dt: f64,
+    update: bool,
+    list: (u64, f64),
+    moving_skin: bool,
+) {
+    for k in 0..fixes.len() {
+        if let FixKind::MeshWall(_) = fixes[k].kind {
+            mesh_wall_force(fixes, k, p, dt, update, list, moving_skin);
+            continue;
+        }
+        let fix = &mut fixes[k];
         let g = fix.group;
         match &mut fix.kind {
             FixKind::WallGran(wall) => {
@@ -602,7 +681,7 @@ mod tests {
         for step in 1..=200 {
             initial_integrate(&fixes, &mut p, step, dt);
             p.f[0] = [0.0; 3];
-            post_force(&mut fixes, &mut p, dt, true, (0, 0.0));
+            post_force(&mut fixes, &mut p, dt, true, (0, 0.0), false);
             final_integrate(&fixes, &mut p, dt);
         }
         assert!((p.v[0][2] - a * omega).abs() < 1e-9);
@@ -640,9 +719,16 @@ mod tests {
             })),
         ];
         let mut fixes = fixes;
-        post_force(&mut fixes, &mut p, 0.1, true, (0, 0.0));
+        post_force(&mut fixes, &mut p, 0.1, true, (0, 0.0), false);
         assert_eq!(p.f[0], [0.5, 7.0, 3.0]);
-        post_force(&mut [mk(FixKind::Freeze)], &mut p, 0.1, true, (0, 0.0));
+        post_force(
+            &mut [mk(FixKind::Freeze)],
+            &mut p,
+            0.1,
+            true,
+            (0, 0.0),
+            false,
+        );
         assert_eq!((p.f[0], p.torque[0]), ([0.0; 3], [0.0; 3]));
         assert_eq!(frozen_groups(&[mk(FixKind::Freeze)]), 1);
     }
@@ -842,10 +928,38 @@ pub struct MeshFix {
     pub file: String,
     /// The wall's atom type (material).
     pub wall_type: usize,
-    /// Triangles after scale/move/rotate (length).
-    pub triangles: Vec<crate::io::stl::Triangle>,
-    /// Unit normals of the transformed triangles.
-    pub normals: Vec<[f64; 3]>,
+    /// The triangles after scale/move/rotate, with their geometry and topology (length).
+    pub mesh: crate::engine::mesh::TriMesh,
+    /// Velocities of each triangle's nodes (length/time), for moving meshes and conveyors.
+    pub node_v: Option<Vec<[[f64; 3]; 3]>>,
+    /// `surface_vel vx vy vz` (length/time): the conveyor velocity, projected per triangle.
+    pub surface_vel: Option<[f64; 3]>,
+}
+
+impl MeshFix {
+    /// The triangles (nodes in STL order).
+    pub fn triangles(&self) -> &[crate::io::stl::Triangle] {
+        &self.mesh.nodes
+    }
+
+    /// LIGGGHTS's conveyor velocity of each node: the surface velocity with its component
+    /// along the triangle normal removed, rescaled to the full speed.
+    pub fn set_surface_velocity(&mut self) {
+        let Some(v) = self.surface_vel else { return };
+        let speed = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        let mut node_v = Vec::with_capacity(self.mesh.len());
+        for n in &self.mesh.normal {
+            let s = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+            let mut t = [v[0] - s * n[0], v[1] - s * n[1], v[2] - s * n[2]];
+            let mag = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+            if mag > 0.0 {
+                let inv = 1. / mag;
+                t = t.map(|c| speed * (inv * c));
+            }
+            node_v.push([t; 3]);
+        }
+        self.node_v = Some(node_v);
+    }
 }
 
 /// `fix insert/stream` as given, and its state once set up.

@@ -8,6 +8,8 @@ pub mod fixes;
 pub mod granular;
 pub mod insert;
 pub mod integrate;
+pub mod mesh;
+pub mod mesh_wall;
 pub mod neighbor;
 pub mod numbers;
 pub mod particles;

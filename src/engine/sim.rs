@@ -662,7 +662,7 @@ impl Simulation {
             FixKind::Mesh(m) => Some(m),
             _ => None,
         });
-        let nodes = meshes.flat_map(|m| m.triangles.iter().flatten());
+        let nodes = meshes.flat_map(|m| m.triangles().iter().flatten());
         if self.domain.shrinks() {
             let mut lo = [f64::INFINITY; 3];
             let mut hi = [f64::NEG_INFINITY; 3];
@@ -874,6 +874,16 @@ impl Simulation {
                 }
             }
         }
+        for k in 0..self.fixes.len() {
+            if let FixKind::MeshWall(wall) = &self.fixes[k].kind {
+                let mut sel = wall.selection.clone();
+                sel.options.two_d = two_d;
+                let model = crate::engine::mesh_wall::build(&sel, &input)?;
+                if let FixKind::MeshWall(wall) = &mut self.fixes[k].kind {
+                    wall.model = Some(model);
+                }
+            }
+        }
         let Some(mut sel) = self.pair_selection.clone() else {
             self.pair = None;
             return Ok(());
@@ -970,6 +980,20 @@ impl Simulation {
                 let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
                 d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > limit
             })
+    }
+
+    /// LIGGGHTS's mesh setup at the first run: neighbours and active edges and corners of
+    /// every `fix mesh/surface`, within the current box.
+    fn build_mesh_topology(&mut self) -> Result<(), String> {
+        let (lo, hi) = (self.domain.lo, self.domain.hi);
+        for f in &mut self.fixes {
+            if let FixKind::Mesh(m) = &mut f.kind {
+                if !m.mesh.has_topology {
+                    m.mesh.build_topology(lo, hi, &f.id)?;
+                }
+            }
+        }
+        Ok(())
     }
 
     /// A fix changes particle radii during runs (`fix adapt ... atom diameter`).
@@ -1150,7 +1174,20 @@ impl Simulation {
         }
         self.resolve_force_fixes(vars)?;
         let list = (self.list.builds, self.neighbor.skin);
-        fixes::post_force(&mut self.fixes, &mut self.particles, self.dt, update, list);
+        // LIGGGHTS's mesh lists use the full skin when a mesh moves or the box can change
+        let moving_skin = self.domain.shrinks()
+            || self.fixes.iter().any(|f| match &f.kind {
+                FixKind::Mesh(m) => m.node_v.is_some() && m.surface_vel.is_none(),
+                _ => false,
+            });
+        fixes::post_force(
+            &mut self.fixes,
+            &mut self.particles,
+            self.dt,
+            update,
+            list,
+            moving_skin,
+        );
         Ok(())
     }
 
@@ -1189,6 +1226,7 @@ impl Simulation {
         // setup
         if pre || !self.has_run {
             self.pbc_and_box()?;
+            self.build_mesh_topology()?;
             if self.sort_every > 0 {
                 self.sort_particles();
             }
@@ -1595,7 +1633,7 @@ impl Simulation {
         for f in &self.fixes {
             let FixKind::Mesh(m) = &f.kind else { continue };
             let lost = m
-                .triangles
+                .triangles()
                 .iter()
                 .filter(|t| {
                     (0..3).any(|k| {
@@ -1827,8 +1865,8 @@ impl Simulation {
                     for f in &self.fixes {
                         if let FixKind::Mesh(m) = &f.kind {
                             if ids.is_empty() || ids.contains(&f.id) {
-                                triangles.extend_from_slice(&m.triangles);
-                                normals.extend_from_slice(&m.normals);
+                                triangles.extend_from_slice(m.triangles());
+                                normals.extend_from_slice(&m.mesh.normal);
                             }
                         }
                     }

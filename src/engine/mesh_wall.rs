@@ -1,0 +1,406 @@
+//! `fix wall/gran model ... mesh n_meshes N meshes M1 M2 ...`: granular contacts of spheres
+//! with triangle meshes, as LIGGGHTS 3.8.0 computes them.
+//!
+//! Each particle keeps, per mesh, the triangles it may touch (rebuilt with the pair list) and
+//! one history slot per candidate triangle. A touching triangle reports its closest active
+//! feature; a new face contact is suppressed when the particle already touched a coplanar
+//! neighbour triangle this step, and inherits the history of coplanar neighbours it touched
+//! the step before, so a sphere rolling across a flat mesh feels one continuous contact. A
+//! slot dies on the first step without contact. The wall is a body of infinite radius and
+//! mass; moving meshes and conveyor belts give it a velocity interpolated at the contact.
+
+use crate::engine::contact::{
+    CohesionModel, ContactKernel, ContactModel, Material, MaterialInput, NormalModel, RollingModel,
+    TangentialModel, WallInput,
+};
+use crate::engine::granular::Selection;
+use crate::engine::mesh::TriMesh;
+use crate::engine::particles::Particles;
+
+/// Most history doubles a mesh contact can hold.
+pub const MAX_HISTORY: usize = 8;
+
+/// One history slot of a particle: the triangle it belongs to (-1: free) and its values.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Slot {
+    partner: i32,
+    keep: bool,
+    hist: [f64; MAX_HISTORY],
+}
+
+const FREE: Slot = Slot {
+    partner: -1,
+    keep: false,
+    hist: [0.0; MAX_HISTORY],
+};
+
+/// Per-mesh contact bookkeeping of every particle (LIGGGHTS's neighlist/mesh and
+/// contacthistory/mesh).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Tracker {
+    /// Atom ID of each particle index when the lists were last built.
+    ids: Vec<i64>,
+    /// Candidate triangles of each particle, in ID order.
+    cand: Vec<Vec<u32>>,
+    /// History slots of each particle (as many as candidates).
+    slots: Vec<Vec<Slot>>,
+}
+
+impl Tracker {
+    /// Contacts (triangle, history) of the particle with atom ID `id`, for restarts and
+    /// reports.
+    pub fn contacts_of(&self, index: usize) -> Vec<(i32, Vec<f64>)> {
+        self.slots.get(index).map_or(Vec::new(), |s| {
+            s.iter()
+                .filter(|s| s.partner >= 0)
+                .map(|s| (s.partner, s.hist.to_vec()))
+                .collect()
+        })
+    }
+
+    /// Rebuild the candidate lists after the pair list was rebuilt: slots follow their atoms
+    /// (by ID) through reordering, are packed, and lose triangles no longer listed.
+    pub fn rebuild(&mut self, p: &Particles, mesh: &MeshRef, skin: f64) {
+        // LIGGGHTS's sort_contacts: used slots packed to the front (not order-preserving)
+        for s in &mut self.slots {
+            pack(s);
+        }
+        // follow the atoms
+        if self.ids != p.id {
+            let mut old: std::collections::HashMap<i64, Vec<Slot>> =
+                std::collections::HashMap::with_capacity(self.ids.len());
+            for (k, s) in std::mem::take(&mut self.slots).into_iter().enumerate() {
+                if !s.is_empty() {
+                    old.insert(self.ids[k], s);
+                }
+            }
+            self.slots =
+                p.id.iter()
+                    .map(|id| old.remove(id).unwrap_or_default())
+                    .collect();
+            self.ids = p.id.clone();
+        }
+        self.cand = candidates(p, mesh, skin);
+        for (s, cand) in self.slots.iter_mut().zip(&self.cand) {
+            // cleanUpContactJumps: drop partners no longer listed (the last used slot moves in)
+            let mut k = 0;
+            while k < s.len() {
+                if s[k].partner >= 0 && cand.binary_search(&(s[k].partner as u32)).is_err() {
+                    let last = s.iter().rposition(|x| x.partner >= 0).unwrap_or(k);
+                    s[k] = s[last];
+                    s[last] = FREE;
+                    if last == k {
+                        k += 1;
+                    }
+                } else {
+                    k += 1;
+                }
+            }
+            let used: Vec<Slot> = s.iter().copied().filter(|x| x.partner >= 0).collect();
+            s.clear();
+            s.extend(used);
+            s.resize(cand.len().max(s.len()), FREE);
+        }
+    }
+}
+
+/// Pack used slots to the front by swapping the first free slot with the last used one.
+fn pack(s: &mut [Slot]) {
+    loop {
+        let free = s.iter().position(|x| x.partner < 0);
+        let used = s.iter().rposition(|x| x.partner >= 0);
+        match (free, used) {
+            (Some(f), Some(u)) if f < u => {
+                s.swap(f, u);
+            }
+            _ => return,
+        }
+    }
+}
+
+/// Candidate triangles of each particle: those a sphere of its radius plus `skin` may reach
+/// (LIGGGHTS's prism test), found through a grid of the particles.
+fn candidates(p: &Particles, mesh: &MeshRef, skin: f64) -> Vec<Vec<u32>> {
+    let n = p.len();
+    let mut cand = vec![Vec::new(); n];
+    let members: Vec<usize> = (0..n).filter(|&i| p.mask[i] & mesh.group != 0).collect();
+    if members.is_empty() || mesh.mesh.is_empty() {
+        return cand;
+    }
+    let rmax = members.iter().map(|&i| p.radius[i]).fold(0.0, f64::max);
+    let reach_max = rmax + skin;
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for &i in &members {
+        for d in 0..3 {
+            lo[d] = lo[d].min(p.x[i][d]);
+            hi[d] = hi[d].max(p.x[i][d]);
+        }
+    }
+    // cells at least the reach wide, and not many more cells than particles
+    let mut h = (2.0 * reach_max).max(1e-300);
+    let cells_for = |h: f64| -> f64 {
+        (0..3)
+            .map(|d| ((hi[d] - lo[d]) / h).floor() + 1.0)
+            .product()
+    };
+    while cells_for(h) > 8.0 * members.len() as f64 + 64.0 {
+        h *= 2.0;
+    }
+    let dims = [0, 1, 2].map(|d| (((hi[d] - lo[d]) / h).floor() as usize) + 1);
+    let cell_of =
+        |x: [f64; 3]| [0, 1, 2].map(|d| (((x[d] - lo[d]) / h).floor() as usize).min(dims[d] - 1));
+    let flat = |c: [usize; 3]| (c[2] * dims[1] + c[1]) * dims[0] + c[0];
+    let mut heads = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
+    for &i in &members {
+        heads[flat(cell_of(p.x[i]))].push(i);
+    }
+    let m = mesh.mesh;
+    for t in 0..m.len() {
+        let mut blo = [f64::INFINITY; 3];
+        let mut bhi = [f64::NEG_INFINITY; 3];
+        for node in &m.nodes[t] {
+            for d in 0..3 {
+                blo[d] = blo[d].min(node[d] - reach_max);
+                bhi[d] = bhi[d].max(node[d] + reach_max);
+            }
+        }
+        if (0..3).any(|d| bhi[d] < lo[d] || blo[d] > hi[d]) {
+            continue;
+        }
+        let c0 = cell_of([0, 1, 2].map(|d| blo[d].max(lo[d])));
+        let c1 = cell_of([0, 1, 2].map(|d| bhi[d].min(hi[d])));
+        for cz in c0[2]..=c1[2] {
+            for cy in c0[1]..=c1[1] {
+                for cx in c0[0]..=c1[0] {
+                    for &i in &heads[flat([cx, cy, cz])] {
+                        if m.near(t, p.x[i], p.radius[i] + skin) {
+                            cand[i].push(t as u32);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    cand
+}
+
+/// What the force loop needs of one mesh.
+pub struct MeshRef<'a> {
+    /// The mesh.
+    pub mesh: &'a TriMesh,
+    /// Its atom type (material).
+    pub wall_type: usize,
+    /// Particles it acts on: mask bits (LIGGGHTS's mesh group bit OR'd with the wall fix's
+    /// group index, a quirk kept for identical results).
+    pub group: u32,
+    /// Velocities of each triangle's nodes (moving meshes, conveyor belts), if any.
+    pub node_v: Option<&'a [[[f64; 3]; 3]]>,
+}
+
+/// Mesh wall contacts with a contact model, monomorphised for its sub-models.
+pub trait MeshWallInteraction: Send {
+    /// Doubles of history per contact.
+    fn history_width(&self) -> usize;
+    /// Add the forces and torques of every mesh in `meshes` (in order) to the particles;
+    /// `trackers[k]` belongs to `meshes[k]`.
+    fn compute(
+        &self,
+        p: &mut Particles,
+        meshes: &[MeshRef],
+        trackers: &mut [Tracker],
+        dt: f64,
+        update: bool,
+    );
+}
+
+/// A contact model acting between particles and meshes.
+pub struct MeshWallGran<N, T, C, R> {
+    /// The composed contact model.
+    pub model: ContactModel<N, T, C, R>,
+    /// Coefficients per (particle type, mesh type).
+    pub material: Material,
+}
+
+/// Find or make the slot of a touching contact with triangle `id` (LIGGGHTS's
+/// handleContact); None when a coplanar neighbour already counted this contact.
+#[inline]
+fn handle_contact(slots: &mut [Slot], id: u32, face: bool, mesh: &TriMesh) -> Option<usize> {
+    let id = id as i32;
+    if let Some(k) = slots.iter().position(|s| s.partner == id) {
+        slots[k].keep = true;
+        return Some(k);
+    }
+    let coplanar = |other: i32| {
+        mesh.coplanar_neighbors[id as usize]
+            .binary_search(&(other as u32))
+            .is_ok()
+    };
+    if face
+        && slots
+            .iter()
+            .any(|s| s.partner >= 0 && s.keep && coplanar(s.partner))
+    {
+        return None;
+    }
+    let k = slots.iter().position(|s| s.partner < 0)?;
+    slots[k] = Slot {
+        partner: id,
+        keep: true,
+        hist: [0.0; MAX_HISTORY],
+    };
+    if face {
+        for j in 0..slots.len() {
+            if j != k && slots[j].partner >= 0 && coplanar(slots[j].partner) {
+                slots[k].hist = slots[j].hist;
+            }
+        }
+    }
+    Some(k)
+}
+
+impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> MeshWallInteraction
+    for MeshWallGran<N, T, C, R>
+{
+    fn history_width(&self) -> usize {
+        self.model.history_len()
+    }
+
+    fn compute(
+        &self,
+        p: &mut Particles,
+        meshes: &[MeshRef],
+        trackers: &mut [Tracker],
+        dt: f64,
+        update: bool,
+    ) {
+        let w = self.model.history_len();
+        for (mref, tr) in meshes.iter().zip(trackers.iter_mut()) {
+            let m = mref.mesh;
+            for i in 0..p.len().min(tr.cand.len()) {
+                if tr.cand[i].is_empty() {
+                    continue;
+                }
+                let slots = &mut tr.slots[i];
+                for s in slots.iter_mut() {
+                    s.keep = false;
+                }
+                for &t in &tr.cand[i] {
+                    let Some(c) = m.closest(t as usize, p.x[i], p.radius[i]) else {
+                        continue;
+                    };
+                    if !(c.gap <= 0.0) {
+                        continue;
+                    }
+                    let Some(k) = handle_contact(slots, t, c.face, m) else {
+                        continue;
+                    };
+                    let mut v_wall = [0.0; 3];
+                    if let Some(v) = mref.node_v {
+                        let (v0, v1, v2) = (v[t as usize][0], v[t as usize][1], v[t as usize][2]);
+                        let b = c.bary;
+                        for d in 0..3 {
+                            v_wall[d] = (b[0] * v0[d] + b[1] * v1[d]) + b[2] * v2[d];
+                        }
+                    }
+                    let input = WallInput {
+                        x: p.x[i],
+                        gap: c.gap,
+                        to_wall: c.to_wall,
+                        radius: p.radius[i],
+                        mass: p.mass[i],
+                        v: p.v[i],
+                        omega: p.omega[i],
+                        v_wall,
+                        dt,
+                        update_history: update,
+                        coeffs: self.material.pair(p.kind[i] as usize, mref.wall_type),
+                    };
+                    let out = self.model.wall_force(&input, &mut slots[k].hist[..w]);
+                    for d in 0..3 {
+                        p.f[i][d] += out.f[d];
+                        p.torque[i][d] += out.t[d];
+                    }
+                }
+                // a contact not touched this step is gone, and so is its history
+                for s in slots.iter_mut() {
+                    if s.partner >= 0 && !s.keep {
+                        *s = FREE;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Build the mesh wall interaction for a selection, monomorphised once per run.
+pub fn build(
+    sel: &Selection,
+    input: &MaterialInput,
+) -> Result<Box<dyn MeshWallInteraction>, String> {
+    let model = crate::engine::contact::AnyContactModel::new(sel)?;
+    if model.history_len() > MAX_HISTORY {
+        return Err(format!(
+            "fix wall/gran mesh: contact models with more than {MAX_HISTORY} history values are not supported"
+        ));
+    }
+    let material = Material::new(input, &model.properties())?;
+    struct Make(Material);
+    impl ContactKernel for Make {
+        type Output = Box<dyn MeshWallInteraction>;
+        fn run<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>(
+            self,
+            m: &ContactModel<N, T, C, R>,
+        ) -> Self::Output {
+            Box::new(MeshWallGran {
+                model: *m,
+                material: self.0,
+            })
+        }
+    }
+    Ok(model.dispatch(Make(material)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn slot(partner: i32, keep: bool, v: f64) -> Slot {
+        Slot {
+            partner,
+            keep,
+            hist: [v; MAX_HISTORY],
+        }
+    }
+
+    #[test]
+    fn packing_swaps_the_last_used_slot_into_the_first_hole() {
+        let mut s = [
+            slot(1, false, 1.),
+            FREE,
+            slot(2, false, 2.),
+            slot(3, false, 3.),
+        ];
+        pack(&mut s);
+        let order: Vec<i32> = s.iter().map(|x| x.partner).collect();
+        assert_eq!(order, vec![1, 3, 2, -1]);
+    }
+
+    #[test]
+    fn coplanar_face_contacts_count_once_and_pass_history_on() {
+        let t0 = [[-0.05, -0.05, 0.], [0.05, -0.05, 0.], [0.05, 0.05, 0.]];
+        let t1 = [[-0.05, -0.05, 0.], [0.05, 0.05, 0.], [-0.05, 0.05, 0.]];
+        let mut m = TriMesh::new(&[t0, t1], crate::engine::mesh::MeshSettings::default());
+        m.build_topology([-0.1; 3], [0.1; 3], "square").unwrap();
+        // a contact kept on triangle 0 this step suppresses a new face contact on 1
+        let mut s = vec![slot(0, true, 5.), FREE];
+        assert_eq!(handle_contact(&mut s, 1, true, &m), None);
+        // from the step before (not yet kept), triangle 1 inherits its history
+        let mut s = vec![slot(0, false, 5.), FREE];
+        assert_eq!(handle_contact(&mut s, 1, true, &m), Some(1));
+        assert_eq!(s[1].hist[0], 5.);
+        // an existing slot is found again
+        assert_eq!(handle_contact(&mut s, 0, true, &m), Some(0));
+        assert!(s[0].keep);
+    }
+}

@@ -1182,7 +1182,7 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
         "reduce" => compute_reduce(a, ctx)?,
         "pair/gran/local" => {
             use crate::engine::computes::LocalField;
-            if ctx.sim.step > 0 {
+            if ctx.sim.step > 0 && !ctx.sim.restart_in_progress {
                 return Err(a.error(
                     2,
                     "Compute pair/gran/local: Need to define this compute before first run",
@@ -1735,6 +1735,7 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
         mesh: crate::engine::mesh::TriMesh::new(&triangles, settings),
         node_v: None,
         surface_vel,
+        planar: style == "mesh/surface/planar",
     };
     fix.set_surface_velocity();
     Ok(FixKind::Mesh(fix))
@@ -2165,6 +2166,7 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
     let mut velocity = Velocity::Constant([0.0; 3]);
     let mut omega = [0.0; 3];
     let mut start = ctx.sim.step + 1;
+    let (mut all_in, mut all_in_at, mut face_id) = (false, 0, String::new());
     let mut i = 3;
     let yes = |a: &Args, k: usize| a.word_in(k, &["yes", "no"]).map(|w| w == "yes");
     while i < a.len() {
@@ -2189,9 +2191,12 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
             "insertion_face" => {
                 let m = a.word(i + 1)?;
                 let tri = ctx.sim.fixes.iter().find_map(|f| match &f.kind {
-                    FixKind::Mesh(mesh) if f.id == m => Some(mesh.triangles().to_vec()),
+                    FixKind::Mesh(mesh) if f.id == m => {
+                        Some((mesh.triangles().to_vec(), mesh.planar))
+                    }
                     _ => None,
                 });
+                face_id = m.to_string();
                 face = Some(tri.ok_or_else(|| {
                     a.error(
                         i + 1,
@@ -2280,9 +2285,8 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
                 i += 5;
             }
             "all_in" => {
-                if yes(a, i + 1)? {
-                    return Err(a.unsupported(i, "fix insert/stream all_in yes"));
-                }
+                all_in = yes(a, i + 1)?;
+                all_in_at = i;
                 i += 2;
             }
             w @ ("duration" | "duration_time" | "parallel" | "orientation" | "set_property"
@@ -2318,7 +2322,13 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
     let need = |what: &str| a.error(2, &format!("Fix insert/stream: have to define '{what}'"));
     let seed = seed.ok_or_else(|| need("seed"))?;
     let distribution = dist.ok_or_else(|| need("distributiontemplate"))?;
-    let triangles = face.ok_or_else(|| need("insertion_face"))?;
+    let (triangles, planar) = face.ok_or_else(|| need("insertion_face"))?;
+    if all_in && !planar {
+        return Err(a.error(
+            all_in_at,
+            &format!("Fix insert/stream (id {id}): using all_in yes requires you to use a fix mesh/surface/planar"),
+        ));
+    }
     let total = total.ok_or_else(|| {
         a.error(
             2,
@@ -2343,6 +2353,8 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
             seed,
             distribution,
             triangles,
+            face_id,
+            all_in,
             extrude,
             every,
             total,

@@ -1361,6 +1361,7 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
     .map_err(|m| a.error(0, &m))?;
     ctx.say("Reading restart file ...\n");
     let pair = ctx.sim.load_restart(&r).map_err(|m| a.error(0, &m))?;
+    ctx.sim.restart_in_progress = !r.global_fixes.is_empty() || !r.peratom_fixes.is_empty();
     let (lo, hi) = (ctx.sim.domain.lo, ctx.sim.domain.hi);
     ctx.say(&format!(
         "  orthogonal box = ({} {} {}) to ({} {} {})\n  1 by 1 by 1 MPI processor grid\n  {} atoms\n",

@@ -934,6 +934,8 @@ pub struct MeshFix {
     pub node_v: Option<Vec<[[f64; 3]; 3]>>,
     /// `surface_vel vx vy vz` (length/time): the conveyor velocity, projected per triangle.
     pub surface_vel: Option<[f64; 3]>,
+    /// Defined as `mesh/surface/planar`.
+    pub planar: bool,
 }
 
 impl MeshFix {
@@ -973,6 +975,10 @@ pub struct StreamFix {
     pub distribution: String,
     /// The insertion face's triangles.
     pub triangles: Vec<crate::io::stl::Triangle>,
+    /// The insertion face's mesh fix ID.
+    pub face_id: String,
+    /// `all_in yes`: whole particles inside the extruded face (planar faces only).
+    pub all_in: bool,
     /// `extrude_length` (length), if given.
     pub extrude: Option<f64>,
     /// `insert_every`, if given.

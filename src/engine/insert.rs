@@ -479,6 +479,27 @@ pub struct World<'a> {
     pub box_changes: bool,
 }
 
+/// LIGGGHTS's warning when the (sub-)domain is narrower than 2.2 bounding radii of the
+/// largest particle to insert, given at every insertion that inserts something.
+fn narrow_box_warning(w: &World, maxrad: f64) -> Option<String> {
+    let d = [0, 1, 2].map(|k| w.hi[k] - w.lo[k]);
+    let dim = if d[0] < d[1] && d[0] < d[2] {
+        0
+    } else if d[1] < d[2] {
+        1
+    } else {
+        2
+    };
+    (d[dim] < 2.2 * maxrad).then(|| {
+        format!(
+            "WARNING: Particle insertion on proc 0: sub-domain is smaller than the bounding radius of insert particles to insert: \nMax. bounding sphere diameter is {:.6}, sub-domain extent in {} direction is only {:.6}  (./src/fix_insert.cpp:730)",
+            2.0 * maxrad,
+            ["x", "y", "z"][dim],
+            d[dim]
+        )
+    })
+}
+
 impl InsertPack {
     fn shape<'r>(&self, regions: &'r Regions) -> &'r Shape {
         &regions.list[self.region].shape
@@ -618,6 +639,7 @@ impl InsertPack {
         }
         let nlist = list.len() as i64;
         let maxrad = dist.max_radius;
+        lines.extend(narrow_box_warning(w, maxrad));
         // existing atoms near the region (periodic images too), then placed ones
         let (elo, ehi) = regions.extent(self.region).unwrap_or(([0.0; 3], [0.0; 3]));
         let exact_near = matches!(shape, Shape::Block { .. } | Shape::Cylinder { .. });
@@ -790,6 +812,129 @@ pub struct Face {
     pub total: f64,
     /// The mesh generator.
     pub rng: RanPark,
+    /// Edge lists for `all_in yes` (planar faces only).
+    pub within: Option<Within>,
+}
+
+/// LIGGGHTS's TriMeshPlanar edge lists for `all_in yes`: for each triangle, up to six
+/// (triangle, active edge) pairs to test a sampled point against, and the smallest of their
+/// recorded distances. LIGGGHTS fills the six slots with every pairing of an active edge
+/// with this triangle's edges and, once full, overwrites the slot with the largest
+/// distance unconditionally; the lists are therefore not the six nearest edges, and a
+/// point can land closer than its radius to an active edge missing from its list. This
+/// is reproduced as it is.
+#[derive(Debug, Clone)]
+pub struct Within {
+    /// Per triangle, the (triangle, edge) pairs, `None` past the filled slots.
+    pub nearest: Vec<[Option<(usize, usize)>; 6]>,
+    /// Per triangle, the smallest recorded distance (length; 1e8 while slots are empty).
+    pub min_dist: Vec<f64>,
+    /// Per triangle: nodes, unit edge vectors, edge lengths and in-plane edge normals.
+    pub edges: Vec<([[f64; 3]; 3], [[f64; 3]; 3], [f64; 3], [[f64; 3]; 3])>,
+}
+
+/// Most samples `all_in yes` draws for one point before it warns and keeps the last.
+const MAXTRY_WITHIN: usize = 500;
+
+impl Within {
+    /// From a mesh with its topology built.
+    pub fn new(mesh: &crate::engine::mesh::TriMesh) -> Within {
+        let n = mesh.len();
+        let edges: Vec<_> = (0..n)
+            .map(|t| {
+                (
+                    mesh.nodes[t],
+                    mesh.edge_vec[t],
+                    mesh.edge_len[t],
+                    mesh.edge_norm[t],
+                )
+            })
+            .collect();
+        let mut nearest = Vec::with_capacity(n);
+        let mut min_dist = Vec::with_capacity(n);
+        for i in 0..n {
+            let mut slots = [None; 6];
+            let mut dists = [1e8; 6];
+            let mut filled = 0;
+            for j in 0..n {
+                if !mesh.edge_active[j].iter().any(|&a| a) {
+                    continue;
+                }
+                for ie in 0..3 {
+                    for je in 0..3 {
+                        if !mesh.edge_active[j][je] {
+                            continue;
+                        }
+                        // LIGGGHTS measures node je of j against edge ie of i
+                        let d = edge_point_dist(&edges[i], ie, mesh.nodes[j][je]);
+                        let k = if filled < 6 {
+                            filled += 1;
+                            filled - 1
+                        } else {
+                            first_extreme(&dists, |a, b| a > b)
+                        };
+                        slots[k] = Some((j, je));
+                        dists[k] = d;
+                    }
+                }
+            }
+            nearest.push(slots);
+            min_dist.push(dists[first_extreme(&dists, |a, b| a < b)]);
+        }
+        Within {
+            nearest,
+            min_dist,
+            edges,
+        }
+    }
+
+    /// `p` (sampled on triangle `t`) is at least `delta` from the listed edges.
+    fn far_enough(&self, t: usize, p: [f64; 3], delta: f64) -> bool {
+        if !(self.min_dist[t] < delta) {
+            return true;
+        }
+        for &(j, e) in self.nearest[t].iter().map_while(|s| s.as_ref()) {
+            let d = edge_point_dist(&self.edges[j], e, p);
+            if d.min(2.0 * delta) < delta {
+                return false;
+            }
+        }
+        true
+    }
+}
+
+/// Index of the first extreme value (`better(a, b)`: a replaces b).
+fn first_extreme(v: &[f64; 6], better: impl Fn(f64, f64) -> bool) -> usize {
+    let mut k = 0;
+    for i in 1..6 {
+        if better(v[i], v[k]) {
+            k = i;
+        }
+    }
+    k
+}
+
+/// LIGGGHTS's edge–point distance: to the start node before the edge, to the end node past
+/// it, else along the in-plane edge normal (length).
+#[allow(clippy::type_complexity)]
+fn edge_point_dist(
+    e: &([[f64; 3]; 3], [[f64; 3]; 3], [f64; 3], [[f64; 3]; 3]),
+    i: usize,
+    p: [f64; 3],
+) -> f64 {
+    let (nodes, vec, len, norm) = e;
+    let a = nodes[i];
+    let d = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
+    let along = vec[i][0] * d[0] + vec[i][1] * d[1] + vec[i][2] * d[2];
+    let mag = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if along < 0.0 {
+        mag(d)
+    } else if along > len[i] {
+        let b = nodes[(i + 1) % 3];
+        mag([p[0] - b[0], p[1] - b[1], p[2] - b[2]])
+    } else {
+        (norm[i][0] * d[0] + norm[i][1] * d[1] + norm[i][2] * d[2]).abs()
+    }
 }
 
 impl Face {
@@ -823,6 +968,7 @@ impl Face {
             acc,
             total: total + 0.0,
             rng: RanPark::new(179424799).expect("positive seed"),
+            within: None,
         }
     }
 
@@ -844,6 +990,28 @@ impl Face {
 
     /// A random point on the face.
     pub fn random_point(&mut self) -> [f64; 3] {
+        self.random_point_on().0
+    }
+
+    /// A random point at least `delta` from the face's active edges (`all_in yes`), as
+    /// LIGGGHTS's generateRandomOwnedGhostWithin; `false` when it gave up after 500 samples.
+    pub fn random_point_within(&mut self, delta: f64) -> ([f64; 3], bool) {
+        let mut ntry = 0;
+        loop {
+            ntry += 1;
+            let (p, t) = self.random_point_on();
+            let far = match &self.within {
+                Some(w) => w.far_enough(t, p, delta),
+                None => true,
+            };
+            if far || ntry >= MAXTRY_WITHIN {
+                return (p, ntry != MAXTRY_WITHIN);
+            }
+        }
+    }
+
+    /// A random point on the face and its triangle.
+    fn random_point_on(&mut self) -> ([f64; 3], usize) {
         let r = self.rng.uniform() * self.total;
         let c = self.search(r, 0, self.triangles.len() - 1);
         let (u, v) = loop {
@@ -855,7 +1023,10 @@ impl Face {
         };
         let (b0, b1, b2) = (1.0 - u - v, v, u);
         let n = &self.triangles[c];
-        [0, 1, 2].map(|k| b0 * n[0][k] + b1 * n[1][k] + b2 * n[2][k])
+        (
+            [0, 1, 2].map(|k| b0 * n[0][k] + b1 * n[1][k] + b2 * n[2][k]),
+            c,
+        )
     }
 
     /// Whether `x`'s projection lies on the face (barycentric test, tolerance 1e-8).
@@ -992,6 +1163,9 @@ impl InsertStream {
         }
         let list = dist.list(n);
         let maxrad = dist.max_radius;
+        if !list.is_empty() {
+            lines.extend(narrow_box_warning(w, maxrad));
+        }
         let nrm = self.normal;
         let mut near: Vec<([f64; 3], f64)> = Vec::new();
         if self.overlapcheck {
@@ -1035,7 +1209,18 @@ impl InsertStream {
             while !done && ntry < maxtry {
                 let mut p;
                 loop {
-                    p = self.face.random_point();
+                    p = if self.face.within.is_some() {
+                        let (q, ok) = self.face.random_point_within(rad);
+                        if !ok {
+                            lines.push(
+                                "WARNING: 'All_in yes' did not succeed (./src/tri_mesh_planar_I.h:95)"
+                                    .into(),
+                            );
+                        }
+                        q
+                    } else {
+                        self.face.random_point()
+                    };
                     let r = if self.overlapcheck {
                         -(self.rng.uniform() * self.extrude + rad + 0.0)
                     } else {

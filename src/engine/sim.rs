@@ -200,6 +200,9 @@ pub struct Simulation {
     pub energy_watch: Option<(i64, f64)>,
     /// A run has been set up before (`run ... pre no` only skips setup after the first).
     pub has_run: bool,
+    /// `read_restart` read fix states that the next run's setup consumes (LIGGGHTS's
+    /// fix_restart_in_progress: some computes may still be defined at a step > 0).
+    pub restart_in_progress: bool,
     /// The particles.
     pub particles: Particles,
     /// The box.
@@ -285,6 +288,7 @@ impl Default for Simulation {
             inserts_atoms: false,
             restart_output: [None, None],
             pending_history: None,
+            restart_in_progress: false,
             energy_watch: None,
             has_run: false,
             particles: Particles::default(),
@@ -1238,6 +1242,7 @@ impl Simulation {
             self.guard_forces()?;
         }
         self.has_run = true;
+        self.restart_in_progress = false;
         self.energy_watch = None;
         self.setup_insertions(out)?;
         self.setup_averages(vars)?;
@@ -1371,10 +1376,28 @@ impl Simulation {
                 Ok(n) => (n, n * me),
                 Err(m) => (m / me, m),
             };
+            let mut face = Face::new(sf.triangles.clone());
+            let (all_in, face_id) = (sf.all_in, sf.face_id.clone());
+            if all_in {
+                let (lo, hi) = (self.domain.lo, self.domain.hi);
+                let mesh = self.fixes.iter_mut().find_map(|f| match &mut f.kind {
+                    FixKind::Mesh(m) if f.id == face_id => Some((m, f.id.clone())),
+                    _ => None,
+                });
+                if let Some((m, name)) = mesh {
+                    if !m.mesh.has_topology {
+                        m.mesh.build_topology(lo, hi, &name)?;
+                    }
+                    face.within = Some(crate::engine::insert::Within::new(&m.mesh));
+                }
+            }
+            let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
+                continue;
+            };
             let state = InsertStream {
                 id: sf.id.clone(),
                 distribution: sf.distribution.clone(),
-                face: Face::new(sf.triangles.clone()),
+                face,
                 normal: n,
                 v_normal,
                 p_ref: t[0],
@@ -1815,6 +1838,7 @@ impl Simulation {
                     step,
                     &self.domain,
                     &self.dumps[k].layout.names,
+                    self.dumps[k].layout.format.as_deref(),
                     nrows,
                     |r, c| data[c].1[r * data[c].0 + data[c].2],
                 )

@@ -169,10 +169,11 @@ impl Layout {
             }
             convs.push(c);
         }
-        if convs.len() < self.columns.len() {
+        let ncols = self.columns.len().max(self.names.len());
+        if convs.len() < ncols {
             return Err("Dump_modify format string is too short".into());
         }
-        convs.truncate(self.columns.len());
+        convs.truncate(ncols);
         self.format = Some(convs);
         Ok(())
     }
@@ -244,12 +245,14 @@ impl Layout {
 }
 
 /// Write one `dump local` snapshot in LIGGGHTS's layout: `NUMBER OF ENTRIES`, the box,
-/// `ITEM: ENTRIES` with the column names, then `%g` values each followed by a blank.
+/// `ITEM: ENTRIES` with the column names, then the values (`%g`, or the `dump_modify format`
+/// conversions) each followed by a blank.
 pub fn write_local(
     out: &mut impl Write,
     step: i64,
     domain: &Domain,
     names: &[String],
+    formats: Option<&[Conversion]>,
     rows: usize,
     value: impl Fn(usize, usize) -> f64,
 ) -> std::io::Result<()> {
@@ -276,7 +279,10 @@ pub fn write_local(
     for r in 0..rows {
         line.clear();
         for c in 0..names.len() {
-            line.push_str(&format::g(value(r, c)));
+            match formats {
+                Some(convs) => line.push_str(&format::format_one(&convs[c], value(r, c))),
+                None => line.push_str(&format::g(value(r, c))),
+            }
             line.push(' ');
         }
         writeln!(out, "{line}")?;

@@ -495,7 +495,13 @@ impl Compute {
                 // `skin`, for both partners
                 let skin = *skin;
                 let mut list = crate::engine::neighbor::NeighborList::default();
-                list.build(&p.x, &p.radius, sim.neighbor.skin.max(skin), &sim.domain);
+                list.build(
+                    &p.x,
+                    &p.radius,
+                    sim.neighbor.skin.max(skin),
+                    &sim.domain,
+                    None,
+                );
                 for pair in &list.pairs {
                     let (i, j) = (pair.i as usize, pair.j as usize);
                     if p.mask[i] & group == 0 && p.mask[j] & group == 0 {

@@ -17,6 +17,52 @@ pub struct Pair {
     pub shift: [f64; 3],
 }
 
+/// LIGGGHTS's neighbour bins (bin size about half `cutneighmax`, fitted to the box), used
+/// only to order each particle's partners as LIGGGHTS's stencil walk lists them: by bin
+/// (z, then y, then x) and by index within a bin. Forces on a particle are summed in its
+/// partners' order, so this order keeps the round-off of LIGGGHTS's sums.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BinOrder {
+    lo: [f64; 3],
+    hi: [f64; 3],
+    inv: [f64; 3],
+    n: [i64; 3],
+}
+
+impl BinOrder {
+    /// Bins for the box `lo`..`hi` and LIGGGHTS's `cutneighmax` (length).
+    pub fn new(lo: [f64; 3], hi: [f64; 3], cutneighmax: f64) -> BinOrder {
+        let mut inv = [0.0; 3];
+        let mut n = [1i64; 3];
+        for d in 0..3 {
+            let bbox = hi[d] - lo[d];
+            let optimal = if cutneighmax > 0.0 {
+                0.5 * cutneighmax
+            } else {
+                bbox
+            };
+            n[d] = ((bbox * (1.0 / optimal)) as i64).max(1);
+            inv[d] = 1.0 / (bbox / n[d] as f64);
+        }
+        BinOrder { lo, hi, inv, n }
+    }
+
+    /// The bin of `x` as (z, y, x) indices (LIGGGHTS's coord2bin, before flattening).
+    pub fn bin(&self, x: [f64; 3]) -> [i64; 3] {
+        let mut b = [0i64; 3];
+        for d in 0..3 {
+            b[2 - d] = if x[d] >= self.hi[d] {
+                ((x[d] - self.hi[d]) * self.inv[d]) as i64 + self.n[d]
+            } else if x[d] >= self.lo[d] {
+                (((x[d] - self.lo[d]) * self.inv[d]) as i64).min(self.n[d] - 1)
+            } else {
+                ((x[d] - self.lo[d]) * self.inv[d]) as i64 - 1
+            };
+        }
+        b
+    }
+}
+
 /// A half neighbour list.
 #[derive(Debug, Clone, Default)]
 pub struct NeighborList {
@@ -55,7 +101,15 @@ impl NeighborList {
 
     /// Rebuild from scratch. `reach[i]` is how far particle i interacts (its radius, for
     /// spheres); a pair is listed when its distance is below `reach[i] + reach[j] + skin`.
-    pub fn build(&mut self, x: &[[f64; 3]], reach: &[f64], skin: f64, domain: &Domain) {
+    /// Each particle's partners come in index order, or in LIGGGHTS's bin order if given.
+    pub fn build(
+        &mut self,
+        x: &[[f64; 3]],
+        reach: &[f64],
+        skin: f64,
+        domain: &Domain,
+        order: Option<&BinOrder>,
+    ) {
         self.pairs.clear();
         self.built_at.clear();
         self.built_at.extend_from_slice(x);
@@ -167,6 +221,7 @@ impl NeighborList {
             let small_periodic = (0..3).any(|d| domain.periodic(d) && nbins[d] <= 2);
             candidates.sort_by(|a, b| a.0.cmp(&b.0));
             candidates.dedup_by(|a, b| a.0 == b.0 && a.1 == b.1);
+            let first = self.pairs.len();
             for &(j, mut shift) in &candidates {
                 let ju = j as usize;
                 // each physical pair is listed once, from its lower index
@@ -193,6 +248,12 @@ impl NeighborList {
                         shift,
                     });
                 }
+            }
+            if let Some(o) = order {
+                self.pairs[first..].sort_by_cached_key(|p| {
+                    let xj = x[p.j as usize];
+                    (o.bin([0, 1, 2].map(|d| xj[d] + p.shift[d])), p.j)
+                });
             }
         }
     }
@@ -289,7 +350,7 @@ mod tests {
             .collect();
         let reach = vec![0.04; x.len()];
         let mut list = NeighborList::default();
-        list.build(&x, &reach, 0.02, &domain);
+        list.build(&x, &reach, 0.02, &domain, None);
         let mut got: Vec<(u32, u32)> = list
             .pairs
             .iter()

@@ -26,6 +26,9 @@ pub struct NeighborSettings {
     pub exclude_types: Vec<(u32, u32)>,
     /// `neigh_modify exclude group A B`: group-bit pairs never listed (either order).
     pub exclude_groups: Vec<(u32, u32)>,
+    /// LIGGGHTS's `cutneighmax` from the last run's setup: twice the largest radius of the
+    /// atoms and particle templates plus the skin (length; sets the bin order).
+    pub cutneighmax: f64,
 }
 
 impl Default for NeighborSettings {
@@ -38,6 +41,7 @@ impl Default for NeighborSettings {
             check: true,
             exclude_types: Vec::new(),
             exclude_groups: Vec::new(),
+            cutneighmax: 0.0,
         }
     }
 }
@@ -700,11 +704,17 @@ impl Simulation {
     fn build_neighbors(&mut self) {
         let old_pairs = std::mem::take(&mut self.list.pairs);
         let width = self.pair.as_ref().map_or(0, |p| p.history_width());
+        let order = crate::engine::neighbor::BinOrder::new(
+            self.domain.lo,
+            self.domain.hi,
+            self.neighbor.cutneighmax,
+        );
         self.list.build(
             &self.particles.x,
             &self.particles.radius,
             self.neighbor.skin,
             &self.domain,
+            Some(&order),
         );
         let n = &self.neighbor;
         if !n.exclude_types.is_empty() || !n.exclude_groups.is_empty() {
@@ -765,7 +775,7 @@ impl Simulation {
             let mut image = [0; 3];
             self.domain.remap(xi, &mut image);
         }
-        list.build(&x, &reach, 0.0, &self.domain);
+        list.build(&x, &reach, 0.0, &self.domain, None);
         // partners of each atom, both directions: (partner, across a periodic boundary)
         let mut partners: Vec<Vec<(usize, bool)>> = vec![Vec::new(); n];
         for pair in &list.pairs {
@@ -1000,6 +1010,21 @@ impl Simulation {
         Ok(())
     }
 
+    /// LIGGGHTS's `cutneighmax` at a run's init: twice the largest radius among the atoms
+    /// and the particle templates, plus the skin (length).
+    fn liggghts_cutneighmax(&self) -> f64 {
+        let atoms = self.particles.radius.iter().copied().fold(0.0, f64::max);
+        let templates = self
+            .fixes
+            .iter()
+            .filter_map(|f| match &f.kind {
+                FixKind::Template(t) => Some(t.radius),
+                _ => None,
+            })
+            .fold(0.0, f64::max);
+        2.0 * atoms.max(templates) + self.neighbor.skin
+    }
+
     /// A fix changes particle radii during runs (`fix adapt ... atom diameter`).
     fn radii_vary(&self) -> bool {
         self.fixes
@@ -1227,6 +1252,7 @@ impl Simulation {
         ));
         self.atime_step = self.step;
         let started = std::time::Instant::now();
+        self.neighbor.cutneighmax = self.liggghts_cutneighmax();
         // setup
         if pre || !self.has_run {
             self.pbc_and_box()?;

@@ -247,6 +247,8 @@ pub enum FixKind {
     MeshWall(MeshWallFix),
     /// `fix adapt N atom diameter v_name`: particle diameters from a variable.
     Adapt(Adapt),
+    /// `fix move/mesh`: prescribed motion of a mesh.
+    MoveMesh(crate::engine::mesh_motion::MoveMesh),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
 }
@@ -431,7 +433,11 @@ fn mesh_wall_force(
                 .filter_map(|id| {
                     fixes.iter().find_map(|f| match &f.kind {
                         FixKind::Mesh(m) if &f.id == id => {
+                            let moving = fixes.iter().any(
+                                |g| matches!(&g.kind, FixKind::MoveMesh(mv) if &mv.mesh == id),
+                            );
                             Some(crate::engine::mesh_wall::MeshRef {
+                                moving,
                                 mesh: &m.mesh,
                                 wall_type: m.wall_type,
                                 group: f.group | w.group_index,
@@ -447,8 +453,12 @@ fn mesh_wall_force(
                 w.built = None;
             }
             if w.built != Some(list.0) {
-                let skin = if moving_skin { list.1 } else { 0.5 * list.1 };
                 for (tr, m) in w.trackers.iter_mut().zip(&refs) {
+                    let skin = if moving_skin || m.moving {
+                        list.1
+                    } else {
+                        0.5 * list.1
+                    };
                     tr.rebuild(p, m, skin);
                 }
                 w.built = Some(list.0);
@@ -457,6 +467,49 @@ fn mesh_wall_force(
         }
     }
     fixes[k].kind = kind;
+}
+
+/// `fix move/mesh` in `initial_integrate`: every mover in definition order moves its mesh
+/// and adds its node velocities (the first mover of a mesh zeroes them first); the rotation
+/// centres of the movers after it follow the displacement.
+pub fn move_meshes(fixes: &mut [Fix], dt: f64) {
+    let movers: Vec<usize> = (0..fixes.len())
+        .filter(|&k| matches!(fixes[k].kind, FixKind::MoveMesh(_)))
+        .collect();
+    for (pos, &k) in movers.iter().enumerate() {
+        let FixKind::MoveMesh(mut mv) = std::mem::replace(&mut fixes[k].kind, FixKind::Settings)
+        else {
+            unreachable!("listed as a mover")
+        };
+        let first = !movers[..pos]
+            .iter()
+            .any(|&e| matches!(&fixes[e].kind, FixKind::MoveMesh(o) if o.mesh == mv.mesh));
+        let mesh_at = fixes
+            .iter()
+            .position(|f| f.id == mv.mesh && matches!(f.kind, FixKind::Mesh(_)));
+        let mut shift = None;
+        if let Some(FixKind::Mesh(m)) = mesh_at.map(|i| &mut fixes[i].kind) {
+            let n = m.mesh.len();
+            let v = m.node_v.get_or_insert_with(|| vec![[[0.0; 3]; 3]; n]);
+            if first {
+                v.iter_mut().for_each(|t| *t = [[0.0; 3]; 3]);
+            }
+            let d = mv.step(&mut m.mesh, v, dt);
+            mv.follow(&d);
+            shift = Some(d);
+        }
+        let mesh = mv.mesh.clone();
+        fixes[k].kind = FixKind::MoveMesh(mv);
+        if let Some(d) = shift {
+            for &later in &movers[pos + 1..] {
+                if let FixKind::MoveMesh(o) = &mut fixes[later].kind {
+                    if o.mesh == mesh {
+                        o.follow(&d);
+                    }
+                }
+            }
+        }
+    }
 }
 
 /// Run the `initial_integrate` phase of all fixes.
@@ -936,6 +989,8 @@ pub struct MeshFix {
     pub surface_vel: Option<[f64; 3]>,
     /// Defined as `mesh/surface/planar`.
     pub planar: bool,
+    /// Nodes at the last refresh of a moving mesh (for the half-skin rebuild test).
+    pub nodes_at_refresh: Vec<[[f64; 3]; 3]>,
 }
 
 impl MeshFix {

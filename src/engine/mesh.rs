@@ -162,6 +162,16 @@ impl TriMesh {
             let c = div(c, 3.0);
             self.center[t] = c;
             self.r_bound[t] = n.iter().map(|node| mag(sub(c, *node))).fold(0.0, f64::max);
+        }
+        self.recompute_surface();
+    }
+
+    /// Recompute edge vectors and lengths, normals, edge normals and obtuse flags from the
+    /// nodes, keeping centroids and bounding radii (LIGGGHTS's refresh of a moving mesh at
+    /// a re-neighbouring).
+    pub fn recompute_surface(&mut self) {
+        for t in 0..self.nodes.len() {
+            let n = self.nodes[t];
             let mut e = [[0.0; 3]; 3];
             let mut len = [0.0; 3];
             for i in 0..3 {
@@ -200,6 +210,49 @@ impl TriMesh {
             self.edge_len[t] = len;
             self.normal[t] = nrm;
             self.edge_norm[t] = en;
+        }
+    }
+
+    /// Translate by `dx` (length): nodes and centroids; stored vectors are unchanged.
+    pub fn translate(&mut self, dx: V3) {
+        for t in 0..self.nodes.len() {
+            for node in &mut self.nodes[t] {
+                for k in 0..3 {
+                    node[k] += dx[k];
+                }
+            }
+            for k in 0..3 {
+                self.center[t][k] += dx[k];
+            }
+        }
+    }
+
+    /// Rotate by `angle` (radians) about `axis` through `origin`, as LIGGGHTS's
+    /// MultiNodeMesh::rotate: the axis normalised (again), a quaternion applied to the nodes
+    /// and to the stored edge vectors, normals and edge normals; centroids from the nodes.
+    pub fn rotate(&mut self, angle: f64, axis: V3, origin: V3) {
+        let s = 1.0 / ((axis[0] * axis[0] + axis[1] * axis[1]) + axis[2] * axis[2]).sqrt();
+        let u = axis.map(|a| s * a);
+        let q = rotation_quaternion(angle, u);
+        let shift = origin[0] * origin[0] + origin[1] * origin[1] + origin[2] * origin[2] > 0.0;
+        for t in 0..self.nodes.len() {
+            for node in &mut self.nodes[t] {
+                let p = if shift { sub(*node, origin) } else { *node };
+                let r = quat_rotate(q, p);
+                *node = if shift {
+                    [r[0] + origin[0], r[1] + origin[1], r[2] + origin[2]]
+                } else {
+                    r
+                };
+            }
+            let n = self.nodes[t];
+            let third = 1.0 / 3.0;
+            self.center[t] = [0, 1, 2].map(|k| third * ((n[0][k] + n[1][k]) + n[2][k]));
+            for i in 0..3 {
+                self.edge_vec[t][i] = quat_rotate(q, self.edge_vec[t][i]);
+                self.edge_norm[t][i] = quat_rotate(q, self.edge_norm[t][i]);
+            }
+            self.normal[t] = quat_rotate(q, self.normal[t]);
         }
     }
 
@@ -613,6 +666,31 @@ impl TriMesh {
         }
         true
     }
+}
+
+/// The unit quaternion of a rotation by `angle` (radians) about unit `u`.
+pub fn rotation_quaternion(angle: f64, u: V3) -> [f64; 4] {
+    let h = angle * 0.5;
+    let (sn, cs) = (h.sin(), h.cos());
+    [cs, u[0] * sn, u[1] * sn, u[2] * sn]
+}
+
+/// Quaternion product a ⊗ b, evaluated left to right as LIGGGHTS does.
+#[inline]
+fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+    [
+        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+        a[0] * b[1] + b[0] * a[1] + a[2] * b[3] - a[3] * b[2],
+        a[0] * b[2] + b[0] * a[2] + a[3] * b[1] - a[1] * b[3],
+        a[0] * b[3] + b[0] * a[3] + a[1] * b[2] - a[2] * b[1],
+    ]
+}
+
+/// Rotate `p` by unit quaternion `q`: q ⊗ (0, p) ⊗ conj(q).
+pub fn quat_rotate(q: [f64; 4], p: V3) -> V3 {
+    let t = quat_mul(q, [0.0, p[0], p[1], p[2]]);
+    let r = quat_mul(t, [q[0], -q[1], -q[2], -q[3]]);
+    [r[1], r[2], r[3]]
 }
 
 /// `n + s e` per component.

@@ -196,6 +196,8 @@ pub struct MeshRef<'a> {
     pub group: u32,
     /// Velocities of each triangle's nodes (moving meshes, conveyor belts), if any.
     pub node_v: Option<&'a [[[f64; 3]; 3]]>,
+    /// A `fix move/mesh` moves it (its contact lists use the full skin).
+    pub moving: bool,
 }
 
 /// Mesh wall contacts with a contact model, monomorphised for its sub-models.

@@ -9,6 +9,7 @@ pub mod granular;
 pub mod insert;
 pub mod integrate;
 pub mod mesh;
+pub mod mesh_motion;
 pub mod mesh_wall;
 pub mod neighbor;
 pub mod numbers;

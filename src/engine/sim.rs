@@ -207,6 +207,9 @@ pub struct Simulation {
     /// `read_restart` read fix states that the next run's setup consumes (LIGGGHTS's
     /// fix_restart_in_progress: some computes may still be defined at a step > 0).
     pub restart_in_progress: bool,
+    /// A moving mesh's nodes went more than half the skin since its last refresh: the
+    /// neighbour lists are rebuilt at this step (LIGGGHTS's FixMesh next_reneighbor).
+    pub mesh_rebuild_at: Option<i64>,
     /// The particles.
     pub particles: Particles,
     /// The box.
@@ -293,6 +296,7 @@ impl Default for Simulation {
             restart_output: [None, None],
             pending_history: None,
             restart_in_progress: false,
+            mesh_rebuild_at: None,
             energy_watch: None,
             has_run: false,
             particles: Particles::default(),
@@ -952,6 +956,9 @@ impl Simulation {
     /// LIGGGHTS's `Neighbor::decide`: rebuild now?
     fn decide(&mut self) -> bool {
         self.ago += 1;
+        if self.mesh_rebuild_at == Some(self.step) {
+            return true;
+        }
         if self.list.built_positions().len() != self.particles.len() {
             return true;
         }
@@ -1008,6 +1015,77 @@ impl Simulation {
             }
         }
         Ok(())
+    }
+
+    /// IDs of the meshes a `fix move/mesh` moves, with the index of their first mover.
+    fn moving_meshes(&self) -> Vec<(String, usize)> {
+        let mut out: Vec<(String, usize)> = Vec::new();
+        for (k, f) in self.fixes.iter().enumerate() {
+            if let FixKind::MoveMesh(mv) = &f.kind {
+                if !out.iter().any(|(id, _)| id == &mv.mesh) {
+                    out.push((mv.mesh.clone(), k));
+                }
+            }
+        }
+        out
+    }
+
+    /// LIGGGHTS's FixMesh::pre_force for moving meshes: after a re-neighbouring, recompute
+    /// the surface vectors from the nodes and remember the nodes; otherwise ask for a
+    /// re-neighbouring at the next step once a node has moved more than half the skin.
+    fn refresh_moving_meshes(&mut self, rebuilt: bool) {
+        let limit = 0.25 * self.neighbor.skin * self.neighbor.skin;
+        for (id, _) in self.moving_meshes() {
+            let Some(FixKind::Mesh(m)) = self
+                .fixes
+                .iter_mut()
+                .find(|f| f.id == id && matches!(f.kind, FixKind::Mesh(_)))
+                .map(|f| &mut f.kind)
+            else {
+                continue;
+            };
+            if rebuilt || m.nodes_at_refresh.len() != m.mesh.len() {
+                m.mesh.recompute_surface();
+                m.nodes_at_refresh = m.mesh.nodes.clone();
+                continue;
+            }
+            let moved = m.mesh.nodes.iter().zip(&m.nodes_at_refresh).any(|(a, b)| {
+                (0..3).any(|k| {
+                    let d = [a[k][0] - b[k][0], a[k][1] - b[k][1], a[k][2] - b[k][2]];
+                    d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > limit
+                })
+            });
+            if moved {
+                self.mesh_rebuild_at = Some(self.step + 1);
+            }
+        }
+    }
+
+    /// The first mover's setup zeroes its mesh's node velocities; a mesh wall defined before
+    /// that mover computes its setup force with the previous run's velocities (LIGGGHTS
+    /// calls the fixes' setups in definition order). `before_force`: the movers defined
+    /// before every wall using their mesh; otherwise all of them.
+    fn zero_mesh_velocities(&mut self, before_force: bool) {
+        for (id, first) in self.moving_meshes() {
+            let wall = self.fixes.iter().position(
+                |f| matches!(&f.kind, FixKind::MeshWall(w) if w.meshes.iter().any(|m| m == &id)),
+            );
+            let mover_first = wall.is_none_or(|w| first < w);
+            for f in self.fixes.iter_mut() {
+                if let FixKind::Mesh(m) = &mut f.kind {
+                    if f.id == id {
+                        let n = m.mesh.len();
+                        match &mut m.node_v {
+                            Some(v) if !before_force || mover_first => {
+                                v.iter_mut().for_each(|t| *t = [[0.0; 3]; 3])
+                            }
+                            Some(_) => {}
+                            None => m.node_v = Some(vec![[[0.0; 3]; 3]; n]),
+                        }
+                    }
+                }
+            }
+        }
     }
 
     /// LIGGGHTS's `cutneighmax` at a run's init: twice the largest radius among the atoms
@@ -1204,11 +1282,8 @@ impl Simulation {
         self.resolve_force_fixes(vars)?;
         let list = (self.list.builds, self.neighbor.skin);
         // LIGGGHTS's mesh lists use the full skin when a mesh moves or the box can change
-        let moving_skin = self.domain.shrinks()
-            || self.fixes.iter().any(|f| match &f.kind {
-                FixKind::Mesh(m) => m.node_v.is_some() && m.surface_vel.is_none(),
-                _ => false,
-            });
+        // (a moving mesh's own lists use the full skin as well)
+        let moving_skin = self.domain.shrinks();
         fixes::post_force(
             &mut self.fixes,
             &mut self.particles,
@@ -1261,9 +1336,12 @@ impl Simulation {
                 self.sort_particles();
             }
             self.build_neighbors();
+            self.refresh_moving_meshes(true);
+            self.zero_mesh_velocities(true);
             self.adapt_radii(true, vars)?;
             // LIGGGHTS's setup evaluation does not advance contact history
             self.compute_forces(false, vars)?;
+            self.zero_mesh_velocities(false);
             self.guard_motion()?;
             self.guard_forces()?;
         }
@@ -1282,19 +1360,22 @@ impl Simulation {
             self.step += 1;
             self.resolve_move_fixes(vars)?;
             fixes::initial_integrate(&self.fixes, &mut self.particles, self.step, self.dt);
+            fixes::move_meshes(&mut self.fixes, self.dt);
             // a runaway shows first in the half-kicked velocities, before atoms are wrapped or lost
             self.guard_motion()?;
             // LIGGGHTS inserts in pre_exchange: after the first half-step, before the list
             // decision (a changed atom count forces the rebuild)
             self.insert_particles(out)?;
             self.insert_streams(out)?;
-            if self.decide() {
+            let rebuilt = self.decide();
+            if rebuilt {
                 self.pbc_and_box()?;
                 if self.sort_every > 0 && self.step >= self.next_sort {
                     self.sort_particles();
                 }
                 self.build_neighbors();
             }
+            self.refresh_moving_meshes(rebuilt);
             self.adapt_radii(false, vars)?;
             self.compute_forces(true, vars)?;
             self.guard_forces()?;

@@ -149,7 +149,9 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                 }
                 FixKind::Settings
             }
-            "mesh/surface" | "mesh/surface/planar" => mesh_surface(a, ctx, style)?,
+            "mesh/surface" | "mesh/surface/planar" | "mesh/surface/stress" => {
+                mesh_surface(a, ctx, style)?
+            }
             "move/mesh" => move_mesh(a, ctx)?,
             "particletemplate/sphere" => particle_template(a, ctx, &id)?,
             "particledistribution/discrete"
@@ -756,6 +758,32 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                 l.no_trailing_blank = true;
                 l
             }
+        }
+        "mesh/vtk" | "mesh/gran/VTK" => {
+            if !file.ends_with(".vtk") {
+                return Err(a.unsupported(
+                    4,
+                    &format!(
+                        "dump {style} to XML or parallel VTK files (regolith writes legacy .vtk)"
+                    ),
+                ));
+            }
+            let words: Vec<&str> = (5..a.len())
+                .map(|i| a.word(i))
+                .collect::<std::result::Result<_, _>>()?;
+            let fixes = &ctx.sim.fixes;
+            let spec = crate::io::mesh_vtk::parse_keywords(
+                &words,
+                |w| {
+                    fixes
+                        .iter()
+                        .any(|f| f.id == w && matches!(f.kind, FixKind::Mesh(_)))
+                },
+                |_| false,
+            )
+            .map_err(|m| a.error(5, &format!("dump {style}: {m}")))?;
+            dump_style = crate::engine::sim::DumpStyle::MeshVtk(spec);
+            Layout::new(&[]).expect("no columns")
         }
         "mesh/stl" => {
             let ids: Vec<String> = (5..a.len())
@@ -1425,6 +1453,7 @@ fn ave_time(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, D
                 let global_freq = match &f.kind {
                     FixKind::CheckTimestep(c) => c.every,
                     FixKind::AveTime(at) => at.freq,
+                    FixKind::Mesh(m) if m.stress.is_some() => 1,
                     _ => return Err(a.error(i, "Fix ave/time fix does not calculate a vector")),
                 };
                 if every % global_freq != 0 {
@@ -1632,9 +1661,33 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
     let (mut wall_type, mut ops) = (None, Vec::new());
     let mut settings = crate::engine::mesh::MeshSettings::default();
     let (mut heal, mut surface_vel) = (false, None);
+    // the stress module's keywords (after all mesh/surface keywords, as LIGGGHTS requires)
+    let (mut stress_on, mut wear_on, mut reference) = (true, false, [0.0; 3]);
+    let mut module_from = None;
+    let module_keyword = |w: &str| matches!(w, "stress" | "wear" | "reference_point");
     let mut i = 5;
     while i < a.len() {
-        match a.word(i)? {
+        let w = a.word(i)?;
+        if style == "mesh/surface/stress" && module_keyword(w) {
+            module_from.get_or_insert(i);
+            match w {
+                "stress" => stress_on = a.word_in(i + 1, &["on", "off"])? == "on",
+                "wear" => wear_on = a.word_in(i + 1, &["finnie", "off"])? == "finnie",
+                _ => {
+                    reference = [a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?];
+                    i += 2;
+                }
+            }
+            i += 2;
+            continue;
+        }
+        if let Some(at) = module_from {
+            return Err(a.error(
+                i,
+                &format!("Fix mesh/surface/stress: unknown keyword or wrong keyword order ('{w}' after the stress keyword at word {at})"),
+            ));
+        }
+        match w {
             "type" => {
                 let t = a.int(i + 1)?;
                 if t < 1 || t > ctx.sim.ntypes as i64 {
@@ -1771,7 +1824,16 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
         surface_vel,
         planar: style == "mesh/surface/planar",
         nodes_at_refresh: Vec::new(),
+        stress: None,
     };
+    if style == "mesh/surface/stress" {
+        fix.stress = Some(crate::engine::mesh_stress::MeshStress::new(
+            fix.mesh.len(),
+            stress_on,
+            wear_on,
+            reference,
+        ));
+    }
     fix.set_surface_velocity();
     Ok(FixKind::Mesh(fix))
 }

@@ -427,6 +427,15 @@ fn mesh_wall_force(
     let mut kind = std::mem::replace(&mut fixes[k].kind, FixKind::Settings);
     if let FixKind::MeshWall(w) = &mut kind {
         if let Some(model) = w.model.as_ref() {
+            let mesh_fix: Vec<usize> = w
+                .meshes
+                .iter()
+                .filter_map(|id| {
+                    fixes
+                        .iter()
+                        .position(|f| &f.id == id && matches!(f.kind, FixKind::Mesh(_)))
+                })
+                .collect();
             let refs: Vec<crate::engine::mesh_wall::MeshRef> = w
                 .meshes
                 .iter()
@@ -438,6 +447,7 @@ fn mesh_wall_force(
                             );
                             Some(crate::engine::mesh_wall::MeshRef {
                                 moving,
+                                stress: m.stress.is_some(),
                                 mesh: &m.mesh,
                                 wall_type: m.wall_type,
                                 group: f.group | w.group_index,
@@ -463,7 +473,31 @@ fn mesh_wall_force(
                 }
                 w.built = Some(list.0);
             }
-            model.compute(p, &refs, &mut w.trackers, dt, update);
+            let mut records = Vec::new();
+            model.compute(p, &refs, &mut w.trackers, dt, update, &mut records);
+            drop(refs);
+            for (mesh_index, c) in records {
+                let f = &mut fixes[mesh_fix[mesh_index]];
+                if p.mask[c.particle] & f.group == 0 {
+                    continue;
+                }
+                if let FixKind::Mesh(m) = &mut f.kind {
+                    let t = c.tri as usize;
+                    let (normal, area) = (m.mesh.normal[t], m.mesh.area[t]);
+                    if let Some(st) = m.stress.as_mut() {
+                        st.add(
+                            &c,
+                            p.x[c.particle],
+                            p.v[c.particle],
+                            normal,
+                            area,
+                            m.wall_type,
+                            p.kind[c.particle] as usize,
+                            dt,
+                        );
+                    }
+                }
+            }
         }
     }
     fixes[k].kind = kind;
@@ -991,6 +1025,8 @@ pub struct MeshFix {
     pub planar: bool,
     /// Nodes at the last refresh of a moving mesh (for the half-skin rebuild test).
     pub nodes_at_refresh: Vec<[[f64; 3]; 3]>,
+    /// `mesh/surface/stress`: triangle forces, stresses and wear.
+    pub stress: Option<crate::engine::mesh_stress::MeshStress>,
 }
 
 impl MeshFix {

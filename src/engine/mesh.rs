@@ -94,6 +94,8 @@ pub struct TriMesh {
     pub edge_len: Vec<V3>,
     /// Unit normals (from the vertex winding).
     pub normal: Vec<V3>,
+    /// Areas (length²), as LIGGGHTS computes them from edge vectors and lengths.
+    pub area: Vec<f64>,
     /// Unit in-plane edge normals (edge vector x normal).
     pub edge_norm: Vec<[V3; 3]>,
     /// The obtuse node LIGGGHTS recognises (2, or -1; see the module notes).
@@ -125,6 +127,7 @@ impl TriMesh {
             edge_vec: vec![[[0.0; 3]; 3]; n],
             edge_len: vec![[0.0; 3]; n],
             normal: vec![[0.0; 3]; n],
+            area: vec![0.0; n],
             edge_norm: vec![[[0.0; 3]; 3]; n],
             obtuse: vec![-1; n],
             edge_active: vec![[true; 3]; n],
@@ -208,6 +211,7 @@ impl TriMesh {
             self.obtuse[t] = if dot(e[2], e[1]) > 0. { 2 } else { -1 };
             self.edge_vec[t] = e;
             self.edge_len[t] = len;
+            self.area[t] = 0.5 * mag(cross(e[0], e[1])) * len[0] * len[1];
             self.normal[t] = nrm;
             self.edge_norm[t] = en;
         }

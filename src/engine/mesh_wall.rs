@@ -15,6 +15,7 @@ use crate::engine::contact::{
 };
 use crate::engine::granular::Selection;
 use crate::engine::mesh::TriMesh;
+use crate::engine::mesh_stress::StressContact;
 use crate::engine::particles::Particles;
 
 /// Most history doubles a mesh contact can hold.
@@ -198,6 +199,8 @@ pub struct MeshRef<'a> {
     pub node_v: Option<&'a [[[f64; 3]; 3]]>,
     /// A `fix move/mesh` moves it (its contact lists use the full skin).
     pub moving: bool,
+    /// `mesh/surface/stress`: record each contact for the mesh's forces and wear.
+    pub stress: bool,
 }
 
 /// Mesh wall contacts with a contact model, monomorphised for its sub-models.
@@ -205,7 +208,8 @@ pub trait MeshWallInteraction: Send {
     /// Doubles of history per contact.
     fn history_width(&self) -> usize;
     /// Add the forces and torques of every mesh in `meshes` (in order) to the particles;
-    /// `trackers[k]` belongs to `meshes[k]`.
+    /// `trackers[k]` belongs to `meshes[k]`. Contacts with meshes that keep stresses are
+    /// appended to `records` with the mesh's index.
     fn compute(
         &self,
         p: &mut Particles,
@@ -213,6 +217,7 @@ pub trait MeshWallInteraction: Send {
         trackers: &mut [Tracker],
         dt: f64,
         update: bool,
+        records: &mut Vec<(usize, StressContact)>,
     );
 }
 
@@ -275,9 +280,10 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Mesh
         trackers: &mut [Tracker],
         dt: f64,
         update: bool,
+        records: &mut Vec<(usize, StressContact)>,
     ) {
         let w = self.model.history_len();
-        for (mref, tr) in meshes.iter().zip(trackers.iter_mut()) {
+        for (mesh_index, (mref, tr)) in meshes.iter().zip(trackers.iter_mut()).enumerate() {
             let m = mref.mesh;
             for i in 0..p.len().min(tr.cand.len()) {
                 if tr.cand[i].is_empty() {
@@ -319,9 +325,23 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Mesh
                         coeffs: self.material.pair(p.kind[i] as usize, mref.wall_type),
                     };
                     let out = self.model.wall_force(&input, &mut slots[k].hist[..w]);
+                    let before = p.f[i];
                     for d in 0..3 {
                         p.f[i][d] += out.f[d];
                         p.torque[i][d] += out.t[d];
+                    }
+                    if mref.stress {
+                        let after = p.f[i];
+                        records.push((
+                            mesh_index,
+                            StressContact {
+                                tri: t,
+                                particle: i,
+                                force: [0, 1, 2].map(|d| after[d] - before[d]),
+                                to_wall: c.to_wall,
+                                v_wall,
+                            },
+                        ));
                     }
                 }
                 // a contact not touched this step is gone, and so is its history

@@ -10,6 +10,7 @@ pub mod insert;
 pub mod integrate;
 pub mod mesh;
 pub mod mesh_motion;
+pub mod mesh_stress;
 pub mod mesh_wall;
 pub mod neighbor;
 pub mod numbers;

@@ -190,6 +190,19 @@ pub enum DumpStyle {
     Vtk(Vec<crate::io::vtk::Field>),
     /// `mesh/stl`: the triangles of these mesh fixes (all when empty) as ASCII STL.
     MeshStl(Vec<String>),
+    /// `mesh/vtk` (`mesh/gran/VTK`): meshes with per-triangle data as legacy VTK.
+    MeshVtk(crate::io::mesh_vtk::MeshDumpSpec),
+}
+
+/// When the stress module of `mesh/surface/stress` acts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum StressPhase {
+    /// A run's setup, before its force evaluation.
+    Setup,
+    /// Before a step's forces.
+    PreForce,
+    /// After a step's final integration.
+    EndOfStep,
 }
 
 /// Everything the engine simulates.
@@ -527,6 +540,9 @@ impl Simulation {
             .ok_or_else(|| format!("Could not find fix ID {id}"))?;
         match (&fix.kind, index) {
             (FixKind::CheckTimestep(c), Some(i @ 1..=3)) => Ok(c.values[i - 1]),
+            (FixKind::Mesh(m), Some(i)) if m.stress.as_ref().and_then(|s| s.value(i)).is_some() => {
+                Ok(m.stress.as_ref().and_then(|s| s.value(i)).unwrap_or(0.0))
+            }
             (FixKind::AveTime(at), i) if at.value(i).is_some() => Ok(at.value(i).unwrap_or(0.0)),
             _ => Err(format!("fix {id} ({}) has no such value", fix.style)),
         }
@@ -1017,6 +1033,43 @@ impl Simulation {
         Ok(())
     }
 
+    /// The stress module's bookkeeping at a run's setup (clear triangle forces and step wear;
+    /// read `k_finnie`), before a step's forces (clear them and the totals) and at the end of
+    /// a step (add the step's wear, form the stresses).
+    fn mesh_stress_phase(&mut self, phase: StressPhase) -> Result<(), String> {
+        let k_finnie = match phase {
+            StressPhase::Setup => self.property("k_finnie").map(|(_, cols, v)| {
+                v.chunks(cols.max(1))
+                    .map(|r| r.to_vec())
+                    .collect::<Vec<_>>()
+            }),
+            _ => None,
+        };
+        for f in &mut self.fixes {
+            let FixKind::Mesh(m) = &mut f.kind else {
+                continue;
+            };
+            let Some(st) = m.stress.as_mut() else {
+                continue;
+            };
+            match phase {
+                StressPhase::Setup => {
+                    st.clear_triangles();
+                    match &k_finnie {
+                        Some(k) => st.k_finnie = k.clone(),
+                        None if st.wear_on => {
+                            return Err(format!("Fix mesh/surface/stress (id {}): wear finnie needs fix property/global k_finnie peratomtypepair", f.id))
+                        }
+                        None => {}
+                    }
+                }
+                StressPhase::PreForce => st.pre_force(),
+                StressPhase::EndOfStep => st.end_of_step(&m.mesh.normal, &m.mesh.area),
+            }
+        }
+        Ok(())
+    }
+
     /// IDs of the meshes a `fix move/mesh` moves, with the index of their first mover.
     fn moving_meshes(&self) -> Vec<(String, usize)> {
         let mut out: Vec<(String, usize)> = Vec::new();
@@ -1338,6 +1391,7 @@ impl Simulation {
             self.build_neighbors();
             self.refresh_moving_meshes(true);
             self.zero_mesh_velocities(true);
+            self.mesh_stress_phase(StressPhase::Setup)?;
             self.adapt_radii(true, vars)?;
             // LIGGGHTS's setup evaluation does not advance contact history
             self.compute_forces(false, vars)?;
@@ -1376,10 +1430,12 @@ impl Simulation {
                 self.build_neighbors();
             }
             self.refresh_moving_meshes(rebuilt);
+            self.mesh_stress_phase(StressPhase::PreForce)?;
             self.adapt_radii(false, vars)?;
             self.compute_forces(true, vars)?;
             self.guard_forces()?;
             fixes::final_integrate(&self.fixes, &mut self.particles, self.dt);
+            self.mesh_stress_phase(StressPhase::EndOfStep)?;
             if self.step % ENERGY_WATCH_STEPS == 0 {
                 self.guard_energy()?;
             }
@@ -1886,7 +1942,7 @@ impl Simulation {
             let box_name = crate::io::vtk::bounding_box_name(&dump.file, &step_text);
             crate::io::write_atomically(&box_name, &bbox)
                 .map_err(|e| format!("Cannot open dump file {box_name}: {e}"))?;
-        } else if multi || matches!(dump.style, DumpStyle::MeshStl(_)) {
+        } else if multi || matches!(dump.style, DumpStyle::MeshStl(_) | DumpStyle::MeshVtk(_)) {
             crate::io::write_atomically(&name, text)
                 .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
         } else {
@@ -2004,6 +2060,61 @@ impl Simulation {
                     text.extend_from_slice(
                         crate::io::stl::write_ascii(&triangles, &normals).as_bytes(),
                     );
+                }
+                DumpStyle::MeshVtk(spec) => {
+                    let meshes: Vec<&crate::engine::fixes::MeshFix> = if spec.meshes.is_empty() {
+                        self.fixes
+                            .iter()
+                            .filter_map(|f| match &f.kind {
+                                FixKind::Mesh(m) => Some(m),
+                                _ => None,
+                            })
+                            .collect()
+                    } else {
+                        spec.meshes
+                            .iter()
+                            .filter_map(|id| {
+                                self.fixes.iter().find_map(|f| match &f.kind {
+                                    FixKind::Mesh(m) if &f.id == id => Some(m),
+                                    _ => None,
+                                })
+                            })
+                            .collect()
+                    };
+                    let counts: Vec<(Vec<i32>, Vec<i32>, Vec<i32>)> = meshes
+                        .iter()
+                        .map(|m| {
+                            let mm = &m.mesh;
+                            let count = |v: &[bool; 3]| v.iter().filter(|&&b| b).count() as i32;
+                            (
+                                mm.edge_active.iter().map(count).collect(),
+                                mm.corner_active.iter().map(count).collect(),
+                                mm.neighbors.iter().map(|n| n.len() as i32).collect(),
+                            )
+                        })
+                        .collect();
+                    let snaps: Vec<crate::io::mesh_vtk::MeshSnapshot> = meshes
+                        .iter()
+                        .zip(&counts)
+                        .map(|(m, c)| {
+                            let st = m.stress.as_ref();
+                            crate::io::mesh_vtk::MeshSnapshot {
+                                nodes: &m.mesh.nodes,
+                                area: Some(&m.mesh.area),
+                                sigma_n: st.filter(|s| s.stress).map(|s| &s.sigma_n[..]),
+                                sigma_t: st.filter(|s| s.stress).map(|s| &s.sigma_t[..]),
+                                force: st.filter(|s| s.stress).map(|s| &s.f[..]),
+                                wear: st.filter(|s| s.wear_on).map(|s| &s.wear[..]),
+                                node_vel: m.node_v.as_deref(),
+                                active_edges: Some(&c.0),
+                                active_corners: Some(&c.1),
+                                nneighs: Some(&c.2),
+                                ..Default::default()
+                            }
+                        })
+                        .collect();
+                    crate::io::mesh_vtk::write_mesh_vtk(&mut text, spec, &snaps)
+                        .map_err(|e| e.to_string())?;
                 }
                 DumpStyle::Vtk(fields) => {
                     let mut atoms: Vec<usize> = (0..p.len())

@@ -100,7 +100,7 @@ fn unsupported_feature_exits_3_and_check_lists_every_item() {
     let dir = scratch("unsupported");
     std::fs::write(
         dir.join("in.t"),
-        "atom_style granular\n# comment\nregion b block 0 1 0 1 0 1\ncreate_box 1 b\nfix ins all heat/gran initial_temperature 300\npair_style gran model hertz tangential history cohesion washino/capillary/viscous\ncompute s all wall/gran/local\n",
+        "atom_style granular\n# comment\nregion b block 0 1 0 1 0 1\ncreate_box 1 b\nfix ins all heat/gran initial_temperature 300\npair_style gran model hertz tangential history cohesion washino/capillary/viscous\ncompute s all rdf 50\n",
     )
     .unwrap();
     let out = regolith(&dir, &["-in", "in.t", "-log", "none"], None);
@@ -111,7 +111,7 @@ fn unsupported_feature_exits_3_and_check_lists_every_item() {
         text(&out.stdout),
         "in.t:5: fix heat/gran: not supported yet\n\
          in.t:6: pair_style gran cohesion washino/capillary/viscous: not supported yet\n\
-         in.t:7: compute wall/gran/local: not supported yet\n"
+         in.t:7: compute rdf: not supported yet\n"
     );
 }
 
@@ -133,7 +133,7 @@ fn usage_errors_exit_2_with_suggestion() {
 #[test]
 fn check_follows_loops_once_and_includes() {
     let dir = scratch("loops");
-    std::fs::write(dir.join("in.inc"), "compute s all wall/gran/local\n").unwrap();
+    std::fs::write(dir.join("in.inc"), "compute s all rdf 50\n").unwrap();
     std::fs::write(
         dir.join("in.t"),
         "region b block 0 1 0 1 0 1\ncreate_box 1 b\nvariable a loop 1000\nlabel top\ninclude in.inc\nnext a\njump SELF top\nprint done\n",
@@ -142,7 +142,7 @@ fn check_follows_loops_once_and_includes() {
     let out = regolith(&dir, &["check", "in.t"], None);
     assert_eq!(
         text(&out.stdout),
-        "in.inc:1: compute wall/gran/local: not supported yet
+        "in.inc:1: compute rdf: not supported yet
 "
     );
     assert_eq!(out.status.code(), Some(3));
@@ -253,7 +253,7 @@ fn check_handles_lattice_regions_and_script_commands_in_unknown_branches() {
         "atom_style granular\nlattice sc 0.002\nregion b block 0 10 0 10 0 10 units lattice\n\
          create_box 1 b\nvariable s equal step\nlabel again\n\
          if \"${s} > 5\" then \"variable s delete\" \"jump SELF done\"\nlabel done\n\
-         compute r all wall/gran/local\n",
+         compute r all rdf 50\n",
     )
     .unwrap();
     let out = regolith(&dir, &["check", "in.t"], None);
@@ -261,7 +261,7 @@ fn check_handles_lattice_regions_and_script_commands_in_unknown_branches() {
     // commands inside the branch a dry run cannot decide are the interpreter's own
     assert_eq!(
         text(&out.stdout),
-        "in.t:9: compute wall/gran/local: not supported yet\n"
+        "in.t:9: compute rdf: not supported yet\n"
     );
     assert_eq!(out.status.code(), Some(3));
 }

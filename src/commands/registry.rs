@@ -60,9 +60,35 @@ pub fn feature_span(cmd: &CommandLine) -> (usize, usize) {
     (start, end)
 }
 
+/// What LIGGGHTS 3.x writes instead of a style that LIGGGHTS 2.x had (the syntax of
+/// decks such as the contactModels tutorial's `in.oldModels`, which 3.8.0 rejects too).
+pub fn legacy_style_hint(kind: NameKind, word: &str) -> Option<String> {
+    let pair = |normal: &str, tangential: &str| {
+        format!(
+            "'{word}' is LIGGGHTS 2.x syntax; LIGGGHTS 3.x writes `pair_style gran model {normal} \
+             tangential {tangential}` with the material in `fix property/global` \
+             (youngsModulus, poissonsRatio, coefficientRestitution, coefficientFriction)"
+        )
+    };
+    match (kind, word) {
+        (NameKind::PairStyle, "gran/hooke") => Some(pair("hooke", "no_history")),
+        (NameKind::PairStyle, "gran/hooke/history") => Some(pair("hooke", "history")),
+        (NameKind::PairStyle, "gran/hertz/history") => Some(pair("hertz", "history")),
+        (NameKind::FixStyle, "pour" | "pour/dev" | "pour/legacy" | "pour/multisphere") => {
+            Some(format!(
+                "'fix {word}' is LIGGGHTS 2.x syntax; LIGGGHTS 3.x inserts with \
+                 `fix particletemplate/sphere`, `fix particledistribution/discrete` and \
+                 `fix insert/pack`, `insert/rate/region` or `insert/stream`"
+            ))
+        }
+        _ => None,
+    }
+}
+
 fn unknown(kind: NameKind, word: &str, cmd: &CommandLine, index: usize) -> Diagnostic {
     let candidates = names::names(kind);
-    let help = did_you_mean(word, candidates)
+    let help = legacy_style_hint(kind, word)
+        .or_else(|| did_you_mean(word, candidates))
         .unwrap_or_else(|| format!("a {} known to LIGGGHTS 3.8.0", names::label(kind)));
     Diagnostic::error(names::liggghts_message(kind, word))
         .with_source(&cmd.text, Some(cmd.span(index)))

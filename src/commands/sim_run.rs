@@ -558,13 +558,16 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
     let args: Vec<String> = (3..a.len())
         .map(|i| a.word(i).map(str::to_string))
         .collect::<std::result::Result<_, _>>()?;
-    let fix = Fix {
+    let mut fix = Fix {
         id: id.to_string(),
         style: style.to_string(),
         group: bit,
         kind,
         args,
     };
+    for line in restore_fix_state(a, ctx, &mut fix)? {
+        ctx.say(&format!("{line}\n"));
+    }
     match ctx.sim.fixes.iter().position(|f| f.id == id) {
         Some(i) => {
             if ctx.sim.fixes[i].style != style {
@@ -577,9 +580,193 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
+/// `compute ID group wall/gran/local [keywords]`: rows of the mesh wall's contacts
+/// (docs/notes/wall_gran_local.md), with LIGGGHTS's rules and messages.
+fn wall_gran_local(
+    a: &Args,
+    ctx: &mut Ctx,
+    id: &str,
+) -> std::result::Result<crate::engine::computes::ComputeKind, Diagnostic> {
+    use crate::engine::computes::{ComputeKind, LocalField};
+    if ctx.sim.step > 0 && !ctx.sim.restart_in_progress {
+        return Err(a.error(
+            2,
+            &format!(
+                "Compute wall/gran/local (id {id}): Need to define this compute before first run"
+            ),
+        ));
+    }
+    let mut fields = Vec::new();
+    for i in 3..a.len() {
+        match a.word(i)? {
+            "verbose" => {}
+            "extraSurfDistance" => return Err(a.error(i, "this keyword is deprecated; neighbor->contactDistanceFactor is now used directly")),
+            "ms_id" => return Err(a.unsupported(i, "compute wall/gran/local ms_id (multisphere bodies)")),
+            w => match LocalField::parse(w) {
+                Some(f) => fields.push(f),
+                None => {
+                    return Err(a
+                        .error(
+                            i,
+                            &format!("Compute wall/gran/local (id {id}): illegal/unrecognized keyword"),
+                        )
+                        .with_help("pos, vel, id, force, force_normal, force_tangential, torque, torque_normal, torque_tangential, history, contactArea, delta, heatFlux, contactPoint"))
+                }
+            },
+        }
+    }
+    if a.len() == 3 {
+        fields = LocalField::defaults();
+    }
+    if fields.is_empty() {
+        // LIGGGHTS 3.8.0 crashes at the first output of a compute without columns
+        return Err(a.error(
+            3,
+            &format!("Compute wall/gran/local (id {id}): no output keyword given"),
+        ));
+    }
+    fields.sort();
+    fields.dedup();
+    // the last mesh wall fix; primitive walls are not reported
+    let mut wall = None;
+    let mut primitive = false;
+    for f in &ctx.sim.fixes {
+        match &f.kind {
+            FixKind::MeshWall(w) => wall = Some((f.id.clone(), w.selection.clone())),
+            FixKind::WallGran(_) => primitive = true,
+            _ => {}
+        }
+    }
+    if primitive {
+        ctx.say("WARNING: Compute wall/gran/local detected primitive wall, output will only happen for mesh wall - particle pairs (./src/compute_pair_gran_local.cpp:263)\n");
+    }
+    let Some((wall, selection)) = wall else {
+        return Err(a.error(2, "Compute wall/gran/local requires a fix of type wall/gran using one or more mesh walls. This fix has to come before the compute in the script"));
+    };
+    if ctx
+        .sim
+        .computes
+        .iter()
+        .any(|c| matches!(&c.kind, ComputeKind::WallGranLocal { wall: w, .. } if *w == wall))
+    {
+        return Err(a.error(
+            2,
+            &format!("Fix wall/gran (id {wall}): Fix wall/gran allows only one compute of type wall/gran/local"),
+        ));
+    }
+    let history = crate::engine::contact::AnyContactModel::new(&selection)
+        .map(|m| m.history_len())
+        .unwrap_or(0);
+    if history == 0 && fields.contains(&LocalField::History) {
+        return Err(a.error(2, "Compute pair/gran/local or wall/gran/local can not calculate history values since pair or wall style does not compute them"));
+    }
+    Ok(ComputeKind::WallGranLocal { fields, wall })
+}
+
+/// A fix defined while a restart file's fix states are held takes the state stored under
+/// its ID and style (LIGGGHTS's Modify::add_fix); returns the lines LIGGGHTS prints. The
+/// first insert/stream also takes the stored per-atom release data.
+fn restore_fix_state(
+    a: &Args,
+    ctx: &mut Ctx,
+    fix: &mut Fix,
+) -> std::result::Result<Vec<String>, Diagnostic> {
+    use crate::engine::insert::{InsertRestart, RELEASE_NAME, RELEASE_WIDTH};
+    use crate::engine::restart_fixes::doubles;
+    let mut lines = Vec::new();
+    let held = ctx
+        .sim
+        .held_fix_state(&fix.id, &fix.style)
+        .map(<[u8]>::to_vec);
+    if let Some(bytes) = held {
+        let d = doubles(&bytes);
+        let bad = |what: &str| {
+            a.error(
+                2,
+                &format!(
+                    "restart file: stored state of fix {} ({}) is {what}",
+                    fix.id, fix.style
+                ),
+            )
+        };
+        match &mut fix.kind {
+            FixKind::Template(t) => {
+                // [ranks, insertion generator state per rank, Monte Carlo state]
+                if d.len() < 3 {
+                    return Err(bad("too short"));
+                }
+                t.rng_state.0 = d[1] as i32;
+            }
+            FixKind::Distribution(dist) => {
+                let state = *d.first().ok_or_else(|| bad("empty"))?;
+                dist.rng.reset(state as i32).map_err(|m| a.error(2, &m))?;
+            }
+            FixKind::Mesh(_) => {} // its nodes were taken from the file when it was built
+            FixKind::InsertStream(sf) => {
+                let r = InsertRestart::parse(&bytes).map_err(|m| bad(&m))?;
+                if r.next != 0 {
+                    sf.start = r.next;
+                }
+                sf.restored = Some(r);
+            }
+            FixKind::InsertPack(ins) => {
+                let r = InsertRestart::parse(&bytes).map_err(|m| bad(&m))?;
+                ins.rng.reset(r.rng_state).map_err(|m| a.error(2, &m))?;
+                ins.inserted = r.inserted;
+                ins.inserted_mass = r.mass;
+                if r.next != 0 {
+                    ins.next = Some(r.next);
+                }
+            }
+            _ => {
+                return Err(a.unsupported(
+                    2,
+                    &format!(
+                        "fix {} taking its state from a restart file (fix {} is stored there)",
+                        fix.style, fix.id
+                    ),
+                ))
+            }
+        }
+        lines.push(format!(
+            "Resetting global state of Fix {} Style {} from restart file info",
+            fix.id, fix.style
+        ));
+    }
+    let first_stream = matches!(fix.kind, FixKind::InsertStream(_)) && !ctx.sim.stream_release;
+    if first_stream {
+        // LIGGGHTS's insert/stream creates its per-atom release data here
+        ctx.sim.stream_release = true;
+        if let Some(bytes) = ctx.sim.held_fix_state(RELEASE_NAME, "property/atom") {
+            if doubles(bytes).first().map(|&n| n as usize) != Some(RELEASE_WIDTH) {
+                return Err(a.error(
+                    2,
+                    &format!("Fix property/atom (id {RELEASE_NAME}): restarted fix has incompatible data size"),
+                ));
+            }
+            lines.push(format!(
+                "Resetting global state of Fix {RELEASE_NAME} Style property/atom from restart file info"
+            ));
+        }
+        if ctx.sim.held_peratom(RELEASE_NAME, "property/atom") {
+            lines.push(format!(
+                "Resetting per-atom state of Fix {RELEASE_NAME} Style property/atom from restart file info"
+            ));
+            ctx.sim.recalc_release_steps();
+        }
+        ctx.sim.particles.extra_index(RELEASE_NAME, RELEASE_WIDTH);
+    }
+    Ok(lines)
+}
+
 fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(1..=1, "unfix ID")?;
     let id = a.word(0)?;
+    if ctx.sim.computes.iter().any(|c| {
+        matches!(&c.kind, crate::engine::computes::ComputeKind::WallGranLocal { wall, .. } if wall == id)
+    }) {
+        return Err(a.error(0, &format!("Fix wall/gran (id {id}): need to uncompute the active compute wall/gran/local before unfixing the wall")));
+    }
     let movers = |mesh: &str| -> Vec<usize> {
         (0..ctx.sim.fixes.len())
             .filter(|&k| matches!(&ctx.sim.fixes[k].kind, FixKind::MoveMesh(m) if m.mesh == mesh))
@@ -880,11 +1067,20 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                     .iter()
                     .find(|c| c.id == cid)
                     .ok_or_else(|| a.error(5 + k, "Could not find dump local compute ID"))?;
-                if !matches!(
-                    c.kind,
-                    crate::engine::computes::ComputeKind::PairGranLocal(_)
-                ) {
-                    return Err(a.error(5 + k, "Dump local compute does not compute local info"));
+                match c.kind {
+                    crate::engine::computes::ComputeKind::PairGranLocal(_) => {}
+                    // always a local array, even with one column
+                    crate::engine::computes::ComputeKind::WallGranLocal { .. } => {
+                        if index.is_none() {
+                            return Err(a.error(
+                                5 + k,
+                                "Dump local compute does not calculate local vector",
+                            ));
+                        }
+                    }
+                    _ => {
+                        return Err(a.error(5 + k, "Dump local compute does not compute local info"))
+                    }
                 }
                 cols.push((cid.to_string(), index.unwrap_or(1).max(1) - 1));
             }
@@ -1091,7 +1287,18 @@ fn gran_models(
     let words: Vec<&str> = (start..a.len())
         .map(|i| a.word(i))
         .collect::<std::result::Result<_, _>>()?;
-    let (mut sel, used) = Selection::select(&words).map_err(|m| a.error(start, &m))?;
+    let (mut sel, used) = Selection::select(&words).map_err(|m| {
+        let err = a.error(start, &m);
+        match words.first() {
+            // LIGGGHTS 2.x: `wall/gran kn kt gamman gammat xmu dampflag wallstyle ...`
+            Some(w) if what.contains("wall") && w.parse::<f64>().is_ok() => err.with_help(
+                "numeric coefficients here are LIGGGHTS 2.x syntax; LIGGGHTS 3.x writes \
+                 `fix ID group wall/gran model hertz tangential history primitive type 1 \
+                 zplane 0.0` with the material in `fix property/global`",
+            ),
+            _ => err,
+        }
+    })?;
     if !words[..used].contains(&"tangential") {
         sel.tangential = default_tangential.into();
     }
@@ -1254,6 +1461,9 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
             for i in 3..a.len() {
                 let w = a.word(i)?;
                 match LocalField::parse(w) {
+                    Some(LocalField::HeatFlux) => {
+                        return Err(a.unsupported(i, "compute pair/gran/local heatFlux"))
+                    }
                     Some(f) => fields.push(f),
                     None if w == "verbose" => {}
                     None if matches!(w, "heatFlux" | "ms_id") => {
@@ -1281,6 +1491,7 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
             fields.dedup();
             ComputeKind::PairGranLocal(fields)
         }
+        "wall/gran/local" => wall_gran_local(a, ctx, id)?,
         other => return Err(a.unsupported(2, &format!("compute {other}"))),
     };
     ctx.sim.computes.push(Compute {
@@ -1783,12 +1994,36 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
         }
     }
     let wall_type = wall_type.ok_or_else(|| a.error(2, "Fix mesh: must define type"))?;
-    ctx.say(&format!(
-        "\nReading STL file '{file}' (mesh processing step 1/3) \n"
-    ));
     let path = ctx.sys.resolve(&file).to_string_lossy().into_owned();
-    let mut triangles = crate::io::stl::read(&path).map_err(|m| a.error(4, &m))?;
-    crate::io::stl::transform(&mut triangles, &ops);
+    let stored = ctx
+        .sim
+        .held_fix_state(a.word(0)?, style)
+        .map(<[u8]>::to_vec);
+    let mut triangles = if let Some(bytes) = stored {
+        // LIGGGHTS takes the nodes from the restart file (scale/move/rotate act on an empty
+        // mesh); the file must still open
+        if style == "mesh/surface/stress" {
+            return Err(a.unsupported(
+                2,
+                "fix mesh/surface/stress taking its triangles and wear from a restart file",
+            ));
+        }
+        if std::fs::File::open(&path).is_err() {
+            return Err(a.error(
+                4,
+                &format!("Cannot open mesh file {file}. FYI: This file is required, but data will be taken from restart file"),
+            ));
+        }
+        ctx.say(&format!("INFO: mesh file ({file}) is required, but data will be taken from restart file (./src/fix_mesh.cpp:417)\n"));
+        crate::engine::restart_fixes::mesh_from_state(&bytes).map_err(|m| a.error(2, &m))?
+    } else {
+        ctx.say(&format!(
+            "\nReading STL file '{file}' (mesh processing step 1/3) \n"
+        ));
+        let mut t = crate::io::stl::read(&path).map_err(|m| a.error(4, &m))?;
+        crate::io::stl::transform(&mut t, &ops);
+        t
+    };
     if heal {
         // `heal auto_remove_duplicates`: a triangle with the nodes of an earlier one goes
         let p = settings.precision;
@@ -2047,7 +2282,7 @@ fn particle_template(
     id: &str,
 ) -> std::result::Result<FixKind, Diagnostic> {
     a.count(4..=usize::MAX, "fix ID GROUP particletemplate/sphere SEED atom_type T density constant D radius constant R")?;
-    seed_arg(a, ctx, 3)?;
+    let seed = seed_arg(a, ctx, 3)?;
     let (mut atom_type, mut density, mut radius) = (1u32, None, None);
     let mut volume_limit = 1e-12;
     let mut i = 4;
@@ -2121,7 +2356,8 @@ fn particle_template(
         .ok_or_else(|| a.error(2, "Fix particletemplate/sphere: have to define 'density'"))?;
     let radius =
         radius.ok_or_else(|| a.error(2, "Fix particletemplate/sphere: have to define 'radius'"))?;
-    let template = crate::engine::insert::Template::new(id, atom_type, radius, density);
+    let mut template = crate::engine::insert::Template::new(id, atom_type, radius, density);
+    template.rng_state = (seed, seed);
     if template.volume < volume_limit {
         return Err(a.error(2, "Fix particletemplate/sphere: Volume expectancy too small. Change 'volume_limit' or particle size in the simulation"));
     }
@@ -2655,6 +2891,7 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
             verbose,
             start,
             state: None,
+            restored: None,
         },
     )))
 }

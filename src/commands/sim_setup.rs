@@ -1362,6 +1362,12 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
     ctx.say("Reading restart file ...\n");
     let pair = ctx.sim.load_restart(&r).map_err(|m| a.error(0, &m))?;
     ctx.sim.restart_in_progress = !r.global_fixes.is_empty() || !r.peratom_fixes.is_empty();
+    ctx.sim.restart_fixes = r.global_fixes.clone();
+    ctx.sim.restart_peratom = r
+        .peratom_fixes
+        .iter()
+        .map(|f| (f.id.clone(), f.style.clone()))
+        .collect();
     let (lo, hi) = (ctx.sim.domain.lo, ctx.sim.domain.hi);
     ctx.say(&format!(
         "  orthogonal box = ({} {} {}) to ({} {} {})\n  1 by 1 by 1 MPI processor grid\n  {} atoms\n",

@@ -42,6 +42,14 @@ pub enum ComputeKind {
     Com,
     /// `pair/gran/local`: one row per touching pair with the selected fields.
     PairGranLocal(Vec<LocalField>),
+    /// `wall/gran/local`: one row per particle-mesh contact of the mesh wall fix with this
+    /// index, with the selected fields.
+    WallGranLocal {
+        /// The fields, in LIGGGHTS's column order.
+        fields: Vec<LocalField>,
+        /// ID of the mesh wall fix.
+        wall: String,
+    },
 }
 
 /// The per-contact fields of `compute pair/gran/local`, in LIGGGHTS's column order.
@@ -71,6 +79,8 @@ pub enum LocalField {
     ContactArea,
     /// `delta`: overlap (length).
     Delta,
+    /// `heatFlux`: conductive heat flux (power); 0 without heat transfer.
+    HeatFlux,
     /// `contactPoint`: (x_i r_j + x_j r_i)/(r_i + r_j) (3 columns, length).
     ContactPoint,
 }
@@ -91,6 +101,7 @@ impl LocalField {
             "history" => LocalField::History,
             "contactArea" => LocalField::ContactArea,
             "delta" => LocalField::Delta,
+            "heatFlux" => LocalField::HeatFlux,
             "contactPoint" => LocalField::ContactPoint,
             _ => return None,
         })
@@ -107,7 +118,7 @@ impl LocalField {
         match self {
             LocalField::Pos | LocalField::Vel => 6,
             LocalField::History => history,
-            LocalField::ContactArea | LocalField::Delta => 1,
+            LocalField::ContactArea | LocalField::Delta | LocalField::HeatFlux => 1,
             _ => 3,
         }
     }
@@ -184,6 +195,7 @@ pub fn kinetic_energy(p: &Particles, group: u32) -> f64 {
 pub const STYLES: &[&str] = &[
     "com",
     "pair/gran/local",
+    "wall/gran/local",
     "contact/atom",
     "erotate/sphere",
     "ke",
@@ -320,6 +332,9 @@ impl Compute {
 
     /// Rows of a local compute: (columns per row, values row-major).
     pub fn local(&self, sim: &Simulation) -> Result<(usize, Vec<f64>), String> {
+        if let ComputeKind::WallGranLocal { fields, wall } = &self.kind {
+            return self.wall_local(sim, fields, wall);
+        }
         let ComputeKind::PairGranLocal(fields) = &self.kind else {
             return Err(format!(
                 "Compute {} ({}) does not calculate local values",
@@ -420,11 +435,85 @@ impl Compute {
                             / rsq,
                     ),
                     LocalField::Delta => out.push(ri + rj - r),
+                    LocalField::HeatFlux => out.push(0.0),
                     LocalField::ContactPoint => {
                         for d in 0..3 {
                             out.push((xi[d] * rj + xj_ghost[d] * ri) / (ri + rj));
                         }
                     }
+                }
+            }
+        }
+        Ok((ncols, out))
+    }
+
+    /// Rows of `compute wall/gran/local`: the mesh wall's contacts re-evaluated now, as
+    /// LIGGGHTS re-runs the wall's loop at output (docs/notes/wall_gran_local.md).
+    fn wall_local(
+        &self,
+        sim: &Simulation,
+        fields: &[LocalField],
+        wall: &str,
+    ) -> Result<(usize, Vec<f64>), String> {
+        let k = sim
+            .fixes
+            .iter()
+            .position(|f| f.id == wall)
+            .ok_or_else(|| format!("Compute wall/gran/local: wall fix {wall} is gone"))?;
+        let width = match &sim.fixes[k].kind {
+            crate::engine::fixes::FixKind::MeshWall(w) => {
+                w.model.as_ref().map_or(0, |m| m.history_width())
+            }
+            _ => 0,
+        };
+        let ncols: usize = fields.iter().map(|f| f.width(width)).sum();
+        let p = &sim.particles;
+        let mut out = Vec::new();
+        for c in crate::engine::fixes::mesh_wall_contacts(&sim.fixes, k, p, sim.dt) {
+            let i = c.particle;
+            if p.mask[i] & self.group == 0 {
+                continue;
+            }
+            let (f, t) = (c.out.f, c.out.t);
+            let normal = c.out.en.map(|x| -x);
+            let split = |v: [f64; 3]| {
+                let m = (v[0] * normal[0] + v[1] * normal[1]) + v[2] * normal[2];
+                let vn = normal.map(|x| x * m);
+                (vn, [v[0] - vn[0], v[1] - vn[1], v[2] - vn[2]])
+            };
+            let radius = p.radius[i];
+            let r = radius - (-c.gap);
+            let rsq = r * r;
+            for field in fields {
+                match field {
+                    LocalField::Pos => {
+                        let dvec = c.to_wall.map(|x| -x);
+                        out.extend((0..3).map(|d| p.x[i][d] - dvec[d]));
+                        out.extend_from_slice(&p.x[i]);
+                    }
+                    LocalField::Vel => {
+                        out.extend_from_slice(&c.v_wall);
+                        out.extend_from_slice(&p.v[i]);
+                    }
+                    LocalField::Id => {
+                        out.push(c.mesh as f64);
+                        out.push(c.tri as f64);
+                        out.push(p.id[i] as f64);
+                    }
+                    LocalField::Force => out.extend_from_slice(&f),
+                    LocalField::ForceNormal => out.extend_from_slice(&split(f).0),
+                    LocalField::ForceTangential => out.extend_from_slice(&split(f).1),
+                    LocalField::Torque => out.extend_from_slice(&t),
+                    LocalField::TorqueNormal => out.extend_from_slice(&split(t).0),
+                    LocalField::TorqueTangential => out.extend_from_slice(&split(t).1),
+                    LocalField::History => out.extend_from_slice(&c.hist[..width]),
+                    LocalField::ContactArea => {
+                        out.push((radius * radius - rsq) * std::f64::consts::PI)
+                    }
+                    LocalField::Delta => out.push(radius - rsq.sqrt()),
+                    // walls fill neither (LIGGGHTS leaves them as allocated: zero)
+                    LocalField::HeatFlux => out.push(0.0),
+                    LocalField::ContactPoint => out.extend_from_slice(&[0.0; 3]),
                 }
             }
         }

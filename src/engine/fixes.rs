@@ -414,6 +414,54 @@ pub struct Fix {
     pub args: Vec<String>,
 }
 
+/// The meshes of a mesh wall, in its `meshes` order, as its force loop sees them.
+fn mesh_refs<'a>(fixes: &'a [Fix], w: &MeshWallFix) -> Vec<crate::engine::mesh_wall::MeshRef<'a>> {
+    w.meshes
+        .iter()
+        .filter_map(|id| {
+            fixes.iter().find_map(|f| match &f.kind {
+                FixKind::Mesh(m) if &f.id == id => {
+                    let moving = fixes
+                        .iter()
+                        .any(|g| matches!(&g.kind, FixKind::MoveMesh(mv) if &mv.mesh == id));
+                    Some(crate::engine::mesh_wall::MeshRef {
+                        moving,
+                        stress: m.stress.is_some(),
+                        mesh: &m.mesh,
+                        wall_type: m.wall_type,
+                        group: f.group | w.group_index,
+                        node_v: m.node_v.as_deref(),
+                    })
+                }
+                _ => None,
+            })
+        })
+        .collect()
+}
+
+/// The contacts of the mesh wall fix `fixes[k]` as a second force pass finds them, with
+/// nothing applied and no history advanced (`compute wall/gran/local`); empty before the
+/// wall's first run.
+pub fn mesh_wall_contacts(
+    fixes: &[Fix],
+    k: usize,
+    p: &Particles,
+    dt: f64,
+) -> Vec<crate::engine::mesh_wall::WallContact> {
+    let FixKind::MeshWall(w) = &fixes[k].kind else {
+        return Vec::new();
+    };
+    let Some(model) = w.model.as_ref() else {
+        return Vec::new();
+    };
+    let refs = mesh_refs(fixes, w);
+    if w.trackers.len() != refs.len() {
+        return Vec::new();
+    }
+    let mut trackers = w.trackers.clone();
+    model.contacts(p, &refs, &mut trackers, dt)
+}
+
 /// The forces of the mesh wall fix `fixes[k]` on the particles.
 fn mesh_wall_force(
     fixes: &mut [Fix],
@@ -436,28 +484,7 @@ fn mesh_wall_force(
                         .position(|f| &f.id == id && matches!(f.kind, FixKind::Mesh(_)))
                 })
                 .collect();
-            let refs: Vec<crate::engine::mesh_wall::MeshRef> = w
-                .meshes
-                .iter()
-                .filter_map(|id| {
-                    fixes.iter().find_map(|f| match &f.kind {
-                        FixKind::Mesh(m) if &f.id == id => {
-                            let moving = fixes.iter().any(
-                                |g| matches!(&g.kind, FixKind::MoveMesh(mv) if &mv.mesh == id),
-                            );
-                            Some(crate::engine::mesh_wall::MeshRef {
-                                moving,
-                                stress: m.stress.is_some(),
-                                mesh: &m.mesh,
-                                wall_type: m.wall_type,
-                                group: f.group | w.group_index,
-                                node_v: m.node_v.as_deref(),
-                            })
-                        }
-                        _ => None,
-                    })
-                })
-                .collect();
+            let refs = mesh_refs(fixes, w);
             if w.trackers.len() != refs.len() {
                 w.trackers = vec![Default::default(); refs.len()];
                 w.built = None;
@@ -1094,4 +1121,6 @@ pub struct StreamFix {
     pub start: i64,
     /// The running insertion, after setup.
     pub state: Option<crate::engine::insert::InsertStream>,
+    /// State restored from a restart file, taken over at setup.
+    pub restored: Option<crate::engine::insert::InsertRestart>,
 }

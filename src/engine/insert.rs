@@ -22,6 +22,9 @@ pub struct Template {
     pub volume: f64,
     /// Mass (mass).
     pub mass: f64,
+    /// State of the template's insertion generator and its Monte Carlo seed (constant
+    /// templates never draw; both are kept for restart files).
+    pub rng_state: (i32, i32),
 }
 
 impl Template {
@@ -35,6 +38,7 @@ impl Template {
             density,
             volume,
             mass: density * volume,
+            rng_state: (0, 0),
         }
     }
 }
@@ -1062,8 +1066,106 @@ pub struct Release {
     pub inserted: i64,
     /// The release step.
     pub release: i64,
+    /// Velocity while moving to the release point (length/time).
+    pub v_int: [f64; 3],
     /// Velocity after release (length/time).
     pub v_final: [f64; 3],
+    /// Angular velocity after release (1/time).
+    pub omega: [f64; 3],
+}
+
+/// Width of LIGGGHTS's per-atom release data (`release_fix_insert_stream`).
+pub const RELEASE_WIDTH: usize = 14;
+
+/// Name of the per-atom release data, as LIGGGHTS's insert/stream names its property/atom.
+pub const RELEASE_NAME: &str = "release_fix_insert_stream";
+
+/// LIGGGHTS's tolerance when it turns stored steps back into integers.
+const STEP_TINY: f64 = 1e-14;
+
+impl Release {
+    /// The 14 values LIGGGHTS keeps per atom: insertion position, insertion step, release
+    /// step, integration velocity, release velocity, release angular velocity.
+    pub fn row(&self) -> [f64; RELEASE_WIDTH] {
+        let mut r = [0.0; RELEASE_WIDTH];
+        r[..3].copy_from_slice(&self.x);
+        r[3] = self.inserted as f64;
+        r[4] = self.release as f64;
+        r[5..8].copy_from_slice(&self.v_int);
+        r[8..11].copy_from_slice(&self.v_final);
+        r[11..14].copy_from_slice(&self.omega);
+        r
+    }
+
+    /// A particle still on its way at `step`, from its stored row (None: not a stream
+    /// particle, or already released), read as LIGGGHTS's end_of_step reads it.
+    pub fn from_row(id: i64, r: &[f64], step: i64) -> Option<Release> {
+        if r[3].abs() <= 1e-13 {
+            return None;
+        }
+        let release = (r[4] + STEP_TINY) as i32 as i64;
+        if step > release {
+            return None;
+        }
+        Some(Release {
+            id,
+            x: [r[0], r[1], r[2]],
+            inserted: (r[3] + STEP_TINY) as i32 as i64,
+            release,
+            v_int: [r[5], r[6], r[7]],
+            v_final: [r[8], r[9], r[10]],
+            omega: [r[11], r[12], r[13]],
+        })
+    }
+}
+
+/// What a restart file stored for an insertion fix (LIGGGHTS's FixInsert::write_restart).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InsertRestart {
+    /// State of the fix generator.
+    pub rng_state: i32,
+    /// Particles inserted so far.
+    pub inserted: i64,
+    /// First insertion step.
+    pub first_step: i64,
+    /// Next insertion step (0: insertion had finished).
+    pub next: i64,
+    /// Mass inserted so far (mass).
+    pub mass: f64,
+}
+
+impl InsertRestart {
+    /// Parse the 5 doubles of the stored state.
+    pub fn parse(bytes: &[u8]) -> Result<InsertRestart, String> {
+        if bytes.len() < 40 {
+            return Err(format!(
+                "stored insertion state has {} bytes, expected 40",
+                bytes.len()
+            ));
+        }
+        let d = |k: usize| f64::from_le_bytes(bytes[8 * k..8 * k + 8].try_into().expect("8"));
+        Ok(InsertRestart {
+            rng_state: d(0) as i32,
+            inserted: d(1) as i32 as i64,
+            first_step: d(2) as i32 as i64,
+            next: d(3) as i64,
+            mass: d(4),
+        })
+    }
+
+    /// The 5 doubles LIGGGHTS stores.
+    pub fn bytes(&self) -> Vec<u8> {
+        [
+            self.rng_state as f64,
+            self.inserted as f64,
+            self.first_step as f64,
+            self.next as f64,
+            self.mass,
+        ]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect()
+    }
 }
 
 /// `fix insert/stream`.
@@ -1116,6 +1218,10 @@ pub struct InsertStream {
     pub inserted_mass: f64,
     /// Particles not yet released.
     pub moving: Vec<Release>,
+    /// First insertion step (kept for restart files).
+    pub first_step: i64,
+    /// This fix moves the particles of every stream (LIGGGHTS: the first insert/stream).
+    pub integrator: bool,
 }
 
 impl InsertStream {
@@ -1272,8 +1378,21 @@ impl InsertStream {
         (placed, lines)
     }
 
-    /// Release data of the atoms just inserted (ID, position), final velocities drawn now.
-    pub fn record(&mut self, step: i64, dt: f64, atoms: &[(i64, [f64; 3])]) {
+    /// The state a restart file keeps (LIGGGHTS's FixInsert::write_restart).
+    pub fn restart_state(&self) -> InsertRestart {
+        InsertRestart {
+            rng_state: self.rng.state(),
+            inserted: self.inserted,
+            first_step: self.first_step,
+            next: self.next.unwrap_or(0),
+            mass: self.inserted_mass,
+        }
+    }
+
+    /// Release data of the atoms just inserted (ID, position), final velocities drawn now;
+    /// returns the new records.
+    pub fn record(&mut self, step: i64, dt: f64, atoms: &[(i64, [f64; 3])]) -> Vec<Release> {
+        let mut out = Vec::with_capacity(atoms.len());
         let vn = {
             let v = self.v_normal;
             (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
@@ -1289,13 +1408,16 @@ impl InsertStream {
                 }
                 Velocity::Gaussian(v, s) => [0, 1, 2].map(|d| v[d] + s[d] * self.rng.gaussian()),
             };
-            self.moving.push(Release {
+            out.push(Release {
                 id,
                 x,
                 inserted: step,
                 release: step + steps,
+                v_int: self.v_normal,
                 v_final,
+                omega: self.omega,
             });
         }
+        out
     }
 }

@@ -203,6 +203,37 @@ pub struct MeshRef<'a> {
     pub stress: bool,
 }
 
+/// One particle-triangle contact as the contact model evaluated it: what `compute
+/// wall/gran/local` reports.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallContact {
+    /// Index of the mesh in the wall's `meshes` list.
+    pub mesh: usize,
+    /// Triangle id (STL order).
+    pub tri: u32,
+    /// Particle index.
+    pub particle: usize,
+    /// Vector from the particle centre to the closest wall point (m).
+    pub to_wall: [f64; 3],
+    /// Wall velocity at the contact (m/s).
+    pub v_wall: [f64; 3],
+    /// Signed gap (m, negative when overlapping).
+    pub gap: f64,
+    /// The contact model's force, torque and normal on the particle.
+    pub out: crate::engine::contact::WallOutput,
+    /// The contact's history after the evaluation (the first `history_width` values).
+    pub hist: [f64; MAX_HISTORY],
+}
+
+/// Read-only particles for a force pass that applies nothing.
+pub struct ReadOnly<'a>(pub &'a Particles);
+
+impl AsRef<Particles> for ReadOnly<'_> {
+    fn as_ref(&self) -> &Particles {
+        self.0
+    }
+}
+
 /// Mesh wall contacts with a contact model, monomorphised for its sub-models.
 pub trait MeshWallInteraction: Send {
     /// Doubles of history per contact.
@@ -219,6 +250,15 @@ pub trait MeshWallInteraction: Send {
         update: bool,
         records: &mut Vec<(usize, StressContact)>,
     );
+    /// The contacts a second force pass finds, applying nothing and advancing no history
+    /// (LIGGGHTS's compute wall/gran/local re-runs the wall's loop this way at output).
+    fn contacts(
+        &self,
+        p: &Particles,
+        meshes: &[MeshRef],
+        trackers: &mut [Tracker],
+        dt: f64,
+    ) -> Vec<WallContact>;
 }
 
 /// A contact model acting between particles and meshes.
@@ -282,10 +322,75 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Mesh
         update: bool,
         records: &mut Vec<(usize, StressContact)>,
     ) {
+        self.pass(
+            p,
+            meshes,
+            trackers,
+            dt,
+            update,
+            &mut |p: &mut Particles, c| {
+                let i = c.particle;
+                let before = p.f[i];
+                for d in 0..3 {
+                    p.f[i][d] += c.out.f[d];
+                    p.torque[i][d] += c.out.t[d];
+                }
+                if meshes[c.mesh].stress {
+                    let after = p.f[i];
+                    records.push((
+                        c.mesh,
+                        StressContact {
+                            tri: c.tri,
+                            particle: i,
+                            force: [0, 1, 2].map(|d| after[d] - before[d]),
+                            to_wall: c.to_wall,
+                            v_wall: c.v_wall,
+                        },
+                    ));
+                }
+            },
+        );
+    }
+
+    fn contacts(
+        &self,
+        p: &Particles,
+        meshes: &[MeshRef],
+        trackers: &mut [Tracker],
+        dt: f64,
+    ) -> Vec<WallContact> {
+        let mut out = Vec::new();
+        self.pass(
+            &mut ReadOnly(p),
+            meshes,
+            trackers,
+            dt,
+            false,
+            &mut |_, c| out.push(c),
+        );
+        out
+    }
+}
+
+impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
+    MeshWallGran<N, T, C, R>
+{
+    /// LIGGGHTS's mesh loop: every mesh, every particle, every candidate triangle; each
+    /// touching contact is evaluated and handed to `sink` with the particles.
+    #[inline]
+    fn pass<P: AsRef<Particles>, S: FnMut(&mut P, WallContact)>(
+        &self,
+        p: &mut P,
+        meshes: &[MeshRef],
+        trackers: &mut [Tracker],
+        dt: f64,
+        update: bool,
+        sink: &mut S,
+    ) {
         let w = self.model.history_len();
         for (mesh_index, (mref, tr)) in meshes.iter().zip(trackers.iter_mut()).enumerate() {
             let m = mref.mesh;
-            for i in 0..p.len().min(tr.cand.len()) {
+            for i in 0..p.as_ref().len().min(tr.cand.len()) {
                 if tr.cand[i].is_empty() {
                     continue;
                 }
@@ -294,7 +399,8 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Mesh
                     s.keep = false;
                 }
                 for &t in &tr.cand[i] {
-                    let Some(c) = m.closest(t as usize, p.x[i], p.radius[i]) else {
+                    let q = p.as_ref();
+                    let Some(c) = m.closest(t as usize, q.x[i], q.radius[i]) else {
                         continue;
                     };
                     if !(c.gap <= 0.0) {
@@ -312,37 +418,32 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Mesh
                         }
                     }
                     let input = WallInput {
-                        x: p.x[i],
+                        x: q.x[i],
                         gap: c.gap,
                         to_wall: c.to_wall,
-                        radius: p.radius[i],
-                        mass: p.mass[i],
-                        v: p.v[i],
-                        omega: p.omega[i],
+                        radius: q.radius[i],
+                        mass: q.mass[i],
+                        v: q.v[i],
+                        omega: q.omega[i],
                         v_wall,
                         dt,
                         update_history: update,
-                        coeffs: self.material.pair(p.kind[i] as usize, mref.wall_type),
+                        coeffs: self.material.pair(q.kind[i] as usize, mref.wall_type),
                     };
                     let out = self.model.wall_force(&input, &mut slots[k].hist[..w]);
-                    let before = p.f[i];
-                    for d in 0..3 {
-                        p.f[i][d] += out.f[d];
-                        p.torque[i][d] += out.t[d];
-                    }
-                    if mref.stress {
-                        let after = p.f[i];
-                        records.push((
-                            mesh_index,
-                            StressContact {
-                                tri: t,
-                                particle: i,
-                                force: [0, 1, 2].map(|d| after[d] - before[d]),
-                                to_wall: c.to_wall,
-                                v_wall,
-                            },
-                        ));
-                    }
+                    sink(
+                        p,
+                        WallContact {
+                            mesh: mesh_index,
+                            tri: t,
+                            particle: i,
+                            to_wall: c.to_wall,
+                            v_wall,
+                            gap: c.gap,
+                            out,
+                            hist: slots[k].hist,
+                        },
+                    );
                 }
                 // a contact not touched this step is gone, and so is its history
                 for s in slots.iter_mut() {

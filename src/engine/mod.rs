@@ -16,6 +16,7 @@ pub mod neighbor;
 pub mod numbers;
 pub mod particles;
 pub mod region;
+pub mod restart_fixes;
 pub mod restart_state;
 pub mod sim;
 pub mod thermo;

@@ -74,6 +74,11 @@ pub struct NeighborList {
     built_reach: Vec<f64>,
     /// Number of builds so far.
     pub builds: u64,
+    /// Bin offsets and fill counters, kept between builds (a shrink-wrapped box with
+    /// falling particles can hold millions of bins; allocating them anew at every build
+    /// cost more time in page faults than the build itself).
+    bin_start: Vec<usize>,
+    bin_fill: Vec<usize>,
 }
 
 impl NeighborList {
@@ -166,7 +171,9 @@ impl NeighborList {
         let flat = |b: [usize; 3]| (b[2] * nbins[1] + b[1]) * nbins[0] + b[0];
         let total = nbins[0] * nbins[1] * nbins[2];
         // counting sort of particles into bins (stable: keeps index order inside a bin)
-        let mut start = vec![0usize; total + 1];
+        let mut start = std::mem::take(&mut self.bin_start);
+        start.clear();
+        start.resize(total + 1, 0);
         let bins: Vec<usize> = x.iter().map(|p| flat(bin_of(p))).collect();
         for &b in &bins {
             start[b + 1] += 1;
@@ -174,7 +181,9 @@ impl NeighborList {
         for k in 0..total {
             start[k + 1] += start[k];
         }
-        let mut fill = start.clone();
+        let mut fill = std::mem::take(&mut self.bin_fill);
+        fill.clear();
+        fill.extend_from_slice(&start);
         let mut members = vec![0u32; n];
         for (i, &b) in bins.iter().enumerate() {
             members[fill[b]] = i as u32;
@@ -256,6 +265,8 @@ impl NeighborList {
                 });
             }
         }
+        self.bin_start = start;
+        self.bin_fill = fill;
     }
 }
 

@@ -186,3 +186,9 @@ mod tests {
         assert_eq!(p.max_id(), 4);
     }
 }
+
+impl AsRef<Particles> for Particles {
+    fn as_ref(&self) -> &Particles {
+        self
+    }
+}

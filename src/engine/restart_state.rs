@@ -293,7 +293,13 @@ impl Simulation {
                 r.pair = Some(("gran".into(), raw));
             }
         }
-        // per-atom state: wall histories of existing walls, then the pair contact history
+        // fix states in fix order (templates, distributions, meshes, insertion, release
+        // data), then wall histories of existing walls, then the pair contact history
+        let (globals, release) = self.fix_restart_entries();
+        r.global_fixes.extend(globals);
+        for (header, _) in &release {
+            r.peratom_fixes.push(header.clone());
+        }
         let p = &self.particles;
         let walls: Vec<&crate::engine::particles::PerAtom> = p
             .extra
@@ -333,10 +339,13 @@ impl Simulation {
         }
         r.atoms = (0..p.len())
             .map(|i| {
-                let mut extra: Vec<Vec<f64>> = walls
-                    .iter()
-                    .map(|w| w.data[i * w.width..(i + 1) * w.width].to_vec())
-                    .collect();
+                let mut extra: Vec<Vec<f64>> =
+                    release.iter().map(|(_, rows)| rows[i].clone()).collect();
+                extra.extend(
+                    walls
+                        .iter()
+                        .map(|w| w.data[i * w.width..(i + 1) * w.width].to_vec()),
+                );
                 if width > 0 {
                     let mut b = vec![f64::from_bits(of(i).len() as u64)];
                     for (t, h) in of(i) {

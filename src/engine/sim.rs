@@ -220,6 +220,14 @@ pub struct Simulation {
     /// `read_restart` read fix states that the next run's setup consumes (LIGGGHTS's
     /// fix_restart_in_progress: some computes may still be defined at a step > 0).
     pub restart_in_progress: bool,
+    /// Fix states of the restart file read last, held (as LIGGGHTS holds them) until the
+    /// first run: a fix defined meanwhile with a stored ID and style takes its state.
+    pub restart_fixes: Vec<crate::io::restart::GlobalFix>,
+    /// (ID, style) of the per-atom fix blocks of that restart file.
+    pub restart_peratom: Vec<(String, String)>,
+    /// An insert/stream fix has created the per-atom release data (LIGGGHTS's
+    /// `release_fix_insert_stream`), which restart files then carry.
+    pub stream_release: bool,
     /// A moving mesh's nodes went more than half the skin since its last refresh: the
     /// neighbour lists are rebuilt at this step (LIGGGHTS's FixMesh next_reneighbor).
     pub mesh_rebuild_at: Option<i64>,
@@ -309,6 +317,9 @@ impl Default for Simulation {
             restart_output: [None, None],
             pending_history: None,
             restart_in_progress: false,
+            restart_fixes: Vec::new(),
+            restart_peratom: Vec::new(),
+            stream_release: false,
             mesh_rebuild_at: None,
             energy_watch: None,
             has_run: false,
@@ -441,7 +452,17 @@ impl Simulation {
             return Err(self.non_finite(i));
         }
         if let Some((ratio, i, j)) = self.pair.as_ref().and_then(|m| m.worst_overlap()) {
-            if ratio > MAX_OVERLAP {
+            // a particle that insert/stream still carries feels no force; LIGGGHTS can
+            // insert one overlapping a particle it had frozen (after reset_timestep)
+            let (ti, tj) = (p.id[i as usize], p.id[j as usize]);
+            let carried = self.fixes.iter().any(|f| match &f.kind {
+                FixKind::InsertStream(sf) => sf
+                    .state
+                    .as_ref()
+                    .is_some_and(|s| s.moving.iter().any(|r| r.id == ti || r.id == tj)),
+                _ => false,
+            });
+            if ratio > MAX_OVERLAP && !carried {
                 return Err(format!(
                     "blow-up at step {}: atoms {} and {} overlap by {:.0} % of the smaller radius; \
                      the time step is probably too large for the stiffness, or particles were created overlapping",
@@ -1400,7 +1421,23 @@ impl Simulation {
             self.guard_forces()?;
         }
         self.has_run = true;
+        if self.pair.as_ref().is_some_and(|p| p.history_width() > 0) {
+            // the pair style's history fix is created (and restored) at the first run
+            let id = ("contacthistory".to_string(), "contacthistory".to_string());
+            if self
+                .restart_fixes
+                .iter()
+                .any(|g| g.id == id.0 && g.style == id.1)
+            {
+                out("Resetting global state of Fix contacthistory Style contacthistory from restart file info\n");
+            }
+            if self.restart_peratom.contains(&id) {
+                out("Resetting per-atom state of Fix contacthistory Style contacthistory from restart file info\n");
+            }
+        }
         self.restart_in_progress = false;
+        self.restart_fixes.clear();
+        self.restart_peratom.clear();
         self.energy_watch = None;
         self.setup_insertions(out)?;
         self.setup_averages(vars)?;
@@ -1554,9 +1591,19 @@ impl Simulation {
                     face.within = Some(crate::engine::insert::Within::new(&m.mesh));
                 }
             }
+            // the first stream moves every stream's particles (LIGGGHTS's i_am_integrator)
+            let integrator = !self.fixes[..k]
+                .iter()
+                .any(|f| matches!(f.kind, FixKind::InsertStream(_)));
+            let moving = if integrator {
+                self.releases_pending(self.fixes[k].group)
+            } else {
+                Vec::new()
+            };
             let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
                 continue;
             };
+            let restored = sf.restored;
             let state = InsertStream {
                 id: sf.id.clone(),
                 distribution: sf.distribution.clone(),
@@ -1575,12 +1622,16 @@ impl Simulation {
                 maxattempt: sf.maxattempt,
                 ntry_mc: sf.ntry_mc,
                 verbose: sf.verbose,
-                rng: crate::script::random::RanPark::new(sf.seed)?,
+                rng: crate::script::random::RanPark::new(
+                    restored.map_or(sf.seed, |r| r.rng_state),
+                )?,
                 next: Some(sf.start),
                 measured: false,
-                inserted: 0,
-                inserted_mass: 0.0,
-                moving: Vec::new(),
+                inserted: restored.map_or(0, |r| r.inserted),
+                inserted_mass: restored.map_or(0.0, |r| r.mass),
+                moving,
+                first_step: restored.map_or(sf.start, |r| r.first_step),
+                integrator,
             };
             for l in state.setup_lines(&dist) {
                 out(&format!("{l}\n"));
@@ -1654,8 +1705,31 @@ impl Simulation {
                 new.push((tag, xp));
             }
             let dt = self.dt;
-            if let FixKind::InsertStream(sf) = &mut self.fixes[k].kind {
-                sf.state.as_mut().expect("set up").record(step, dt, &new);
+            let records = match &mut self.fixes[k].kind {
+                FixKind::InsertStream(sf) => {
+                    sf.state.as_mut().expect("set up").record(step, dt, &new)
+                }
+                _ => unreachable!(),
+            };
+            self.store_releases(&records);
+            // the integrating stream moves them, if they are in its group
+            let integrator = self.fixes.iter_mut().find_map(|f| match &mut f.kind {
+                FixKind::InsertStream(sf) => Some((f.group, sf)),
+                _ => None,
+            });
+            if let Some((g, sf)) = integrator {
+                if let Some(state) = sf.state.as_mut() {
+                    let p = &self.particles;
+                    let first = p.len().saturating_sub(records.len());
+                    let in_group = |id: i64| {
+                        p.id[first..]
+                            .iter()
+                            .position(|&t| t == id)
+                            .is_some_and(|j| p.mask[first + j] & g != 0)
+                    };
+                    let keep: Vec<_> = records.into_iter().filter(|r| in_group(r.id)).collect();
+                    state.moving.extend(keep);
+                }
             }
             for l in lines {
                 out(&format!("{l}\n"));
@@ -1683,8 +1757,8 @@ impl Simulation {
             let p = &mut self.particles;
             let map = index
                 .get_or_insert_with(|| p.id.iter().enumerate().map(|(i, id)| (*id, i)).collect());
-            let (vn, omega) = (state.v_normal, state.omega);
             state.moving.retain(|r| {
+                let (vn, omega) = (r.v_int, r.omega);
                 let Some(&i) = map.get(&r.id) else {
                     return false;
                 };
@@ -1884,6 +1958,36 @@ impl Simulation {
 
     /// `reset_timestep N`: bring the elapsed time up to date, then jump to step N.
     pub fn reset_timestep(&mut self, n: i64) {
+        // insertion fixes keep their schedule's phase; insert/stream rewrites every atom's
+        // release data (LIGGGHTS's FixInsert::reset_timestep and reset_releasedata)
+        let old = self.step;
+        let mut v_normal = None;
+        for f in &mut self.fixes {
+            match &mut f.kind {
+                FixKind::InsertPack(ins) => {
+                    if let Some(next) = &mut ins.next {
+                        *next += n - old;
+                    }
+                }
+                FixKind::InsertStream(sf) => {
+                    match &mut sf.state {
+                        Some(st) => {
+                            if let Some(next) = &mut st.next {
+                                *next += n - old;
+                            }
+                        }
+                        None => sf.start += n - old,
+                    }
+                    v_normal = Some(sf.state.as_ref().map_or([0.0; 3], |s| s.v_normal));
+                }
+                _ => {}
+            }
+        }
+        if let Some(v_normal) = v_normal {
+            if self.stream_release {
+                self.reset_release_data(n, old, v_normal);
+            }
+        }
         self.atime += (n - self.atime_step) as f64 * self.dt;
         if self.atime < 0.0 {
             self.atime = 0.0;
@@ -1892,6 +1996,22 @@ impl Simulation {
         self.step = n;
         for d in &mut self.dumps {
             d.last_written = None;
+        }
+        if v_normal.is_some() {
+            let group = self.fixes.iter().find_map(|f| match &f.kind {
+                FixKind::InsertStream(sf) if sf.state.is_some() => Some(f.group),
+                FixKind::InsertStream(_) => Some(0),
+                _ => None,
+            });
+            if let Some(group) = group.filter(|&g| g != 0) {
+                let pending = self.releases_pending(group);
+                if let Some(st) = self.fixes.iter_mut().find_map(|f| match &mut f.kind {
+                    FixKind::InsertStream(sf) => sf.state.as_mut(),
+                    _ => None,
+                }) {
+                    st.moving = pending;
+                }
+            }
         }
     }
 
@@ -1969,6 +2089,9 @@ impl Simulation {
 
     fn write_dumps(&mut self, setup: bool, vars: &mut dyn VariableSource) -> Result<(), String> {
         let step = self.step;
+        // a local compute is evaluated once per step, however many columns and dumps use it
+        let mut local_rows: std::collections::HashMap<String, std::rc::Rc<(usize, Vec<f64>)>> =
+            std::collections::HashMap::new();
         for k in 0..self.dumps.len() {
             let d = &self.dumps[k];
             let due = (step % d.every == 0 || (setup && d.first && d.last_written.is_none()))
@@ -1985,16 +2108,24 @@ impl Simulation {
                         .iter()
                         .find(|c| &c.id == cid)
                         .ok_or_else(|| format!("Could not find dump local compute ID {cid}"))?;
-                    let (ncols, rows) = c.local(self)?;
+                    let evaluated = match local_rows.get(cid) {
+                        Some(r) => r.clone(),
+                        None => {
+                            let r = std::rc::Rc::new(c.local(self)?);
+                            local_rows.insert(cid.clone(), r.clone());
+                            r
+                        }
+                    };
+                    let ncols = evaluated.0;
                     if *col >= ncols.max(1) {
                         return Err(format!(
                             "Dump local compute vector is accessed out-of-range: c_{cid}[{}] of a compute with {ncols} column(s)",
                             col + 1
                         ));
                     }
-                    data.push((ncols, rows, *col));
+                    data.push((evaluated, *col));
                 }
-                let nrows = data.first().map_or(0, |d| d.1.len() / d.0.max(1));
+                let nrows = data.first().map_or(0, |d| d.0 .1.len() / d.0 .0.max(1));
                 let mut text = Vec::new();
                 crate::io::dump::write_local(
                     &mut text,
@@ -2003,7 +2134,7 @@ impl Simulation {
                     &self.dumps[k].layout.names,
                     self.dumps[k].layout.format.as_deref(),
                     nrows,
-                    |r, c| data[c].1[r * data[c].0 + data[c].2],
+                    |r, c| data[c].0 .1[r * data[c].0 .0 + data[c].1],
                 )
                 .map_err(|e| e.to_string())?;
                 self.write_dump_text(k, step, &text)?;

@@ -1,0 +1,283 @@
+//! Fix state in restart files, as LIGGGHTS 3.8.0 keeps it (docs/notes/restart_fix_state.md):
+//! particle templates, distributions, meshes, insertion fixes and insert/stream's per-atom
+//! release data. A restart file's fix states are held from `read_restart` until the first
+//! run; a fix defined meanwhile with a stored ID and style takes its state back.
+
+use crate::engine::fixes::FixKind;
+use crate::engine::insert::{Release, RELEASE_NAME, RELEASE_WIDTH};
+use crate::engine::sim::Simulation;
+use crate::io::restart::{GlobalFix, PeratomFix};
+use crate::io::stl::Triangle;
+
+/// The doubles of a stored fix state (LIGGGHTS writes native little-endian doubles).
+pub fn doubles(bytes: &[u8]) -> Vec<f64> {
+    bytes
+        .chunks_exact(8)
+        .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
+        .collect()
+}
+
+/// Bytes of a fix state made of doubles.
+pub fn to_bytes(values: &[f64]) -> Vec<u8> {
+    values.iter().flat_map(|v| v.to_le_bytes()).collect()
+}
+
+/// Per-element values of a plain mesh/surface in a restart: 9 node coordinates and the id.
+const MESH_ELEMENT_SIZE: usize = 10;
+
+/// A mesh's restart state: triangle count, element size, global size, then per triangle
+/// its record length, nodes and id (LIGGGHTS's MultiNodeMeshParallel::writeRestart).
+pub fn mesh_state(triangles: &[Triangle]) -> Vec<u8> {
+    let mut d = vec![triangles.len() as f64, MESH_ELEMENT_SIZE as f64, 0.0];
+    for (k, t) in triangles.iter().enumerate() {
+        d.push((MESH_ELEMENT_SIZE + 1) as f64);
+        for node in t {
+            d.extend_from_slice(node);
+        }
+        d.push(k as f64);
+    }
+    to_bytes(&d)
+}
+
+/// The triangles a mesh's restart state holds (their current, transformed nodes).
+pub fn mesh_from_state(bytes: &[u8]) -> Result<Vec<Triangle>, String> {
+    let d = doubles(bytes);
+    let incompatible = || {
+        "Incompatible mesh restart file - mesh has different properties in restarted simulation"
+            .to_string()
+    };
+    if d.len() < 3 || d[1] as usize != MESH_ELEMENT_SIZE || d[2] != 0.0 {
+        return Err(incompatible());
+    }
+    let n = d[0] as usize;
+    if d.len() != 3 + n * (MESH_ELEMENT_SIZE + 1) {
+        return Err(incompatible());
+    }
+    Ok((0..n)
+        .map(|k| {
+            let at = 3 + k * (MESH_ELEMENT_SIZE + 1) + 1;
+            [0, 1, 2].map(|j| [d[at + 3 * j], d[at + 3 * j + 1], d[at + 3 * j + 2]])
+        })
+        .collect())
+}
+
+impl Simulation {
+    /// The stored state of fix `id` of `style`, while a restart's fix states are held.
+    pub fn held_fix_state(&self, id: &str, style: &str) -> Option<&[u8]> {
+        if !self.restart_in_progress {
+            return None;
+        }
+        self.restart_fixes
+            .iter()
+            .find(|g| g.id == id && g.style == style)
+            .map(|g| g.state.as_slice())
+    }
+
+    /// Is a per-atom block of fix `id` of `style` held?
+    pub fn held_peratom(&self, id: &str, style: &str) -> bool {
+        self.restart_in_progress
+            && self
+                .restart_peratom
+                .iter()
+                .any(|(i, s)| i == id && s == style)
+    }
+
+    /// LIGGGHTS's recalc_release_restart: release steps of particles still on their way,
+    /// rescaled from the time step they were inserted with to the current one (the
+    /// product truncated to an integer, as LIGGGHTS does).
+    pub fn recalc_release_steps(&mut self) {
+        let Some(e) = self
+            .particles
+            .extra
+            .iter()
+            .position(|e| e.name == RELEASE_NAME)
+        else {
+            return;
+        };
+        let (step, dt) = (self.step as f64, self.dt);
+        let p = &mut self.particles;
+        for i in 0..p.len() {
+            let row = &mut p.extra[e].data[i * RELEASE_WIDTH..(i + 1) * RELEASE_WIDTH];
+            if row[4] <= step {
+                continue;
+            }
+            let dx = [0, 1, 2].map(|d| p.x[i][d] - row[d]);
+            let moved = (dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]).sqrt();
+            let speed = (row[5] * row[5] + row[6] * row[6] + row[7] * row[7]).sqrt();
+            let dt_old = moved / (speed * (step - row[3]));
+            let ratio = dt_old / dt;
+            row[4] = step + ((ratio * (row[4] - step)) as i32) as f64;
+        }
+    }
+
+    /// LIGGGHTS's reset_releasedata at `reset_timestep new` (from step `old`), applied to
+    /// every atom: the insertion point becomes the current position, the insertion and
+    /// release steps shift, and the integration velocity becomes the stream's normal
+    /// velocity (`v_normal`: zero before the stream's first setup, where LIGGGHTS stores
+    /// uninitialised memory, about 4.6e-310 in practice).
+    pub fn reset_release_data(&mut self, new: i64, old: i64, v_normal: [f64; 3]) {
+        let Some(e) = self
+            .particles
+            .extra
+            .iter()
+            .position(|e| e.name == RELEASE_NAME)
+        else {
+            return;
+        };
+        let p = &mut self.particles;
+        let shift = (old - new) as f64;
+        for i in 0..p.len() {
+            let row = &mut p.extra[e].data[i * RELEASE_WIDTH..(i + 1) * RELEASE_WIDTH];
+            row[..3].copy_from_slice(&p.x[i]);
+            row[3] -= shift;
+            row[4] -= shift;
+            row[5..8].copy_from_slice(&v_normal);
+        }
+    }
+
+    /// Particles of `group` still on their way at the next step, from the release data.
+    pub fn releases_pending(&self, group: u32) -> Vec<Release> {
+        let p = &self.particles;
+        let Some(e) = p.extra.iter().find(|e| e.name == RELEASE_NAME) else {
+            return Vec::new();
+        };
+        (0..p.len())
+            .filter(|&i| p.mask[i] & group != 0)
+            .filter_map(|i| {
+                let row = &e.data[i * RELEASE_WIDTH..(i + 1) * RELEASE_WIDTH];
+                Release::from_row(p.id[i], row, self.step + 1)
+            })
+            .collect()
+    }
+
+    /// Store new particles' release data in the per-atom rows.
+    pub fn store_releases(&mut self, records: &[Release]) {
+        let p = &mut self.particles;
+        let e = p.extra_index(RELEASE_NAME, RELEASE_WIDTH);
+        let index: std::collections::HashMap<i64, usize> = records
+            .iter()
+            .filter_map(|r| p.id.iter().rposition(|&id| id == r.id).map(|i| (r.id, i)))
+            .collect();
+        for r in records {
+            if let Some(&i) = index.get(&r.id) {
+                p.extra[e].data[i * RELEASE_WIDTH..(i + 1) * RELEASE_WIDTH]
+                    .copy_from_slice(&r.row());
+            }
+        }
+    }
+
+    /// Global fix states and per-atom blocks of the fixes regolith keeps in restart files,
+    /// in fix order: templates, distributions, plain meshes, insertion fixes and the
+    /// release data. Returns the global entries and the per-atom blocks' headers with
+    /// their values (one row per atom, without the length word).
+    pub fn fix_restart_entries(&self) -> (Vec<GlobalFix>, Vec<(PeratomFix, Vec<Vec<f64>>)>) {
+        let mut globals = Vec::new();
+        let mut peratom = Vec::new();
+        let mut release_written = false;
+        let entry = |id: &str, style: &str, state: Vec<u8>| GlobalFix {
+            id: id.to_string(),
+            style: style.to_string(),
+            state,
+        };
+        for f in &self.fixes {
+            match &f.kind {
+                FixKind::Template(t) => globals.push(entry(
+                    &f.id,
+                    &f.style,
+                    to_bytes(&[1.0, t.rng_state.0 as f64, t.rng_state.1 as f64]),
+                )),
+                FixKind::Distribution(d) => {
+                    globals.push(entry(&f.id, &f.style, to_bytes(&[d.rng.state() as f64])))
+                }
+                FixKind::Mesh(m) if m.stress.is_none() && f.style != "mesh/surface/stress" => {
+                    globals.push(entry(&f.id, &f.style, mesh_state(m.triangles())))
+                }
+                FixKind::InsertPack(ins) => {
+                    let state = crate::engine::insert::InsertRestart {
+                        rng_state: ins.rng.state(),
+                        inserted: ins.inserted,
+                        first_step: 0,
+                        next: ins.next.unwrap_or(0),
+                        mass: ins.inserted_mass,
+                    };
+                    globals.push(entry(&f.id, &f.style, state.bytes()));
+                }
+                FixKind::InsertStream(sf) => {
+                    let state = match &sf.state {
+                        Some(s) => s.restart_state(),
+                        None => crate::engine::insert::InsertRestart {
+                            rng_state: sf.restored.map_or(sf.seed, |r| r.rng_state),
+                            inserted: sf.restored.map_or(0, |r| r.inserted),
+                            first_step: sf.restored.map_or(sf.start, |r| r.first_step),
+                            next: sf.start,
+                            mass: sf.restored.map_or(0.0, |r| r.mass),
+                        },
+                    };
+                    globals.push(entry(&f.id, &f.style, state.bytes()));
+                    if self.stream_release && !release_written {
+                        release_written = true;
+                        globals.push(entry(
+                            RELEASE_NAME,
+                            "property/atom",
+                            to_bytes(&[RELEASE_WIDTH as f64]),
+                        ));
+                        let p = &self.particles;
+                        let rows = match p.extra.iter().find(|e| e.name == RELEASE_NAME) {
+                            Some(e) => e.data.chunks(RELEASE_WIDTH).map(<[f64]>::to_vec).collect(),
+                            None => vec![vec![0.0; RELEASE_WIDTH]; p.len()],
+                        };
+                        peratom.push((
+                            PeratomFix {
+                                id: RELEASE_NAME.into(),
+                                style: "property/atom".into(),
+                                maxsize: RELEASE_WIDTH as i32 + 1,
+                            },
+                            rows,
+                        ));
+                    }
+                }
+                _ => {}
+            }
+        }
+        (globals, peratom)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mesh_state_round_trip() {
+        let tris: Vec<Triangle> = vec![
+            [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.5]],
+            [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.25]],
+        ];
+        let bytes = mesh_state(&tris);
+        // 3 header values and 2 records of 11 doubles
+        assert_eq!(bytes.len(), (3 + 2 * 11) * 8);
+        assert_eq!(doubles(&bytes)[3 + 11 + 10], 1.0, "second triangle's id");
+        assert_eq!(mesh_from_state(&bytes).unwrap(), tris);
+        let mut other = doubles(&bytes);
+        other[1] = 12.0; // a mesh with more element properties (e.g. wear)
+        assert!(mesh_from_state(&to_bytes(&other))
+            .unwrap_err()
+            .starts_with("Incompatible mesh restart file"));
+    }
+
+    #[test]
+    fn release_rows_read_as_liggghts_reads_them() {
+        let row = [
+            -0.08657, 0.37608, 2.82371, 90001.0, 120436.0, -0.0, 0.0, -2.0, 0.0, -0.5, -2.0, 0.0,
+            0.0, 0.0,
+        ];
+        let r = Release::from_row(1092, &row, 100002).expect("still on its way");
+        assert_eq!((r.inserted, r.release), (90001, 120436));
+        assert_eq!(r.v_int, [-0.0, 0.0, -2.0]);
+        assert_eq!(r.v_final, [0.0, -0.5, -2.0]);
+        assert_eq!(r.row(), row);
+        // released before the next step, or not a stream particle at all
+        assert!(Release::from_row(1092, &row, 120437).is_none());
+        assert!(Release::from_row(7, &[0.0; RELEASE_WIDTH], 5).is_none());
+    }
+}

@@ -1,0 +1,168 @@
+//! Decks LIGGGHTS 3.8.0 rejects are rejected before anything runs, with LIGGGHTS's message,
+//! the file and line, and what to write instead: `compute wall/gran/local` rules and the
+//! LIGGGHTS 2.x syntax of the contactModels tutorial's `in.oldModels`.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+/// Run `deck` in a fresh directory (with `left.stl` beside it); (exit status, stderr).
+fn run(name: &str, deck: &str) -> (Option<i32>, String) {
+    let dir: PathBuf =
+        std::env::temp_dir().join(format!("regolith-deckerr-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let stl = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("compat/engine/wall_gran_local.inputs/left.stl");
+    std::fs::copy(stl, dir.join("left.stl")).unwrap();
+    std::fs::write(dir.join("in.t"), deck).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
+        .args(["-in", "in.t", "-log", "none"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+const HEAD: &str = "atom_style granular
+atom_modify map array
+boundary f f f
+newton off
+communicate single vel yes
+units si
+region domain block -0.05 0.05 -0.03 0.03 -0.02 0.04 units box
+create_box 1 domain
+fix m1 all property/global youngsModulus peratomtype 5.e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.3
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+";
+
+fn with(body: &str) -> String {
+    format!("{HEAD}{body}")
+}
+
+#[test]
+fn wall_gran_local_needs_a_mesh_wall_before_it() {
+    let (status, err) = run(
+        "nomesh",
+        &with("fix side all wall/gran model hertz tangential history primitive type 1 zplane 0\ncompute c all wall/gran/local\n"),
+    );
+    assert_eq!(status, Some(1), "{err}");
+    assert!(
+        err.contains(
+            "Compute wall/gran/local requires a fix of type wall/gran using one or more mesh walls"
+        ),
+        "{err}"
+    );
+    assert!(err.contains("--> in.t:16"), "{err}");
+}
+
+#[test]
+fn wall_gran_local_rules_match_liggghts() {
+    let mesh = "fix left all mesh/surface file left.stl type 1\nfix wall all wall/gran model hertz tangential history mesh n_meshes 1 meshes left\n";
+    // one compute per wall
+    let (status, err) = run(
+        "twice",
+        &with(&format!(
+            "{mesh}compute a all wall/gran/local\ncompute b all wall/gran/local id force\n"
+        )),
+    );
+    assert_eq!(status, Some(1), "{err}");
+    assert!(
+        err.contains("Fix wall/gran (id wall): Fix wall/gran allows only one compute of type wall/gran/local"),
+        "{err}"
+    );
+    // unknown keyword, with the valid ones listed
+    let (status, err) = run(
+        "keyword",
+        &with(&format!(
+            "{mesh}compute a all wall/gran/local force bogus\n"
+        )),
+    );
+    assert_eq!(status, Some(1), "{err}");
+    assert!(
+        err.contains("Compute wall/gran/local (id a): illegal/unrecognized keyword"),
+        "{err}"
+    );
+    assert!(err.contains("force_tangential"), "{err}");
+    // the wall cannot go while the compute reports it
+    let (status, err) = run(
+        "unfix",
+        &with(&format!(
+            "{mesh}compute a all wall/gran/local\nunfix wall\n"
+        )),
+    );
+    assert_eq!(status, Some(1), "{err}");
+    assert!(
+        err.contains(
+            "need to uncompute the active compute wall/gran/local before unfixing the wall"
+        ),
+        "{err}"
+    );
+    // history of a wall model without history
+    let (status, err) = run(
+        "history",
+        &with("fix left all mesh/surface file left.stl type 1\nfix wall all wall/gran model hertz tangential no_history mesh n_meshes 1 meshes left\ncompute a all wall/gran/local\n"),
+    );
+    assert_eq!(status, Some(1), "{err}");
+    assert!(err.contains("can not calculate history values"), "{err}");
+    // defined after the first run
+    let (status, err) = run(
+        "late",
+        &with(&format!(
+            "{mesh}timestep 1e-5\nrun 10\ncompute a all wall/gran/local\n"
+        )),
+    );
+    assert_eq!(status, Some(1), "{err}");
+    assert!(
+        err.contains("Need to define this compute before first run"),
+        "{err}"
+    );
+    // a dump of it names columns: the compute is an array even with one keyword
+    let (status, err) = run(
+        "vector",
+        &with(&format!(
+            "{mesh}compute a all wall/gran/local delta\ndump d all local 10 post/w.dump c_a\n"
+        )),
+    );
+    assert_eq!(status, Some(1), "{err}");
+    assert!(
+        err.contains("Dump local compute does not calculate local vector"),
+        "{err}"
+    );
+}
+
+#[test]
+fn liggghts_2_syntax_is_refused_with_the_3x_equivalent() {
+    let deck = "atom_style granular
+boundary m m m
+newton off
+units si
+region reg block -0.05 0.05 -0.05 0.05 0. 0.15 units box
+create_box 1 reg
+pair_style gran/hertz/history 266000.0 NULL 500.0 NULL 0.5 1
+fix zwalls all wall/gran 266000.0 NULL 500.0 NULL 0.5 1 zplane 0.0 0.15
+fix ins all pour 1000 1 1 vol 0.7 1000 diam 0.003 0.003 dens 2500 2500 vel 0. 0. 0. 0. -1. region reg
+";
+    let (status, err) = run("old", deck);
+    assert_eq!(status, Some(1), "{err}");
+    assert!(err.contains("ERROR: Invalid pair style"), "{err}");
+    assert!(
+        err.contains("`pair_style gran model hertz tangential history`"),
+        "{err}"
+    );
+    assert!(
+        err.contains(
+            "ERROR: Invalid model specified (check for typos and enable at least one model)"
+        ),
+        "{err}"
+    );
+    assert!(err.contains("`fix ID group wall/gran model hertz"), "{err}");
+    assert!(err.contains("ERROR: Invalid fix style: \"pour\""), "{err}");
+    assert!(err.contains("`insert/stream`"), "{err}");
+}

@@ -61,6 +61,15 @@ script_references() {
     done
 }
 
+# The thermo lines of a run's screen output: each block from its `Step` header up to (not
+# including) `Loop time`, with the lines fixes print during the run.
+thermo_lines() {
+    tr -d '\000' | awk '
+        /^Loop time/ { inrun = 0 }
+        inrun { print }
+        /^ *Step / { inrun = 1; print }'
+}
+
 # Engine decks (`regenerate.sh engine [NAME]` rebuilds one): compat/engine/in.NAME (side files in NAME.inputs/). References in NAME.ref/:
 # every file the deck writes (dumps) and thermo.txt, the thermo lines of its runs.
 engine_references() {
@@ -75,10 +84,7 @@ engine_references() {
         (cd "$work" && liggghts -in "in.$name" -log none > stdout.txt 2> /dev/null) || status=$?
         rm -rf "$dir/$name.ref"
         mkdir -p "$dir/$name.ref"
-        tr -d '\000' < "$work/stdout.txt" | awk '
-            /^Loop time/ { inrun = 0 }
-            inrun { print }
-            /^ *Step / { inrun = 1; print }' > "$dir/$name.ref/thermo.txt"
+        thermo_lines < "$work/stdout.txt" > "$dir/$name.ref/thermo.txt"
         (
             cd "$work"
             rm -f stdout.txt "in.$name"
@@ -117,6 +123,74 @@ convert_references() {
     echo "convert: bed.restart, bed.data"
 }
 
-[ "${1:-all}" = engine ] || [ "${1:-all}" = convert ] || script_references
-[ "${1:-all}" = engine ] || [ "${1:-all}" = script ] || convert_references
-[ "${1:-all}" = script ] || [ "${1:-all}" = convert ] || engine_references "$@"
+# Official tutorials (`regenerate.sh tutorials [NAME]`, tests/tutorials.rs), listed with their
+# probe boxes in compat/tutorials/probes.txt: each deck runs unchanged in a copy of its tutorial
+# folder (a deck that reads another's restart file right after that one, in its directory).
+# References in compat/tutorials/NAME.ref/: thermo.txt, the thermo lines of its runs, and
+# final.txt: the last thermo line's step, atoms and KinEng; and of its last particle dump (the
+# largest step among the files of its `dump custom/vtk`, so no `_boundingBox` or mesh files) the
+# step, particle count, mean z and the count inside the probe box.
+tutorial_references() {
+    local dir="$here/tutorials"
+    local tutorials="${REGOLITH_TUTORIALS:-/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public}"
+    if [ ! -d "$tutorials" ]; then
+        echo "no tutorials at $tutorials: apt-get install -y liggghts-doc" >&2
+        exit 1
+    fi
+    local name folder decks box work="" chain="" prev_folder=""
+    while read -r name folder decks box; do
+        case "$name" in "#"* | "") continue ;; esac
+        [ -z "${2:-}" ] || [ "$name" = "$2" ] || continue
+        local todo
+        if [ -n "$chain" ] && [ "$folder" = "$prev_folder" ] && [ "${decks#"$chain",}" != "$decks" ]; then
+            todo="${decks#"$chain",}" # continue in the previous line's directory
+        else
+            [ -z "$work" ] || rm -rf "$work"
+            work="$(mktemp -d)"
+            cp -r "$tutorials/$folder/." "$work/"
+            todo="$decks"
+        fi
+        chain="$decks" prev_folder="$folder"
+        local deck pattern
+        for deck in ${todo//,/ }; do
+            pattern="$(awk '$1 == "dump" && $4 == "custom/vtk" { print $6; exit }' "$work/$deck")"
+            (cd "$work" && rm -f $pattern && liggghts -in "$deck" -log none > stdout.txt 2> /dev/null) ||
+                { echo "tutorials/$name: $deck failed" >&2; exit 1; }
+        done
+        rm -rf "$dir/$name.ref"
+        mkdir -p "$dir/$name.ref"
+        thermo_lines < "$work/stdout.txt" > "$dir/$name.ref/thermo.txt"
+        (cd "$work" && python3 - "$dir/$name.ref/thermo.txt" "$pattern" ${box%%#*}) <<'EOF' > "$dir/$name.ref/final.txt"
+import glob, re, sys
+thermo, pattern, box = sys.argv[1], sys.argv[2], [float(v) for v in sys.argv[3:9]]
+header, last = None, None
+for words in map(str.split, open(thermo)):
+    if words[:1] == ["Step"]:
+        header = words
+    elif header and len(words) == len(header) and all(re.fullmatch(r"[-+.0-9eE]+", w) for w in words):
+        last = dict(zip(header, words))
+print(f"step {last['Step']}\natoms {last['Atoms']}\nke {last['KinEng']}")
+name = re.compile(re.escape(pattern).replace(r"\*", "([0-9]+)"))
+step, path = max((int(m[1]), f) for f in glob.glob(pattern) if (m := name.fullmatch(f)))
+words = open(path).read().split()
+k = words.index("POINTS")
+n = int(words[k + 1])
+xyz = [tuple(map(float, words[k + 3 + 3 * i : k + 6 + 3 * i])) for i in range(n)]
+inside = sum(all(box[2 * a] <= p[a] <= box[2 * a + 1] for a in range(3)) for p in xyz)
+print(f"dump_step {step}\ndump_atoms {n}\nmean_z {sum(p[2] for p in xyz) / n:.9g}\nprobe {inside}")
+EOF
+        echo "tutorials/$name: $(tr '\n' ' ' < "$dir/$name.ref/final.txt")"
+    done < "$dir/probes.txt"
+    [ -z "$work" ] || rm -rf "$work"
+}
+
+section="${1:-all}"
+case "$section" in all | script | convert | engine | tutorials) ;; *)
+    echo "usage: $0 [script|convert|engine|tutorials] [NAME]" >&2
+    exit 2
+    ;;
+esac
+case "$section" in all | script) script_references ;; esac
+case "$section" in all | convert) convert_references ;; esac
+case "$section" in all | engine) engine_references "$@" ;; esac
+case "$section" in all | tutorials) tutorial_references "$@" ;; esac

@@ -702,6 +702,17 @@ fn restore_fix_state(
                 dist.rng.reset(state as i32).map_err(|m| a.error(2, &m))?;
             }
             FixKind::Mesh(_) => {} // its nodes were taken from the file when it was built
+            FixKind::Move(mv) => {
+                // the time origin, and each atom's start position (LIGGGHTS's xoriginal)
+                mv.start_step = *d.first().ok_or_else(|| bad("empty"))? as i32 as i64;
+                if let Some(stored) = ctx.sim.restart_move_origins.get(&fix.id) {
+                    for (id, x) in mv.origin.iter_mut() {
+                        if let Some(s) = stored.get(id) {
+                            *x = *s;
+                        }
+                    }
+                }
+            }
             FixKind::InsertStream(sf) => {
                 let r = InsertRestart::parse(&bytes).map_err(|m| bad(&m))?;
                 if r.next != 0 {
@@ -732,6 +743,12 @@ fn restore_fix_state(
             "Resetting global state of Fix {} Style {} from restart file info",
             fix.id, fix.style
         ));
+        if matches!(fix.kind, FixKind::Move(_)) && ctx.sim.held_peratom(&fix.id, &fix.style) {
+            lines.push(format!(
+                "Resetting per-atom state of Fix {} Style {} from restart file info",
+                fix.id, fix.style
+            ));
+        }
     }
     let first_stream = matches!(fix.kind, FixKind::InsertStream(_)) && !ctx.sim.stream_release;
     if first_stream {

@@ -192,6 +192,22 @@ impl Simulation {
                 FixKind::Mesh(m) if m.stress.is_none() && f.style != "mesh/surface/stress" => {
                     globals.push(entry(&f.id, &f.style, mesh_state(m.triangles())))
                 }
+                FixKind::Move(mv) => {
+                    globals.push(entry(&f.id, &f.style, to_bytes(&[mv.start_step as f64])));
+                    let p = &self.particles;
+                    let rows =
+                        p.id.iter()
+                            .map(|id| mv.origin.get(id).map_or(vec![0.0; 3], |x| x.to_vec()))
+                            .collect();
+                    peratom.push((
+                        PeratomFix {
+                            id: f.id.clone(),
+                            style: f.style.clone(),
+                            maxsize: 4,
+                        },
+                        rows,
+                    ));
+                }
                 FixKind::InsertPack(ins) => {
                     let state = crate::engine::insert::InsertRestart {
                         rng_state: ins.rng.state(),

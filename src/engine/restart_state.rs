@@ -177,6 +177,15 @@ impl Simulation {
                         pending.partners.insert(a.id, list);
                     }
                 }
+                "move" => {
+                    let origins = r
+                        .atoms
+                        .iter()
+                        .filter(|a| a.extra[k].len() >= 3)
+                        .map(|a| (a.id, [a.extra[k][0], a.extra[k][1], a.extra[k][2]]))
+                        .collect();
+                    self.restart_move_origins.insert(fix.id.clone(), origins);
+                }
                 _ => {} // state of fixes regolith does not have
             }
         }

@@ -225,6 +225,10 @@ pub struct Simulation {
     pub restart_fixes: Vec<crate::io::restart::GlobalFix>,
     /// (ID, style) of the per-atom fix blocks of that restart file.
     pub restart_peratom: Vec<(String, String)>,
+    /// Start positions stored by `fix move` fixes in that restart file: fix ID to the
+    /// unwrapped start position (length) of each atom ID.
+    pub restart_move_origins:
+        std::collections::HashMap<String, std::collections::HashMap<i64, [f64; 3]>>,
     /// An insert/stream fix has created the per-atom release data (LIGGGHTS's
     /// `release_fix_insert_stream`), which restart files then carry.
     pub stream_release: bool,
@@ -319,6 +323,7 @@ impl Default for Simulation {
             restart_in_progress: false,
             restart_fixes: Vec::new(),
             restart_peratom: Vec::new(),
+            restart_move_origins: std::collections::HashMap::new(),
             stream_release: false,
             mesh_rebuild_at: None,
             energy_watch: None,
@@ -1438,6 +1443,7 @@ impl Simulation {
         self.restart_in_progress = false;
         self.restart_fixes.clear();
         self.restart_peratom.clear();
+        self.restart_move_origins.clear();
         self.energy_watch = None;
         self.setup_insertions(out)?;
         self.setup_averages(vars)?;

@@ -2526,9 +2526,11 @@ fn insert_pack(
                 target = Some(Target::Mass(m));
                 i += 2;
             }
-            "insert_every" | "every" => {
+            w @ ("insert_every" | "every" | "insert_every_time") => {
                 every = Some(if a.word(i + 1)? == "once" {
                     0
+                } else if w == "insert_every_time" {
+                    (a.real(i + 1)? / ctx.sim.dt) as i32 as i64
                 } else {
                     a.int(i + 1)?
                 });
@@ -2616,7 +2618,7 @@ fn insert_pack(
                 i += 2;
             }
             w @ ("orientation" | "set_property" | "compress_tags" | "nparticles" | "mass"
-            | "massrate" | "particlerate" | "insert_every_time") => {
+            | "massrate" | "particlerate") => {
                 return Err(a.unsupported(i, &format!("fix {style} {w}")))
             }
             _ => {
@@ -2702,6 +2704,7 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
     use crate::engine::insert::Velocity;
     a.count(5..=usize::MAX, "fix ID GROUP insert/stream seed S distributiontemplate D nparticles N particlerate R insertion_face MESH extrude_length L ...")?;
     let (mut seed, mut dist, mut face, mut extrude, mut every) = (None, None, None, None, None);
+    let mut duration = None;
     let (mut total, mut rate) = (None, None);
     let (mut overlap, mut maxattempt, mut ntry_mc, mut verbose) = (true, 50i64, 100000i64, true);
     let mut velocity = Velocity::Constant([0.0; 3]);
@@ -2710,8 +2713,30 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
     let (mut all_in, mut all_in_at, mut face_id) = (false, 0, String::new());
     let mut i = 3;
     let yes = |a: &Args, k: usize| a.word_in(k, &["yes", "no"]).map(|w| w == "yes");
+    // LIGGGHTS reads the general insertion keywords first, then insert/stream's own; a
+    // general one after those is an error there
+    let mut own_part = false;
     while i < a.len() {
-        match a.word(i)? {
+        let w = a.word(i)?;
+        let own = matches!(
+            w,
+            "insertion_face"
+                | "extrude_length"
+                | "duration"
+                | "duration_time"
+                | "parallel"
+                | "ntry_mc"
+                | "save_template"
+        );
+        if own {
+            own_part = true;
+        } else if own_part {
+            return Err(a.error(
+                i,
+                &format!("Fix insert/stream (id {id}): unknown keyword or wrong keyword order"),
+            ));
+        }
+        match w {
             "seed" => {
                 seed = Some(seed_arg(a, ctx, i + 1)?);
                 i += 2;
@@ -2750,8 +2775,27 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
                 extrude = Some(a.real(i + 1)?);
                 i += 2;
             }
-            "insert_every" | "every" => {
-                every = Some(a.int(i + 1)?);
+            w @ ("insert_every" | "every" | "insert_every_time") => {
+                every = Some(if w == "insert_every_time" {
+                    (a.real(i + 1)? / ctx.sim.dt) as i32 as i64
+                } else {
+                    a.int(i + 1)?
+                });
+                i += 2;
+            }
+            w @ ("duration" | "duration_time") => {
+                let d = if w == "duration_time" {
+                    (a.real(i + 1)? / ctx.sim.dt) as i32 as i64
+                } else {
+                    a.int(i + 1)?
+                };
+                if d < 1 {
+                    return Err(a.error(
+                        i + 1,
+                        &format!("Fix insert/stream (id {id}): 'duration' can not be < 1"),
+                    ));
+                }
+                duration = Some(d);
                 i += 2;
             }
             w @ ("nparticles" | "mass") => {
@@ -2800,6 +2844,12 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
             }
             "ntry_mc" => {
                 ntry_mc = a.int(i + 1)?;
+                if ntry_mc < 1000 {
+                    return Err(a.error(
+                        i + 1,
+                        &format!("Fix insert/stream (id {id}): ntry_mc must be > 1000"),
+                    ));
+                }
                 i += 2;
             }
             "vel" => {
@@ -2830,8 +2880,8 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
                 all_in_at = i;
                 i += 2;
             }
-            w @ ("duration" | "duration_time" | "parallel" | "orientation" | "set_property"
-            | "compress_tags" | "random_distribute" | "insert_every_time") => {
+            w @ ("parallel" | "orientation" | "set_property" | "compress_tags"
+            | "random_distribute") => {
                 return Err(a.unsupported(i, &format!("fix insert/stream {w}")))
             }
             _ => {
@@ -2847,6 +2897,9 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
                         "insertion_face",
                         "extrude_length",
                         "insert_every",
+                        "insert_every_time",
+                        "duration",
+                        "duration_time",
                         "vel",
                         "omega",
                         "overlapcheck",
@@ -2888,6 +2941,12 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
             "Fix insert/stream: must define either 'insert_every' or 'extrude_length'",
         ));
     }
+    if extrude.is_some() && duration.is_some() {
+        return Err(a.error(
+            2,
+            &format!("Fix insert/stream (id {id}): must not provide both 'extrude_length' and 'duration'"),
+        ));
+    }
     Ok(FixKind::InsertStream(Box::new(
         crate::engine::fixes::StreamFix {
             id: id.to_string(),
@@ -2898,6 +2957,7 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
             all_in,
             extrude,
             every,
+            duration,
             total,
             rate,
             velocity,

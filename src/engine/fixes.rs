@@ -1101,6 +1101,8 @@ pub struct StreamFix {
     pub extrude: Option<f64>,
     /// `insert_every`, if given.
     pub every: Option<i64>,
+    /// `duration` (steps a particle travels in the extrusion zone), if given.
+    pub duration: Option<i64>,
     /// `nparticles N` (Ok) or `mass M` (Err, mass units).
     pub total: Result<i64, f64>,
     /// `particlerate R` (Ok, 1/time) or `massrate R` (Err, mass/time).

@@ -1559,14 +1559,44 @@ impl Simulation {
             if vn < 1e-3 {
                 return Err(format!("Fix insert/stream (id {}): insertion velocity projected on face normal is < 1e-3", sf.id));
             }
+            let rbound = dist.max_radius;
             let (every, extrude) = match (sf.extrude, sf.every) {
-                (Some(l), _) => (((l + 1e-14) / (dt * vn)) as i64, l),
-                (None, Some(e)) => (e, e as f64 * dt * vn),
+                (Some(l), _) => {
+                    if l < 3.0 * rbound && (sf.all_in || sf.overlapcheck) {
+                        return Err(format!(
+                            "Fix insert/stream (id {}): 'extrude_length' is too small",
+                            sf.id
+                        ));
+                    }
+                    let every = ((l + 1e-14) / (dt * vn)) as i32 as i64;
+                    if every == 0 {
+                        return Err(format!("Fix insert/stream (id {}): insertion velocity too high or extrude_length too low", sf.id));
+                    }
+                    (every, l)
+                }
+                (None, Some(e)) => {
+                    if e < 1 {
+                        return Err(format!(
+                            "Fix insert/stream (id {}): 'insert_every' must be > 0",
+                            sf.id
+                        ));
+                    }
+                    // particles travel `duration` steps (default: insert_every) in the zone
+                    let duration = sf.duration.unwrap_or(e);
+                    if duration > e {
+                        return Err(format!(
+                            "Fix insert/stream (id {}): 'duration' > 'insert_every' not allowed",
+                            sf.id
+                        ));
+                    }
+                    let l = duration as f64 * dt * vn;
+                    if l < 2.0 * rbound {
+                        return Err(format!("Fix insert/stream (id {}): 'insert_every' or 'vel' is too small, or (bounding) radius of inserted particles too large", sf.id));
+                    }
+                    (e, l)
+                }
                 _ => unreachable!("checked when the fix was defined"),
             };
-            if every <= 0 {
-                return Err(format!("Fix insert/stream (id {}): extrude_length too small for the insertion velocity", sf.id));
-            }
             // nparticles from mass, and the other rate, from the expected particle mass
             let me = dist.mass_expect;
             let total = match sf.total {

@@ -211,18 +211,18 @@ fn close(want: f64, got: f64) -> bool {
     (got - want).abs() <= RTOL * want.abs()
 }
 
-/// The final kinetic energy check: within RTOL, except for packing. There LIGGGHTS 3.8.0
-/// misses contacts of particles grown by fix adapt beyond the neighbour cutoff of the run's
-/// start (README, "Differences from LIGGGHTS"): from step ~24 000 its particles pass through
-/// each other and its kinetic energy stays near 0.02 J while regolith's decays. After the
-/// growth both beds relax to ~1e-7 J, five orders below: the motion of a few loose particles
-/// (the deck has no gravity, so a particle without contacts keeps its speed), which depends on
-/// which particles the two packings leave loose (1.3e-7 J in LIGGGHTS, 2.9e-7 J in regolith).
-/// So only the order of magnitude is asserted there, within a factor of 3; mean height and
-/// probe count, which the packing does determine, are held to RTOL as everywhere.
+/// Relative tolerance of packing's final kinetic energy. Its thermo is identical to
+/// LIGGGHTS's to step 32 000 (regolith leaves out the contacts LIGGGHTS's bin stencil misses
+/// once fix adapt has grown the particles), then round-off grows chaotically. After the growth
+/// the bed relaxes to ~1e-7 J, five orders below the growth phase: the drift of a few loose
+/// particles in a deck without gravity, 1.2848e-7 J against LIGGGHTS's 1.3433e-7 J (4.4 %).
+/// Mean height and probe count, which the packing does determine, are held to RTOL.
+const PACKING_KE_RTOL: f64 = 0.05;
+
+/// The final kinetic energy check: within RTOL (packing: PACKING_KE_RTOL).
 fn ke_ok(name: &str, want: f64, got: f64) -> bool {
     if name == "packing" {
-        return got > 0.0 && (got / want).ln().abs() <= 3f64.ln();
+        return (got - want).abs() <= PACKING_KE_RTOL * want.abs();
     }
     close(want, got)
 }
@@ -344,7 +344,7 @@ fn run_job(root: &Path, job: &[Case]) -> Vec<Outcome> {
                 want.ke,
                 got.ke,
                 if case.name == "packing" {
-                    "beyond a factor of 3"
+                    "beyond 5 %"
                 } else {
                     "beyond 3 %"
                 }

@@ -27,6 +27,7 @@ pub struct BinOrder {
     hi: [f64; 3],
     inv: [f64; 3],
     n: [i64; 3],
+    cut: f64,
 }
 
 impl BinOrder {
@@ -44,7 +45,32 @@ impl BinOrder {
             n[d] = ((bbox * (1.0 / optimal)) as i64).max(1);
             inv[d] = 1.0 / (bbox / n[d] as f64);
         }
-        BinOrder { lo, hi, inv, n }
+        BinOrder {
+            lo,
+            hi,
+            inv,
+            n,
+            cut: cutneighmax,
+        }
+    }
+
+    /// Is bin `b` in LIGGGHTS's stencil around bin `a` (its bins' nearest faces closer than
+    /// `cutneighmax`)? A pair farther apart than `cutneighmax` in bins beyond the stencil is
+    /// never seen by LIGGGHTS, however large its radii have grown since the run started.
+    pub fn in_stencil(&self, a: [i64; 3], b: [i64; 3]) -> bool {
+        let mut dsq = 0.0;
+        for k in 0..3 {
+            // (z, y, x) order: dimension 2 - k
+            let size = 1.0 / self.inv[2 - k];
+            let off = b[k] - a[k];
+            let d = match off {
+                o if o > 0 => (o - 1) as f64 * size,
+                o if o < 0 => (o + 1) as f64 * size,
+                _ => 0.0,
+            };
+            dsq += d * d;
+        }
+        dsq < self.cut * self.cut
     }
 
     /// The bin of `x` as (z, y, x) indices (LIGGGHTS's coord2bin, before flattening).
@@ -74,6 +100,9 @@ pub struct NeighborList {
     built_reach: Vec<f64>,
     /// Number of builds so far.
     pub builds: u64,
+    /// Pairs within reach that LIGGGHTS's stencil misses (particles grown beyond the run's
+    /// cutoff), left out as LIGGGHTS leaves them out; counted since the last reset.
+    pub missed: u64,
     /// Bin offsets and fill counters, kept between builds (a shrink-wrapped box with
     /// falling particles can hold millions of bins; allocating them anew at every build
     /// cost more time in page faults than the build itself).
@@ -251,6 +280,16 @@ impl NeighborList {
                 let cut = reach[i] + reach[ju] + skin;
                 let rsq = delta[0] * delta[0] + delta[1] * delta[1] + delta[2] * delta[2];
                 if rsq < cut * cut {
+                    if let Some(o) = order {
+                        let xj = [0, 1, 2].map(|d| x[ju][d] + shift[d]);
+                        if o.cut > 0.0
+                            && rsq >= o.cut * o.cut
+                            && !o.in_stencil(o.bin(x[i]), o.bin(xj))
+                        {
+                            self.missed += 1;
+                            continue;
+                        }
+                    }
                     self.pairs.push(Pair {
                         i: i as u32,
                         j,

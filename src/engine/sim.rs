@@ -1499,6 +1499,17 @@ impl Simulation {
             nsteps,
             self.particles.len()
         ));
+        if self.list.missed > 0 {
+            out(&format!(
+                "WARNING: {} neighbour-list entries of particles grown since the run started were \
+                 beyond LIGGGHTS's bin stencil (cutneighmax {}) and were left out, as LIGGGHTS \
+                 3.8.0 leaves them out: such particles may pass through each other. A larger \
+                 neighbor skin, or a new run after the growth, finds them.\n",
+                self.list.missed,
+                crate::script::format::g(self.neighbor.cutneighmax)
+            ));
+            self.list.missed = 0;
+        }
         Ok(())
     }
 

@@ -2318,11 +2318,19 @@ fn particle_template(
             w @ ("density" | "radius") => {
                 match a.word(i + 1)? {
                     "constant" => {}
-                    style @ ("gaussian" | "lognormal" | "uniform") => {
-                        return Err(a.unsupported(
-                            i + 1,
-                            &format!("fix particletemplate/sphere {w} {style}"),
-                        ))
+                    "gaussian" | "lognormal" | "uniform" => {
+                        // documented, but LIGGGHTS 3.8.0 rejects every random style
+                        return Err(a
+                            .error(
+                                i + 1,
+                                &format!(
+                                    "Fix particletemplate/sphere (id {id}): invalid {w} random style"
+                                ),
+                            )
+                            .with_help(
+                                "LIGGGHTS 3.8.0 accepts only 'constant'; for a size distribution, \
+                                 give several templates to fix particledistribution/discrete",
+                            ));
                     }
                     _ => {
                         return Err(a.error(

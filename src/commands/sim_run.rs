@@ -750,6 +750,52 @@ fn restore_fix_state(
             ));
         }
     }
+    if let FixKind::MeshWall(w) = &mut fix.kind {
+        // wall/gran creates each mesh's neighbour count and contact tracker, which take
+        // their stored state
+        let width = crate::engine::contact::AnyContactModel::new(&w.selection)
+            .map(|m| m.history_len())
+            .unwrap_or(0);
+        let sim = &ctx.sim;
+        let mut trackers = Vec::new();
+        for mesh in &w.meshes {
+            let count = format!("n_neighs_mesh_{mesh}");
+            if sim.held_fix_state(&count, "property/atom").is_some() {
+                lines.push(format!("Resetting global state of Fix {count} Style property/atom from restart file info"));
+            }
+            if sim.held_peratom(&count, "property/atom") {
+                lines.push(format!("Resetting per-atom state of Fix {count} Style property/atom from restart file info"));
+            }
+            let tracker = format!("tracker_{mesh}");
+            let stored = sim
+                .restart_mesh_history
+                .get(&tracker)
+                .filter(|_| sim.restart_in_progress);
+            if let Some((stored_width, _)) = stored {
+                if *stored_width != width {
+                    return Err(a.error(2, &format!("Fix {tracker}: saved simulation state used different contact history model - can not restart")));
+                }
+            }
+            if sim
+                .held_fix_state(&tracker, "contacthistory/mesh")
+                .is_some()
+            {
+                lines.push(format!("Resetting global state of Fix {tracker} Style contacthistory/mesh from restart file info"));
+            }
+            if sim.held_peratom(&tracker, "contacthistory/mesh") {
+                lines.push(format!("Resetting per-atom state of Fix {tracker} Style contacthistory/mesh from restart file info"));
+            }
+            trackers.push(match stored {
+                Some((_, lists)) => {
+                    crate::engine::mesh_wall::Tracker::from_restart(&sim.particles.id, lists)
+                }
+                None => Default::default(),
+            });
+        }
+        if trackers.iter().any(|t| *t != Default::default()) {
+            w.trackers = trackers;
+        }
+    }
     let first_stream = matches!(fix.kind, FixKind::InsertStream(_)) && !ctx.sim.stream_release;
     if first_stream {
         // LIGGGHTS's insert/stream creates its per-atom release data here

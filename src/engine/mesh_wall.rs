@@ -59,6 +59,63 @@ impl Tracker {
         })
     }
 
+    /// A tracker holding the contacts a restart file stored: per atom ID, (triangle id,
+    /// history) in slot order (LIGGGHTS's `tracker_<mesh>`). The candidate lists are built,
+    /// and contacts no longer in reach dropped, at the first force computation.
+    pub fn from_restart(
+        ids: &[i64],
+        stored: &std::collections::HashMap<i64, Vec<(i32, Vec<f64>)>>,
+    ) -> Tracker {
+        let slots = ids
+            .iter()
+            .map(|id| {
+                stored.get(id).map_or(Vec::new(), |list| {
+                    list.iter()
+                        .map(|(tri, h)| {
+                            let mut hist = [0.0; MAX_HISTORY];
+                            let n = h.len().min(MAX_HISTORY);
+                            hist[..n].copy_from_slice(&h[..n]);
+                            Slot {
+                                partner: *tri,
+                                keep: false,
+                                hist,
+                            }
+                        })
+                        .collect()
+                })
+            })
+            .collect();
+        Tracker {
+            ids: ids.to_vec(),
+            cand: vec![Vec::new(); ids.len()],
+            slots,
+        }
+    }
+
+    /// What a restart file keeps of this tracker for the particles with atom IDs `ids`:
+    /// each one's number of candidate triangles (LIGGGHTS's `n_neighs_mesh_<mesh>`) and its
+    /// contacts, (triangle id, the first `width` history values), in LIGGGHTS's packed slot
+    /// order.
+    pub fn restart_entries(&self, ids: &[i64], width: usize) -> Vec<(usize, Vec<(i32, Vec<f64>)>)> {
+        let index: std::collections::HashMap<i64, usize> =
+            self.ids.iter().enumerate().map(|(k, &t)| (t, k)).collect();
+        ids.iter()
+            .map(|id| {
+                let Some(&k) = index.get(id) else {
+                    return (0, Vec::new());
+                };
+                let mut slots = self.slots.get(k).cloned().unwrap_or_default();
+                pack(&mut slots);
+                let contacts = slots
+                    .iter()
+                    .filter(|s| s.partner >= 0)
+                    .map(|s| (s.partner, s.hist[..width].to_vec()))
+                    .collect();
+                (self.cand.get(k).map_or(0, Vec::len), contacts)
+            })
+            .collect()
+    }
+
     /// Rebuild the candidate lists after the pair list was rebuilt: slots follow their atoms
     /// (by ID) through reordering, are packed, and lose triangles no longer listed.
     pub fn rebuild(&mut self, p: &Particles, mesh: &MeshRef, skin: f64) {

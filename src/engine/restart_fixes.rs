@@ -192,6 +192,63 @@ impl Simulation {
                 FixKind::Mesh(m) if m.stress.is_none() && f.style != "mesh/surface/stress" => {
                     globals.push(entry(&f.id, &f.style, mesh_state(m.triangles())))
                 }
+                FixKind::MeshWall(w) => {
+                    // per mesh: its neighbour counts and contact tracker (LIGGGHTS's
+                    // n_neighs_mesh_<mesh> and tracker_<mesh>)
+                    let width = w.model.as_ref().map_or_else(
+                        || {
+                            crate::engine::contact::AnyContactModel::new(&w.selection)
+                                .map(|m| m.history_len())
+                                .unwrap_or(0)
+                        },
+                        |m| m.history_width(),
+                    );
+                    let ids = &self.particles.id;
+                    for (k, mesh) in w.meshes.iter().enumerate() {
+                        let entries = match w.trackers.get(k) {
+                            Some(t) => t.restart_entries(ids, width),
+                            None => vec![(0, Vec::new()); ids.len()],
+                        };
+                        let count = format!("n_neighs_mesh_{mesh}");
+                        globals.push(entry(&count, "property/atom", to_bytes(&[1.0])));
+                        peratom.push((
+                            PeratomFix {
+                                id: count,
+                                style: "property/atom".into(),
+                                maxsize: 2,
+                            },
+                            entries
+                                .iter()
+                                .map(|(n, _)| vec![f64::from_bits(*n as u64)])
+                                .collect(),
+                        ));
+                        let maxtouch = entries.iter().map(|(_, c)| c.len()).max().unwrap_or(0);
+                        let tracker = format!("tracker_{mesh}");
+                        globals.push(entry(
+                            &tracker,
+                            "contacthistory/mesh",
+                            to_bytes(&[width as f64, maxtouch as f64]),
+                        ));
+                        peratom.push((
+                            PeratomFix {
+                                id: tracker,
+                                style: "contacthistory/mesh".into(),
+                                maxsize: ((width + 1) * maxtouch + 2) as i32,
+                            },
+                            entries
+                                .iter()
+                                .map(|(_, contacts)| {
+                                    let mut b = vec![f64::from_bits(contacts.len() as u64)];
+                                    for (tri, h) in contacts {
+                                        b.push(f64::from_bits(*tri as i64 as u64));
+                                        b.extend_from_slice(h);
+                                    }
+                                    b
+                                })
+                                .collect(),
+                        ));
+                    }
+                }
                 FixKind::Move(mv) => {
                     globals.push(entry(&f.id, &f.style, to_bytes(&[mv.start_step as f64])));
                     let p = &self.particles;

@@ -93,6 +93,42 @@ pub fn stored_pair_style(r: &Restart) -> Result<Option<String>, String> {
     }
 }
 
+/// The partner lists of a contact history fix's per-atom blocks (block `k` of every atom):
+/// the history width stored in the fix's global state, and per atom ID its (partner,
+/// values) pairs; partners are atom IDs (pairs) or triangle ids (meshes).
+fn partner_lists(r: &Restart, k: usize, id: &str) -> Result<(usize, PartnerLists), String> {
+    let width = r
+        .global_fixes
+        .iter()
+        .find(|g| g.id == id)
+        .and_then(|g| g.state.get(..8))
+        .map(|b| f64::from_le_bytes(b.try_into().expect("8 bytes")) as usize)
+        .unwrap_or(0);
+    let mut out = HashMap::new();
+    for a in &r.atoms {
+        let b = &a.extra[k];
+        let n = b.first().map_or(0, |v| v.to_bits() as i64) as usize;
+        if b.len() != 1 + n * (width + 1) {
+            return Err(format!(
+                "restart: atom {}: contact history block of {} values for {n} partners of {width} values",
+                a.id,
+                b.len()
+            ));
+        }
+        let list = (0..n)
+            .map(|c| {
+                let at = 1 + c * (width + 1);
+                (b[at].to_bits() as i64, b[at + 1..at + 1 + width].to_vec())
+            })
+            .collect();
+        out.insert(a.id, list);
+    }
+    Ok((width, out))
+}
+
+/// Per atom ID, its contact partners and their history values.
+pub type PartnerLists = HashMap<i64, Vec<(i64, Vec<f64>)>>;
+
 impl Simulation {
     /// Load a restart's state into an empty simulation (no box yet). Returns the pair
     /// style it names, for the caller to set up.
@@ -150,32 +186,19 @@ impl Simulation {
                     }
                 }
                 "contacthistory" => {
-                    let width = r
-                        .global_fixes
-                        .iter()
-                        .find(|g| g.id == fix.id)
-                        .and_then(|g| g.state.get(..8))
-                        .map(|b| f64::from_le_bytes(b.try_into().expect("8 bytes")) as usize)
-                        .unwrap_or(0);
+                    let (width, partners) = partner_lists(r, k, &fix.id)?;
                     pending.width = width;
-                    for a in &r.atoms {
-                        let b = &a.extra[k];
-                        let n = b.first().map_or(0, |v| v.to_bits() as i64) as usize;
-                        if b.len() != 1 + n * (width + 1) {
-                            return Err(format!(
-                                "restart: atom {}: contact history block of {} values for {n} partners of {width} values",
-                                a.id,
-                                b.len()
-                            ));
-                        }
-                        let list = (0..n)
-                            .map(|c| {
-                                let at = 1 + c * (width + 1);
-                                (b[at].to_bits() as i64, b[at + 1..at + 1 + width].to_vec())
-                            })
-                            .collect();
-                        pending.partners.insert(a.id, list);
-                    }
+                    pending.partners = partners;
+                }
+                "contacthistory/mesh" => {
+                    // `tracker_<mesh>`: each atom's triangles and their history
+                    let (width, partners) = partner_lists(r, k, &fix.id)?;
+                    let lists = partners
+                        .into_iter()
+                        .map(|(id, l)| (id, l.into_iter().map(|(t, h)| (t as i32, h)).collect()))
+                        .collect();
+                    self.restart_mesh_history
+                        .insert(fix.id.clone(), (width, lists));
                 }
                 "move" => {
                     let origins = r

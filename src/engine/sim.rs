@@ -225,6 +225,12 @@ pub struct Simulation {
     pub restart_fixes: Vec<crate::io::restart::GlobalFix>,
     /// (ID, style) of the per-atom fix blocks of that restart file.
     pub restart_peratom: Vec<(String, String)>,
+    /// Mesh contact history of that restart file: tracker fix ID (`tracker_<mesh>`) to
+    /// the history width and, per atom ID, its (triangle id, history) contacts.
+    pub restart_mesh_history: std::collections::HashMap<
+        String,
+        (usize, std::collections::HashMap<i64, Vec<(i32, Vec<f64>)>>),
+    >,
     /// Start positions stored by `fix move` fixes in that restart file: fix ID to the
     /// unwrapped start position (length) of each atom ID.
     pub restart_move_origins:
@@ -324,6 +330,7 @@ impl Default for Simulation {
             restart_fixes: Vec::new(),
             restart_peratom: Vec::new(),
             restart_move_origins: std::collections::HashMap::new(),
+            restart_mesh_history: std::collections::HashMap::new(),
             stream_release: false,
             mesh_rebuild_at: None,
             energy_watch: None,
@@ -1444,6 +1451,7 @@ impl Simulation {
         self.restart_fixes.clear();
         self.restart_peratom.clear();
         self.restart_move_origins.clear();
+        self.restart_mesh_history.clear();
         self.energy_watch = None;
         self.setup_insertions(out)?;
         self.setup_averages(vars)?;

@@ -702,6 +702,10 @@ fn restore_fix_state(
                 dist.rng.reset(state as i32).map_err(|m| a.error(2, &m))?;
             }
             FixKind::Mesh(_) => {} // its nodes were taken from the file when it was built
+            FixKind::MoveMesh(mv) => {
+                // the mover's clock; the mesh took its moved nodes from the file
+                mv.time = *d.first().ok_or_else(|| bad("empty"))?;
+            }
             FixKind::Move(mv) => {
                 // the time origin, and each atom's start position (LIGGGHTS's xoriginal)
                 mv.start_step = *d.first().ok_or_else(|| bad("empty"))? as i32 as i64;

@@ -249,6 +249,7 @@ impl Simulation {
                         ));
                     }
                 }
+                FixKind::MoveMesh(mv) => globals.push(entry(&f.id, &f.style, to_bytes(&[mv.time]))),
                 FixKind::Move(mv) => {
                     globals.push(entry(&f.id, &f.style, to_bytes(&[mv.start_step as f64])));
                     let p = &self.particles;

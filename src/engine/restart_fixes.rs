@@ -90,7 +90,7 @@ impl Simulation {
             .particles
             .extra
             .iter()
-            .position(|e| e.name == RELEASE_NAME)
+            .position(|e| e.name == RELEASE_NAME && e.width == RELEASE_WIDTH)
         else {
             return;
         };
@@ -120,7 +120,7 @@ impl Simulation {
             .particles
             .extra
             .iter()
-            .position(|e| e.name == RELEASE_NAME)
+            .position(|e| e.name == RELEASE_NAME && e.width == RELEASE_WIDTH)
         else {
             return;
         };
@@ -138,7 +138,11 @@ impl Simulation {
     /// Particles of `group` still on their way at the next step, from the release data.
     pub fn releases_pending(&self, group: u32) -> Vec<Release> {
         let p = &self.particles;
-        let Some(e) = p.extra.iter().find(|e| e.name == RELEASE_NAME) else {
+        let Some(e) = p
+            .extra
+            .iter()
+            .find(|e| e.name == RELEASE_NAME && e.width == RELEASE_WIDTH)
+        else {
             return Vec::new();
         };
         (0..p.len())
@@ -296,7 +300,11 @@ impl Simulation {
                             to_bytes(&[RELEASE_WIDTH as f64]),
                         ));
                         let p = &self.particles;
-                        let rows = match p.extra.iter().find(|e| e.name == RELEASE_NAME) {
+                        let rows = match p
+                            .extra
+                            .iter()
+                            .find(|e| e.name == RELEASE_NAME && e.width == RELEASE_WIDTH)
+                        {
                             Some(e) => e.data.chunks(RELEASE_WIDTH).map(<[f64]>::to_vec).collect(),
                             None => vec![vec![0.0; RELEASE_WIDTH]; p.len()],
                         };
@@ -337,6 +345,22 @@ mod tests {
         assert!(mesh_from_state(&to_bytes(&other))
             .unwrap_err()
             .starts_with("Incompatible mesh restart file"));
+    }
+
+    #[test]
+    fn insertion_state_round_trip_and_short_blobs() {
+        use crate::engine::insert::InsertRestart;
+        let s = InsertRestart {
+            rng_state: 105951400,
+            inserted: 1200,
+            first_step: 1,
+            next: 120001,
+            mass: 94.10902593216025,
+        };
+        assert_eq!(InsertRestart::parse(&s.bytes()).unwrap(), s);
+        assert!(InsertRestart::parse(&s.bytes()[..32]).is_err());
+        assert!(mesh_from_state(&[0u8; 7]).is_err());
+        assert!(mesh_from_state(&to_bytes(&[2.0, 10.0, 0.0, 11.0])).is_err());
     }
 
     #[test]

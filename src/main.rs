@@ -63,6 +63,10 @@ enum Command {
         /// Only these steps: N, A:B, or a comma list of them.
         #[arg(long)]
         steps: Option<String>,
+        /// `dump local` files: match entries in the order of these columns, comma-separated
+        /// (default: all columns, first to last); e.g. the id columns of a compute.
+        #[arg(long, value_delimiter = ',')]
+        key: Option<Vec<String>>,
     },
     /// Convert between LIGGGHTS restart files, data files, text dumps (gzip for .gz) and VTK:
     /// restart -> data|dump|vtk|restart, data -> restart|dump|vtk, dump -> vtk.
@@ -216,6 +220,7 @@ fn main() -> ExitCode {
             atol,
             columns,
             steps,
+            key,
         } => {
             let steps = match steps
                 .map(|s| regolith::io::diff::parse_steps(&s))
@@ -232,6 +237,7 @@ fn main() -> ExitCode {
                 atol,
                 columns,
                 steps,
+                key,
             };
             match regolith::io::diff::diff(&a, &b, &opts) {
                 Ok(mut report) => {

@@ -72,3 +72,29 @@ fn exit_statuses_and_formats() {
     assert!(err.contains("corrupted gzip"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn dump_local_entries_meet_in_key_order() {
+    let dir = std::env::temp_dir().join(format!("regolith-cli-diff-local-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let head = "ITEM: TIMESTEP\n500\nITEM: NUMBER OF ENTRIES\n3\nITEM: BOX BOUNDS ff ff ff\n-0.05 0.05\n-0.03 0.03\n-0.02 0.04\nITEM: ENTRIES c_w[1] c_w[2] c_w[3] c_w[4] \n";
+    // (mesh, triangle, atom, force): LIGGGHTS lists contacts by triangle, regolith by atom
+    let a = format!("{head}0 1 7 0.25 \n0 3 2 0.5 \n1 0 7 -1.5 \n");
+    let b = format!("{head}0 3 2 0.5 \n0 1 7 0.25 \n1 0 7 -1.5 \n");
+    let c = format!("{head}0 3 2 0.5 \n0 1 7 0.2501 \n1 0 7 -1.5 \n");
+    for (name, text) in [("a.dump", &a), ("b.dump", &b), ("c.dump", &c)] {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    let (status, out, err) = diff(&dir, &["a.dump", "b.dump"]);
+    assert_eq!(status, 0, "{out}{err}");
+    let (status, out, _) = diff(&dir, &["a.dump", "c.dump", "--key", "c_w[1],c_w[2],c_w[3]"]);
+    assert_eq!(status, 1, "{out}");
+    assert!(
+        out.contains("(step 500, entry 2, c_w[4])"),
+        "the second entry in (mesh, triangle, atom) order: {out}"
+    );
+    let (status, _, err) = diff(&dir, &["a.dump", "b.dump", "--key", "c_w[9]"]);
+    assert_eq!(status, 2);
+    assert!(err.contains("no key column c_w[9]"), "{err}");
+}

@@ -19,6 +19,9 @@ pub struct DiffOptions {
     pub columns: Option<Vec<String>>,
     /// Only steps in these inclusive ranges (None: all).
     pub steps: Option<Vec<(i64, i64)>>,
+    /// `dump local` files: match entries by their place in the order of these columns
+    /// (None: all columns, first to last).
+    pub key: Option<Vec<String>>,
 }
 
 impl Default for DiffOptions {
@@ -28,6 +31,7 @@ impl Default for DiffOptions {
             atol: 0.0,
             columns: None,
             steps: None,
+            key: None,
         }
     }
 }
@@ -101,9 +105,20 @@ pub struct Report {
     pub mismatches: Vec<String>,
     /// Steps compared.
     pub steps: usize,
+    /// Rows are `dump local` entries (numbered in key order), not atoms.
+    pub local: bool,
 }
 
 impl Report {
+    /// What a row is: an atom, or an entry of a `dump local`.
+    fn row_word(&self) -> &'static str {
+        if self.local {
+            "entry"
+        } else {
+            "atom"
+        }
+    }
+
     /// True when every value is within tolerance and nothing is missing.
     pub fn agrees(&self) -> bool {
         self.mismatches.is_empty() && self.columns.iter().all(|(_, s)| s.outside == 0)
@@ -176,11 +191,20 @@ impl Report {
             ));
         }
         if !self.worst.is_empty() {
-            out.push_str("worst values (step, atom, column: A vs B):\n");
+            out.push_str(&format!(
+                "worst values (step, {}, column: A vs B):\n",
+                self.row_word()
+            ));
             for e in &self.worst {
                 out.push_str(&format!(
-                    "  step {} atom {} {}: {:.17e} vs {:.17e} (rel {:.3e})\n",
-                    e.step, e.id, e.column, e.a, e.b, e.rel
+                    "  step {} {} {} {}: {:.17e} vs {:.17e} (rel {:.3e})\n",
+                    e.step,
+                    self.row_word(),
+                    e.id,
+                    e.column,
+                    e.a,
+                    e.b,
+                    e.rel
                 ));
             }
         }
@@ -188,7 +212,15 @@ impl Report {
         let at = self
             .worst
             .first()
-            .map(|e| format!(" (step {}, atom {}, {})", e.step, e.id, e.column))
+            .map(|e| {
+                format!(
+                    " (step {}, {} {}, {})",
+                    e.step,
+                    self.row_word(),
+                    e.id,
+                    e.column
+                )
+            })
             .unwrap_or_default();
         out.push_str(&format!(
             "max relative deviation {rel:.6e}{at}; max absolute deviation {abs:.6e}\n"
@@ -229,6 +261,7 @@ pub fn compare_dumps(a: &[Snapshot], b: &[Snapshot], opts: &DiffOptions) -> Repo
             continue;
         };
         r.steps += 1;
+        r.local |= sa.local;
         let cols: Vec<(usize, usize, &String)> = sa
             .columns
             .iter()
@@ -252,7 +285,7 @@ pub fn compare_dumps(a: &[Snapshot], b: &[Snapshot], opts: &DiffOptions) -> Repo
         for (id, ra) in &sa.rows {
             let Some(rb) = sb.rows.get(id) else {
                 r.mismatches
-                    .push(format!("step {}: atom {id} only in A", sa.step));
+                    .push(format!("step {}: {} {id} only in A", sa.step, r.row_word()));
                 continue;
             };
             for &(ca, cb, name) in &cols {
@@ -272,7 +305,7 @@ pub fn compare_dumps(a: &[Snapshot], b: &[Snapshot], opts: &DiffOptions) -> Repo
         }
         for id in sb.rows.keys().filter(|id| !sa.rows.contains_key(id)) {
             r.mismatches
-                .push(format!("step {}: atom {id} only in B", sa.step));
+                .push(format!("step {}: {} {id} only in B", sa.step, r.row_word()));
         }
     }
     for sb in b.iter().filter(|s| wanted_step(opts, s.step)) {
@@ -473,7 +506,12 @@ pub fn load(pattern: &str) -> Result<Loaded, String> {
 /// Run a comparison of two files; Err for unreadable input.
 pub fn diff(a: &str, b: &str, opts: &DiffOptions) -> Result<Report, String> {
     match (load(a)?, load(b)?) {
-        (Loaded::Dump(x), Loaded::Dump(y)) => Ok(compare_dumps(&x, &y, opts)),
+        (Loaded::Dump(mut x), Loaded::Dump(mut y)) => {
+            for s in x.iter_mut().chain(y.iter_mut()).filter(|s| s.local) {
+                s.order_entries(opts.key.as_deref())?;
+            }
+            Ok(compare_dumps(&x, &y, opts))
+        }
         (Loaded::Log(x), Loaded::Log(y)) => Ok(compare_logs(&x, &y, opts)),
         _ => Err(format!("{a} and {b}: one is a dump, the other a log")),
     }

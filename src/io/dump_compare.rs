@@ -12,8 +12,44 @@ pub struct Snapshot {
     pub bounds: [[f64; 2]; 3],
     /// Column names from the `ITEM: ATOMS` line.
     pub columns: Vec<String>,
-    /// Rows keyed by atom ID (the `id` column).
+    /// Rows keyed by atom ID (the `id` column); for `dump local`, by entry number (1, 2, ...
+    /// in file order).
     pub rows: BTreeMap<i64, Vec<f64>>,
+    /// A `dump local` snapshot (entries of a local compute, without atom IDs).
+    pub local: bool,
+}
+
+impl Snapshot {
+    /// Number a `dump local` snapshot's entries 1, 2, ... in the order of the `key` columns
+    /// (all columns, first to last, if None), so that two programs' entries, which come in
+    /// different orders, meet by their place in that order. Err names a missing key column.
+    pub fn order_entries(&mut self, key: Option<&[String]>) -> Result<(), String> {
+        let idx: Vec<usize> = match key {
+            Some(names) => names
+                .iter()
+                .map(|n| {
+                    self.columns
+                        .iter()
+                        .position(|c| c == n)
+                        .ok_or_else(|| format!("step {}: no key column {n}", self.step))
+                })
+                .collect::<Result<_, _>>()?,
+            None => (0..self.columns.len()).collect(),
+        };
+        let mut rows: Vec<Vec<f64>> = std::mem::take(&mut self.rows).into_values().collect();
+        rows.sort_by(|a, b| {
+            idx.iter()
+                .map(|&k| a[k].total_cmp(&b[k]))
+                .find(|o| o.is_ne())
+                .unwrap_or(std::cmp::Ordering::Equal)
+        });
+        self.rows = rows
+            .into_iter()
+            .enumerate()
+            .map(|(k, r)| (k as i64 + 1, r))
+            .collect();
+        Ok(())
+    }
 }
 
 /// Parse every snapshot of a `dump custom`/`dump atom` text file.
@@ -44,7 +80,14 @@ pub fn parse(text: &str) -> Result<Vec<Snapshot>, String> {
             .trim()
             .parse()
             .map_err(|_| format!("line {}: bad timestep '{l}'", n + 1))?;
-        next("ITEM: NUMBER OF ATOMS")?;
+        let (n, l) = next("ITEM: NUMBER OF ATOMS")?;
+        let local = l.trim() == "ITEM: NUMBER OF ENTRIES";
+        if !local && l.trim() != "ITEM: NUMBER OF ATOMS" {
+            return Err(format!(
+                "line {}: expected 'ITEM: NUMBER OF ATOMS' or 'ITEM: NUMBER OF ENTRIES', found '{l}'",
+                n + 1
+            ));
+        }
         let (n, l) = next("an atom count")?;
         let count: usize = l
             .trim()
@@ -64,16 +107,27 @@ pub fn parse(text: &str) -> Result<Vec<Snapshot>, String> {
             *b = [v[0], v[1]];
         }
         let (n, l) = next("ITEM: ATOMS")?;
+        let item = if local {
+            "ITEM: ENTRIES"
+        } else {
+            "ITEM: ATOMS"
+        };
         let columns: Vec<String> = l
-            .strip_prefix("ITEM: ATOMS")
-            .ok_or_else(|| format!("line {}: expected 'ITEM: ATOMS'", n + 1))?
+            .strip_prefix(item)
+            .ok_or_else(|| format!("line {}: expected '{item}'", n + 1))?
             .split_whitespace()
             .map(str::to_string)
             .collect();
-        let id_col = columns
-            .iter()
-            .position(|c| c == "id")
-            .ok_or("dump has no id column")?;
+        let id_col = if local {
+            None
+        } else {
+            Some(
+                columns
+                    .iter()
+                    .position(|c| c == "id")
+                    .ok_or("dump has no id column")?,
+            )
+        };
         let mut rows = BTreeMap::new();
         for _ in 0..count {
             let (n, l) = next("an atom line")?;
@@ -87,13 +141,15 @@ pub fn parse(text: &str) -> Result<Vec<Snapshot>, String> {
                     columns.len()
                 ));
             }
-            rows.insert(v[id_col] as i64, v);
+            let key = id_col.map_or(rows.len() as i64 + 1, |c| v[c] as i64);
+            rows.insert(key, v);
         }
         out.push(Snapshot {
             step,
             bounds,
             columns,
             rows,
+            local,
         });
     }
     Ok(out)
@@ -193,6 +249,7 @@ pub fn parse_vtk(text: &str, step: i64) -> Result<Snapshot, String> {
         bounds: [[0.0; 2]; 3],
         columns,
         rows,
+        local: false,
     })
 }
 

@@ -91,8 +91,8 @@ fn dump_local_entries_meet_in_key_order() {
     let (status, out, _) = diff(&dir, &["a.dump", "c.dump", "--key", "c_w[1],c_w[2],c_w[3]"]);
     assert_eq!(status, 1, "{out}");
     assert!(
-        out.contains("(step 500, entry 2, c_w[4])"),
-        "the second entry in (mesh, triangle, atom) order: {out}"
+        out.contains("(step 500, entry 1, c_w[4])"),
+        "the first entry in (mesh, triangle, atom) order: {out}"
     );
     let (status, _, err) = diff(&dir, &["a.dump", "b.dump", "--key", "c_w[9]"]);
     assert_eq!(status, 2);

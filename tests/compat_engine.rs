@@ -152,7 +152,7 @@ fn check_deck(name: &str) -> Vec<String> {
             }
             continue;
         }
-        if want.contains("ITEM: ENTRIES") {
+        if want.contains("ITEM: ENTRIES") && !f.to_string_lossy().contains(".exact.") {
             // dump local: the same entries per snapshot, in any order (entries start with
             // the atom IDs); values as printed, or within RTOL when printed with more digits
             // than the decks stay bit-identical for

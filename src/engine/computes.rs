@@ -469,7 +469,22 @@ impl Compute {
         let ncols: usize = fields.iter().map(|f| f.width(width)).sum();
         let p = &sim.particles;
         let mut out = Vec::new();
-        for c in crate::engine::fixes::mesh_wall_contacts(&sim.fixes, k, p, sim.dt) {
+        // LIGGGHTS's row order: mesh, triangle, then the triangle's neighbour list, which
+        // walks bins x-outermost, z-innermost (positions of the last list build) and atoms
+        // in index order within a bin
+        let mut contacts = crate::engine::fixes::mesh_wall_contacts(&sim.fixes, k, p, sim.dt);
+        let order = crate::engine::neighbor::BinOrder::new(
+            sim.domain.lo,
+            sim.domain.hi,
+            sim.neighbor.cutneighmax,
+        );
+        let built = sim.list.built_positions();
+        contacts.sort_by_cached_key(|c| {
+            let x = built.get(c.particle).copied().unwrap_or(p.x[c.particle]);
+            let b = order.bin(x);
+            (c.mesh, c.tri, b[2], b[1], b[0], c.particle)
+        });
+        for c in contacts {
             let i = c.particle;
             if p.mask[i] & self.group == 0 {
                 continue;

@@ -350,6 +350,15 @@ impl Compute {
         let p = &sim.particles;
         let pairs = &sim.list.pairs;
         let mut out = Vec::new();
+        // rows in LIGGGHTS's order: by the reporting atom, then its partners in bin order
+        // (positions of the last list build, ghosts of periodic partners beyond the box)
+        let order = crate::engine::neighbor::BinOrder::new(
+            sim.domain.lo,
+            sim.domain.hi,
+            sim.neighbor.cutneighmax,
+        );
+        let built = sim.list.built_positions();
+        let mut keyed: Vec<((usize, [i64; 3], usize), usize)> = Vec::new();
         for (k, fi, ti, fj, tj) in pair.contacts(
             p,
             pairs,
@@ -374,6 +383,11 @@ impl Compute {
                 t = tj;
                 sign = -1.0;
             }
+            let xb = built.get(j).copied().unwrap_or(p.x[j]);
+            keyed.push((
+                (i, order.bin([0, 1, 2].map(|d| xb[d] + shift[d])), j),
+                out.len(),
+            ));
             let xi = p.x[i];
             let xj_ghost = [
                 p.x[j][0] + shift[0],
@@ -444,7 +458,12 @@ impl Compute {
                 }
             }
         }
-        Ok((ncols, out))
+        keyed.sort_by_key(|(key, _)| *key);
+        let mut sorted = Vec::with_capacity(out.len());
+        for (_, at) in keyed {
+            sorted.extend_from_slice(&out[at..at + ncols]);
+        }
+        Ok((ncols, sorted))
     }
 
     /// Rows of `compute wall/gran/local`: the mesh wall's contacts re-evaluated now, as

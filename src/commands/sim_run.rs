@@ -2066,15 +2066,10 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
         .sim
         .held_fix_state(a.word(0)?, style)
         .map(<[u8]>::to_vec);
+    let mut restored = None;
     let mut triangles = if let Some(bytes) = stored {
         // LIGGGHTS takes the nodes from the restart file (scale/move/rotate act on an empty
         // mesh); the file must still open
-        if style == "mesh/surface/stress" {
-            return Err(a.unsupported(
-                2,
-                "fix mesh/surface/stress taking its triangles and wear from a restart file",
-            ));
-        }
         if std::fs::File::open(&path).is_err() {
             return Err(a.error(
                 4,
@@ -2082,7 +2077,17 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
             ));
         }
         ctx.say(&format!("INFO: mesh file ({file}) is required, but data will be taken from restart file (./src/fix_mesh.cpp:417)\n"));
-        crate::engine::restart_fixes::mesh_from_state(&bytes).map_err(|m| a.error(2, &m))?
+        // the stress module adds each triangle's wear (when on) and the reference point
+        let stress = style == "mesh/surface/stress";
+        let (element, global) = match (stress, wear_on) {
+            (true, true) => (1, 3),
+            (true, false) => (0, 3),
+            _ => (0, 0),
+        };
+        let (t, extras) = crate::engine::restart_fixes::mesh_from_state(&bytes, element, global)
+            .map_err(|m| a.error(2, &m))?;
+        restored = Some(extras);
+        t
     } else {
         ctx.say(&format!(
             "\nReading STL file '{file}' (mesh processing step 1/3) \n"
@@ -2091,7 +2096,7 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
         crate::io::stl::transform(&mut t, &ops);
         t
     };
-    if heal {
+    if heal && restored.is_none() {
         // `heal auto_remove_duplicates`: a triangle with the nodes of an earlier one goes
         let p = settings.precision;
         let same = |x: [f64; 3], y: [f64; 3]| (0..3).all(|k| (x[k] - y[k]).abs() < p);
@@ -2129,12 +2134,19 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
         stress: None,
     };
     if style == "mesh/surface/stress" {
-        fix.stress = Some(crate::engine::mesh_stress::MeshStress::new(
+        let mut st = crate::engine::mesh_stress::MeshStress::new(
             fix.mesh.len(),
             stress_on,
             wear_on,
             reference,
-        ));
+        );
+        if let Some(extras) = restored {
+            if wear_on {
+                st.wear = extras.element.iter().map(|e| e[0]).collect();
+            }
+            st.reference = [extras.global[0], extras.global[1], extras.global[2]];
+        }
+        fix.stress = Some(st);
     }
     fix.set_surface_velocity();
     Ok(FixKind::Mesh(fix))

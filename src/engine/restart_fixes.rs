@@ -22,43 +22,76 @@ pub fn to_bytes(values: &[f64]) -> Vec<u8> {
     values.iter().flat_map(|v| v.to_le_bytes()).collect()
 }
 
-/// Per-element values of a plain mesh/surface in a restart: 9 node coordinates and the id.
+/// Per-element values of a mesh/surface in a restart before any module's: 9 node
+/// coordinates and the id.
 const MESH_ELEMENT_SIZE: usize = 10;
 
+/// What a mesh's restart state holds besides its nodes.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct MeshExtras {
+    /// Per triangle, the values of the modules' element properties (stress: `wear`).
+    pub element: Vec<Vec<f64>>,
+    /// The modules' global values (stress: `p_ref`, the reference point).
+    pub global: Vec<f64>,
+}
+
 /// A mesh's restart state: triangle count, element size, global size, then per triangle
-/// its record length, nodes and id (LIGGGHTS's MultiNodeMeshParallel::writeRestart).
-pub fn mesh_state(triangles: &[Triangle]) -> Vec<u8> {
-    let mut d = vec![triangles.len() as f64, MESH_ELEMENT_SIZE as f64, 0.0];
+/// its record length, nodes, id and module values, then the global values (LIGGGHTS's
+/// MultiNodeMeshParallel::writeRestart).
+pub fn mesh_state(triangles: &[Triangle], extras: &MeshExtras) -> Vec<u8> {
+    let per = extras.element.first().map_or(0, Vec::len);
+    let size = MESH_ELEMENT_SIZE + per;
+    let mut d = vec![
+        triangles.len() as f64,
+        size as f64,
+        extras.global.len() as f64,
+    ];
     for (k, t) in triangles.iter().enumerate() {
-        d.push((MESH_ELEMENT_SIZE + 1) as f64);
+        d.push((size + 1) as f64);
         for node in t {
             d.extend_from_slice(node);
         }
         d.push(k as f64);
+        if let Some(e) = extras.element.get(k) {
+            d.extend_from_slice(e);
+        }
     }
+    d.extend_from_slice(&extras.global);
     to_bytes(&d)
 }
 
-/// The triangles a mesh's restart state holds (their current, transformed nodes).
-pub fn mesh_from_state(bytes: &[u8]) -> Result<Vec<Triangle>, String> {
+/// The triangles (their current, transformed nodes) and module values a mesh's restart
+/// state holds; `element` and `global` are the module value counts the re-defined mesh has.
+pub fn mesh_from_state(
+    bytes: &[u8],
+    element: usize,
+    global: usize,
+) -> Result<(Vec<Triangle>, MeshExtras), String> {
     let d = doubles(bytes);
     let incompatible = || {
         "Incompatible mesh restart file - mesh has different properties in restarted simulation"
             .to_string()
     };
-    if d.len() < 3 || d[1] as usize != MESH_ELEMENT_SIZE || d[2] != 0.0 {
+    let size = MESH_ELEMENT_SIZE + element;
+    if d.len() < 3 || d[1] as usize != size || d[2] as usize != global {
         return Err(incompatible());
     }
     let n = d[0] as usize;
-    if d.len() != 3 + n * (MESH_ELEMENT_SIZE + 1) {
+    if d.len() != 3 + n * (size + 1) + global {
         return Err(incompatible());
     }
-    Ok((0..n)
+    let mut extras = MeshExtras::default();
+    let triangles = (0..n)
         .map(|k| {
-            let at = 3 + k * (MESH_ELEMENT_SIZE + 1) + 1;
+            let at = 3 + k * (size + 1) + 1;
+            extras
+                .element
+                .push(d[at + MESH_ELEMENT_SIZE..at + size].to_vec());
             [0, 1, 2].map(|j| [d[at + 3 * j], d[at + 3 * j + 1], d[at + 3 * j + 2]])
         })
-        .collect())
+        .collect();
+    extras.global = d[3 + n * (size + 1)..].to_vec();
+    Ok((triangles, extras))
 }
 
 impl Simulation {
@@ -193,8 +226,20 @@ impl Simulation {
                 FixKind::Distribution(d) => {
                     globals.push(entry(&f.id, &f.style, to_bytes(&[d.rng.state() as f64])))
                 }
-                FixKind::Mesh(m) if m.stress.is_none() && f.style != "mesh/surface/stress" => {
-                    globals.push(entry(&f.id, &f.style, mesh_state(m.triangles())))
+                FixKind::Mesh(m) => {
+                    // the stress module keeps each triangle's wear (when on) and p_ref
+                    let extras = match &m.stress {
+                        Some(st) => MeshExtras {
+                            element: if st.wear_on {
+                                st.wear.iter().map(|w| vec![*w]).collect()
+                            } else {
+                                Vec::new()
+                            },
+                            global: st.reference.to_vec(),
+                        },
+                        None => MeshExtras::default(),
+                    };
+                    globals.push(entry(&f.id, &f.style, mesh_state(m.triangles(), &extras)))
                 }
                 FixKind::MeshWall(w) => {
                     // per mesh: its neighbour counts and contact tracker (LIGGGHTS's
@@ -335,14 +380,20 @@ mod tests {
             [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.5]],
             [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.25]],
         ];
-        let bytes = mesh_state(&tris);
+        let bytes = mesh_state(&tris, &MeshExtras::default());
         // 3 header values and 2 records of 11 doubles
         assert_eq!(bytes.len(), (3 + 2 * 11) * 8);
         assert_eq!(doubles(&bytes)[3 + 11 + 10], 1.0, "second triangle's id");
-        assert_eq!(mesh_from_state(&bytes).unwrap(), tris);
-        let mut other = doubles(&bytes);
-        other[1] = 12.0; // a mesh with more element properties (e.g. wear)
-        assert!(mesh_from_state(&to_bytes(&other))
+        assert_eq!(mesh_from_state(&bytes, 0, 0).unwrap().0, tris);
+        // a stress mesh with wear: one more value per triangle, and p_ref
+        let worn = MeshExtras {
+            element: vec![vec![0.5], vec![0.25]],
+            global: vec![1.0, 2.0, 3.0],
+        };
+        let bytes = mesh_state(&tris, &worn);
+        assert_eq!(bytes.len(), (3 + 2 * 12 + 3) * 8);
+        assert_eq!(mesh_from_state(&bytes, 1, 3).unwrap(), (tris, worn));
+        assert!(mesh_from_state(&bytes, 0, 3)
             .unwrap_err()
             .starts_with("Incompatible mesh restart file"));
     }
@@ -359,8 +410,8 @@ mod tests {
         };
         assert_eq!(InsertRestart::parse(&s.bytes()).unwrap(), s);
         assert!(InsertRestart::parse(&s.bytes()[..32]).is_err());
-        assert!(mesh_from_state(&[0u8; 7]).is_err());
-        assert!(mesh_from_state(&to_bytes(&[2.0, 10.0, 0.0, 11.0])).is_err());
+        assert!(mesh_from_state(&[0u8; 7], 0, 0).is_err());
+        assert!(mesh_from_state(&to_bytes(&[2.0, 10.0, 0.0, 11.0]), 0, 0).is_err());
     }
 
     #[test]

@@ -3,6 +3,7 @@
 //! ([`crate::script::interp`]); everything else arrives here as a [`CommandLine`].
 
 pub mod args;
+pub mod fix_state;
 pub mod names;
 pub mod registry;
 pub mod sim_run;

@@ -1,0 +1,253 @@
+//! Commands that meet LIGGGHTS's state kept by fixes: a fix re-defined after
+//! `read_restart` taking its stored state, and `compute wall/gran/local`, which reads the
+//! mesh wall's contact state at output.
+
+use crate::commands::{Args, Ctx};
+use crate::engine::fixes::{Fix, FixKind};
+use crate::error::Diagnostic;
+
+/// `compute ID group wall/gran/local [keywords]`: rows of the mesh wall's contacts
+/// (docs/notes/wall_gran_local.md), with LIGGGHTS's rules and messages.
+pub fn wall_gran_local(
+    a: &Args,
+    ctx: &mut Ctx,
+    id: &str,
+) -> std::result::Result<crate::engine::computes::ComputeKind, Diagnostic> {
+    use crate::engine::computes::{ComputeKind, LocalField};
+    if ctx.sim.step > 0 && !ctx.sim.restart_in_progress {
+        return Err(a.error(
+            2,
+            &format!(
+                "Compute wall/gran/local (id {id}): Need to define this compute before first run"
+            ),
+        ));
+    }
+    let mut fields = Vec::new();
+    for i in 3..a.len() {
+        match a.word(i)? {
+            "verbose" => {}
+            "extraSurfDistance" => return Err(a.error(i, "this keyword is deprecated; neighbor->contactDistanceFactor is now used directly")),
+            "ms_id" => return Err(a.unsupported(i, "compute wall/gran/local ms_id (multisphere bodies)")),
+            w => match LocalField::parse(w) {
+                Some(f) => fields.push(f),
+                None => {
+                    return Err(a
+                        .error(
+                            i,
+                            &format!("Compute wall/gran/local (id {id}): illegal/unrecognized keyword"),
+                        )
+                        .with_help("pos, vel, id, force, force_normal, force_tangential, torque, torque_normal, torque_tangential, history, contactArea, delta, heatFlux, contactPoint"))
+                }
+            },
+        }
+    }
+    if a.len() == 3 {
+        fields = LocalField::defaults();
+    }
+    if fields.is_empty() {
+        // LIGGGHTS 3.8.0 crashes at the first output of a compute without columns
+        return Err(a.error(
+            3,
+            &format!("Compute wall/gran/local (id {id}): no output keyword given"),
+        ));
+    }
+    fields.sort();
+    fields.dedup();
+    // the last mesh wall fix; primitive walls are not reported
+    let mut wall = None;
+    let mut primitive = false;
+    for f in &ctx.sim.fixes {
+        match &f.kind {
+            FixKind::MeshWall(w) => wall = Some((f.id.clone(), w.selection.clone())),
+            FixKind::WallGran(_) => primitive = true,
+            _ => {}
+        }
+    }
+    if primitive {
+        ctx.say("WARNING: Compute wall/gran/local detected primitive wall, output will only happen for mesh wall - particle pairs (./src/compute_pair_gran_local.cpp:263)\n");
+    }
+    let Some((wall, selection)) = wall else {
+        return Err(a.error(2, "Compute wall/gran/local requires a fix of type wall/gran using one or more mesh walls. This fix has to come before the compute in the script"));
+    };
+    if ctx
+        .sim
+        .computes
+        .iter()
+        .any(|c| matches!(&c.kind, ComputeKind::WallGranLocal { wall: w, .. } if *w == wall))
+    {
+        return Err(a.error(
+            2,
+            &format!("Fix wall/gran (id {wall}): Fix wall/gran allows only one compute of type wall/gran/local"),
+        ));
+    }
+    let history = crate::engine::contact::AnyContactModel::new(&selection)
+        .map(|m| m.history_len())
+        .unwrap_or(0);
+    if history == 0 && fields.contains(&LocalField::History) {
+        return Err(a.error(2, "Compute pair/gran/local or wall/gran/local can not calculate history values since pair or wall style does not compute them"));
+    }
+    Ok(ComputeKind::WallGranLocal { fields, wall })
+}
+
+/// A fix defined while a restart file's fix states are held takes the state stored under
+/// its ID and style (LIGGGHTS's Modify::add_fix); returns the lines LIGGGHTS prints. The
+/// first insert/stream also takes the stored per-atom release data.
+pub fn restore_fix_state(
+    a: &Args,
+    ctx: &mut Ctx,
+    fix: &mut Fix,
+) -> std::result::Result<Vec<String>, Diagnostic> {
+    use crate::engine::insert::{InsertRestart, RELEASE_NAME, RELEASE_WIDTH};
+    use crate::engine::restart_fixes::doubles;
+    let mut lines = Vec::new();
+    let held = ctx
+        .sim
+        .held_fix_state(&fix.id, &fix.style)
+        .map(<[u8]>::to_vec);
+    if let Some(bytes) = held {
+        let d = doubles(&bytes);
+        let bad = |what: &str| {
+            a.error(
+                2,
+                &format!(
+                    "restart file: stored state of fix {} ({}) is {what}",
+                    fix.id, fix.style
+                ),
+            )
+        };
+        match &mut fix.kind {
+            FixKind::Template(t) => {
+                // [ranks, insertion generator state per rank, Monte Carlo state]
+                if d.len() < 3 {
+                    return Err(bad("too short"));
+                }
+                t.rng_state.0 = d[1] as i32;
+            }
+            FixKind::Distribution(dist) => {
+                let state = *d.first().ok_or_else(|| bad("empty"))?;
+                dist.rng.reset(state as i32).map_err(|m| a.error(2, &m))?;
+            }
+            FixKind::Mesh(_) => {} // its nodes were taken from the file when it was built
+            FixKind::MoveMesh(mv) => {
+                // the mover's clock; the mesh took its moved nodes from the file
+                mv.time = *d.first().ok_or_else(|| bad("empty"))?;
+            }
+            FixKind::Move(mv) => {
+                // the time origin, and each atom's start position (LIGGGHTS's xoriginal)
+                mv.start_step = *d.first().ok_or_else(|| bad("empty"))? as i32 as i64;
+                if let Some(stored) = ctx.sim.restart_move_origins.get(&fix.id) {
+                    for (id, x) in mv.origin.iter_mut() {
+                        if let Some(s) = stored.get(id) {
+                            *x = *s;
+                        }
+                    }
+                }
+            }
+            FixKind::InsertStream(sf) => {
+                let r = InsertRestart::parse(&bytes).map_err(|m| bad(&m))?;
+                if r.next != 0 {
+                    sf.start = r.next;
+                }
+                sf.restored = Some(r);
+            }
+            FixKind::InsertPack(ins) => {
+                let r = InsertRestart::parse(&bytes).map_err(|m| bad(&m))?;
+                ins.rng.reset(r.rng_state).map_err(|m| a.error(2, &m))?;
+                ins.inserted = r.inserted;
+                ins.inserted_mass = r.mass;
+                if r.next != 0 {
+                    ins.next = Some(r.next);
+                }
+            }
+            _ => {
+                return Err(a.unsupported(
+                    2,
+                    &format!(
+                        "fix {} taking its state from a restart file (fix {} is stored there)",
+                        fix.style, fix.id
+                    ),
+                ))
+            }
+        }
+        lines.push(format!(
+            "Resetting global state of Fix {} Style {} from restart file info",
+            fix.id, fix.style
+        ));
+        if matches!(fix.kind, FixKind::Move(_)) && ctx.sim.held_peratom(&fix.id, &fix.style) {
+            lines.push(format!(
+                "Resetting per-atom state of Fix {} Style {} from restart file info",
+                fix.id, fix.style
+            ));
+        }
+    }
+    if let FixKind::MeshWall(w) = &mut fix.kind {
+        // wall/gran creates each mesh's neighbour count and contact tracker, which take
+        // their stored state
+        let width = crate::engine::contact::AnyContactModel::new(&w.selection)
+            .map(|m| m.history_len())
+            .unwrap_or(0);
+        let sim = &ctx.sim;
+        let mut trackers = Vec::new();
+        for mesh in &w.meshes {
+            let count = format!("n_neighs_mesh_{mesh}");
+            if sim.held_fix_state(&count, "property/atom").is_some() {
+                lines.push(format!("Resetting global state of Fix {count} Style property/atom from restart file info"));
+            }
+            if sim.held_peratom(&count, "property/atom") {
+                lines.push(format!("Resetting per-atom state of Fix {count} Style property/atom from restart file info"));
+            }
+            let tracker = format!("tracker_{mesh}");
+            let stored = sim
+                .restart_mesh_history
+                .get(&tracker)
+                .filter(|_| sim.restart_in_progress);
+            if let Some((stored_width, _)) = stored {
+                if *stored_width != width {
+                    return Err(a.error(2, &format!("Fix {tracker}: saved simulation state used different contact history model - can not restart")));
+                }
+            }
+            if sim
+                .held_fix_state(&tracker, "contacthistory/mesh")
+                .is_some()
+            {
+                lines.push(format!("Resetting global state of Fix {tracker} Style contacthistory/mesh from restart file info"));
+            }
+            if sim.held_peratom(&tracker, "contacthistory/mesh") {
+                lines.push(format!("Resetting per-atom state of Fix {tracker} Style contacthistory/mesh from restart file info"));
+            }
+            trackers.push(match stored {
+                Some((_, lists)) => {
+                    crate::engine::mesh_wall::Tracker::from_restart(&sim.particles.id, lists)
+                }
+                None => Default::default(),
+            });
+        }
+        if trackers.iter().any(|t| *t != Default::default()) {
+            w.trackers = trackers;
+        }
+    }
+    let first_stream = matches!(fix.kind, FixKind::InsertStream(_)) && !ctx.sim.stream_release;
+    if first_stream {
+        // LIGGGHTS's insert/stream creates its per-atom release data here
+        ctx.sim.stream_release = true;
+        if let Some(bytes) = ctx.sim.held_fix_state(RELEASE_NAME, "property/atom") {
+            if doubles(bytes).first().map(|&n| n as usize) != Some(RELEASE_WIDTH) {
+                return Err(a.error(
+                    2,
+                    &format!("Fix property/atom (id {RELEASE_NAME}): restarted fix has incompatible data size"),
+                ));
+            }
+            lines.push(format!(
+                "Resetting global state of Fix {RELEASE_NAME} Style property/atom from restart file info"
+            ));
+        }
+        if ctx.sim.held_peratom(RELEASE_NAME, "property/atom") {
+            lines.push(format!(
+                "Resetting per-atom state of Fix {RELEASE_NAME} Style property/atom from restart file info"
+            ));
+            ctx.sim.recalc_release_steps();
+        }
+        ctx.sim.particles.extra_index(RELEASE_NAME, RELEASE_WIDTH);
+    }
+    Ok(lines)
+}

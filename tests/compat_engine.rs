@@ -5,6 +5,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+mod common;
+
+use common::thermo_lines;
 use regolith::io::dump_compare::{compare, parse};
 
 const RTOL: f64 = 1e-6;
@@ -12,27 +15,6 @@ const ATOL: f64 = 1e-12;
 
 fn engine_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("compat/engine")
-}
-
-/// Run blocks as compat/regenerate.sh cuts them from LIGGGHTS's screen output: from each
-/// header line starting with `Step` up to (not including) `Loop time`, so lines that fixes
-/// print during a run (fix print, warnings) are compared too.
-fn thermo_lines(stdout: &str) -> Vec<String> {
-    let mut out = Vec::new();
-    let mut inside = false;
-    for line in stdout.lines() {
-        if line.starts_with("Loop time") {
-            inside = false;
-        }
-        if inside {
-            out.push(line.to_string());
-        }
-        if line.trim_start().starts_with("Step ") {
-            inside = true;
-            out.push(line.to_string());
-        }
-    }
-    out
 }
 
 /// The lines of a `dump local` file, entry lines sorted within each snapshot.

@@ -46,95 +46,74 @@ fn with(body: &str) -> String {
     format!("{HEAD}{body}")
 }
 
+/// The deck fails before running (exit status 1) with every one of `needles` in its errors.
+fn fails_with(name: &str, deck: &str, needles: &[&str]) {
+    let (status, err) = run(name, deck);
+    assert_eq!(status, Some(1), "{err}");
+    for n in needles {
+        assert!(err.contains(n), "missing {n:?} in:\n{err}");
+    }
+}
+
 #[test]
 fn wall_gran_local_needs_a_mesh_wall_before_it() {
-    let (status, err) = run(
+    fails_with(
         "nomesh",
         &with("fix side all wall/gran model hertz tangential history primitive type 1 zplane 0\ncompute c all wall/gran/local\n"),
+        &[
+            "Compute wall/gran/local requires a fix of type wall/gran using one or more mesh walls",
+            "--> in.t:16",
+        ],
     );
-    assert_eq!(status, Some(1), "{err}");
-    assert!(
-        err.contains(
-            "Compute wall/gran/local requires a fix of type wall/gran using one or more mesh walls"
-        ),
-        "{err}"
-    );
-    assert!(err.contains("--> in.t:16"), "{err}");
 }
 
 #[test]
 fn wall_gran_local_rules_match_liggghts() {
     let mesh = "fix left all mesh/surface file left.stl type 1\nfix wall all wall/gran model hertz tangential history mesh n_meshes 1 meshes left\n";
-    // one compute per wall
-    let (status, err) = run(
-        "twice",
-        &with(&format!(
-            "{mesh}compute a all wall/gran/local\ncompute b all wall/gran/local id force\n"
-        )),
-    );
-    assert_eq!(status, Some(1), "{err}");
-    assert!(
-        err.contains("Fix wall/gran (id wall): Fix wall/gran allows only one compute of type wall/gran/local"),
-        "{err}"
-    );
-    // unknown keyword, with the valid ones listed
-    let (status, err) = run(
-        "keyword",
-        &with(&format!(
-            "{mesh}compute a all wall/gran/local force bogus\n"
-        )),
-    );
-    assert_eq!(status, Some(1), "{err}");
-    assert!(
-        err.contains("Compute wall/gran/local (id a): illegal/unrecognized keyword"),
-        "{err}"
-    );
-    assert!(err.contains("force_tangential"), "{err}");
-    // the wall cannot go while the compute reports it
-    let (status, err) = run(
-        "unfix",
-        &with(&format!(
-            "{mesh}compute a all wall/gran/local\nunfix wall\n"
-        )),
-    );
-    assert_eq!(status, Some(1), "{err}");
-    assert!(
-        err.contains(
-            "need to uncompute the active compute wall/gran/local before unfixing the wall"
+    let cases: [(&str, String, &[&str]); 6] = [
+        // one compute per wall
+        (
+            "twice",
+            format!("{mesh}compute a all wall/gran/local\ncompute b all wall/gran/local id force\n"),
+            &["Fix wall/gran (id wall): Fix wall/gran allows only one compute of type wall/gran/local"],
         ),
-        "{err}"
-    );
-    // history of a wall model without history
-    let (status, err) = run(
-        "history",
-        &with("fix left all mesh/surface file left.stl type 1\nfix wall all wall/gran model hertz tangential no_history mesh n_meshes 1 meshes left\ncompute a all wall/gran/local\n"),
-    );
-    assert_eq!(status, Some(1), "{err}");
-    assert!(err.contains("can not calculate history values"), "{err}");
-    // defined after the first run
-    let (status, err) = run(
-        "late",
-        &with(&format!(
-            "{mesh}timestep 1e-5\nrun 10\ncompute a all wall/gran/local\n"
-        )),
-    );
-    assert_eq!(status, Some(1), "{err}");
-    assert!(
-        err.contains("Need to define this compute before first run"),
-        "{err}"
-    );
-    // a dump of it names columns: the compute is an array even with one keyword
-    let (status, err) = run(
-        "vector",
-        &with(&format!(
-            "{mesh}compute a all wall/gran/local delta\ndump d all local 10 post/w.dump c_a\n"
-        )),
-    );
-    assert_eq!(status, Some(1), "{err}");
-    assert!(
-        err.contains("Dump local compute does not calculate local vector"),
-        "{err}"
-    );
+        // unknown keyword, with the valid ones listed
+        (
+            "keyword",
+            format!("{mesh}compute a all wall/gran/local force bogus\n"),
+            &[
+                "Compute wall/gran/local (id a): illegal/unrecognized keyword",
+                "force_tangential",
+            ],
+        ),
+        // the wall cannot go while the compute reports it
+        (
+            "unfix",
+            format!("{mesh}compute a all wall/gran/local\nunfix wall\n"),
+            &["need to uncompute the active compute wall/gran/local before unfixing the wall"],
+        ),
+        // history of a wall model without history
+        (
+            "history",
+            "fix left all mesh/surface file left.stl type 1\nfix wall all wall/gran model hertz tangential no_history mesh n_meshes 1 meshes left\ncompute a all wall/gran/local\n".to_string(),
+            &["can not calculate history values"],
+        ),
+        // defined after the first run
+        (
+            "late",
+            format!("{mesh}timestep 1e-5\nrun 10\ncompute a all wall/gran/local\n"),
+            &["Need to define this compute before first run"],
+        ),
+        // a dump of it names columns: the compute is an array even with one keyword
+        (
+            "vector",
+            format!("{mesh}compute a all wall/gran/local delta\ndump d all local 10 post/w.dump c_a\n"),
+            &["Dump local compute does not calculate local vector"],
+        ),
+    ];
+    for (name, body, needles) in cases {
+        fails_with(name, &with(&body), needles);
+    }
 }
 
 #[test]
@@ -149,20 +128,16 @@ pair_style gran/hertz/history 266000.0 NULL 500.0 NULL 0.5 1
 fix zwalls all wall/gran 266000.0 NULL 500.0 NULL 0.5 1 zplane 0.0 0.15
 fix ins all pour 1000 1 1 vol 0.7 1000 diam 0.003 0.003 dens 2500 2500 vel 0. 0. 0. 0. -1. region reg
 ";
-    let (status, err) = run("old", deck);
-    assert_eq!(status, Some(1), "{err}");
-    assert!(err.contains("ERROR: Invalid pair style"), "{err}");
-    assert!(
-        err.contains("`pair_style gran model hertz tangential history`"),
-        "{err}"
+    fails_with(
+        "old",
+        deck,
+        &[
+            "ERROR: Invalid pair style",
+            "`pair_style gran model hertz tangential history`",
+            "ERROR: Invalid model specified (check for typos and enable at least one model)",
+            "`fix ID group wall/gran model hertz",
+            "ERROR: Invalid fix style: \"pour\"",
+            "`insert/stream`",
+        ],
     );
-    assert!(
-        err.contains(
-            "ERROR: Invalid model specified (check for typos and enable at least one model)"
-        ),
-        "{err}"
-    );
-    assert!(err.contains("`fix ID group wall/gran model hertz"), "{err}");
-    assert!(err.contains("ERROR: Invalid fix style: \"pour\""), "{err}");
-    assert!(err.contains("`insert/stream`"), "{err}");
 }

@@ -4,7 +4,7 @@
 use std::path::Path;
 use std::process::Command;
 
-const TUTORIALS: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public";
+mod common;
 
 fn tutorial_decks(root: &Path) -> Vec<String> {
     let mut decks = Vec::new();
@@ -28,13 +28,8 @@ fn tutorial_decks(root: &Path) -> Vec<String> {
 
 #[test]
 fn support_table_is_current() {
-    let root = std::env::var("REGOLITH_TUTORIALS").unwrap_or_else(|_| TUTORIALS.to_string());
-    let root = Path::new(&root);
-    assert!(
-        root.is_dir(),
-        "the LIGGGHTS tutorials are missing at {}: apt-get install -y liggghts-doc",
-        root.display()
-    );
+    let root = common::tutorials_root();
+    let root = root.as_path();
     let decks = tutorial_decks(root);
     assert_eq!(decks.len(), 28, "liggghts-doc ships 28 tutorial decks");
     let out = Command::new(env!("CARGO_BIN_EXE_regolith"))

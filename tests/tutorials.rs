@@ -10,10 +10,11 @@ use std::process::Command;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
+mod common;
+
+use common::thermo_lines;
 use regolith::io::diff::expand;
 use regolith::io::dump_compare::parse_vtk;
-
-const TUTORIALS: &str = "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public";
 
 /// Relative tolerance of the final values, against LIGGGHTS's.
 const RTOL: f64 = 0.03;
@@ -78,26 +79,6 @@ fn jobs(cases: Vec<Case>) -> Vec<Vec<Case>> {
         jobs.push(vec![case]);
     }
     jobs
-}
-
-/// Run blocks as compat/regenerate.sh cuts them from the screen output: from each header
-/// line starting with `Step` up to (not including) `Loop time`.
-fn thermo_lines(stdout: &str) -> Vec<String> {
-    let mut out = Vec::new();
-    let mut inside = false;
-    for line in stdout.lines() {
-        if line.starts_with("Loop time") {
-            inside = false;
-        }
-        if inside {
-            out.push(line.to_string());
-        }
-        if line.trim_start().starts_with("Step ") {
-            inside = true;
-            out.push(line.to_string());
-        }
-    }
-    out
 }
 
 /// The thermo rows among those lines (not the messages fixes print), each as column -> word.
@@ -404,13 +385,8 @@ fn table(outcomes: &[Outcome]) -> String {
 
 #[test]
 fn tutorials_match_liggghts() {
-    let root = std::env::var("REGOLITH_TUTORIALS").unwrap_or_else(|_| TUTORIALS.to_string());
-    let root = Path::new(&root);
-    assert!(
-        root.is_dir(),
-        "the LIGGGHTS tutorials are missing at {}: apt-get install -y liggghts-doc",
-        root.display()
-    );
+    let root = common::tutorials_root();
+    let root = root.as_path();
     let jobs = jobs(cases());
     let next = AtomicUsize::new(0);
     let done = Mutex::new(Vec::new());

@@ -58,7 +58,7 @@ pub fn wall_gran_local(
     let mut primitive = false;
     for f in &ctx.sim.fixes {
         match &f.kind {
-            FixKind::MeshWall(w) => wall = Some((f.id.clone(), w.selection.clone())),
+            FixKind::MeshWall(w) => wall = Some((f.id.clone(), w.history_width())),
             FixKind::WallGran(_) => primitive = true,
             _ => {}
         }
@@ -66,7 +66,7 @@ pub fn wall_gran_local(
     if primitive {
         ctx.say("WARNING: Compute wall/gran/local detected primitive wall, output will only happen for mesh wall - particle pairs (./src/compute_pair_gran_local.cpp:263)\n");
     }
-    let Some((wall, selection)) = wall else {
+    let Some((wall, history)) = wall else {
         return Err(a.error(2, "Compute wall/gran/local requires a fix of type wall/gran using one or more mesh walls. This fix has to come before the compute in the script"));
     };
     if ctx
@@ -80,9 +80,6 @@ pub fn wall_gran_local(
             &format!("Fix wall/gran (id {wall}): Fix wall/gran allows only one compute of type wall/gran/local"),
         ));
     }
-    let history = crate::engine::contact::AnyContactModel::new(&selection)
-        .map(|m| m.history_len())
-        .unwrap_or(0);
     if history == 0 && fields.contains(&LocalField::History) {
         return Err(a.error(2, "Compute pair/gran/local or wall/gran/local can not calculate history values since pair or wall style does not compute them"));
     }
@@ -183,9 +180,7 @@ pub fn restore_fix_state(
     if let FixKind::MeshWall(w) = &mut fix.kind {
         // wall/gran creates each mesh's neighbour count and contact tracker, which take
         // their stored state
-        let width = crate::engine::contact::AnyContactModel::new(&w.selection)
-            .map(|m| m.history_len())
-            .unwrap_or(0);
+        let width = w.history_width();
         let sim = &ctx.sim;
         let mut trackers = Vec::new();
         for mesh in &w.meshes {

@@ -191,6 +191,21 @@ pub fn kinetic_energy(p: &Particles, group: u32) -> f64 {
     sum * 0.5
 }
 
+/// The three values of one of a local compute's force or torque fields: the force (or
+/// torque) on the particle, or its part along the unit `normal`, or the rest.
+fn force_torque(field: LocalField, f: [f64; 3], t: [f64; 3], normal: [f64; 3]) -> [f64; 3] {
+    use crate::engine::contact::split;
+    match field {
+        LocalField::Force => f,
+        LocalField::ForceNormal => split(f, normal).0,
+        LocalField::ForceTangential => split(f, normal).1,
+        LocalField::Torque => t,
+        LocalField::TorqueNormal => split(t, normal).0,
+        LocalField::TorqueTangential => split(t, normal).1,
+        other => unreachable!("{other:?} is not a force or torque field"),
+    }
+}
+
 /// Compute styles regolith evaluates.
 pub const STYLES: &[&str] = &[
     "com",
@@ -394,20 +409,17 @@ impl Compute {
                 p.x[j][1] + shift[1],
                 p.x[j][2] + shift[2],
             ];
-            let split = |v: [f64; 3]| {
-                let mut n = [
-                    xj_ghost[0] - xi[0],
-                    xj_ghost[1] - xi[1],
-                    xj_ghost[2] - xi[2],
-                ];
-                let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-                if len > 0.0 {
-                    n = n.map(|c| c / len);
-                }
-                let m = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
-                let vn = n.map(|c| c * m);
-                (vn, [v[0] - vn[0], v[1] - vn[1], v[2] - vn[2]])
-            };
+            // the unit vector from i to j, along which force and torque are split
+            let mut normal = [
+                xj_ghost[0] - xi[0],
+                xj_ghost[1] - xi[1],
+                xj_ghost[2] - xi[2],
+            ];
+            let len =
+                (normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]).sqrt();
+            if len > 0.0 {
+                normal = normal.map(|c| c / len);
+            }
             let (ri, rj) = (p.radius[i], p.radius[j]);
             let del = [
                 xi[0] - xj_ghost[0],
@@ -431,12 +443,14 @@ impl Compute {
                         out.push(p.id[j] as f64);
                         out.push(if periodic { 1.0 } else { 0.0 });
                     }
-                    LocalField::Force => out.extend_from_slice(&f),
-                    LocalField::ForceNormal => out.extend_from_slice(&split(f).0),
-                    LocalField::ForceTangential => out.extend_from_slice(&split(f).1),
-                    LocalField::Torque => out.extend_from_slice(&t),
-                    LocalField::TorqueNormal => out.extend_from_slice(&split(t).0),
-                    LocalField::TorqueTangential => out.extend_from_slice(&split(t).1),
+                    LocalField::Force
+                    | LocalField::ForceNormal
+                    | LocalField::ForceTangential
+                    | LocalField::Torque
+                    | LocalField::TorqueNormal
+                    | LocalField::TorqueTangential => {
+                        out.extend_from_slice(&force_torque(*field, f, t, normal))
+                    }
                     LocalField::History => out.extend(
                         sim.history[k * width..(k + 1) * width]
                             .iter()
@@ -480,9 +494,7 @@ impl Compute {
             .position(|f| f.id == wall)
             .ok_or_else(|| format!("Compute wall/gran/local: wall fix {wall} is gone"))?;
         let width = match &sim.fixes[k].kind {
-            crate::engine::fixes::FixKind::MeshWall(w) => {
-                w.model.as_ref().map_or(0, |m| m.history_width())
-            }
+            crate::engine::fixes::FixKind::MeshWall(w) => w.history_width(),
             _ => 0,
         };
         let ncols: usize = fields.iter().map(|f| f.width(width)).sum();
@@ -510,11 +522,6 @@ impl Compute {
             }
             let (f, t) = (c.out.f, c.out.t);
             let normal = c.out.en.map(|x| -x);
-            let split = |v: [f64; 3]| {
-                let m = (v[0] * normal[0] + v[1] * normal[1]) + v[2] * normal[2];
-                let vn = normal.map(|x| x * m);
-                (vn, [v[0] - vn[0], v[1] - vn[1], v[2] - vn[2]])
-            };
             let radius = p.radius[i];
             let r = radius - (-c.gap);
             let rsq = r * r;
@@ -534,12 +541,14 @@ impl Compute {
                         out.push(c.tri as f64);
                         out.push(p.id[i] as f64);
                     }
-                    LocalField::Force => out.extend_from_slice(&f),
-                    LocalField::ForceNormal => out.extend_from_slice(&split(f).0),
-                    LocalField::ForceTangential => out.extend_from_slice(&split(f).1),
-                    LocalField::Torque => out.extend_from_slice(&t),
-                    LocalField::TorqueNormal => out.extend_from_slice(&split(t).0),
-                    LocalField::TorqueTangential => out.extend_from_slice(&split(t).1),
+                    LocalField::Force
+                    | LocalField::ForceNormal
+                    | LocalField::ForceTangential
+                    | LocalField::Torque
+                    | LocalField::TorqueNormal
+                    | LocalField::TorqueTangential => {
+                        out.extend_from_slice(&force_torque(*field, f, t, normal))
+                    }
                     LocalField::History => out.extend_from_slice(&c.hist[..width]),
                     LocalField::ContactArea => {
                         out.push((radius * radius - rsq) * std::f64::consts::PI)

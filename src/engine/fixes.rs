@@ -400,6 +400,18 @@ pub struct MeshWallFix {
     pub built: Option<u64>,
 }
 
+impl MeshWallFix {
+    /// Doubles of history per contact of its contact model (the model of the current run,
+    /// or the one its selection gives before the first run).
+    pub fn history_width(&self) -> usize {
+        match &self.model {
+            Some(m) => m.history_width(),
+            None => crate::engine::contact::AnyContactModel::new(&self.selection)
+                .map_or(0, |m| m.history_len()),
+        }
+    }
+}
+
 /// One defined fix.
 pub struct Fix {
     /// The fix ID.

@@ -1220,8 +1220,6 @@ pub struct InsertStream {
     pub moving: Vec<Release>,
     /// First insertion step (kept for restart files).
     pub first_step: i64,
-    /// This fix moves the particles of every stream (LIGGGHTS: the first insert/stream).
-    pub integrator: bool,
 }
 
 impl InsertStream {

@@ -385,7 +385,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Mesh
             trackers,
             dt,
             update,
-            &mut |p: &mut Particles, c| {
+            &mut |p: &mut Particles, c: &WallContact| {
                 let i = c.particle;
                 let before = p.f[i];
                 for d in 0..3 {
@@ -423,7 +423,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Mesh
             trackers,
             dt,
             false,
-            &mut |_, c| out.push(c),
+            &mut |_, c| out.push(*c),
         );
         out
     }
@@ -435,7 +435,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
     /// LIGGGHTS's mesh loop: every mesh, every particle, every candidate triangle; each
     /// touching contact is evaluated and handed to `sink` with the particles.
     #[inline]
-    fn pass<P: AsRef<Particles>, S: FnMut(&mut P, WallContact)>(
+    fn pass<P: AsRef<Particles>, S: FnMut(&mut P, &WallContact)>(
         &self,
         p: &mut P,
         meshes: &[MeshRef],
@@ -490,7 +490,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
                     let out = self.model.wall_force(&input, &mut slots[k].hist[..w]);
                     sink(
                         p,
-                        WallContact {
+                        &WallContact {
                             mesh: mesh_index,
                             tri: t,
                             particle: i,

@@ -119,12 +119,7 @@ impl Simulation {
     /// rescaled from the time step they were inserted with to the current one (the
     /// product truncated to an integer, as LIGGGHTS does).
     pub fn recalc_release_steps(&mut self) {
-        let Some(e) = self
-            .particles
-            .extra
-            .iter()
-            .position(|e| e.name == RELEASE_NAME && e.width == RELEASE_WIDTH)
-        else {
+        let Some(e) = self.release_rows() else {
             return;
         };
         let (step, dt) = (self.step as f64, self.dt);
@@ -149,12 +144,7 @@ impl Simulation {
     /// velocity (`v_normal`: zero before the stream's first setup, where LIGGGHTS stores
     /// uninitialised memory, about 4.6e-310 in practice).
     pub fn reset_release_data(&mut self, new: i64, old: i64, v_normal: [f64; 3]) {
-        let Some(e) = self
-            .particles
-            .extra
-            .iter()
-            .position(|e| e.name == RELEASE_NAME && e.width == RELEASE_WIDTH)
-        else {
+        let Some(e) = self.release_rows() else {
             return;
         };
         let p = &mut self.particles;
@@ -171,11 +161,7 @@ impl Simulation {
     /// Particles of `group` still on their way at the next step, from the release data.
     pub fn releases_pending(&self, group: u32) -> Vec<Release> {
         let p = &self.particles;
-        let Some(e) = p
-            .extra
-            .iter()
-            .find(|e| e.name == RELEASE_NAME && e.width == RELEASE_WIDTH)
-        else {
+        let Some(e) = self.release_rows().map(|k| &p.extra[k]) else {
             return Vec::new();
         };
         (0..p.len())
@@ -187,19 +173,22 @@ impl Simulation {
             .collect()
     }
 
-    /// Store new particles' release data in the per-atom rows.
-    pub fn store_releases(&mut self, records: &[Release]) {
+    /// Index of the per-atom release data among the particles' extra arrays, if any.
+    fn release_rows(&self) -> Option<usize> {
+        self.particles
+            .extra
+            .iter()
+            .position(|e| e.name == RELEASE_NAME && e.width == RELEASE_WIDTH)
+    }
+
+    /// Store the release data of new particles, the ones from index `first` on, in the
+    /// order of `records`.
+    pub fn store_releases(&mut self, first: usize, records: &[Release]) {
         let p = &mut self.particles;
         let e = p.extra_index(RELEASE_NAME, RELEASE_WIDTH);
-        let index: std::collections::HashMap<i64, usize> = records
-            .iter()
-            .filter_map(|r| p.id.iter().rposition(|&id| id == r.id).map(|i| (r.id, i)))
-            .collect();
-        for r in records {
-            if let Some(&i) = index.get(&r.id) {
-                p.extra[e].data[i * RELEASE_WIDTH..(i + 1) * RELEASE_WIDTH]
-                    .copy_from_slice(&r.row());
-            }
+        for (k, r) in records.iter().enumerate() {
+            let i = first + k;
+            p.extra[e].data[i * RELEASE_WIDTH..(i + 1) * RELEASE_WIDTH].copy_from_slice(&r.row());
         }
     }
 
@@ -244,14 +233,7 @@ impl Simulation {
                 FixKind::MeshWall(w) => {
                     // per mesh: its neighbour counts and contact tracker (LIGGGHTS's
                     // n_neighs_mesh_<mesh> and tracker_<mesh>)
-                    let width = w.model.as_ref().map_or_else(
-                        || {
-                            crate::engine::contact::AnyContactModel::new(&w.selection)
-                                .map(|m| m.history_len())
-                                .unwrap_or(0)
-                        },
-                        |m| m.history_width(),
-                    );
+                    let width = w.history_width();
                     let ids = &self.particles.id;
                     for (k, mesh) in w.meshes.iter().enumerate() {
                         let entries = match w.trackers.get(k) {
@@ -345,12 +327,12 @@ impl Simulation {
                             to_bytes(&[RELEASE_WIDTH as f64]),
                         ));
                         let p = &self.particles;
-                        let rows = match p
-                            .extra
-                            .iter()
-                            .find(|e| e.name == RELEASE_NAME && e.width == RELEASE_WIDTH)
-                        {
-                            Some(e) => e.data.chunks(RELEASE_WIDTH).map(<[f64]>::to_vec).collect(),
+                        let rows = match self.release_rows() {
+                            Some(k) => p.extra[k]
+                                .data
+                                .chunks(RELEASE_WIDTH)
+                                .map(<[f64]>::to_vec)
+                                .collect(),
                             None => vec![vec![0.0; RELEASE_WIDTH]; p.len()],
                         };
                         peratom.push((

@@ -466,15 +466,17 @@ impl Simulation {
         if let Some((ratio, i, j)) = self.pair.as_ref().and_then(|m| m.worst_overlap()) {
             // a particle that insert/stream still carries feels no force; LIGGGHTS can
             // insert one overlapping a particle it had frozen (after reset_timestep)
-            let (ti, tj) = (p.id[i as usize], p.id[j as usize]);
-            let carried = self.fixes.iter().any(|f| match &f.kind {
-                FixKind::InsertStream(sf) => sf
-                    .state
-                    .as_ref()
-                    .is_some_and(|s| s.moving.iter().any(|r| r.id == ti || r.id == tj)),
-                _ => false,
-            });
-            if ratio > MAX_OVERLAP && !carried {
+            let carried = || {
+                let (ti, tj) = (p.id[i as usize], p.id[j as usize]);
+                self.fixes.iter().any(|f| match &f.kind {
+                    FixKind::InsertStream(sf) => sf
+                        .state
+                        .as_ref()
+                        .is_some_and(|s| s.moving.iter().any(|r| r.id == ti || r.id == tj)),
+                    _ => false,
+                })
+            };
+            if ratio > MAX_OVERLAP && !carried() {
                 return Err(format!(
                     "blow-up at step {}: atoms {} and {} overlap by {:.0} % of the smaller radius; \
                      the time step is probably too large for the stiffness, or particles were created overlapping",
@@ -1646,11 +1648,7 @@ impl Simulation {
                     face.within = Some(crate::engine::insert::Within::new(&m.mesh));
                 }
             }
-            // the first stream moves every stream's particles (LIGGGHTS's i_am_integrator)
-            let integrator = !self.fixes[..k]
-                .iter()
-                .any(|f| matches!(f.kind, FixKind::InsertStream(_)));
-            let moving = if integrator {
+            let moving = if self.stream_integrator() == Some(k) {
                 self.releases_pending(self.fixes[k].group)
             } else {
                 Vec::new()
@@ -1686,7 +1684,6 @@ impl Simulation {
                 inserted_mass: restored.map_or(0.0, |r| r.mass),
                 moving,
                 first_step: restored.map_or(sf.start, |r| r.first_step),
-                integrator,
             };
             for l in state.setup_lines(&dist) {
                 out(&format!("{l}\n"));
@@ -1766,24 +1763,23 @@ impl Simulation {
                 }
                 _ => unreachable!(),
             };
-            self.store_releases(&records);
+            // the new atoms are the last ones, in the order of their records
+            let first = self.particles.len() - records.len();
+            self.store_releases(first, &records);
             // the integrating stream moves them, if they are in its group
-            let integrator = self.fixes.iter_mut().find_map(|f| match &mut f.kind {
-                FixKind::InsertStream(sf) => Some((f.group, sf)),
-                _ => None,
-            });
-            if let Some((g, sf)) = integrator {
-                if let Some(state) = sf.state.as_mut() {
-                    let p = &self.particles;
-                    let first = p.len().saturating_sub(records.len());
-                    let in_group = |id: i64| {
-                        p.id[first..]
-                            .iter()
-                            .position(|&t| t == id)
-                            .is_some_and(|j| p.mask[first + j] & g != 0)
-                    };
-                    let keep: Vec<_> = records.into_iter().filter(|r| in_group(r.id)).collect();
-                    state.moving.extend(keep);
+            if let Some(ki) = self.stream_integrator() {
+                let g = self.fixes[ki].group;
+                let mask = &self.particles.mask[first..];
+                if let FixKind::InsertStream(sf) = &mut self.fixes[ki].kind {
+                    if let Some(state) = sf.state.as_mut() {
+                        state.moving.extend(
+                            records
+                                .into_iter()
+                                .zip(mask)
+                                .filter(|(_, &m)| m & g != 0)
+                                .map(|(r, _)| r),
+                        );
+                    }
                 }
             }
             for l in lines {
@@ -2052,22 +2048,23 @@ impl Simulation {
         for d in &mut self.dumps {
             d.last_written = None;
         }
-        if v_normal.is_some() {
-            let group = self.fixes.iter().find_map(|f| match &f.kind {
-                FixKind::InsertStream(sf) if sf.state.is_some() => Some(f.group),
-                FixKind::InsertStream(_) => Some(0),
-                _ => None,
-            });
-            if let Some(group) = group.filter(|&g| g != 0) {
-                let pending = self.releases_pending(group);
-                if let Some(st) = self.fixes.iter_mut().find_map(|f| match &mut f.kind {
-                    FixKind::InsertStream(sf) => sf.state.as_mut(),
-                    _ => None,
-                }) {
+        // the integrating stream, once set up, carries what the rewritten data says
+        if let Some(ki) = self.stream_integrator() {
+            let pending = self.releases_pending(self.fixes[ki].group);
+            if let FixKind::InsertStream(sf) = &mut self.fixes[ki].kind {
+                if let Some(st) = sf.state.as_mut() {
                     st.moving = pending;
                 }
             }
         }
+    }
+
+    /// The fix moving every stream's particles until release: the first insert/stream
+    /// (LIGGGHTS's i_am_integrator).
+    fn stream_integrator(&self) -> Option<usize> {
+        self.fixes
+            .iter()
+            .position(|f| matches!(f.kind, FixKind::InsertStream(_)))
     }
 
     fn thermo_line(&mut self, out: Sink<'_>, vars: &mut dyn VariableSource) -> Result<(), String> {

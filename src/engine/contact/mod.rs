@@ -218,7 +218,7 @@ pub struct PairLocal {
 
 /// Projection of `v` on the unit vector `n` and the remainder, as LIGGGHTS's compute does.
 #[inline]
-fn split(v: Vec3, n: Vec3) -> (Vec3, Vec3) {
+pub fn split(v: Vec3, n: Vec3) -> (Vec3, Vec3) {
     let mag = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
     let vn = [n[0] * mag, n[1] * mag, n[2] * mag];
     (vn, [v[0] - vn[0], v[1] - vn[1], v[2] - vn[2]])

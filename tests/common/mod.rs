@@ -1,0 +1,41 @@
+//! Helpers shared by the integration tests that compare regolith with LIGGGHTS.
+// each test crate that includes this module uses only some of it
+#![allow(dead_code)]
+
+use std::path::PathBuf;
+
+/// Run blocks as compat/regenerate.sh cuts them from LIGGGHTS's screen output: from each
+/// header line starting with `Step` up to (not including) `Loop time`, so lines that fixes
+/// print during a run (fix print, warnings) are compared too.
+pub fn thermo_lines(stdout: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut inside = false;
+    for line in stdout.lines() {
+        if line.starts_with("Loop time") {
+            inside = false;
+        }
+        if inside {
+            out.push(line.to_string());
+        }
+        if line.trim_start().starts_with("Step ") {
+            inside = true;
+            out.push(line.to_string());
+        }
+    }
+    out
+}
+
+/// The official LIGGGHTS tutorials of Debian's liggghts-doc (or `REGOLITH_TUTORIALS`);
+/// fails the test with the install command when they are missing.
+pub fn tutorials_root() -> PathBuf {
+    let root = std::env::var("REGOLITH_TUTORIALS").unwrap_or_else(|_| {
+        "/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public".to_string()
+    });
+    let root = PathBuf::from(root);
+    assert!(
+        root.is_dir(),
+        "the LIGGGHTS tutorials are missing at {}: apt-get install -y liggghts-doc",
+        root.display()
+    );
+    root
+}

@@ -81,3 +81,26 @@ fn sliding_sphere_rolls_at_five_sevenths_of_its_speed() {
         0.01 * w
     );
 }
+
+#[test]
+fn a_pair_style_redefined_with_a_wider_history_continues() {
+    // two spheres pressed together and sliding: history from `tangential history` (3 values)
+    // meets a pair style that stores 6 (rolling friction epsd); LIGGGHTS replaces its
+    // contact-history fix and runs on, so must regolith (it used to index past the old history)
+    let deck = format!(
+        "{HEADER}fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5\n\
+         fix m4 all property/global coefficientFriction peratomtypepair 1 0.5\n\
+         fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.3\n\
+         fix m6 all property/global coefficientRollingViscousDamping peratomtypepair 1 0.1\n\
+         pair_style gran model hertz tangential history\npair_coeff * *\n\
+         create_atoms 1 single -0.0099 0 0 units box\ncreate_atoms 1 single 0.0099 0 0 units box\n\
+         set group all diameter 0.02 density 2500\nset atom 1 vy 0.1\nset atom 2 vy -0.1\n\
+         fix i all nve/sphere\ntimestep 1e-6\nthermo 1000\nvariable kk equal ke\n\
+         run 200\nprint \"energy ${{kk}}\"\n\
+         pair_style gran model hertz tangential history rolling_friction epsd\npair_coeff * *\n\
+         run 200\nprint \"energy ${{kk}}\"\n"
+    );
+    let e = printed("history_width", &deck, "energy ");
+    assert_eq!(e.len(), 2);
+    assert!(e[1][0].is_finite() && e[1][0] > 0.0, "{e:?}");
+}

@@ -149,6 +149,42 @@ impl Domain {
         }
     }
 
+    /// LIGGGHTS's `remap_near`: move `xnew` by whole periods along periodic dimensions to
+    /// the image nearest `xold` (length), as `fix move` does after prescribing a position
+    /// from an unwrapped start point. Non-finite coordinates are left alone.
+    pub fn remap_near(&self, xnew: &mut [f64; 3], xold: &[f64; 3]) {
+        for d in 0..3 {
+            if !self.periodic(d) || !(xnew[d] - xold[d]).is_finite() {
+                continue;
+            }
+            let period = self.length(d);
+            let half = 0.5 * period;
+            if xnew[d] - xold[d] > period {
+                let n = ((xnew[d] - xold[d]) / period) as i64;
+                xnew[d] -= n as f64 * period;
+            }
+            // at most two more periods after the jump above (bounded, unlike a bare loop)
+            for _ in 0..4 {
+                if xnew[d] - xold[d] > half {
+                    xnew[d] -= period;
+                } else {
+                    break;
+                }
+            }
+            if xold[d] - xnew[d] > period {
+                let n = ((xold[d] - xnew[d]) / period) as i64;
+                xnew[d] += n as f64 * period;
+            }
+            for _ in 0..4 {
+                if xold[d] - xnew[d] > half {
+                    xnew[d] += period;
+                } else {
+                    break;
+                }
+            }
+        }
+    }
+
     /// Shortest periodic image of a separation vector.
     pub fn minimum_image(&self, delta: &mut [f64; 3]) {
         for d in 0..3 {
@@ -210,6 +246,26 @@ impl Domain {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn remap_near_picks_the_nearest_image_and_ends() {
+        let mut d = Domain {
+            boundary: parse_boundary(&["p", "p", "f"]).unwrap(),
+            ..Domain::default()
+        };
+        d.create([0.0; 3], [1.0, 2.0, 3.0]);
+        let mut x = [1.2, -3.9, 5.0];
+        d.remap_near(&mut x, &[0.1, 0.1, 0.0]);
+        assert!(
+            (x[0] - 0.2).abs() < 1e-12 && (x[1] - 0.1).abs() < 1e-12,
+            "{x:?}"
+        );
+        assert_eq!(x[2], 5.0);
+        // far away and non-finite values terminate
+        let mut far = [1e300, f64::INFINITY, 0.0];
+        d.remap_near(&mut far, &[0.5, 0.5, 0.0]);
+        assert!(far[1].is_infinite());
+    }
 
     #[test]
     fn boundary_words() {

@@ -87,12 +87,13 @@ impl Move {
 
     /// `move variable`: x = x0 + dx where dx is given, v = vx where vx is given (with no dx,
     /// x advances by dt vx); components with neither are integrated (LIGGGHTS's order).
-    fn variable_integrate(&self, p: &mut Particles, group: u32, dt: f64) {
+    fn variable_integrate(&self, p: &mut Particles, group: u32, dt: f64, domain: &Domain) {
         let dtf = 0.5 * dt;
         for i in 0..p.len() {
             if p.mask[i] & group == 0 {
                 continue;
             }
+            let xold = p.x[i];
             let x0 = self.origin.get(&p.id[i]).copied().unwrap_or([0.0; 3]);
             let r = self.resolved.get(i).copied().unwrap_or([None; 6]);
             for d in 0..3 {
@@ -112,12 +113,23 @@ impl Move {
                     }
                 }
             }
+            domain.remap_near(&mut p.x[i], &xold);
         }
     }
 
-    fn initial_integrate(&self, p: &mut Particles, group: u32, step: i64, dt: f64) {
+    /// Prescribe (or integrate) the group's positions and velocities for `step`; positions
+    /// set from the unwrapped start point are brought back to the image nearest the old
+    /// position, as LIGGGHTS's `remap_near` does.
+    fn initial_integrate(
+        &self,
+        p: &mut Particles,
+        group: u32,
+        step: i64,
+        dt: f64,
+        domain: &Domain,
+    ) {
         if matches!(self.motion, Motion::Variable { .. }) {
-            return self.variable_integrate(p, group, dt);
+            return self.variable_integrate(p, group, dt, domain);
         }
         let delta = (step - self.start_step) as f64 * dt;
         let dtf = 0.5 * dt;
@@ -134,6 +146,7 @@ impl Move {
                 if p.mask[i] & group == 0 {
                     continue;
                 }
+                let xold = p.x[i];
                 let x0 = self.origin.get(&p.id[i]).copied().unwrap_or([0.0; 3]);
                 let d = [x0[0] - point[0], x0[1] - point[1], x0[2] - point[2]];
                 let ddotr = d[0] * r[0] + d[1] * r[1] + d[2] * r[2];
@@ -158,6 +171,7 @@ impl Move {
                     omega * (r[0] * disp[1] - r[1] * disp[0]),
                 ];
                 p.omega[i] = [omega * r[0], omega * r[1], omega * r[2]];
+                domain.remap_near(&mut p.x[i], &xold);
             }
             return;
         }
@@ -165,6 +179,7 @@ impl Move {
             if p.mask[i] & group == 0 {
                 continue;
             }
+            let xold = p.x[i];
             let x0 = self.origin.get(&p.id[i]).copied().unwrap_or([0.0; 3]);
             for d in 0..3 {
                 let set = match &self.motion {
@@ -189,6 +204,7 @@ impl Move {
                     }
                 }
             }
+            domain.remap_near(&mut p.x[i], &xold);
         }
     }
 
@@ -586,11 +602,11 @@ pub fn move_meshes(fixes: &mut [Fix], dt: f64) {
 }
 
 /// Run the `initial_integrate` phase of all fixes.
-pub fn initial_integrate(fixes: &[Fix], p: &mut Particles, step: i64, dt: f64) {
+pub fn initial_integrate(fixes: &[Fix], p: &mut Particles, step: i64, dt: f64, domain: &Domain) {
     for fix in fixes {
         match &fix.kind {
             FixKind::NveSphere => integrate::initial_integrate(p, fix.group, dt),
-            FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt),
+            FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt, domain),
             _ => {}
         }
     }
@@ -805,13 +821,46 @@ mod tests {
         }];
         let dt = 1e-4;
         for step in 1..=200 {
-            initial_integrate(&fixes, &mut p, step, dt);
+            initial_integrate(&fixes, &mut p, step, dt, &domain);
             p.f[0] = [0.0; 3];
             post_force(&mut fixes, &mut p, dt, true, (0, 0.0), false);
             final_integrate(&fixes, &mut p, dt);
         }
         assert!((p.v[0][2] - a * omega).abs() < 1e-9);
         assert!((p.x[0][2] - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_moved_atom_stays_at_the_image_nearest_its_old_position() {
+        // an atom that crossed a periodic face (image 1) keeps its wrapped position under a
+        // wiggle, as LIGGGHTS's remap_near does, instead of jumping to its unwrapped start
+        let mut domain = Domain::default();
+        domain.boundary = crate::engine::domain::parse_boundary(&["p", "p", "f"]).unwrap();
+        domain.create([0.0; 3], [1.0, 1.0, 1.0]);
+        let mut p = Particles::default();
+        p.push(1, 1, [0.2, 0.5, 0.5], 0.01, 2500.0);
+        p.image[0] = [1, 0, 0];
+        let m = Move::new(
+            Motion::Wiggle {
+                amplitude: [Some(0.0), Some(0.0), Some(1e-3)],
+                omega: 10.0,
+            },
+            &p,
+            1,
+            &domain,
+            0,
+        );
+        assert_eq!(m.origin[&1][0], 1.2);
+        let fixes = vec![Fix {
+            id: "m".into(),
+            style: "move".into(),
+            group: 1,
+            kind: FixKind::Move(m),
+            args: vec![],
+        }];
+        initial_integrate(&fixes, &mut p, 1, 1e-3, &domain);
+        assert!((p.x[0][0] - 0.2).abs() < 1e-12, "x = {:?}", p.x[0]);
+        assert!((p.x[0][2] - (0.5 + 1e-3 * (1e-2f64).sin())).abs() < 1e-15);
     }
 
     #[test]

@@ -788,6 +788,21 @@ impl Simulation {
             });
         }
         let flips = self.pair.as_ref().map_or(Vec::new(), |p| p.history_flips());
+        // a pair style redefined with another history layout starts its contacts afresh
+        // (LIGGGHTS replaces its contact-history fix with the pair style)
+        let old_width = if old_pairs.is_empty() {
+            0
+        } else {
+            self.history.len() / old_pairs.len()
+        };
+        if old_width != width {
+            self.history.clear();
+        }
+        let old_pairs = if old_width == width {
+            old_pairs
+        } else {
+            Vec::new()
+        };
         self.history = carry_history(
             &old_pairs,
             &self.history,
@@ -1466,7 +1481,13 @@ impl Simulation {
         for _ in 0..nsteps {
             self.step += 1;
             self.resolve_move_fixes(vars)?;
-            fixes::initial_integrate(&self.fixes, &mut self.particles, self.step, self.dt);
+            fixes::initial_integrate(
+                &self.fixes,
+                &mut self.particles,
+                self.step,
+                self.dt,
+                &self.domain,
+            );
             fixes::move_meshes(&mut self.fixes, self.dt);
             // a runaway shows first in the half-kicked velocities, before atoms are wrapped or lost
             self.guard_motion()?;

@@ -24,6 +24,10 @@ pub struct DeckOptions {
     pub zero_restitution: bool,
     /// `-restart RESTART DATAFILE`: convert a restart file to a data file and exit.
     pub restart_to_data: Option<(String, String)>,
+    /// `-suffix fast` / `-sf fast`: the fast engine path (LAMMPS's accelerator switch).
+    pub fast: bool,
+    /// `-package fast N` / `-pk fast N`: threads of the engine (LAMMPS's package switch).
+    pub threads: Option<usize>,
     /// `-help`.
     pub help: bool,
 }
@@ -67,6 +71,8 @@ pub const FLAGS: &[&str] = &[
     "-v",
     "-suffix",
     "-sf",
+    "-package",
+    "-pk",
     "-seedtolerant",
     "-st",
     "-cuda",
@@ -153,6 +159,19 @@ pub fn parse_deck_flags(args: &[String]) -> Result<DeckOptions, UsageError> {
                 o.help = true;
                 i += 1;
             }
+            "-suffix" | "-sf" => {
+                let v = value(1).ok_or_else(|| missing(flag, "an accelerator style (fast)"))?;
+                o.fast = parse_suffix(&v).map_err(|m| usage(m, Some(SUFFIX_HELP.into())))?;
+                i += 2;
+            }
+            "-package" | "-pk" => {
+                let style = value(1).ok_or_else(|| missing(flag, "fast and a thread count"))?;
+                let n = value(2).ok_or_else(|| missing(flag, "fast and a thread count"))?;
+                o.threads = Some(
+                    parse_package(&style, &n).map_err(|m| usage(m, Some(PACKAGE_HELP.into())))?,
+                );
+                i += 3;
+            }
             "-restart" | "-r" => {
                 let (Some(r), Some(d)) = (value(1), value(2)) else {
                     return Err(missing(flag, "a restart file and a data file"));
@@ -181,7 +200,7 @@ pub fn parse_deck_flags(args: &[String]) -> Result<DeckOptions, UsageError> {
             _ if FLAGS.contains(&flag) => {
                 return Err(usage(
                     format!("{flag}: not supported yet"),
-                    Some("supported: -in -var -log -screen -echo -nocite -seedtolerant -partition 1 -help -restart".into()),
+                    Some("supported: -in -var -log -screen -echo -nocite -seedtolerant -partition 1 -help -restart -suffix fast -package fast N".into()),
                 ));
             }
             _ => {
@@ -197,6 +216,39 @@ pub fn parse_deck_flags(args: &[String]) -> Result<DeckOptions, UsageError> {
         }
     }
     Ok(o)
+}
+
+/// What `-suffix`/`suffix` accept.
+pub const SUFFIX_HELP: &str = "regolith's accelerator is `fast` (its own order of summation, \
+    threads); `off` returns to the exact path, whose results are bit-identical to LIGGGHTS";
+
+/// What `-package`/`package` accept.
+pub const PACKAGE_HELP: &str = "write `fast N` with N >= 1 threads, e.g. -pk fast 2";
+
+/// `-suffix STYLE` / `suffix STYLE`: true for `fast`, false for `off`.
+pub fn parse_suffix(style: &str) -> Result<bool, String> {
+    match style {
+        "fast" | "on" => Ok(true),
+        "off" => Ok(false),
+        other => Err(format!(
+            "suffix {other}: not supported (LAMMPS's gpu/intel/kk/omp/opt accelerators are not part of regolith)"
+        )),
+    }
+}
+
+/// `-package fast N` / `package fast N`: the thread count.
+pub fn parse_package(style: &str, n: &str) -> Result<usize, String> {
+    if style != "fast" {
+        return Err(format!(
+            "package {style}: not supported (regolith's package is fast)"
+        ));
+    }
+    match n.parse::<usize>() {
+        Ok(k) if k >= 1 => Ok(k),
+        _ => Err(format!(
+            "package fast {n}: the thread count must be an integer >= 1"
+        )),
+    }
 }
 
 #[cfg(test)]
@@ -244,5 +296,19 @@ mod tests {
             .message
             .contains("not supported yet"));
         assert!(parse("-p 1").is_ok());
+    }
+
+    #[test]
+    fn accelerator_switches() {
+        let o = parse("-sf fast -pk fast 3 -in a").unwrap();
+        assert!(o.fast);
+        assert_eq!(o.threads, Some(3));
+        assert!(parse("-suffix off").is_ok_and(|o| !o.fast));
+        assert!(parse("-sf omp")
+            .unwrap_err()
+            .message
+            .contains("not supported"));
+        assert!(parse("-pk fast 0").is_err());
+        assert!(parse("-pk omp 2").is_err());
     }
 }

@@ -6,6 +6,7 @@ use clap::{Parser, Subcommand};
 use regolith::cli::{parse_deck_flags, DeckOptions};
 use regolith::error::ExitStatus;
 use regolith::session;
+use std::path::PathBuf;
 
 #[derive(Parser)]
 #[command(
@@ -88,18 +89,45 @@ enum Command {
     /// Time a scene (built-in: settled_bed, struck_chain; or a deck path) and print loop
     /// times and particle-steps per second; --liggghts times Debian's LIGGGHTS too.
     Bench {
-        /// Built-in scene name or deck file.
+        /// `beds` (the standard beds), a built-in scene name or a deck file.
         #[arg(default_value = "settled_bed")]
         scene: String,
-        /// Runs per program (interleaved with LIGGGHTS's).
+        /// Runs per program (interleaved).
         #[arg(long, default_value_t = 1)]
         repeat: usize,
-        /// Also run `liggghts` on the same deck.
+        /// Also run Debian's `liggghts` on the same deck.
         #[arg(long)]
         liggghts: bool,
+        /// Time the exact path (one thread); on unless only --fast or --liggghts is given.
+        #[arg(long)]
+        exact: bool,
+        /// Time the fast path (at each --threads count).
+        #[arg(long)]
+        fast: bool,
+        /// Thread counts of the fast path, e.g. 1,2.
+        #[arg(long, value_delimiter = ',', default_value = "1")]
+        threads: Vec<usize>,
         /// Deck variables: --var NAME VALUE (repeatable).
         #[arg(long = "var", num_args = 2, value_names = ["NAME", "VALUE"], action = clap::ArgAction::Append)]
         vars: Vec<String>,
+        /// beds: sizes, e.g. 10k,50k,200k.
+        #[arg(long, value_delimiter = ',', default_value = "10k,50k")]
+        sizes: Vec<String>,
+        /// beds: contact models hh, sjkr, epsd.
+        #[arg(long, value_delimiter = ',', default_value = "hh,sjkr,epsd")]
+        models: Vec<String>,
+        /// beds: states rest, shock.
+        #[arg(long, value_delimiter = ',', default_value = "rest,shock")]
+        states: Vec<String>,
+        /// beds: steps per run (default: about 2e7 particle-steps).
+        #[arg(long)]
+        steps: Option<u64>,
+        /// beds: where the beds are built and kept (default $REGOLITH_BEDS or ~/.cache/regolith/beds).
+        #[arg(long)]
+        beds: Option<PathBuf>,
+        /// Write the medians as CSV to this file.
+        #[arg(long)]
+        csv: Option<PathBuf>,
     },
 }
 
@@ -281,18 +309,61 @@ fn main() -> ExitCode {
             scene,
             repeat,
             liggghts,
+            exact,
+            fast,
+            threads,
             vars,
+            sizes,
+            models,
+            states,
+            steps,
+            beds,
+            csv,
         } => {
-            let opts = regolith::bench::BenchOptions {
-                scene,
-                repeat: repeat.max(1),
+            let choice = regolith::bench::ProgramChoice {
                 liggghts,
-                vars: vars
-                    .chunks(2)
-                    .map(|c| (c[0].clone(), c.get(1).cloned().unwrap_or_default()))
-                    .collect(),
+                exact: exact || !fast,
+                fast_threads: if fast { threads } else { Vec::new() },
             };
-            match regolith::bench::bench(&opts) {
+            let result = if scene == "beds" {
+                let opts = regolith::bench::beds::SuiteOptions {
+                    sizes,
+                    models,
+                    states,
+                    threads: choice.fast_threads.clone(),
+                    exact: choice.exact,
+                    liggghts,
+                    repeat: repeat.max(1),
+                    steps,
+                    beds: beds.unwrap_or_else(regolith::bench::beds::default_bed_dir),
+                    csv: csv.clone(),
+                };
+                choice.programs().and_then(|programs| {
+                    let me = std::env::current_exe().map_err(|e| e.to_string())?;
+                    let rows = regolith::bench::beds::suite(&opts, &programs, &me)?;
+                    if let Some(path) = &csv {
+                        std::fs::write(path, regolith::bench::csv(&rows))
+                            .map_err(|e| format!("{}: {e}", path.display()))?;
+                    }
+                    Ok(format!(
+                        "{}\n{}",
+                        regolith::bench::speed_table(&rows),
+                        regolith::bench::details(&rows)
+                    ))
+                })
+            } else {
+                let opts = regolith::bench::BenchOptions {
+                    scene,
+                    repeat: repeat.max(1),
+                    choice,
+                    vars: vars
+                        .chunks(2)
+                        .map(|c| (c[0].clone(), c.get(1).cloned().unwrap_or_default()))
+                        .collect(),
+                };
+                regolith::bench::bench(&opts)
+            };
+            match result {
                 Ok(report) => {
                     print!("{report}");
                     ExitCode::from(0)

@@ -53,6 +53,8 @@ pub fn check_deck_in(source: Source, opts: &DeckOptions, cwd: Option<&Path>) -> 
     let mut interp = Interpreter::new(Mode::Check, Output::silent());
     interp.engine.sim.seed_tolerant = opts.seed_tolerant;
     interp.engine.sim.zero_restitution = opts.zero_restitution;
+    interp.engine.sim.accel.fast = opts.fast;
+    interp.engine.sim.accel.set_threads(opts.threads);
     if let Some(dir) = cwd {
         interp.sys.cwd = dir.to_path_buf();
     }
@@ -159,6 +161,8 @@ pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
     let mut interp = Interpreter::new(Mode::Run, out);
     interp.engine.sim.seed_tolerant = opts.seed_tolerant;
     interp.engine.sim.zero_restitution = opts.zero_restitution;
+    interp.engine.sim.accel.fast = opts.fast;
+    interp.engine.sim.accel.set_threads(opts.threads);
     for (name, values) in &opts.vars {
         if let Err(d) = interp.set_command_line_variable(name, values) {
             report(&d);

@@ -23,10 +23,7 @@ fn bench_reports_loop_times() {
         String::from_utf8_lossy(&out.stderr)
     );
     // two runs of 3000 + 2000 steps of 4 atoms each
-    let rows: Vec<&str> = text
-        .lines()
-        .filter(|l| l.starts_with("regolith "))
-        .collect();
+    let rows: Vec<&str> = text.lines().filter(|l| l.starts_with("exact ")).collect();
     assert_eq!(rows.len(), 2, "{text}");
     for r in rows {
         let w: Vec<&str> = r.split_whitespace().collect();
@@ -36,13 +33,33 @@ fn bench_reports_loop_times() {
             "{r}"
         );
     }
+    // the medians table: rate, contacts, neighbour builds and the time split
     assert!(
         text.lines()
-            .last()
-            .unwrap()
-            .starts_with("fastest loop time: regolith "),
+            .any(|l| l.starts_with("| in.hertz_pairs | exact | ") && l.ends_with(" |")),
         "{text}"
     );
+    // the fast path at two thread counts, interleaved with the exact path
+    let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
+        .args([
+            "bench",
+            "in.hertz_pairs",
+            "--exact",
+            "--fast",
+            "--threads",
+            "1,2",
+        ])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    for label in ["exact ", "fast 1t ", "fast 2t "] {
+        assert_eq!(
+            text.lines().filter(|l| l.starts_with(label)).count(),
+            1,
+            "{label}: {text}"
+        );
+    }
     let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
         .args(["bench", "no_such_scene"])
         .current_dir(&dir)

@@ -19,6 +19,8 @@ pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
         "units" => units(a, ctx),
         "dimension" => dimension(a),
         "newton" => one_of(a, "newton", &["on", "off"], 1..=2),
+        "suffix" => suffix(a, ctx),
+        "package" => package(a, ctx),
         "communicate" | "comm_modify" => communicate(a, ctx),
         "processors" => processors(a),
         "region" => region(a, ctx),
@@ -121,6 +123,30 @@ fn dimension(a: &Args) -> Result {
         2 => Err(a.unsupported(0, "dimension 2")),
         _ => Err(a.error(0, "Illegal dimension command")),
     }
+}
+
+/// `suffix fast|on|off` (LAMMPS's accelerator switch): the fast engine path.
+fn suffix(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=1, "suffix fast|off")?;
+    let fast = crate::cli::parse_suffix(a.word(0)?).map_err(|m| {
+        let mut d = a.error(0, &m);
+        d.help = Some(crate::cli::SUFFIX_HELP.into());
+        d
+    })?;
+    ctx.sim.accel.fast = fast;
+    Ok(())
+}
+
+/// `package fast N`: the engine's thread count.
+fn package(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(2..=2, "package fast N")?;
+    let n = crate::cli::parse_package(a.word(0)?, a.word(1)?).map_err(|m| {
+        let mut d = a.error(0, &m);
+        d.help = Some(crate::cli::PACKAGE_HELP.into());
+        d
+    })?;
+    ctx.sim.accel.set_threads(Some(n));
+    Ok(())
 }
 
 fn one_of(a: &Args, cmd: &str, allowed: &[&str], count: std::ops::RangeInclusive<usize>) -> Result {

@@ -2,7 +2,22 @@
 //! rotation in LIGGGHTS's order of operations, plus uniform body forces (`fix gravity`).
 //! Every update is element-wise, so results do not depend on the thread count.
 
+use rayon::prelude::*;
+
 use crate::engine::particles::Particles;
+
+/// Below this many particles the per-particle stages stay on one thread (the fork-join cost
+/// is larger than the work); either way every particle is updated alike.
+pub const PARALLEL_PARTICLES: usize = 4096;
+
+/// Particles per parallel chunk.
+const CHUNK: usize = 1024;
+
+/// Run per-particle work on the engine's threads when there are enough particles.
+#[inline]
+pub fn parallel(n: usize) -> bool {
+    n >= PARALLEL_PARTICLES && rayon::current_num_threads() > 1
+}
 
 /// Moment-of-inertia prefactor of a solid sphere (I = 0.4 m r^2).
 pub const SPHERE_INERTIA: f64 = 0.4;
@@ -13,21 +28,48 @@ pub const SPHERE_INERTIA: f64 = 0.4;
 pub fn initial_integrate(p: &mut Particles, group: u32, dt: f64) {
     let dtf = 0.5 * dt;
     let dtfrotate = dtf / SPHERE_INERTIA;
-    for i in 0..p.len() {
-        if p.mask[i] & group == 0 {
-            continue;
+    let Particles {
+        x,
+        v,
+        omega,
+        f,
+        torque,
+        mass,
+        radius,
+        mask,
+        ..
+    } = p;
+    let (f, torque, mass, radius, mask) = (&*f, &*torque, &*mass, &*radius, &*mask);
+    let step = |i: usize, x: &mut [f64; 3], v: &mut [f64; 3], w: &mut [f64; 3]| {
+        if mask[i] & group == 0 {
+            return;
         }
-        let mass = p.mass[i];
-        let dtfm = dtf / (mass * 1.0);
+        let m = mass[i];
+        let dtfm = dtf / (m * 1.0);
         for d in 0..3 {
-            p.v[i][d] += dtfm * p.f[i][d];
+            v[d] += dtfm * f[i][d];
         }
         for d in 0..3 {
-            p.x[i][d] += dt * p.v[i][d];
+            x[d] += dt * v[d];
         }
-        let dtirotate = dtfrotate / (p.radius[i] * p.radius[i] * mass);
+        let dtirotate = dtfrotate / (radius[i] * radius[i] * m);
         for d in 0..3 {
-            p.omega[i][d] += dtirotate * p.torque[i][d];
+            w[d] += dtirotate * torque[i][d];
+        }
+    };
+    if parallel(x.len()) {
+        x.par_chunks_mut(CHUNK)
+            .zip(v.par_chunks_mut(CHUNK))
+            .zip(omega.par_chunks_mut(CHUNK))
+            .enumerate()
+            .for_each(|(c, ((x, v), w))| {
+                for k in 0..x.len() {
+                    step(c * CHUNK + k, &mut x[k], &mut v[k], &mut w[k]);
+                }
+            });
+    } else {
+        for i in 0..x.len() {
+            step(i, &mut x[i], &mut v[i], &mut omega[i]);
         }
     }
 }
@@ -36,17 +78,42 @@ pub fn initial_integrate(p: &mut Particles, group: u32, dt: f64) {
 pub fn final_integrate(p: &mut Particles, group: u32, dt: f64) {
     let dtf = 0.5 * dt;
     let dtfrotate = dtf / SPHERE_INERTIA;
-    for i in 0..p.len() {
-        if p.mask[i] & group == 0 {
-            continue;
+    let Particles {
+        v,
+        omega,
+        f,
+        torque,
+        mass,
+        radius,
+        mask,
+        ..
+    } = p;
+    let (f, torque, mass, radius, mask) = (&*f, &*torque, &*mass, &*radius, &*mask);
+    let step = |i: usize, v: &mut [f64; 3], w: &mut [f64; 3]| {
+        if mask[i] & group == 0 {
+            return;
         }
-        let dtfm = dtf / (p.mass[i] * 1.0);
+        let dtfm = dtf / (mass[i] * 1.0);
         for d in 0..3 {
-            p.v[i][d] += dtfm * p.f[i][d];
+            v[d] += dtfm * f[i][d];
         }
-        let dtirotate = dtfrotate / (p.radius[i] * p.radius[i] * p.mass[i]);
+        let dtirotate = dtfrotate / (radius[i] * radius[i] * mass[i]);
         for d in 0..3 {
-            p.omega[i][d] += dtirotate * p.torque[i][d];
+            w[d] += dtirotate * torque[i][d];
+        }
+    };
+    if parallel(v.len()) {
+        v.par_chunks_mut(CHUNK)
+            .zip(omega.par_chunks_mut(CHUNK))
+            .enumerate()
+            .for_each(|(c, (v, w))| {
+                for k in 0..v.len() {
+                    step(c * CHUNK + k, &mut v[k], &mut w[k]);
+                }
+            });
+    } else {
+        for i in 0..v.len() {
+            step(i, &mut v[i], &mut omega[i]);
         }
     }
 }
@@ -79,12 +146,24 @@ impl Gravity {
 
     /// Add m g to every particle's force (LIGGGHTS's post_force).
     pub fn apply(&self, p: &mut Particles) {
-        for i in 0..p.len() {
-            if p.mask[i] & self.group != 0 {
-                let m = p.mass[i] * 1.0;
+        let (mass, mask) = (&p.mass, &p.mask);
+        let add = |i: usize, f: &mut [f64; 3]| {
+            if mask[i] & self.group != 0 {
+                let m = mass[i] * 1.0;
                 for d in 0..3 {
-                    p.f[i][d] += m * self.acc[d];
+                    f[d] += m * self.acc[d];
                 }
+            }
+        };
+        if parallel(p.f.len()) {
+            p.f.par_chunks_mut(CHUNK).enumerate().for_each(|(c, f)| {
+                for (k, f) in f.iter_mut().enumerate() {
+                    add(c * CHUNK + k, f);
+                }
+            });
+        } else {
+            for (i, f) in p.f.iter_mut().enumerate() {
+                add(i, f);
             }
         }
     }

@@ -116,6 +116,25 @@ impl Tracker {
             .collect()
     }
 
+    /// Reorder the per-particle records with the particles (`order`: new index -> old).
+    pub fn permute(&mut self, order: &[usize]) {
+        if self.ids.len() == order.len() {
+            self.ids = order.iter().map(|&k| self.ids[k]).collect();
+        }
+        if self.cand.len() == order.len() {
+            self.cand = order
+                .iter()
+                .map(|&k| std::mem::take(&mut self.cand[k]))
+                .collect();
+        }
+        if self.slots.len() == order.len() {
+            self.slots = order
+                .iter()
+                .map(|&k| std::mem::take(&mut self.slots[k]))
+                .collect();
+        }
+    }
+
     /// Rebuild the candidate lists after the pair list was rebuilt: slots follow their atoms
     /// (by ID) through reordering, are packed, and lose triangles no longer listed.
     pub fn rebuild(&mut self, p: &Particles, mesh: &MeshRef, skin: f64) {

@@ -121,6 +121,28 @@ impl NeighborList {
         &self.built_reach
     }
 
+    /// Take a list built elsewhere (the fast path's cell search) for positions `x` and
+    /// reaches `reach`.
+    pub fn assign(&mut self, pairs: Vec<Pair>, x: &[[f64; 3]], reach: &[f64]) {
+        self.pairs = pairs;
+        self.built_at.clear();
+        self.built_at.extend_from_slice(x);
+        self.built_reach.clear();
+        self.built_reach.extend_from_slice(reach);
+        self.builds += 1;
+    }
+
+    /// Reorder the build positions and reaches with the particles (`order`: new index ->
+    /// old index); the caller renumbers the pairs.
+    pub fn permute(&mut self, order: &[usize]) {
+        if self.built_at.len() == order.len() {
+            self.built_at = order.iter().map(|&k| self.built_at[k]).collect();
+        }
+        if self.built_reach.len() == order.len() {
+            self.built_reach = order.iter().map(|&k| self.built_reach[k]).collect();
+        }
+    }
+
     /// Should the list be rebuilt (LIGGGHTS `check yes`: a particle moved more than skin/2)?
     pub fn needs_rebuild(&self, x: &[[f64; 3]], skin: f64) -> bool {
         if self.built_at.len() != x.len() {
@@ -313,7 +335,8 @@ impl NeighborList {
 /// the atom IDs they join, as LIGGGHTS matches contact partners by tag: a pair keeps its
 /// history when one of its atoms is wrapped across a periodic face. Only if the same two
 /// atoms touch through two images (a box narrower than two diameters) does the periodic
-/// shift decide. Pairs not in the old list start at zero.
+/// shift decide. Pairs not in the old list start at zero. Runs in parallel over the new
+/// pairs with the same result for any number of threads.
 pub fn carry_history(
     old_pairs: &[Pair],
     old_history: &[f64],
@@ -322,52 +345,166 @@ pub fn carry_history(
     old_ids: &[i64],
     flips: &[bool],
 ) -> Vec<f64> {
+    use rayon::prelude::*;
     let width = flips.len();
     let mut out = vec![0.0; new_pairs.len() * width];
     if width == 0 || old_pairs.is_empty() {
         return out;
     }
-    // oriented from the lower ID to the higher one
-    let key = |p: &Pair, ids: &[i64]| {
-        let (a, b) = (ids[p.i as usize], ids[p.j as usize]);
-        let sign = if a <= b { 1.0 } else { -1.0 };
-        let s = p.shift.map(|v| (v * sign + 0.0).to_bits());
-        ((a.min(b), a.max(b)), s)
-    };
-    let mut index: std::collections::HashMap<(i64, i64), Vec<(usize, bool, [u64; 3])>> =
-        std::collections::HashMap::with_capacity(old_pairs.len());
-    for (k, p) in old_pairs.iter().enumerate() {
-        let swapped = old_ids[p.i as usize] > old_ids[p.j as usize];
-        let (atoms, shift) = key(p, old_ids);
-        index.entry(atoms).or_default().push((k, swapped, shift));
+    // old entries grouped by their first atom (old index)
+    let n_old = old_ids.len();
+    let mut first = vec![0u32; n_old + 1];
+    for p in old_pairs {
+        first[p.i as usize + 1] += 1;
     }
-    for (k, p) in new_pairs.iter().enumerate() {
-        let (atoms, shift) = key(p, ids);
-        let Some(found) = index.get(&atoms) else {
-            continue;
-        };
-        let pick = if found.len() == 1 {
-            Some(found[0])
+    for k in 0..n_old {
+        first[k + 1] += first[k];
+    }
+    let mut fill = first.clone();
+    let mut by_atom = vec![0u32; old_pairs.len()];
+    for (k, p) in old_pairs.iter().enumerate() {
+        by_atom[fill[p.i as usize] as usize] = k as u32;
+        fill[p.i as usize] += 1;
+    }
+    let old_index = IdIndex::new(old_ids);
+    // the periodic shift seen from the lower ID to the higher one
+    let oriented = |p: &Pair, ids: &[i64]| {
+        let sign = if ids[p.i as usize] <= ids[p.j as usize] {
+            1.0
         } else {
-            found.iter().copied().find(|f| f.2 == shift)
+            -1.0
         };
-        let Some((old, old_swapped, _)) = pick else {
-            continue;
-        };
-        let swapped = ids[p.i as usize] > ids[p.j as usize];
-        let src = &old_history[old * width..(old + 1) * width];
-        let dst = &mut out[k * width..(k + 1) * width];
-        dst.copy_from_slice(src);
-        if swapped != old_swapped {
-            // the pair is seen from the other particle now: vectors flip sign
-            for (v, &flip) in dst.iter_mut().zip(flips) {
-                if flip {
-                    *v = -*v;
+        p.shift.map(|v| (v * sign + 0.0).to_bits())
+    };
+    let chunk = 4096;
+    out.par_chunks_mut(chunk * width)
+        .zip(new_pairs.par_chunks(chunk))
+        .for_each(|(out, new)| {
+            let mut found: Vec<(usize, bool)> = Vec::new();
+            for (k, p) in new.iter().enumerate() {
+                let (Some(a), Some(b)) = (
+                    old_index.get(ids[p.i as usize]),
+                    old_index.get(ids[p.j as usize]),
+                ) else {
+                    continue;
+                };
+                found.clear();
+                for (from, to, swapped) in [(a, b, false), (b, a, true)] {
+                    for &e in &by_atom[first[from] as usize..first[from + 1] as usize] {
+                        if old_pairs[e as usize].j as usize == to {
+                            found.push((e as usize, swapped));
+                        }
+                    }
+                }
+                let pick = match found.len() {
+                    0 => continue,
+                    1 => found[0],
+                    _ => {
+                        let want = oriented(p, ids);
+                        match found
+                            .iter()
+                            .find(|f| oriented(&old_pairs[f.0], old_ids) == want)
+                        {
+                            Some(f) => *f,
+                            None => continue,
+                        }
+                    }
+                };
+                let src = &old_history[pick.0 * width..(pick.0 + 1) * width];
+                let dst = &mut out[k * width..(k + 1) * width];
+                dst.copy_from_slice(src);
+                if pick.1 {
+                    // the pair is seen from the other particle now: vectors flip sign
+                    for (v, &flip) in dst.iter_mut().zip(flips) {
+                        if flip {
+                            *v = -*v;
+                        }
+                    }
                 }
             }
+        });
+    out
+}
+
+/// Atom ID to index: a table when IDs are dense, a hash map otherwise.
+enum IdIndex {
+    Dense(Vec<u32>),
+    Sparse(std::collections::HashMap<i64, u32>),
+}
+
+impl IdIndex {
+    fn new(ids: &[i64]) -> IdIndex {
+        let max = ids.iter().copied().max().unwrap_or(0);
+        let min = ids.iter().copied().min().unwrap_or(0);
+        if min >= 0 && (max as u64) < 4 * ids.len() as u64 + 1024 {
+            let mut t = vec![u32::MAX; max as usize + 1];
+            for (k, &id) in ids.iter().enumerate() {
+                t[id as usize] = k as u32;
+            }
+            IdIndex::Dense(t)
+        } else {
+            IdIndex::Sparse(
+                ids.iter()
+                    .enumerate()
+                    .map(|(k, &id)| (id, k as u32))
+                    .collect(),
+            )
         }
     }
-    out
+
+    #[inline]
+    fn get(&self, id: i64) -> Option<usize> {
+        match self {
+            IdIndex::Dense(t) => {
+                let k = *t.get(usize::try_from(id).ok()?)?;
+                (k != u32::MAX).then_some(k as usize)
+            }
+            IdIndex::Sparse(m) => m.get(&id).map(|&k| k as usize),
+        }
+    }
+}
+
+/// For each particle, the list entries it takes part in, in list order: entries where it is
+/// the second particle (`as_second`), then its own block of entries as the first. A list
+/// grouped by the first particle (ascending) with the second above it gives each particle
+/// exactly the order a sequential pass over the list adds its forces in.
+#[derive(Debug, Clone, Default)]
+pub struct Incidence {
+    /// Start of each particle's block of entries as first particle (n + 1 values).
+    pub first: Vec<u32>,
+    /// Start of each particle's entries as second particle in `second` (n + 1 values).
+    pub second_start: Vec<u32>,
+    /// Entries by second particle, ascending within each particle.
+    pub second: Vec<u32>,
+}
+
+impl Incidence {
+    /// The incidence of `pairs` over `n` particles, or None if the list is not grouped by
+    /// ascending first particle with the second particle above the first.
+    pub fn new(pairs: &[Pair], n: usize) -> Option<Incidence> {
+        if pairs.windows(2).any(|w| w[1].i < w[0].i) || pairs.iter().any(|p| p.j <= p.i) {
+            return None;
+        }
+        let mut inc = Incidence {
+            first: vec![0; n + 1],
+            second_start: vec![0; n + 1],
+            second: vec![0; pairs.len()],
+        };
+        for p in pairs {
+            inc.first[p.i as usize + 1] += 1;
+            inc.second_start[p.j as usize + 1] += 1;
+        }
+        for k in 0..n {
+            inc.first[k + 1] += inc.first[k];
+            inc.second_start[k + 1] += inc.second_start[k];
+        }
+        let mut fill = inc.second_start.clone();
+        for (k, p) in pairs.iter().enumerate() {
+            inc.second[fill[p.j as usize] as usize] = k as u32;
+            fill[p.j as usize] += 1;
+        }
+        Some(inc)
+    }
 }
 
 #[cfg(test)]

@@ -53,6 +53,11 @@ pub trait PairInteraction: Send {
     /// Per history value: does it change sign when the pair is seen from the other atom?
     fn history_flips(&self) -> Vec<bool>;
     /// The largest overlap of the last evaluation as (overlap / smaller radius, i, j).
+    /// Pairs in contact at the last evaluation.
+    fn contact_count(&self) -> usize {
+        0
+    }
+
     fn worst_overlap(&self) -> Option<(f64, u32, u32)> {
         None
     }
@@ -74,6 +79,9 @@ pub trait PairInteraction: Send {
     /// `update` is false in the setup evaluation: contact history is used but not advanced.
     /// With `virial`, each pair also adds half its virial del_a F_b to both particles
     /// (xx yy zz xy xz yz, force length).
+    /// With `incidence` (the list's per-particle entries), the sums run in parallel over
+    /// particles, each in the list order a sequential pass adds them in.
+    #[allow(clippy::too_many_arguments)]
     fn compute(
         &mut self,
         p: &mut Particles,
@@ -82,6 +90,7 @@ pub trait PairInteraction: Send {
         dt: f64,
         update: bool,
         virial: Option<&mut [[f64; 6]]>,
+        incidence: Option<&crate::engine::neighbor::Incidence>,
     );
 }
 
@@ -269,8 +278,8 @@ pub struct Simulation {
     pub list: NeighborList,
     /// Contact history of the listed pairs (`history_width` doubles per pair).
     pub history: Vec<f64>,
-    list_ids: Vec<i64>,
-    ago: u64,
+    pub(crate) list_ids: Vec<i64>,
+    pub(crate) ago: u64,
     box_at_build: ([f64; 3], [f64; 3]),
     /// The pair interaction, built at each run from the selection and materials.
     pub pair: Option<Box<dyn PairInteraction>>,
@@ -318,6 +327,12 @@ pub struct Simulation {
     pub lost_ignore: bool,
     /// Atom count at the last check (for the lost-atoms error).
     pub natoms_expected: usize,
+    /// Engine path (exact or fast) and threads.
+    pub accel: crate::engine::accel::Accel,
+    /// Timers and counters of the run in progress (LIGGGHTS's end-of-run statistics).
+    pub(crate) stats: RunStats,
+    /// Each particle's list entries, for the parallel pair sums (None: sequential sums).
+    pub(crate) incidence: Option<crate::engine::neighbor::Incidence>,
 }
 
 impl Default for Simulation {
@@ -374,8 +389,79 @@ impl Default for Simulation {
             sort_binsize: 0.0,
             next_sort: 0,
             natoms_expected: 0,
+            accel: crate::engine::accel::Accel::default(),
+            incidence: None,
+            stats: RunStats::default(),
         }
     }
+}
+
+/// LIGGGHTS's sort bins (`Atom::sort`): the bin of each position, bins of `binsize` fitted
+/// to the box `lo`..`hi`, x fastest; None when there is nothing to sort by (no bin size, or
+/// a single bin).
+fn sort_bins(x: &[[f64; 3]], lo: [f64; 3], hi: [f64; 3], binsize: f64) -> Option<Vec<u32>> {
+    if binsize <= 0.0 {
+        return None;
+    }
+    let bininv = 1.0 / binsize;
+    let mut nbin = [1usize; 3];
+    let mut inv = [0.0; 3];
+    for d in 0..3 {
+        nbin[d] = (((hi[d] - lo[d]) * bininv) as i64).max(1) as usize;
+        inv[d] = nbin[d] as f64 / (hi[d] - lo[d]);
+    }
+    if nbin[0] * nbin[1] * nbin[2] == 1 {
+        return None;
+    }
+    let bin_of = |x: &[f64; 3]| {
+        let mut b = [0usize; 3];
+        for d in 0..3 {
+            let k = ((x[d] - lo[d]) * inv[d]) as i64;
+            b[d] = k.clamp(0, nbin[d] as i64 - 1) as usize;
+        }
+        ((b[2] * nbin[1] + b[1]) * nbin[0] + b[0]) as u32
+    };
+    Some(x.iter().map(bin_of).collect())
+}
+
+/// Timers (s) and counters of one run, printed after it as LIGGGHTS prints them.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct RunStats {
+    /// Pair forces.
+    pub pair: f64,
+    /// Neighbour-list builds.
+    pub neigh: f64,
+    /// Periodic wrapping, shrink-wrapping and lost atoms at rebuilds (LIGGGHTS's exchange).
+    pub comm: f64,
+    /// Thermo, dumps and restart files.
+    pub output: f64,
+    /// Neighbour-list builds of this run.
+    pub builds: u64,
+    /// Dangerous builds of this run.
+    pub dangerous: u64,
+}
+
+/// The first index below `n` where `test` holds, searched on the engine's threads when there
+/// are enough particles (the same answer either way).
+fn first_where(n: usize, test: impl Fn(usize) -> bool + Sync) -> Option<usize> {
+    use rayon::prelude::*;
+    if crate::engine::integrate::parallel(n) {
+        (0..n)
+            .into_par_iter()
+            .with_min_len(1024)
+            .find_first(|&i| test(i))
+    } else {
+        (0..n).find(|&i| test(i))
+    }
+}
+
+/// Time `f`, adding the seconds to `acc`.
+#[inline]
+fn timed<R>(acc: &mut f64, f: impl FnOnce() -> R) -> R {
+    let t = std::time::Instant::now();
+    let r = f();
+    *acc += t.elapsed().as_secs_f64();
+    r
 }
 
 /// Overlap, as a fraction of the smaller radius, beyond which a run is stopped as blown up.
@@ -403,7 +489,15 @@ impl Simulation {
     fn guard_motion(&self) -> Result<(), String> {
         let p = &self.particles;
         let dt = self.dt;
-        for i in 0..p.len() {
+        let suspect = |i: usize| {
+            let v = p.v[i];
+            !p.x[i].iter().chain(&v).all(|c| c.is_finite())
+                || (p.radius[i] > 0.0
+                    && (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() * dt > p.radius[i])
+        };
+        // the first offending particle in order, found on the engine's threads
+        let first = first_where(p.len(), suspect);
+        for i in first.into_iter() {
             let v = p.v[i];
             if !p.x[i].iter().chain(&v).all(|c| c.is_finite()) {
                 return Err(self.non_finite(i));
@@ -460,7 +554,7 @@ impl Simulation {
     /// finite, or two particles overlapping by more than [`MAX_OVERLAP`] of the smaller radius.
     fn guard_forces(&self) -> Result<(), String> {
         let p = &self.particles;
-        if let Some(i) = (0..p.len()).find(|&i| !p.f[i].iter().all(|c| c.is_finite())) {
+        if let Some(i) = first_where(p.len(), |i| !p.f[i].iter().all(|c| c.is_finite())) {
             return Err(self.non_finite(i));
         }
         if let Some((ratio, i, j)) = self.pair.as_ref().and_then(|m| m.worst_overlap()) {
@@ -650,31 +744,18 @@ impl Simulation {
         } else {
             0.5 * self.neighbor_cutoff()
         };
-        if binsize <= 0.0 {
-            return;
-        }
         let (lo, hi) = (self.domain.lo, self.domain.hi);
-        let bininv = 1.0 / binsize;
-        let mut nbin = [1usize; 3];
-        let mut inv = [0.0; 3];
-        for d in 0..3 {
-            nbin[d] = (((hi[d] - lo[d]) * bininv) as i64).max(1) as usize;
-            inv[d] = nbin[d] as f64 / (hi[d] - lo[d]);
-        }
-        if nbin[0] * nbin[1] * nbin[2] == 1 {
+        let bins = move |x: &[[f64; 3]]| sort_bins(x, lo, hi, binsize);
+        if self.accel.fast {
+            // the fast path keeps its own order and records the exact one
+            self.sort_order_record(bins);
             return;
         }
-        let p = &self.particles;
-        let bin_of = |x: &[f64; 3]| {
-            let mut b = [0usize; 3];
-            for d in 0..3 {
-                let k = ((x[d] - lo[d]) * inv[d]) as i64;
-                b[d] = k.clamp(0, nbin[d] as i64 - 1) as usize;
-            }
-            (b[2] * nbin[1] + b[1]) * nbin[0] + b[0]
+        let Some(bins) = bins(&self.particles.x) else {
+            return;
         };
-        let mut order: Vec<usize> = (0..p.len()).collect();
-        order.sort_by_key(|&i| bin_of(&p.x[i]));
+        let mut order: Vec<usize> = (0..self.particles.len()).collect();
+        order.sort_by_key(|&i| bins[i]);
         if order.iter().enumerate().any(|(k, &i)| k != i) {
             self.particles.permute(&order);
         }
@@ -759,18 +840,20 @@ impl Simulation {
     fn build_neighbors(&mut self) {
         let old_pairs = std::mem::take(&mut self.list.pairs);
         let width = self.pair.as_ref().map_or(0, |p| p.history_width());
-        let order = crate::engine::neighbor::BinOrder::new(
-            self.domain.lo,
-            self.domain.hi,
-            self.neighbor.cutneighmax,
-        );
-        self.list.build(
-            &self.particles.x,
-            &self.particles.radius,
-            self.neighbor.skin,
-            &self.domain,
-            Some(&order),
-        );
+        if !(self.accel.fast && self.build_list_fast()) {
+            let order = crate::engine::neighbor::BinOrder::new(
+                self.domain.lo,
+                self.domain.hi,
+                self.neighbor.cutneighmax,
+            );
+            self.list.build(
+                &self.particles.x,
+                &self.particles.radius,
+                self.neighbor.skin,
+                &self.domain,
+                Some(&order),
+            );
+        }
         let n = &self.neighbor;
         if !n.exclude_types.is_empty() || !n.exclude_groups.is_empty() {
             let p = &self.particles;
@@ -803,14 +886,16 @@ impl Simulation {
         } else {
             Vec::new()
         };
-        self.history = carry_history(
-            &old_pairs,
-            &self.history,
-            &self.list.pairs,
-            &self.particles.id,
-            &self.list_ids,
-            &flips,
-        );
+        self.history = self.accel.install(|| {
+            carry_history(
+                &old_pairs,
+                &self.history,
+                &self.list.pairs,
+                &self.particles.id,
+                &self.list_ids,
+                &flips,
+            )
+        });
         if let Some(pending) = self.pending_history.take() {
             self.apply_pending_history(pending, width);
         }
@@ -830,6 +915,11 @@ impl Simulation {
         self.list_ids = self.particles.id.clone();
         self.ago = 0;
         self.box_at_build = (self.domain.lo, self.domain.hi);
+        // the parallel pair sums need each particle's entries; small lists stay sequential
+        self.incidence = (self.accel.thread_count() > 1
+            && self.list.pairs.len() >= crate::engine::granular::parallel_pairs())
+        .then(|| crate::engine::neighbor::Incidence::new(&self.list.pairs, self.particles.len()))
+        .flatten();
     }
 
     /// `delete_atoms overlap CUT G1 G2`: which atoms go. In memory order, an atom of G1 goes
@@ -1021,6 +1111,18 @@ impl Simulation {
 
     /// LIGGGHTS's `Neighbor::decide`: rebuild now?
     fn decide(&mut self) -> bool {
+        let rebuild = self.decide_by_rules();
+        // LIGGGHTS's dangerous build: a distance-triggered rebuild at the first step the
+        // delay and every settings allowed (the list may have been out of date already)
+        let n = &self.neighbor;
+        if rebuild && n.check && self.ago == n.every.max(n.delay) {
+            self.stats.dangerous += 1;
+        }
+        rebuild
+    }
+
+    /// The rebuild decision itself (see [`Self::decide`]).
+    fn decide_by_rules(&mut self) -> bool {
         self.ago += 1;
         if self.mesh_rebuild_at == Some(self.step) {
             return true;
@@ -1059,14 +1161,13 @@ impl Simulation {
                 delrsq > limit || rsq > limit - 2. * delr * delta + delrsq
             });
         }
-        self.particles
-            .x
-            .iter()
-            .zip(self.list_positions())
-            .any(|(a, b)| {
-                let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-                d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > limit
-            })
+        let (x, built) = (&self.particles.x, self.list_positions());
+        first_where(x.len(), |i| {
+            let (a, b) = (x[i], built[i]);
+            let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+            d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > limit
+        })
+        .is_some()
     }
 
     /// LIGGGHTS's mesh setup at the first run: neighbours and active edges and corners of
@@ -1365,14 +1466,15 @@ impl Simulation {
             } else {
                 None
             };
-            pair.compute(
-                p,
-                &self.list.pairs,
-                &mut self.history,
-                self.dt,
-                update,
-                virial,
-            );
+            let (pairs, history, dt) = (&self.list.pairs, &mut self.history, self.dt);
+            let incidence = self.incidence.as_ref();
+            let started = std::time::Instant::now();
+            self.accel.install(|| {
+                pair.compute(p, pairs, history, dt, update, virial, incidence);
+            });
+            if self.loop_clock.is_some() {
+                self.stats.pair += started.elapsed().as_secs_f64();
+            }
         }
         if self.computes.iter().any(|c| {
             matches!(
@@ -1431,6 +1533,9 @@ impl Simulation {
         self.atime_step = self.step;
         let started = std::time::Instant::now();
         self.neighbor.cutneighmax = self.liggghts_cutneighmax();
+        if self.accel.fast {
+            self.start_order_record();
+        }
         // setup
         if pre || !self.has_run {
             self.pbc_and_box()?;
@@ -1478,6 +1583,7 @@ impl Simulation {
         self.thermo_line(out, vars)?;
         self.write_dumps(true, vars)?;
         self.loop_clock = Some(std::time::Instant::now());
+        self.stats = RunStats::default();
         for _ in 0..nsteps {
             self.step += 1;
             self.resolve_move_fixes(vars)?;
@@ -1497,11 +1603,18 @@ impl Simulation {
             self.insert_streams(out)?;
             let rebuilt = self.decide();
             if rebuilt {
-                self.pbc_and_box()?;
-                if self.sort_every > 0 && self.step >= self.next_sort {
-                    self.sort_particles();
-                }
-                self.build_neighbors();
+                let mut comm = self.stats.comm;
+                timed(&mut comm, || self.pbc_and_box())?;
+                self.stats.comm = comm;
+                let mut neigh = self.stats.neigh;
+                timed(&mut neigh, || {
+                    if self.sort_every > 0 && self.step >= self.next_sort {
+                        self.sort_particles();
+                    }
+                    self.build_neighbors();
+                });
+                self.stats.neigh = neigh;
+                self.stats.builds += 1;
             }
             self.refresh_moving_meshes(rebuilt);
             self.mesh_stress_phase(StressPhase::PreForce)?;
@@ -1514,22 +1627,29 @@ impl Simulation {
                 self.guard_energy()?;
             }
             self.end_of_step(out, vars)?;
+            let started_output = std::time::Instant::now();
             if self.thermo.due(self.step, last) {
                 self.thermo_line(out, vars)?;
             }
             self.write_dumps(false, vars)?;
             self.periodic_restart()?;
+            self.stats.output += started_output.elapsed().as_secs_f64();
         }
         self.run_bounds = None;
         self.loop_clock = None;
+        if self.accel.fast {
+            self.restore_order();
+        }
         self.atime += (self.step - self.atime_step) as f64 * self.dt;
         self.atime_step = self.step;
+        let loop_time = self.stats_loop_time(started);
         out(&format!(
             "Loop time of {} on 1 procs for {} steps with {} atoms\n\n",
-            crate::script::format::g(started.elapsed().as_secs_f64()),
+            crate::script::format::g(loop_time),
             nsteps,
             self.particles.len()
         ));
+        out(&self.run_statistics(loop_time));
         if self.list.missed > 0 {
             out(&format!(
                 "WARNING: {} neighbour-list entries of particles grown since the run started were \
@@ -1542,6 +1662,57 @@ impl Simulation {
             self.list.missed = 0;
         }
         Ok(())
+    }
+
+    fn stats_loop_time(&self, started: std::time::Instant) -> f64 {
+        started.elapsed().as_secs_f64()
+    }
+
+    /// LIGGGHTS's end-of-run statistics: the time split, per-process counts (one process:
+    /// regolith has no ghost atoms, periodic images are handled in the pair list) and the
+    /// neighbour-list figures; plus the pairs in contact at the last step.
+    fn run_statistics(&self, loop_time: f64) -> String {
+        use crate::script::format::g;
+        let t = &self.stats;
+        let pct = |x: f64| {
+            if loop_time > 0.0 {
+                100.0 * x / loop_time
+            } else {
+                0.0
+            }
+        };
+        let other = (loop_time - t.pair - t.neigh - t.comm - t.output).max(0.0);
+        let mut s = String::new();
+        for (name, v) in [
+            ("Pair ", t.pair),
+            ("Neigh", t.neigh),
+            ("Comm ", t.comm),
+            ("Outpt", t.output),
+            ("Other", other),
+        ] {
+            s.push_str(&format!("{name} time (%) = {} ({})\n", g(v), g(pct(v))));
+        }
+        let n = self.particles.len();
+        let neighs = self.list.pairs.len();
+        let hist = "Histogram: 1 0 0 0 0 0 0 0 0 0\n";
+        s.push_str(&format!("\nNlocal:    {n} ave {n} max {n} min\n{hist}"));
+        s.push_str(&format!("Nghost:    0 ave 0 max 0 min\n{hist}"));
+        s.push_str(&format!(
+            "Neighs:    {neighs} ave {neighs} max {neighs} min\n{hist}\n"
+        ));
+        s.push_str(&format!("Total # of neighbors = {neighs}\n"));
+        let ave = if n > 0 { neighs as f64 / n as f64 } else { 0.0 };
+        s.push_str(&format!("Ave neighs/atom = {}\n", g(ave)));
+        s.push_str(&format!("Neighbor list builds = {}\n", t.builds));
+        s.push_str(&format!("Dangerous builds = {}\n", t.dangerous));
+        if let Some(pair) = self.pair.as_ref() {
+            s.push_str(&format!(
+                "Contacts (touching pairs at the last step) = {}\n",
+                pair.contact_count()
+            ));
+        }
+        s.push('\n');
+        s
     }
 
     fn insert_world(&self) -> (Vec<[f64; 3]>, [bool; 3], bool) {

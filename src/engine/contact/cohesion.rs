@@ -5,7 +5,8 @@
 
 use std::f64::consts::PI;
 
-use super::material::{PairCoeffs, Property};
+use super::material::{Coeffs, Property};
+use super::real::Real;
 use super::Contact;
 
 /// A cohesion model adds an attractive normal force after the normal model ran.
@@ -13,7 +14,7 @@ pub trait CohesionModel: Send + Sync + Copy + 'static {
     /// Doubles of per-contact history the model keeps.
     const HISTORY_LEN: usize = 0;
     /// Add the cohesive force of a touching contact.
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs);
+    fn surfaces_intersect<S: Real>(&self, c: &mut Contact<S>, m: &impl Coeffs<S>);
     /// The coefficients the model needs, with LIGGGHTS's caller name.
     fn properties(&self, out: &mut Vec<(Property, &'static str)>);
 }
@@ -24,13 +25,13 @@ pub struct NoCohesion;
 
 impl CohesionModel for NoCohesion {
     #[inline(always)]
-    fn surfaces_intersect(&self, _: &mut Contact, _: &PairCoeffs) {}
+    fn surfaces_intersect<S: Real>(&self, _: &mut Contact<S>, _: &impl Coeffs<S>) {}
     fn properties(&self, _: &mut Vec<(Property, &'static str)>) {}
 }
 
 /// Add `fn_coh en` to i (and subtract it from j); with `reduce` also add it to Fn.
 #[inline(always)]
-fn apply(c: &mut Contact, fn_coh: f64, reduce: bool) {
+fn apply<S: Real>(c: &mut Contact<S>, fn_coh: S, reduce: bool) {
     if reduce {
         c.normal_force += fn_coh;
     }
@@ -62,16 +63,17 @@ pub struct Sjkr {
 
 impl CohesionModel for Sjkr {
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs) {
+    fn surfaces_intersect<S: Real>(&self, c: &mut Contact<S>, m: &impl Coeffs<S>) {
         let r = c.r;
         let ri = c.radi;
         let rj = c.radj;
         let acont = if c.is_wall {
-            (ri * ri - r * r) * PI
+            (ri * ri - r * r) * S::splat(PI)
         } else {
-            -PI / 4.0 * ((r - ri - rj) * (r + ri - rj) * (r - ri + rj) * (r + ri + rj)) / (r * r)
+            S::splat(-PI / 4.0) * ((r - ri - rj) * (r + ri - rj) * (r - ri + rj) * (r + ri + rj))
+                / (r * r)
         };
-        let fn_coh = -m.cohesion_energy_density * acont;
+        let fn_coh = -m.get(|k| k.cohesion_energy_density) * acont;
         apply(c, fn_coh, self.tangential_reduce);
     }
 
@@ -91,16 +93,16 @@ pub struct Sjkr2 {
 
 impl CohesionModel for Sjkr2 {
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs) {
+    fn surfaces_intersect<S: Real>(&self, c: &mut Contact<S>, m: &impl Coeffs<S>) {
         let r = c.r;
         let ri = c.radi;
         let rj = c.radj;
         let acont = if c.is_wall {
-            PI * 2. * ri * (ri - r)
+            S::splat(PI * 2.) * ri * (ri - r)
         } else {
-            PI * 2. * (2. * ri * rj / (ri + rj)) * (ri + rj - r)
+            S::splat(PI * 2.) * (S::splat(2.) * ri * rj / (ri + rj)) * (ri + rj - r)
         };
-        let fn_coh = -m.cohesion_energy_density * acont;
+        let fn_coh = -m.get(|k| k.cohesion_energy_density) * acont;
         apply(c, fn_coh, self.tangential_reduce);
     }
 
@@ -122,7 +124,7 @@ pub enum AnyCohesion {
 
 impl CohesionModel for AnyCohesion {
     #[inline]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs) {
+    fn surfaces_intersect<S: Real>(&self, c: &mut Contact<S>, m: &impl Coeffs<S>) {
         match self {
             AnyCohesion::Off(_) => {}
             AnyCohesion::Sjkr(x) => x.surfaces_intersect(c, m),
@@ -142,6 +144,7 @@ impl CohesionModel for AnyCohesion {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::engine::contact::material::PairCoeffs;
 
     fn pair(ri: f64, rj: f64, r: f64) -> Contact {
         Contact {

@@ -184,6 +184,31 @@ pub struct PairCoeffs {
     pub phi_f: f64,
 }
 
+/// Where the sub-models read their coefficients from: one [`PairCoeffs`] (one contact, f64)
+/// or [`CoeffLanes`] (one per lane of a batch).
+pub trait Coeffs<S: super::real::Real> {
+    /// The field `f` picks, per lane.
+    fn get<F: Fn(&PairCoeffs) -> f64>(&self, f: F) -> S;
+}
+
+impl Coeffs<f64> for PairCoeffs {
+    #[inline(always)]
+    fn get<F: Fn(&PairCoeffs) -> f64>(&self, f: F) -> f64 {
+        f(self)
+    }
+}
+
+/// The coefficients of the four contacts of a batch.
+#[derive(Debug, Clone, Copy)]
+pub struct CoeffLanes<'a>(pub [&'a PairCoeffs; super::real::LANES]);
+
+impl Coeffs<super::real::F64x4> for CoeffLanes<'_> {
+    #[inline(always)]
+    fn get<F: Fn(&PairCoeffs) -> f64>(&self, f: F) -> super::real::F64x4 {
+        super::real::F64x4([f(self.0[0]), f(self.0[1]), f(self.0[2]), f(self.0[3])])
+    }
+}
+
 /// Per-type-pair coefficient tables, indexed by 1-based atom types.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Material {
@@ -553,6 +578,7 @@ impl Material {
 
     /// Coefficients of the type pair (itype, jtype), both 1-based.
     #[inline(always)]
+    /// Coefficients of the type pair (1-based types).
     pub fn pair(&self, itype: usize, jtype: usize) -> &PairCoeffs {
         &self.pairs[(itype - 1) * self.ntypes + (jtype - 1)]
     }

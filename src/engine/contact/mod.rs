@@ -37,6 +37,7 @@ pub mod cohesion;
 mod golden;
 pub mod material;
 pub mod normal;
+pub mod real;
 pub mod rolling;
 pub mod surface;
 pub mod tangential;
@@ -44,10 +45,11 @@ pub mod tangential;
 use std::f64::consts::PI;
 
 pub use cohesion::{AnyCohesion, CohesionModel, NoCohesion, Sjkr, Sjkr2};
-pub use material::{Material, MaterialInput, PairCoeffs, Property, UnitStyle};
+pub use material::{CoeffLanes, Coeffs, Material, MaterialInput, PairCoeffs, Property, UnitStyle};
 pub use normal::{
     AnyNormal, Hertz, HertzStiffness, Hooke, HookeHysteresis, HookeStiffness, NormalModel,
 };
+pub use real::{F64x4, Real, LANES};
 pub use rolling::{AnyRolling, Cdt, Epsd, Epsd2, Epsd3, NoRolling, RollingModel};
 pub use surface::{DefaultSurface, SurfaceModel};
 pub use tangential::{
@@ -60,76 +62,76 @@ pub type Vec3 = [f64; 3];
 /// One touching contact as the sub-models see it (LIGGGHTS's `SurfacesIntersectData`
 /// together with the two `ForceData` sums). For a wall, j is the wall.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Contact {
+pub struct Contact<S = f64> {
     /// The contact is with a wall (no particle j; reff = radi, meff = mi).
     pub is_wall: bool,
     /// Radius of i (m).
-    pub radi: f64,
+    pub radi: S,
     /// Radius of j (m; 0 for walls).
-    pub radj: f64,
+    pub radj: S,
     /// radi + radj for pairs, radi for walls (m).
-    pub radsum: f64,
+    pub radsum: S,
     /// Centre distance, or centre-wall distance (m).
-    pub r: f64,
+    pub r: S,
     /// 1 / r (1/m).
-    pub rinv: f64,
+    pub rinv: S,
     /// x_i - x_j, or from the wall contact point to the centre of i (m).
-    pub delta: Vec3,
+    pub delta: [S; 3],
     /// Unit normal delta / r, pointing from j (or the wall) to i.
-    pub en: Vec3,
+    pub en: [S; 3],
     /// Overlap (m); for walls the geometry's value until the surface model recomputes it.
-    pub deltan: f64,
+    pub deltan: S,
     /// Mass of i (kg).
-    pub mi: f64,
+    pub mi: S,
     /// Mass of j (kg; 0 for walls).
-    pub mj: f64,
+    pub mj: S,
     /// Effective mass used for damping (kg).
-    pub meff: f64,
+    pub meff: S,
     /// Velocity of i (m/s).
-    pub vi: Vec3,
+    pub vi: [S; 3],
     /// Velocity of j or of the wall (m/s).
-    pub vj: Vec3,
+    pub vj: [S; 3],
     /// Angular velocity of i (rad/s).
-    pub omegai: Vec3,
+    pub omegai: [S; 3],
     /// Angular velocity of j (rad/s; 0 for walls).
-    pub omegaj: Vec3,
+    pub omegaj: [S; 3],
     /// Time step (s).
-    pub dt: f64,
+    pub dt: S,
     /// Advance and store history (LIGGGHTS's `computeflag && shearupdate`; false in setup).
     pub update_history: bool,
     /// Normal relative velocity (vi - vj) . en (m/s, negative when approaching).
-    pub vn: f64,
+    pub vn: S,
     /// Tangential relative velocity of the surfaces at the contact point (m/s).
-    pub vtr: Vec3,
+    pub vtr: [S; 3],
     /// Surface model's rotational term (rad/s), used by rolling models at walls.
-    pub wr: Vec3,
+    pub wr: [S; 3],
     /// Lever arm of i: radi - deltan/2 (m).
-    pub cri: f64,
+    pub cri: S,
     /// Lever arm of j: radj - deltan/2 (m).
-    pub crj: f64,
+    pub crj: S,
     /// Normal force magnitude `Fn` (N, positive repulsive), set by the normal model and
     /// reduced by cohesion with `tangential_reduce`.
-    pub normal_force: f64,
+    pub normal_force: S,
     /// Normal stiffness (N/m).
-    pub kn: f64,
+    pub kn: S,
     /// Tangential stiffness (N/m).
-    pub kt: f64,
+    pub kt: S,
     /// Normal damping coefficient (kg/s).
-    pub gamman: f64,
+    pub gamman: S,
     /// Tangential damping coefficient (kg/s).
-    pub gammat: f64,
+    pub gammat: S,
     /// Force on i (N).
-    pub fi: Vec3,
+    pub fi: [S; 3],
     /// Force on j (N).
-    pub fj: Vec3,
+    pub fj: [S; 3],
     /// Torque on i (N m).
-    pub ti: Vec3,
+    pub ti: [S; 3],
     /// Torque on j (N m).
-    pub tj: Vec3,
+    pub tj: [S; 3],
     /// Tangential force on i set by the tangential model (N).
-    pub ft: Vec3,
+    pub ft: [S; 3],
     /// Rolling torque subtracted from i by the rolling model (N m).
-    pub r_torque: Vec3,
+    pub r_torque: [S; 3],
 }
 
 /// A particle pair, as the pair loop sees it. Particle j is the image that is closest
@@ -167,6 +169,55 @@ pub struct PairInput<'a> {
     pub update_history: bool,
     /// Coefficients of the type pair (itype, jtype).
     pub coeffs: &'a PairCoeffs,
+}
+
+/// Four particle pairs side by side, one per lane, as the batched pair loop gathers them
+/// (the fields of [`PairInput`]; j already shifted to the image nearest i).
+#[derive(Debug, Clone, Copy)]
+pub struct PairLanes {
+    /// Positions of i (m).
+    pub xi: [F64x4; 3],
+    /// Positions of j (m).
+    pub xj: [F64x4; 3],
+    /// Radii of i (m).
+    pub radi: F64x4,
+    /// Radii of j (m).
+    pub radj: F64x4,
+    /// Masses of i (kg).
+    pub mi: F64x4,
+    /// Masses of j (kg).
+    pub mj: F64x4,
+    /// i is frozen (infinite mass in the damping).
+    pub frozen_i: real::M4,
+    /// j is frozen.
+    pub frozen_j: real::M4,
+    /// Velocities of i (m/s).
+    pub vi: [F64x4; 3],
+    /// Velocities of j (m/s).
+    pub vj: [F64x4; 3],
+    /// Angular velocities of i (rad/s).
+    pub omegai: [F64x4; 3],
+    /// Angular velocities of j (rad/s).
+    pub omegaj: [F64x4; 3],
+    /// Time step (s).
+    pub dt: f64,
+    /// Advance and store history (false during setup).
+    pub update_history: bool,
+}
+
+/// What four touching pairs contribute, one per lane (see [`PairOutput`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PairLanesOutput {
+    /// Forces on i (N).
+    pub fi: [F64x4; 3],
+    /// Forces on j (N).
+    pub fj: [F64x4; 3],
+    /// Torques on i (N m).
+    pub ti: [F64x4; 3],
+    /// Torques on j (N m).
+    pub tj: [F64x4; 3],
+    /// Overlaps (m).
+    pub deltan: F64x4,
 }
 
 /// What one pair contributes (all zero and `touching == false` if the spheres do not
@@ -387,9 +438,10 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
         out
     }
 
-    /// Run the sub-models on a prepared contact, history split tangential | rolling.
+    /// Run the sub-models on a prepared contact (one, or a batch of four), history split
+    /// normal | tangential | rolling.
     #[inline(always)]
-    fn intersect(&self, c: &mut Contact, m: &PairCoeffs, history: &mut [f64]) {
+    pub fn intersect<S: Real>(&self, c: &mut Contact<S>, m: &impl Coeffs<S>, history: &mut [S]) {
         DefaultSurface.surfaces_intersect(c);
         let (hn, history) = history.split_at_mut(self.normal.history_len());
         self.normal.surfaces_intersect(c, m, hn);
@@ -458,6 +510,57 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
         }
     }
 
+    /// Forces and torques of four touching particle pairs at once (lane k is the pair
+    /// [`Self::pair_force`] would compute from the k-th inputs, bit for bit); `history`
+    /// holds each lane's values (`history_len()` entries).
+    #[inline(always)]
+    pub fn pair_force_lanes(
+        &self,
+        p: &PairLanes,
+        m: &impl Coeffs<F64x4>,
+        history: &mut [F64x4],
+    ) -> PairLanesOutput {
+        let delx = p.xi[0] - p.xj[0];
+        let dely = p.xi[1] - p.xj[1];
+        let delz = p.xi[2] - p.xj[2];
+        let rsq = delx * delx + dely * dely + delz * delz;
+        let radsum = p.radi + p.radj;
+        let r = rsq.sqrt();
+        let rinv = F64x4::splat(1.0) / r;
+        let en = [delx * rinv, dely * rinv, delz * rinv];
+        let mut meff = p.mi * p.mj / (p.mi + p.mj);
+        meff = F64x4::select(p.frozen_i, p.mj, meff);
+        meff = F64x4::select(p.frozen_j, p.mi, meff);
+        let mut c = Contact {
+            is_wall: false,
+            radi: p.radi,
+            radj: p.radj,
+            radsum,
+            r,
+            rinv,
+            delta: [delx, dely, delz],
+            en,
+            mi: p.mi,
+            mj: p.mj,
+            meff,
+            vi: p.vi,
+            vj: p.vj,
+            omegai: p.omegai,
+            omegaj: p.omegaj,
+            dt: F64x4::splat(p.dt),
+            update_history: p.update_history,
+            ..Contact::default()
+        };
+        self.intersect(&mut c, m, history);
+        PairLanesOutput {
+            fi: c.fi,
+            fj: c.fj,
+            ti: c.ti,
+            tj: c.tj,
+            deltan: c.deltan,
+        }
+    }
+
     /// Force and torque of a primitive wall on one particle; `history` is the particle's
     /// values for this wall. Not touching (gap > 0): zero output and the history is reset,
     /// as `fix wall/gran` does for primitive walls.
@@ -509,7 +612,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
     /// LIGGGHTS's `surfacesClose`: the surfaces no longer touch but are within the contact
     /// distance; resets the tangential and rolling history.
     #[inline]
-    pub fn surfaces_close(&self, history: &mut [f64]) {
+    pub fn surfaces_close<S: Real>(&self, history: &mut [S]) {
         let (hn, history) = history.split_at_mut(self.normal.history_len());
         self.normal.surfaces_close(hn);
         let (ht, hr) = history.split_at_mut(self.tangential.history_len());

@@ -8,7 +8,8 @@
 
 use std::f64::consts::PI;
 
-use super::material::{PairCoeffs, Property};
+use super::material::{Coeffs, Property};
+use super::real::{Mask, Real};
 use super::Contact;
 
 /// A normal model: sets `c.normal_force`, `kn`, `kt`, `gamman`, `gammat` and adds the
@@ -27,12 +28,17 @@ pub trait NormalModel: Send + Sync + Copy + 'static {
         &[]
     }
     /// Compute the normal force of a touching contact; `history` holds this model's values.
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, history: &mut [f64]);
+    fn surfaces_intersect<S: Real>(
+        &self,
+        c: &mut Contact<S>,
+        m: &impl Coeffs<S>,
+        history: &mut [S],
+    );
     /// The surfaces separated (`surfacesClose`): reset the history.
     #[inline(always)]
-    fn surfaces_close(&self, history: &mut [f64]) {
+    fn surfaces_close<S: Real>(&self, history: &mut [S]) {
         for h in history.iter_mut().take(self.history_len()) {
-            *h = 0.0;
+            *h = S::default();
         }
     }
     /// The coefficients the model needs, with LIGGGHTS's caller name, in request order.
@@ -45,7 +51,7 @@ const SQRT_FIVE_OVER_SIX: f64 = 0.9128709291752768557616163046680035565879078249
 
 /// Effective radius: R_i R_j / (R_i + R_j) for pairs, the particle radius at walls (m).
 #[inline(always)]
-pub(crate) fn reff(c: &Contact) -> f64 {
+pub(crate) fn reff<S: Real>(c: &Contact<S>) -> S {
     if c.is_wall {
         c.radi
     } else {
@@ -56,20 +62,20 @@ pub(crate) fn reff(c: &Contact) -> f64 {
 /// Store the results and add the normal force, as every LIGGGHTS normal model does.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn finish(
-    c: &mut Contact,
-    fn_damping: f64,
-    fn_contact: f64,
+fn finish<S: Real>(
+    c: &mut Contact<S>,
+    fn_damping: S,
+    fn_contact: S,
     limit: bool,
-    kn: f64,
-    kt: f64,
-    gn: f64,
-    gt: f64,
+    kn: S,
+    kt: S,
+    gn: S,
+    gt: S,
 ) {
     let mut fnorm = fn_damping + fn_contact;
     // limitForce: no attractive normal force from the damper
-    if limit && fnorm < 0.0 {
-        fnorm = 0.0;
+    if limit {
+        fnorm = S::select(fnorm.lt(S::default()), S::default(), fnorm);
     }
     c.normal_force = fnorm;
     c.kn = kn;
@@ -115,19 +121,21 @@ impl Default for Hertz {
 
 impl NormalModel for Hertz {
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, _: &mut [f64]) {
+    fn surfaces_intersect<S: Real>(&self, c: &mut Contact<S>, m: &impl Coeffs<S>, _: &mut [S]) {
         let reff = reff(c);
         let meff = c.meff;
+        let yeff = m.get(|k| k.yeff);
+        let betaeff = m.get(|k| k.betaeff);
         let sqrtval = (reff * c.deltan).sqrt();
-        let sn = 2. * m.yeff * sqrtval;
-        let st = 8. * m.geff * sqrtval;
-        let kn = 4. / 3. * m.yeff * sqrtval;
+        let sn = S::splat(2.) * yeff * sqrtval;
+        let st = S::splat(8.) * m.get(|k| k.geff) * sqrtval;
+        let kn = S::splat(4. / 3.) * yeff * sqrtval;
         let kt = st;
-        let gamman = -2. * SQRT_FIVE_OVER_SIX * m.betaeff * (sn * meff).sqrt();
+        let gamman = S::splat(-2. * SQRT_FIVE_OVER_SIX) * betaeff * (sn * meff).sqrt();
         let gammat = if self.tangential_damping {
-            -2. * SQRT_FIVE_OVER_SIX * m.betaeff * (st * meff).sqrt()
+            S::splat(-2. * SQRT_FIVE_OVER_SIX) * betaeff * (st * meff).sqrt()
         } else {
-            0.0
+            S::default()
         };
         let fn_damping = -gamman * c.vn;
         let fn_contact = kn * c.deltan;
@@ -179,33 +187,41 @@ impl Default for Hooke {
 
 impl NormalModel for Hooke {
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, _: &mut [f64]) {
+    fn surfaces_intersect<S: Real>(&self, c: &mut Contact<S>, m: &impl Coeffs<S>, _: &mut [S]) {
         let reff = reff(c);
         let meff = c.meff;
+        let yeff = m.get(|k| k.yeff);
         let sqrtval = reff.sqrt();
         let log_e = if self.viscous {
-            let stokes = meff * c.vn / (6.0 * PI * m.fluid_viscosity * reff * reff);
-            m.log_coeff_rest_max + m.critical_stokes / stokes
+            let stokes =
+                meff * c.vn / (S::splat(6.0 * PI) * m.get(|k| k.fluid_viscosity) * reff * reff);
+            m.get(|k| k.log_coeff_rest_max) + m.get(|k| k.critical_stokes) / stokes
         } else {
-            m.coeff_rest_log
+            m.get(|k| k.coeff_rest_log)
         };
-        let cv = m.char_vel;
-        let kn = 16. / 15.
+        let cv = m.get(|k| k.char_vel);
+        let kn = S::splat(16. / 15.)
             * sqrtval
-            * m.yeff
-            * (15. * meff * cv * cv / (16. * sqrtval * m.yeff)).powf(0.2);
+            * yeff
+            * (S::splat(15.) * meff * cv * cv / (S::splat(16.) * sqrtval * yeff)).powf(0.2);
         let mut kt = kn;
         if self.kt_to_kn {
-            kt *= 0.285714286;
+            kt *= S::splat(0.285714286);
         }
         let lsq = log_e * log_e;
-        let gamman = if !self.viscous && lsq.is_infinite() {
-            // e = 0 (regolith extension): the limit of the expression below
-            (4. * meff * kn).sqrt()
+        let four_m_kn = S::splat(4.) * meff * kn;
+        let damped = (four_m_kn * lsq / (lsq + S::splat(PI * PI))).sqrt();
+        let gamman = if self.viscous {
+            damped
         } else {
-            (4. * meff * kn * lsq / (lsq + PI * PI)).sqrt()
+            // e = 0 (regolith extension): the limit of the expression below
+            S::select(lsq.is_infinite(), four_m_kn.sqrt(), damped)
         };
-        let gammat = if self.tangential_damping { gamman } else { 0.0 };
+        let gammat = if self.tangential_damping {
+            gamman
+        } else {
+            S::default()
+        };
         let fn_damping = -gamman * c.vn;
         let fn_contact = kn * c.deltan;
         finish(
@@ -255,17 +271,17 @@ impl Default for HertzStiffness {
 
 impl NormalModel for HertzStiffness {
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, _: &mut [f64]) {
+    fn surfaces_intersect<S: Real>(&self, c: &mut Contact<S>, m: &impl Coeffs<S>, _: &mut [S]) {
         let meff = c.meff;
         let reff = reff(c);
         let polyhertz = (reff * c.deltan).sqrt();
-        let kn = polyhertz * m.kn;
-        let kt = polyhertz * m.kt;
-        let gamman = polyhertz * meff * m.gamman;
+        let kn = polyhertz * m.get(|k| k.kn);
+        let kt = polyhertz * m.get(|k| k.kt);
+        let gamman = polyhertz * meff * m.get(|k| k.gamman);
         let gammat = if self.tangential_damping {
-            polyhertz * meff * m.gammat
+            polyhertz * meff * m.get(|k| k.gammat)
         } else {
-            0.0
+            S::default()
         };
         let fn_damping = -gamman * c.vn;
         let fn_contact = kn * c.deltan;
@@ -313,17 +329,17 @@ impl Default for HookeStiffness {
 
 impl NormalModel for HookeStiffness {
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, _: &mut [f64]) {
+    fn surfaces_intersect<S: Real>(&self, c: &mut Contact<S>, m: &impl Coeffs<S>, _: &mut [S]) {
         let meff = c.meff;
-        let kn = m.kn;
-        let kt = m.kt;
+        let kn = m.get(|k| k.kn);
+        let kt = m.get(|k| k.kt);
         let (gamman, mut gammat) = if self.absolute_damping {
-            (m.gamman_abs, m.gammat_abs)
+            (m.get(|k| k.gamman_abs), m.get(|k| k.gammat_abs))
         } else {
-            (meff * m.gamman, meff * m.gammat)
+            (meff * m.get(|k| k.gamman), meff * m.get(|k| k.gammat))
         };
         if !self.tangential_damping {
-            gammat = 0.0;
+            gammat = S::default();
         }
         let fn_damping = -gamman * c.vn;
         let fn_contact = kn * c.deltan;
@@ -372,67 +388,74 @@ impl NormalModel for HookeHysteresis {
     }
 
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, history: &mut [f64]) {
+    fn surfaces_intersect<S: Real>(
+        &self,
+        c: &mut Contact<S>,
+        m: &impl Coeffs<S>,
+        history: &mut [S],
+    ) {
         let reff = reff(c);
         let meff = c.meff;
         let deltan = c.deltan;
         let log_e = if self.hooke.viscous {
-            let stokes = meff * c.vn / (6.0 * PI * m.fluid_viscosity * reff * reff);
-            m.log_coeff_rest_max + m.critical_stokes / stokes
+            let stokes =
+                meff * c.vn / (S::splat(6.0 * PI) * m.get(|k| k.fluid_viscosity) * reff * reff);
+            m.get(|k| k.log_coeff_rest_max) + m.get(|k| k.critical_stokes) / stokes
         } else {
-            m.coeff_rest_log
+            m.get(|k| k.coeff_rest_log)
         };
+        let yeff = m.get(|k| k.yeff);
         let sqrtval = reff.sqrt();
-        let cv = m.char_vel;
-        let kn = 16. / 15.
+        let cv = m.get(|k| k.char_vel);
+        let kn = S::splat(16. / 15.)
             * sqrtval
-            * m.yeff
-            * (15. * meff * cv * cv / (16. * sqrtval * m.yeff)).powf(0.2);
+            * yeff
+            * (S::splat(15.) * meff * cv * cv / (S::splat(16.) * sqrtval * yeff)).powf(0.2);
         let kt = kn;
-        let gamman = (4. * meff * kn / (1. + (PI / log_e) * (PI / log_e))).sqrt();
+        let pi = S::splat(PI);
+        let gamman =
+            (S::splat(4.) * meff * kn / (S::splat(1.) + (pi / log_e) * (pi / log_e))).sqrt();
         let gammat = if self.hooke.tangential_damping {
             gamman
         } else {
-            0.0
+            S::default()
         };
-        let k2_max = kn * m.kn_to_k2_max;
-        let kc = kn * m.kn_to_kc;
+        let k2_max = kn * m.get(|k| k.kn_to_k2_max);
+        let kc = kn * m.get(|k| k.kn_to_kc);
         // the largest overlap so far (LIGGGHTS raises it even when history is frozen)
-        if deltan > history[0] {
-            history[0] = deltan;
-        }
+        history[0] = S::select(deltan.gt(history[0]), deltan, history[0]);
         let delta_max = history[0];
-        let delta_max_lim = (k2_max / (k2_max - kn)) * m.phi_f * 2. * reff;
-        let adhesive_delta_max = || {
-            0.5 * (deltan
-                + (deltan * deltan + 4. * ((kn + kc) * deltan * delta_max_lim / (k2_max - kn)))
-                    .sqrt())
-        };
-        let f_hys;
-        if delta_max >= delta_max_lim {
-            // beyond the plastic limit: no kn branch any more
-            let f_tmp = k2_max * (deltan - delta_max_lim) + kn * delta_max_lim;
-            if f_tmp >= -kc * deltan {
-                f_hys = f_tmp;
-            } else {
-                f_hys = -kc * deltan;
-                if c.update_history {
-                    history[0] = adhesive_delta_max();
-                }
-            }
-        } else {
-            let k2 = kn + (k2_max - kn) * delta_max / delta_max_lim;
-            let f_tmp = k2 * (deltan - delta_max) + kn * delta_max;
-            if f_tmp >= kn * deltan {
-                f_hys = kn * deltan;
-            } else if f_tmp > -kc * deltan {
-                f_hys = f_tmp;
-            } else {
-                f_hys = -kc * deltan;
-                if c.update_history {
-                    history[0] = adhesive_delta_max();
-                }
-            }
+        let delta_max_lim = (k2_max / (k2_max - kn)) * m.get(|k| k.phi_f) * S::splat(2.) * reff;
+        let adhesive_delta_max = S::splat(0.5)
+            * (deltan
+                + (deltan * deltan
+                    + S::splat(4.) * ((kn + kc) * deltan * delta_max_lim / (k2_max - kn)))
+                    .sqrt());
+        let adhesive = -kc * deltan;
+        // beyond the plastic limit: no kn branch any more
+        let plastic = delta_max.ge(delta_max_lim);
+        let f_plastic = k2_max * (deltan - delta_max_lim) + kn * delta_max_lim;
+        let k2 = kn + (k2_max - kn) * delta_max / delta_max_lim;
+        let f_elastic = k2 * (deltan - delta_max) + kn * delta_max;
+        let loading = kn * deltan;
+        let plastic_keeps = f_plastic.ge(adhesive);
+        let on_loading = f_elastic.ge(loading);
+        let elastic_keeps = f_elastic.gt(adhesive);
+        let f_hys = S::select(
+            plastic,
+            S::select(plastic_keeps, f_plastic, adhesive),
+            S::select(
+                on_loading,
+                loading,
+                S::select(elastic_keeps, f_elastic, adhesive),
+            ),
+        );
+        if c.update_history {
+            // on the adhesive branch deltaMax follows the overlap
+            let adhesion = plastic
+                .and(plastic_keeps.not())
+                .or(plastic.not().and(on_loading.not()).and(elastic_keeps.not()));
+            history[0] = S::select(adhesion, adhesive_delta_max, history[0]);
         }
         let fn_damping = -gamman * c.vn;
         finish(c, fn_damping, f_hys, false, kn, kt, gamman, gammat);
@@ -481,7 +504,7 @@ impl NormalModel for AnyNormal {
     }
 
     #[inline]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, h: &mut [f64]) {
+    fn surfaces_intersect<S: Real>(&self, c: &mut Contact<S>, m: &impl Coeffs<S>, h: &mut [S]) {
         match self {
             AnyNormal::Hertz(n) => n.surfaces_intersect(c, m, h),
             AnyNormal::Hooke(n) => n.surfaces_intersect(c, m, h),
@@ -505,6 +528,7 @@ impl NormalModel for AnyNormal {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::engine::contact::material::PairCoeffs;
 
     fn contact(deltan: f64, vn: f64) -> Contact {
         Contact {

@@ -7,9 +7,10 @@
 //! the component along the contact normal is removed. Effective radius as in the normal
 //! models (the particle radius at walls).
 
-use super::material::{PairCoeffs, Property};
+use super::material::{Coeffs, Property};
 use super::normal::reff;
-use super::{Contact, Vec3};
+use super::real::Real;
+use super::Contact;
 
 /// A rolling model adds a rolling-resistance torque after the tangential model ran.
 pub trait RollingModel: Send + Sync + Copy + 'static {
@@ -21,12 +22,17 @@ pub trait RollingModel: Send + Sync + Copy + 'static {
         Self::HISTORY_LEN
     }
     /// Add the rolling torque of a touching contact; `history` holds this contact's values.
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, history: &mut [f64]);
+    fn surfaces_intersect<S: Real>(
+        &self,
+        c: &mut Contact<S>,
+        m: &impl Coeffs<S>,
+        history: &mut [S],
+    );
     /// The surfaces separated (`surfacesClose`): reset the history.
     #[inline(always)]
-    fn surfaces_close(&self, history: &mut [f64]) {
+    fn surfaces_close<S: Real>(&self, history: &mut [S]) {
         for h in history.iter_mut().take(self.history_len()) {
-            *h = 0.0;
+            *h = S::default();
         }
     }
     /// The coefficients the model needs, with LIGGGHTS's caller name.
@@ -35,7 +41,7 @@ pub trait RollingModel: Send + Sync + Copy + 'static {
 
 /// Torque on i -= Mr, on j += Mr.
 #[inline(always)]
-fn apply(c: &mut Contact, r_torque: Vec3) {
+fn apply<S: Real>(c: &mut Contact<S>, r_torque: [S; 3]) {
     c.r_torque = r_torque;
     for d in 0..3 {
         c.ti[d] -= r_torque[d];
@@ -49,7 +55,7 @@ fn apply(c: &mut Contact, r_torque: Vec3) {
 
 /// `v - en (v . en)`: remove the component along the normal.
 #[inline(always)]
-fn remove_normal(v: Vec3, en: Vec3) -> Vec3 {
+fn remove_normal<S: Real>(v: [S; 3], en: [S; 3]) -> [S; 3] {
     let dot = v[0] * en[0] + v[1] * en[1] + v[2] * en[2];
     let n = [en[0] * dot, en[1] * dot, en[2] * dot];
     [v[0] - n[0], v[1] - n[1], v[2] - n[2]]
@@ -57,7 +63,7 @@ fn remove_normal(v: Vec3, en: Vec3) -> Vec3 {
 
 /// The rolling angular velocity the models use: omega_i - omega_j, or `wr` at walls.
 #[inline(always)]
-fn rolling_omega(c: &Contact) -> Vec3 {
+fn rolling_omega<S: Real>(c: &Contact<S>) -> [S; 3] {
     if c.is_wall {
         c.wr
     } else {
@@ -77,7 +83,7 @@ impl RollingModel for NoRolling {
     const HISTORY_LEN: usize = 0;
 
     #[inline(always)]
-    fn surfaces_intersect(&self, _: &mut Contact, _: &PairCoeffs, _: &mut [f64]) {}
+    fn surfaces_intersect<S: Real>(&self, _: &mut Contact<S>, _: &impl Coeffs<S>, _: &mut [S]) {}
 
     fn properties(&self, _: &mut Vec<(Property, &'static str)>) {}
 }
@@ -94,27 +100,27 @@ impl RollingModel for Cdt {
     const HISTORY_LEN: usize = 0;
 
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, _: &mut [f64]) {
-        let rmu = m.coeff_roll_frict;
+    fn surfaces_intersect<S: Real>(&self, c: &mut Contact<S>, m: &impl Coeffs<S>, _: &mut [S]) {
+        let rmu = m.get(|k| k.coeff_roll_frict);
         let reff = reff(c);
         let w = rolling_omega(c);
         let wmag = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
-        let mut rt = [0.0; 3];
-        if wmag > 0. {
-            if c.is_wall {
-                let fnorm = c.deltan * c.kn;
-                for d in 0..3 {
-                    rt[d] = rmu * fnorm * w[d] / wmag * reff;
-                }
-            } else {
-                let s = rmu * c.kn * c.deltan * reff / wmag;
-                rt = [s * w[0], s * w[1], s * w[2]];
+        let mut rt = [S::default(); 3];
+        if c.is_wall {
+            let fnorm = c.deltan * c.kn;
+            for d in 0..3 {
+                rt[d] = rmu * fnorm * w[d] / wmag * reff;
             }
-            if !self.torsion_torque {
-                rt = remove_normal(rt, c.en);
-            }
+        } else {
+            let s = rmu * c.kn * c.deltan * reff / wmag;
+            rt = [s * w[0], s * w[1], s * w[2]];
         }
-        apply(c, rt);
+        if !self.torsion_torque {
+            rt = remove_normal(rt, c.en);
+        }
+        // no rolling, no torque
+        let rolling = wmag.gt(S::default());
+        apply(c, rt.map(|x| S::select(rolling, x, S::default())));
     }
 
     fn properties(&self, out: &mut Vec<(Property, &'static str)>) {
@@ -127,41 +133,35 @@ impl RollingModel for Cdt {
 /// N m), capped at `mu_r R* |Fn|`, plus viscous damping `eta 2 sqrt(I kr) w` below the cap.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn epsd_torque(
-    c: &Contact,
-    history: &mut [f64],
+fn epsd_torque<S: Real>(
+    c: &Contact<S>,
+    history: &mut [S],
     torsion: bool,
-    rmu: f64,
-    kr: f64,
-    reff: f64,
-    w: Vec3,
-    damping: Option<(f64, f64)>,
-) -> Vec3 {
+    rmu: S,
+    kr: S,
+    reff: S,
+    w: [S; 3],
+    damping: Option<(S, S)>,
+) -> [S; 3] {
     let wr_tot = if torsion { w } else { remove_normal(w, c.en) };
     let s = c.dt * kr;
     let dr = [s * wr_tot[0], s * wr_tot[1], s * wr_tot[2]];
     let mut rt = [history[0] + dr[0], history[1] + dr[1], history[2] + dr[2]];
     let mag = (rt[0] * rt[0] + rt[1] * rt[1] + rt[2] * rt[2]).sqrt();
     let max = c.normal_force.abs() * reff * rmu;
-    let update = c.update_history;
-    if mag > max {
-        let factor = max / mag;
-        for x in rt.iter_mut() {
-            *x *= factor;
-        }
-        if update {
-            history[..3].copy_from_slice(&rt);
-        }
-        // fully mobilised: no dashpot
-    } else {
-        if update {
-            history[..3].copy_from_slice(&rt);
-        }
-        if let Some((visc, r_inertia)) = damping {
-            let r_coef = visc * 2. * (r_inertia * kr).sqrt();
-            for d in 0..3 {
-                rt[d] += r_coef * wr_tot[d];
-            }
+    // fully mobilised: the spring is scaled back to the cap and there is no dashpot
+    let capped = mag.gt(max);
+    let factor = max / mag;
+    for x in rt.iter_mut() {
+        *x = S::select(capped, *x * factor, *x);
+    }
+    if c.update_history {
+        history[..3].copy_from_slice(&rt);
+    }
+    if let Some((visc, r_inertia)) = damping {
+        let r_coef = visc * S::splat(2.) * (r_inertia * kr).sqrt();
+        for d in 0..3 {
+            rt[d] = S::select(capped, rt[d], rt[d] + r_coef * wr_tot[d]);
         }
     }
     rt
@@ -170,8 +170,8 @@ fn epsd_torque(
 /// Rolling moment of inertia LIGGGHTS's epsd and epsd3 use: 1.4 (1.5 in 2d) times the
 /// reduced m R^2 of the pair, or of the particle at a wall (kg m^2).
 #[inline(always)]
-fn rolling_inertia(c: &Contact, radius_wall: f64, two_d: bool) -> f64 {
-    let f = if two_d { 1.5 } else { 1.4 };
+fn rolling_inertia<S: Real>(c: &Contact<S>, radius_wall: S, two_d: bool) -> S {
+    let f = S::splat(if two_d { 1.5 } else { 1.4 });
     if c.is_wall {
         f * c.mi * radius_wall * radius_wall
     } else {
@@ -195,11 +195,16 @@ impl RollingModel for Epsd {
     const HISTORY_LEN: usize = 3;
 
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, history: &mut [f64]) {
+    fn surfaces_intersect<S: Real>(
+        &self,
+        c: &mut Contact<S>,
+        m: &impl Coeffs<S>,
+        history: &mut [S],
+    ) {
         let reff = reff(c);
         let r_inertia = rolling_inertia(c, reff, self.two_d);
-        let rmu = m.coeff_roll_frict;
-        let kr = 2.25 * c.kn * rmu * rmu * reff * reff;
+        let rmu = m.get(|k| k.coeff_roll_frict);
+        let kr = S::splat(2.25) * c.kn * rmu * rmu * reff * reff;
         let w = rolling_omega(c);
         let rt = epsd_torque(
             c,
@@ -209,7 +214,7 @@ impl RollingModel for Epsd {
             kr,
             reff,
             w,
-            Some((m.coeff_roll_visc, r_inertia)),
+            Some((m.get(|k| k.coeff_roll_visc), r_inertia)),
         );
         apply(c, rt);
     }
@@ -231,9 +236,14 @@ impl RollingModel for Epsd2 {
     const HISTORY_LEN: usize = 3;
 
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, history: &mut [f64]) {
+    fn surfaces_intersect<S: Real>(
+        &self,
+        c: &mut Contact<S>,
+        m: &impl Coeffs<S>,
+        history: &mut [S],
+    ) {
         let reff = reff(c);
-        let rmu = m.coeff_roll_frict;
+        let rmu = m.get(|k| k.coeff_roll_frict);
         let kr = c.kt * reff * reff;
         let w = rolling_omega(c);
         let rt = epsd_torque(c, history, self.torsion_torque, rmu, kr, reff, w, None);
@@ -258,11 +268,16 @@ impl RollingModel for Epsd3 {
     const HISTORY_LEN: usize = 3;
 
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, history: &mut [f64]) {
+    fn surfaces_intersect<S: Real>(
+        &self,
+        c: &mut Contact<S>,
+        m: &impl Coeffs<S>,
+        history: &mut [S],
+    ) {
         let reff = reff(c);
         let r_inertia = rolling_inertia(c, c.radi, self.two_d);
-        let rmu = m.coeff_roll_frict;
-        let kr = m.rolling_stiffness * c.kn * rmu * rmu * reff * reff;
+        let rmu = m.get(|k| k.coeff_roll_frict);
+        let kr = m.get(|k| k.rolling_stiffness) * c.kn * rmu * rmu * reff * reff;
         let w = rolling_omega(c);
         let rt = epsd_torque(
             c,
@@ -272,7 +287,7 @@ impl RollingModel for Epsd3 {
             kr,
             reff,
             w,
-            Some((m.coeff_roll_visc, r_inertia)),
+            Some((m.get(|k| k.coeff_roll_visc), r_inertia)),
         );
         apply(c, rt);
     }
@@ -311,7 +326,12 @@ impl RollingModel for AnyRolling {
     }
 
     #[inline]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, history: &mut [f64]) {
+    fn surfaces_intersect<S: Real>(
+        &self,
+        c: &mut Contact<S>,
+        m: &impl Coeffs<S>,
+        history: &mut [S],
+    ) {
         match self {
             AnyRolling::Off(_) => {}
             AnyRolling::Cdt(r) => r.surfaces_intersect(c, m, history),
@@ -335,6 +355,8 @@ impl RollingModel for AnyRolling {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::engine::contact::material::PairCoeffs;
+    use crate::engine::contact::Vec3;
 
     fn contact(update: bool) -> Contact {
         Contact {

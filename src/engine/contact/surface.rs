@@ -2,13 +2,14 @@
 //! the contact point, lever arms), computed before any force model runs. Only LIGGGHTS's
 //! `surface default` (spheres) exists in regolith.
 
+use super::real::Real;
 use super::Contact;
 
 /// A surface model fills the kinematic fields of a [`Contact`]: `vn`, `vtr`, `wr`, `cri`,
 /// `crj` and the recomputed `deltan`.
 pub trait SurfaceModel: Send + Sync {
     /// Compute the contact kinematics from positions, radii and velocities.
-    fn surfaces_intersect(&self, c: &mut Contact);
+    fn surfaces_intersect<S: Real>(&self, c: &mut Contact<S>);
 }
 
 /// `surface default`: spheres; the contact point lies half the overlap inside each surface.
@@ -17,7 +18,7 @@ pub struct DefaultSurface;
 
 impl SurfaceModel for DefaultSurface {
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact) {
+    fn surfaces_intersect<S: Real>(&self, c: &mut Contact<S>) {
         let [enx, eny, enz] = c.en;
         // relative velocity of the centres, split into normal and tangential parts
         let vr1 = c.vi[0] - c.vj[0];
@@ -34,14 +35,14 @@ impl SurfaceModel for DefaultSurface {
         let (wr1, wr2, wr3);
         if c.is_wall {
             // the lever arm uses the overlap the wall geometry passed in, not the recomputed one
-            let cr = c.radi - 0.5 * c.deltan;
+            let cr = c.radi - S::splat(0.5) * c.deltan;
             wr1 = cr * c.omegai[0] * rinv;
             wr2 = cr * c.omegai[1] * rinv;
             wr3 = cr * c.omegai[2] * rinv;
             c.cri = cr;
         } else {
-            let cri = c.radi - 0.5 * deltan;
-            let crj = c.radj - 0.5 * deltan;
+            let cri = c.radi - S::splat(0.5) * deltan;
+            let crj = c.radj - S::splat(0.5) * deltan;
             wr1 = (cri * c.omegai[0] + crj * c.omegaj[0]) * rinv;
             wr2 = (cri * c.omegai[1] + crj * c.omegaj[1]) * rinv;
             wr3 = (cri * c.omegai[2] + crj * c.omegaj[2]) * rinv;

@@ -9,8 +9,9 @@
 //! `-gammat vtr` is added to the spring force, so the total tangential force can exceed
 //! `mu |Fn|` by up to `gammat |vtr|`. [`HistoryTotalCap`] instead caps the total.
 
-use super::material::{PairCoeffs, Property};
-use super::{Contact, Vec3};
+use super::material::{Coeffs, Property};
+use super::real::{Mask, Real};
+use super::Contact;
 
 /// A tangential model adds the friction force at the contact point and its torques.
 pub trait TangentialModel: Send + Sync + Copy + 'static {
@@ -22,12 +23,17 @@ pub trait TangentialModel: Send + Sync + Copy + 'static {
         Self::HISTORY_LEN
     }
     /// Add the friction force of a touching contact; `history` holds this contact's values.
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, history: &mut [f64]);
+    fn surfaces_intersect<S: Real>(
+        &self,
+        c: &mut Contact<S>,
+        m: &impl Coeffs<S>,
+        history: &mut [S],
+    );
     /// The surfaces separated (`surfacesClose`): reset the history.
     #[inline(always)]
-    fn surfaces_close(&self, history: &mut [f64]) {
+    fn surfaces_close<S: Real>(&self, history: &mut [S]) {
         for h in history.iter_mut().take(self.history_len()) {
-            *h = 0.0;
+            *h = S::default();
         }
     }
     /// The coefficients the model needs, with LIGGGHTS's caller name.
@@ -37,7 +43,7 @@ pub trait TangentialModel: Send + Sync + Copy + 'static {
 /// Add the tangential force `ft` on i (and `-ft` on j) with the torques it exerts about the
 /// centres, lever arms `cri`, `crj` along `-en` (LIGGGHTS's torque arithmetic).
 #[inline(always)]
-fn add_force_and_torques(c: &mut Contact, ft: Vec3) {
+fn add_force_and_torques<S: Real>(c: &mut Contact<S>, ft: [S; 3]) {
     let [enx, eny, enz] = c.en;
     let tor1 = eny * ft[2] - enz * ft[1];
     let tor2 = enz * ft[0] - enx * ft[2];
@@ -71,7 +77,7 @@ fn add_force_and_torques(c: &mut Contact, ft: Vec3) {
 
 /// Advance the shear displacement by `vtr dt` and project it into the tangent plane.
 #[inline(always)]
-fn advance_shear(c: &Contact, shear: &mut [f64]) {
+fn advance_shear<S: Real>(c: &Contact<S>, shear: &mut [S]) {
     let [enx, eny, enz] = c.en;
     let dt = c.dt;
     shear[0] += c.vtr[0] * dt;
@@ -91,7 +97,7 @@ impl TangentialModel for NoTangential {
     const HISTORY_LEN: usize = 0;
 
     #[inline(always)]
-    fn surfaces_intersect(&self, _: &mut Contact, _: &PairCoeffs, _: &mut [f64]) {}
+    fn surfaces_intersect<S: Real>(&self, _: &mut Contact<S>, _: &impl Coeffs<S>, _: &mut [S]) {}
 
     fn properties(&self, _: &mut Vec<(Property, &'static str)>) {}
 }
@@ -105,16 +111,16 @@ impl TangentialModel for NoHistory {
     const HISTORY_LEN: usize = 0;
 
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, _: &mut [f64]) {
-        let xmu = m.coeff_frict;
+    fn surfaces_intersect<S: Real>(&self, c: &mut Contact<S>, m: &impl Coeffs<S>, _: &mut [S]) {
+        let xmu = m.get(|k| k.coeff_frict);
         let v = c.vtr;
         let vrel = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
         let ft_friction = xmu * c.normal_force.abs();
-        let gamma = if ft_friction < c.gammat * vrel {
-            ft_friction / vrel
-        } else {
-            c.gammat
-        };
+        let gamma = S::select(
+            ft_friction.lt(c.gammat * vrel),
+            ft_friction / vrel,
+            c.gammat,
+        );
         add_force_and_torques(c, [-gamma * v[0], -gamma * v[1], -gamma * v[2]]);
     }
 
@@ -132,7 +138,12 @@ impl TangentialModel for History {
     const HISTORY_LEN: usize = 3;
 
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, history: &mut [f64]) {
+    fn surfaces_intersect<S: Real>(
+        &self,
+        c: &mut Contact<S>,
+        m: &impl Coeffs<S>,
+        history: &mut [S],
+    ) {
         let shear = &mut history[..3];
         let update = c.update_history;
         if update {
@@ -140,28 +151,25 @@ impl TangentialModel for History {
         }
         let shrmag = (shear[0] * shear[0] + shear[1] * shear[1] + shear[2] * shear[2]).sqrt();
         let kt = c.kt;
-        let xmu = m.coeff_frict;
-        let mut ft = [-(kt * shear[0]), -(kt * shear[1]), -(kt * shear[2])];
+        let xmu = m.get(|k| k.coeff_frict);
+        let spring = [-(kt * shear[0]), -(kt * shear[1]), -(kt * shear[2])];
         let ft_shear = kt * shrmag;
         let ft_friction = xmu * c.normal_force.abs();
-        if ft_shear > ft_friction {
-            if shrmag != 0.0 {
-                let ratio = ft_friction / ft_shear;
-                for f in ft.iter_mut() {
-                    *f *= ratio;
-                }
-                if update {
-                    for d in 0..3 {
-                        shear[d] = -ft[d] / kt;
-                    }
-                }
-            } else {
-                ft = [0.0; 3];
-            }
-        } else {
-            let gammat = c.gammat;
+        // beyond the Coulomb limit the spring is scaled back (no damping); a zero spring
+        // gives no force
+        let capped = ft_shear.gt(ft_friction);
+        let sliding = capped.and(shrmag.ne(S::default()));
+        let ratio = ft_friction / ft_shear;
+        let gammat = c.gammat;
+        let mut ft = [S::default(); 3];
+        for d in 0..3 {
+            let scaled = spring[d] * ratio;
+            let damped = spring[d] - gammat * c.vtr[d];
+            ft[d] = S::select(capped, S::select(sliding, scaled, S::default()), damped);
+        }
+        if update {
             for d in 0..3 {
-                ft[d] -= gammat * c.vtr[d];
+                shear[d] = S::select(sliding, -ft[d] / kt, shear[d]);
             }
         }
         add_force_and_torques(c, ft);
@@ -185,7 +193,12 @@ impl TangentialModel for HistoryTotalCap {
     const HISTORY_LEN: usize = 3;
 
     #[inline(always)]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, history: &mut [f64]) {
+    fn surfaces_intersect<S: Real>(
+        &self,
+        c: &mut Contact<S>,
+        m: &impl Coeffs<S>,
+        history: &mut [S],
+    ) {
         let shear = &mut history[..3];
         let update = c.update_history;
         if update {
@@ -200,16 +213,16 @@ impl TangentialModel for HistoryTotalCap {
             -(kt * shear[2]) - damp[2],
         ];
         let ftmag = (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]).sqrt();
-        let ft_friction = m.coeff_frict * c.normal_force.abs();
-        if ftmag > ft_friction {
-            let ratio = ft_friction / ftmag;
-            for f in ft.iter_mut() {
-                *f *= ratio;
-            }
-            if update && kt > 0.0 {
-                for d in 0..3 {
-                    shear[d] = -(ft[d] + damp[d]) / kt;
-                }
+        let ft_friction = m.get(|k| k.coeff_frict) * c.normal_force.abs();
+        let capped = ftmag.gt(ft_friction);
+        let ratio = ft_friction / ftmag;
+        for f in ft.iter_mut() {
+            *f = S::select(capped, *f * ratio, *f);
+        }
+        if update {
+            let reset = capped.and(kt.gt(S::default()));
+            for d in 0..3 {
+                shear[d] = S::select(reset, -(ft[d] + damp[d]) / kt, shear[d]);
             }
         }
         add_force_and_torques(c, ft);
@@ -246,7 +259,12 @@ impl TangentialModel for AnyTangential {
     }
 
     #[inline]
-    fn surfaces_intersect(&self, c: &mut Contact, m: &PairCoeffs, history: &mut [f64]) {
+    fn surfaces_intersect<S: Real>(
+        &self,
+        c: &mut Contact<S>,
+        m: &impl Coeffs<S>,
+        history: &mut [S],
+    ) {
         match self {
             AnyTangential::Off(_) => {}
             AnyTangential::NoHistory(t) => t.surfaces_intersect(c, m, history),
@@ -268,6 +286,8 @@ impl TangentialModel for AnyTangential {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::engine::contact::material::PairCoeffs;
+    use crate::engine::contact::Vec3;
 
     fn contact(update: bool) -> Contact {
         Contact {

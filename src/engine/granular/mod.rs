@@ -10,9 +10,12 @@ use crate::engine::contact::{
     AnyContactModel, CohesionModel, ContactKernel, ContactModel, Material, MaterialInput,
     NormalModel, PairInput, RollingModel, TangentialModel, WallInput,
 };
-use crate::engine::neighbor::Pair;
+use crate::engine::neighbor::{Incidence, Pair};
 use crate::engine::particles::Particles;
 use crate::engine::sim::PairInteraction;
+
+pub mod batch;
+pub use batch::PairResult;
 
 pub use crate::engine::contact::ModelSelection as Selection;
 
@@ -26,30 +29,20 @@ pub struct PairGran<N, T, C, R> {
     pub frozen: u32,
     /// Per-pair results of the current step (reused between steps).
     pub results: Vec<PairResult>,
+    /// Indices of the touching list entries of the current step (reused between steps).
+    pub touching: Vec<u32>,
+    /// The particles packed for the kernel (reused between steps).
+    pub packed: batch::Packed,
+    /// Per list entry, its place among the touching entries (u32::MAX: apart).
+    pub slot: Vec<u32>,
     /// The largest overlap of the last evaluation: (ratio to the smaller radius, i, j).
     pub worst: Option<(f64, u32, u32)>,
 }
 
-/// What one listed pair contributes: forces (N) and torques (N m) on both particles.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct PairResult {
-    /// The particles touch.
-    pub touching: bool,
-    /// Force on i (N).
-    pub fi: [f64; 3],
-    /// Force on j (N).
-    pub fj: [f64; 3],
-    /// Torque on i (N m).
-    pub ti: [f64; 3],
-    /// Torque on j (N m).
-    pub tj: [f64; 3],
-    /// Overlap as a fraction of the smaller radius (for the blow-up guard).
-    pub overlap_ratio: f64,
-}
-
 /// Below this many listed pairs the contact loop stays on one thread (the fork-join cost of
-/// a parallel pass is larger than the work); `REGOLITH_PARALLEL_PAIRS` overrides it.
-fn parallel_pairs() -> usize {
+/// a parallel pass is larger than the work); `REGOLITH_PARALLEL_PAIRS` overrides it. Either
+/// way the sums are the same.
+pub fn parallel_pairs() -> usize {
     static LIMIT: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
     *LIMIT.get_or_init(|| {
         std::env::var("REGOLITH_PARALLEL_PAIRS")
@@ -60,13 +53,6 @@ fn parallel_pairs() -> usize {
 }
 
 impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> PairGran<N, T, C, R> {
-    #[inline(always)]
-    fn note_overlap(&mut self, pair: &Pair, ratio: f64) {
-        if self.worst.is_none_or(|w| ratio > w.0) {
-            self.worst = Some((ratio, pair.i, pair.j));
-        }
-    }
-
     /// The contribution of one listed pair; `h` is its history.
     #[inline(always)]
     fn pair_result(
@@ -76,7 +62,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         h: &mut [f64],
         dt: f64,
         update: bool,
-    ) -> PairResult {
+    ) -> Option<PairResult> {
         let (i, j) = (pair.i as usize, pair.j as usize);
         let xi = p.x[i];
         let xj = [
@@ -89,7 +75,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
         let radsum = radi + radj;
         if !(del[0] * del[0] + del[1] * del[1] + del[2] * del[2] < radsum * radsum) {
-            return PairResult::default();
+            return None;
         }
         let input = PairInput {
             xi,
@@ -110,16 +96,15 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         };
         let out = self.model.pair_force(&input, h);
         if !out.touching {
-            return PairResult::default();
+            return None;
         }
-        PairResult {
-            touching: true,
+        Some(PairResult {
             fi: out.fi,
             fj: out.fj,
             ti: out.ti,
             tj: out.tj,
             overlap_ratio: out.deltan / input.radi.min(input.radj),
-        }
+        })
     }
 }
 
@@ -136,6 +121,10 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
 
     fn worst_overlap(&self) -> Option<(f64, u32, u32)> {
         self.worst
+    }
+
+    fn contact_count(&self) -> usize {
+        self.touching.len()
     }
 
     fn contacts(
@@ -166,7 +155,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             } else {
                 self.pair_result(p, pair, &mut h, dt, false)
             };
-            if r.touching {
+            if let Some(r) = r {
                 out.push((k, r.fi, r.ti, r.fj, r.tj));
             }
         }
@@ -180,92 +169,274 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         history: &mut [f64],
         dt: f64,
         update: bool,
-        mut virial: Option<&mut [[f64; 6]]>,
+        virial: Option<&mut [[f64; 6]]>,
+        incidence: Option<&Incidence>,
     ) {
-        let width = self.model.history_len();
-        self.worst = None;
-        if pairs.len() < parallel_pairs() || rayon::current_num_threads() == 1 {
-            // one thread: compute and add each pair in list order (the same sums as below)
-            let mut empty: [f64; 0] = [];
-            for (k, pair) in pairs.iter().enumerate() {
-                let h = if width == 0 {
-                    &mut empty[..]
-                } else {
-                    &mut history[k * width..(k + 1) * width]
-                };
-                let res = self.pair_result(p, pair, h, dt, update);
-                if res.touching {
-                    add_pair(p, pair, &res, virial.as_deref_mut());
-                    self.note_overlap(pair, res.overlap_ratio);
-                }
-            }
+        self.packed.fill(p, self.frozen);
+        let threads = rayon::current_num_threads();
+        if let Some(inc) = incidence.filter(|i| threads > 1 && i.first.len() == p.len() + 1) {
+            self.compute_gather(p, pairs, history, dt, update, virial, inc);
             return;
         }
+        let kernel = batch::Kernel {
+            model: &self.model,
+            material: &self.material,
+            ntypes: self.material.ntypes(),
+            dt,
+            update,
+        };
+        let packed = &self.packed;
+        let mut touching = std::mem::take(&mut self.touching);
+        touching.clear();
+        let mut sink = Accumulate {
+            x: &p.x,
+            f: &mut p.f,
+            torque: &mut p.torque,
+            virial,
+            worst: None,
+        };
+        // compute the touching pairs in batches and add each in list order
+        batch::touching_entries(packed, pairs, 0, &mut touching);
+        kernel.run(packed, &p.kind, pairs, &touching, history, &mut sink);
+        self.worst = sink.worst;
+        self.touching = touching;
+    }
+}
+
+impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> PairGran<N, T, C, R> {
+    /// The parallel pair loop: touching entries found and computed in parallel parts of the
+    /// list, then each particle sums its own contacts in list order (the sums of a
+    /// sequential pass, for any number of threads).
+    #[allow(clippy::too_many_arguments)]
+    fn compute_gather(
+        &mut self,
+        p: &mut Particles,
+        pairs: &[Pair],
+        history: &mut [f64],
+        dt: f64,
+        update: bool,
+        virial: Option<&mut [[f64; 6]]>,
+        inc: &Incidence,
+    ) {
+        let kernel = batch::Kernel {
+            model: &self.model,
+            material: &self.material,
+            ntypes: self.material.ntypes(),
+            dt,
+            update,
+        };
+        let packed = &self.packed;
+        let threads = rayon::current_num_threads();
+        let width = self.model.history_len();
+        let chunk = pairs.len().div_ceil(threads * 8).max(2048);
+        let parts: Vec<Vec<u32>> = pairs
+            .par_chunks(chunk)
+            .enumerate()
+            .map(|(c, part)| {
+                let mut t = Vec::new();
+                batch::touching_entries(packed, part, c * chunk, &mut t);
+                t
+            })
+            .collect();
+        let total: usize = parts.iter().map(Vec::len).sum();
         let mut results = std::mem::take(&mut self.results);
         results.clear();
-        results.resize(pairs.len(), PairResult::default());
-        // contact mechanics per pair are independent: compute them in parallel
+        results.resize(total, PairResult::default());
+        let mut slot = std::mem::take(&mut self.slot);
+        slot.clear();
+        slot.resize(pairs.len(), u32::MAX);
+        // each part owns its results, its entries' history and their slots
         {
-            let this = &*self;
-            let pr: &Particles = p;
-            if width == 0 {
-                results
-                    .par_iter_mut()
-                    .zip(pairs.par_iter())
-                    .for_each(|(res, pair)| *res = this.pair_result(pr, pair, &mut [], dt, update));
-            } else {
-                results
-                    .par_iter_mut()
-                    .zip(pairs.par_iter())
-                    .zip(history.par_chunks_mut(width))
-                    .for_each(|((res, pair), h)| *res = this.pair_result(pr, pair, h, dt, update));
+            let mut jobs = Vec::with_capacity(parts.len());
+            let (mut rest_r, mut rest_h, mut rest_s) =
+                (&mut results[..], &mut history[..], &mut slot[..]);
+            let mut offset = 0u32;
+            for (c, part) in parts.iter().enumerate() {
+                let (r, tail) = std::mem::take(&mut rest_r).split_at_mut(part.len());
+                rest_r = tail;
+                let len = chunk.min(pairs.len() - c * chunk);
+                let (h, tail) = std::mem::take(&mut rest_h).split_at_mut(len * width);
+                rest_h = tail;
+                let (sl, tail) = std::mem::take(&mut rest_s).split_at_mut(len);
+                rest_s = tail;
+                jobs.push((c * chunk, part, r, h, sl, offset));
+                offset += part.len() as u32;
+            }
+            let kinds = &p.kind;
+            jobs.into_par_iter()
+                .for_each(|(base, part, out, h, sl, offset)| {
+                    let local: Vec<u32> = part.iter().map(|&k| k - base as u32).collect();
+                    for (n, &k) in local.iter().enumerate() {
+                        sl[k as usize] = offset + n as u32;
+                    }
+                    let mut collect = Collect { out, n: 0 };
+                    kernel.run(packed, kinds, &pairs[base..], &local, h, &mut collect);
+                });
+        }
+        // the worst overlap, first in list order among equals (as the sequential pass)
+        let mut worst: Option<(f64, u32, u32)> = None;
+        for (&k, res) in parts.iter().flatten().zip(&results) {
+            if worst.is_none_or(|w| res.overlap_ratio > w.0) {
+                let pair = &pairs[k as usize];
+                worst = Some((res.overlap_ratio, pair.i, pair.j));
             }
         }
-        // accumulation in list order: the same sums for any number of threads
-        for (res, pair) in results.iter().zip(pairs) {
-            if res.touching {
-                add_pair(p, pair, res, virial.as_deref_mut());
-                self.note_overlap(pair, res.overlap_ratio);
+        self.worst = worst;
+        // each particle adds its contacts: as second particle, then its own block
+        let (slot_r, results_r) = (&slot, &results);
+        let x = &p.x;
+        let per = p.len().div_ceil(threads * 8).max(256);
+        let add = |i: usize, f: &mut [f64; 3], t: &mut [f64; 3], w: Option<&mut [f64; 6]>| {
+            let mut w = w;
+            let seconds =
+                &inc.second[inc.second_start[i] as usize..inc.second_start[i + 1] as usize];
+            for &e in seconds {
+                let s = slot_r[e as usize];
+                if s != u32::MAX {
+                    let r = &results_r[s as usize];
+                    for d in 0..3 {
+                        f[d] += r.fj[d];
+                        t[d] += r.tj[d];
+                    }
+                    if let Some(w) = w.as_deref_mut() {
+                        add_virial(x, &pairs[e as usize], r, w);
+                    }
+                }
+            }
+            for e in inc.first[i]..inc.first[i + 1] {
+                let s = slot_r[e as usize];
+                if s != u32::MAX {
+                    let r = &results_r[s as usize];
+                    for d in 0..3 {
+                        f[d] += r.fi[d];
+                        t[d] += r.ti[d];
+                    }
+                    if let Some(w) = w.as_deref_mut() {
+                        add_virial(x, &pairs[e as usize], r, w);
+                    }
+                }
+            }
+        };
+        match virial {
+            Some(vir) => {
+                p.f.par_chunks_mut(per)
+                    .zip(p.torque.par_chunks_mut(per))
+                    .zip(vir.par_chunks_mut(per))
+                    .enumerate()
+                    .for_each(|(c, ((f, t), w))| {
+                        for k in 0..f.len() {
+                            add(c * per + k, &mut f[k], &mut t[k], Some(&mut w[k]));
+                        }
+                    })
+            }
+            None => {
+                p.f.par_chunks_mut(per)
+                    .zip(p.torque.par_chunks_mut(per))
+                    .enumerate()
+                    .for_each(|(c, (f, t))| {
+                        for k in 0..f.len() {
+                            add(c * per + k, &mut f[k], &mut t[k], None);
+                        }
+                    })
             }
         }
         self.results = results;
+        self.slot = slot;
+        self.touching.clear();
+        for part in &parts {
+            self.touching.extend_from_slice(part);
+        }
+    }
+}
+
+/// Half a pair's virial (LIGGGHTS's `ev_tally_xyz` with del = x_i - x_j and F the force
+/// on i) added to `w`.
+#[inline(always)]
+fn add_virial(x: &[[f64; 3]], pair: &Pair, res: &PairResult, w: &mut [f64; 6]) {
+    let (i, j) = (pair.i as usize, pair.j as usize);
+    let del = [
+        x[i][0] - (x[j][0] + pair.shift[0]),
+        x[i][1] - (x[j][1] + pair.shift[1]),
+        x[i][2] - (x[j][2] + pair.shift[2]),
+    ];
+    let fi = res.fi;
+    let v = [
+        del[0] * fi[0],
+        del[1] * fi[1],
+        del[2] * fi[2],
+        del[0] * fi[1],
+        del[0] * fi[2],
+        del[1] * fi[2],
+    ];
+    for k in 0..6 {
+        w[k] += 0.5 * v[k];
+    }
+}
+
+/// Adds each pair's result to its particles, in the order given (the exact path's sums).
+struct Accumulate<'a, 'b> {
+    x: &'a [[f64; 3]],
+    f: &'a mut [[f64; 3]],
+    torque: &'a mut [[f64; 3]],
+    virial: Option<&'b mut [[f64; 6]]>,
+    worst: Option<(f64, u32, u32)>,
+}
+
+impl batch::Sink for Accumulate<'_, '_> {
+    #[inline(always)]
+    fn take(&mut self, _: usize, pair: &Pair, res: &PairResult) {
+        add_pair(
+            self.x,
+            self.f,
+            self.torque,
+            pair,
+            res,
+            self.virial.as_deref_mut(),
+        );
+        let ratio = res.overlap_ratio;
+        if self.worst.is_none_or(|w| ratio > w.0) {
+            self.worst = Some((ratio, pair.i, pair.j));
+        }
+    }
+}
+
+/// Stores each result in turn (a parallel part's results, added up later).
+struct Collect<'a> {
+    out: &'a mut [PairResult],
+    n: usize,
+}
+
+impl batch::Sink for Collect<'_> {
+    #[inline(always)]
+    fn take(&mut self, _: usize, _: &Pair, res: &PairResult) {
+        self.out[self.n] = *res;
+        self.n += 1;
     }
 }
 
 /// Add one pair's forces and torques to its two particles, and half its virial to each
-/// when asked (LIGGGHTS's `ev_tally_xyz` with del = x_i - x_j and F the force on i).
+/// when asked.
 #[inline(always)]
-fn add_pair(p: &mut Particles, pair: &Pair, res: &PairResult, virial: Option<&mut [[f64; 6]]>) {
+fn add_pair(
+    x: &[[f64; 3]],
+    f: &mut [[f64; 3]],
+    torque: &mut [[f64; 3]],
+    pair: &Pair,
+    res: &PairResult,
+    virial: Option<&mut [[f64; 6]]>,
+) {
     let (i, j) = (pair.i as usize, pair.j as usize);
     if let Some(w) = virial {
-        let del = [
-            p.x[i][0] - (p.x[j][0] + pair.shift[0]),
-            p.x[i][1] - (p.x[j][1] + pair.shift[1]),
-            p.x[i][2] - (p.x[j][2] + pair.shift[2]),
-        ];
-        let f = res.fi;
-        let v = [
-            del[0] * f[0],
-            del[1] * f[1],
-            del[2] * f[2],
-            del[0] * f[1],
-            del[0] * f[2],
-            del[1] * f[2],
-        ];
-        for k in 0..6 {
-            w[i][k] += 0.5 * v[k];
-        }
-        for k in 0..6 {
-            w[j][k] += 0.5 * v[k];
-        }
+        add_virial(x, pair, res, &mut w[i]);
+        add_virial(x, pair, res, &mut w[j]);
     }
     for d in 0..3 {
-        p.f[i][d] += res.fi[d];
-        p.torque[i][d] += res.ti[d];
+        f[i][d] += res.fi[d];
+        torque[i][d] += res.ti[d];
     }
     for d in 0..3 {
-        p.f[j][d] += res.fj[d];
-        p.torque[j][d] += res.tj[d];
+        f[j][d] += res.fj[d];
+        torque[j][d] += res.tj[d];
     }
 }
 
@@ -299,6 +470,9 @@ pub fn build(
                 material: self.0,
                 frozen: self.1,
                 results: Vec::new(),
+                touching: Vec::new(),
+                packed: batch::Packed::default(),
+                slot: Vec::new(),
                 worst: None,
             })
         }
@@ -458,59 +632,108 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Wall
     ) {
         let w = self.model.history_len();
         if self.near_build != Some(list.0) {
-            // refresh the wall's neighbour list; particles leaving it are apart: reset them
-            let old = std::mem::take(&mut self.near);
+            // refresh the wall's neighbour list; particles off it are apart: their history
+            // is reset (found by a scan, so particles reordered since the last list build
+            // are treated alike)
+            self.near.clear();
             for i in 0..p.len() {
                 if p.mask[i] & group != 0 && self.shape.resolve(p.x[i], p.radius[i]).0 < list.1 {
                     self.near.push(i as u32);
                 }
             }
             if w > 0 {
-                for &i in &old {
-                    let i = i as usize;
-                    if i < p.len() && self.near.binary_search(&(i as u32)).is_err() {
-                        history[i * w..(i + 1) * w]
-                            .iter_mut()
-                            .for_each(|v| *v = 0.0);
+                let mut next = self.near.iter().peekable();
+                for (i, h) in history.chunks_mut(w).enumerate().take(p.len()) {
+                    if next.peek().is_some_and(|&&k| k as usize == i) {
+                        next.next();
+                    } else if h.iter().any(|v| *v != 0.0) {
+                        h.fill(0.0);
                     }
                 }
             }
             self.near_build = Some(list.0);
         }
-        for k in 0..self.near.len() {
-            let i = self.near[k] as usize;
-            let (gap, to_wall) = self.shape.resolve(p.x[i], p.radius[i]);
-            let h = &mut history[i * w..(i + 1) * w];
+        // each particle near the wall is its own contact: computed on the engine's
+        // threads when there are many, each writing only its own force and history
+        let this = &*self;
+        let (x, v, omega, radius, mass, kind) = (&p.x, &p.v, &p.omega, &p.radius, &p.mass, &p.kind);
+        let contact = |i: usize, h: &mut [f64]| -> Option<([f64; 3], [f64; 3])> {
+            let (gap, to_wall) = this.shape.resolve(x[i], radius[i]);
             if !(gap <= 0.0) {
                 // apart: the history is reset (written only if it holds something)
                 if h.iter().any(|v| *v != 0.0) {
                     h.iter_mut().for_each(|v| *v = 0.0);
                 }
-                continue;
+                return None;
             }
             let input = WallInput {
-                x: p.x[i],
+                x: x[i],
                 gap,
                 to_wall,
-                radius: p.radius[i],
-                mass: p.mass[i],
-                v: p.v[i],
-                omega: p.omega[i],
-                v_wall: self.shape.surface_velocity(self.shear, p.x[i]),
+                radius: radius[i],
+                mass: mass[i],
+                v: v[i],
+                omega: omega[i],
+                v_wall: this.shape.surface_velocity(this.shear, x[i]),
                 dt,
                 update_history: update,
-                coeffs: self.material.pair(p.kind[i] as usize, self.wall_type),
+                coeffs: this.material.pair(kind[i] as usize, this.wall_type),
             };
-            let out = self
-                .model
-                .wall_force(&input, &mut history[i * w..(i + 1) * w]);
-            if out.touching {
+            let out = this.model.wall_force(&input, h);
+            out.touching.then_some((out.f, out.t))
+        };
+        let results: Vec<Option<([f64; 3], [f64; 3])>> =
+            if crate::engine::integrate::parallel(self.near.len()) {
+                let hist = SharedSlice(history.as_mut_ptr(), history.len());
+                self.near
+                    .par_iter()
+                    .with_min_len(512)
+                    .map(|&i| {
+                        let i = i as usize;
+                        // SAFETY: `near` holds distinct indices, so each call writes its
+                        // own disjoint w-wide piece of the history
+                        let h = unsafe { hist.piece(i * w, w) };
+                        contact(i, h)
+                    })
+                    .collect()
+            } else {
+                self.near
+                    .iter()
+                    .map(|&i| {
+                        let i = i as usize;
+                        contact(i, &mut history[i * w..(i + 1) * w])
+                    })
+                    .collect()
+            };
+        for (&i, r) in self.near.iter().zip(results) {
+            if let Some((f, t)) = r {
+                let i = i as usize;
                 for d in 0..3 {
-                    p.f[i][d] += out.f[d];
-                    p.torque[i][d] += out.t[d];
+                    p.f[i][d] += f[d];
+                    p.torque[i][d] += t[d];
                 }
             }
         }
+    }
+}
+
+/// A slice shared between threads that write disjoint pieces of it.
+#[derive(Clone, Copy)]
+struct SharedSlice(*mut f64, usize);
+
+// SAFETY: used only where every thread writes its own, disjoint piece (see `piece`).
+unsafe impl Send for SharedSlice {}
+unsafe impl Sync for SharedSlice {}
+
+impl SharedSlice {
+    /// The piece `start..start + len`.
+    ///
+    /// # Safety
+    /// No other live reference may overlap the piece.
+    #[allow(clippy::mut_from_ref)]
+    unsafe fn piece(&self, start: usize, len: usize) -> &mut [f64] {
+        assert!(start + len <= self.1);
+        std::slice::from_raw_parts_mut(self.0.add(start), len)
     }
 }
 

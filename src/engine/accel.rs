@@ -1,0 +1,230 @@
+//! The fast engine path (`-sf fast`, `suffix fast`) and the engine's threads (`-pk fast N`,
+//! `package fast N`, or `RAYON_NUM_THREADS`).
+//!
+//! The fast path differs from the exact path only where order matters: particles are
+//! re-sorted by cell at every neighbour-list build (so particles that interact sit together
+//! in memory), the half list is built from those cells in parallel in its own order, and
+//! every parallel stage adds contributions in an order fixed by the list, so results are
+//! bit-identical for any number of threads. Contact models, fixes, computes and outputs are
+//! the exact path's. At the end of each run the particles are put back in the order the
+//! exact path would hold them in (LIGGGHTS's spatial sort every `atom_modify sort` steps,
+//! inserted particles last), so commands between runs (`delete_atoms` renumbering IDs,
+//! unsorted dumps) see the same order.
+
+use std::sync::Arc;
+
+/// Name of the per-particle array holding the fast path's record of the exact order.
+pub const ORDER_ARRAY: &str = "regolith:order";
+
+/// Engine path and threads.
+#[derive(Clone, Default)]
+pub struct Accel {
+    /// The fast path is on.
+    pub fast: bool,
+    /// Threads asked for (None: rayon's default, all cores or `RAYON_NUM_THREADS`).
+    pub threads: Option<usize>,
+    pool: Option<Arc<rayon::ThreadPool>>,
+    /// The next rank handed to an inserted particle (fast path order record).
+    pub next_rank: f64,
+}
+
+impl std::fmt::Debug for Accel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Accel")
+            .field("fast", &self.fast)
+            .field("threads", &self.threads)
+            .finish()
+    }
+}
+
+impl Accel {
+    /// Use `n` threads (None: rayon's default). The first request sizes rayon's global
+    /// pool (no hand-off between threads per call); a later, different request gets a pool
+    /// of its own.
+    pub fn set_threads(&mut self, n: Option<usize>) {
+        if n == self.threads {
+            return;
+        }
+        self.threads = n;
+        self.pool = None;
+        let Some(n) = n else {
+            return;
+        };
+        let global = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global();
+        if global.is_ok() || rayon::current_num_threads() == n {
+            return;
+        }
+        self.pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .ok()
+            .map(Arc::new);
+    }
+
+    /// Run `f` on the engine's threads.
+    pub fn install<R: Send>(&self, f: impl FnOnce() -> R + Send) -> R {
+        match &self.pool {
+            Some(p) => p.install(f),
+            None => f(),
+        }
+    }
+
+    /// Number of threads parallel stages use.
+    pub fn thread_count(&self) -> usize {
+        match &self.pool {
+            Some(p) => p.current_num_threads(),
+            None => rayon::current_num_threads(),
+        }
+    }
+}
+
+use crate::engine::cells::CellGrid;
+use crate::engine::sim::Simulation;
+
+impl Simulation {
+    /// Fast path: sort the particles by cell and build the half list from the cells, in
+    /// parallel. False (nothing done) when the box is too short for the cell search; the
+    /// general build runs instead.
+    pub(crate) fn build_list_fast(&mut self) -> bool {
+        let n = self.particles.len();
+        if n == 0 {
+            return false;
+        }
+        let skin = self.neighbor.skin;
+        let max_reach = self.particles.radius.iter().copied().fold(0.0, f64::max);
+        let Some(grid) = CellGrid::new(&self.particles.x, 2.0 * max_reach + skin, &self.domain)
+        else {
+            return false;
+        };
+        self.assign_ranks();
+        let x = &self.particles.x;
+        let (order, start) = self.accel.install(|| grid.sort(x));
+        if order.iter().enumerate().any(|(k, &i)| k != i) {
+            self.particles.permute(&order);
+        }
+        let chunk = n.div_ceil(self.accel.thread_count() * 8).max(512);
+        let p = &self.particles;
+        let pairs = self
+            .accel
+            .install(|| grid.half_list(&p.x, &p.radius, skin, &start, chunk));
+        self.list.assign(pairs, &p.x, &p.radius);
+        true
+    }
+
+    /// Fast path, at the start of a run: record the current (exact) order of the particles.
+    pub(crate) fn start_order_record(&mut self) {
+        let n = self.particles.len();
+        let k = self.particles.extra_index(ORDER_ARRAY, 1);
+        for (i, r) in self.particles.extra[k].data.iter_mut().enumerate() {
+            *r = (i + 1) as f64;
+        }
+        self.accel.next_rank = (n + 1) as f64;
+    }
+
+    /// Fast path: particles inserted since the last look go last in the exact order, in
+    /// the order they were inserted (appended).
+    fn assign_ranks(&mut self) {
+        let Some(k) = self
+            .particles
+            .extra
+            .iter()
+            .position(|e| e.name == ORDER_ARRAY)
+        else {
+            return;
+        };
+        for r in self.particles.extra[k].data.iter_mut() {
+            if *r == 0.0 {
+                *r = self.accel.next_rank;
+                self.accel.next_rank += 1.0;
+            }
+        }
+    }
+
+    /// Fast path: LIGGGHTS's spatial sort applied to the record of the exact order (the
+    /// exact path permutes the particles themselves at this point).
+    pub(crate) fn sort_order_record(&mut self, sorted: impl Fn(&[[f64; 3]]) -> Option<Vec<u32>>) {
+        self.assign_ranks();
+        let Some(k) = self
+            .particles
+            .extra
+            .iter()
+            .position(|e| e.name == ORDER_ARRAY)
+        else {
+            return;
+        };
+        let ranks = &self.particles.extra[k].data;
+        // the particles in exact order, their positions in that order
+        let mut exact: Vec<usize> = (0..ranks.len()).collect();
+        exact.sort_by(|&a, &b| ranks[a].total_cmp(&ranks[b]));
+        let x: Vec<[f64; 3]> = exact.iter().map(|&i| self.particles.x[i]).collect();
+        let Some(bins) = sorted(&x) else {
+            return;
+        };
+        let mut order: Vec<usize> = (0..exact.len()).collect();
+        order.sort_by_key(|&k| bins[k]);
+        let data = &mut self.particles.extra[k].data;
+        for (rank, &k) in order.iter().enumerate() {
+            data[exact[k]] = (rank + 1) as f64;
+        }
+        self.accel.next_rank = (data.len() + 1) as f64;
+    }
+
+    /// Fast path, at the end of a run: put the particles back in the exact path's order
+    /// and drop the record.
+    pub(crate) fn restore_order(&mut self) {
+        self.assign_ranks();
+        let Some(k) = self
+            .particles
+            .extra
+            .iter()
+            .position(|e| e.name == ORDER_ARRAY)
+        else {
+            return;
+        };
+        let ranks = self.particles.extra[k].data.clone();
+        let mut order: Vec<usize> = (0..ranks.len()).collect();
+        order.sort_by(|&a, &b| ranks[a].total_cmp(&ranks[b]));
+        if order.iter().enumerate().any(|(k, &i)| k != i) {
+            self.permute_particles(&order);
+        }
+        self.particles.extra.remove(k);
+    }
+
+    /// Reorder the particles (`order`: new index -> old index) between list builds: the
+    /// list, its history and every per-particle record of the last step follow them.
+    pub(crate) fn permute_particles(&mut self, order: &[usize]) {
+        self.particles.permute(order);
+        let mut new_of_old = vec![0u32; order.len()];
+        for (new, &old) in order.iter().enumerate() {
+            new_of_old[old] = new as u32;
+        }
+        for pair in &mut self.list.pairs {
+            pair.i = new_of_old[pair.i as usize];
+            pair.j = new_of_old[pair.j as usize];
+        }
+        self.list.permute(order);
+        let permute3 = |v: &mut Vec<[f64; 3]>| {
+            if v.len() == order.len() {
+                *v = order.iter().map(|&k| v[k]).collect();
+            }
+        };
+        permute3(&mut self.force_time_state.0);
+        permute3(&mut self.force_time_state.1);
+        if self.virial.len() == order.len() {
+            self.virial = order.iter().map(|&k| self.virial[k]).collect();
+        }
+        if self.list_ids.len() == order.len() {
+            self.list_ids = order.iter().map(|&k| self.list_ids[k]).collect();
+        }
+        self.incidence = None;
+        for fix in &mut self.fixes {
+            if let crate::engine::fixes::FixKind::MeshWall(w) = &mut fix.kind {
+                for t in &mut w.trackers {
+                    t.permute(order);
+                }
+            }
+        }
+    }
+}

@@ -126,6 +126,55 @@ fn partner_lists(r: &Restart, k: usize, id: &str) -> Result<(usize, PartnerLists
     Ok((width, out))
 }
 
+/// Values of a restart file no simulation can start from: a box that is not a box, a type
+/// count or type out of range, a particle without a finite non-negative radius or a positive
+/// mass. (A position that is not finite is left alone: like LIGGGHTS, the run loses that atom.)
+fn check_restart_values(r: &Restart) -> Result<(), String> {
+    let (lo, hi) = r.bounds();
+    for d in 0..3 {
+        if !(lo[d].is_finite() && hi[d].is_finite() && lo[d] < hi[d]) {
+            return Err(format!(
+                "restart: box bounds {} {} along {} are not a box",
+                lo[d],
+                hi[d],
+                ["x", "y", "z"][d]
+            ));
+        }
+    }
+    let ntypes = r.int(crate::io::restart::flag::NTYPES).unwrap_or(0);
+    if ntypes < 1 {
+        return Err(format!("restart: {ntypes} atom types"));
+    }
+    crate::commands::sim_setup::check_ntypes(ntypes).map_err(|m| format!("restart: {m}"))?;
+    for a in &r.atoms {
+        if a.kind < 1 || a.kind > ntypes {
+            return Err(format!(
+                "restart: atom {} has type {} (the file has types 1 to {ntypes})",
+                a.id, a.kind
+            ));
+        }
+        if !(a.radius >= 0.0 && a.radius.is_finite()) {
+            return Err(format!(
+                "restart: atom {} has radius {} (a radius must be finite and at least 0)",
+                a.id, a.radius
+            ));
+        }
+        if !(a.mass > 0.0 && a.mass.is_finite()) {
+            return Err(format!(
+                "restart: atom {} has mass {} (a mass must be finite and positive)",
+                a.id, a.mass
+            ));
+        }
+        if a.radius > 0.0 && !(a.density > 0.0 && a.density.is_finite()) {
+            return Err(format!(
+                "restart: atom {} has density {} (a density must be finite and positive)",
+                a.id, a.density
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Per atom ID, its contact partners and their history values.
 pub type PartnerLists = HashMap<i64, Vec<(i64, Vec<f64>)>>;
 
@@ -142,6 +191,7 @@ impl Simulation {
                 ))
             }
         }
+        check_restart_values(r)?;
         self.step = r.step();
         self.atime = 0.0;
         self.atime_step = 0;

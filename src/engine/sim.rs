@@ -402,10 +402,16 @@ impl Simulation {
     /// its radius in one step, stops the run. One pass over the particles.
     fn guard_motion(&self) -> Result<(), String> {
         let p = &self.particles;
-        let dt = self.dt;
+        // a negative time step moves particles as far as a positive one
+        let dt = self.dt.abs();
         for i in 0..p.len() {
             let v = p.v[i];
-            if !p.x[i].iter().chain(&v).all(|c| c.is_finite()) {
+            if !p.x[i]
+                .iter()
+                .chain(&v)
+                .chain(&p.omega[i])
+                .all(|c| c.is_finite())
+            {
                 return Err(self.non_finite(i));
             }
             if p.radius[i] > 0.0
@@ -433,7 +439,7 @@ impl Simulation {
             let v2 = p.v[i][0] * p.v[i][0] + p.v[i][1] * p.v[i][1] + p.v[i][2] * p.v[i][2];
             energy += 0.5 * p.mass[i] * v2;
             if p.radius[i] > 0.0 {
-                let per_step = v2.sqrt() * self.dt / p.radius[i];
+                let per_step = v2.sqrt() * self.dt.abs() / p.radius[i];
                 if per_step > fastest.0 {
                     fastest = (per_step, i);
                 }
@@ -477,9 +483,13 @@ impl Simulation {
                 })
             };
             if ratio > MAX_OVERLAP && !carried() {
+                let cause = if self.step == self.atime_step {
+                    "the particles were created (or read) overlapping"
+                } else {
+                    "the time step is probably too large for the stiffness, or particles were created overlapping"
+                };
                 return Err(format!(
-                    "blow-up at step {}: atoms {} and {} overlap by {:.0} % of the smaller radius; \
-                     the time step is probably too large for the stiffness, or particles were created overlapping",
+                    "blow-up at step {}: atoms {} and {} overlap by {:.0} % of the smaller radius; {cause}",
                     self.step,
                     p.id[i as usize],
                     p.id[j as usize],
@@ -493,10 +503,45 @@ impl Simulation {
     fn non_finite(&self, i: usize) -> String {
         let p = &self.particles;
         format!(
-            "blow-up at step {}: atom {} has a non-finite position, velocity or force (x = {:?}, v = {:?}, f = {:?}); \
-             the time step is probably too large for the stiffness (check Young's modulus, or use fix check/timestep/gran)",
-            self.step, p.id[i], p.x[i], p.v[i], p.f[i]
+            "blow-up at step {}: atom {} has a non-finite position, velocity, angular velocity or force (x = {:?}, v = {:?}, omega = {:?}, f = {:?}); {}",
+            self.step,
+            p.id[i],
+            p.x[i],
+            p.v[i],
+            p.omega[i],
+            p.f[i],
+            self.blow_up_cause(i)
         )
+    }
+
+    /// The likeliest cause of atom `i`'s non-finite value, for the blow-up message.
+    fn blow_up_cause(&self, i: usize) -> String {
+        let p = &self.particles;
+        let positive = |x: f64| x > 0.0;
+        if !positive(p.radius[i]) || !positive(p.mass[i]) {
+            return format!(
+                "it has radius {} and mass {}: a particle needs a positive radius and mass",
+                p.radius[i], p.mass[i]
+            );
+        }
+        // two atoms at one point have no contact normal: their force is 0/0
+        let twin = (0..p.len()).find(|&j| {
+            j != i && {
+                let d = [0, 1, 2].map(|k| p.x[i][k] - p.x[j][k]);
+                d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= (1e-12 * p.radius[i]).powi(2)
+            }
+        });
+        if let Some(j) = twin {
+            return format!(
+                "atoms {} and {} sit at the same position, so their contact has no direction (were they created on top of each other?)",
+                p.id[i], p.id[j]
+            );
+        }
+        if self.step == self.atime_step {
+            // still the run's setup: nothing has been integrated yet
+            return "the state the run started from already holds it (check how the atoms were created, read or set)".into();
+        }
+        "the time step is probably too large for the stiffness (check Young's modulus, or use fix check/timestep/gran)".into()
     }
 
     /// The `end_of_step` phase: fixes that check or report every N steps.
@@ -715,8 +760,12 @@ impl Simulation {
     /// pbc, reset_box and exchange, as at a re-neighbouring or before writing a file).
     pub fn pbc_and_box(&mut self) -> Result<(), String> {
         let p = &mut self.particles;
+        // a periodic coordinate that is not finite cannot be wrapped: the atom is lost
+        let mut unplaced = Vec::new();
         for i in 0..p.len() {
-            self.domain.remap(&mut p.x[i], &mut p.image[i]);
+            if !self.domain.remap(&mut p.x[i], &mut p.image[i]) {
+                unplaced.push(i);
+            }
         }
         // as LIGGGHTS: the box shrink-wraps around every atom first (reset_box), then atoms
         // outside a fixed face are lost (exchange)
@@ -730,7 +779,9 @@ impl Simulation {
             let mut lo = [f64::INFINITY; 3];
             let mut hi = [f64::NEG_INFINITY; 3];
             let mut any = false;
-            for x in p.x.iter().chain(nodes) {
+            // an atom without a finite position is lost below; it does not stretch the box
+            let placed = p.x.iter().filter(|x| x.iter().all(|c| c.is_finite()));
+            for x in placed.chain(nodes) {
                 any = true;
                 for d in 0..3 {
                     lo[d] = lo[d].min(x[d]);
@@ -741,7 +792,10 @@ impl Simulation {
                 self.domain.shrink_wrap(lo, hi)?;
             }
         }
-        let lost: Vec<bool> = p.x.iter().map(|x| !self.domain.contains(*x)).collect();
+        let mut lost: Vec<bool> = p.x.iter().map(|x| !self.domain.contains(*x)).collect();
+        for i in unplaced {
+            lost[i] = true;
+        }
         if lost.iter().any(|&l| l) {
             if !self.lost_ignore {
                 let remaining = lost.iter().filter(|&&l| !l).count();
@@ -1191,6 +1245,11 @@ impl Simulation {
         2.0 * atoms.max(templates) + self.neighbor.skin
     }
 
+    /// A dry run's `run`: LIGGGHTS's init checks of particles and neighbour bins, no step.
+    pub fn check_run(&self) -> Result<(), String> {
+        self.check_run_init(self.liggghts_cutneighmax())
+    }
+
     /// A fix changes particle radii during runs (`fix adapt ... atom diameter`).
     fn radii_vary(&self) -> bool {
         self.fixes
@@ -1416,6 +1475,7 @@ impl Simulation {
         self.atime_step = self.step;
         let started = std::time::Instant::now();
         self.neighbor.cutneighmax = self.liggghts_cutneighmax();
+        self.check_run_init(self.neighbor.cutneighmax)?;
         // setup
         if pre || !self.has_run {
             self.pbc_and_box()?;

@@ -25,7 +25,7 @@ use crate::engine::domain::{Boundary, Domain};
 use crate::engine::particles::Particles;
 
 /// Header flags, in LIGGGHTS's numbering.
-mod flag {
+pub mod flag {
     pub const VERSION: i32 = 0;
     pub const UNITS: i32 = 4;
     pub const NTIMESTEP: i32 = 5;
@@ -306,6 +306,15 @@ impl Restart {
             })
     }
 
+    /// Set the timestep count.
+    pub fn set_step(&mut self, step: i64) {
+        for (k, v) in &mut self.header {
+            if *k == flag::NTIMESTEP {
+                *v = Value::Big(step);
+            }
+        }
+    }
+
     /// The timestep count.
     pub fn step(&self) -> i64 {
         self.int(flag::NTIMESTEP).unwrap_or(0)
@@ -460,8 +469,15 @@ impl Restart {
                     if style != "gran" {
                         return Err(format!("{name}: pair style {style}: not supported (regolith reads pair_style gran)"));
                     }
-                    let npairs = ntypes * (ntypes + 1) / 2;
-                    let raw = r.take(8 + 4 * npairs, "pair gran settings")?;
+                    // 8 bytes of model hash, an int per type pair (i <= j)
+                    let size = ntypes
+                        .checked_mul(ntypes + 1)
+                        .and_then(|n| (n / 2).checked_mul(4))
+                        .and_then(|n| n.checked_add(8))
+                        .ok_or_else(|| {
+                            format!("{name}: {ntypes} atom types: pair settings of impossible size")
+                        })?;
+                    let raw = r.take(size, "pair gran settings")?;
                     out.pair = Some((style, raw.to_vec()));
                 }
                 f => {

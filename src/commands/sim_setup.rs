@@ -1532,6 +1532,7 @@ fn write_restart(a: &Args, ctx: &mut Ctx) -> Result {
     }
     let path = ctx.sys.resolve(a.word(0)?).to_string_lossy().into_owned();
     let path = path.replace('*', &ctx.sim.step.to_string());
+    ctx.sim.check_restart_size().map_err(|m| a.error(0, &m))?;
     if ctx.sys.mode != Mode::Run {
         // check mode: keep the file in memory for a later read_restart of the same deck
         let partners = ctx.sim.contact_partners();

@@ -56,15 +56,21 @@ pub fn neighbor_bins(bbox: [f64; 3], cut: f64) -> Result<[f64; 3], String> {
     Ok(nbins)
 }
 
-/// The most bytes this process can hope to get: its address-space limit (`ulimit -v`) when
-/// one is set, and never more than the machine's physical memory.
+/// The most bytes this process can hope to get: what its address-space limit (`ulimit -v`)
+/// leaves when one is set, and never more than the machine's physical memory.
 pub fn memory_limit() -> f64 {
     let mut limit = f64::INFINITY;
     // SAFETY: getrlimit and sysinfo only write into the structs passed to them
     unsafe {
         let mut r: libc::rlimit = std::mem::zeroed();
         if libc::getrlimit(libc::RLIMIT_AS, &mut r) == 0 && r.rlim_cur != libc::RLIM_INFINITY {
-            limit = limit.min(r.rlim_cur as f64);
+            // the address space already in use counts against the limit
+            let page = libc::sysconf(libc::_SC_PAGESIZE).max(1) as f64;
+            let used = std::fs::read_to_string("/proc/self/statm")
+                .ok()
+                .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+                .map_or(0.0, |pages| pages * page);
+            limit = limit.min((r.rlim_cur as f64 - used).max(0.0));
         }
         let mut info: libc::sysinfo = std::mem::zeroed();
         if libc::sysinfo(&mut info) == 0 && info.totalram > 0 {
@@ -150,9 +156,9 @@ fn g(x: f64) -> String {
 }
 
 impl Simulation {
-    /// At a run's init, after the neighbour cutoff is known: LIGGGHTS's own checks of the
-    /// integrated particles and of the neighbour bins.
-    pub fn check_run_init(&self, cutneighmax: f64) -> Result<(), String> {
+    /// At a run's init: LIGGGHTS's own checks of the integrated particles and of the
+    /// neighbour bins.
+    pub fn check_run_init(&self) -> Result<(), String> {
         let p = &self.particles;
         for fix in &self.fixes {
             if let FixKind::NveSphere = fix.kind {
@@ -170,8 +176,9 @@ impl Simulation {
             let bbox = [0, 1, 2].map(|d| self.domain.length(d));
             // LIGGGHTS adds the skin only to a positive contact cutoff: without particle
             // sizes its cutoff is 0 and a single bin spans the box
-            let cut = if cutneighmax > self.neighbor.skin {
-                cutneighmax
+            let contact = 2.0 * self.largest_radius();
+            let cut = if contact > 0.0 {
+                contact + self.neighbor.skin
             } else {
                 0.0
             };

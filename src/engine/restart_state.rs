@@ -128,8 +128,10 @@ fn partner_lists(r: &Restart, k: usize, id: &str) -> Result<(usize, PartnerLists
 
 /// Values of a restart file no simulation can start from: a box that is not a box, a type
 /// count or type out of range, a particle without a finite non-negative radius or a positive
-/// mass. (A position that is not finite is left alone: like LIGGGHTS, the run loses that atom.)
-fn check_restart_values(r: &Restart) -> Result<(), String> {
+/// mass. A position, velocity or spin that is not finite is refused only when `motion` says
+/// so (a conversion cannot write it); a run loses such an atom as LIGGGHTS does, or stops at
+/// the blow-up guard.
+pub fn check_restart_values(r: &Restart, motion: bool) -> Result<(), String> {
     let (lo, hi) = r.bounds();
     for d in 0..3 {
         if !(lo[d].is_finite() && hi[d].is_finite() && lo[d] < hi[d]) {
@@ -171,6 +173,19 @@ fn check_restart_values(r: &Restart) -> Result<(), String> {
                 a.id, a.density
             ));
         }
+        if motion
+            && !a
+                .x
+                .iter()
+                .chain(&a.v)
+                .chain(&a.omega)
+                .all(|c| c.is_finite())
+        {
+            return Err(format!(
+                "restart: atom {} has a position, velocity or angular velocity that is not finite (x = {:?}, v = {:?}, omega = {:?})",
+                a.id, a.x, a.v, a.omega
+            ));
+        }
     }
     Ok(())
 }
@@ -191,7 +206,7 @@ impl Simulation {
                 ))
             }
         }
-        check_restart_values(r)?;
+        check_restart_values(r, false)?;
         self.step = r.step();
         self.atime = 0.0;
         self.atime_step = 0;
@@ -337,6 +352,21 @@ impl Simulation {
         out
     }
 
+    /// Whether a restart file of this simulation fits in memory (the file is built whole,
+    /// then encoded): LIGGGHTS's "Failed to allocate" if it does not.
+    pub fn check_restart_size(&self) -> Result<(), String> {
+        let n = self.ntypes as f64;
+        let pair = if self.pair_selection.is_some() {
+            8.0 + 4.0 * n * (n + 1.0) / 2.0
+        } else {
+            0.0
+        };
+        let extra: usize = self.particles.extra.iter().map(|e| e.width + 1).sum();
+        let atoms = self.particles.len() as f64 * 8.0 * (24 + extra) as f64;
+        // the file's parts, its atom records and the encoded bytes
+        crate::engine::checks::allocation(3.0 * (pair + atoms), 1, "restart file")
+    }
+
     /// This simulation as a restart file LIGGGHTS 3.8.0 reads, with pair history from
     /// [`Simulation::contact_partners`].
     pub fn to_restart(&self, partners: &HashMap<i64, Vec<(i64, Vec<f64>)>>) -> Restart {
@@ -368,7 +398,8 @@ impl Simulation {
                 &sel.surface,
             ) {
                 let n = self.ntypes as usize;
-                let mut raw = hash.to_le_bytes().to_vec();
+                let mut raw = Vec::with_capacity(8 + 4 * (n * (n + 1) / 2));
+                raw.extend_from_slice(&hash.to_le_bytes());
                 for _ in 0..n * (n + 1) / 2 {
                     raw.extend_from_slice(&1i32.to_le_bytes());
                 }

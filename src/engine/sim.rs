@@ -1233,6 +1233,11 @@ impl Simulation {
     /// LIGGGHTS's `cutneighmax` at a run's init: twice the largest radius among the atoms
     /// and the particle templates, plus the skin (length).
     fn liggghts_cutneighmax(&self) -> f64 {
+        2.0 * self.largest_radius() + self.neighbor.skin
+    }
+
+    /// The largest radius among the atoms and the particle templates (length).
+    pub fn largest_radius(&self) -> f64 {
         let atoms = self.particles.radius.iter().copied().fold(0.0, f64::max);
         let templates = self
             .fixes
@@ -1242,12 +1247,12 @@ impl Simulation {
                 _ => None,
             })
             .fold(0.0, f64::max);
-        2.0 * atoms.max(templates) + self.neighbor.skin
+        atoms.max(templates)
     }
 
     /// A dry run's `run`: LIGGGHTS's init checks of particles and neighbour bins, no step.
     pub fn check_run(&self) -> Result<(), String> {
-        self.check_run_init(self.liggghts_cutneighmax())
+        self.check_run_init()
     }
 
     /// A fix changes particle radii during runs (`fix adapt ... atom diameter`).
@@ -1475,7 +1480,7 @@ impl Simulation {
         self.atime_step = self.step;
         let started = std::time::Instant::now();
         self.neighbor.cutneighmax = self.liggghts_cutneighmax();
-        self.check_run_init(self.neighbor.cutneighmax)?;
+        self.check_run_init()?;
         // setup
         if pre || !self.has_run {
             self.pbc_and_box()?;
@@ -2033,6 +2038,7 @@ impl Simulation {
     /// Write the current state as a restart file (`write_restart`): pair history taken from
     /// the current list, then positions wrapped and the box reset as LIGGGHTS does.
     pub fn save_restart(&mut self, path: &str) -> Result<(), String> {
+        self.check_restart_size()?;
         let partners = self.contact_partners();
         self.pbc_and_box()?;
         let r = self.to_restart(&partners);
@@ -2059,6 +2065,7 @@ impl Simulation {
             return Ok(());
         }
         // written from the current state without re-wrapping (the run goes on)
+        self.check_restart_size()?;
         let partners = self.contact_partners();
         let r = self.to_restart(&partners);
         for path in paths {
@@ -2129,6 +2136,17 @@ impl Simulation {
 
     fn thermo_line(&mut self, out: Sink<'_>, vars: &mut dyn VariableSource) -> Result<(), String> {
         let values = self.thermo.values(self, vars)?;
+        // a value that overflowed (an energy of huge, fast particles) ends the run rather
+        // than printing inf or nan
+        let bad = values.iter().position(|v| !v.is_finite());
+        if let Some(k) = bad {
+            return Err(format!(
+                "blow-up at step {}: thermo keyword {} is {}; a value of the simulation overflowed (check particle sizes, densities and velocities)",
+                self.step,
+                self.thermo.fields[k].keyword,
+                values[k]
+            ));
+        }
         let cpu = self.loop_clock.map_or(0.0, |t| t.elapsed().as_secs_f64());
         self.thermo.line(&values, self.step, cpu, out);
         Ok(())

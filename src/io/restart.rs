@@ -546,7 +546,18 @@ impl Restart {
 
     /// The file's bytes (single-file form).
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut b = Vec::new();
+        // sized up front: a file of many atom types or atoms is not built by doubling
+        let pair = self
+            .pair
+            .as_ref()
+            .map_or(0, |(s, raw)| s.len() + raw.len() + 16);
+        let fixes: usize = self.global_fixes.iter().map(|f| f.state.len() + 64).sum();
+        let atoms: usize = self
+            .atoms
+            .iter()
+            .map(|a| 8 * (18 + a.extra.iter().map(|e| e.len() + 1).sum::<usize>()))
+            .sum();
+        let mut b = Vec::with_capacity(4096 + pair + fixes + atoms);
         self.write_base(&mut b);
         let chunk = self.atom_chunk();
         b.extend_from_slice(&(chunk.len() as i32).to_le_bytes());
@@ -676,6 +687,8 @@ pub fn write(restart: &Restart, path: &str) -> Result<(), String> {
 /// The particles and box of a restart file.
 pub fn read_bed(path: &str) -> Result<crate::io::convert::Bed, String> {
     let r = read(path)?;
+    crate::engine::restart_state::check_restart_values(&r, true)
+        .map_err(|m| format!("{path}: {m}"))?;
     let mut domain = Domain::default();
     domain.boundary = r.boundary();
     let (lo, hi) = r.bounds();

@@ -1592,10 +1592,14 @@ fn ave_time(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, D
                     "one" => AveMode::One,
                     "running" => AveMode::Running,
                     _ => {
-                        let m = a.int(i + 2)?;
+                        let m = a.int32(i + 2)?;
                         if m <= 0 {
                             return Err(a.error(i + 2, "Illegal fix ave/time command"));
                         }
+                        // LIGGGHTS keeps the last M values of every input
+                        let row = 24 + 8 * inputs.len();
+                        crate::engine::checks::allocation(m as f64, row, "ave/time:vector_list")
+                            .map_err(|e| a.error(i + 2, &e))?;
                         i += 1;
                         AveMode::Window(m as usize)
                     }
@@ -2400,7 +2404,7 @@ fn insert_pack(
                 i += 2;
             }
             "particles_in_region" => {
-                let n = a.int(i + 1)?;
+                let n = a.int32(i + 1)?;
                 if n <= 0 {
                     return Err(a.error(i + 1, "Fix insert/pack: particles_in_region must be > 0"));
                 }
@@ -2468,11 +2472,11 @@ fn insert_pack(
                 i += 2;
             }
             "maxattempt" => {
-                maxattempt = a.int(i + 1)?;
+                maxattempt = a.int32(i + 1)?;
                 i += 2;
             }
             "ntry_mc" => {
-                ntry_mc = a.int(i + 1)?;
+                ntry_mc = a.int32(i + 1)?;
                 if ntry_mc < 1000 {
                     return Err(a.error(i + 1, "Fix insert/pack: ntry_mc must be > 1000"));
                 }
@@ -2510,7 +2514,7 @@ fn insert_pack(
                 i += 5;
             }
             "nparticles" if rate_style => {
-                nparticles = Some(a.int(i + 1)?);
+                nparticles = Some(a.int32(i + 1)?);
                 i += 2;
             }
             "particlerate" if rate_style => {
@@ -2711,7 +2715,7 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
                 total = Some(if w == "mass" {
                     Err(a.real(i + 1)?)
                 } else {
-                    Ok(a.int(i + 1)?)
+                    Ok(a.int32(i + 1)?)
                 });
                 i += 2;
             }
@@ -2739,11 +2743,11 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
                 i += 2;
             }
             "maxattempt" => {
-                maxattempt = a.int(i + 1)?;
+                maxattempt = a.int32(i + 1)?;
                 i += 2;
             }
             "ntry_mc" => {
-                ntry_mc = a.int(i + 1)?;
+                ntry_mc = a.int32(i + 1)?;
                 if ntry_mc < 1000 {
                     return Err(a.error(
                         i + 1,

@@ -172,6 +172,26 @@ impl Simulation {
                 }
             }
         }
+        if self.sort_every > 0 {
+            // LIGGGHTS's atom sort bins (half the neighbour cutoff, or the user's size)
+            let size = if self.sort_binsize > 0.0 {
+                self.sort_binsize
+            } else {
+                0.5 * self.neighbor_cutoff()
+            };
+            if size > 0.0 {
+                let bins: f64 = (0..3)
+                    .map(|d| (self.domain.length(d) / size).trunc().max(1.0))
+                    .product();
+                if bins.is_nan() || bins > i32::MAX as f64 {
+                    return Err(format!(
+                        "Too many atom sorting bins (about {} bins of size {}; a larger bin size can be given with atom_modify sort)",
+                        g(bins),
+                        g(size)
+                    ));
+                }
+            }
+        }
         if self.pair_selection.is_some() {
             let bbox = [0, 1, 2].map(|d| self.domain.length(d));
             // LIGGGHTS adds the skin only to a positive contact cutoff: without particle

@@ -108,7 +108,11 @@ fn partner_lists(r: &Restart, k: usize, id: &str) -> Result<(usize, PartnerLists
     for a in &r.atoms {
         let b = &a.extra[k];
         let n = b.first().map_or(0, |v| v.to_bits() as i64) as usize;
-        if b.len() != 1 + n * (width + 1) {
+        let expected = width
+            .checked_add(1)
+            .and_then(|w| n.checked_mul(w))
+            .and_then(|v| v.checked_add(1));
+        if expected != Some(b.len()) {
             return Err(format!(
                 "restart: atom {}: contact history block of {} values for {n} partners of {width} values",
                 a.id,

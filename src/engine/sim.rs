@@ -706,7 +706,9 @@ impl Simulation {
             nbin[d] = (((hi[d] - lo[d]) * bininv) as i64).max(1) as usize;
             inv[d] = nbin[d] as f64 / (hi[d] - lo[d]);
         }
-        if nbin[0] * nbin[1] * nbin[2] == 1 {
+        // one bin: nothing to sort; more than an int counts: refused at the run's init
+        let total = nbin.iter().map(|&n| n as f64).product::<f64>();
+        if total <= 1.0 || total > i32::MAX as f64 {
             return;
         }
         let p = &self.particles;
@@ -1804,7 +1806,7 @@ impl Simulation {
                     ),
                     _ => unreachable!(),
                 }
-            };
+            }?;
             if let FixKind::Distribution(d) = &mut self.fixes[dk].kind {
                 *d = dist.clone();
             }
@@ -1975,7 +1977,7 @@ impl Simulation {
                     FixKind::InsertPack(ins) => ins.insert(step, &regions, &mut dist, &world),
                     _ => unreachable!(),
                 }
-            };
+            }?;
             let omega = match &self.fixes[k].kind {
                 FixKind::InsertPack(ins) => ins.omega,
                 _ => [0.0; 3],

@@ -121,7 +121,7 @@ pub fn unpack_image(image: i64) -> [i32; 3] {
 
 /// Pack image flags as LIGGGHTS does.
 pub fn pack_image(image: [i32; 3]) -> i64 {
-    let c = |k: i32| ((k + 512) & 1023) as i64;
+    let c = |k: i32| (k.wrapping_add(512) & 1023) as i64;
     c(image[0]) | (c(image[1]) << 10) | ((image[2] as i64 + 512) << 20)
 }
 
@@ -235,7 +235,7 @@ fn records(buf: &[f64], nfix: usize, name: &str, out: &mut Vec<AtomRecord>) -> R
         let mut k = 17;
         for f in 0..nfix {
             let bl = r.get(k).copied().unwrap_or(0.0) as usize;
-            if bl < 1 || k + bl > len {
+            if bl < 1 || bl > len - k {
                 return Err(format!(
                     "{name}: atom {}: per-atom block {} of fix {} overruns the record",
                     as_int(r[4]),

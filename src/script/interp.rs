@@ -37,7 +37,7 @@ pub const MAX_INCLUDE_DEPTH: usize = 64;
 
 /// Lines a dry run executes while following loops as a real run would; past this, each jump
 /// is followed once (every line still gets checked, every loop ends).
-pub const CHECK_LINE_BUDGET: u64 = 200_000;
+pub const CHECK_LINE_BUDGET: u64 = 20_000;
 
 /// The text substituted in check mode for a value only a real run can know.
 pub const UNKNOWN_VALUE: &str = "?unknown?";
@@ -258,6 +258,10 @@ impl Interpreter {
                 file: frame.source.name.clone(),
                 line: first + 1,
             };
+            if self.sys.mode == Mode::Check {
+                // every line read counts, those skipped while looking for a label too
+                self.checked_lines += 1;
+            }
             let result = self.execute_line(&text, true);
             if let Err(d) = result {
                 let d = d.at(&self.location.clone());
@@ -317,11 +321,8 @@ impl Interpreter {
             text,
             location: self.location.clone(),
         };
-        if self.sys.mode == Mode::Check {
-            self.checked_lines += 1;
-            if self.uncertain && self.name_error(&cmd) {
-                return Ok(());
-            }
+        if self.sys.mode == Mode::Check && self.uncertain && self.name_error(&cmd) {
+            return Ok(());
         }
         self.execute(&cmd).map_err(|d| {
             let span = d.span.or(Some((cmd.words[0].start, cmd.words[0].end)));

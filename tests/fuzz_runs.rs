@@ -133,18 +133,20 @@ fn join(lines: &[Vec<String>]) -> String {
     s
 }
 
-/// Every `run N` capped to [`MAX_RUN_STEPS`] (after `run` and `every`).
+/// Every `run N` capped to [`MAX_RUN_STEPS`] (after `run` and `every`), also inside the quoted
+/// commands of an `if`.
 fn cap_runs(lines: &mut [Vec<String>]) {
     for l in lines.iter_mut() {
-        if l.first().map(String::as_str) != Some("run") {
-            continue;
-        }
         for k in 1..l.len() {
-            if k == 1 || l[k - 1] == "every" {
-                if let Ok(n) = l[k].parse::<i64>() {
-                    if n > MAX_RUN_STEPS {
-                        l[k] = MAX_RUN_STEPS.to_string();
-                    }
+            let prev = l[k - 1].trim_start_matches(['"', '\'']);
+            if prev != "run" && !(prev == "every" && l.iter().any(|w| w.ends_with("run"))) {
+                continue;
+            }
+            let digits = l[k].trim_end_matches(['"', '\'']);
+            let quotes = &l[k][digits.len()..];
+            if let Ok(n) = digits.parse::<i64>() {
+                if n > MAX_RUN_STEPS {
+                    l[k] = format!("{MAX_RUN_STEPS}{quotes}");
                 }
             }
         }
@@ -229,6 +231,15 @@ fn mutate(text: &str, rng: &mut Rng) -> Vec<u8> {
             }
             17 => {
                 lines.remove(i);
+            }
+            18 if rng.below(2) == 0 => {
+                // every number (outside loops and runs) at once
+                let v = rng.pick(EXTREMES).to_string();
+                for &(a, b) in &numbers {
+                    if !unbounded(&lines[a][0]) {
+                        lines[a][b] = v.clone();
+                    }
+                }
             }
             _ => raw_edit = Some(rng.below(2) as u8),
         }
@@ -453,7 +464,8 @@ fn judge(
             }
             None
         }
-        Some(1) if o.stderr.trim().is_empty() && o.stdout.contains("quit") => None,
+        // `quit`: status 1 without an error (every error is written to standard error)
+        Some(1) if o.stderr.trim().is_empty() => None,
         Some(_) => {
             let located = if line_numbers {
                 names_a_line(&all)
@@ -886,6 +898,12 @@ fn the_judge_sees_what_it_must() {
     assert_eq!(
         thermo_text(screen),
         "    Step Atoms KinEng\n       0 2 -nan\n"
+    );
+    let mut lines = words_of("if \"${p} == 1\" then \"run 21001\" \"print x\" else 'run 16000'\n");
+    cap_runs(&mut lines);
+    assert_eq!(
+        join(&lines),
+        "if \"${p} == 1\" then \"run 40\" \"print x\" else 'run 40'\n"
     );
     let mut rng = Rng(7);
     let deck = "# a comment 5\njump SELF loop\nregion reg block 0 1 0 1 0 1\nrun 100000\n";

@@ -1070,6 +1070,14 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         }
         n
     };
+    if ctx
+        .sim
+        .step
+        .checked_add(nsteps)
+        .is_none_or(|last| last >= 9.2e18 as i64)
+    {
+        return Err(a.error(0, "Too many timesteps"));
+    }
     if start.is_some_and(|s| s < 0 || s > ctx.sim.step) {
         return Err(a.error(0, "Run command start value is after start of run"));
     }

@@ -547,7 +547,8 @@ impl InsertPack {
             return Ok(Vec::new());
         }
         self.set_up = true;
-        self.region_rng.reset(self.seed + 12)?;
+        // C int arithmetic, as LIGGGHTS adds it (a seed near the top wraps and is refused)
+        self.region_rng.reset(self.seed.wrapping_add(12))?;
         self.volume_mc(regions, w, dist.max_radius);
         if self.region_volume <= 0.0 {
             return Err("Fix insert: Region volume calculation with MC failed".into());
@@ -569,7 +570,7 @@ impl InsertPack {
                 let within = if total as f64 <= self.per_insertion {
                     0
                 } else {
-                    (total as f64 / self.per_insertion) as i64 * self.every
+                    ((total as f64 / self.per_insertion) as i64).saturating_mul(self.every)
                 };
                 lines.push(format!(
                     "INFO: Particle insertion {}: {} particles every {} steps - particle rate {}  (mass rate {})\n      {} particles (mass {}) within {} steps",
@@ -1240,7 +1241,8 @@ impl InsertStream {
             f("%e", mass_rate),
             self.total,
             f("%e", self.total as f64 * dist.mass_expect),
-            ((self.total as f64 / self.per_insertion).ceil() as i64 - 1)
+            ((self.total as f64 / self.per_insertion).ceil() as i64)
+                .saturating_sub(1)
                 .max(0)
                 .saturating_mul(self.every)
         )]

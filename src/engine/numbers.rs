@@ -38,7 +38,7 @@ pub fn inumeric(word: &str) -> Result<i64, String> {
     // an i64 holds up to about 9.2e18; beyond it `as` would quietly saturate
     if x.is_nan() || x.abs() >= 9.2e18 {
         return Err(format!(
-            "Integer parameter '{word}' is out of range (largest: 9200000000000000000)"
+            "Integer parameter '{word}' is out of range (it must be below 9.2e18)"
         ));
     }
     Ok(x as i64)

@@ -537,6 +537,10 @@ impl Simulation {
                 p.id[i], p.id[j]
             );
         }
+        let finite = |v: &[f64; 3]| v.iter().all(|c| c.is_finite());
+        if finite(&p.x[i]) && finite(&p.v[i]) && finite(&p.omega[i]) {
+            return "only the force on it is not finite: check the forces fixes add or set (an infinite value or variable?)".into();
+        }
         if self.step == self.atime_step {
             // still the run's setup: nothing has been integrated yet
             return "the state the run started from already holds it (check how the atoms were created, read or set)".into();
@@ -1155,7 +1159,20 @@ impl Simulation {
                     }
                 }
                 StressPhase::PreForce => st.pre_force(),
-                StressPhase::EndOfStep => st.end_of_step(&m.mesh.normal, &m.mesh.area),
+                StressPhase::EndOfStep => {
+                    st.end_of_step(&m.mesh.normal, &m.mesh.area);
+                    if let Some(t) = st.first_non_finite() {
+                        return Err(format!(
+                            "blow-up at step {}: triangle {} of mesh {} has a wear or stress that is not finite (wear {}, stresses {} {}); check k_finnie and the particles' sizes and speeds",
+                            self.step,
+                            t + 1,
+                            f.id,
+                            st.wear[t],
+                            st.sigma_n.get(t).copied().unwrap_or(0.0),
+                            st.sigma_t.get(t).copied().unwrap_or(0.0)
+                        ));
+                    }
+                }
             }
         }
         Ok(())

@@ -493,7 +493,11 @@ impl Interpreter {
             commands.clear();
         }
         let step = self.engine.sim.step;
-        let nsteps = if upto { n - step } else { n };
+        let nsteps = if upto {
+            n.checked_sub(step).ok_or_else(bad)?
+        } else {
+            n
+        };
         if nsteps < 0 {
             let what = if upto { "upto value" } else { "N value" };
             return Err(Diagnostic::error(format!("Invalid run command {what}")));
@@ -501,7 +505,13 @@ impl Interpreter {
         let mut left = nsteps;
         let mut first = true;
         while left > 0 || first {
-            let chunk = left.min(every);
+            // a dry run checks the commands once, after one chunk as long as the whole run
+            // (so that its step count and periodic restart files are the run's)
+            let chunk = if self.sys.mode == Mode::Check {
+                left
+            } else {
+                left.min(every)
+            };
             let pre_word = if pre || first { "yes" } else { "no" };
             let text = format!("run {chunk} pre {pre_word} {}", keep.join(" "));
             let words = line::split_words(&text).map_err(|e| lex_error(e, &text))?;

@@ -175,7 +175,7 @@ fn atoms_at_end(stdout: &str) -> usize {
     last.split_whitespace().nth(1).unwrap().parse().unwrap()
 }
 
-/// Defect 1: A huge or infinite coordinate in a periodic direction: no hang. A negative time step
+/// Defect 1: a huge or infinite coordinate in a periodic direction: no hang. A negative time step
 /// of 1e30 is stopped by the motion guard (|v| |dt| > r); a restart holding x = inf (or NaN)
 /// loses that atom as LIGGGHTS does, one holding x = 1e300 wraps it at once.
 #[test]
@@ -194,7 +194,7 @@ fn huge_coordinates_in_periodic_directions_do_not_hang() {
     }
 }
 
-/// Defect 2: Size requests are checked: 30 000 atom types with a pair style and a restart refuse
+/// Defect 2: size requests are checked: 30 000 atom types with a pair style and a restart refuse
 /// with LIGGGHTS's "Failed to allocate" (run and check, under a memory limit), and a
 /// lattice far finer than the box is refused with its count, at once, in check mode too.
 #[test]
@@ -248,7 +248,7 @@ fn absurd_sizes_are_refused_with_a_message() {
     out.assert_error(&["Failed to allocate", "for array atoms", "in.billion:8"]);
 }
 
-/// Defect 3: A number that overflows a double is an error naming the word, like `inf`.
+/// Defect 3: a number that overflows a double is an error naming the word, like `inf`.
 #[test]
 fn overflowing_numbers_are_errors() {
     let dir = scratch("overflow");
@@ -265,7 +265,7 @@ fn overflowing_numbers_are_errors() {
     deck(&dir, "in.int").assert_error(&["'99999999999999999999'", "out of range"]);
 }
 
-/// Defect 4: Particles without size: LIGGGHTS's "Fix nve/sphere requires extended particles" for
+/// Defect 4: particles without size: LIGGGHTS's "Fix nve/sphere requires extended particles" for
 /// `set diameter 0` and a restart with radius 0; a restart radius that is negative or NaN is
 /// refused when read.
 #[test]
@@ -283,7 +283,7 @@ fn particles_without_size_are_refused() {
     }
 }
 
-/// Defect 5: Physically impossible sizes are refused where they are set, with the allowed range.
+/// Defect 5: physically impossible sizes are refused where they are set, with the allowed range.
 #[test]
 fn impossible_sizes_are_refused_where_set() {
     let dir = scratch("sizes5");
@@ -303,7 +303,7 @@ fn impossible_sizes_are_refused_where_set() {
     deck(&dir, &name).assert_error(&["density 1e+308 is out of range"]);
 }
 
-/// Defect 6: A deck reading back the files of its own `restart` command runs (and checks) cleanly.
+/// Defect 6: a deck reading back the files of its own `restart` command runs (and checks) cleanly.
 #[test]
 fn periodic_restart_files_are_known_to_the_check() {
     let dir = scratch("periodic_restart");
@@ -314,7 +314,7 @@ fn periodic_restart_files_are_known_to_the_check() {
     assert!(dir.join("series.60").exists() && dir.join("b.restart").exists());
 }
 
-/// Defect 7: A device, a named pipe or a symbolic link given as output is written, not replaced.
+/// Defect 7: a device, a named pipe or a symbolic link given as output is written, not replaced.
 #[test]
 fn special_files_are_not_replaced() {
     let dir = scratch("special");
@@ -356,7 +356,7 @@ fn special_files_are_not_replaced() {
     assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo());
 }
 
-/// Defect 8: No temporary file outlives a failed write (here: the file size limit, as a full disk),
+/// Defect 8: no temporary file outlives a failed write (here: the file size limit, as a full disk),
 /// and one left by a killed run is removed by the next write of that name.
 #[test]
 fn temporary_files_are_cleaned() {
@@ -387,7 +387,7 @@ fn temporary_files_are_cleaned() {
     assert!(temps.is_empty(), "left behind: {temps:?}");
 }
 
-/// Defect 9: The check reaches every line: after a `next`/`jump SELF` loop (with the loop
+/// Defect 9: the check reaches every line: after a `next`/`jump SELF` loop (with the loop
 /// variable's real last value), and after a run whose values it cannot know.
 #[test]
 fn the_check_covers_the_whole_deck() {
@@ -411,7 +411,7 @@ fn the_check_covers_the_whole_deck() {
     assert!(start.elapsed() < Duration::from_secs(20));
 }
 
-/// Defect 10: An empty dump is not converted "successfully".
+/// Defect 10: an empty dump is not converted "successfully".
 #[test]
 fn an_empty_dump_does_not_convert() {
     let dir = scratch("empty_dump");
@@ -422,9 +422,9 @@ fn an_empty_dump_does_not_convert() {
     assert!(!dir.join("out.vtk").exists());
 }
 
-/// Defect 11: The lesser ones: a neighbour skin the box cannot bin (LIGGGHTS's message), a log that
-/// cannot be written, coincident atoms named as such, unknown commands not called LIGGGHTS
-/// commands.
+/// Defect 11: the lesser ones: a neighbour skin the box cannot bin (LIGGGHTS's message), a
+/// log that cannot be written, coincident atoms named as such, a box without volume, unknown
+/// commands not called LIGGGHTS commands.
 #[test]
 fn lesser_defects() {
     let dir = scratch("lesser");
@@ -446,6 +446,12 @@ fn lesser_defects() {
     let twin = format!("{pair}set atom 2 x 0.012345678 y 0.0 z 0.3 diameter 0.00246912\nrun 10\n");
     let name = two_spheres(&dir, "in.twin", "1e-5", &twin);
     deck(&dir, &name).assert_error(&["atoms 1 and 2 sit at the same position"]);
+    // a box without volume, or one longer than a double: LIGGGHTS's "Box bounds are invalid"
+    for bounds in ["0 0 0 1 0 1", "-1e308 1e308 0 1 0 1"] {
+        let text = format!("region reg block {bounds} units box\ncreate_box 1 reg\n");
+        std::fs::write(dir.join("in.box"), text).unwrap();
+        deck(&dir, "in.box").assert_error(&["Box bounds are invalid", "in.box:2"]);
+    }
     std::fs::write(dir.join("in.foo"), "foo 1 2\n").unwrap();
     let out = deck(&dir, "in.foo");
     out.assert_error(&["Unknown command: foo", "not a command of LIGGGHTS 3.8.0"]);

@@ -234,6 +234,18 @@ fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
         .regions
         .extent(index)
         .ok_or_else(|| a.error(1, "Create_box region does not support a bounding box"))?;
+    // LIGGGHTS's check, and a length a double can hold
+    if let Some(d) = (0..3).find(|&d| !(lo[d] < hi[d] && (hi[d] - lo[d]).is_finite())) {
+        return Err(a.error(
+            1,
+            &format!(
+                "Box bounds are invalid ({} {} along {})",
+                g(lo[d]),
+                g(hi[d]),
+                ["x", "y", "z"][d]
+            ),
+        ));
+    }
     ctx.sim.domain.create(lo, hi);
     ctx.sim.ntypes = ntypes as u32;
     ctx.say(&format!(

@@ -138,7 +138,7 @@ fn partner_lists(r: &Restart, k: usize, id: &str) -> Result<(usize, PartnerLists
 pub fn check_restart_values(r: &Restart, motion: bool) -> Result<(), String> {
     let (lo, hi) = r.bounds();
     for d in 0..3 {
-        if !(lo[d].is_finite() && hi[d].is_finite() && lo[d] < hi[d]) {
+        if !(lo[d] < hi[d] && (hi[d] - lo[d]).is_finite()) {
             return Err(format!(
                 "restart: box bounds {} {} along {} are not a box",
                 lo[d],

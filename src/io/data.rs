@@ -132,8 +132,8 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
                 ["xhi", "yhi", "zhi"][d]
             )
         })?;
-        if lo >= hi {
-            return Err(format!("{path}: box bounds {lo} {hi} are empty"));
+        if lo >= hi || !(hi - lo).is_finite() {
+            return Err(format!("{path}: box bounds {lo} {hi} are not a box"));
         }
         data.lo[d] = lo;
         data.hi[d] = hi;

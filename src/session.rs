@@ -156,6 +156,7 @@ pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
         log,
         echo_screen,
         echo_log,
+        write_errors: [None, None],
     };
     out.both(&banner());
     let mut interp = Interpreter::new(Mode::Run, out);
@@ -181,6 +182,16 @@ pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
         }
     };
     interp.out.flush();
+    // output the deck asked for and did not get: the run did not end cleanly
+    let lost: Vec<String> = interp.out.write_errors.iter().flatten().cloned().collect();
+    if !lost.is_empty() {
+        for m in &lost {
+            let _ = writeln!(std::io::stderr(), "ERROR: {m}");
+        }
+        if status == ExitStatus::Success {
+            return ExitStatus::DeckError;
+        }
+    }
     status
 }
 

@@ -97,4 +97,18 @@ impl<'a> Args<'a> {
         let w = self.word(i)?;
         inumeric(w).map_err(|m| self.error(i, &m))
     }
+
+    /// Argument `i` as an integer LIGGGHTS keeps in an int (a count): one beyond an int's
+    /// range is an error naming the word.
+    pub fn int32(&self, i: usize) -> Result<i64, Diagnostic> {
+        let n = self.int(i)?;
+        if n > i32::MAX as i64 || n < i32::MIN as i64 {
+            let w = self.word(i)?;
+            return Err(self.error(
+                i,
+                &format!("Integer parameter '{w}' is out of range (LIGGGHTS counts it in an int, at most {})", i32::MAX),
+            ));
+        }
+        Ok(n)
+    }
 }

@@ -89,7 +89,7 @@ fn unknown(kind: NameKind, word: &str, cmd: &CommandLine, index: usize) -> Diagn
     let candidates = names::names(kind);
     let help = legacy_style_hint(kind, word)
         .or_else(|| did_you_mean(word, candidates))
-        .unwrap_or_else(|| format!("a {} known to LIGGGHTS 3.8.0", names::label(kind)));
+        .unwrap_or_else(|| format!("'{word}' is not a {} of LIGGGHTS 3.8.0", names::label(kind)));
     Diagnostic::error(names::liggghts_message(kind, word))
         .with_source(&cmd.text, Some(cmd.span(index)))
         .with_help(help)
@@ -99,8 +99,8 @@ fn unknown(kind: NameKind, word: &str, cmd: &CommandLine, index: usize) -> Diagn
 pub fn validate_names(cmd: &CommandLine) -> Result<(), Diagnostic> {
     let name = cmd.name();
     if !names::COMMANDS.contains(&name) && !EXTENSION_COMMANDS.contains(&name) {
-        let help =
-            did_you_mean(name, names::COMMANDS).unwrap_or_else(|| "a LIGGGHTS command".into());
+        let help = did_you_mean(name, names::COMMANDS)
+            .unwrap_or_else(|| format!("'{name}' is not a command of LIGGGHTS 3.8.0"));
         return Err(
             Diagnostic::error(format!("Unknown command: {}", cmd.text.trim()))
                 .with_source(&cmd.text, Some((cmd.words[0].start, cmd.words[0].end)))

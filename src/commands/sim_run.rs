@@ -1070,6 +1070,14 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         }
         n
     };
+    if ctx
+        .sim
+        .step
+        .checked_add(nsteps)
+        .is_none_or(|last| last >= 9.2e18 as i64)
+    {
+        return Err(a.error(0, "Too many timesteps"));
+    }
     if start.is_some_and(|s| s < 0 || s > ctx.sim.step) {
         return Err(a.error(0, "Run command start value is after start of run"));
     }
@@ -1077,7 +1085,14 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.error(0, "Run command stop value is before end of run"));
     }
     if ctx.sys.mode == Mode::Check {
-        // a dry run validates the deck but never steps
+        // a dry run validates the deck but never steps: it makes LIGGGHTS's init checks, keeps
+        // the restart files the run would write, and moves the step count to the run's end
+        ctx.sim.check_run().map_err(|m| a.error(0, &m))?;
+        if ctx.sim.restart_output.iter().any(Option::is_some) {
+            ctx.sim.check_restart_size().map_err(|m| a.error(0, &m))?;
+        }
+        keep_periodic_restarts(ctx, nsteps);
+        ctx.sim.step += nsteps;
         return Ok(());
     }
     if ctx.sim.pair_selection.is_some() && !ctx.sim.pair_coeff_set {
@@ -1093,6 +1108,55 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     ctx.sim
         .run_with_setup(nsteps, pre, &mut sink, &mut vars)
         .map_err(|m| a.error(0, &m))
+}
+
+/// Check mode: the files `restart N ...` would write during a run of `nsteps` from the current
+/// step, kept in memory (holding the dry run's state) for a later `read_restart`.
+fn keep_periodic_restarts(ctx: &mut Ctx, nsteps: i64) {
+    use crate::script::system::{KeptFile, KeptSeries};
+    let (first, last) = (ctx.sim.step, ctx.sim.step + nsteps);
+    let mut bytes: Option<std::rc::Rc<Vec<u8>>> = None;
+    for k in 0..ctx.sim.restart_output.len() {
+        let Some(out) = ctx.sim.restart_output[k].clone() else {
+            continue;
+        };
+        // multiples of the interval after the first step, up to the last
+        let from = first.div_euclid(out.every) + 1;
+        let to = last.div_euclid(out.every);
+        if to < from {
+            continue;
+        }
+        let contents = bytes
+            .get_or_insert_with(|| {
+                let partners = ctx.sim.contact_partners();
+                std::rc::Rc::new(ctx.sim.to_restart(&partners).to_bytes())
+            })
+            .clone();
+        let writes = to - from + 1;
+        if out.files.len() == 1 {
+            ctx.sys.keep_series(KeptSeries {
+                template: out.files[0].clone(),
+                every: out.every,
+                after: first,
+                upto: last,
+                bytes: contents,
+            });
+        } else {
+            // two names in turn: each holds its last write
+            for i in (writes - 2).max(0)..writes {
+                let name = &out.files[(out.toggle + i as usize) % 2];
+                let file = KeptFile {
+                    bytes: contents.clone(),
+                    step: Some((from + i) * out.every),
+                };
+                ctx.sys.keep_file(std::path::Path::new(name), file);
+            }
+        }
+        if let Some(o) = ctx.sim.restart_output[k].as_mut() {
+            o.toggle = (o.toggle + writes as usize) % 2;
+            o.last = Some(to * out.every);
+        }
+    }
 }
 
 /// Parse `model M tangential T ... [option on|off ...]` starting at argument `start` in
@@ -1165,7 +1229,15 @@ fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
     }
     ctx.sim.pair_selection = Some(sel);
     ctx.sim.pair_coeff_set = false;
-    Ok(())
+    // the per-type-pair tables this pair style needs must fit the machine (the style stays
+    // defined, so that a dry run does not also report every later pair command)
+    let n = ctx.sim.ntypes.max(1) as f64;
+    crate::engine::checks::allocation(
+        n * n,
+        std::mem::size_of::<crate::engine::contact::PairCoeffs>(),
+        &format!("pair coefficients ({} atom types)", ctx.sim.ntypes),
+    )
+    .map_err(|m| a.error(0, &m))
 }
 
 fn pair_coeff(a: &Args, ctx: &mut Ctx) -> Result {
@@ -1528,10 +1600,14 @@ fn ave_time(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, D
                     "one" => AveMode::One,
                     "running" => AveMode::Running,
                     _ => {
-                        let m = a.int(i + 2)?;
+                        let m = a.int32(i + 2)?;
                         if m <= 0 {
                             return Err(a.error(i + 2, "Illegal fix ave/time command"));
                         }
+                        // LIGGGHTS keeps the last M values of every input
+                        let row = 24 + 8 * inputs.len();
+                        crate::engine::checks::allocation(m as f64, row, "ave/time:vector_list")
+                            .map_err(|e| a.error(i + 2, &e))?;
                         i += 1;
                         AveMode::Window(m as usize)
                     }
@@ -2197,6 +2273,18 @@ fn particle_template(
         .ok_or_else(|| a.error(2, "Fix particletemplate/sphere: have to define 'density'"))?;
     let radius =
         radius.ok_or_else(|| a.error(2, "Fix particletemplate/sphere: have to define 'radius'"))?;
+    if let Err(m) = crate::engine::checks::check_sphere(2.0 * radius, density, "diameter") {
+        let at = (4..a.len())
+            .rev()
+            .find(|&k| a.word(k).ok() == Some("radius"));
+        return Err(a.error(
+            at.map_or(2, |k| k + 2),
+            &format!(
+                "Fix particletemplate/sphere: radius {}: {m}",
+                crate::script::format::g(radius)
+            ),
+        ));
+    }
     let mut template = crate::engine::insert::Template::new(id, atom_type, radius, density);
     template.rng_state = (seed, seed);
     if template.volume < volume_limit {
@@ -2324,7 +2412,7 @@ fn insert_pack(
                 i += 2;
             }
             "particles_in_region" => {
-                let n = a.int(i + 1)?;
+                let n = a.int32(i + 1)?;
                 if n <= 0 {
                     return Err(a.error(i + 1, "Fix insert/pack: particles_in_region must be > 0"));
                 }
@@ -2392,11 +2480,11 @@ fn insert_pack(
                 i += 2;
             }
             "maxattempt" => {
-                maxattempt = a.int(i + 1)?;
+                maxattempt = a.int32(i + 1)?;
                 i += 2;
             }
             "ntry_mc" => {
-                ntry_mc = a.int(i + 1)?;
+                ntry_mc = a.int32(i + 1)?;
                 if ntry_mc < 1000 {
                     return Err(a.error(i + 1, "Fix insert/pack: ntry_mc must be > 1000"));
                 }
@@ -2434,7 +2522,7 @@ fn insert_pack(
                 i += 5;
             }
             "nparticles" if rate_style => {
-                nparticles = Some(a.int(i + 1)?);
+                nparticles = Some(a.int32(i + 1)?);
                 i += 2;
             }
             "particlerate" if rate_style => {
@@ -2635,7 +2723,7 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
                 total = Some(if w == "mass" {
                     Err(a.real(i + 1)?)
                 } else {
-                    Ok(a.int(i + 1)?)
+                    Ok(a.int32(i + 1)?)
                 });
                 i += 2;
             }
@@ -2663,11 +2751,11 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
                 i += 2;
             }
             "maxattempt" => {
-                maxattempt = a.int(i + 1)?;
+                maxattempt = a.int32(i + 1)?;
                 i += 2;
             }
             "ntry_mc" => {
-                ntry_mc = a.int(i + 1)?;
+                ntry_mc = a.int32(i + 1)?;
                 if ntry_mc < 1000 {
                     return Err(a.error(
                         i + 1,

@@ -245,6 +245,7 @@ fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
     if ntypes < 1 {
         return Err(a.error(0, "Illegal create_box command"));
     }
+    check_ntypes(ntypes).map_err(|m| a.error(0, &m))?;
     if a.len() > 2 {
         return Err(a.unsupported(2, "create_box keywords"));
     }
@@ -259,6 +260,18 @@ fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
         .regions
         .extent(index)
         .ok_or_else(|| a.error(1, "Create_box region does not support a bounding box"))?;
+    // LIGGGHTS's check, and a length a double can hold
+    if let Some(d) = (0..3).find(|&d| !(lo[d] < hi[d] && (hi[d] - lo[d]).is_finite())) {
+        return Err(a.error(
+            1,
+            &format!(
+                "Box bounds are invalid ({} {} along {})",
+                g(lo[d]),
+                g(hi[d]),
+                ["x", "y", "z"][d]
+            ),
+        ));
+    }
     ctx.sim.domain.create(lo, hi);
     ctx.sim.ntypes = ntypes as u32;
     ctx.say(&format!(
@@ -391,6 +404,18 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
         }
         let mut rng =
             crate::script::random::RanPark::new(seed as i32).map_err(|m| a.error(3, &m))?;
+        if let Some(m) = too_many_atoms(count as f64, next_id, "atoms requested") {
+            return Err(a.error(2, &m));
+        }
+        if ctx.sys.mode == Mode::Check && count as f64 > CHECK_BUILD_LIMIT {
+            // a dry run validates the count but does not build the atoms
+            ctx.sim.inserts_atoms = true;
+            return Ok(());
+        }
+        ctx.sim
+            .particles
+            .try_reserve(count as usize)
+            .map_err(|m| a.error(2, &m))?;
         let (mut lo, mut hi) = (d.lo, d.hi);
         if let Some((elo, ehi)) = region.and_then(|r| ctx.sim.regions.extent(r)) {
             for k in 0..3 {
@@ -402,6 +427,7 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
             return Err(a.error(4, "No overlap of box and region for create_atoms"));
         }
         for _ in 0..count {
+            let mut tries = 0u64;
             let x = loop {
                 let x = [
                     lo[0] + rng.uniform() * (hi[0] - lo[0]),
@@ -410,6 +436,16 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
                 ];
                 if region.is_none_or(|r| ctx.sim.regions.matches(r, x)) {
                     break x;
+                }
+                // a region without volume inside the box would be searched forever
+                tries += 1;
+                if tries == MAX_RANDOM_TRIES {
+                    return Err(a.error(
+                        4,
+                        &format!(
+                            "Could not create all random atoms: no position inside the region in {MAX_RANDOM_TRIES} tries (has it any volume inside the box?)"
+                        ),
+                    ));
                 }
             };
             ctx.sim.particles.push(next_id, kind as u32, x, 0.5, 1.0);
@@ -449,16 +485,41 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
                 hi[k] -= 2.0 * eps;
             }
         }
+        // lattice index ranges covering the box, as LIGGGHTS's loop bounds (in doubles first,
+        // so that a lattice far finer than the box is refused before anything is counted)
         let range = |k: usize| {
             let (a0, a1) = (d.lo[k] / scale, d.hi[k] / scale);
             let (mn, mx) = (a0.min(a1), a0.max(a1));
-            let mut l = mn as i64 - 1;
+            let mut l = mn.trunc() - 1.0;
             if mn < 0.0 {
-                l -= 1;
+                l -= 1.0;
             }
-            (l, mx as i64 + 1)
+            (l, mx.trunc() + 1.0)
         };
-        let ((ilo, ihi), (jlo, jhi), (klo, khi)) = (range(0), range(1), range(2));
+        let bounds = [range(0), range(1), range(2)];
+        let points = bounds.iter().map(|(l, h)| h - l + 1.0).product::<f64>() * basis.len() as f64;
+        if let Some(m) = too_many_atoms(points, next_id, "lattice points in the box") {
+            return Err(a.error(1, &m));
+        }
+        if ctx.sys.mode == Mode::Check && points > CHECK_BUILD_LIMIT {
+            // a dry run validates the count but does not build the atoms
+            ctx.sim.inserts_atoms = true;
+            return Ok(());
+        }
+        // room for every lattice point in the region's bounding box (all of them, at most)
+        let mut room = points;
+        if let Some((elo, ehi)) = region.and_then(|r| ctx.sim.regions.extent(r)) {
+            let inside = (0..3)
+                .map(|k| ((ehi[k].min(d.hi[k]) - elo[k].max(d.lo[k])) / scale + 2.0).max(0.0))
+                .product::<f64>()
+                * basis.len() as f64;
+            room = room.min(inside);
+        }
+        ctx.sim
+            .particles
+            .try_reserve(room as usize)
+            .map_err(|m| a.error(1, &m))?;
+        let [(ilo, ihi), (jlo, jhi), (klo, khi)] = bounds.map(|(l, h)| (l as i64, h as i64));
         for kk in klo..=khi {
             for jj in jlo..=jhi {
                 for ii in ilo..=ihi {
@@ -489,6 +550,43 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
         ctx.sim.particles.len() - before
     ));
     Ok(())
+}
+
+/// Bytes of per-type properties (masses, radii, material values) per atom type.
+const BYTES_PER_TYPE: usize = 64;
+
+/// A number of atom types LIGGGHTS can count (an int) and this machine can hold per-type
+/// properties for.
+pub fn check_ntypes(ntypes: i64) -> std::result::Result<(), String> {
+    if ntypes > i32::MAX as i64 {
+        return Err(format!(
+            "Too many atom types: {ntypes} (LIGGGHTS counts them in an int, at most {})",
+            i32::MAX
+        ));
+    }
+    crate::engine::checks::allocation(ntypes as f64, BYTES_PER_TYPE, "per-type properties")
+}
+
+/// LIGGGHTS numbers atoms with ints: IDs beyond this are refused.
+const MAX_ATOM_ID: f64 = 2_147_483_647.0;
+
+/// Check mode validates `create_atoms` counts above this but does not build the atoms.
+const CHECK_BUILD_LIMIT: f64 = 2.0e6;
+
+/// Tries for one `create_atoms random` position before the region is deemed empty.
+const MAX_RANDOM_TRIES: u64 = 10_000_000;
+
+/// The error for creating up to `count` atoms (`what` they are) numbered from `next_id`, if
+/// LIGGGHTS cannot number them.
+fn too_many_atoms(count: f64, next_id: i64, what: &str) -> Option<String> {
+    let last = count + next_id as f64 - 1.0;
+    (last.is_nan() || last > MAX_ATOM_ID).then(|| {
+        format!(
+            "New atom IDs exceed maximum allowed ID: {} {what} (at most {} atoms can be numbered)",
+            g(count),
+            MAX_ATOM_ID
+        )
+    })
 }
 
 fn displace_atoms(a: &Args, ctx: &mut Ctx) -> Result {
@@ -720,6 +818,9 @@ fn set(a: &Args, ctx: &mut Ctx) -> Result {
                     if value < 0.0 {
                         return Err(a.error(i + 1, "Invalid diameter in set command"));
                     }
+                    crate::engine::checks::check_sphere(value, p.density[k], "diameter").map_err(
+                        |m| a.error(i + 1, &format!("Invalid diameter in set command: {m}")),
+                    )?;
                     p.radius[k] = 0.5 * value * 1.0;
                     if p.density[k] > 0.0 {
                         let r = p.radius[k];
@@ -730,6 +831,10 @@ fn set(a: &Args, ctx: &mut Ctx) -> Result {
                     if value <= 0.0 {
                         return Err(a.error(i + 1, "Invalid density in set command"));
                     }
+                    crate::engine::checks::check_sphere(2.0 * p.radius[k], value, "density")
+                        .map_err(|m| {
+                            a.error(i + 1, &format!("Invalid density in set command: {m}"))
+                        })?;
                     p.density[k] = value;
                     if p.radius[k] > 0.0 {
                         let r = p.radius[k];
@@ -1294,6 +1399,7 @@ fn read_data(a: &Args, ctx: &mut Ctx) -> Result {
     }
     .map_err(|m| a.error(0, &format!("Cannot open file {name}: {m}")))?;
     let data = crate::io::data::parse(&text, name).map_err(|m| a.error(0, &m))?;
+    check_ntypes(data.ntypes as i64).map_err(|m| a.error(0, &format!("{name}: {m}")))?;
     let sim = &mut *ctx.sim;
     sim.domain.create(data.lo, data.hi);
     sim.ntypes = data.ntypes;
@@ -1374,14 +1480,33 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
     let name = a.word(0)?;
     let mut path = ctx.sys.resolve(name).to_string_lossy().into_owned();
     if path.contains('*') {
-        path = crate::io::diff::expand(&path)
-            .map_err(|_| a.error(0, "Found no restart file matching pattern"))?
-            .pop()
-            .expect("expand returns at least one file");
+        // the largest step on disk, or among the files a dry run's deck wrote before
+        let on_disk = crate::io::diff::expand(&path)
+            .ok()
+            .and_then(|mut v| v.pop());
+        let disk_step = on_disk.as_deref().map(step_of_name);
+        let kept = ctx.sys.kept_matching(&path).pop();
+        path = match (on_disk, kept) {
+            (Some(d), Some((k, kept))) => {
+                if disk_step.is_some_and(|s| s > k) {
+                    d
+                } else {
+                    kept
+                }
+            }
+            (Some(d), None) => d,
+            (None, Some((_, kept))) => kept,
+            (None, None) => return Err(a.error(0, "Found no restart file matching pattern")),
+        };
     }
     let r = match ctx.sys.kept_binary(std::path::Path::new(&path)) {
-        // check mode: a restart this deck wrote earlier
-        Some(bytes) => crate::io::restart::Restart::parse(bytes, &path, None),
+        // check mode: a restart this deck wrote earlier (periodic output holds its own step)
+        Some(kept) => crate::io::restart::Restart::parse(&kept.bytes, &path, None).map(|mut r| {
+            if let Some(step) = kept.step {
+                r.set_step(step);
+            }
+            r
+        }),
         None => crate::io::restart::read(&path),
     }
     .map_err(|m| a.error(0, &m))?;
@@ -1424,6 +1549,18 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
+/// The step in a restart file's name: its last run of digits (0 if none).
+fn step_of_name(path: &str) -> i64 {
+    let name = path.rsplit('/').next().unwrap_or(path);
+    let digits: Vec<char> = name
+        .chars()
+        .rev()
+        .skip_while(|c| !c.is_ascii_digit())
+        .take_while(|c| c.is_ascii_digit())
+        .collect();
+    digits.iter().rev().collect::<String>().parse().unwrap_or(0)
+}
+
 /// `write_restart FILE`: the current state, atomically, after wrapping positions and the
 /// box as LIGGGHTS does.
 fn write_restart(a: &Args, ctx: &mut Ctx) -> Result {
@@ -1433,6 +1570,7 @@ fn write_restart(a: &Args, ctx: &mut Ctx) -> Result {
     }
     let path = ctx.sys.resolve(a.word(0)?).to_string_lossy().into_owned();
     let path = path.replace('*', &ctx.sim.step.to_string());
+    ctx.sim.check_restart_size().map_err(|m| a.error(0, &m))?;
     if ctx.sys.mode != Mode::Run {
         // check mode: keep the file in memory for a later read_restart of the same deck
         let partners = ctx.sim.contact_partners();

@@ -97,6 +97,39 @@ pub fn parse_boundary(words: &[&str]) -> Result<[[Boundary; 2]; 3], String> {
     Ok(out)
 }
 
+/// Wrap one periodic coordinate into `[lo, hi)`, counting images; false if it is not finite.
+fn wrap(x: &mut f64, image: &mut i32, lo: f64, hi: f64) -> bool {
+    if !x.is_finite() {
+        return false;
+    }
+    let period = hi - lo;
+    if *x < lo {
+        *x += period;
+        *image = image.wrapping_sub(1);
+    } else if *x >= hi {
+        *x -= period;
+        *image = image.wrapping_add(1);
+    }
+    if *x < lo || *x >= hi {
+        // more than a period away: move by whole periods at once
+        let periods = ((*x - lo) / period).floor();
+        *x -= periods * period;
+        // beyond i32 only the low bits can be kept (restart files store 10 of them)
+        let step = if periods.abs() < 1.0e9 {
+            periods as i32
+        } else {
+            (periods % 1024.0) as i32
+        };
+        *image = image.wrapping_add(step);
+        if !(*x >= lo && *x < hi) {
+            // rounding left it just outside (or the period is lost in the magnitude)
+            *x = lo;
+        }
+    }
+    *x = x.max(lo);
+    true
+}
+
 impl Domain {
     /// Make the box with the given corners (the `create_box` step).
     pub fn create(&mut self, lo: [f64; 3], hi: [f64; 3]) {
@@ -130,23 +163,21 @@ impl Domain {
         parts.join(" ")
     }
 
-    /// Wrap a position into the box along periodic directions, counting images.
-    pub fn remap(&self, x: &mut [f64; 3], image: &mut [i32; 3]) {
+    /// Wrap a position into the box along periodic directions, counting images. Returns false
+    /// (and leaves that coordinate alone) when a periodic coordinate is not finite: such an
+    /// atom cannot be placed anywhere in the box and is lost.
+    ///
+    /// A coordinate within a period of the box moves by one period, exactly as LIGGGHTS's
+    /// loop moves it; one farther away moves by a whole number of periods at once (floor
+    /// division), so a huge coordinate costs no more than a near one.
+    pub fn remap(&self, x: &mut [f64; 3], image: &mut [i32; 3]) -> bool {
+        let mut placed = true;
         for d in 0..3 {
-            if !self.periodic(d) {
-                continue;
+            if self.periodic(d) && !wrap(&mut x[d], &mut image[d], self.lo[d], self.hi[d]) {
+                placed = false;
             }
-            let period = self.length(d);
-            while x[d] < self.lo[d] {
-                x[d] += period;
-                image[d] -= 1;
-            }
-            while x[d] >= self.hi[d] {
-                x[d] -= period;
-                image[d] += 1;
-            }
-            x[d] = x[d].max(self.lo[d]);
         }
+        placed
     }
 
     /// LIGGGHTS's `remap_near`: move `xnew` by whole periods along periodic dimensions to
@@ -290,7 +321,7 @@ mod tests {
         d.create([0.0; 3], [1.0, 1.0, 1.0]);
         let mut x = [1.25, 0.5, 0.5];
         let mut img = [0; 3];
-        d.remap(&mut x, &mut img);
+        assert!(d.remap(&mut x, &mut img));
         assert_eq!((x[0], img[0]), (0.25, 1));
         let mut delta = [0.9, 0.0, 0.0];
         d.minimum_image(&mut delta);
@@ -300,5 +331,50 @@ mod tests {
         assert_eq!(d.hi[2], 1.0); // m face never moves inside its initial position
         d.shrink_wrap([0.0, 0.2, 0.1], [1.0, 0.4, 2.0]).unwrap();
         assert!((d.hi[2] - (2.0 + 1e-4)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn wrap_is_o1_and_loses_non_finite() {
+        let mut d = Domain {
+            boundary: parse_boundary(&["p", "p", "f"]).unwrap(),
+            ..Domain::default()
+        };
+        d.create([0.0; 3], [1.0, 1.0, 1.0]);
+        // far coordinates wrap at once, into the box
+        for far in [
+            1e300,
+            -1e300,
+            1e17 + 0.5,
+            -7.25,
+            1234.5,
+            f64::MAX,
+            -f64::MAX,
+        ] {
+            let mut x = [far, 0.5, 0.5];
+            let mut img = [0; 3];
+            assert!(d.remap(&mut x, &mut img), "{far}");
+            assert!(x[0] >= 0.0 && x[0] < 1.0, "{far} -> {}", x[0]);
+        }
+        let mut x = [-7.25, 0.5, 0.5];
+        let mut img = [0; 3];
+        d.remap(&mut x, &mut img);
+        assert_eq!((x[0], img[0]), (0.75, -8));
+        // one period away: exactly LIGGGHTS's single step
+        let mut x = [-0.1, 1.1, 0.5];
+        let mut img = [0; 3];
+        d.remap(&mut x, &mut img);
+        assert_eq!(x, [-0.1 + 1.0, 1.1 - 1.0, 0.5]);
+        assert_eq!(img, [-1, 1, 0]);
+        // not finite: not placed (the atom is lost), never the lower bound
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let mut x = [bad, 0.5, 0.5];
+            let mut img = [0; 3];
+            assert!(!d.remap(&mut x, &mut img));
+            assert!(!x[0].is_finite());
+        }
+        // a non-finite coordinate along a fixed direction is the lost-atom test's business
+        let mut x = [0.5, 0.5, f64::NAN];
+        assert!(d.remap(&mut x, &mut [0; 3]));
+        assert!(!d.contains(x));
     }
 }

@@ -118,8 +118,12 @@ impl Distribution {
         })
     }
 
-    /// The templates of `n` particles, largest first (`random_distribute exact`).
-    pub fn list(&mut self, n: i64) -> Vec<usize> {
+    /// The templates of `n` particles, largest first (`random_distribute exact`); LIGGGHTS's
+    /// "Failed to allocate" when the list and the particles placed from it cannot fit in
+    /// memory.
+    pub fn list(&mut self, n: i64) -> Result<Vec<usize>, String> {
+        // a template index now, a placed particle (template, position, velocity) later
+        crate::engine::checks::allocation(n as f64, 8 + 56, "insertion list")?;
         let nt = self.templates.len();
         let mut count: Vec<i64> = self.weights.iter().map(|w| (n as f64 * w) as i64).collect();
         let rem: Vec<f64> = (0..nt)
@@ -139,7 +143,7 @@ impl Distribution {
         for &i in &self.order {
             out.extend(std::iter::repeat_n(i, count[i].max(0) as usize));
         }
-        out
+        Ok(out)
     }
 }
 
@@ -543,7 +547,8 @@ impl InsertPack {
             return Ok(Vec::new());
         }
         self.set_up = true;
-        self.region_rng.reset(self.seed + 12)?;
+        // C int arithmetic, as LIGGGHTS adds it (a seed near the top wraps and is refused)
+        self.region_rng.reset(self.seed.wrapping_add(12))?;
         self.volume_mc(regions, w, dist.max_radius);
         if self.region_volume <= 0.0 {
             return Err("Fix insert: Region volume calculation with MC failed".into());
@@ -565,7 +570,7 @@ impl InsertPack {
                 let within = if total as f64 <= self.per_insertion {
                     0
                 } else {
-                    (total as f64 / self.per_insertion) as i64 * self.every
+                    ((total as f64 / self.per_insertion) as i64).saturating_mul(self.every)
                 };
                 lines.push(format!(
                     "INFO: Particle insertion {}: {} particles every {} steps - particle rate {}  (mass rate {})\n      {} particles (mass {}) within {} steps",
@@ -591,7 +596,7 @@ impl InsertPack {
         regions: &Regions,
         dist: &mut Distribution,
         w: &World,
-    ) -> (Vec<NewParticle>, Vec<String>) {
+    ) -> Result<(Vec<NewParticle>, Vec<String>), String> {
         let mut lines = Vec::new();
         let shape = self.shape(regions).clone();
         self.next = if self.every > 0 {
@@ -637,9 +642,9 @@ impl InsertPack {
         if w.box_changes {
             self.volume_mc(regions, w, dist.max_radius);
         }
-        let list = dist.list(n);
+        let list = dist.list(n)?;
         if list.is_empty() {
-            return (Vec::new(), lines);
+            return Ok((Vec::new(), lines));
         }
         let nlist = list.len() as i64;
         let maxrad = dist.max_radius;
@@ -686,9 +691,9 @@ impl InsertPack {
             }
         }
         let maxtry = if ratio.is_nan() || ratio >= 1.0 {
-            nlist * self.maxattempt
+            nlist.saturating_mul(self.maxattempt)
         } else {
-            ((nlist * self.maxattempt) as f64 / (1.0 - ratio)) as i64
+            (nlist.saturating_mul(self.maxattempt) as f64 / (1.0 - ratio)) as i64
         };
         let lo = [0, 1, 2].map(|d| elo[d].max(w.lo[d]));
         let hi = [0, 1, 2].map(|d| ehi[d].min(w.hi[d]));
@@ -800,7 +805,7 @@ impl InsertPack {
         if (placed.len() as i64) < nlist {
             lines.push("WARNING: Particle insertion: Less insertions than requested (./src/fix_insert.cpp:814)".into());
         }
-        (placed, lines)
+        Ok((placed, lines))
     }
 }
 
@@ -1236,7 +1241,10 @@ impl InsertStream {
             f("%e", mass_rate),
             self.total,
             f("%e", self.total as f64 * dist.mass_expect),
-            ((self.total as f64 / self.per_insertion).ceil() as i64 - 1).max(0) * self.every
+            ((self.total as f64 / self.per_insertion).ceil() as i64)
+                .saturating_sub(1)
+                .max(0)
+                .saturating_mul(self.every)
         )]
     }
 
@@ -1249,7 +1257,7 @@ impl InsertStream {
         dist: &mut Distribution,
         w: &World,
         box_changes: bool,
-    ) -> (Vec<NewParticle>, Vec<String>) {
+    ) -> Result<(Vec<NewParticle>, Vec<String>), String> {
         let mut lines = Vec::new();
         let mut n = (self.per_insertion + self.rng.uniform()) as i64;
         if self.inserted + n > self.total {
@@ -1265,7 +1273,7 @@ impl InsertStream {
             }
             self.measured = true;
         }
-        let list = dist.list(n);
+        let list = dist.list(n)?;
         let maxrad = dist.max_radius;
         if !list.is_empty() {
             lines.extend(narrow_box_warning(w, maxrad));
@@ -1303,7 +1311,7 @@ impl InsertStream {
                 dhi
             }
         };
-        let maxtry = list.len() as i64 * self.maxattempt;
+        let maxtry = (list.len() as i64).saturating_mul(self.maxattempt);
         let mut ntry = 0;
         let mut placed: Vec<NewParticle> = Vec::new();
         while ntry < maxtry && placed.len() < list.len() {
@@ -1373,7 +1381,7 @@ impl InsertStream {
         if (placed.len() as i64) < n {
             lines.push("WARNING: Particle insertion: Less insertions than requested (./src/fix_insert.cpp:814)".into());
         }
-        (placed, lines)
+        Ok((placed, lines))
     }
 
     /// The state a restart file keeps (LIGGGHTS's FixInsert::write_restart).

@@ -182,6 +182,16 @@ impl MeshStress {
         self.wear_step[t] += e * dt / area;
     }
 
+    /// The first triangle whose accumulated wear or stress is not finite (an overflow, as
+    /// from a `k_finnie` of 1e308), if any.
+    pub fn first_non_finite(&self) -> Option<usize> {
+        (0..self.wear.len()).find(|&t| {
+            !(self.wear[t].is_finite()
+                && self.sigma_n.get(t).is_none_or(|s| s.is_finite())
+                && self.sigma_t.get(t).is_none_or(|s| s.is_finite()))
+        })
+    }
+
     /// End of a step: add the step's wear, and form the stresses from the triangle forces
     /// (`normals` unit, `areas` in length²).
     pub fn end_of_step(&mut self, normals: &[V3], areas: &[f64]) {

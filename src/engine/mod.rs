@@ -3,6 +3,7 @@
 
 pub mod accel;
 pub mod cells;
+pub mod checks;
 pub mod computes;
 pub mod contact;
 pub mod domain;

@@ -14,7 +14,13 @@ pub fn numeric(word: &str) -> Result<f64, String> {
             "Expected floating point parameter in input script or data file, got '{word}'"
         ));
     }
-    Ok(c_atof(word))
+    let x = c_atof(word);
+    if x.is_infinite() {
+        return Err(format!(
+            "Floating point parameter '{word}' is out of range (largest: 1.79769e+308)"
+        ));
+    }
+    Ok(x)
 }
 
 /// LIGGGHTS's `inumeric`: only digits and a sign are allowed; the value is C `atoi`.
@@ -28,7 +34,14 @@ pub fn inumeric(word: &str) -> Result<i64, String> {
             "Expected integer parameter in input script or data file, got '{word}'"
         ));
     }
-    Ok(c_atof(word) as i64)
+    let x = c_atof(word);
+    // an i64 holds up to about 9.2e18; beyond it `as` would quietly saturate
+    if x.is_nan() || x.abs() >= 9.2e18 {
+        return Err(format!(
+            "Integer parameter '{word}' is out of range (it must be below 9.2e18)"
+        ));
+    }
+    Ok(x as i64)
 }
 
 #[cfg(test)]
@@ -44,5 +57,17 @@ mod tests {
         assert!(numeric("INF").is_err());
         assert_eq!(inumeric("-42").unwrap(), -42);
         assert!(inumeric("4.2").is_err());
+        // overflow is an error naming the word, never infinity or a saturated integer
+        let e = numeric("1e400").unwrap_err();
+        assert!(e.contains("'1e400'") && e.contains("out of range"), "{e}");
+        assert!(numeric("-1e400").is_err());
+        assert_eq!(numeric("1e-400").unwrap(), 0.0);
+        assert!(numeric("1.7e308").is_ok());
+        let e = inumeric("99999999999999999999").unwrap_err();
+        assert!(e.contains("'99999999999999999999'"), "{e}");
+        assert_eq!(
+            inumeric("-9000000000000000000").unwrap(),
+            -9_000_000_000_000_000_000
+        );
     }
 }

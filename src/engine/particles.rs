@@ -95,6 +95,41 @@ impl Particles {
         }
     }
 
+    /// Make room for `additional` more particles, or say why there is none (LIGGGHTS's
+    /// "Failed to allocate"); a request beyond the machine is refused before any allocation.
+    pub fn try_reserve(&mut self, additional: usize) -> Result<(), String> {
+        let extra: usize = self.extra.iter().map(|e| e.width * 8).sum();
+        let per_atom = Self::BYTES_PER_ATOM + extra;
+        let what = "atoms";
+        crate::engine::checks::allocation(additional as f64, per_atom, what)?;
+        let fail = |_| {
+            crate::engine::checks::failed_to_allocate(additional as f64 * per_atom as f64, what)
+        };
+        self.id.try_reserve(additional).map_err(fail)?;
+        self.kind.try_reserve(additional).map_err(fail)?;
+        self.mask.try_reserve(additional).map_err(fail)?;
+        for v in [
+            &mut self.x,
+            &mut self.v,
+            &mut self.f,
+            &mut self.omega,
+            &mut self.torque,
+        ] {
+            v.try_reserve(additional).map_err(fail)?;
+        }
+        for v in [&mut self.radius, &mut self.mass, &mut self.density] {
+            v.try_reserve(additional).map_err(fail)?;
+        }
+        self.image.try_reserve(additional).map_err(fail)?;
+        for e in &mut self.extra {
+            e.data.try_reserve(additional * e.width).map_err(fail)?;
+        }
+        Ok(())
+    }
+
+    /// Bytes the per-particle arrays take for one particle.
+    pub const BYTES_PER_ATOM: usize = 8 + 4 + 4 + 5 * 24 + 3 * 8 + 12;
+
     /// Remove the particles for which `remove` is true, keeping the others' order.
     pub fn retain_by(&mut self, remove: &[bool]) {
         fn keep<T: Copy>(v: &mut Vec<T>, remove: &[bool]) {

@@ -108,7 +108,11 @@ fn partner_lists(r: &Restart, k: usize, id: &str) -> Result<(usize, PartnerLists
     for a in &r.atoms {
         let b = &a.extra[k];
         let n = b.first().map_or(0, |v| v.to_bits() as i64) as usize;
-        if b.len() != 1 + n * (width + 1) {
+        let expected = width
+            .checked_add(1)
+            .and_then(|w| n.checked_mul(w))
+            .and_then(|v| v.checked_add(1));
+        if expected != Some(b.len()) {
             return Err(format!(
                 "restart: atom {}: contact history block of {} values for {n} partners of {width} values",
                 a.id,
@@ -124,6 +128,70 @@ fn partner_lists(r: &Restart, k: usize, id: &str) -> Result<(usize, PartnerLists
         out.insert(a.id, list);
     }
     Ok((width, out))
+}
+
+/// Values of a restart file no simulation can start from: a box that is not a box, a type
+/// count or type out of range, a particle without a finite non-negative radius or a positive
+/// mass. A position, velocity or spin that is not finite is refused only when `motion` says
+/// so (a conversion cannot write it); a run loses such an atom as LIGGGHTS does, or stops at
+/// the blow-up guard.
+pub fn check_restart_values(r: &Restart, motion: bool) -> Result<(), String> {
+    let (lo, hi) = r.bounds();
+    for d in 0..3 {
+        if !(lo[d] < hi[d] && (hi[d] - lo[d]).is_finite()) {
+            return Err(format!(
+                "restart: box bounds {} {} along {} are not a box",
+                lo[d],
+                hi[d],
+                ["x", "y", "z"][d]
+            ));
+        }
+    }
+    let ntypes = r.int(crate::io::restart::flag::NTYPES).unwrap_or(0);
+    if ntypes < 1 {
+        return Err(format!("restart: {ntypes} atom types"));
+    }
+    crate::commands::sim_setup::check_ntypes(ntypes).map_err(|m| format!("restart: {m}"))?;
+    for a in &r.atoms {
+        if a.kind < 1 || a.kind > ntypes {
+            return Err(format!(
+                "restart: atom {} has type {} (the file has types 1 to {ntypes})",
+                a.id, a.kind
+            ));
+        }
+        if !(a.radius >= 0.0 && a.radius.is_finite()) {
+            return Err(format!(
+                "restart: atom {} has radius {} (a radius must be finite and at least 0)",
+                a.id, a.radius
+            ));
+        }
+        if !(a.mass > 0.0 && a.mass.is_finite()) {
+            return Err(format!(
+                "restart: atom {} has mass {} (a mass must be finite and positive)",
+                a.id, a.mass
+            ));
+        }
+        if a.radius > 0.0 && !(a.density > 0.0 && a.density.is_finite()) {
+            return Err(format!(
+                "restart: atom {} has density {} (a density must be finite and positive)",
+                a.id, a.density
+            ));
+        }
+        if motion
+            && !a
+                .x
+                .iter()
+                .chain(&a.v)
+                .chain(&a.omega)
+                .all(|c| c.is_finite())
+        {
+            return Err(format!(
+                "restart: atom {} has a position, velocity or angular velocity that is not finite (x = {:?}, v = {:?}, omega = {:?})",
+                a.id, a.x, a.v, a.omega
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Per atom ID, its contact partners and their history values.
@@ -142,6 +210,7 @@ impl Simulation {
                 ))
             }
         }
+        check_restart_values(r, false)?;
         self.step = r.step();
         self.atime = 0.0;
         self.atime_step = 0;
@@ -287,6 +356,21 @@ impl Simulation {
         out
     }
 
+    /// Whether a restart file of this simulation fits in memory (the file is built whole,
+    /// then encoded): LIGGGHTS's "Failed to allocate" if it does not.
+    pub fn check_restart_size(&self) -> Result<(), String> {
+        let n = self.ntypes as f64;
+        let pair = if self.pair_selection.is_some() {
+            8.0 + 4.0 * n * (n + 1.0) / 2.0
+        } else {
+            0.0
+        };
+        let extra: usize = self.particles.extra.iter().map(|e| e.width + 1).sum();
+        let atoms = self.particles.len() as f64 * 8.0 * (24 + extra) as f64;
+        // the file's parts, its atom records and the encoded bytes
+        crate::engine::checks::allocation(3.0 * (pair + atoms), 1, "restart file")
+    }
+
     /// This simulation as a restart file LIGGGHTS 3.8.0 reads, with pair history from
     /// [`Simulation::contact_partners`].
     pub fn to_restart(&self, partners: &HashMap<i64, Vec<(i64, Vec<f64>)>>) -> Restart {
@@ -318,7 +402,8 @@ impl Simulation {
                 &sel.surface,
             ) {
                 let n = self.ntypes as usize;
-                let mut raw = hash.to_le_bytes().to_vec();
+                let mut raw = Vec::with_capacity(8 + 4 * (n * (n + 1) / 2));
+                raw.extend_from_slice(&hash.to_le_bytes());
                 for _ in 0..n * (n + 1) / 2 {
                     raw.extend_from_slice(&1i32.to_le_bytes());
                 }

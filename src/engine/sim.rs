@@ -410,7 +410,9 @@ fn sort_bins(x: &[[f64; 3]], lo: [f64; 3], hi: [f64; 3], binsize: f64) -> Option
         nbin[d] = (((hi[d] - lo[d]) * bininv) as i64).max(1) as usize;
         inv[d] = nbin[d] as f64 / (hi[d] - lo[d]);
     }
-    if nbin[0] * nbin[1] * nbin[2] == 1 {
+    // one bin: nothing to sort; more than an int counts: refused at the run's init
+    let total = nbin.iter().map(|&n| n as f64).product::<f64>();
+    if total <= 1.0 || total > i32::MAX as f64 {
         return None;
     }
     let bin_of = |x: &[f64; 3]| {
@@ -488,10 +490,15 @@ impl Simulation {
     /// its radius in one step, stops the run. One pass over the particles.
     fn guard_motion(&self) -> Result<(), String> {
         let p = &self.particles;
-        let dt = self.dt;
+        // a negative time step moves particles as far as a positive one
+        let dt = self.dt.abs();
         let suspect = |i: usize| {
             let v = p.v[i];
-            !p.x[i].iter().chain(&v).all(|c| c.is_finite())
+            !p.x[i]
+                .iter()
+                .chain(&v)
+                .chain(&p.omega[i])
+                .all(|c| c.is_finite())
                 || (p.radius[i] > 0.0
                     && (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() * dt > p.radius[i])
         };
@@ -499,7 +506,12 @@ impl Simulation {
         let first = first_where(p.len(), suspect);
         for i in first.into_iter() {
             let v = p.v[i];
-            if !p.x[i].iter().chain(&v).all(|c| c.is_finite()) {
+            if !p.x[i]
+                .iter()
+                .chain(&v)
+                .chain(&p.omega[i])
+                .all(|c| c.is_finite())
+            {
                 return Err(self.non_finite(i));
             }
             if p.radius[i] > 0.0
@@ -527,7 +539,7 @@ impl Simulation {
             let v2 = p.v[i][0] * p.v[i][0] + p.v[i][1] * p.v[i][1] + p.v[i][2] * p.v[i][2];
             energy += 0.5 * p.mass[i] * v2;
             if p.radius[i] > 0.0 {
-                let per_step = v2.sqrt() * self.dt / p.radius[i];
+                let per_step = v2.sqrt() * self.dt.abs() / p.radius[i];
                 if per_step > fastest.0 {
                     fastest = (per_step, i);
                 }
@@ -571,9 +583,13 @@ impl Simulation {
                 })
             };
             if ratio > MAX_OVERLAP && !carried() {
+                let cause = if self.step == self.atime_step {
+                    "the particles were created (or read) overlapping"
+                } else {
+                    "the time step is probably too large for the stiffness, or particles were created overlapping"
+                };
                 return Err(format!(
-                    "blow-up at step {}: atoms {} and {} overlap by {:.0} % of the smaller radius; \
-                     the time step is probably too large for the stiffness, or particles were created overlapping",
+                    "blow-up at step {}: atoms {} and {} overlap by {:.0} % of the smaller radius; {cause}",
                     self.step,
                     p.id[i as usize],
                     p.id[j as usize],
@@ -587,10 +603,49 @@ impl Simulation {
     fn non_finite(&self, i: usize) -> String {
         let p = &self.particles;
         format!(
-            "blow-up at step {}: atom {} has a non-finite position, velocity or force (x = {:?}, v = {:?}, f = {:?}); \
-             the time step is probably too large for the stiffness (check Young's modulus, or use fix check/timestep/gran)",
-            self.step, p.id[i], p.x[i], p.v[i], p.f[i]
+            "blow-up at step {}: atom {} has a non-finite position, velocity, angular velocity or force (x = {:?}, v = {:?}, omega = {:?}, f = {:?}); {}",
+            self.step,
+            p.id[i],
+            p.x[i],
+            p.v[i],
+            p.omega[i],
+            p.f[i],
+            self.blow_up_cause(i)
         )
+    }
+
+    /// The likeliest cause of atom `i`'s non-finite value, for the blow-up message.
+    fn blow_up_cause(&self, i: usize) -> String {
+        let p = &self.particles;
+        let positive = |x: f64| x > 0.0;
+        if !positive(p.radius[i]) || !positive(p.mass[i]) {
+            return format!(
+                "it has radius {} and mass {}: a particle needs a positive radius and mass",
+                p.radius[i], p.mass[i]
+            );
+        }
+        // two atoms at one point have no contact normal: their force is 0/0
+        let twin = (0..p.len()).find(|&j| {
+            j != i && {
+                let d = [0, 1, 2].map(|k| p.x[i][k] - p.x[j][k]);
+                d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= (1e-12 * p.radius[i]).powi(2)
+            }
+        });
+        if let Some(j) = twin {
+            return format!(
+                "atoms {} and {} sit at the same position, so their contact has no direction (were they created on top of each other?)",
+                p.id[i], p.id[j]
+            );
+        }
+        let finite = |v: &[f64; 3]| v.iter().all(|c| c.is_finite());
+        if finite(&p.x[i]) && finite(&p.v[i]) && finite(&p.omega[i]) {
+            return "only the force on it is not finite: check the forces fixes add or set (an infinite value or variable?)".into();
+        }
+        if self.step == self.atime_step {
+            // still the run's setup: nothing has been integrated yet
+            return "the state the run started from already holds it (check how the atoms were created, read or set)".into();
+        }
+        "the time step is probably too large for the stiffness (check Young's modulus, or use fix check/timestep/gran)".into()
     }
 
     /// The `end_of_step` phase: fixes that check or report every N steps.
@@ -796,8 +851,12 @@ impl Simulation {
     /// pbc, reset_box and exchange, as at a re-neighbouring or before writing a file).
     pub fn pbc_and_box(&mut self) -> Result<(), String> {
         let p = &mut self.particles;
+        // a periodic coordinate that is not finite cannot be wrapped: the atom is lost
+        let mut unplaced = Vec::new();
         for i in 0..p.len() {
-            self.domain.remap(&mut p.x[i], &mut p.image[i]);
+            if !self.domain.remap(&mut p.x[i], &mut p.image[i]) {
+                unplaced.push(i);
+            }
         }
         // as LIGGGHTS: the box shrink-wraps around every atom first (reset_box), then atoms
         // outside a fixed face are lost (exchange)
@@ -811,7 +870,9 @@ impl Simulation {
             let mut lo = [f64::INFINITY; 3];
             let mut hi = [f64::NEG_INFINITY; 3];
             let mut any = false;
-            for x in p.x.iter().chain(nodes) {
+            // an atom without a finite position is lost below; it does not stretch the box
+            let placed = p.x.iter().filter(|x| x.iter().all(|c| c.is_finite()));
+            for x in placed.chain(nodes) {
                 any = true;
                 for d in 0..3 {
                     lo[d] = lo[d].min(x[d]);
@@ -822,7 +883,10 @@ impl Simulation {
                 self.domain.shrink_wrap(lo, hi)?;
             }
         }
-        let lost: Vec<bool> = p.x.iter().map(|x| !self.domain.contains(*x)).collect();
+        let mut lost: Vec<bool> = p.x.iter().map(|x| !self.domain.contains(*x)).collect();
+        for i in unplaced {
+            lost[i] = true;
+        }
         if lost.iter().any(|&l| l) {
             if !self.lost_ignore {
                 let remaining = lost.iter().filter(|&&l| !l).count();
@@ -1215,7 +1279,20 @@ impl Simulation {
                     }
                 }
                 StressPhase::PreForce => st.pre_force(),
-                StressPhase::EndOfStep => st.end_of_step(&m.mesh.normal, &m.mesh.area),
+                StressPhase::EndOfStep => {
+                    st.end_of_step(&m.mesh.normal, &m.mesh.area);
+                    if let Some(t) = st.first_non_finite() {
+                        return Err(format!(
+                            "blow-up at step {}: triangle {} of mesh {} has a wear or stress that is not finite (wear {}, stresses {} {}); check k_finnie and the particles' sizes and speeds",
+                            self.step,
+                            t + 1,
+                            f.id,
+                            st.wear[t],
+                            st.sigma_n.get(t).copied().unwrap_or(0.0),
+                            st.sigma_t.get(t).copied().unwrap_or(0.0)
+                        ));
+                    }
+                }
             }
         }
         Ok(())
@@ -1295,6 +1372,11 @@ impl Simulation {
     /// LIGGGHTS's `cutneighmax` at a run's init: twice the largest radius among the atoms
     /// and the particle templates, plus the skin (length).
     fn liggghts_cutneighmax(&self) -> f64 {
+        2.0 * self.largest_radius() + self.neighbor.skin
+    }
+
+    /// The largest radius among the atoms and the particle templates (length).
+    pub fn largest_radius(&self) -> f64 {
         let atoms = self.particles.radius.iter().copied().fold(0.0, f64::max);
         let templates = self
             .fixes
@@ -1304,7 +1386,12 @@ impl Simulation {
                 _ => None,
             })
             .fold(0.0, f64::max);
-        2.0 * atoms.max(templates) + self.neighbor.skin
+        atoms.max(templates)
+    }
+
+    /// A dry run's `run`: LIGGGHTS's init checks of particles and neighbour bins, no step.
+    pub fn check_run(&self) -> Result<(), String> {
+        self.check_run_init()
     }
 
     /// A fix changes particle radii during runs (`fix adapt ... atom diameter`).
@@ -1533,6 +1620,7 @@ impl Simulation {
         self.atime_step = self.step;
         let started = std::time::Instant::now();
         self.neighbor.cutneighmax = self.liggghts_cutneighmax();
+        self.check_run_init()?;
         if self.accel.fast {
             self.start_order_record();
         }
@@ -1931,7 +2019,7 @@ impl Simulation {
                     ),
                     _ => unreachable!(),
                 }
-            };
+            }?;
             if let FixKind::Distribution(d) = &mut self.fixes[dk].kind {
                 *d = dist.clone();
             }
@@ -2102,7 +2190,7 @@ impl Simulation {
                     FixKind::InsertPack(ins) => ins.insert(step, &regions, &mut dist, &world),
                     _ => unreachable!(),
                 }
-            };
+            }?;
             let omega = match &self.fixes[k].kind {
                 FixKind::InsertPack(ins) => ins.omega,
                 _ => [0.0; 3],
@@ -2165,6 +2253,7 @@ impl Simulation {
     /// Write the current state as a restart file (`write_restart`): pair history taken from
     /// the current list, then positions wrapped and the box reset as LIGGGHTS does.
     pub fn save_restart(&mut self, path: &str) -> Result<(), String> {
+        self.check_restart_size()?;
         let partners = self.contact_partners();
         self.pbc_and_box()?;
         let r = self.to_restart(&partners);
@@ -2191,6 +2280,7 @@ impl Simulation {
             return Ok(());
         }
         // written from the current state without re-wrapping (the run goes on)
+        self.check_restart_size()?;
         let partners = self.contact_partners();
         let r = self.to_restart(&partners);
         for path in paths {
@@ -2261,6 +2351,17 @@ impl Simulation {
 
     fn thermo_line(&mut self, out: Sink<'_>, vars: &mut dyn VariableSource) -> Result<(), String> {
         let values = self.thermo.values(self, vars)?;
+        // a value that overflowed (an energy of huge, fast particles) ends the run rather
+        // than printing inf or nan
+        let bad = values.iter().position(|v| !v.is_finite());
+        if let Some(k) = bad {
+            return Err(format!(
+                "blow-up at step {}: thermo keyword {} is {}; a value of the simulation overflowed (check particle sizes, densities and velocities)",
+                self.step,
+                self.thermo.fields[k].keyword,
+                values[k]
+            ));
+        }
         let cpu = self.loop_clock.map_or(0.0, |t| t.elapsed().as_secs_f64());
         self.thermo.line(&values, self.step, cpu, out);
         Ok(())

@@ -192,6 +192,11 @@ fn write_bed_vtk(bed: &Bed, path: &str) -> Result<(), String> {
 fn dump_to_vtk(input: &str, output: &str) -> Result<usize, String> {
     let text = crate::io::diff::read_text(input)?;
     let snaps = crate::io::dump_compare::parse(&text).map_err(|m| format!("{input}: {m}"))?;
+    if snaps.is_empty() {
+        return Err(format!(
+            "{input}: not a text dump: no snapshot (no 'ITEM: TIMESTEP'); nothing was written"
+        ));
+    }
     if snaps.len() > 1 && !output.contains('*') {
         return Err(format!(
             "{input} holds {} snapshots: put a * in the output name ({output}) for the step",

@@ -51,6 +51,18 @@ fn number<T: std::str::FromStr>(w: &str, at: &str, what: &str) -> Result<T, Stri
         .map_err(|_| format!("{at}: expected {what}, found '{w}'"))
 }
 
+/// A real number of the file: finite (`nan`, `inf` and overflowing values like `1e400` are
+/// errors naming the word).
+fn real(w: &str, at: &str, what: &str) -> Result<f64, String> {
+    let x: f64 = number(w, at, what)?;
+    if !x.is_finite() {
+        return Err(format!(
+            "{at}: expected {what}, found '{w}' (not a finite number)"
+        ));
+    }
+    Ok(x)
+}
+
 /// Parse a data file; errors name `path` and the line.
 pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
     let lines: Vec<&str> = text.lines().collect();
@@ -76,7 +88,7 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
                     .iter()
                     .position(|a| a == axis)
                     .unwrap_or(0);
-                bounds[d] = Some((number(lo, &at, "a number")?, number(hi, &at, "a number")?));
+                bounds[d] = Some((real(lo, &at, "a number")?, real(hi, &at, "a number")?));
             }
             [_, _, _, "xy", "xz", "yz"] => {
                 return Err(format!("{at}: triclinic boxes are not supported yet"))
@@ -120,8 +132,8 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
                 ["xhi", "yhi", "zhi"][d]
             )
         })?;
-        if lo >= hi {
-            return Err(format!("{path}: box bounds {lo} {hi} are empty"));
+        if lo >= hi || !(hi - lo).is_finite() {
+            return Err(format!("{path}: box bounds {lo} {hi} are not a box"));
         }
         data.lo[d] = lo;
         data.hi[d] = hi;
@@ -159,21 +171,25 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
                     let mut atom = DataAtom {
                         id: number(w[0], &at, "an atom ID")?,
                         kind,
-                        diameter: number(w[2], &at, "a diameter")?,
-                        density: number(w[3], &at, "a density")?,
+                        diameter: real(w[2], &at, "a diameter")?,
+                        density: real(w[3], &at, "a density")?,
                         x: [0.0; 3],
                         image: [0; 3],
                         v: [0.0; 3],
                         omega: [0.0; 3],
                     };
                     for d in 0..3 {
-                        atom.x[d] = number(w[4 + d], &at, "a coordinate")?;
+                        atom.x[d] = real(w[4 + d], &at, "a coordinate")?;
                         if w.len() == 10 {
                             atom.image[d] = number(w[7 + d], &at, "an image count")?;
                         }
                     }
                     if atom.diameter < 0.0 || atom.density <= 0.0 {
                         return Err(format!("{at}: diameter must be >= 0 and density > 0"));
+                    }
+                    if atom.diameter > 0.0 {
+                        crate::engine::checks::check_sphere(atom.diameter, atom.density, "diameter")
+                            .map_err(|m| format!("{at}: atom {}: {m}", atom.id))?;
                     }
                     if index.insert(atom.id, data.atoms.len()).is_some() {
                         return Err(format!("{at}: atom ID {} appears twice", atom.id));
@@ -201,8 +217,8 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
                         format!("{at}: velocity of atom {id}, which the Atoms section lacks (Atoms must come first)")
                     })?;
                     for d in 0..3 {
-                        data.atoms[i].v[d] = number(w[1 + d], &at, "a velocity")?;
-                        data.atoms[i].omega[d] = number(w[4 + d], &at, "an angular velocity")?;
+                        data.atoms[i].v[d] = real(w[1 + d], &at, "a velocity")?;
+                        data.atoms[i].omega[d] = real(w[4 + d], &at, "an angular velocity")?;
                     }
                 }
                 data.velocities = natoms;

@@ -159,11 +159,9 @@ impl Report {
     }
 
     fn trim_worst(&mut self) {
-        self.worst.sort_by(|x, y| {
-            y.rel
-                .partial_cmp(&x.rel)
-                .unwrap_or(std::cmp::Ordering::Equal)
-        });
+        // a NaN deviation (a value that is not a number in one file) ranks as the worst
+        let key = |r: f64| if r.is_nan() { f64::INFINITY } else { r };
+        self.worst.sort_by(|x, y| key(y.rel).total_cmp(&key(x.rel)));
         self.worst.truncate(10);
     }
 

@@ -25,7 +25,7 @@ use crate::engine::domain::{Boundary, Domain};
 use crate::engine::particles::Particles;
 
 /// Header flags, in LIGGGHTS's numbering.
-mod flag {
+pub mod flag {
     pub const VERSION: i32 = 0;
     pub const UNITS: i32 = 4;
     pub const NTIMESTEP: i32 = 5;
@@ -121,7 +121,7 @@ pub fn unpack_image(image: i64) -> [i32; 3] {
 
 /// Pack image flags as LIGGGHTS does.
 pub fn pack_image(image: [i32; 3]) -> i64 {
-    let c = |k: i32| ((k + 512) & 1023) as i64;
+    let c = |k: i32| (k.wrapping_add(512) & 1023) as i64;
     c(image[0]) | (c(image[1]) << 10) | ((image[2] as i64 + 512) << 20)
 }
 
@@ -235,7 +235,7 @@ fn records(buf: &[f64], nfix: usize, name: &str, out: &mut Vec<AtomRecord>) -> R
         let mut k = 17;
         for f in 0..nfix {
             let bl = r.get(k).copied().unwrap_or(0.0) as usize;
-            if bl < 1 || k + bl > len {
+            if bl < 1 || bl > len - k {
                 return Err(format!(
                     "{name}: atom {}: per-atom block {} of fix {} overruns the record",
                     as_int(r[4]),
@@ -304,6 +304,15 @@ impl Restart {
                 Value::Text(t) => Some(t.as_str()),
                 _ => None,
             })
+    }
+
+    /// Set the timestep count.
+    pub fn set_step(&mut self, step: i64) {
+        for (k, v) in &mut self.header {
+            if *k == flag::NTIMESTEP {
+                *v = Value::Big(step);
+            }
+        }
     }
 
     /// The timestep count.
@@ -460,8 +469,15 @@ impl Restart {
                     if style != "gran" {
                         return Err(format!("{name}: pair style {style}: not supported (regolith reads pair_style gran)"));
                     }
-                    let npairs = ntypes * (ntypes + 1) / 2;
-                    let raw = r.take(8 + 4 * npairs, "pair gran settings")?;
+                    // 8 bytes of model hash, an int per type pair (i <= j)
+                    let size = ntypes
+                        .checked_mul(ntypes + 1)
+                        .and_then(|n| (n / 2).checked_mul(4))
+                        .and_then(|n| n.checked_add(8))
+                        .ok_or_else(|| {
+                            format!("{name}: {ntypes} atom types: pair settings of impossible size")
+                        })?;
+                    let raw = r.take(size, "pair gran settings")?;
                     out.pair = Some((style, raw.to_vec()));
                 }
                 f => {
@@ -530,7 +546,18 @@ impl Restart {
 
     /// The file's bytes (single-file form).
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut b = Vec::new();
+        // sized up front: a file of many atom types or atoms is not built by doubling
+        let pair = self
+            .pair
+            .as_ref()
+            .map_or(0, |(s, raw)| s.len() + raw.len() + 16);
+        let fixes: usize = self.global_fixes.iter().map(|f| f.state.len() + 64).sum();
+        let atoms: usize = self
+            .atoms
+            .iter()
+            .map(|a| 8 * (18 + a.extra.iter().map(|e| e.len() + 1).sum::<usize>()))
+            .sum();
+        let mut b = Vec::with_capacity(4096 + pair + fixes + atoms);
         self.write_base(&mut b);
         let chunk = self.atom_chunk();
         b.extend_from_slice(&(chunk.len() as i32).to_le_bytes());
@@ -660,6 +687,8 @@ pub fn write(restart: &Restart, path: &str) -> Result<(), String> {
 /// The particles and box of a restart file.
 pub fn read_bed(path: &str) -> Result<crate::io::convert::Bed, String> {
     let r = read(path)?;
+    crate::engine::restart_state::check_restart_values(&r, true)
+        .map_err(|m| format!("{path}: {m}"))?;
     let mut domain = Domain::default();
     domain.boundary = r.boundary();
     let (lo, hi) = r.bounds();

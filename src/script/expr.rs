@@ -44,6 +44,19 @@ impl fmt::Display for ExprError {
 
 impl std::error::Error for ExprError {}
 
+/// A number written in a formula; one too large for a double (`1e400`) is an error naming it,
+/// not infinity.
+fn literal(word: &str, offset: usize) -> Result<f64, ExprError> {
+    let x = c_atof(word);
+    if x.is_infinite() {
+        return err(
+            format!("Number {word} in variable formula is out of range (largest: 1.79769e+308)"),
+            offset,
+        );
+    }
+    Ok(x)
+}
+
 fn err<T>(message: impl Into<String>, offset: usize) -> Result<T, ExprError> {
     Err(ExprError {
         message: message.into(),
@@ -563,7 +576,7 @@ impl Parser<'_, '_> {
                         i += 1;
                     }
                 }
-                args.push((Node::Num(c_atof(&text[from..i])), 1));
+                args.push((Node::Num(literal(&text[from..i], from)?), 1));
             } else if c.is_ascii_alphabetic() {
                 if !expect_arg {
                     return err(SYNTAX, i);
@@ -1316,7 +1329,7 @@ fn boolean_level(text: &str, start: usize, end: usize, nesting: usize) -> Result
                     i += 1;
                 }
             }
-            args.push(c_atof(&text[from..i]));
+            args.push(literal(&text[from..i], from)?);
         } else if c == 0 || b"<>=!&|".contains(&c) {
             let Ok((op, len)) = operator_at(bytes, i) else {
                 return err(BOOLEAN, i);
@@ -1575,18 +1588,28 @@ mod tests {
             ("1e", "1"),
             ("1e+", "1"),
             ("..5", "0"),
-            ("1e400", "inf"),
-            ("-1e400", "-inf"),
-            ("1/1e400", "0"),
             ("1e308*10", "inf"),
+            ("-1e308*10", "-inf"),
+            ("1/(1e308*10)", "0"),
             ("0^-1", "inf"),
-            ("3%1e400", "3"),
+            ("3%(1e308*10)", "3"),
+            ("1e-400", "0"),
         ];
         for (formula, want) in cases {
             assert_eq!(g15(ev(formula)), *want, "{formula}");
         }
+        // a literal beyond a double is an error naming it (LIGGGHTS's atof makes it inf)
+        for big in ["1e400", "-1e400", "2*1e309"] {
+            let e = fails(big);
+            assert!(e.contains("1e400") || e.contains("1e309"), "{big}: {e}");
+        }
         // liggghts prints -nan for these, and -0 for the signed zeros
-        for nan in ["1e400-1e400", "(-2)^0.5", "sqrt(1e400-1e400)", "1e400%3"] {
+        for nan in [
+            "1e308*10-1e308*10",
+            "(-2)^0.5",
+            "sqrt(1e308*10-1e308*10)",
+            "(1e308*10)%3",
+        ] {
             let v = ev(nan);
             assert!(v.is_nan() && v.is_sign_negative(), "{nan}: {v}");
         }
@@ -1594,8 +1617,8 @@ mod tests {
             let v = ev(zero);
             assert!(v == 0.0 && v.is_sign_negative(), "{zero}: {v}");
         }
-        assert_eq!(ev("(1e400-1e400)==(1e400-1e400)"), 0.0);
-        assert_eq!(ev("!(1e400-1e400)"), 0.0);
+        assert_eq!(ev("(1e308*10-1e308*10)==(1e308*10-1e308*10)"), 0.0);
+        assert_eq!(ev("!(1e308*10-1e308*10)"), 0.0);
     }
 
     #[test]
@@ -1831,9 +1854,9 @@ mod tests {
             ("random(0,1,0)", BAD_MATH),
             ("random(0,1,-5)", BAD_MATH),
             ("random(0,1,1e10)", BAD_MATH),
-            ("random(0,1,1e400-1e400)", BAD_MATH),
+            ("random(0,1,1e308*10-1e308*10)", BAD_MATH),
             ("stagger(10,10)", BAD_MATH),
-            ("stagger(1e400-1e400,1)", BAD_MATH),
+            ("stagger(1e308*10-1e308*10,1)", BAD_MATH),
             ("logfreq(1,3,3)", BAD_MATH),
             ("stride(5,1,1)", BAD_MATH),
             ("stride(1,5,0)", BAD_MATH),

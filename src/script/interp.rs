@@ -35,6 +35,10 @@ pub const SCRIPT_COMMANDS: &[&str] = &[
 /// How deeply `include` may nest input files.
 pub const MAX_INCLUDE_DEPTH: usize = 64;
 
+/// Lines a dry run executes while following loops as a real run would; past this, each jump
+/// is followed once (every line still gets checked, every loop ends).
+pub const CHECK_LINE_BUDGET: u64 = 20_000;
+
 /// The text substituted in check mode for a value only a real run can know.
 pub const UNKNOWN_VALUE: &str = "?unknown?";
 
@@ -71,6 +75,9 @@ pub struct Output {
     pub echo_screen: bool,
     /// Echo input lines to the log.
     pub echo_log: bool,
+    /// The first failed write to the screen and to the log (a full disk, a closed pipe):
+    /// reported once on standard error when it happens, and again at the end.
+    pub write_errors: [Option<String>; 2],
 }
 
 impl Output {
@@ -81,20 +88,37 @@ impl Output {
             log: None,
             echo_screen: false,
             echo_log: false,
+            write_errors: [None, None],
+        }
+    }
+
+    /// Remember (and report once) a failed write to stream `k` (0 screen, 1 log).
+    fn failed(&mut self, k: usize, e: std::io::Error) {
+        if self.write_errors[k].is_none() {
+            let what = ["the screen output", "the log file"][k];
+            let _ = writeln!(
+                std::io::stderr(),
+                "WARNING: writing {what} failed: {e}; it is incomplete from here on"
+            );
+            self.write_errors[k] = Some(format!("writing {what} failed: {e}"));
         }
     }
 
     /// Write `text` to the screen.
     pub fn screen(&mut self, text: &str) {
         if let Some(s) = self.screen.as_mut() {
-            let _ = s.write_all(text.as_bytes());
+            if let Err(e) = s.write_all(text.as_bytes()) {
+                self.failed(0, e);
+            }
         }
     }
 
     /// Write `text` to the log.
     pub fn log(&mut self, text: &str) {
         if let Some(l) = self.log.as_mut() {
-            let _ = l.write_all(text.as_bytes());
+            if let Err(e) = l.write_all(text.as_bytes()) {
+                self.failed(1, e);
+            }
         }
     }
 
@@ -116,11 +140,11 @@ impl Output {
 
     /// Flush both streams.
     pub fn flush(&mut self) {
-        if let Some(s) = self.screen.as_mut() {
-            let _ = s.flush();
+        if let Some(Err(e)) = self.screen.as_mut().map(|s| s.flush()) {
+            self.failed(0, e);
         }
-        if let Some(l) = self.log.as_mut() {
-            let _ = l.flush();
+        if let Some(Err(e)) = self.log.as_mut().map(|l| l.flush()) {
+            self.failed(1, e);
         }
     }
 }
@@ -149,6 +173,7 @@ pub struct Interpreter {
     quit: bool,
     uncertain: bool,
     fired_jumps: HashSet<(String, usize)>,
+    checked_lines: u64,
     location: Location,
     text: String,
 }
@@ -173,6 +198,7 @@ impl Interpreter {
             quit: false,
             uncertain: false,
             fired_jumps: HashSet::new(),
+            checked_lines: 0,
             location: Location {
                 file: String::new(),
                 line: 0,
@@ -232,6 +258,10 @@ impl Interpreter {
                 file: frame.source.name.clone(),
                 line: first + 1,
             };
+            if self.sys.mode == Mode::Check {
+                // every line read counts, those skipped while looking for a label too
+                self.checked_lines += 1;
+            }
             let result = self.execute_line(&text, true);
             if let Err(d) = result {
                 let d = d.at(&self.location.clone());
@@ -291,6 +321,9 @@ impl Interpreter {
             text,
             location: self.location.clone(),
         };
+        if self.sys.mode == Mode::Check && self.uncertain && self.name_error(&cmd) {
+            return Ok(());
+        }
         self.execute(&cmd).map_err(|d| {
             let span = d.span.or(Some((cmd.words[0].start, cmd.words[0].end)));
             d.with_source(&cmd.text, span)
@@ -460,7 +493,11 @@ impl Interpreter {
             commands.clear();
         }
         let step = self.engine.sim.step;
-        let nsteps = if upto { n - step } else { n };
+        let nsteps = if upto {
+            n.checked_sub(step).ok_or_else(bad)?
+        } else {
+            n
+        };
         if nsteps < 0 {
             let what = if upto { "upto value" } else { "N value" };
             return Err(Diagnostic::error(format!("Invalid run command {what}")));
@@ -468,7 +505,13 @@ impl Interpreter {
         let mut left = nsteps;
         let mut first = true;
         while left > 0 || first {
-            let chunk = left.min(every);
+            // a dry run checks the commands once, after one chunk as long as the whole run
+            // (so that its step count and periodic restart files are the run's)
+            let chunk = if self.sys.mode == Mode::Check {
+                left
+            } else {
+                left.min(every)
+            };
             let pre_word = if pre || first { "yes" } else { "no" };
             let text = format!("run {chunk} pre {pre_word} {}", keep.join(" "));
             let words = line::split_words(&text).map_err(|e| lex_error(e, &text))?;
@@ -549,7 +592,9 @@ impl Interpreter {
             return Ok(());
         }
         if let Some(mut old) = self.out.log.take() {
-            let _ = old.flush();
+            if let Err(e) = old.flush() {
+                self.out.failed(1, e);
+            }
         }
         if args[0] != "none" {
             let path = self.sys.resolve(&args[0]);
@@ -608,9 +653,14 @@ impl Interpreter {
             return Ok(());
         }
         if self.sys.mode == Mode::Check {
-            // a dry run follows each jump once: every line gets checked, every loop ends
+            // a dry run follows loops as a real run does while it knows every value (a loop
+            // over `next` then ends where the real one ends, and the lines after it are
+            // checked with the variables' real values); once uncertain, or past the budget,
+            // it follows each jump once: every line gets checked, every loop ends
             let site = (self.location.file.clone(), self.location.line);
-            if !self.fired_jumps.insert(site) {
+            let first_time = self.fired_jumps.insert(site);
+            let faithful = !self.uncertain && self.checked_lines < CHECK_LINE_BUDGET;
+            if !first_time && !faithful {
                 self.uncertain = true;
                 return Ok(());
             }
@@ -738,6 +788,31 @@ impl Interpreter {
         }
         self.if_depth -= 1;
         result
+    }
+
+    /// Check mode, once values are uncertain: errors that depend on values are no longer
+    /// reported, but a misspelt command or style name is one whatever the values. Records
+    /// such an error and returns true (the command is then not executed).
+    fn name_error(&mut self, cmd: &CommandLine) -> bool {
+        let name = cmd.name();
+        if SCRIPT_COMMANDS.contains(&name) || cmd.text.contains(UNKNOWN_VALUE) {
+            return false;
+        }
+        match self.engine.validate_names(cmd) {
+            Err(d) if d.severity == Severity::Error => {
+                let span = d.span.or(Some((cmd.words[0].start, cmd.words[0].end)));
+                let d = d.with_source(&cmd.text, span).at(&self.location.clone());
+                let seen = self
+                    .diagnostics
+                    .iter()
+                    .any(|e| e.location == d.location && e.message == d.message);
+                if !seen {
+                    self.diagnostics.push(d);
+                }
+                true
+            }
+            _ => false,
+        }
     }
 
     /// In check mode, look at a command whose execution is uncertain: report unknown or

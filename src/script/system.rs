@@ -4,6 +4,7 @@
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use std::rc::Rc;
 
 use crate::script::variables::VariableHost;
 
@@ -24,8 +25,55 @@ pub struct System {
     /// Working directory for relative names (changed by `shell cd`).
     pub cwd: PathBuf,
     overlay_files: HashMap<PathBuf, Option<String>>,
-    overlay_binary: HashMap<PathBuf, Vec<u8>>,
+    overlay_binary: HashMap<PathBuf, (u64, KeptFile)>,
+    series: Vec<(u64, KeptSeries)>,
+    kept_count: u64,
     overlay_env: HashMap<String, String>,
+}
+
+/// Check mode: a binary file (a restart) the deck would have written, and the step it would
+/// hold when that differs from the one in the bytes.
+#[derive(Debug, Clone)]
+pub struct KeptFile {
+    /// The file's contents.
+    pub bytes: Rc<Vec<u8>>,
+    /// The step the real file would hold (periodic output of a run the dry run did not step).
+    pub step: Option<i64>,
+}
+
+/// Check mode: the files of periodic output during a run: `template` with `*` replaced by
+/// each multiple of `every` after step `after` up to step `upto`.
+#[derive(Debug, Clone)]
+pub struct KeptSeries {
+    /// Absolute name with a `*` for the step.
+    pub template: String,
+    /// Interval.
+    pub every: i64,
+    /// The run's first step (not written).
+    pub after: i64,
+    /// The run's last step.
+    pub upto: i64,
+    /// Contents of every file (the state the dry run has).
+    pub bytes: Rc<Vec<u8>>,
+}
+
+impl KeptSeries {
+    /// The step of `path` if it is one of the series' files.
+    fn step_of(&self, path: &str) -> Option<i64> {
+        let (prefix, suffix) = self.template.split_once('*')?;
+        let mid = path.strip_prefix(prefix)?.strip_suffix(suffix)?;
+        if mid.is_empty() || !mid.bytes().all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        let step: i64 = mid.parse().ok()?;
+        (step > self.after && step <= self.upto && step % self.every == 0).then_some(step)
+    }
+
+    /// The series' last file: (step, name), if the run writes any.
+    fn last(&self) -> Option<(i64, String)> {
+        let step = self.upto - self.upto.rem_euclid(self.every);
+        (step > self.after).then(|| (step, self.template.replacen('*', &step.to_string(), 1)))
+    }
 }
 
 impl System {
@@ -36,6 +84,8 @@ impl System {
             cwd: std::env::current_dir().unwrap_or_else(|_| PathBuf::from(".")),
             overlay_files: HashMap::new(),
             overlay_binary: HashMap::new(),
+            series: Vec::new(),
+            kept_count: 0,
             overlay_env: HashMap::new(),
         }
     }
@@ -63,12 +113,70 @@ impl System {
 
     /// Check mode: remember a binary file (a restart) the deck would write.
     pub fn keep_binary(&mut self, path: &Path, bytes: Vec<u8>) {
-        self.overlay_binary.insert(path.to_path_buf(), bytes);
+        let file = KeptFile {
+            bytes: Rc::new(bytes),
+            step: None,
+        };
+        self.keep_file(path, file);
     }
 
-    /// Check mode: a binary file the deck wrote earlier, if any.
-    pub fn kept_binary(&self, path: &Path) -> Option<&[u8]> {
-        self.overlay_binary.get(path).map(Vec::as_slice)
+    /// Check mode: remember a binary file that holds a given step.
+    pub fn keep_file(&mut self, path: &Path, file: KeptFile) {
+        self.kept_count += 1;
+        self.overlay_binary
+            .insert(path.to_path_buf(), (self.kept_count, file));
+    }
+
+    /// Check mode: remember the files of periodic output during a run.
+    pub fn keep_series(&mut self, series: KeptSeries) {
+        self.kept_count += 1;
+        self.series.push((self.kept_count, series));
+    }
+
+    /// Check mode: a binary file the deck wrote earlier, if any (the latest write wins).
+    pub fn kept_binary(&self, path: &Path) -> Option<KeptFile> {
+        let name = path.to_string_lossy();
+        let single = self.overlay_binary.get(path).cloned();
+        let periodic = self.series.iter().rev().find_map(|(n, s)| {
+            s.step_of(&name).map(|step| {
+                let file = KeptFile {
+                    bytes: s.bytes.clone(),
+                    step: Some(step),
+                };
+                (*n, file)
+            })
+        });
+        match (single, periodic) {
+            (Some(a), Some(b)) => Some(if a.0 > b.0 { a.1 } else { b.1 }),
+            (a, b) => a.or(b).map(|(_, f)| f),
+        }
+    }
+
+    /// Check mode: the kept files matching `pattern` (one `*` standing for a step), as
+    /// (step, name), for `read_restart NAME.*`.
+    pub fn kept_matching(&self, pattern: &str) -> Vec<(i64, String)> {
+        let Some((prefix, suffix)) = pattern.split_once('*') else {
+            return Vec::new();
+        };
+        let mut found: Vec<(i64, String)> = self
+            .overlay_binary
+            .keys()
+            .filter_map(|p| {
+                let name = p.to_string_lossy().into_owned();
+                let mid = name.strip_prefix(prefix)?.strip_suffix(suffix)?;
+                let step = mid.parse::<i64>().ok()?;
+                Some((step, name))
+            })
+            .collect();
+        for (_, s) in &self.series {
+            if let Some((step, name)) = s.last() {
+                if name.starts_with(prefix) && name.ends_with(suffix) {
+                    found.push((step, name));
+                }
+            }
+        }
+        found.sort();
+        found
     }
 
     /// Write (or append to) a text file.

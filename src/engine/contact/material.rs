@@ -525,7 +525,17 @@ impl Material {
                 b.create(input, base, caller)?;
             }
         }
-        let mut pairs = vec![PairCoeffs::default(); n * n];
+        let mut pairs = Vec::new();
+        let size = std::mem::size_of::<PairCoeffs>();
+        n.checked_mul(n)
+            .and_then(|nn| pairs.try_reserve_exact(nn).ok())
+            .ok_or_else(|| {
+                crate::engine::checks::failed_to_allocate(
+                    (n as f64) * (n as f64) * size as f64,
+                    "pair coefficients",
+                )
+            })?;
+        pairs.resize(n * n, PairCoeffs::default());
         for i in 0..n {
             for j in 0..n {
                 let k = i * n + j;

@@ -5,6 +5,7 @@
 //! with it, [`session`] runs or checks a whole deck, and [`error`] carries the file/line
 //! diagnostics every layer reports.
 
+pub mod analyze;
 pub mod bench;
 pub mod cli;
 pub mod commands;

@@ -1,0 +1,209 @@
+//! The `regolith analyze` command line and what each subcommand prints and writes.
+
+use std::path::{Path, PathBuf};
+
+use clap::{Args, Subcommand};
+
+use super::chain::{self, ChainOptions, Material};
+use super::run::{resolve_dt, RunRequest};
+use super::series::Series;
+use super::table::ensure_dir;
+use super::AnalyzeError;
+
+/// Options every analysis takes.
+#[derive(Args, Debug, Clone)]
+pub struct Common {
+    /// Time step (s), turning dump steps into seconds.
+    #[arg(long)]
+    pub dt: Option<f64>,
+    /// Read the time step from this log (the last echoed `timestep` command).
+    #[arg(long)]
+    pub log: Option<PathBuf>,
+    /// Folder for the CSV tables and PNG figures.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Run this deck first (from its own folder, screen off, log in log.liggghts there); the
+    /// dump names are then relative to the deck's folder.
+    #[arg(long)]
+    pub run: Option<PathBuf>,
+    /// Deck variables for --run: --var NAME VALUE (repeatable).
+    #[arg(long = "var", num_args = 2, value_names = ["NAME", "VALUE"], action = clap::ArgAction::Append)]
+    pub vars: Vec<String>,
+    /// With --run: run Debian's `liggghts` instead of regolith.
+    #[arg(long)]
+    pub liggghts: bool,
+}
+
+/// `regolith analyze ...`
+#[derive(Subcommand, Debug, Clone)]
+pub enum AnalyzeCommand {
+    /// Struck chain: peak force per particle, arrival times, wave speed c_w; with several
+    /// --set V DUMPS, c_w against the impact speed v_im with its exponent and the weak-impact
+    /// sound speed.
+    Chain(ChainArgs),
+}
+
+/// `regolith analyze chain`.
+#[derive(Args, Debug, Clone)]
+pub struct ChainArgs {
+    /// One run's dumps (a file or a `*` series); default post/chain_*.dump with --run.
+    pub dumps: Option<String>,
+    /// A run of a sweep: its impact speed (m/s) and dumps (repeatable; repeated speeds are
+    /// seeds or repeats, averaged).
+    #[arg(long = "set", num_args = 2, value_names = ["V_IM", "DUMPS"], action = clap::ArgAction::Append)]
+    pub sets: Vec<String>,
+    /// Impact speed of the single run (m/s); default the --var vim given with --run.
+    #[arg(long)]
+    pub vim: Option<f64>,
+    /// Material for the sound speed and the Hertz elastic limit: soft or steel.
+    #[arg(long, default_value = "soft")]
+    pub material: String,
+    /// Axis of the column: x, y or z.
+    #[arg(long, default_value = "z")]
+    pub axis: String,
+    /// Layers next to the struck end left out of the fit.
+    #[arg(long, default_value_t = 2)]
+    pub skip_first: usize,
+    /// Layers at the free end left out of the fit.
+    #[arg(long, default_value_t = 1)]
+    pub skip_last: usize,
+    /// Impacts up to this speed (m/s) are weak (sound speed); faster ones enter the power law.
+    #[arg(long, default_value_t = 1e-4)]
+    pub weak_max: f64,
+    #[command(flatten)]
+    pub common: Common,
+}
+
+fn pairs(v: &[String]) -> Vec<(String, String)> {
+    v.chunks(2)
+        .map(|c| (c[0].clone(), c.get(1).cloned().unwrap_or_default()))
+        .collect()
+}
+
+/// Run the deck if asked; return (folder the dump names are relative to, log to read dt from).
+fn prepare(c: &Common) -> Result<(PathBuf, Option<PathBuf>), AnalyzeError> {
+    let Some(deck) = &c.run else {
+        return Ok((PathBuf::from("."), c.log.clone()));
+    };
+    let req = RunRequest {
+        deck: deck.clone(),
+        vars: pairs(&c.vars),
+        liggghts: c.liggghts,
+    };
+    eprintln!(
+        "running {} in {} ({}; log {})",
+        deck.display(),
+        req.folder().display(),
+        if c.liggghts { "liggghts" } else { "regolith" },
+        req.log().display()
+    );
+    req.run()?;
+    Ok((req.folder(), c.log.clone().or_else(|| Some(req.log()))))
+}
+
+fn in_folder(folder: &Path, pattern: &str) -> String {
+    if folder == Path::new(".") || Path::new(pattern).is_absolute() {
+        pattern.to_string()
+    } else {
+        folder.join(pattern).display().to_string()
+    }
+}
+
+fn out_dir(c: &Common, folder: &Path, default: &str) -> Result<PathBuf, AnalyzeError> {
+    let dir = c.out.clone().unwrap_or_else(|| folder.join(default));
+    ensure_dir(&dir)?;
+    Ok(dir)
+}
+
+fn parse_f64(what: &str, w: &str) -> Result<f64, AnalyzeError> {
+    w.parse()
+        .map_err(|_| AnalyzeError::Usage(format!("{what}: '{w}' is not a number")))
+}
+
+/// Run an analysis; the summary goes to standard output.
+pub fn analyze(cmd: &AnalyzeCommand) -> Result<(), AnalyzeError> {
+    match cmd {
+        AnalyzeCommand::Chain(a) => analyze_chain(a),
+    }
+}
+
+fn analyze_chain(a: &ChainArgs) -> Result<(), AnalyzeError> {
+    let (folder, log) = prepare(&a.common)?;
+    let dt = resolve_dt(a.common.dt, log.as_deref())?;
+    let out = out_dir(&a.common, &folder, "post/analysis")?;
+    let material = match a.material.as_str() {
+        "soft" => Material::SOFT,
+        "steel" => Material::STEEL,
+        m => {
+            return Err(AnalyzeError::Usage(format!(
+                "--material {m}: soft or steel"
+            )))
+        }
+    };
+    let axis = match a.axis.as_str() {
+        "x" => 0,
+        "y" => 1,
+        "z" => 2,
+        w => return Err(AnalyzeError::Usage(format!("--axis {w}: x, y or z"))),
+    };
+    let o = ChainOptions {
+        axis,
+        skip_first: a.skip_first,
+        skip_last: a.skip_last,
+        ..ChainOptions::default()
+    };
+    let mut sets: Vec<(Option<f64>, String)> = Vec::new();
+    for (v, p) in pairs(&a.sets) {
+        sets.push((Some(parse_f64("--set", &v)?), in_folder(&folder, &p)));
+    }
+    let single = a
+        .dumps
+        .clone()
+        .or_else(|| a.common.run.as_ref().map(|_| "post/chain_*.dump".into()));
+    if let Some(d) = single {
+        let vim = match a.vim {
+            Some(v) => Some(v),
+            None => pairs(&a.common.vars)
+                .iter()
+                .find(|(n, _)| n == "vim")
+                .map(|(_, v)| parse_f64("--var vim", v))
+                .transpose()?,
+        };
+        sets.push((vim, in_folder(&folder, &d)));
+    }
+    if sets.is_empty() {
+        return Err(AnalyzeError::Usage(
+            "no dumps: give DUMPS, --set V_IM DUMPS, or --run DECK".into(),
+        ));
+    }
+    let mut runs = Vec::new();
+    for (k, (vim, pattern)) in sets.iter().enumerate() {
+        let r = chain::analyze(&Series::open(pattern, dt)?, &o)?;
+        let tag = if sets.len() > 1 {
+            format!("run{}_", k + 1)
+        } else {
+            String::new()
+        };
+        let line = super::chain_report::write_run(&out, &tag, &r)?;
+        let v = vim.map_or(String::new(), |v| format!("v_im = {v} m/s: "));
+        println!("{pattern}: {v}{line}");
+        if let Some(v) = vim {
+            if *v > material.elastic_limit() {
+                println!(
+                    "WARNING: v_im = {v} m/s is above the Hertz elastic limit ({:.3e} m/s): outside Hertz theory",
+                    material.elastic_limit()
+                );
+            }
+            runs.push((*v, r.fit));
+        }
+    }
+    let speeds: std::collections::BTreeSet<u64> = runs.iter().map(|r| r.0.to_bits()).collect();
+    if speeds.len() > 1 {
+        let s = chain::sweep(&runs, a.weak_max, &material);
+        for line in super::chain_report::write_sweep(&out, &s)? {
+            println!("{line}");
+        }
+    }
+    println!("tables and figures in {}", out.display());
+    Ok(())
+}

@@ -41,6 +41,45 @@ pub enum AnalyzeCommand {
     /// --set V DUMPS, c_w against the impact speed v_im with its exponent and the weak-impact
     /// sound speed.
     Chain(ChainArgs),
+    /// Lunar channel: sensor grid, wave arrival, c_w and c_p, bed height and dilation,
+    /// initial overlap against depth, per-particle panels; with several --set V_P DUMPS,
+    /// speeds and dilation against the piston speed (mean and spread over seeds).
+    Channel(ChannelArgs),
+}
+
+/// `regolith analyze channel`.
+#[derive(Args, Debug, Clone)]
+pub struct ChannelArgs {
+    /// One shock run's dumps (a file or a `*` series); default post/shock_*.dump with --run.
+    pub dumps: Option<String>,
+    /// A run of a sweep: its piston speed (m/s) and dumps (repeatable; repeated speeds are
+    /// seeds, averaged).
+    #[arg(long = "set", num_args = 2, value_names = ["V_P", "DUMPS"], action = clap::ArgAction::Append)]
+    pub sets: Vec<String>,
+    /// `dump local` of compute pair/gran/local (ids, ..., overlap last) at the first step,
+    /// for the initial overlap against depth; default contacts_0.dump beside the dumps.
+    #[arg(long)]
+    pub contacts: Option<String>,
+    /// Sensor cell edge (m).
+    #[arg(long, default_value_t = 0.005)]
+    pub cell: f64,
+    /// Particles averaged for a column's height.
+    #[arg(long, default_value_t = 10)]
+    pub top_n: usize,
+    /// Times of the per-particle panels (s), comma-separated.
+    #[arg(long, value_delimiter = ',')]
+    pub panel_times: Vec<f64>,
+    /// Column of the yy per-atom stress.
+    #[arg(long, default_value = "c_stress[2]")]
+    pub syy: String,
+    /// Column of the yz per-atom stress.
+    #[arg(long, default_value = "c_stress[6]")]
+    pub syz: String,
+    /// Gravity (m/s2) for the overlap estimate.
+    #[arg(long, default_value_t = 1.625)]
+    pub gravity: f64,
+    #[command(flatten)]
+    pub common: Common,
 }
 
 /// `regolith analyze chain`.
@@ -74,14 +113,14 @@ pub struct ChainArgs {
     pub common: Common,
 }
 
-fn pairs(v: &[String]) -> Vec<(String, String)> {
+pub(super) fn pairs(v: &[String]) -> Vec<(String, String)> {
     v.chunks(2)
         .map(|c| (c[0].clone(), c.get(1).cloned().unwrap_or_default()))
         .collect()
 }
 
 /// Run the deck if asked; return (folder the dump names are relative to, log to read dt from).
-fn prepare(c: &Common) -> Result<(PathBuf, Option<PathBuf>), AnalyzeError> {
+pub(super) fn prepare(c: &Common) -> Result<(PathBuf, Option<PathBuf>), AnalyzeError> {
     let Some(deck) = &c.run else {
         return Ok((PathBuf::from("."), c.log.clone()));
     };
@@ -101,7 +140,7 @@ fn prepare(c: &Common) -> Result<(PathBuf, Option<PathBuf>), AnalyzeError> {
     Ok((req.folder(), c.log.clone().or_else(|| Some(req.log()))))
 }
 
-fn in_folder(folder: &Path, pattern: &str) -> String {
+pub(super) fn in_folder(folder: &Path, pattern: &str) -> String {
     if folder == Path::new(".") || Path::new(pattern).is_absolute() {
         pattern.to_string()
     } else {
@@ -109,13 +148,13 @@ fn in_folder(folder: &Path, pattern: &str) -> String {
     }
 }
 
-fn out_dir(c: &Common, folder: &Path, default: &str) -> Result<PathBuf, AnalyzeError> {
+pub(super) fn out_dir(c: &Common, folder: &Path, default: &str) -> Result<PathBuf, AnalyzeError> {
     let dir = c.out.clone().unwrap_or_else(|| folder.join(default));
     ensure_dir(&dir)?;
     Ok(dir)
 }
 
-fn parse_f64(what: &str, w: &str) -> Result<f64, AnalyzeError> {
+pub(super) fn parse_f64(what: &str, w: &str) -> Result<f64, AnalyzeError> {
     w.parse()
         .map_err(|_| AnalyzeError::Usage(format!("{what}: '{w}' is not a number")))
 }
@@ -124,6 +163,7 @@ fn parse_f64(what: &str, w: &str) -> Result<f64, AnalyzeError> {
 pub fn analyze(cmd: &AnalyzeCommand) -> Result<(), AnalyzeError> {
     match cmd {
         AnalyzeCommand::Chain(a) => analyze_chain(a),
+        AnalyzeCommand::Channel(a) => super::channel_cli::analyze_channel(a),
     }
 }
 

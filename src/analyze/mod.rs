@@ -14,12 +14,16 @@
 pub mod args;
 pub mod chain;
 pub mod chain_report;
-// pub mod channel;
+pub mod channel;
+pub mod channel_cli;
+pub mod channel_panels;
+pub mod channel_report;
 pub mod fit;
+pub mod overlap;
 pub mod plot;
 // pub mod ring;
 pub mod run;
-// pub mod sensor;
+pub mod sensor;
 pub mod series;
 pub mod table;
 

@@ -135,6 +135,30 @@ impl Series {
         Ok(())
     }
 
+    /// Call `f` on the frames at `steps` only (a series reads only those files).
+    pub fn for_steps(
+        &self,
+        steps: &[i64],
+        mut f: impl FnMut(Frame) -> Result<(), AnalyzeError>,
+    ) -> Result<(), AnalyzeError> {
+        if let Some(snaps) = &self.loaded {
+            for s in snaps.iter().filter(|s| steps.contains(&s.step)) {
+                f(Frame::from_snapshot(s.clone(), self.dt))?;
+            }
+            return Ok(());
+        }
+        for file in self
+            .files
+            .iter()
+            .filter(|n| steps.contains(&step_of_name(n)))
+        {
+            for s in read_snapshots(file)? {
+                f(Frame::from_snapshot(s, self.dt))?;
+            }
+        }
+        Ok(())
+    }
+
     /// Every frame, in memory at once (for small dumps).
     pub fn frames(&self) -> Result<Vec<Frame>, AnalyzeError> {
         let mut out = Vec::new();

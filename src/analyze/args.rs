@@ -45,6 +45,33 @@ pub enum AnalyzeCommand {
     /// initial overlap against depth, per-particle panels; with several --set V_P DUMPS,
     /// speeds and dilation against the piston speed (mean and spread over seeds).
     Channel(ChannelArgs),
+    /// Radial blast: inner/outer radius of the disturbed surface, compaction front,
+    /// corrugation amplitude over time, azimuthal force spectrum in annular bands; with
+    /// several --set LABEL DUMPS, the trials compared (mean and spread over seeds).
+    Ring(RingArgs),
+}
+
+/// `regolith analyze ring`.
+#[derive(Args, Debug, Clone)]
+pub struct RingArgs {
+    /// One run's dumps (a file or a `*` series); default post/ring_*.dump with --run.
+    pub dumps: Option<String>,
+    /// A run of a comparison: its label (trial name) and dumps (repeatable; repeated labels
+    /// are seeds, averaged).
+    #[arg(long = "set", num_args = 2, value_names = ["LABEL", "DUMPS"], action = clap::ArgAction::Append)]
+    pub sets: Vec<String>,
+    /// Angular sectors for the surface R(theta).
+    #[arg(long, default_value_t = 72)]
+    pub sectors: usize,
+    /// Annular bands of the force spectrum.
+    #[arg(long, default_value_t = 3)]
+    pub bands: usize,
+    /// The compaction front is where the mean radial velocity falls below this fraction of
+    /// its peak.
+    #[arg(long, default_value_t = 0.1)]
+    pub front_fraction: f64,
+    #[command(flatten)]
+    pub common: Common,
 }
 
 /// `regolith analyze channel`.
@@ -164,6 +191,7 @@ pub fn analyze(cmd: &AnalyzeCommand) -> Result<(), AnalyzeError> {
     match cmd {
         AnalyzeCommand::Chain(a) => analyze_chain(a),
         AnalyzeCommand::Channel(a) => super::channel_cli::analyze_channel(a),
+        AnalyzeCommand::Ring(a) => super::ring_report::analyze_ring(a),
     }
 }
 

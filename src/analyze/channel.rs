@@ -75,14 +75,20 @@ pub struct Arrival {
     pub t: f64,
 }
 
-/// A fitted speed with the points it used.
+/// A fitted speed with the points it used. Arrival time is regressed on cell position (the
+/// position is exact, the time is the measurement), t = t0 + y / c, so a late outlier is
+/// clipped rather than levering the line.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SpeedFit {
     /// y range actually used (m).
     pub range: (f64, f64),
-    /// y = y0 + c t: the slope is the speed (m/s).
+    /// The speed c (m/s).
+    pub speed: f64,
+    /// Its standard error (m/s).
+    pub speed_err: f64,
+    /// t = intercept + slope y: slope 1/c (s/m), intercept t0 (s).
     pub fit: LineFit,
-    /// (t, y) points kept after the outlier removal.
+    /// (y, t) points kept after the outlier removal.
     pub kept: Vec<(f64, f64)>,
 }
 
@@ -213,11 +219,18 @@ pub fn analyze(series: &Series, o: &ChannelOptions) -> Result<ChannelResult, Ana
         let pts: Vec<(f64, f64)> = arrivals
             .iter()
             .filter(|a| a.y >= range.0 && a.y <= range.1)
-            .map(|a| (a.t, a.y - grid.y0))
+            .map(|a| (a.y - grid.y0, a.t))
             .collect();
         fit_line_clipped(&pts, o.clip_sigma)
             .ok()
-            .map(|(fit, kept)| SpeedFit { range, fit, kept })
+            .filter(|(fit, _)| fit.slope > 0.0)
+            .map(|(fit, kept)| SpeedFit {
+                range,
+                speed: 1.0 / fit.slope,
+                speed_err: fit.slope_err / (fit.slope * fit.slope),
+                fit,
+                kept,
+            })
     };
     let (c_w, c_p) = (speed(o.cw_range), speed(o.cp_range));
     let heights = Heights {
@@ -232,9 +245,7 @@ pub fn analyze(series: &Series, o: &ChannelOptions) -> Result<ChannelResult, Ana
         times = [0.25, 0.5, 0.75]
             .iter()
             .map(|q| match &c_w {
-                Some(s) if s.fit.slope > 0.0 => {
-                    ((q * length - s.fit.intercept) / s.fit.slope).clamp(0.0, t_end)
-                }
+                Some(s) => s.fit.at(q * length).clamp(0.0, t_end),
                 _ => q * t_end,
             })
             .collect();

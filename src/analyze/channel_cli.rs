@@ -110,8 +110,8 @@ pub fn analyze_channel(a: &ChannelArgs) -> Result<(), AnalyzeError> {
         if let Some(v) = vp {
             runs.push((
                 *v,
-                r.c_w.map(|s| s.fit.slope),
-                r.c_p.map(|s| s.fit.slope),
+                r.c_w.map(|s| s.speed),
+                r.c_p.map(|s| s.speed),
                 r.dilation_mean.map(|d| d.0),
             ));
         }

@@ -14,7 +14,7 @@ fn speed_text(name: &str, s: &Option<SpeedFit>) -> String {
     match s {
         Some(s) => format!(
             "{name} = {:.3} +/- {:.3} m/s (y in [{:.3}, {:.3}] m, {} cells)",
-            s.fit.slope, s.fit.slope_err, s.range.0, s.range.1, s.fit.n
+            s.speed, s.speed_err, s.range.0, s.range.1, s.fit.n
         ),
         None => format!("{name}: no fit (too few cells with an arrival in its range)"),
     }
@@ -123,14 +123,11 @@ fn arrival_figure(path: &Path, r: &ChannelResult) -> Result<(), AnalyzeError> {
     )];
     for (label, s) in [("c_w", &r.c_w), ("c_p", &r.c_p)] {
         if let Some(s) = s {
-            let t0 = s.kept.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
-            let t1 = s.kept.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
+            let y0 = s.kept.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
+            let y1 = s.kept.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
             curves.push(Curve::new(
-                &format!(
-                    "{label} = {:.3} +/- {:.3} m/s",
-                    s.fit.slope, s.fit.slope_err
-                ),
-                vec![(t0, s.fit.at(t0)), (t1, s.fit.at(t1))],
+                &format!("{label} = {:.3} +/- {:.3} m/s", s.speed, s.speed_err),
+                vec![(s.fit.at(y0), y0), (s.fit.at(y1), y1)],
                 Style::Line,
             ));
         }

@@ -12,5 +12,6 @@ pub mod commands;
 pub mod engine;
 pub mod error;
 pub mod io;
+pub mod progress;
 pub mod script;
 pub mod session;

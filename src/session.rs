@@ -136,6 +136,7 @@ pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
             }
         },
     };
+    let (observer, screen) = crate::progress::attach(screen);
     let log = match open_output(opts.log.as_deref().unwrap_or("log.liggghts")) {
         Ok(l) => l,
         Err(d) => {
@@ -159,6 +160,7 @@ pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
     let mut interp = Interpreter::new(Mode::Run, out);
     interp.engine.sim.seed_tolerant = opts.seed_tolerant;
     interp.engine.sim.zero_restitution = opts.zero_restitution;
+    interp.engine.sim.observer = observer;
     for (name, values) in &opts.vars {
         if let Err(d) = interp.set_command_line_variable(name, values) {
             report(&d);

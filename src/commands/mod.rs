@@ -173,9 +173,11 @@ impl Engine {
     pub fn clear(&mut self) {
         // command-line switches survive `clear`
         let (tolerant, zero_e) = (self.sim.seed_tolerant, self.sim.zero_restitution);
+        let observer = self.sim.observer.take();
         *self = Engine::new();
         self.sim.seed_tolerant = tolerant;
         self.sim.zero_restitution = zero_e;
+        self.sim.observer = observer;
     }
 
     /// Whether `create_box` (or a restart/data file) has defined the simulation box.

@@ -57,9 +57,9 @@ fn chain_run_in_regolith_matches_liggghts_dumps() {
         "{stdout}\n{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    assert!(stdout.contains("v_im = 0.1 m/s"), "{stdout}");
+    assert!(stdout.contains("v_im = 1e-1 m/s"), "{stdout}");
     // 0.1 m/s is above the soft beads' Hertz elastic limit (0.0094 m/s): flagged
-    assert!(stdout.contains("WARNING: v_im = 0.1 m/s is above the Hertz elastic limit"));
+    assert!(stdout.contains("WARNING: v_im = 1e-1 m/s is above the Hertz elastic limit"));
     let analysis = work.join("post/analysis");
     for f in [
         "chain_arrival.png",

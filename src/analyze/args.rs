@@ -253,12 +253,12 @@ fn analyze_chain(a: &ChainArgs) -> Result<(), AnalyzeError> {
             String::new()
         };
         let line = super::chain_report::write_run(&out, &tag, &r)?;
-        let v = vim.map_or(String::new(), |v| format!("v_im = {v} m/s: "));
+        let v = vim.map_or(String::new(), |v| format!("v_im = {v:e} m/s: "));
         println!("{pattern}: {v}{line}");
         if let Some(v) = vim {
             if *v > material.elastic_limit() {
                 println!(
-                    "WARNING: v_im = {v} m/s is above the Hertz elastic limit ({:.3e} m/s): outside Hertz theory",
+                    "WARNING: v_im = {v:e} m/s is above the Hertz elastic limit ({:.3e} m/s): outside Hertz theory",
                     material.elastic_limit()
                 );
             }

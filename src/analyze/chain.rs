@@ -259,6 +259,9 @@ pub struct Sweep {
     pub power: Option<PowerFit>,
     /// Weak-impact speed: mean and spread of c_w for v_im <= `weak_max` (m/s).
     pub sound_speed: Option<(f64, f64)>,
+    /// Power law over the weak impacts: an exponent near 0 is a sound speed; near 0.2, the
+    /// weak impacts are Hertz shocks too (a chain without precompression).
+    pub weak_power: Option<PowerFit>,
     /// The weak-impact bound used (m/s).
     pub weak_max: f64,
     /// The elastic limit (m/s).
@@ -293,13 +296,15 @@ pub fn sweep(runs: &[(f64, LineFit)], weak_max: f64, material: &Material) -> Swe
         .filter(|p| p.v_im > weak_max)
         .map(|p| (p.v_im, p.c_w))
         .collect();
-    let weak: Vec<f64> = points
+    let weak_points: Vec<(f64, f64)> = points
         .iter()
         .filter(|p| p.v_im <= weak_max)
-        .map(|p| p.c_w)
+        .map(|p| (p.v_im, p.c_w))
         .collect();
+    let weak: Vec<f64> = weak_points.iter().map(|p| p.1).collect();
     Sweep {
         power: fit_power(&strong).ok(),
+        weak_power: fit_power(&weak_points).ok(),
         sound_speed: mean_std(&weak),
         points,
         weak_max,

@@ -137,22 +137,33 @@ pub fn write_sweep(dir: &Path, s: &Sweep) -> Result<Vec<String>, AnalyzeError> {
             s.weak_max, p.exponent, p.exponent_err, p.n
         ));
     }
+    let weak_exponent = s.weak_power.map(|p| p.exponent);
     if let Some((c0, spread)) = s.sound_speed {
-        curves.push(Curve::new(
-            &format!("weak-impact speed c_0 = {c0:.3} m/s"),
-            vec![(vlo, c0), (s.weak_max.max(vlo), c0)],
-            Style::Line,
-        ));
+        let constant = weak_exponent.is_none_or(|p| p.abs() < 0.05);
+        if constant {
+            curves.push(Curve::new(
+                &format!("weak-impact speed c_0 = {c0:.3} m/s"),
+                vec![(vlo, c0), (s.weak_max.max(vlo), c0)],
+                Style::Line,
+            ));
+        }
         lines.push(format!(
             "weak-impact speed (v_im <= {} m/s): c_0 = {c0:.4} m/s, spread {spread:.2e} m/s",
             s.weak_max
         ));
+        if let (Some(p), false) = (s.weak_power, constant) {
+            lines.push(format!(
+                "  but the weak impacts are not at one speed: c_w ~ v_im^{:.3} (+/- {:.3}) there too, \
+                 as in a chain without precompression (no linear sound speed)",
+                p.exponent, p.exponent_err
+            ));
+        }
     }
     let flagged: Vec<String> = s
         .points
         .iter()
         .filter(|p| p.above_limit)
-        .map(|p| format!("{}", p.v_im))
+        .map(|p| format!("{:e}", p.v_im))
         .collect();
     if !flagged.is_empty() {
         lines.push(format!(

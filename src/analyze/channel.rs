@@ -223,7 +223,8 @@ pub fn analyze(series: &Series, o: &ChannelOptions) -> Result<ChannelResult, Ana
             .collect();
         fit_line_clipped(&pts, o.clip_sigma)
             .ok()
-            .filter(|(fit, _)| fit.slope > 0.0)
+            // a speed only when the slowness differs from zero by two standard errors
+            .filter(|(fit, _)| fit.slope > 2.0 * fit.slope_err)
             .map(|(fit, kept)| SpeedFit {
                 range,
                 speed: 1.0 / fit.slope,

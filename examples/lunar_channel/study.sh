@@ -33,7 +33,7 @@ shock() { # folder bed vars...
     cp "$here/in.shock" "$dir/"
     (cd "$dir" && nice -n 19 "$program" -in in.shock -var bed "$bed" -var early "$early" \
         -var d1 "$d1" -var late "$late" -var d2 "$d2" -var dc 100000000 "$@" \
-        -log log.liggghts -screen none) || { echo "  failed: see $dir/log.liggghts"; return 1; }
+        -log log.liggghts > screen.txt) || { echo "  failed: see $dir/log.liggghts"; return 1; }
 }
 
 for seed in $seeds; do
@@ -42,7 +42,7 @@ for seed in $seeds; do
     mkdir -p "$bed"
     cp -r "$here/in.lunar_channel" "$here/meshes" "$bed/"
     echo "bed $seed"
-    (cd "$bed" && nice -n 19 "$program" -in in.lunar_channel -var seed "$seed" -log log.liggghts -screen none)
+    (cd "$bed" && nice -n 19 "$program" -in in.lunar_channel -var seed "$seed" -log log.liggghts > screen.txt)
     for v in $speeds; do
         echo "  P wave, v_p $v m/s"
         shock "$bed/P_$v" "$bed/post/bed.restart" -var vp "$v" || continue

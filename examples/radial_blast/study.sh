@@ -31,7 +31,7 @@ for trial in $trials; do
         cp "$here/in.radial_blast" "$dir/"
         echo "$trial, seed $seed"
         if (cd "$dir" && nice -n 19 "$program" -in in.radial_blast -var trial "$trial" -var seed "$seed" \
-            -var blast "$blast" -log log.liggghts -screen none); then
+            -var blast "$blast" -log log.liggghts > screen.txt); then
             sets+=(--set "$trial" "$dir/post/ring_*.dump")
         else
             echo "  failed: see $dir/log.liggghts"

@@ -30,7 +30,7 @@ for v in $speeds; do
         c = 3.2 * (v / 1e-3) ^ 0.2; s = int(1.5 * n * 0.02064 / c / 1e-6); print s, int(s / 150) }')
     echo "v_im $v m/s: $nsteps steps"
     (cd "$dir" && nice -n 19 "$program" -in in.struck_chain -var vim "$v" -var nlayers "$nlayers" \
-        -var nsteps "$nsteps" -var dN "$dn" -log log.liggghts -screen none)
+        -var nsteps "$nsteps" -var dN "$dn" -log log.liggghts > screen.txt)
     sets+=(--set "$v" "$dir/post/chain_*.dump")
 done
 "$regolith" analyze chain --dt 1e-6 --out "$work/analysis" "${sets[@]}" | tee "$work/summary.txt"

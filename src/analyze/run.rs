@@ -31,8 +31,9 @@ impl RunRequest {
         self.folder().join("log.liggghts")
     }
 
-    /// Run the deck to completion with the screen output off (the log has it); Err if it
-    /// cannot start or exits with a failure.
+    /// Run the deck to completion with the screen output discarded (the log has it; Debian's
+    /// LIGGGHTS 3.8.0 crashes in `fix insert/pack` under `-screen none`); Err if it cannot
+    /// start or exits with a failure.
     pub fn run(&self) -> Result<(), AnalyzeError> {
         let file = self
             .deck

@@ -28,7 +28,6 @@ pub fn write_run(dir: &Path, tag: &str, r: &ChainResult) -> Result<String, Analy
         title: "Peak force along the struck column".into(),
         x_label: "distance from the struck end (m)".into(),
         y_label: "peak |f| (N)".into(),
-        log_y: true,
         curves: vec![
             Curve::new(
                 "strongest particle of each layer",

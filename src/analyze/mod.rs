@@ -13,6 +13,7 @@
 
 pub mod args;
 pub mod chain;
+pub mod chain_cli;
 pub mod chain_report;
 pub mod channel;
 pub mod channel_cli;
@@ -22,6 +23,7 @@ pub mod fit;
 pub mod overlap;
 pub mod plot;
 pub mod ring;
+pub mod ring_cli;
 pub mod ring_report;
 pub mod run;
 pub mod sensor;

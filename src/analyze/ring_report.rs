@@ -3,12 +3,9 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use super::args::{in_folder, out_dir, pairs, prepare, RingArgs};
 use super::fit::mean_std;
 use super::plot::{save, Chart, Curve, Style};
-use super::ring::{self, RingOptions, RingResult};
-use super::run::resolve_dt;
-use super::series::Series;
+use super::ring::{self, RingResult};
 use super::table::Table;
 use super::AnalyzeError;
 
@@ -153,7 +150,10 @@ pub fn write_run(dir: &Path, tag: &str, r: &RingResult) -> Result<Vec<String>, A
 
 /// Across trials: `ring_trials.csv` and `ring_trials.png` (amplitude against time, the mean
 /// over each label's runs); return the summary lines.
-fn write_trials(dir: &Path, runs: &[(String, RingResult)]) -> Result<Vec<String>, AnalyzeError> {
+pub fn write_trials(
+    dir: &Path,
+    runs: &[(String, RingResult)],
+) -> Result<Vec<String>, AnalyzeError> {
     let mut by: BTreeMap<&str, Vec<&RingResult>> = BTreeMap::new();
     for (label, r) in runs {
         by.entry(label).or_default().push(r);
@@ -210,54 +210,4 @@ fn write_trials(dir: &Path, runs: &[(String, RingResult)]) -> Result<Vec<String>
     };
     save(&dir.join("ring_trials.png"), &[chart], 900, 550)?;
     Ok(lines)
-}
-
-/// `regolith analyze ring`.
-pub fn analyze_ring(a: &RingArgs) -> Result<(), AnalyzeError> {
-    let (folder, log) = prepare(&a.common)?;
-    let dt = resolve_dt(a.common.dt, log.as_deref())?;
-    let out = out_dir(&a.common, &folder, "post/analysis")?;
-    let o = RingOptions {
-        sectors: a.sectors,
-        bands: a.bands,
-        front_fraction: a.front_fraction,
-        ..RingOptions::default()
-    };
-    let mut sets: Vec<(String, String)> = pairs(&a.sets)
-        .into_iter()
-        .map(|(l, p)| (l, in_folder(&folder, &p)))
-        .collect();
-    let single = a
-        .dumps
-        .clone()
-        .or_else(|| a.common.run.as_ref().map(|_| "post/ring_*.dump".into()));
-    if let Some(d) = single {
-        sets.push(("run".into(), in_folder(&folder, &d)));
-    }
-    if sets.is_empty() {
-        return Err(AnalyzeError::Usage(
-            "no dumps: give DUMPS, --set LABEL DUMPS, or --run DECK".into(),
-        ));
-    }
-    let mut runs = Vec::new();
-    for (k, (label, pattern)) in sets.iter().enumerate() {
-        let r = ring::analyze(&Series::open(pattern, dt)?, &o)?;
-        let tag = if sets.len() > 1 {
-            format!("{label}_run{}_", k + 1)
-        } else {
-            String::new()
-        };
-        println!("{pattern} ({label}):");
-        for line in write_run(&out, &tag, &r)? {
-            println!("  {line}");
-        }
-        runs.push((label.clone(), r));
-    }
-    if runs.len() > 1 {
-        for line in write_trials(&out, &runs)? {
-            println!("{line}");
-        }
-    }
-    println!("tables and figures in {}", out.display());
-    Ok(())
 }

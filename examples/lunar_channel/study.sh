@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The scaled lunar channel (SCENES.md, scene B): three beds (insertion seeds), each shocked by
-# P-wave pistons at several speeds, an S wave and a P wave without the frozen floor; then
+# P-wave pistons at several speeds, an S wave (the sheet moving on after its period, and
+# stopped) and a P wave without the frozen floor; then
 # `regolith analyze channel` measures each run (c_w, c_p, dilation) and the sweep (mean and
 # spread over the seeds).
 #
@@ -23,7 +24,7 @@ speeds="${SPEEDS:-0.03 0.1 0.3 1 3}"
 vref="${VREF:-1}"
 early="${EARLY:-2500}" d1="${D1:-25}" late="${LATE:-27500}" d2="${D2:-1000}"
 start=$SECONDS
-p_sets=() s_sets=() free_sets=()
+p_sets=() s_sets=() srest_sets=() free_sets=()
 
 shock() { # folder bed vars...
     local dir="$1" bed="$2"
@@ -51,14 +52,22 @@ for seed in $seeds; do
     echo "  S wave, v_p $vref m/s"
     shock "$bed/S_$vref" "$bed/post/bed.restart" -var vp "$vref" -var wave S &&
         s_sets+=(--set "$vref" "$bed/S_$vref/post/shock_*.dump")
+    echo "  S wave stopped after its period, v_p $vref m/s"
+    shock "$bed/Srest_$vref" "$bed/post/bed.restart" -var vp "$vref" -var wave S -var send rest &&
+        srest_sets+=(--set "$vref" "$bed/Srest_$vref/post/shock_*.dump")
     echo "  P wave, free floor, v_p $vref m/s"
     shock "$bed/free_$vref" "$bed/post/bed.restart" -var vp "$vref" -var floor free &&
         free_sets+=(--set "$vref" "$bed/free_$vref/post/shock_*.dump")
 done
 
 analysis="$work/analysis"
-for kind in P S free; do
-    case $kind in P) sets=("${p_sets[@]}") ;; S) sets=("${s_sets[@]}") ;; free) sets=("${free_sets[@]}") ;; esac
+for kind in P S Srest free; do
+    case $kind in
+        P) sets=("${p_sets[@]}") ;;
+        S) sets=("${s_sets[@]}") ;;
+        Srest) sets=("${srest_sets[@]}") ;;
+        free) sets=("${free_sets[@]}") ;;
+    esac
     echo "== $kind"
     "$regolith" analyze channel --dt 1e-5 --out "$analysis/$kind" "${sets[@]}"
 done | tee "$work/summary.txt"

@@ -113,6 +113,7 @@ pub fn analyze_channel(a: &ChannelArgs) -> Result<(), AnalyzeError> {
                 r.c_w.map(|s| s.speed),
                 r.c_p.map(|s| s.speed),
                 r.dilation_mean.map(|d| d.0),
+                overlap.as_ref().map(|p| p.c0_chain),
             ));
         }
     }

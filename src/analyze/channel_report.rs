@@ -215,8 +215,9 @@ fn overlap_figure(path: &Path, p: &OverlapProfile) -> Result<(), AnalyzeError> {
     save(path, &[chart], 900, 500)
 }
 
-/// One run of a sweep: piston speed (m/s), c_w, c_p (m/s), dilation (m).
-pub type SweepRun = (f64, Option<f64>, Option<f64>, Option<f64>);
+/// One run of a sweep: piston speed (m/s), c_w, c_p (m/s), dilation (m), sound-speed
+/// estimate (m/s).
+pub type SweepRun = (f64, Option<f64>, Option<f64>, Option<f64>, Option<f64>);
 
 /// Write `channel_sweep.csv` and `channel_sweep.png`: mean and spread over the runs at each
 /// piston speed; return the summary lines.
@@ -225,8 +226,12 @@ pub fn write_sweep(dir: &Path, runs: &[SweepRun]) -> Result<Vec<String>, Analyze
     for r in runs {
         by_v.entry(r.0.to_bits()).or_default().push(r);
     }
+    // a quantity counts at a speed when more than half of its runs measured it
     let stat = |rs: &[&SweepRun], f: fn(&SweepRun) -> Option<f64>| {
-        mean_std(&rs.iter().filter_map(|r| f(r)).collect::<Vec<_>>())
+        let vals: Vec<f64> = rs.iter().filter_map(|r| f(r)).collect();
+        (2 * vals.len() > rs.len())
+            .then(|| mean_std(&vals))
+            .flatten()
     };
     let mut t = Table::new(&[
         "v_p_m_s",
@@ -258,7 +263,7 @@ pub fn write_sweep(dir: &Path, runs: &[SweepRun]) -> Result<Vec<String>, Analyze
             })
         };
         lines.push(format!(
-            "v_p = {v} m/s ({} runs): c_w {} m/s, c_p {} m/s, dilation {} mm",
+            "v_p = {v} m/s ({} runs; - where at most half measured it): c_w {} m/s, c_p {} m/s, dilation {} mm",
             rs.len(),
             fmt(stats[0], 1.0),
             fmt(stats[1], 1.0),
@@ -266,6 +271,7 @@ pub fn write_sweep(dir: &Path, runs: &[SweepRun]) -> Result<Vec<String>, Analyze
         ));
     }
     t.write(&dir.join("channel_sweep.csv"))?;
+    let c0: Vec<f64> = runs.iter().filter_map(|r| r.4).collect();
     let curve = |label: &str, pts: &[(f64, f64, f64)], scale: f64| {
         let mut c = Curve::new(
             label,
@@ -280,10 +286,22 @@ pub fn write_sweep(dir: &Path, runs: &[SweepRun]) -> Result<Vec<String>, Analyze
         x_label: "piston speed v_p (m/s)".into(),
         y_label: "speed (m/s)".into(),
         log_x: true,
-        curves: vec![
-            curve("c_w (near the piston)", &series[0], 1.0),
-            curve("c_p (solitary wave)", &series[1], 1.0),
-        ],
+        curves: {
+            let mut c = vec![
+                curve("c_w (near the piston)", &series[0], 1.0),
+                curve("c_p (solitary wave)", &series[1], 1.0),
+            ];
+            if let (Some((m, _)), Some(a), Some(b)) =
+                (mean_std(&c0), by_v.keys().next(), by_v.keys().last())
+            {
+                c.push(Curve::new(
+                    &format!("sound-speed estimate c_0 = {m:.2} m/s"),
+                    vec![(f64::from_bits(*a), m), (f64::from_bits(*b), m)],
+                    Style::Dashed,
+                ));
+            }
+            c
+        },
         ..Default::default()
     };
     let dil = Chart {

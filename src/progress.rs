@@ -133,11 +133,12 @@ impl<W: Write> Write for ClearingWriter<W> {
     }
 }
 
+/// The screen writer (None: `-screen none`).
+pub type Screen = Option<Box<dyn Write>>;
+
 /// When standard error is a terminal: the status line, and the screen writer wrapped so that
 /// it clears the line before writing. Otherwise no status line and the screen unchanged.
-pub fn attach(
-    screen: Option<Box<dyn Write>>,
-) -> (Option<Box<dyn StepObserver>>, Option<Box<dyn Write>>) {
+pub fn attach(screen: Option<Box<dyn Write>>) -> (Option<Box<dyn StepObserver>>, Screen) {
     if !std::io::stderr().is_terminal() {
         return (None, screen);
     }

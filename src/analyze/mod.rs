@@ -69,14 +69,12 @@ pub enum AnalyzeError {
 
 /// The time step (s) of the last `timestep` command echoed in a LIGGGHTS or regolith log.
 pub fn dt_from_log(text: &str) -> Option<f64> {
-    text.lines()
-        .filter_map(|l| {
-            let mut w = l.split_whitespace();
-            (w.next() == Some("timestep"))
-                .then(|| w.next()?.parse::<f64>().ok())
-                .flatten()
-        })
-        .last()
+    text.lines().rev().find_map(|l| {
+        let mut w = l.split_whitespace();
+        (w.next() == Some("timestep"))
+            .then(|| w.next()?.parse::<f64>().ok())
+            .flatten()
+    })
 }
 
 #[cfg(test)]

@@ -86,6 +86,9 @@ pub struct RingResult {
     pub diameter: f64,
 }
 
+/// The particles in polar form and the surface R(theta) of one snapshot.
+type Snapshot = (Vec<Polar>, Vec<(f64, f64)>);
+
 struct Polar {
     r: f64,
     theta: f64,
@@ -209,7 +212,7 @@ fn bands(ps: &[Polar], from: f64, to: f64, o: &RingOptions, diameter: f64) -> Ve
 /// Analyse a blast run's dumps (id x y z vx vy fx fy fz radius).
 pub fn analyze(series: &Series, o: &RingOptions) -> Result<RingResult, AnalyzeError> {
     let mut states = Vec::new();
-    let mut last: Option<(Vec<Polar>, Vec<(f64, f64)>)> = None;
+    let mut last: Option<Snapshot> = None;
     let mut diameter = 0.0;
     series.for_each(|fr| {
         let ps = polar(&fr, o.centre)?;

@@ -192,17 +192,25 @@ pub fn write_trials(
             rs.len(), amp.0, amp.1, rms.0, rms.1, sp.0, sp.1
         ));
         let n = rs.iter().map(|r| r.states.len()).min().unwrap_or(0);
-        let mean: Vec<(f64, f64)> = (0..n)
+        let stats: Vec<(f64, (f64, f64))> = (0..n)
             .map(|k| {
                 let a: Vec<f64> = rs.iter().map(|r| r.states[k].amplitude).collect();
-                (rs[0].states[k].t, mean_std(&a).map_or(f64::NAN, |m| m.0))
+                (rs[0].states[k].t, mean_std(&a).unwrap_or((f64::NAN, 0.0)))
             })
             .collect();
-        curves.push(Curve::new(label, mean, Style::Line));
+        let mut c = Curve::new(
+            &format!("{label} ({} runs)", rs.len()),
+            stats.iter().map(|(t, m)| (*t, m.0)).collect(),
+            Style::Line,
+        );
+        if rs.len() > 1 {
+            c.errors = Some(stats.iter().map(|(_, m)| m.1).collect());
+        }
+        curves.push(c);
     }
     t.write(&dir.join("ring_trials.csv"))?;
     let chart = Chart {
-        title: "Corrugation of the inner surface by trial (mean over runs)".into(),
+        title: "Corrugation of the inner surface by trial (mean and spread over runs)".into(),
         x_label: "t (s)".into(),
         y_label: "relative amplitude (max R - min R) / (2 mean R)".into(),
         curves,

@@ -184,9 +184,26 @@ EOF
     [ -z "$work" ] || rm -rf "$work"
 }
 
+# Analysis references (tests/analyze.rs): LIGGGHTS's dumps of a short struck chain
+# (examples/struck_chain/in.struck_chain, 10 layers, v_im 0.1 m/s, 30 000 steps, a dump every
+# 1 000), concatenated in step order into one gzip file; regolith's run of the same deck must
+# give the same wave speed.
+analyze_references() {
+    local dir="$here/analyze"
+    local work
+    work="$(mktemp -d)"
+    mkdir -p "$dir"
+    cp "$here/../examples/struck_chain/in.struck_chain" "$work/"
+    (cd "$work" && liggghts -in in.struck_chain -var nlayers 10 -var vim 0.1 -var nsteps 30000 \
+        -var dN 1000 -log none -screen none)
+    (cd "$work/post" && ls chain_*.dump | sort -t_ -k2 -n | xargs cat) | gzip -9n > "$dir/chain_liggghts.dump.gz"
+    rm -rf "$work"
+    echo "analyze/chain_liggghts.dump.gz"
+}
+
 section="${1:-all}"
-case "$section" in all | script | convert | engine | tutorials) ;; *)
-    echo "usage: $0 [script|convert|engine|tutorials] [NAME]" >&2
+case "$section" in all | script | convert | engine | tutorials | analyze) ;; *)
+    echo "usage: $0 [script|convert|engine|tutorials|analyze] [NAME]" >&2
     exit 2
     ;;
 esac
@@ -194,3 +211,4 @@ case "$section" in all | script) script_references ;; esac
 case "$section" in all | convert) convert_references ;; esac
 case "$section" in all | engine) engine_references "$@" ;; esac
 case "$section" in all | tutorials) tutorial_references "$@" ;; esac
+case "$section" in all | analyze) analyze_references ;; esac

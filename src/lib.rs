@@ -5,11 +5,13 @@
 //! with it, [`session`] runs or checks a whole deck, and [`error`] carries the file/line
 //! diagnostics every layer reports.
 
+pub mod analyze;
 pub mod bench;
 pub mod cli;
 pub mod commands;
 pub mod engine;
 pub mod error;
 pub mod io;
+pub mod progress;
 pub mod script;
 pub mod session;

@@ -86,6 +86,12 @@ enum Command {
         #[arg(long)]
         boundary: Option<String>,
     },
+    /// Post-process a study's dumps into numbers, CSV tables and PNG figures (chain, channel,
+    /// ring); --run DECK runs the deck first.
+    Analyze {
+        #[command(subcommand)]
+        what: regolith::analyze::args::AnalyzeCommand,
+    },
     /// Time a scene (built-in: settled_bed, struck_chain; or a deck path) and print loop
     /// times and particle-steps per second; --liggghts times Debian's LIGGGHTS too.
     Bench {
@@ -305,6 +311,13 @@ fn main() -> ExitCode {
                 }
             }
         }
+        Command::Analyze { what } => match regolith::analyze::args::analyze(&what) {
+            Ok(()) => ExitCode::from(0),
+            Err(e) => {
+                eprintln!("ERROR: {e}");
+                ExitCode::from(1)
+            }
+        },
         Command::Bench {
             scene,
             repeat,

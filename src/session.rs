@@ -138,6 +138,7 @@ pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
             }
         },
     };
+    let (observer, screen) = crate::progress::attach(screen);
     let log = match open_output(opts.log.as_deref().unwrap_or("log.liggghts")) {
         Ok(l) => l,
         Err(d) => {
@@ -164,6 +165,7 @@ pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
     interp.engine.sim.zero_restitution = opts.zero_restitution;
     interp.engine.sim.accel.fast = opts.fast;
     interp.engine.sim.accel.set_threads(opts.threads);
+    interp.engine.sim.observer = observer;
     for (name, values) in &opts.vars {
         if let Err(d) = interp.set_command_line_variable(name, values) {
             report(&d);

@@ -174,10 +174,12 @@ impl Engine {
         // command-line switches survive `clear`
         let (tolerant, zero_e) = (self.sim.seed_tolerant, self.sim.zero_restitution);
         let accel = self.sim.accel.clone();
+        let observer = self.sim.observer.take();
         *self = Engine::new();
         self.sim.seed_tolerant = tolerant;
         self.sim.zero_restitution = zero_e;
         self.sim.accel = accel;
+        self.sim.observer = observer;
     }
 
     /// Whether `create_box` (or a restart/data file) has defined the simulation box.

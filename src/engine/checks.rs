@@ -174,10 +174,12 @@ impl Simulation {
         }
         if self.sort_every > 0 {
             // LIGGGHTS's atom sort bins (half the neighbour cutoff, or the user's size)
+            // (LIGGGHTS's cutoff knows the particle templates' sizes before any particle
+            // is inserted)
             let size = if self.sort_binsize > 0.0 {
                 self.sort_binsize
             } else {
-                0.5 * self.neighbor_cutoff()
+                0.5 * self.neighbor_cutoff().max(self.liggghts_cutneighmax())
             };
             if size > 0.0 {
                 let bins: f64 = (0..3)

@@ -307,6 +307,8 @@ pub struct Simulation {
     pub force_time_state: (Vec<[f64; 3]>, Vec<[f64; 3]>),
     /// When the time-stepping loop of the current run started (None during setup).
     pub loop_clock: Option<std::time::Instant>,
+    /// Told of the run's progress every few steps (the terminal status line), if any.
+    pub observer: Option<Box<dyn crate::progress::StepObserver>>,
     /// Thermo output settings.
     pub thermo: Thermo,
     /// Dumps.
@@ -380,6 +382,7 @@ impl Default for Simulation {
             dumps: Vec::new(),
             virial: Vec::new(),
             loop_clock: None,
+            observer: None,
             force_time_state: (Vec::new(), Vec::new()),
             run_bounds: None,
             ramp_bounds: (None, None),
@@ -1371,7 +1374,7 @@ impl Simulation {
 
     /// LIGGGHTS's `cutneighmax` at a run's init: twice the largest radius among the atoms
     /// and the particle templates, plus the skin (length).
-    fn liggghts_cutneighmax(&self) -> f64 {
+    pub(crate) fn liggghts_cutneighmax(&self) -> f64 {
         2.0 * self.largest_radius() + self.neighbor.skin
     }
 
@@ -1672,6 +1675,9 @@ impl Simulation {
         self.write_dumps(true, vars)?;
         self.loop_clock = Some(std::time::Instant::now());
         self.stats = RunStats::default();
+        if let Some(o) = self.observer.as_mut() {
+            o.run_started(first, last, self.particles.len());
+        }
         for _ in 0..nsteps {
             self.step += 1;
             self.resolve_move_fixes(vars)?;
@@ -1722,6 +1728,14 @@ impl Simulation {
             self.write_dumps(false, vars)?;
             self.periodic_restart()?;
             self.stats.output += started_output.elapsed().as_secs_f64();
+            if self.step % crate::progress::OBSERVE_EVERY == 0 {
+                if let Some(o) = self.observer.as_mut() {
+                    o.step(self.step, self.particles.len());
+                }
+            }
+        }
+        if let Some(o) = self.observer.as_mut() {
+            o.run_finished();
         }
         self.run_bounds = None;
         self.loop_clock = None;

@@ -587,9 +587,18 @@ impl Restart {
         }
         int(b, -1);
         int(b, self.ngroup);
+        // as LIGGGHTS: slots up to the last named group (a deleted group leaves an empty slot;
+        // empty slots after the last named one are not written, readers stop there)
+        let mut named = 0;
         for g in &self.groups {
+            if named == self.ngroup {
+                break;
+            }
             match g {
-                Some(name) => string(b, name),
+                Some(name) => {
+                    string(b, name);
+                    named += 1;
+                }
                 None => int(b, 0),
             }
         }
@@ -851,5 +860,18 @@ mod tests {
             assert_eq!(unpack_image(pack_image(im)), im);
         }
         assert_eq!(pack_image([0, 0, 0]), 512 | (512 << 10) | (512 << 20));
+    }
+
+    #[test]
+    fn deleted_groups_leave_empty_slots_and_no_trailing_ones() {
+        let mut r = fresh_header(&Domain::default(), 1, "si");
+        r.groups = vec![Some("all".into()), None, Some("bed".into()), None, None];
+        r.ngroup = 2;
+        let back = Restart::parse(&r.to_bytes(), "test", None).unwrap();
+        assert_eq!(back.ngroup, 2);
+        assert_eq!(
+            back.groups,
+            vec![Some("all".into()), None, Some("bed".into())]
+        );
     }
 }

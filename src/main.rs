@@ -134,6 +134,9 @@ enum Command {
         /// Write the medians as CSV to this file.
         #[arg(long)]
         csv: Option<PathBuf>,
+        /// Write a PNG of particle-steps/s against thread count to this file.
+        #[arg(long)]
+        plot: Option<PathBuf>,
     },
 }
 
@@ -332,6 +335,7 @@ fn main() -> ExitCode {
             steps,
             beds,
             csv,
+            plot,
         } => {
             let choice = regolith::bench::ProgramChoice {
                 liggghts,
@@ -357,6 +361,9 @@ fn main() -> ExitCode {
                     if let Some(path) = &csv {
                         std::fs::write(path, regolith::bench::csv(&rows))
                             .map_err(|e| format!("{}: {e}", path.display()))?;
+                    }
+                    if let Some(path) = &plot {
+                        regolith::bench::plot(&rows, path)?;
                     }
                     Ok(format!(
                         "{}\n{}",

@@ -270,3 +270,170 @@ fn engine_decks_match_liggghts() {
         .collect();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Run `deck_text` (named `in.NAME`) in a fresh copy of the deck's folder with `flags`;
+/// (exit success, stdout, the folder).
+fn run_in_copy(name: &str, deck_text: &str, flags: &[&str], tag: &str) -> (bool, String, PathBuf) {
+    let dir = engine_dir();
+    let work = std::env::temp_dir().join(format!(
+        "regolith-engine-{}-{name}-{tag}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&work);
+    std::fs::create_dir_all(&work).unwrap();
+    let deck = format!("in.{name}");
+    std::fs::write(work.join(&deck), deck_text).unwrap();
+    let inputs = dir.join(format!("{name}.inputs"));
+    if inputs.is_dir() {
+        copy_tree(&inputs, &work);
+    }
+    let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
+        .args(flags)
+        .args(["-in", &deck, "-log", "none"])
+        .current_dir(&work)
+        .output()
+        .unwrap();
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        work,
+    )
+}
+
+/// The deck cut after its first `run` (at top level), which runs 100 steps with every
+/// particle dumped every 10 steps at full precision; None for decks whose first run is
+/// inside a loop or condition.
+fn first_hundred_steps(text: &str) -> Option<String> {
+    let mut out = String::new();
+    for line in text.lines() {
+        let word = line.split_whitespace().next().unwrap_or("");
+        if matches!(word, "jump" | "label" | "next" | "if") {
+            return None;
+        }
+        if word == "run" {
+            out.push_str(
+                "dump fastcheck all custom 10 fastcheck_*.dump id x y z vx vy vz fx fy fz omegax omegay omegaz\n\
+                 dump_modify fastcheck format \"%d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"\n\
+                 run 100\n",
+            );
+            return Some(out);
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    None
+}
+
+/// The snapshots of every `fastcheck_*.dump` in `dir`.
+fn fastcheck_dumps(dir: &Path) -> Vec<regolith::io::dump_compare::Snapshot> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| {
+            p.file_name()
+                .and_then(|n| n.to_str())
+                .is_some_and(|n| n.starts_with("fastcheck_"))
+        })
+        .collect();
+    files.sort();
+    files
+        .iter()
+        .flat_map(|f| parse(&std::fs::read_to_string(f).unwrap()).unwrap())
+        .collect()
+}
+
+/// Largest |a - b| relative to the column's largest magnitude in `a`, over all snapshots
+/// (atoms matched by ID); Err for differing steps, atoms or columns.
+fn scale_deviation(
+    a: &[regolith::io::dump_compare::Snapshot],
+    b: &[regolith::io::dump_compare::Snapshot],
+) -> Result<f64, String> {
+    if a.len() != b.len() {
+        return Err(format!("{} snapshots against {}", a.len(), b.len()));
+    }
+    let mut worst: f64 = 0.0;
+    for (sa, sb) in a.iter().zip(b) {
+        if sa.step != sb.step || sa.columns != sb.columns {
+            return Err(format!("step {} against {}", sa.step, sb.step));
+        }
+        if sa.rows.keys().ne(sb.rows.keys()) {
+            return Err(format!("step {}: other atoms", sa.step));
+        }
+        for c in 0..sa.columns.len() {
+            let scale = sa.rows.values().map(|r| r[c].abs()).fold(0.0, f64::max);
+            if scale == 0.0 {
+                continue;
+            }
+            for (id, r) in &sa.rows {
+                worst = worst.max((r[c] - sb.rows[id][c]).abs() / scale);
+            }
+        }
+    }
+    Ok(worst)
+}
+
+/// The fast path against the exact path over the first 100 steps of every engine deck
+/// (only the order of summation differs: every dumped value within 1e-10 of its column's
+/// largest magnitude), and every deck run to its end on the fast path with two threads.
+#[test]
+fn engine_decks_on_the_fast_path() {
+    let mut decks: Vec<String> = std::fs::read_dir(engine_dir())
+        .unwrap()
+        .filter_map(|e| {
+            e.unwrap()
+                .file_name()
+                .to_str()?
+                .strip_prefix("in.")
+                .map(str::to_string)
+        })
+        .collect();
+    decks.sort();
+    let fast = ["-sf", "fast", "-pk", "fast", "2"];
+    let mut failures = Vec::new();
+    let mut compared = 0;
+    for name in &decks {
+        let text = std::fs::read_to_string(engine_dir().join(format!("in.{name}"))).unwrap();
+        // the whole deck runs on the fast path
+        let (ok, stdout, work) = run_in_copy(name, &text, &fast, "fast");
+        let _ = std::fs::remove_dir_all(&work);
+        if !ok {
+            failures.push(format!(
+                "{name}: the fast path failed: {}",
+                stdout.lines().rev().take(3).collect::<Vec<_>>().join(" | ")
+            ));
+            continue;
+        }
+        // the first hundred steps against the exact path
+        let Some(early) = first_hundred_steps(&text) else {
+            continue;
+        };
+        let (ok_e, _, work_e) = run_in_copy(name, &early, &[], "e100");
+        let (ok_f, _, work_f) = run_in_copy(name, &early, &fast, "f100");
+        if ok_e && ok_f {
+            let (a, b) = (fastcheck_dumps(&work_e), fastcheck_dumps(&work_f));
+            if !a.is_empty() {
+                compared += 1;
+                match scale_deviation(&a, &b) {
+                    Ok(d) if d <= 1e-10 => {}
+                    Ok(d) => {
+                        failures.push(format!("{name}: fast vs exact {d:e} of a column's scale"))
+                    }
+                    Err(e) => failures.push(format!("{name}: fast vs exact: {e}")),
+                }
+            }
+        } else if ok_e != ok_f {
+            failures.push(format!(
+                "{name}: first 100 steps: exact ok {ok_e}, fast ok {ok_f}"
+            ));
+        }
+        let _ = std::fs::remove_dir_all(&work_e);
+        let _ = std::fs::remove_dir_all(&work_f);
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    // most decks have a top-level first run
+    assert!(
+        compared * 3 >= decks.len() * 2,
+        "only {compared} of {} decks compared",
+        decks.len()
+    );
+}

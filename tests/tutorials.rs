@@ -129,6 +129,8 @@ struct Final {
     dump_step: i64,
     particles: usize,
     mean_z: f64,
+    /// Highest minus lowest particle height in the dump (m).
+    z_extent: f64,
     probe: usize,
 }
 
@@ -145,6 +147,7 @@ fn reference_final(name: &str) -> Final {
         dump_step: get("dump_step").parse().unwrap(),
         particles: get("dump_atoms").parse().unwrap(),
         mean_z: get("mean_z").parse().unwrap(),
+        z_extent: f64::NAN,
         probe: get("probe").parse().unwrap(),
     }
 }
@@ -173,6 +176,8 @@ fn dump_final(work: &Path, pattern: &str, probe: &[f64; 6]) -> Result<Final, Str
         dump_step: step,
         particles: n,
         mean_z: snap.rows.values().map(|r| r[z]).sum::<f64>() / n as f64,
+        z_extent: snap.rows.values().map(|r| r[z]).fold(f64::MIN, f64::max)
+            - snap.rows.values().map(|r| r[z]).fold(f64::MAX, f64::min),
         probe: snap.rows.values().filter(|r| inside(r)).count(),
     })
 }
@@ -208,11 +213,36 @@ fn ke_ok(name: &str, want: f64, got: f64) -> bool {
     close(want, got)
 }
 
-fn run_job(root: &Path, job: &[Case]) -> Vec<Outcome> {
+/// How closely a run must follow LIGGGHTS's.
+#[derive(Clone, Copy, PartialEq)]
+enum Agreement {
+    /// The exact path: the same atoms at every thermo line, the end state within RTOL.
+    Trajectory,
+    /// The fast path sums forces in another order, so after the round-off has grown the
+    /// trajectories are different samples of the same flow. The end state must agree within
+    /// the run's own noise: kinetic energy within STATISTICS_KE of the run's peak kinetic
+    /// energy (a settled bed's residual energy is a few rattling particles), counts within three
+    /// counting standard deviations (3 sqrt(n)), mean height within RTOL of the bed's height.
+    Statistics,
+}
+
+/// Kinetic energy tolerance on the fast path, as a fraction of the run's peak. The conveyor
+/// shows the noise: the fast and exact paths agree to 4 digits up to step 55 000, then the
+/// flow off the belt decorrelates and the two kinetic energies, both falling from a 29 J peak,
+/// differ by up to 3 J (10 % of the peak) on the way to the 13 J end state.
+const STATISTICS_KE: f64 = 0.1;
+
+/// |got - want| within three counting standard deviations of want.
+fn counts_agree(want: usize, got: usize) -> bool {
+    (got as f64 - want as f64).abs() <= 3.0 * (want as f64).sqrt().max(1.0)
+}
+
+fn run_job(root: &Path, job: &[Case], flags: &[&str], agreement: Agreement) -> Vec<Outcome> {
     let work = std::env::temp_dir().join(format!(
-        "regolith-tutorial-{}-{}",
+        "regolith-tutorial-{}-{}{}",
         std::process::id(),
-        job[0].name
+        job[0].name,
+        flags.join("")
     ));
     let _ = std::fs::remove_dir_all(&work);
     std::fs::create_dir_all(&work).unwrap();
@@ -245,6 +275,7 @@ fn run_job(root: &Path, job: &[Case]) -> Vec<Outcome> {
                 }
             }
             let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
+                .args(flags)
                 .args(["-in", deck, "-log", "none"])
                 .current_dir(&work)
                 .env("RAYON_NUM_THREADS", "1")
@@ -284,11 +315,25 @@ fn run_job(root: &Path, job: &[Case]) -> Vec<Outcome> {
                 .collect()
         };
         let (want_atoms, got_atoms) = (atoms(&want_rows), atoms(&got_rows));
-        if want_atoms != got_atoms {
+        let atoms_agree = match agreement {
+            Agreement::Trajectory => want_atoms == got_atoms,
+            Agreement::Statistics => {
+                want_atoms.len() == got_atoms.len()
+                    && want_atoms.iter().zip(&got_atoms).all(|(w, g)| {
+                        w.0 == g.0 && counts_agree(w.1.parse().unwrap(), g.1.parse().unwrap())
+                    })
+            }
+        };
+        if !atoms_agree {
             let k = want_atoms
                 .iter()
                 .zip(&got_atoms)
-                .take_while(|(a, b)| a == b)
+                .take_while(|(a, b)| {
+                    a == b
+                        || agreement == Agreement::Statistics
+                            && a.0 == b.0
+                            && counts_agree(a.1.parse().unwrap(), b.1.parse().unwrap())
+                })
                 .count();
             outcome.problems.push(format!(
                 "thermo rows: {} in liggghts, {} in regolith; first difference at row {}: \
@@ -313,31 +358,49 @@ fn run_job(root: &Path, job: &[Case]) -> Vec<Outcome> {
                 continue;
             }
         };
-        if got.dump_step != want.dump_step || got.particles != want.particles {
+        let peak_ke = want_rows
+            .iter()
+            .filter_map(|r| r.get("KinEng")?.parse::<f64>().ok())
+            .fold(0.0, f64::max);
+        let (ke_agrees, z_agrees, probe_agrees, particles_agree) = match agreement {
+            Agreement::Trajectory => (
+                ke_ok(&case.name, want.ke, got.ke),
+                close(want.mean_z, got.mean_z),
+                close(want.probe as f64, got.probe as f64),
+                got.particles == want.particles,
+            ),
+            Agreement::Statistics => (
+                (got.ke - want.ke).abs() <= STATISTICS_KE * peak_ke,
+                (got.mean_z - want.mean_z).abs() <= RTOL * got.z_extent,
+                counts_agree(want.probe, got.probe),
+                counts_agree(want.particles, got.particles),
+            ),
+        };
+        if got.dump_step != want.dump_step || !particles_agree {
             outcome.problems.push(format!(
                 "last particle dump: liggghts step {} with {} particles, regolith step {} with {}",
                 want.dump_step, want.particles, got.dump_step, got.particles
             ));
         }
-        if !ke_ok(&case.name, want.ke, got.ke) {
+        if !ke_agrees {
             outcome.problems.push(format!(
                 "kinetic energy: liggghts {:e}, regolith {:e} ({})",
                 want.ke,
                 got.ke,
-                if case.name == "packing" {
-                    "beyond 5 %"
-                } else {
-                    "beyond 3 %"
+                match agreement {
+                    Agreement::Statistics => "beyond 10 % of the peak",
+                    _ if case.name == "packing" => "beyond 5 %",
+                    _ => "beyond 3 %",
                 }
             ));
         }
-        if !close(want.mean_z, got.mean_z) {
+        if !z_agrees {
             outcome.problems.push(format!(
                 "mean z: liggghts {}, regolith {}",
                 want.mean_z, got.mean_z
             ));
         }
-        if !close(want.probe as f64, got.probe as f64) {
+        if !probe_agrees {
             outcome.problems.push(format!(
                 "probe count: liggghts {}, regolith {}",
                 want.probe, got.probe
@@ -383,8 +446,8 @@ fn table(outcomes: &[Outcome]) -> String {
     t
 }
 
-#[test]
-fn tutorials_match_liggghts() {
+/// Run every tutorial with `flags` and check the end states against LIGGGHTS's.
+fn check_tutorials(flags: &[&str], agreement: Agreement) {
     let root = common::tutorials_root();
     let root = root.as_path();
     let jobs = jobs(cases());
@@ -395,7 +458,7 @@ fn tutorials_match_liggghts() {
             s.spawn(|| loop {
                 let k = next.fetch_add(1, Ordering::SeqCst);
                 let Some(job) = jobs.get(k) else { break };
-                let outcomes = run_job(root, job);
+                let outcomes = run_job(root, job, flags, agreement);
                 done.lock().unwrap().push((k, outcomes));
             });
         }
@@ -404,7 +467,7 @@ fn tutorials_match_liggghts() {
     done.sort_by_key(|(k, _)| *k);
     let outcomes: Vec<Outcome> = done.into_iter().flat_map(|(_, o)| o).collect();
     let report = table(&outcomes);
-    println!("{report}");
+    println!("{flags:?}\n{report}");
     let mut failures = Vec::new();
     for o in &outcomes {
         if o.problems.is_empty() {
@@ -413,4 +476,16 @@ fn tutorials_match_liggghts() {
         failures.push(format!("{}:\n  {}", o.name, o.problems.join("\n  ")));
     }
     assert!(failures.is_empty(), "{}\n{report}", failures.join("\n"));
+}
+
+#[test]
+fn tutorials_match_liggghts() {
+    check_tutorials(&[], Agreement::Trajectory);
+}
+
+/// The fast path sums forces in its own order: thermo is not identical, but the end states
+/// must be LIGGGHTS's within the runs' own noise (see `Agreement::Statistics`).
+#[test]
+fn tutorials_on_the_fast_path_match_liggghts() {
+    check_tutorials(&["-sf", "fast", "-pk", "fast", "2"], Agreement::Statistics);
 }

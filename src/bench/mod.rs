@@ -250,6 +250,64 @@ pub fn speed_table(rows: &[beds::Row]) -> String {
     s
 }
 
+/// A PNG of particle-steps/s against thread count: the fast path of each case as a line,
+/// LIGGGHTS and the exact path (one core each) as markers at one thread.
+pub fn plot(rows: &[beds::Row], path: &Path) -> Result<(), String> {
+    use crate::analyze::plot::{save, Chart, Curve, Style};
+    let mut cases: Vec<&(String, String, String)> = Vec::new();
+    for r in rows {
+        if !cases.contains(&&r.case) {
+            cases.push(&r.case);
+        }
+    }
+    let name = |c: &(String, String, String)| {
+        [&c.0, &c.1, &c.2]
+            .iter()
+            .filter(|x| !x.is_empty())
+            .map(|x| x.as_str())
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let mut curves = Vec::new();
+    for case in &cases {
+        let fast: Vec<(f64, f64)> = rows
+            .iter()
+            .filter(|r| &&r.case == case && r.program.starts_with("fast"))
+            .map(|r| (r.threads as f64, r.rate / 1e6))
+            .collect();
+        if !fast.is_empty() {
+            curves.push(Curve::new(
+                &format!("{} fast", name(case)),
+                fast,
+                Style::Line,
+            ));
+        }
+    }
+    for label in ["exact", "liggghts"] {
+        let pts: Vec<(f64, f64)> = rows
+            .iter()
+            .filter(|r| r.program == label)
+            .map(|r| (1.0, r.rate / 1e6))
+            .collect();
+        if !pts.is_empty() {
+            curves.push(Curve::new(
+                &format!("{label} (1 core, all cases)"),
+                pts,
+                Style::Points,
+            ));
+        }
+    }
+    let chart = Chart {
+        title: "particle-steps per second against threads".into(),
+        x_label: "threads".into(),
+        y_label: "M particle-steps/s".into(),
+        log_x: false,
+        log_y: false,
+        curves,
+    };
+    save(path, &[chart], 900, 560).map_err(|e| e.to_string())
+}
+
 /// The rows as CSV.
 pub fn csv(rows: &[beds::Row]) -> String {
     let mut s = String::from(

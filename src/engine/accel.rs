@@ -26,6 +26,10 @@ pub struct Accel {
     pool: Option<Arc<rayon::ThreadPool>>,
     /// The next rank handed to an inserted particle (fast path order record).
     pub next_rank: f64,
+    /// What the fast path runs with the exact path's code, already said (said once).
+    pub said: Vec<String>,
+    /// The last list build fell back to the general search (the box is too short).
+    pub general_list: bool,
 }
 
 impl std::fmt::Debug for Accel {
@@ -96,6 +100,7 @@ impl Simulation {
         let max_reach = self.particles.radius.iter().copied().fold(0.0, f64::max);
         let Some(grid) = CellGrid::new(&self.particles.x, 2.0 * max_reach + skin, &self.domain)
         else {
+            self.accel.general_list = true;
             return false;
         };
         self.assign_ranks();
@@ -226,5 +231,40 @@ impl Simulation {
                 }
             }
         }
+    }
+}
+
+impl Simulation {
+    /// Fast path: name, once per deck, the parts of this run that run the exact path's code.
+    pub(crate) fn say_unaccelerated(&mut self, out: &mut dyn FnMut(&str)) {
+        use crate::engine::fixes::FixKind;
+        let mut parts: Vec<&str> = Vec::new();
+        for f in &self.fixes {
+            let part = match &f.kind {
+                FixKind::MeshWall(_) => "mesh walls (fix wall/gran ... mesh)",
+                FixKind::MoveMesh(_) => "moving meshes (fix move/mesh)",
+                FixKind::Mesh(m) if m.stress.is_some() => "mesh stresses (fix mesh/surface/stress)",
+                FixKind::Adapt(_) => "growing particles (fix adapt)",
+                _ => continue,
+            };
+            if !parts.contains(&part) {
+                parts.push(part);
+            }
+        }
+        if self.accel.general_list {
+            parts.push("the neighbour search (a periodic box shorter than three cutoffs)");
+        }
+        let new: Vec<&str> = parts
+            .into_iter()
+            .filter(|p| !self.accel.said.iter().any(|s| s == p))
+            .collect();
+        if new.is_empty() {
+            return;
+        }
+        out(&format!(
+            "Fast path: {} run on the exact path's code (one thread, not accelerated yet)\n",
+            new.join(", ")
+        ));
+        self.accel.said.extend(new.iter().map(|s| s.to_string()));
     }
 }

@@ -913,13 +913,26 @@ impl Simulation {
                 self.domain.hi,
                 self.neighbor.cutneighmax,
             );
-            self.list.build(
-                &self.particles.x,
-                &self.particles.radius,
-                self.neighbor.skin,
-                &self.domain,
-                Some(&order),
-            );
+            // LIGGGHTS's stencil walk; the general search where particles have grown
+            // (pairs beyond the stencil are counted) or the box is too short
+            let walked = !self.radii_vary()
+                && std::env::var_os("REGOLITH_SORTED_LIST").is_none()
+                && self.list.build_stencil(
+                    &self.particles.x,
+                    &self.particles.radius,
+                    self.neighbor.skin,
+                    &self.domain,
+                    &order,
+                );
+            if !walked {
+                self.list.build(
+                    &self.particles.x,
+                    &self.particles.radius,
+                    self.neighbor.skin,
+                    &self.domain,
+                    Some(&order),
+                );
+            }
         }
         let n = &self.neighbor;
         if !n.exclude_types.is_empty() || !n.exclude_groups.is_empty() {
@@ -1646,6 +1659,9 @@ impl Simulation {
             self.guard_forces()?;
         }
         self.has_run = true;
+        if self.accel.fast {
+            self.say_unaccelerated(out);
+        }
         if self.pair.as_ref().is_some_and(|p| p.history_width() > 0) {
             // the pair style's history fix is created (and restored) at the first run
             let id = ("contacthistory".to_string(), "contacthistory".to_string());

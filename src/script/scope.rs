@@ -61,11 +61,7 @@ impl<'a> Scope<'a> {
         let result = (|| {
             let e = Expr::parse_atom(&formula, self).map_err(|e| e.message)?;
             let n = self.sim.particles.len();
-            let mut values = Vec::with_capacity(n);
-            for i in 0..n {
-                values.push(e.eval(self, Some(i)).map_err(|e| e.message)?);
-            }
-            Ok::<_, String>(values)
+            e.eval_atoms(self, n).map_err(|e| e.message)
         })();
         self.active.pop();
         let values = Rc::new(result?);
@@ -251,6 +247,73 @@ impl ExprContext for Scope<'_> {
             return Err(self.no_state("Variable evaluation before simulation box is defined"));
         }
         crate::commands::atom_keyword(&self.sim.particles, name, atom)
+    }
+
+    fn atom_column(&mut self, name: &str, n: usize) -> Result<Vec<f64>, String> {
+        if self.sys.mode == Mode::Check || n > self.sim.particles.len() {
+            return Err(self.no_state("Variable evaluation before simulation box is defined"));
+        }
+        let p = &self.sim.particles;
+        let axis = |c: u8| (c - b'x') as usize;
+        let b = name.as_bytes();
+        let pick = |v: &[[f64; 3]], d: usize| v[..n].iter().map(|x| x[d]).collect();
+        Ok(match name {
+            "id" => p.id[..n].iter().map(|&t| t as f64).collect(),
+            "type" => p.kind[..n].iter().map(|&t| t as f64).collect(),
+            "mass" => p.mass[..n].to_vec(),
+            "r" => p.radius[..n].to_vec(),
+            "density" => p.density[..n].to_vec(),
+            "x" | "y" | "z" => pick(&p.x, axis(b[0])),
+            "vx" | "vy" | "vz" => pick(&p.v, axis(b[1])),
+            "fx" | "fy" | "fz" => pick(&p.f, axis(b[1])),
+            "omegax" | "omegay" | "omegaz" => pick(&p.omega, axis(b[5])),
+            "tqx" | "tqy" | "tqz" => pick(&p.torque, axis(b[2])),
+            _ => return (0..n).map(|i| self.atom_value(name, i)).collect(),
+        })
+    }
+
+    fn variable_column(
+        &mut self,
+        name: &str,
+        index: Option<usize>,
+        n: usize,
+    ) -> Result<Vec<f64>, String> {
+        let per_atom = self
+            .vars
+            .get(name)
+            .is_some_and(|v| v.style == Style::Atom && index.is_none());
+        if !per_atom || self.sys.mode == Mode::Check || self.active.iter().any(|a| a == name) {
+            return (0..n)
+                .map(|i| self.variable(name, index, Some(i)))
+                .collect();
+        }
+        let values = self.atom_variable(name)?;
+        if values.len() < n {
+            return Err("Variable evaluation before simulation box is defined".into());
+        }
+        Ok(values[..n].to_vec())
+    }
+
+    fn compute_column(
+        &mut self,
+        id: &str,
+        i: Option<usize>,
+        j: Option<usize>,
+        n: usize,
+    ) -> Result<Vec<f64>, String> {
+        let is_per_atom = self
+            .sim
+            .computes
+            .iter()
+            .any(|c| c.id == id && c.per_atom_columns() > 0);
+        if self.sys.mode == Mode::Check || j.is_some() || !is_per_atom {
+            return (0..n).map(|a| self.compute(id, i, j, Some(a))).collect();
+        }
+        let (data, cols, col) = self.atom_compute(id, i)?;
+        if data.len() < n * cols {
+            return Err("Compute used in variable between runs is not current".into());
+        }
+        Ok((0..n).map(|a| data[a * cols + col]).collect())
     }
 
     fn atom_value_by_id(&mut self, name: &str, id: usize) -> Result<f64, String> {

@@ -68,6 +68,10 @@ enum Command {
         /// (default: all columns, first to last); e.g. the id columns of a compute.
         #[arg(long, value_delimiter = ',')]
         key: Option<Vec<String>>,
+        /// Scale-relative mode: |a-b| relative to each column's largest magnitude (max) or
+        /// root mean square (rms) in A, the reference, instead of to max(|a|,|b|) per value.
+        #[arg(long)]
+        scale: Option<String>,
     },
     /// Convert between LIGGGHTS restart files, data files, text dumps (gzip for .gz) and VTK:
     /// restart -> data|dump|vtk|restart, data -> restart|dump|vtk, dump -> vtk.
@@ -255,7 +259,18 @@ fn main() -> ExitCode {
             columns,
             steps,
             key,
+            scale,
         } => {
+            let scale = match scale
+                .map(|s| regolith::io::diff::Scale::parse(&s))
+                .transpose()
+            {
+                Ok(s) => s,
+                Err(m) => {
+                    eprintln!("ERROR: {m}");
+                    return ExitCode::from(2);
+                }
+            };
             let steps = match steps
                 .map(|s| regolith::io::diff::parse_steps(&s))
                 .transpose()
@@ -272,6 +287,7 @@ fn main() -> ExitCode {
                 columns,
                 steps,
                 key,
+                scale,
             };
             match regolith::io::diff::diff(&a, &b, &opts) {
                 Ok(mut report) => {

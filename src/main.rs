@@ -96,6 +96,10 @@ enum Command {
         #[command(subcommand)]
         what: regolith::analyze::args::AnalyzeCommand,
     },
+    /// Run a deck at every combination of settings (--var NAME V1,V2,...; sf off,fast for the
+    /// engine path), measure observables (--observe NAME=EXPR) and their error against a
+    /// reference run against wall time: a table, sweep.csv and sweep.png.
+    Sweep(regolith::sweep::SweepArgs),
     /// Time a scene (built-in: settled_bed, struck_chain; or a deck path) and print loop
     /// times and particle-steps per second; --liggghts times Debian's LIGGGHTS too.
     Bench {
@@ -331,6 +335,16 @@ fn main() -> ExitCode {
             Ok(()) => ExitCode::from(0),
             Err(e) => {
                 eprintln!("ERROR: {e}");
+                ExitCode::from(1)
+            }
+        },
+        Command::Sweep(a) => match regolith::sweep::args::run(&a) {
+            Ok(text) => {
+                print!("{text}");
+                ExitCode::from(0)
+            }
+            Err(m) => {
+                eprintln!("ERROR: {m}");
                 ExitCode::from(1)
             }
         },

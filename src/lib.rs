@@ -15,3 +15,4 @@ pub mod io;
 pub mod progress;
 pub mod script;
 pub mod session;
+pub mod sweep;

@@ -68,6 +68,10 @@ enum Command {
         /// (default: all columns, first to last); e.g. the id columns of a compute.
         #[arg(long, value_delimiter = ',')]
         key: Option<Vec<String>>,
+        /// Scale-relative mode: |a-b| relative to each column's largest magnitude (max) or
+        /// root mean square (rms) in A, the reference, instead of to max(|a|,|b|) per value.
+        #[arg(long)]
+        scale: Option<String>,
     },
     /// Convert between LIGGGHTS restart files, data files, text dumps (gzip for .gz) and VTK:
     /// restart -> data|dump|vtk|restart, data -> restart|dump|vtk, dump -> vtk.
@@ -92,6 +96,10 @@ enum Command {
         #[command(subcommand)]
         what: regolith::analyze::args::AnalyzeCommand,
     },
+    /// Run a deck at every combination of settings (--var NAME V1,V2,...; sf off,fast for the
+    /// engine path), measure observables (--observe NAME=EXPR) and their error against a
+    /// reference run against wall time: a table, sweep.csv and sweep.png.
+    Sweep(regolith::sweep::SweepArgs),
     /// Time a scene (built-in: settled_bed, struck_chain; or a deck path) and print loop
     /// times and particle-steps per second; --liggghts times Debian's LIGGGHTS too.
     Bench {
@@ -258,7 +266,18 @@ fn main() -> ExitCode {
             columns,
             steps,
             key,
+            scale,
         } => {
+            let scale = match scale
+                .map(|s| regolith::io::diff::Scale::parse(&s))
+                .transpose()
+            {
+                Ok(s) => s,
+                Err(m) => {
+                    eprintln!("ERROR: {m}");
+                    return ExitCode::from(2);
+                }
+            };
             let steps = match steps
                 .map(|s| regolith::io::diff::parse_steps(&s))
                 .transpose()
@@ -275,6 +294,7 @@ fn main() -> ExitCode {
                 columns,
                 steps,
                 key,
+                scale,
             };
             match regolith::io::diff::diff(&a, &b, &opts) {
                 Ok(mut report) => {
@@ -318,6 +338,16 @@ fn main() -> ExitCode {
             Ok(()) => ExitCode::from(0),
             Err(e) => {
                 eprintln!("ERROR: {e}");
+                ExitCode::from(1)
+            }
+        },
+        Command::Sweep(a) => match regolith::sweep::args::run(&a) {
+            Ok(text) => {
+                print!("{text}");
+                ExitCode::from(0)
+            }
+            Err(m) => {
+                eprintln!("ERROR: {m}");
                 ExitCode::from(1)
             }
         },

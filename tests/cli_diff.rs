@@ -98,3 +98,44 @@ fn dump_local_entries_meet_in_key_order() {
     assert_eq!(status, 2);
     assert!(err.contains("no key column c_w[9]"), "{err}");
 }
+
+#[test]
+fn scale_relative_mode_from_the_command_line() {
+    // the case: a stress column of scale ~1e-9 whose near-zero value differs by
+    // 1e-17 (2e-4 relative to itself, 1e-8 of the column's scale)
+    let dir = std::env::temp_dir().join(format!("regolith-cli-diff-scale-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let a = "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n3\nITEM: BOX BOUNDS ff ff ff\n0 1\n0 1\n0 1\nITEM: ATOMS id c_stress[6] \n1 1.2e-9 \n2 5e-14 \n3 -8e-10 \n";
+    std::fs::write(dir.join("a.dump"), a).unwrap();
+    std::fs::write(dir.join("b.dump"), a.replace("5e-14", "5.001e-14")).unwrap();
+    let (code, out, _) = diff(&dir, &["a.dump", "b.dump"]);
+    assert_eq!(code, 1, "{out}");
+    let (code, out, _) = diff(&dir, &["a.dump", "b.dump", "--scale", "max"]);
+    assert_eq!(code, 0, "{out}");
+    let last = out.lines().last().unwrap();
+    assert!(
+        last.starts_with("max deviation relative to the column's largest magnitude 8.333333e-9 (step 0, atom 2, c_stress[6])"),
+        "{out}"
+    );
+    let (code, out, _) = diff(&dir, &["a.dump", "b.dump", "--scale", "rms"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("scale (rms)"), "{out}");
+    // --rtol and --atol keep their meaning: the bound is atol + rtol x scale
+    let (code, _, _) = diff(
+        &dir,
+        &["a.dump", "b.dump", "--scale", "max", "--rtol", "1e-9"],
+    );
+    assert_eq!(code, 1);
+    let (code, _, _) = diff(
+        &dir,
+        &[
+            "a.dump", "b.dump", "--scale", "max", "--rtol", "0", "--atol", "1e-16",
+        ],
+    );
+    assert_eq!(code, 0);
+    let (code, _, err) = diff(&dir, &["a.dump", "b.dump", "--scale", "column"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--scale column"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -19,6 +19,8 @@ pub enum Style {
     Dashed,
     /// Markers only (measurements).
     Points,
+    /// Connected markers (a measured series).
+    LinePoints,
 }
 
 /// One data set of a chart.
@@ -32,6 +34,8 @@ pub struct Curve {
     pub style: Style,
     /// Optional symmetric y error bar per point (same units as y).
     pub errors: Option<Vec<f64>>,
+    /// Optional short text beside each point (a setting's name).
+    pub notes: Option<Vec<String>>,
 }
 
 impl Curve {
@@ -42,6 +46,7 @@ impl Curve {
             points,
             style,
             errors: None,
+            notes: None,
         }
     }
 }
@@ -72,7 +77,7 @@ const PALETTE: [RGBColor; 6] = [
     RGBColor(90, 90, 90),
 ];
 
-fn register_fonts() {
+pub(crate) fn register_fonts() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         let _ = plotters::style::register_font(
@@ -212,6 +217,12 @@ where
             Style::Points => ctx
                 .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
                 .map_err(e)?,
+            Style::LinePoints => {
+                ctx.draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))
+                    .map_err(e)?;
+                ctx.draw_series(LineSeries::new(pts, color.stroke_width(2)))
+                    .map_err(e)?
+            }
         };
         if !c.label.is_empty() {
             anno.label(c.label.as_str()).legend(move |(x, y)| {
@@ -233,6 +244,21 @@ where
                     PathElement::new(vec![(x, lo), (x, y + s)], color.stroke_width(2))
                 });
             ctx.draw_series(bars).map_err(e)?;
+        }
+        if let Some(notes) = &c.notes {
+            let text = c
+                .points
+                .iter()
+                .zip(notes)
+                .filter(|(p, n)| keep(p) && !n.is_empty())
+                .map(|(&p, n)| {
+                    Text::new(
+                        n.clone(),
+                        p,
+                        ("sans-serif", 13).into_font().color(&color.mix(0.9)),
+                    )
+                });
+            ctx.draw_series(text).map_err(e)?;
         }
     }
     if chart.curves.iter().any(|c| !c.label.is_empty()) {

@@ -1,7 +1,10 @@
 //! `regolith diff A B`: two dumps (text or gzip, one file or a `*` series, from regolith or
 //! LIGGGHTS) compared atom by atom (matched by ID), step by step and column by column; or
 //! the thermo columns of two logs (or screen captures), matched by run and step. A value
-//! pair agrees when |a - b| <= atol + rtol max(|a|, |b|).
+//! pair agrees when |a - b| <= atol + rtol max(|a|, |b|); in scale-relative mode
+//! (`--scale max|rms`) when |a - b| <= atol + rtol S, S being the column's largest magnitude
+//! or its root mean square in the first file (the reference), so values near zero in a
+//! column of large ones do not dominate.
 
 use std::collections::BTreeMap;
 use std::io::Read;
@@ -22,6 +25,9 @@ pub struct DiffOptions {
     /// `dump local` files: match entries by their place in the order of these columns
     /// (None: all columns, first to last).
     pub key: Option<Vec<String>>,
+    /// Deviations relative to each column's scale in the reference (A) instead of to each
+    /// value pair's magnitude.
+    pub scale: Option<Scale>,
 }
 
 impl Default for DiffOptions {
@@ -32,7 +38,69 @@ impl Default for DiffOptions {
             columns: None,
             steps: None,
             key: None,
+            scale: None,
         }
+    }
+}
+
+/// A column's scale in scale-relative comparisons.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Scale {
+    /// The largest magnitude of the column in the reference.
+    Max,
+    /// The root mean square of the column in the reference.
+    Rms,
+}
+
+impl Scale {
+    /// `max` or `rms`.
+    pub fn parse(word: &str) -> Result<Scale, String> {
+        match word {
+            "max" => Ok(Scale::Max),
+            "rms" => Ok(Scale::Rms),
+            w => Err(format!(
+                "--scale {w}: expected max (the column's largest magnitude in A) or rms (its root mean square in A)"
+            )),
+        }
+    }
+
+    fn word(self) -> &'static str {
+        match self {
+            Scale::Max => "max",
+            Scale::Rms => "rms",
+        }
+    }
+}
+
+/// Per column: the running largest magnitude, sum of squares and count of finite values.
+#[derive(Debug, Clone, Copy, Default)]
+struct Accumulated {
+    max: f64,
+    squares: f64,
+    count: usize,
+}
+
+/// The scale of every column of the reference, from the values it holds.
+#[derive(Debug, Clone, Default)]
+struct Scales(BTreeMap<String, Accumulated>);
+
+impl Scales {
+    fn push(&mut self, column: &str, v: f64) {
+        if !v.is_finite() {
+            return;
+        }
+        let a = self.0.entry(column.to_string()).or_default();
+        a.max = a.max.max(v.abs());
+        a.squares += v * v;
+        a.count += 1;
+    }
+
+    fn get(&self, column: &str, kind: Scale) -> f64 {
+        self.0.get(column).map_or(0.0, |a| match kind {
+            Scale::Max => a.max,
+            Scale::Rms if a.count > 0 => (a.squares / a.count as f64).sqrt(),
+            Scale::Rms => 0.0,
+        })
     }
 }
 
@@ -77,8 +145,11 @@ pub struct Entry {
     pub a: f64,
     /// Value in B.
     pub b: f64,
-    /// |a - b| / max(|a|, |b|) (0 when both are 0).
+    /// |a - b| / scale (0 when both are 0).
     pub rel: f64,
+    /// What the deviation is relative to: max(|a|, |b|), or the column's scale in
+    /// scale-relative mode.
+    pub scale: f64,
 }
 
 /// Per-column summary.
@@ -107,6 +178,8 @@ pub struct Report {
     pub steps: usize,
     /// Rows are `dump local` entries (numbered in key order), not atoms.
     pub local: bool,
+    /// Scale-relative mode, with each column's scale.
+    pub scaled: Option<(Scale, Vec<(String, f64)>)>,
 }
 
 impl Report {
@@ -144,7 +217,7 @@ impl Report {
         let s = &mut self.columns[k].1;
         s.count += 1;
         let both_nan = e.a.is_nan() && e.b.is_nan();
-        let outside = !both_nan && !(abs <= opts.atol + opts.rtol * e.a.abs().max(e.b.abs()));
+        let outside = !both_nan && !(abs <= opts.atol + opts.rtol * e.scale);
         if outside {
             s.outside += 1;
         }
@@ -178,24 +251,49 @@ impl Report {
                 self.mismatches.len() - 20
             ));
         }
-        out.push_str(&format!(
-            "{:<16} {:>10} {:>10} {:>13} {:>13}\n",
-            "column", "values", "outside", "max rel", "max abs"
-        ));
+        let scale_of = |name: &str| {
+            self.scaled
+                .as_ref()
+                .and_then(|(_, s)| s.iter().find(|(n, _)| n == name).map(|(_, v)| *v))
+        };
+        match &self.scaled {
+            None => out.push_str(&format!(
+                "{:<16} {:>10} {:>10} {:>13} {:>13}\n",
+                "column", "values", "outside", "max rel", "max abs"
+            )),
+            Some((kind, _)) => out.push_str(&format!(
+                "{:<16} {:>10} {:>10} {:>13} {:>13} {:>13}\n",
+                "column",
+                "values",
+                "outside",
+                "max dev/scale",
+                "max abs",
+                format!("scale ({})", kind.word())
+            )),
+        }
         for (name, s) in &self.columns {
             out.push_str(&format!(
-                "{:<16} {:>10} {:>10} {:>13.6e} {:>13.6e}\n",
+                "{:<16} {:>10} {:>10} {:>13.6e} {:>13.6e}",
                 name, s.count, s.outside, s.max_rel, s.max_abs
             ));
+            if let Some(v) = scale_of(name) {
+                out.push_str(&format!(" {v:>13.6e}"));
+            }
+            out.push('\n');
         }
         if !self.worst.is_empty() {
             out.push_str(&format!(
                 "worst values (step, {}, column: A vs B):\n",
                 self.row_word()
             ));
+            let dev = if self.scaled.is_some() {
+                "dev/scale"
+            } else {
+                "rel"
+            };
             for e in &self.worst {
                 out.push_str(&format!(
-                    "  step {} {} {} {}: {:.17e} vs {:.17e} (rel {:.3e})\n",
+                    "  step {} {} {} {}: {:.17e} vs {:.17e} ({dev} {:.3e})\n",
                     e.step,
                     self.row_word(),
                     e.id,
@@ -220,10 +318,31 @@ impl Report {
                 )
             })
             .unwrap_or_default();
+        let what = match &self.scaled {
+            None => "relative deviation",
+            Some((Scale::Max, _)) => "deviation relative to the column's largest magnitude",
+            Some((Scale::Rms, _)) => "deviation relative to the column's RMS",
+        };
         out.push_str(&format!(
-            "max relative deviation {rel:.6e}{at}; max absolute deviation {abs:.6e}\n"
+            "max {what} {rel:.6e}{at}; max absolute deviation {abs:.6e}\n"
         ));
         out
+    }
+
+    /// Record the column scales used (scale-relative mode).
+    fn set_scales(&mut self, kind: Scale, scales: &Scales) {
+        let list = scales.0.keys().map(|n| (n.clone(), scales.get(n, kind)));
+        self.scaled = Some((kind, list.collect()));
+    }
+}
+
+/// The deviation of a value pair and what it is relative to: max(|a|, |b|), or in
+/// scale-relative mode the column's scale (max(|a|, |b|) still when the reference column is
+/// all zero).
+fn deviation(a: f64, b: f64, column_scale: Option<f64>) -> (f64, f64) {
+    match column_scale {
+        Some(s) if s > 0.0 => ((a - b).abs() / s, s),
+        _ => (relative(a, b), a.abs().max(b.abs())),
     }
 }
 
@@ -252,6 +371,20 @@ fn wanted_column(opts: &DiffOptions, name: &str) -> bool {
 /// Compare two parsed dumps.
 pub fn compare_dumps(a: &[Snapshot], b: &[Snapshot], opts: &DiffOptions) -> Report {
     let mut r = Report::default();
+    let mut scales = Scales::default();
+    if let Some(kind) = opts.scale {
+        for sa in a.iter().filter(|s| wanted_step(opts, s.step)) {
+            for (c, name) in sa.columns.iter().enumerate() {
+                if wanted_column(opts, name) {
+                    for row in sa.rows.values() {
+                        scales.push(name, row[c]);
+                    }
+                }
+            }
+        }
+        r.set_scales(kind, &scales);
+    }
+    let scale_of = |name: &str| opts.scale.map(|k| scales.get(name, k));
     let by_step: BTreeMap<i64, &Snapshot> = b.iter().map(|s| (s.step, s)).collect();
     for sa in a.iter().filter(|s| wanted_step(opts, s.step)) {
         let Some(sb) = by_step.get(&sa.step) else {
@@ -288,6 +421,7 @@ pub fn compare_dumps(a: &[Snapshot], b: &[Snapshot], opts: &DiffOptions) -> Repo
             };
             for &(ca, cb, name) in &cols {
                 let (x, y) = (ra[ca], rb[cb]);
+                let (rel, scale) = deviation(x, y, scale_of(name));
                 r.add(
                     opts,
                     Entry {
@@ -296,7 +430,8 @@ pub fn compare_dumps(a: &[Snapshot], b: &[Snapshot], opts: &DiffOptions) -> Repo
                         column: name.clone(),
                         a: x,
                         b: y,
-                        rel: relative(x, y),
+                        rel,
+                        scale,
                     },
                 );
             }
@@ -353,6 +488,16 @@ pub fn parse_thermo(text: &str) -> BTreeMap<(usize, i64), BTreeMap<String, f64>>
 pub fn compare_logs(a: &str, b: &str, opts: &DiffOptions) -> Report {
     let (ta, tb) = (parse_thermo(a), parse_thermo(b));
     let mut r = Report::default();
+    let mut scales = Scales::default();
+    if let Some(kind) = opts.scale {
+        for ((_, _), row) in ta.iter().filter(|((_, s), _)| wanted_step(opts, *s)) {
+            for (name, v) in row.iter().filter(|(n, _)| wanted_column(opts, n)) {
+                scales.push(name, *v);
+            }
+        }
+        r.set_scales(kind, &scales);
+    }
+    let scale_of = |name: &str| opts.scale.map(|k| scales.get(name, k));
     for ((run, step), ra) in ta.iter().filter(|((_, s), _)| wanted_step(opts, *s)) {
         let Some(rb) = tb.get(&(*run, *step)) else {
             r.mismatches
@@ -366,6 +511,7 @@ pub fn compare_logs(a: &str, b: &str, opts: &DiffOptions) -> Report {
                     .push(format!("run {run} step {step}: column {name} only in A"));
                 continue;
             };
+            let (rel, scale) = deviation(*x, *y, scale_of(name));
             r.add(
                 opts,
                 Entry {
@@ -374,7 +520,8 @@ pub fn compare_logs(a: &str, b: &str, opts: &DiffOptions) -> Report {
                     column: name.clone(),
                     a: *x,
                     b: *y,
-                    rel: relative(*x, *y),
+                    rel,
+                    scale,
                 },
             );
         }
@@ -576,6 +723,66 @@ mod tests {
                 .len(),
             2
         );
+    }
+
+    #[test]
+    fn scale_relative_mode_ignores_near_zero_values() {
+        // a stress column of scale 1e-9 with one value near zero that differs by 1e-17: per
+        // value that is a 2e-4 relative deviation; against the column's scale, 1e-8
+        let dump = "ITEM: TIMESTEP\n5\nITEM: NUMBER OF ATOMS\n3\nITEM: BOX BOUNDS ff ff ff\n0 1\n0 1\n0 1\nITEM: ATOMS id s \n1 1e-9 \n2 -5e-14 \n3 3e-10 \n";
+        let a = parse(dump).unwrap();
+        let b = parse(&dump.replace("-5e-14", "-5.001e-14")).unwrap();
+        let plain = compare_dumps(&a, &b, &DiffOptions::default());
+        assert!(!plain.agrees());
+        assert!((plain.maxima().0 - 1e-17 / 5.001e-14).abs() < 1e-9);
+        for (kind, scale) in [
+            (Scale::Max, 1e-9),
+            (Scale::Rms, ((1e-18 + 25e-28 + 9e-20) / 3.0f64).sqrt()),
+        ] {
+            let o = DiffOptions {
+                scale: Some(kind),
+                ..Default::default()
+            };
+            let mut r = compare_dumps(&a, &b, &o);
+            assert!(r.agrees(), "{kind:?}");
+            assert!((r.maxima().0 - 1e-17 / scale).abs() < 1e-12 * 1e-17 / scale + 1e-20);
+            let text = r.render("a", "b");
+            assert!(text.contains("scale ("), "{text}");
+            assert!(
+                text.lines().last().unwrap().contains("step 5, atom 2, s"),
+                "{text}"
+            );
+        }
+        // a real disagreement is still one
+        let c = parse(&dump.replace("3e-10", "3.1e-10")).unwrap();
+        let o = DiffOptions {
+            scale: Some(Scale::Max),
+            ..Default::default()
+        };
+        assert!(!compare_dumps(&a, &c, &o).agrees());
+        // an all-zero reference column falls back to per-value deviations
+        let z = "ITEM: TIMESTEP\n5\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS ff ff ff\n0 1\n0 1\n0 1\nITEM: ATOMS id s \n1 0 \n";
+        let r = compare_dumps(
+            &parse(z).unwrap(),
+            &parse(&z.replace("1 0 ", "1 1e-30 ")).unwrap(),
+            &o,
+        );
+        assert_eq!(r.maxima().0, 1.0);
+        assert!(Scale::parse("column").is_err());
+    }
+
+    #[test]
+    fn scale_relative_thermo() {
+        let a = "    Step         KinEng             Fz \n       0              1          1e-12 \n    1000              2            100 \nLoop time of 1\n";
+        let b = a.replace("1e-12", "2e-12");
+        assert!(!compare_logs(a, &b, &DiffOptions::default()).agrees());
+        let o = DiffOptions {
+            scale: Some(Scale::Max),
+            ..Default::default()
+        };
+        let r = compare_logs(a, &b, &o);
+        assert!(r.agrees());
+        assert!((r.maxima().0 - 1e-14).abs() < 1e-20);
     }
 
     #[test]

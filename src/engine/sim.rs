@@ -495,18 +495,33 @@ impl Simulation {
         let p = &self.particles;
         // a negative time step moves particles as far as a positive one
         let dt = self.dt.abs();
-        let suspect = |i: usize| {
-            let v = p.v[i];
-            !p.x[i]
-                .iter()
-                .chain(&v)
-                .chain(&p.omega[i])
-                .all(|c| c.is_finite())
-                || (p.radius[i] > 0.0
-                    && (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() * dt > p.radius[i])
+        let dt2 = dt * dt;
+        let (x, v, w, radius) = (&p.x, &p.v, &p.omega, &p.radius);
+        // a cheap superset first, branch-free over a block: a sum of the nine is non-finite
+        // when one of them is (or, rarely, when it overflows), and |v| dt > r/2 holds whenever
+        // |v| dt > r; the exact test runs only in a block the cheap one flags
+        let cheap = |i: usize| {
+            let (x, v, w) = (&x[i], &v[i], &w[i]);
+            let sum = x[0] + x[1] + x[2] + v[0] + v[1] + v[2] + w[0] + w[1] + w[2];
+            let v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+            let r = radius[i];
+            !sum.is_finite() | ((r > 0.0) & (v2 * dt2 > 0.25 * r * r))
+        };
+        let exact = |i: usize| {
+            let vi = v[i];
+            !x[i].iter().chain(&vi).chain(&w[i]).all(|c| c.is_finite())
+                || (radius[i] > 0.0
+                    && (vi[0] * vi[0] + vi[1] * vi[1] + vi[2] * vi[2]).sqrt() * dt > radius[i])
+        };
+        const BLOCK: usize = 256;
+        let block = |b: usize| b * BLOCK..((b + 1) * BLOCK).min(p.len());
+        let flagged = |b: usize| {
+            let hit = block(b).fold(false, |hit, i| hit | cheap(i));
+            hit && block(b).any(exact)
         };
         // the first offending particle in order, found on the engine's threads
-        let first = first_where(p.len(), suspect);
+        let first = first_where(p.len().div_ceil(BLOCK), flagged)
+            .and_then(|b| block(b).find(|&i| exact(i)));
         for i in first.into_iter() {
             let v = p.v[i];
             if !p.x[i]

@@ -144,9 +144,19 @@ pub const LANES: usize = 4;
 #[repr(C, align(32))]
 pub struct F64x4(pub [f64; LANES]);
 
-/// The mask of [`F64x4`] comparisons.
+/// The mask of [`F64x4`] comparisons: each lane all ones (true) or all zeros (false), the
+/// layout of a SIMD compare, so selects are bitwise blends with no conversion.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct M4(pub [bool; LANES]);
+#[repr(C, align(32))]
+pub struct M4(pub [u64; LANES]);
+
+impl M4 {
+    /// The mask with lanes `b`.
+    #[inline(always)]
+    pub fn from_bools(b: [bool; LANES]) -> M4 {
+        M4(b.map(|t| (t as u64).wrapping_neg()))
+    }
+}
 
 impl Mask for M4 {
     #[inline(always)]
@@ -163,7 +173,7 @@ impl Mask for M4 {
     }
     #[inline(always)]
     fn any(self) -> bool {
-        self.0[0] | self.0[1] | self.0[2] | self.0[3]
+        (self.0[0] | self.0[1] | self.0[2] | self.0[3]) != 0
     }
 }
 
@@ -221,7 +231,7 @@ macro_rules! compare {
     ($f:ident, $op:tt) => {
         #[inline(always)]
         fn $f(self, o: F64x4) -> M4 {
-            M4([
+            M4::from_bools([
                 self.0[0] $op o.0[0],
                 self.0[1] $op o.0[1],
                 self.0[2] $op o.0[2],
@@ -256,13 +266,13 @@ impl Real for F64x4 {
     compare!(eq, ==);
     #[inline(always)]
     fn is_infinite(self) -> M4 {
-        M4(self.0.map(f64::is_infinite))
+        M4::from_bools(self.0.map(f64::is_infinite))
     }
     #[inline(always)]
     fn select(m: M4, a: F64x4, b: F64x4) -> F64x4 {
-        F64x4(std::array::from_fn(
-            |k| if m.0[k] { a.0[k] } else { b.0[k] },
-        ))
+        F64x4(std::array::from_fn(|k| {
+            f64::from_bits((a.0[k].to_bits() & m.0[k]) | (b.0[k].to_bits() & !m.0[k]))
+        }))
     }
 }
 
@@ -281,9 +291,12 @@ mod tests {
             assert!(r.0[k].to_bits() == s.to_bits() || (r.0[k].is_nan() && s.is_nan()));
         }
         let m = a.gt(b);
-        assert_eq!(m, M4([true, false, true, false]));
+        assert_eq!(m, M4::from_bools([true, false, true, false]));
         assert_eq!(F64x4::select(m, a, b).0, [1.0, 0.7, 0.1, 3.0]);
         assert!(m.any() && !M4::default().any());
-        assert_eq!(m.not().and(a.eq(b)), M4([false, false, false, true]));
+        assert_eq!(
+            m.not().and(a.eq(b)),
+            M4::from_bools([false, false, false, true])
+        );
     }
 }

@@ -51,30 +51,35 @@ impl Packed {
     /// Pack the particles; `frozen` are the group bits of frozen particles.
     pub fn fill(&mut self, p: &Particles, frozen: u32) {
         use rayon::prelude::*;
-        self.records.clear();
-        let record = |i: usize| {
-            let (x, v, w) = (p.x[i], p.v[i], p.omega[i]);
-            let fz = if p.mask[i] & frozen != 0 { 1.0 } else { 0.0 };
-            Record([
-                x[0],
-                x[1],
-                x[2],
-                p.radius[i],
-                v[0],
-                v[1],
-                v[2],
-                p.mass[i],
-                w[0],
-                w[1],
-                w[2],
-                fz,
-            ])
+        let n = p.len();
+        // every record is overwritten below: keep the old values rather than clear
+        self.records.resize(n, Record::default());
+        let write = |start: usize, out: &mut [Record]| {
+            let end = start + out.len();
+            let cols = (
+                &p.x[start..end],
+                &p.v[start..end],
+                &p.omega[start..end],
+                &p.radius[start..end],
+                &p.mass[start..end],
+                &p.mask[start..end],
+            );
+            for (k, rec) in out.iter_mut().enumerate() {
+                let (x, v, w) = (cols.0[k], cols.1[k], cols.2[k]);
+                let fz = if cols.5[k] & frozen != 0 { 1.0 } else { 0.0 };
+                rec.0 = [
+                    x[0], x[1], x[2], cols.3[k], v[0], v[1], v[2], cols.4[k], w[0], w[1], w[2], fz,
+                ];
+            }
         };
-        if crate::engine::integrate::parallel(p.len()) {
+        if crate::engine::integrate::parallel(n) {
+            const PART: usize = 2048;
             self.records
-                .par_extend((0..p.len()).into_par_iter().with_min_len(1024).map(record));
+                .par_chunks_mut(PART)
+                .enumerate()
+                .for_each(|(c, out)| write(c * PART, out));
         } else {
-            self.records.extend((0..p.len()).map(record));
+            write(0, &mut self.records);
         }
     }
 }
@@ -285,8 +290,8 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
                 mj: b[7],
                 omegai: [a[8], a[9], a[10]],
                 omegaj: [b[8], b[9], b[10]],
-                frozen_i: M4(a[11].0.map(|f| f != 0.0)),
-                frozen_j: M4(b[11].0.map(|f| f != 0.0)),
+                frozen_i: M4::from_bools(a[11].0.map(|f| f != 0.0)),
+                frozen_j: M4::from_bools(b[11].0.map(|f| f != 0.0)),
                 dt: self.dt,
                 update_history: self.update,
             };

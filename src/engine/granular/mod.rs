@@ -239,8 +239,8 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             })
             .collect();
         let total: usize = parts.iter().map(Vec::len).sum();
+        // every slot is written by its part's kernel: keep the old values rather than clear
         let mut results = std::mem::take(&mut self.results);
-        results.clear();
         results.resize(total, PairResult::default());
         let mut slot = std::mem::take(&mut self.slot);
         slot.clear();

@@ -35,6 +35,8 @@ pub struct PairGran<N, T, C, R> {
     pub packed: batch::Packed,
     /// Per list entry, its place among the touching entries (u32::MAX: apart).
     pub slot: Vec<u32>,
+    /// The parallel pass's touching entries, per part of the list (indices within the part).
+    pub parts: Vec<Vec<u32>>,
     /// The largest overlap of the last evaluation: (ratio to the smaller radius, i, j).
     pub worst: Option<(f64, u32, u32)>,
 }
@@ -229,15 +231,15 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         let threads = rayon::current_num_threads();
         let width = self.model.history_len();
         let chunk = pairs.len().div_ceil(threads * 8).max(2048);
-        let parts: Vec<Vec<u32>> = pairs
-            .par_chunks(chunk)
-            .enumerate()
-            .map(|(c, part)| {
-                let mut t = Vec::new();
-                batch::touching_entries(packed, part, c * chunk, &mut t);
-                t
-            })
-            .collect();
+        let mut parts = std::mem::take(&mut self.parts);
+        parts.resize_with(pairs.len().div_ceil(chunk), Vec::new);
+        parts
+            .par_iter_mut()
+            .zip(pairs.par_chunks(chunk))
+            .for_each(|(t, part)| {
+                t.clear();
+                batch::touching_entries(packed, part, 0, t);
+            });
         let total: usize = parts.iter().map(Vec::len).sum();
         // every slot is written by its part's kernel: keep the old values rather than clear
         let mut results = std::mem::take(&mut self.results);
@@ -265,19 +267,22 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             let kinds = &p.kind;
             jobs.into_par_iter()
                 .for_each(|(base, part, out, h, sl, offset)| {
-                    let local: Vec<u32> = part.iter().map(|&k| k - base as u32).collect();
-                    for (n, &k) in local.iter().enumerate() {
+                    for (n, &k) in part.iter().enumerate() {
                         sl[k as usize] = offset + n as u32;
                     }
                     let mut collect = Collect { out, n: 0 };
-                    kernel.run(packed, kinds, &pairs[base..], &local, h, &mut collect);
+                    kernel.run(packed, kinds, &pairs[base..], part, h, &mut collect);
                 });
         }
         // the worst overlap, first in list order among equals (as the sequential pass)
         let mut worst: Option<(f64, u32, u32)> = None;
-        for (&k, res) in parts.iter().flatten().zip(&results) {
+        let entries = parts
+            .iter()
+            .enumerate()
+            .flat_map(|(c, part)| part.iter().map(move |&k| c * chunk + k as usize));
+        for (k, res) in entries.zip(&results) {
             if worst.is_none_or(|w| res.overlap_ratio > w.0) {
-                let pair = &pairs[k as usize];
+                let pair = &pairs[k];
                 worst = Some((res.overlap_ratio, pair.i, pair.j));
             }
         }
@@ -343,9 +348,11 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         self.results = results;
         self.slot = slot;
         self.touching.clear();
-        for part in &parts {
-            self.touching.extend_from_slice(part);
+        for (c, part) in parts.iter().enumerate() {
+            let base = (c * chunk) as u32;
+            self.touching.extend(part.iter().map(|&k| base + k));
         }
+        self.parts = parts;
     }
 }
 
@@ -473,6 +480,7 @@ pub fn build(
                 touching: Vec::new(),
                 packed: batch::Packed::default(),
                 slot: Vec::new(),
+                parts: Vec::new(),
                 worst: None,
             })
         }

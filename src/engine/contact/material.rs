@@ -214,6 +214,15 @@ impl Coeffs<super::real::F64x4> for CoeffLanes<'_> {
 pub struct Material {
     ntypes: usize,
     pairs: Vec<PairCoeffs>,
+    /// Every type pair has the same coefficients, bit for bit.
+    same_for_all: bool,
+}
+
+/// Are all the tables' entries the same, bit for bit? (`Debug` prints each double so that it
+/// reads back exactly, telling -0.0 from 0.0.)
+fn all_same(pairs: &[PairCoeffs]) -> bool {
+    let first = pairs.first().map(|p| format!("{p:?}"));
+    pairs.iter().all(|p| Some(format!("{p:?}")) == first)
 }
 
 /// Base `fix property/global` values, in the order LIGGGHTS may create them.
@@ -569,7 +578,12 @@ impl Material {
                 p.phi_f = at(&b.plasticity_depth);
             }
         }
-        Ok(Material { ntypes: n, pairs })
+        let same_for_all = all_same(&pairs);
+        Ok(Material {
+            ntypes: n,
+            pairs,
+            same_for_all,
+        })
     }
 
     /// A table of `ntypes` types where every pair has the coefficients `c` (for tests and
@@ -578,6 +592,7 @@ impl Material {
         Material {
             ntypes,
             pairs: vec![c; ntypes * ntypes],
+            same_for_all: true,
         }
     }
 
@@ -588,14 +603,13 @@ impl Material {
 
     /// Coefficients of the type pair (itype, jtype), both 1-based.
     #[inline(always)]
-    /// Coefficients of the type pair (1-based types).
     pub fn pair(&self, itype: usize, jtype: usize) -> &PairCoeffs {
         &self.pairs[(itype - 1) * self.ntypes + (jtype - 1)]
     }
 
-    /// Mutable coefficients of the type pair (itype, jtype), both 1-based.
-    pub fn pair_mut(&mut self, itype: usize, jtype: usize) -> &mut PairCoeffs {
-        &mut self.pairs[(itype - 1) * self.ntypes + (jtype - 1)]
+    /// Every type pair has the same coefficients, bit for bit (kernels then read one set).
+    pub fn same_for_all(&self) -> bool {
+        self.same_for_all
     }
 }
 

@@ -203,7 +203,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
         history: &mut [f64],
         sink: &mut S,
     ) {
-        if self.ntypes == 1 {
+        if self.ntypes == 1 || self.material.same_for_all() {
             let one = OneType(self.material.pair(1, 1));
             self.dispatch(&one, packed, kinds, pairs, entries, history, sink);
         } else {

@@ -48,27 +48,13 @@ pub fn check_deck(source: Source, opts: &DeckOptions) -> Vec<Diagnostic> {
     check_deck_in(source, opts, None)
 }
 
-/// Threads when the command line asks for none: one, as LIGGGHTS runs one process per core and
-/// LAMMPS's threaded styles run one thread unless asked (`-pk fast N`, the deck's
-/// `package fast N`, or `RAYON_NUM_THREADS` in the environment ask for more).
-pub fn default_threads() -> Option<usize> {
-    match std::env::var_os("RAYON_NUM_THREADS") {
-        Some(_) => None,
-        None => Some(1),
-    }
-}
-
 /// Check a deck as if run from folder `cwd` (default: the current directory).
 pub fn check_deck_in(source: Source, opts: &DeckOptions, cwd: Option<&Path>) -> Vec<Diagnostic> {
     let mut interp = Interpreter::new(Mode::Check, Output::silent());
     interp.engine.sim.seed_tolerant = opts.seed_tolerant;
     interp.engine.sim.zero_restitution = opts.zero_restitution;
     interp.engine.sim.accel.fast = opts.fast;
-    interp
-        .engine
-        .sim
-        .accel
-        .set_threads(opts.threads.or_else(default_threads));
+    interp.engine.sim.accel.ask_threads(opts.threads);
     if let Some(dir) = cwd {
         interp.sys.cwd = dir.to_path_buf();
     }
@@ -178,11 +164,7 @@ pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
     interp.engine.sim.seed_tolerant = opts.seed_tolerant;
     interp.engine.sim.zero_restitution = opts.zero_restitution;
     interp.engine.sim.accel.fast = opts.fast;
-    interp
-        .engine
-        .sim
-        .accel
-        .set_threads(opts.threads.or_else(default_threads));
+    interp.engine.sim.accel.ask_threads(opts.threads);
     interp.engine.sim.observer = observer;
     for (name, values) in &opts.vars {
         if let Err(d) = interp.set_command_line_variable(name, values) {

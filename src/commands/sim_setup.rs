@@ -145,7 +145,7 @@ fn package(a: &Args, ctx: &mut Ctx) -> Result {
         d.help = Some(crate::cli::PACKAGE_HELP.into());
         d
     })?;
-    ctx.sim.accel.set_threads(Some(n));
+    ctx.sim.accel.ask_threads(Some(n));
     Ok(())
 }
 

@@ -21,8 +21,10 @@ pub const ORDER_ARRAY: &str = "regolith:order";
 pub struct Accel {
     /// The fast path is on.
     pub fast: bool,
-    /// Threads asked for (None: rayon's default, all cores or `RAYON_NUM_THREADS`).
+    /// Threads in use (None: rayon's default, all cores or `RAYON_NUM_THREADS`).
     pub threads: Option<usize>,
+    /// The command line or the deck asked for a thread count (`-pk fast N`, `package`).
+    pub asked: bool,
     pool: Option<Arc<rayon::ThreadPool>>,
     /// The next rank handed to an inserted particle (fast path order record).
     pub next_rank: f64,
@@ -42,18 +44,46 @@ impl std::fmt::Debug for Accel {
 }
 
 impl Accel {
+    /// Use `n` threads, as asked by `-pk fast N` or `package fast N` (None: not asked).
+    pub fn ask_threads(&mut self, n: Option<usize>) {
+        self.asked |= n.is_some();
+        if n.is_some() {
+            self.set_threads(n);
+        }
+    }
+
+    /// The threads of a run nobody chose them for, decided when a run starts: all cores
+    /// on the fast path (or `RAYON_NUM_THREADS`), one on the exact path unless
+    /// `RAYON_NUM_THREADS` is set (its parallel pair pass costs more than it gains on two
+    /// cores; see README's speed section).
+    pub fn settle_threads(&mut self) {
+        if self.asked {
+            return;
+        }
+        let env = std::env::var_os("RAYON_NUM_THREADS").is_some();
+        let want = if self.fast || env { None } else { Some(1) };
+        if want != self.threads || (want.is_none() && self.pool.is_some()) {
+            self.set_threads(want);
+        }
+    }
+
     /// Use `n` threads (None: rayon's default). The first request sizes rayon's global
     /// pool (no hand-off between threads per call); a later, different request gets a pool
     /// of its own.
-    pub fn set_threads(&mut self, n: Option<usize>) {
+    fn set_threads(&mut self, n: Option<usize>) {
         if n == self.threads {
             return;
         }
         self.threads = n;
         self.pool = None;
-        let Some(n) = n else {
-            return;
-        };
+        // None: every core (or RAYON_NUM_THREADS), even when the global pool was sized smaller
+        let n = n.unwrap_or_else(|| {
+            std::env::var("RAYON_NUM_THREADS")
+                .ok()
+                .and_then(|v| v.parse().ok())
+                .filter(|&n: &usize| n > 0)
+                .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+        });
         let global = rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .build_global();
@@ -266,5 +296,33 @@ impl Simulation {
             new.join(", ")
         ));
         self.accel.said.extend(new.iter().map(|s| s.to_string()));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn runs_nobody_chose_threads_for_use_one_exact_and_every_core_fast() {
+        if std::env::var_os("RAYON_NUM_THREADS").is_some() {
+            return; // the environment chose
+        }
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let mut a = Accel::default();
+        a.settle_threads();
+        assert_eq!(a.thread_count(), 1);
+        a.fast = true;
+        a.settle_threads();
+        assert_eq!(a.thread_count(), cores);
+        // asked for: kept on either path
+        let mut b = Accel::default();
+        b.ask_threads(Some(3));
+        b.fast = true;
+        b.settle_threads();
+        assert_eq!(b.thread_count(), 3);
+        b.fast = false;
+        b.settle_threads();
+        assert_eq!(b.thread_count(), 3);
     }
 }

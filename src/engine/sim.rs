@@ -1652,6 +1652,7 @@ impl Simulation {
         let started = std::time::Instant::now();
         self.neighbor.cutneighmax = self.liggghts_cutneighmax();
         self.check_run_init()?;
+        self.accel.settle_threads();
         if self.accel.fast {
             self.start_order_record();
         }

@@ -102,6 +102,20 @@ pub fn loop_totals(log: &str) -> (f64, u64) {
 
 /// The first error line of a failed run's standard error (or log).
 fn failure(stderr: &str, log: &str) -> String {
+    let error = first_error(stderr, log);
+    // a guard's warning before the error says why the run went wrong (step, atoms, bound)
+    let warned = log
+        .lines()
+        .chain(stderr.lines())
+        .find_map(|l| l.strip_prefix("WARNING: step "))
+        .map(|w| w.split(" (").next().unwrap_or(w));
+    match warned {
+        Some(w) if !error.contains("blow-up") => format!("{error} (after step {w})"),
+        _ => error,
+    }
+}
+
+fn first_error(stderr: &str, log: &str) -> String {
     let pick = |t: &str| {
         t.lines()
             .find(|l| l.starts_with("ERROR"))
@@ -257,5 +271,12 @@ mod tests {
             "blow-up at step 5: ..."
         );
         assert_eq!(super::failure("", ""), "failed without a message");
+        assert_eq!(
+            super::failure(
+                "ERROR: Variable atom ID is not currently defined\n",
+                "WARNING: step 1: atoms 1 and 2 overlap by 61.8 % of the smaller radius (more than 50 %); ...\n"
+            ),
+            "Variable atom ID is not currently defined (after step 1: atoms 1 and 2 overlap by 61.8 % of the smaller radius)"
+        );
     }
 }

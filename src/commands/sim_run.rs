@@ -690,7 +690,7 @@ fn thermo_modify(a: &Args, ctx: &mut Ctx) -> Result {
                 let which = a.word(i + 1)?;
                 let spec = a.word(i + 2)?.to_string();
                 let probe = if which == "int" { 1.0 } else { 0.5 };
-                crate::script::format::with_spec(&spec, probe)
+                crate::util::format::with_spec(&spec, probe)
                     .map_err(|m| a.error(i + 2, &format!("thermo_modify format: {m}")))?;
                 let t = &mut ctx.sim.thermo;
                 match which {
@@ -842,9 +842,10 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
             }
             for (k, n) in names.iter().enumerate() {
                 if let Some(body) = n.strip_prefix("c_") {
-                    let (cid, index) = split_reference(body).ok_or_else(|| {
-                        a.error(5 + k, "Invalid attribute in dump custom command")
-                    })?;
+                    let (cid, index) =
+                        crate::util::numbers::split_reference(body).ok_or_else(|| {
+                            a.error(5 + k, "Invalid attribute in dump custom command")
+                        })?;
                     let c = ctx
                         .sim
                         .computes
@@ -880,7 +881,7 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                 let body = n
                     .strip_prefix("c_")
                     .ok_or_else(|| a.unsupported(5 + k, &format!("dump local column {n}")))?;
-                let (cid, index) = split_reference(body)
+                let (cid, index) = crate::util::numbers::split_reference(body)
                     .ok_or_else(|| a.error(5 + k, "Invalid attribute in dump local command"))?;
                 let c = ctx
                     .sim
@@ -938,14 +939,6 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
         style: dump_style,
     });
     Ok(())
-}
-
-/// `ID` or `ID[N]` of a `c_`/`f_` reference: the ID and the 1-based index.
-pub fn split_reference(body: &str) -> Option<(&str, Option<usize>)> {
-    match body.split_once('[') {
-        Some((id, rest)) => Some((id, Some(rest.strip_suffix(']')?.parse().ok()?))),
-        None => Some((body, None)),
-    }
 }
 
 fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
@@ -1247,7 +1240,7 @@ fn pair_coeff(a: &Args, ctx: &mut Ctx) -> Result {
     }
     for i in 0..2 {
         let w = a.word(i)?;
-        crate::script::interp::bounds(w, ctx.sim.ntypes.max(1) as i64)
+        crate::util::numbers::bounds(w, ctx.sim.ntypes.max(1) as i64)
             .map_err(|m| a.error(i, &m))?;
     }
     if a.word(0)? != "*" || a.word(1)? != "*" {
@@ -2176,7 +2169,7 @@ fn move_mesh(a: &Args, ctx: &mut Ctx) -> std::result::Result<FixKind, Diagnostic
 fn seed_arg(a: &Args, ctx: &Ctx, i: usize) -> std::result::Result<i32, Diagnostic> {
     let seed = a.int(i)?;
     if !ctx.sim.seed_tolerant {
-        crate::script::random::check_seed(seed).map_err(|m| a.error(i, &m))?;
+        crate::util::random::check_seed(seed).map_err(|m| a.error(i, &m))?;
     }
     if seed <= 0 || seed > i32::MAX as i64 {
         return Err(a.error(i, "Invalid seed for Park random # generator"));
@@ -2281,7 +2274,7 @@ fn particle_template(
             at.map_or(2, |k| k + 2),
             &format!(
                 "Fix particletemplate/sphere: radius {}: {m}",
-                crate::script::format::g(radius)
+                crate::util::format::g(radius)
             ),
         ));
     }
@@ -2598,9 +2591,9 @@ fn insert_pack(
         verbose,
         velocity,
         omega,
-        rng: crate::script::random::RanPark::new(seed).map_err(|m| a.error(3, &m))?,
+        rng: crate::util::random::RanPark::new(seed).map_err(|m| a.error(3, &m))?,
         seed,
-        region_rng: crate::script::random::RanPark::new(3012211).expect("positive seed"),
+        region_rng: crate::util::random::RanPark::new(3012211).expect("positive seed"),
         region_volume: 0.0,
         set_up: false,
         inserted: 0,

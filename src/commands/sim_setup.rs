@@ -3,10 +3,10 @@
 
 use crate::commands::{Args, Ctx};
 use crate::engine::domain::parse_boundary;
-use crate::engine::numbers::inumeric;
 use crate::engine::region::RegionContext;
 use crate::error::Diagnostic;
 use crate::script::system::Mode;
+use crate::util::numbers::inumeric;
 
 type Result = std::result::Result<(), Diagnostic>;
 
@@ -245,7 +245,7 @@ fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
     if ntypes < 1 {
         return Err(a.error(0, "Illegal create_box command"));
     }
-    check_ntypes(ntypes).map_err(|m| a.error(0, &m))?;
+    crate::engine::checks::check_ntypes(ntypes).map_err(|m| a.error(0, &m))?;
     if a.len() > 2 {
         return Err(a.unsupported(2, "create_box keywords"));
     }
@@ -287,7 +287,7 @@ fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
 }
 
 fn g(x: f64) -> String {
-    crate::script::format::g(x)
+    crate::util::format::g(x)
 }
 
 fn lattice(a: &Args, ctx: &mut Ctx) -> Result {
@@ -397,13 +397,12 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
             return Err(a.error(2, "Illegal create_atoms command"));
         }
         if !ctx.sim.seed_tolerant {
-            crate::script::random::check_seed(seed).map_err(|m| a.error(3, &m))?;
+            crate::util::random::check_seed(seed).map_err(|m| a.error(3, &m))?;
         }
         if seed <= 0 || seed > i32::MAX as i64 {
             return Err(a.error(3, "Illegal create_atoms command"));
         }
-        let mut rng =
-            crate::script::random::RanPark::new(seed as i32).map_err(|m| a.error(3, &m))?;
+        let mut rng = crate::util::random::RanPark::new(seed as i32).map_err(|m| a.error(3, &m))?;
         if let Some(m) = too_many_atoms(count as f64, next_id, "atoms requested") {
             return Err(a.error(2, &m));
         }
@@ -552,21 +551,6 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
-/// Bytes of per-type properties (masses, radii, material values) per atom type.
-const BYTES_PER_TYPE: usize = 64;
-
-/// A number of atom types LIGGGHTS can count (an int) and this machine can hold per-type
-/// properties for.
-pub fn check_ntypes(ntypes: i64) -> std::result::Result<(), String> {
-    if ntypes > i32::MAX as i64 {
-        return Err(format!(
-            "Too many atom types: {ntypes} (LIGGGHTS counts them in an int, at most {})",
-            i32::MAX
-        ));
-    }
-    crate::engine::checks::allocation(ntypes as f64, BYTES_PER_TYPE, "per-type properties")
-}
-
 /// LIGGGHTS numbers atoms with ints: IDs beyond this are refused.
 const MAX_ATOM_ID: f64 = 2_147_483_647.0;
 
@@ -621,13 +605,12 @@ fn displace_atoms(a: &Args, ctx: &mut Ctx) -> Result {
     if style == "random" {
         let seed = a.int(5)?;
         if !ctx.sim.seed_tolerant {
-            crate::script::random::check_seed(seed).map_err(|m| a.error(5, &m))?;
+            crate::util::random::check_seed(seed).map_err(|m| a.error(5, &m))?;
         }
         if seed <= 0 || seed > i32::MAX as i64 {
             return Err(a.error(5, "Illegal displace_atoms random command"));
         }
-        let mut rng =
-            crate::script::random::RanPark::new(seed as i32).map_err(|m| a.error(5, &m))?;
+        let mut rng = crate::util::random::RanPark::new(seed as i32).map_err(|m| a.error(5, &m))?;
         for k in 0..p.len() {
             if p.mask[k] & bit != 0 {
                 rng.reset_at(seed as i32, p.x[k]);
@@ -736,7 +719,7 @@ fn selection(a: &Args, ctx: &Ctx) -> std::result::Result<Vec<usize>, Diagnostic>
     Ok(match what {
         "atom" | "type" => {
             let (lo, hi) =
-                crate::script::interp::bounds(id, i64::MAX / 4).map_err(|m| a.error(1, &m))?;
+                crate::util::numbers::bounds(id, i64::MAX / 4).map_err(|m| a.error(1, &m))?;
             (0..p.len())
                 .filter(|&i| {
                     let v = if what == "atom" {
@@ -795,7 +778,7 @@ fn set(a: &Args, ctx: &mut Ctx) -> Result {
                 return Err(a.error(i + 3, "Invalid random number seed in set command"));
             }
             let mut rng =
-                crate::script::random::RanPark::new(12345787).map_err(|m| a.error(i + 3, &m))?;
+                crate::util::random::RanPark::new(12345787).map_err(|m| a.error(i + 3, &m))?;
             let p = &mut ctx.sim.particles;
             let mut count = 0;
             for &k in &atoms {
@@ -981,7 +964,7 @@ fn group(a: &Args, ctx: &mut Ctx) -> Result {
                 sel
             } else {
                 // values and ranges a:b[:step], read with C's atoi as LIGGGHTS does
-                let atoi = |t: &str| crate::script::variables::c_atof(t).trunc() as i64;
+                let atoi = |t: &str| crate::util::numbers::c_atof(t).trunc() as i64;
                 for k in 2..a.len() {
                     let w = a.word(k)?;
                     let parts: Vec<&str> = w.split(':').collect();
@@ -1399,7 +1382,8 @@ fn read_data(a: &Args, ctx: &mut Ctx) -> Result {
     }
     .map_err(|m| a.error(0, &format!("Cannot open file {name}: {m}")))?;
     let data = crate::io::data::parse(&text, name).map_err(|m| a.error(0, &m))?;
-    check_ntypes(data.ntypes as i64).map_err(|m| a.error(0, &format!("{name}: {m}")))?;
+    crate::engine::checks::check_ntypes(data.ntypes as i64)
+        .map_err(|m| a.error(0, &format!("{name}: {m}")))?;
     let sim = &mut *ctx.sim;
     sim.domain.create(data.lo, data.hi);
     sim.ntypes = data.ntypes;

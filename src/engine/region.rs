@@ -2,7 +2,7 @@
 //! their intersections and unions, with `side in/out`. Inside tests follow LIGGGHTS
 //! exactly, boundaries included (a point on a block face is inside).
 
-use crate::engine::numbers::numeric;
+use crate::util::numbers::numeric;
 
 /// Stand-in for an infinite bound (`INF`), as LIGGGHTS uses.
 pub const BIG: f64 = 1.0e20;

@@ -161,9 +161,8 @@ impl Engine {
             out,
             vars,
         };
-        let handled = sim_setup::execute(cmd.name(), &args, &mut ctx)
-            .or_else(|| sim_run::execute(cmd.name(), &args, &mut ctx));
-        if let Some(result) = handled {
+        if let Some(run) = registry::handler(cmd.name()) {
+            let result = run(&args, &mut ctx);
             if let Err(d) = &result {
                 if check && d.severity == crate::error::Severity::Unsupported {
                     self.diverged = true;

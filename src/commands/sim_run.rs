@@ -1,5 +1,6 @@
 //! Commands that drive and observe the run: fixes regolith integrates, thermo, dumps, `run`.
 
+use crate::commands::registry::{self, Handler};
 use crate::commands::{Args, Ctx};
 use crate::engine::fixes::{Fix, FixKind, Motion, Move};
 use crate::engine::integrate::Gravity;
@@ -10,41 +11,28 @@ use crate::script::system::Mode;
 
 type Result = std::result::Result<(), Diagnostic>;
 
-/// Fix styles regolith runs.
-pub const FIX_STYLES: &[&str] = &[
-    "adapt",
-    "addforce",
-    "freeze",
-    "gravity",
-    "move",
-    "nve/sphere",
-    "print",
-    "property/global",
-    "setforce",
-    "viscous",
-    "wall/gran",
+/// The commands that drive and observe the run, and their handlers.
+pub const COMMANDS: &[(&str, Handler)] = &[
+    ("fix", fix),
+    ("unfix", unfix),
+    ("thermo", thermo),
+    ("thermo_style", thermo_style),
+    ("thermo_modify", thermo_modify),
+    ("dump", dump),
+    ("dump_modify", dump_modify),
+    ("undump", undump),
+    ("run", run),
+    ("compute", compute),
+    ("uncompute", uncompute),
+    ("pair_style", pair_style),
+    ("pair_coeff", pair_coeff),
+    ("soft_particles", |a, ctx| {
+        soft_hard("soft_particles", a, ctx)
+    }),
+    ("hard_particles", |a, ctx| {
+        soft_hard("hard_particles", a, ctx)
+    }),
 ];
-
-/// Handle a run/output command; None if `name` is not one of them.
-pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
-    Some(match name {
-        "fix" => fix(a, ctx),
-        "unfix" => unfix(a, ctx),
-        "thermo" => thermo(a, ctx),
-        "thermo_style" => thermo_style(a, ctx),
-        "thermo_modify" => thermo_modify(a, ctx),
-        "dump" => dump(a, ctx),
-        "dump_modify" => dump_modify(a, ctx),
-        "undump" => undump(a, ctx),
-        "run" => run(a, ctx),
-        "compute" => compute(a, ctx),
-        "uncompute" => uncompute(a, ctx),
-        "pair_style" => pair_style(a, ctx),
-        "pair_coeff" => pair_coeff(a, ctx),
-        "soft_particles" | "hard_particles" => soft_hard(name, a, ctx),
-        _ => return None,
-    })
-}
 
 fn fix(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(3..=usize::MAX, "fix ID GROUP STYLE ...")?;
@@ -59,6 +47,7 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
         .sim
         .group_bit(group)
         .ok_or_else(|| a.error(1, "Could not find fix group ID"))?;
+    registry::require_style(a, "fix")?;
     let kind = 'style: {
         match style {
             "nve/sphere" => {
@@ -755,6 +744,7 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
             ));
         }
     }
+    registry::require_style(a, "dump")?;
     let layout = match style {
         "atom" | "xyz" => {
             a.count(5..=5, &format!("dump ID GROUP {style} N FILE"))?;
@@ -1213,9 +1203,7 @@ fn gran_models(
 
 fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(1..=usize::MAX, "pair_style gran model M tangential T ...")?;
-    if a.word(0)? != "gran" {
-        return Err(a.unsupported(0, &format!("pair_style {}", a.word(0)?)));
-    }
+    registry::require_style(a, "pair_style")?;
     let (sel, next) = gran_models(a, 1, "no_history", "pair_style gran")?;
     if next < a.len() {
         return Err(a.unsupported(next, &format!("pair_style gran option {}", a.word(next)?)));
@@ -1282,6 +1270,7 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
             Ok(kind)
         }
     };
+    registry::require_style(a, "compute")?;
     let kind = match style {
         "erotate/sphere" => no_keywords(ComputeKind::ErotateSphere)?,
         "ke" => no_keywords(ComputeKind::Ke)?,

@@ -1,6 +1,7 @@
 //! Commands that build the simulation: styles and units, the box, regions, atoms, groups,
 //! per-atom values, velocities, neighbour settings and the time step.
 
+use crate::commands::registry::{self, Handler};
 use crate::commands::{Args, Ctx};
 use crate::engine::domain::parse_boundary;
 use crate::engine::region::RegionContext;
@@ -10,43 +11,42 @@ use crate::util::numbers::inumeric;
 
 type Result = std::result::Result<(), Diagnostic>;
 
-/// Handle a setup command; None if `name` is not one of them.
-pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
-    Some(match name {
-        "atom_style" => atom_style(a, ctx),
-        "atom_modify" => atom_modify(a, ctx),
-        "boundary" => boundary(a, ctx),
-        "units" => units(a, ctx),
-        "dimension" => dimension(a),
-        "newton" => one_of(a, "newton", &["on", "off"], 1..=2),
-        "suffix" => suffix(a, ctx),
-        "package" => package(a, ctx),
-        "communicate" | "comm_modify" => communicate(a, ctx),
-        "processors" => processors(a),
-        "region" => region(a, ctx),
-        "create_box" => create_box(a, ctx),
-        "create_atoms" => create_atoms(a, ctx),
-        "lattice" => lattice(a, ctx),
-        "displace_atoms" => displace_atoms(a, ctx),
-        "delete_atoms" => delete_atoms(a, ctx),
-        "set" => set(a, ctx),
-        "group" => group(a, ctx),
-        "velocity" => velocity(a, ctx),
-        "neighbor" => neighbor(a, ctx),
-        "neigh_modify" => neigh_modify(a, ctx),
-        "timestep" => timestep(a, ctx),
-        "reset_timestep" => reset_timestep(a, ctx),
-        "read_data" => read_data(a, ctx),
-        "read_restart" => read_restart(a, ctx),
-        "write_restart" => write_restart(a, ctx),
-        "restart" => restart(a, ctx),
-        "write_data" => write_data(a, ctx),
-        _ => return None,
-    })
-}
+/// The setup commands and their handlers.
+pub const COMMANDS: &[(&str, Handler)] = &[
+    ("atom_style", atom_style),
+    ("atom_modify", atom_modify),
+    ("boundary", boundary),
+    ("units", units),
+    ("dimension", |a, _| dimension(a)),
+    ("newton", |a, _| one_of(a, "newton", &["on", "off"], 1..=2)),
+    ("suffix", suffix),
+    ("package", package),
+    ("communicate", communicate),
+    ("comm_modify", communicate),
+    ("processors", |a, _| processors(a)),
+    ("region", region),
+    ("create_box", create_box),
+    ("create_atoms", create_atoms),
+    ("lattice", lattice),
+    ("displace_atoms", displace_atoms),
+    ("delete_atoms", delete_atoms),
+    ("set", set),
+    ("group", group),
+    ("velocity", velocity),
+    ("neighbor", neighbor),
+    ("neigh_modify", neigh_modify),
+    ("timestep", timestep),
+    ("reset_timestep", reset_timestep),
+    ("read_data", read_data),
+    ("read_restart", read_restart),
+    ("write_restart", write_restart),
+    ("restart", restart),
+    ("write_data", write_data),
+];
 
 fn atom_style(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(1..=1, "atom_style granular|sphere")?;
+    registry::require_style(a, "atom_style")?;
     match a.word(0)? {
         "granular" | "sphere" => {
             if ctx.sim.domain.exists {
@@ -290,6 +290,11 @@ fn g(x: f64) -> String {
     crate::util::format::g(x)
 }
 
+/// The lattice styles of LIGGGHTS 3.8.0 (those regolith runs are in [`registry::STYLES`]).
+pub const LATTICE_STYLES: &[&str] = &[
+    "none", "sc", "bcc", "fcc", "hcp", "diamond", "sq", "sq2", "hex", "custom",
+];
+
 fn lattice(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(2..=usize::MAX, "lattice sc|bcc|fcc|none SCALE")?;
     let style = a.word(0)?;
@@ -297,22 +302,16 @@ fn lattice(a: &Args, ctx: &mut Ctx) -> Result {
     if scale <= 0.0 {
         return Err(a.error(1, "Illegal lattice command"));
     }
+    if !registry::runs_style("lattice", style) && !LATTICE_STYLES.contains(&style) {
+        return Err(a.keyword_error(0, LATTICE_STYLES));
+    }
+    registry::require_style(a, "lattice")?;
     let basis: Vec<[f64; 3]> = match style {
         "none" => Vec::new(),
         "sc" => vec![[0.0; 3]],
         "bcc" => vec![[0.0; 3], [0.5, 0.5, 0.5]],
         "fcc" => vec![[0.0; 3], [0.5, 0.5, 0.0], [0.5, 0.0, 0.5], [0.0, 0.5, 0.5]],
-        "hcp" | "diamond" | "sq" | "sq2" | "hex" | "custom" => {
-            return Err(a.unsupported(0, &format!("lattice {style}")))
-        }
-        _ => {
-            return Err(a.keyword_error(
-                0,
-                &[
-                    "none", "sc", "bcc", "fcc", "hcp", "diamond", "sq", "sq2", "hex", "custom",
-                ],
-            ))
-        }
+        _ => return Err(a.unsupported(0, &format!("lattice {style}"))),
     };
     let mut origin = [0.0; 3];
     let mut i = 2;
@@ -1525,8 +1524,8 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
                 location: a.cmd.location.clone(),
             };
             let args = Args { cmd: &cmd };
-            if let Some(result) = crate::commands::sim_run::execute(cmd.name(), &args, ctx) {
-                result?;
+            if let Some(run) = registry::handler(cmd.name()) {
+                run(&args, ctx)?;
             }
         }
     }

@@ -16,3 +16,4 @@ pub mod progress;
 pub mod script;
 pub mod session;
 pub mod sweep;
+pub mod util;

@@ -2,8 +2,8 @@
 
 use crate::commands::suggest::did_you_mean;
 use crate::commands::CommandLine;
-use crate::engine::numbers::{inumeric, numeric};
 use crate::error::Diagnostic;
+use crate::util::numbers::{inumeric, numeric};
 
 /// A command's arguments (after the command name).
 pub struct Args<'a> {
@@ -23,8 +23,8 @@ impl<'a> Args<'a> {
     }
 
     /// An error about argument `i`, in LIGGGHTS's words.
-    pub fn error(&self, i: usize, message: &str) -> Diagnostic {
-        Diagnostic::error(message).with_source(&self.cmd.text, Some(self.cmd.span(i)))
+    pub fn error(&self, i: usize, message: impl std::fmt::Display) -> Diagnostic {
+        Diagnostic::error(message.to_string()).with_source(&self.cmd.text, Some(self.cmd.span(i)))
     }
 
     /// A "not supported yet" report pointing at argument `i`.

@@ -64,49 +64,6 @@ impl Ctx<'_> {
     }
 }
 
-/// Keywords a formula may use for thermo values (LIGGGHTS 3.8.0's `Thermo::evaluate_keyword`).
-pub const THERMO_KEYWORDS: &[&str] = &[
-    "atoms",
-    "cella",
-    "cellalpha",
-    "cellb",
-    "cellbeta",
-    "cellc",
-    "cellgamma",
-    "cpu",
-    "cpuremain",
-    "cu",
-    "density",
-    "dt",
-    "elaplong",
-    "elapsed",
-    "erotate",
-    "fmax",
-    "fnorm",
-    "ke",
-    "lx",
-    "ly",
-    "lz",
-    "part",
-    "spcpu",
-    "step",
-    "time",
-    "tpcpu",
-    "vol",
-    "xhi",
-    "xlat",
-    "xlo",
-    "xy",
-    "xz",
-    "yhi",
-    "ylat",
-    "ylo",
-    "yz",
-    "zhi",
-    "zlat",
-    "zlo",
-];
-
 /// One command after substitution and word splitting.
 #[derive(Debug, Clone)]
 pub struct CommandLine {
@@ -204,9 +161,8 @@ impl Engine {
             out,
             vars,
         };
-        let handled = sim_setup::execute(cmd.name(), &args, &mut ctx)
-            .or_else(|| sim_run::execute(cmd.name(), &args, &mut ctx));
-        if let Some(result) = handled {
+        if let Some(run) = registry::handler(cmd.name()) {
+            let result = run(&args, &mut ctx);
             if let Err(d) = &result {
                 if check && d.severity == crate::error::Severity::Unsupported {
                     self.diverged = true;

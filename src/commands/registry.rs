@@ -3,7 +3,8 @@
 
 use crate::commands::names::{self, NameKind};
 use crate::commands::suggest::did_you_mean;
-use crate::commands::CommandLine;
+use crate::commands::{sim_run, sim_setup, Args, CommandLine, Ctx};
+use crate::engine::contact::{AnyContactModel, ModelSelection};
 use crate::error::Diagnostic;
 
 /// Commands LIGGGHTS 3.8.0 lacks that regolith accepts (newer LAMMPS spellings users type).
@@ -180,109 +181,317 @@ fn validate_gran_models(cmd: &CommandLine, start: usize) -> Result<(), Diagnosti
     Ok(())
 }
 
-/// Commands regolith executes (beyond the script language), and their supported styles.
-pub fn is_supported(cmd: &CommandLine) -> bool {
-    match cmd.name() {
-        "fix" if cmd.arg(2) == Some("wall/gran") => {
-            gran_models_supported(cmd, 3)
-                && (0..cmd.nargs()).any(|k| {
-                    cmd.arg(k) == Some("primitive")
-                        && matches!(
-                            cmd.arg(k + 3),
-                            Some(
-                                "xplane"
-                                    | "yplane"
-                                    | "zplane"
-                                    | "xcylinder"
-                                    | "ycylinder"
-                                    | "zcylinder"
-                            )
-                        )
-                })
-        }
-        "fix" => cmd
-            .arg(2)
-            .is_some_and(|s| crate::commands::sim_run::FIX_STYLES.contains(&s)),
-        "dump" => matches!(cmd.arg(2), Some("custom" | "local")),
-        "compute" => cmd
-            .arg(2)
-            .is_some_and(|s| crate::engine::computes::STYLES.contains(&s)),
-        "pair_style" => cmd.arg(0) == Some("gran") && gran_models_supported(cmd, 1),
-        "atom_style" => matches!(cmd.arg(0), Some("granular" | "sphere")),
-        "lattice" => matches!(cmd.arg(0), Some("none" | "sc" | "bcc" | "fcc")),
-        "region" => matches!(
-            cmd.arg(1),
-            Some(
-                "block"
-                    | "cylinder"
-                    | "sphere"
-                    | "cone"
-                    | "plane"
-                    | "prism"
-                    | "intersect"
-                    | "union"
-            )
-        ),
-        name => SUPPORTED_COMMANDS.contains(&name),
-    }
+/// A command's handler: reads the command's arguments and applies it to the simulation.
+pub type Handler = fn(&Args, &mut Ctx) -> Result<(), Diagnostic>;
+
+/// The handler regolith runs a command with (None: a LIGGGHTS command regolith does not run).
+pub fn handler(name: &str) -> Option<Handler> {
+    sim_setup::COMMANDS
+        .iter()
+        .chain(sim_run::COMMANDS)
+        .find(|(command, _)| *command == name)
+        .map(|&(_, run)| run)
 }
 
-/// Are the contact models named from argument `start` on ones regolith runs?
-fn gran_models_supported(cmd: &CommandLine, start: usize) -> bool {
-    let mut k = start;
-    while let (Some(key), Some(value)) = (cmd.arg(k), cmd.arg(k + 1)) {
-        let ok = match key {
-            "model" => matches!(
-                value,
-                "hertz" | "hooke" | "hertz/stiffness" | "hooke/stiffness"
-            ),
-            "tangential" => matches!(
-                value,
-                "history" | "no_history" | "history_total_cap" | "off"
-            ),
-            "cohesion" => matches!(value, "sjkr" | "sjkr2" | "off"),
-            "rolling_friction" => matches!(value, "cdt" | "epsd" | "epsd2" | "epsd3" | "off"),
-            "surface" => value == "default",
-            _ => break,
-        };
-        if !ok {
-            return false;
-        }
-        k += 2;
-    }
-    true
+/// The styles regolith runs of one command whose argument `index` names a style.
+pub struct StyleRow {
+    /// The command (`fix`, `dump`, ...).
+    pub command: &'static str,
+    /// Which argument (0-based, after the command name) is the style.
+    pub index: usize,
+    /// The styles its handler runs; every other style it reports as "not supported yet".
+    pub styles: &'static [&'static str],
 }
 
-/// Commands with a native implementation (their keywords are checked when they run).
-pub const SUPPORTED_COMMANDS: &[&str] = &[
-    "atom_modify",
-    "boundary",
-    "comm_modify",
-    "communicate",
-    "create_atoms",
-    "create_box",
-    "delete_atoms",
-    "dimension",
-    "displace_atoms",
-    "dump_modify",
-    "group",
-    "hard_particles",
-    "neigh_modify",
-    "neighbor",
-    "newton",
-    "pair_coeff",
-    "processors",
-    "reset_timestep",
-    "run",
-    "set",
-    "soft_particles",
-    "thermo",
-    "thermo_modify",
-    "thermo_style",
-    "timestep",
-    "uncompute",
-    "undump",
-    "unfix",
-    "units",
-    "velocity",
+/// Styles regolith runs, per styled command. The handlers dispatch on these rows (refusing
+/// any other style as "not supported yet") and [`is_supported`] reads the same rows.
+pub const STYLES: &[StyleRow] = &[
+    StyleRow {
+        command: "atom_style",
+        index: 0,
+        styles: &["granular", "sphere"],
+    },
+    StyleRow {
+        command: "compute",
+        index: 2,
+        styles: crate::engine::computes::STYLES,
+    },
+    StyleRow {
+        command: "dump",
+        index: 2,
+        styles: &[
+            "atom",
+            "custom",
+            "custom/vtk",
+            "local",
+            "mesh/gran/VTK",
+            "mesh/stl",
+            "mesh/vtk",
+            "xyz",
+        ],
+    },
+    StyleRow {
+        command: "fix",
+        index: 2,
+        styles: FIX_STYLES,
+    },
+    StyleRow {
+        command: "lattice",
+        index: 0,
+        styles: &["bcc", "fcc", "none", "sc"],
+    },
+    StyleRow {
+        command: "pair_style",
+        index: 0,
+        styles: &["gran"],
+    },
+    StyleRow {
+        command: "region",
+        index: 1,
+        styles: crate::engine::region::STYLES,
+    },
 ];
+
+/// Fix styles regolith runs.
+pub const FIX_STYLES: &[&str] = &[
+    "adapt",
+    "addforce",
+    "ave/time",
+    "check/timestep/gran",
+    "freeze",
+    "gravity",
+    "insert/pack",
+    "insert/rate/region",
+    "insert/stream",
+    "mesh/surface",
+    "mesh/surface/planar",
+    "mesh/surface/stress",
+    "move",
+    "move/mesh",
+    "nve/sphere",
+    "particledistribution/discrete",
+    "particledistribution/discrete/massbased",
+    "particledistribution/discrete/numberbased",
+    "particletemplate/sphere",
+    "print",
+    "property/global",
+    "setforce",
+    "viscous",
+    "wall/gran",
+];
+
+/// Whether the handler of `command` runs `style` (false for a command without style rows).
+pub fn runs_style(command: &str, style: &str) -> bool {
+    STYLES
+        .iter()
+        .any(|row| row.command == command && row.styles.contains(&style))
+}
+
+/// The "not supported yet" report, at the style word, of a handler asked for a style that
+/// [`STYLES`] does not list for `command`.
+pub fn require_style(a: &Args, command: &str) -> Result<(), Diagnostic> {
+    let row = STYLES
+        .iter()
+        .find(|row| row.command == command)
+        .expect("a styled command");
+    let style = a.word(row.index)?;
+    if row.styles.contains(&style) {
+        return Ok(());
+    }
+    Err(a.unsupported(row.index, &format!("{command} {style}")))
+}
+
+/// Whether regolith runs this command with the style and contact sub-models it names (its
+/// keywords are checked when it runs). Reads the tables the handlers dispatch on.
+pub fn is_supported(cmd: &CommandLine) -> bool {
+    let name = cmd.name();
+    if handler(name).is_none() {
+        return false;
+    }
+    let Some(row) = STYLES.iter().find(|row| row.command == name) else {
+        return true;
+    };
+    let Some(style) = cmd.arg(row.index) else {
+        return false;
+    };
+    if !row.styles.contains(&style) {
+        return false;
+    }
+    match (name, style) {
+        ("pair_style", "gran") => contact_models_run(cmd, 1, "no_history"),
+        ("fix", "wall/gran") => contact_models_run(cmd, 3, "history"),
+        _ => true,
+    }
+}
+
+/// Whether the contact model named from argument `start` on is one regolith builds (the
+/// engine's own constructor decides); a malformed selection is an error, not unsupported.
+fn contact_models_run(cmd: &CommandLine, start: usize, default_tangential: &str) -> bool {
+    let words: Vec<&str> = (start..cmd.nargs()).filter_map(|i| cmd.arg(i)).collect();
+    let Ok((mut selection, used)) = ModelSelection::select(&words) else {
+        return true;
+    };
+    if !words[..used].contains(&"tangential") {
+        selection.tangential = default_tangential.into();
+    }
+    // `model off` is an error the handler reports, not a missing model
+    selection.normal == "off" || AnyContactModel::new(&selection).is_ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::error::{Location, Severity};
+
+    /// Lines that give a deck a box, so that styled commands reach their handlers.
+    const WITH_BOX: &str = "atom_style granular\nregion box block 0 1 0 1 0 1\ncreate_box 1 box\n";
+
+    /// What checking `line` (after `prefix`) reports: Some(true) if it reports `what` as not
+    /// supported yet, Some(false) if it reports some other part of it so, None if neither.
+    fn refused(prefix: &str, line: &str, what: &str) -> Option<bool> {
+        let deck = format!("{prefix}{line}\n");
+        let source = crate::script::interp::Source::from_text("in.test", &deck, false);
+        let diagnostics = crate::session::check_deck(source, &Default::default());
+        let unsupported: Vec<_> = diagnostics
+            .iter()
+            .filter(|d| d.severity == Severity::Unsupported)
+            .collect();
+        let whole = format!("{what}: not supported yet");
+        if unsupported.iter().any(|d| d.message == whole) {
+            Some(true)
+        } else {
+            (!unsupported.is_empty()).then_some(false)
+        }
+    }
+
+    fn command(line: &str) -> CommandLine {
+        CommandLine {
+            words: crate::script::line::split_words(line).expect("words"),
+            text: line.to_string(),
+            location: Location {
+                file: "in.test".into(),
+                line: 1,
+            },
+        }
+    }
+
+    /// The lookup agrees with the handler about `line`: the handler refuses `what` exactly
+    /// when the lookup says regolith does not run it.
+    fn agree(prefix: &str, line: &str, what: &str) {
+        let handler_refuses = refused(prefix, line, what) == Some(true);
+        let lookup_supports = is_supported(&command(line));
+        assert_eq!(
+            handler_refuses,
+            !lookup_supports,
+            "`{line}`: the handler {} it, the lookup says it is {}supported",
+            if handler_refuses { "refuses" } else { "runs" },
+            if lookup_supports { "" } else { "not " }
+        );
+    }
+
+    #[test]
+    fn lookup_agrees_with_the_handlers_on_every_style() {
+        let kinds: &[(NameKind, &str, &str)] = &[
+            (NameKind::FixStyle, "fix 1 all {}", "fix {}"),
+            (NameKind::ComputeStyle, "compute 1 all {}", "compute {}"),
+            (NameKind::DumpStyle, "dump 1 all {} 1 out.dump", "dump {}"),
+            (NameKind::RegionStyle, "region r {}", "region {}"),
+            (NameKind::PairStyle, "pair_style {}", "pair_style {}"),
+        ];
+        for &(kind, line, what) in kinds {
+            let extension: &[&str] = if kind == NameKind::DumpStyle {
+                EXTENSION_DUMP_STYLES
+            } else {
+                &[]
+            };
+            for style in names::names(kind).iter().chain(extension) {
+                agree(
+                    WITH_BOX,
+                    &line.replace("{}", style),
+                    &what.replace("{}", style),
+                );
+            }
+        }
+        for style in names::ATOM_STYLES {
+            agree(
+                "",
+                &format!("atom_style {style}"),
+                &format!("atom_style {style}"),
+            );
+        }
+        for style in crate::commands::sim_setup::LATTICE_STYLES {
+            agree(
+                WITH_BOX,
+                &format!("lattice {style} 1.0"),
+                &format!("lattice {style}"),
+            );
+        }
+    }
+
+    #[test]
+    fn lookup_agrees_with_the_handlers_on_every_command() {
+        let styled = |name: &str| STYLES.iter().any(|row| row.command == name);
+        for name in names::COMMANDS.iter().chain(EXTENSION_COMMANDS) {
+            if crate::script::interp::SCRIPT_COMMANDS.contains(name) || styled(name) {
+                continue;
+            }
+            // a command that names a style needs one to reach its handler
+            let line = match STYLED.iter().find(|s| s.0 == *name) {
+                Some(&(_, index, kind, _)) => {
+                    assert_eq!(index, 0, "{name}");
+                    format!("{name} {}", names::names(kind)[0])
+                }
+                None => name.to_string(),
+            };
+            agree(WITH_BOX, &line, &feature_name(&command(&line)));
+        }
+    }
+
+    #[test]
+    fn lookup_agrees_with_the_handlers_on_every_contact_model() {
+        let lines: &[(&str, &[&str])] = &[
+            ("pair_style gran model {}", names::GRAN_NORMAL_MODELS),
+            (
+                "pair_style gran model hertz tangential {}",
+                names::GRAN_TANGENTIAL_MODELS,
+            ),
+            (
+                "pair_style gran model hertz tangential history cohesion {}",
+                names::GRAN_COHESION_MODELS,
+            ),
+            (
+                "pair_style gran model hertz tangential history rolling_friction {}",
+                names::GRAN_ROLLING_MODELS,
+            ),
+            (
+                "pair_style gran model hertz tangential history surface {}",
+                names::GRAN_SURFACE_MODELS,
+            ),
+        ];
+        for &(line, models) in lines {
+            for model in models {
+                let line = line.replace("{}", model);
+                let handler_refuses = refused(WITH_BOX, &line, "").is_some();
+                assert_eq!(handler_refuses, !is_supported(&command(&line)), "`{line}`");
+            }
+        }
+    }
+
+    #[test]
+    fn valid_decks_are_not_refused() {
+        for line in [
+            "fix ins all insert/pack seed 123457 distributiontemplate pdd insert_every once",
+            "fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad",
+            "fix w all wall/gran model hertz tangential history primitive type 1 zplane 0",
+            "dump d all xyz 100 out.xyz",
+            "dump d all custom/vtk 100 out.vtk id x y z",
+            "pair_style gran model hooke/hysteresis tangential history",
+            "read_restart restart.file",
+            "write_data out.data",
+        ] {
+            assert!(is_supported(&command(line)), "`{line}`");
+        }
+        assert!(!is_supported(&command("fix m all multisphere")));
+        assert!(!is_supported(&command("compute c all rigid")));
+    }
+}

@@ -1,5 +1,6 @@
 //! Commands that drive and observe the run: fixes regolith integrates, thermo, dumps, `run`.
 
+use crate::commands::registry::{self, Handler};
 use crate::commands::{Args, Ctx};
 use crate::engine::fixes::{Fix, FixKind, Motion, Move};
 use crate::engine::integrate::Gravity;
@@ -10,41 +11,28 @@ use crate::script::system::Mode;
 
 type Result = std::result::Result<(), Diagnostic>;
 
-/// Fix styles regolith runs.
-pub const FIX_STYLES: &[&str] = &[
-    "adapt",
-    "addforce",
-    "freeze",
-    "gravity",
-    "move",
-    "nve/sphere",
-    "print",
-    "property/global",
-    "setforce",
-    "viscous",
-    "wall/gran",
+/// The commands that drive and observe the run, and their handlers.
+pub const COMMANDS: &[(&str, Handler)] = &[
+    ("fix", fix),
+    ("unfix", unfix),
+    ("thermo", thermo),
+    ("thermo_style", thermo_style),
+    ("thermo_modify", thermo_modify),
+    ("dump", dump),
+    ("dump_modify", dump_modify),
+    ("undump", undump),
+    ("run", run),
+    ("compute", compute),
+    ("uncompute", uncompute),
+    ("pair_style", pair_style),
+    ("pair_coeff", pair_coeff),
+    ("soft_particles", |a, ctx| {
+        soft_hard("soft_particles", a, ctx)
+    }),
+    ("hard_particles", |a, ctx| {
+        soft_hard("hard_particles", a, ctx)
+    }),
 ];
-
-/// Handle a run/output command; None if `name` is not one of them.
-pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
-    Some(match name {
-        "fix" => fix(a, ctx),
-        "unfix" => unfix(a, ctx),
-        "thermo" => thermo(a, ctx),
-        "thermo_style" => thermo_style(a, ctx),
-        "thermo_modify" => thermo_modify(a, ctx),
-        "dump" => dump(a, ctx),
-        "dump_modify" => dump_modify(a, ctx),
-        "undump" => undump(a, ctx),
-        "run" => run(a, ctx),
-        "compute" => compute(a, ctx),
-        "uncompute" => uncompute(a, ctx),
-        "pair_style" => pair_style(a, ctx),
-        "pair_coeff" => pair_coeff(a, ctx),
-        "soft_particles" | "hard_particles" => soft_hard(name, a, ctx),
-        _ => return None,
-    })
-}
 
 fn fix(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(3..=usize::MAX, "fix ID GROUP STYLE ...")?;
@@ -59,6 +47,7 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
         .sim
         .group_bit(group)
         .ok_or_else(|| a.error(1, "Could not find fix group ID"))?;
+    registry::require_style(a, "fix")?;
     let kind = 'style: {
         match style {
             "nve/sphere" => {
@@ -690,7 +679,7 @@ fn thermo_modify(a: &Args, ctx: &mut Ctx) -> Result {
                 let which = a.word(i + 1)?;
                 let spec = a.word(i + 2)?.to_string();
                 let probe = if which == "int" { 1.0 } else { 0.5 };
-                crate::script::format::with_spec(&spec, probe)
+                crate::util::format::with_spec(&spec, probe)
                     .map_err(|m| a.error(i + 2, &format!("thermo_modify format: {m}")))?;
                 let t = &mut ctx.sim.thermo;
                 match which {
@@ -755,6 +744,7 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
             ));
         }
     }
+    registry::require_style(a, "dump")?;
     let layout = match style {
         "atom" | "xyz" => {
             a.count(5..=5, &format!("dump ID GROUP {style} N FILE"))?;
@@ -842,9 +832,10 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
             }
             for (k, n) in names.iter().enumerate() {
                 if let Some(body) = n.strip_prefix("c_") {
-                    let (cid, index) = split_reference(body).ok_or_else(|| {
-                        a.error(5 + k, "Invalid attribute in dump custom command")
-                    })?;
+                    let (cid, index) =
+                        crate::util::numbers::split_reference(body).ok_or_else(|| {
+                            a.error(5 + k, "Invalid attribute in dump custom command")
+                        })?;
                     let c = ctx
                         .sim
                         .computes
@@ -880,7 +871,7 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                 let body = n
                     .strip_prefix("c_")
                     .ok_or_else(|| a.unsupported(5 + k, &format!("dump local column {n}")))?;
-                let (cid, index) = split_reference(body)
+                let (cid, index) = crate::util::numbers::split_reference(body)
                     .ok_or_else(|| a.error(5 + k, "Invalid attribute in dump local command"))?;
                 let c = ctx
                     .sim
@@ -938,14 +929,6 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
         style: dump_style,
     });
     Ok(())
-}
-
-/// `ID` or `ID[N]` of a `c_`/`f_` reference: the ID and the 1-based index.
-pub fn split_reference(body: &str) -> Option<(&str, Option<usize>)> {
-    match body.split_once('[') {
-        Some((id, rest)) => Some((id, Some(rest.strip_suffix(']')?.parse().ok()?))),
-        None => Some((body, None)),
-    }
 }
 
 fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
@@ -1220,9 +1203,7 @@ fn gran_models(
 
 fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(1..=usize::MAX, "pair_style gran model M tangential T ...")?;
-    if a.word(0)? != "gran" {
-        return Err(a.unsupported(0, &format!("pair_style {}", a.word(0)?)));
-    }
+    registry::require_style(a, "pair_style")?;
     let (sel, next) = gran_models(a, 1, "no_history", "pair_style gran")?;
     if next < a.len() {
         return Err(a.unsupported(next, &format!("pair_style gran option {}", a.word(next)?)));
@@ -1247,7 +1228,7 @@ fn pair_coeff(a: &Args, ctx: &mut Ctx) -> Result {
     }
     for i in 0..2 {
         let w = a.word(i)?;
-        crate::script::interp::bounds(w, ctx.sim.ntypes.max(1) as i64)
+        crate::util::numbers::bounds(w, ctx.sim.ntypes.max(1) as i64)
             .map_err(|m| a.error(i, &m))?;
     }
     if a.word(0)? != "*" || a.word(1)? != "*" {
@@ -1289,6 +1270,7 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
             Ok(kind)
         }
     };
+    registry::require_style(a, "compute")?;
     let kind = match style {
         "erotate/sphere" => no_keywords(ComputeKind::ErotateSphere)?,
         "ke" => no_keywords(ComputeKind::Ke)?,
@@ -2176,7 +2158,7 @@ fn move_mesh(a: &Args, ctx: &mut Ctx) -> std::result::Result<FixKind, Diagnostic
 fn seed_arg(a: &Args, ctx: &Ctx, i: usize) -> std::result::Result<i32, Diagnostic> {
     let seed = a.int(i)?;
     if !ctx.sim.seed_tolerant {
-        crate::script::random::check_seed(seed).map_err(|m| a.error(i, &m))?;
+        crate::util::random::check_seed(seed).map_err(|m| a.error(i, &m))?;
     }
     if seed <= 0 || seed > i32::MAX as i64 {
         return Err(a.error(i, "Invalid seed for Park random # generator"));
@@ -2281,7 +2263,7 @@ fn particle_template(
             at.map_or(2, |k| k + 2),
             &format!(
                 "Fix particletemplate/sphere: radius {}: {m}",
-                crate::script::format::g(radius)
+                crate::util::format::g(radius)
             ),
         ));
     }
@@ -2598,9 +2580,9 @@ fn insert_pack(
         verbose,
         velocity,
         omega,
-        rng: crate::script::random::RanPark::new(seed).map_err(|m| a.error(3, &m))?,
+        rng: crate::util::random::RanPark::new(seed).map_err(|m| a.error(3, &m))?,
         seed,
-        region_rng: crate::script::random::RanPark::new(3012211).expect("positive seed"),
+        region_rng: crate::util::random::RanPark::new(3012211).expect("positive seed"),
         region_volume: 0.0,
         set_up: false,
         inserted: 0,

@@ -1,52 +1,52 @@
 //! Commands that build the simulation: styles and units, the box, regions, atoms, groups,
 //! per-atom values, velocities, neighbour settings and the time step.
 
+use crate::commands::registry::{self, Handler};
 use crate::commands::{Args, Ctx};
 use crate::engine::domain::parse_boundary;
-use crate::engine::numbers::inumeric;
 use crate::engine::region::RegionContext;
 use crate::error::Diagnostic;
 use crate::script::system::Mode;
+use crate::util::numbers::inumeric;
 
 type Result = std::result::Result<(), Diagnostic>;
 
-/// Handle a setup command; None if `name` is not one of them.
-pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
-    Some(match name {
-        "atom_style" => atom_style(a, ctx),
-        "atom_modify" => atom_modify(a, ctx),
-        "boundary" => boundary(a, ctx),
-        "units" => units(a, ctx),
-        "dimension" => dimension(a),
-        "newton" => one_of(a, "newton", &["on", "off"], 1..=2),
-        "suffix" => suffix(a, ctx),
-        "package" => package(a, ctx),
-        "communicate" | "comm_modify" => communicate(a, ctx),
-        "processors" => processors(a),
-        "region" => region(a, ctx),
-        "create_box" => create_box(a, ctx),
-        "create_atoms" => create_atoms(a, ctx),
-        "lattice" => lattice(a, ctx),
-        "displace_atoms" => displace_atoms(a, ctx),
-        "delete_atoms" => delete_atoms(a, ctx),
-        "set" => set(a, ctx),
-        "group" => group(a, ctx),
-        "velocity" => velocity(a, ctx),
-        "neighbor" => neighbor(a, ctx),
-        "neigh_modify" => neigh_modify(a, ctx),
-        "timestep" => timestep(a, ctx),
-        "reset_timestep" => reset_timestep(a, ctx),
-        "read_data" => read_data(a, ctx),
-        "read_restart" => read_restart(a, ctx),
-        "write_restart" => write_restart(a, ctx),
-        "restart" => restart(a, ctx),
-        "write_data" => write_data(a, ctx),
-        _ => return None,
-    })
-}
+/// The setup commands and their handlers.
+pub const COMMANDS: &[(&str, Handler)] = &[
+    ("atom_style", atom_style),
+    ("atom_modify", atom_modify),
+    ("boundary", boundary),
+    ("units", units),
+    ("dimension", |a, _| dimension(a)),
+    ("newton", |a, _| one_of(a, "newton", &["on", "off"], 1..=2)),
+    ("suffix", suffix),
+    ("package", package),
+    ("communicate", communicate),
+    ("comm_modify", communicate),
+    ("processors", |a, _| processors(a)),
+    ("region", region),
+    ("create_box", create_box),
+    ("create_atoms", create_atoms),
+    ("lattice", lattice),
+    ("displace_atoms", displace_atoms),
+    ("delete_atoms", delete_atoms),
+    ("set", set),
+    ("group", group),
+    ("velocity", velocity),
+    ("neighbor", neighbor),
+    ("neigh_modify", neigh_modify),
+    ("timestep", timestep),
+    ("reset_timestep", reset_timestep),
+    ("read_data", read_data),
+    ("read_restart", read_restart),
+    ("write_restart", write_restart),
+    ("restart", restart),
+    ("write_data", write_data),
+];
 
 fn atom_style(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(1..=1, "atom_style granular|sphere")?;
+    registry::require_style(a, "atom_style")?;
     match a.word(0)? {
         "granular" | "sphere" => {
             if ctx.sim.domain.exists {
@@ -245,7 +245,7 @@ fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
     if ntypes < 1 {
         return Err(a.error(0, "Illegal create_box command"));
     }
-    check_ntypes(ntypes).map_err(|m| a.error(0, &m))?;
+    crate::engine::checks::check_ntypes(ntypes).map_err(|m| a.error(0, &m))?;
     if a.len() > 2 {
         return Err(a.unsupported(2, "create_box keywords"));
     }
@@ -287,8 +287,13 @@ fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
 }
 
 fn g(x: f64) -> String {
-    crate::script::format::g(x)
+    crate::util::format::g(x)
 }
+
+/// The lattice styles of LIGGGHTS 3.8.0 (those regolith runs are in [`registry::STYLES`]).
+pub const LATTICE_STYLES: &[&str] = &[
+    "none", "sc", "bcc", "fcc", "hcp", "diamond", "sq", "sq2", "hex", "custom",
+];
 
 fn lattice(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(2..=usize::MAX, "lattice sc|bcc|fcc|none SCALE")?;
@@ -297,22 +302,16 @@ fn lattice(a: &Args, ctx: &mut Ctx) -> Result {
     if scale <= 0.0 {
         return Err(a.error(1, "Illegal lattice command"));
     }
+    if !registry::runs_style("lattice", style) && !LATTICE_STYLES.contains(&style) {
+        return Err(a.keyword_error(0, LATTICE_STYLES));
+    }
+    registry::require_style(a, "lattice")?;
     let basis: Vec<[f64; 3]> = match style {
         "none" => Vec::new(),
         "sc" => vec![[0.0; 3]],
         "bcc" => vec![[0.0; 3], [0.5, 0.5, 0.5]],
         "fcc" => vec![[0.0; 3], [0.5, 0.5, 0.0], [0.5, 0.0, 0.5], [0.0, 0.5, 0.5]],
-        "hcp" | "diamond" | "sq" | "sq2" | "hex" | "custom" => {
-            return Err(a.unsupported(0, &format!("lattice {style}")))
-        }
-        _ => {
-            return Err(a.keyword_error(
-                0,
-                &[
-                    "none", "sc", "bcc", "fcc", "hcp", "diamond", "sq", "sq2", "hex", "custom",
-                ],
-            ))
-        }
+        _ => return Err(a.unsupported(0, &format!("lattice {style}"))),
     };
     let mut origin = [0.0; 3];
     let mut i = 2;
@@ -397,13 +396,12 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
             return Err(a.error(2, "Illegal create_atoms command"));
         }
         if !ctx.sim.seed_tolerant {
-            crate::script::random::check_seed(seed).map_err(|m| a.error(3, &m))?;
+            crate::util::random::check_seed(seed).map_err(|m| a.error(3, &m))?;
         }
         if seed <= 0 || seed > i32::MAX as i64 {
             return Err(a.error(3, "Illegal create_atoms command"));
         }
-        let mut rng =
-            crate::script::random::RanPark::new(seed as i32).map_err(|m| a.error(3, &m))?;
+        let mut rng = crate::util::random::RanPark::new(seed as i32).map_err(|m| a.error(3, &m))?;
         if let Some(m) = too_many_atoms(count as f64, next_id, "atoms requested") {
             return Err(a.error(2, &m));
         }
@@ -552,21 +550,6 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
-/// Bytes of per-type properties (masses, radii, material values) per atom type.
-const BYTES_PER_TYPE: usize = 64;
-
-/// A number of atom types LIGGGHTS can count (an int) and this machine can hold per-type
-/// properties for.
-pub fn check_ntypes(ntypes: i64) -> std::result::Result<(), String> {
-    if ntypes > i32::MAX as i64 {
-        return Err(format!(
-            "Too many atom types: {ntypes} (LIGGGHTS counts them in an int, at most {})",
-            i32::MAX
-        ));
-    }
-    crate::engine::checks::allocation(ntypes as f64, BYTES_PER_TYPE, "per-type properties")
-}
-
 /// LIGGGHTS numbers atoms with ints: IDs beyond this are refused.
 const MAX_ATOM_ID: f64 = 2_147_483_647.0;
 
@@ -621,13 +604,12 @@ fn displace_atoms(a: &Args, ctx: &mut Ctx) -> Result {
     if style == "random" {
         let seed = a.int(5)?;
         if !ctx.sim.seed_tolerant {
-            crate::script::random::check_seed(seed).map_err(|m| a.error(5, &m))?;
+            crate::util::random::check_seed(seed).map_err(|m| a.error(5, &m))?;
         }
         if seed <= 0 || seed > i32::MAX as i64 {
             return Err(a.error(5, "Illegal displace_atoms random command"));
         }
-        let mut rng =
-            crate::script::random::RanPark::new(seed as i32).map_err(|m| a.error(5, &m))?;
+        let mut rng = crate::util::random::RanPark::new(seed as i32).map_err(|m| a.error(5, &m))?;
         for k in 0..p.len() {
             if p.mask[k] & bit != 0 {
                 rng.reset_at(seed as i32, p.x[k]);
@@ -736,7 +718,7 @@ fn selection(a: &Args, ctx: &Ctx) -> std::result::Result<Vec<usize>, Diagnostic>
     Ok(match what {
         "atom" | "type" => {
             let (lo, hi) =
-                crate::script::interp::bounds(id, i64::MAX / 4).map_err(|m| a.error(1, &m))?;
+                crate::util::numbers::bounds(id, i64::MAX / 4).map_err(|m| a.error(1, &m))?;
             (0..p.len())
                 .filter(|&i| {
                     let v = if what == "atom" {
@@ -795,7 +777,7 @@ fn set(a: &Args, ctx: &mut Ctx) -> Result {
                 return Err(a.error(i + 3, "Invalid random number seed in set command"));
             }
             let mut rng =
-                crate::script::random::RanPark::new(12345787).map_err(|m| a.error(i + 3, &m))?;
+                crate::util::random::RanPark::new(12345787).map_err(|m| a.error(i + 3, &m))?;
             let p = &mut ctx.sim.particles;
             let mut count = 0;
             for &k in &atoms {
@@ -981,7 +963,7 @@ fn group(a: &Args, ctx: &mut Ctx) -> Result {
                 sel
             } else {
                 // values and ranges a:b[:step], read with C's atoi as LIGGGHTS does
-                let atoi = |t: &str| crate::script::variables::c_atof(t).trunc() as i64;
+                let atoi = |t: &str| crate::util::numbers::c_atof(t).trunc() as i64;
                 for k in 2..a.len() {
                     let w = a.word(k)?;
                     let parts: Vec<&str> = w.split(':').collect();
@@ -1399,7 +1381,8 @@ fn read_data(a: &Args, ctx: &mut Ctx) -> Result {
     }
     .map_err(|m| a.error(0, &format!("Cannot open file {name}: {m}")))?;
     let data = crate::io::data::parse(&text, name).map_err(|m| a.error(0, &m))?;
-    check_ntypes(data.ntypes as i64).map_err(|m| a.error(0, &format!("{name}: {m}")))?;
+    crate::engine::checks::check_ntypes(data.ntypes as i64)
+        .map_err(|m| a.error(0, &format!("{name}: {m}")))?;
     let sim = &mut *ctx.sim;
     sim.domain.create(data.lo, data.hi);
     sim.ntypes = data.ntypes;
@@ -1541,8 +1524,8 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
                 location: a.cmd.location.clone(),
             };
             let args = Args { cmd: &cmd };
-            if let Some(result) = crate::commands::sim_run::execute(cmd.name(), &args, ctx) {
-                result?;
+            if let Some(run) = registry::handler(cmd.name()) {
+                run(&args, ctx)?;
             }
         }
     }

@@ -221,7 +221,7 @@ mod tests {
         let mut domain = Domain::default();
         domain.boundary = parse_boundary(&["p", "f", "p"]).unwrap();
         domain.create([0.0; 3], [1.0, 1.0, 0.5]);
-        let mut r = crate::script::random::RanPark::new(12345).unwrap();
+        let mut r = crate::util::random::RanPark::new(12345).unwrap();
         let x: Vec<[f64; 3]> = (0..600)
             .map(|_| [r.uniform(), r.uniform(), 0.5 * r.uniform()])
             .collect();

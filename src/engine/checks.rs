@@ -152,7 +152,7 @@ pub fn check_sphere(diameter: f64, density: f64, what: &str) -> Result<(), Strin
 }
 
 fn g(x: f64) -> String {
-    crate::script::format::g(x)
+    crate::util::format::g(x)
 }
 
 impl Simulation {
@@ -208,6 +208,21 @@ impl Simulation {
         }
         Ok(())
     }
+}
+
+/// Bytes of per-type properties (masses, radii, material values) per atom type.
+const BYTES_PER_TYPE: usize = 64;
+
+/// A number of atom types LIGGGHTS can count (an int) and this machine can hold per-type
+/// properties for.
+pub fn check_ntypes(ntypes: i64) -> std::result::Result<(), String> {
+    if ntypes > i32::MAX as i64 {
+        return Err(format!(
+            "Too many atom types: {ntypes} (LIGGGHTS counts them in an int, at most {})",
+            i32::MAX
+        ));
+    }
+    allocation(ntypes as f64, BYTES_PER_TYPE, "per-type properties")
 }
 
 #[cfg(test)]

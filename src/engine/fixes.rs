@@ -357,22 +357,20 @@ impl CheckTimestep {
             if self.values[0] > self.rayleigh_limit {
                 messages.push(format!(
                     "time-step is {} % of rayleigh time",
-                    crate::script::format::with_spec("%f", self.values[0] * 100.)
-                        .unwrap_or_default()
+                    crate::util::format::with_spec("%f", self.values[0] * 100.).unwrap_or_default()
                 ));
             }
             if self.values[1] > self.hertz_limit {
                 messages.push(format!(
                     "time-step is {} % of hertz time",
-                    crate::script::format::with_spec("%f", self.values[1] * 100.)
-                        .unwrap_or_default()
+                    crate::util::format::with_spec("%f", self.values[1] * 100.).unwrap_or_default()
                 ));
             }
             if self.values[2] > 1.0 {
                 messages.push(format!(
                     "time step too large or skin too small - particles may relatively travel a distance of {} per time-step, but skin is {}",
-                    crate::script::format::with_spec("%f", v_rel * dt).unwrap_or_default(),
-                    crate::script::format::with_spec("%f", skin).unwrap_or_default()
+                    crate::util::format::with_spec("%f", v_rel * dt).unwrap_or_default(),
+                    crate::util::format::with_spec("%f", skin).unwrap_or_default()
                 ));
             }
             if v_rel * dt > r_min {
@@ -1071,7 +1069,7 @@ impl AveTime {
             let mut line = step.to_string();
             for t in &self.total {
                 line.push(' ');
-                line.push_str(&crate::script::format::g(t / self.norm as f64));
+                line.push_str(&crate::util::format::g(t / self.norm as f64));
             }
             writeln!(f, "{line}")
                 .and_then(|_| f.flush())

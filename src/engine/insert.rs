@@ -5,7 +5,7 @@
 //! messages, so that inserted atoms agree with LIGGGHTS's bit for bit.
 
 use crate::engine::region::{Regions, Shape};
-use crate::script::random::RanPark;
+use crate::util::random::RanPark;
 
 /// `fix particletemplate/sphere`: one particle kind.
 #[derive(Debug, Clone, PartialEq)]
@@ -565,7 +565,7 @@ impl InsertPack {
             Some((total, rate)) => {
                 self.per_insertion = rate * (self.every as f64 * dt);
                 let f = |spec: &str, v: f64| {
-                    crate::script::format::with_spec(spec, v).unwrap_or_default()
+                    crate::util::format::with_spec(spec, v).unwrap_or_default()
                 };
                 let within = if total as f64 <= self.per_insertion {
                     0
@@ -797,9 +797,9 @@ impl InsertPack {
                 "INFO: Particle insertion {}: inserted {} particle templates (mass {}) at step {step}\n - a total of {} particle templates (mass {}) inserted so far.",
                 self.id,
                 placed.len(),
-                crate::script::format::with_spec("%e", m).unwrap_or_default(),
+                crate::util::format::with_spec("%e", m).unwrap_or_default(),
                 self.inserted,
-                crate::script::format::with_spec("%e", self.inserted_mass).unwrap_or_default()
+                crate::util::format::with_spec("%e", self.inserted_mass).unwrap_or_default()
             ));
         }
         if (placed.len() as i64) < nlist {
@@ -1231,7 +1231,7 @@ impl InsertStream {
     /// The setup line LIGGGHTS prints.
     pub fn setup_lines(&self, dist: &Distribution) -> Vec<String> {
         let (rate, mass_rate) = self.rates;
-        let f = |spec: &str, v: f64| crate::script::format::with_spec(spec, v).unwrap_or_default();
+        let f = |spec: &str, v: f64| crate::util::format::with_spec(spec, v).unwrap_or_default();
         vec![format!(
             "INFO: Particle insertion {}: {} particles every {} steps - particle rate {}  (mass rate {})\n      {} particles (mass {}) within {} steps",
             self.id,
@@ -1373,9 +1373,9 @@ impl InsertStream {
                 "INFO: Particle insertion {}: inserted {} particle templates (mass {}) at step {step}\n - a total of {} particle templates (mass {}) inserted so far.",
                 self.id,
                 placed.len(),
-                crate::script::format::with_spec("%e", m).unwrap_or_default(),
+                crate::util::format::with_spec("%e", m).unwrap_or_default(),
                 self.inserted,
-                crate::script::format::with_spec("%e", self.inserted_mass).unwrap_or_default()
+                crate::util::format::with_spec("%e", self.inserted_mass).unwrap_or_default()
             ));
         }
         if (placed.len() as i64) < n {

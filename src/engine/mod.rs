@@ -16,7 +16,6 @@ pub mod mesh_motion;
 pub mod mesh_stress;
 pub mod mesh_wall;
 pub mod neighbor;
-pub mod numbers;
 pub mod particles;
 pub mod region;
 pub mod restart_fixes;

@@ -2,7 +2,19 @@
 //! their intersections and unions, with `side in/out`. Inside tests follow LIGGGHTS
 //! exactly, boundaries included (a point on a block face is inside).
 
-use crate::engine::numbers::numeric;
+use crate::util::numbers::numeric;
+
+/// Region styles regolith runs (`region ID STYLE ...`); others are "not supported yet".
+pub const STYLES: &[&str] = &[
+    "block",
+    "cone",
+    "cylinder",
+    "intersect",
+    "plane",
+    "prism",
+    "sphere",
+    "union",
+];
 
 /// Stand-in for an infinite bound (`INF`), as LIGGGHTS uses.
 pub const BIG: f64 = 1.0e20;
@@ -130,6 +142,9 @@ impl Regions {
         }
         if style == "delete" {
             return Err("region delete: not supported yet".into());
+        }
+        if !STYLES.contains(&style) {
+            return Err(format!("region {style}: not supported yet"));
         }
         let nshape = match style {
             "block" => 6,

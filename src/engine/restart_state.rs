@@ -151,7 +151,7 @@ pub fn check_restart_values(r: &Restart, motion: bool) -> Result<(), String> {
     if ntypes < 1 {
         return Err(format!("restart: {ntypes} atom types"));
     }
-    crate::commands::sim_setup::check_ntypes(ntypes).map_err(|m| format!("restart: {m}"))?;
+    crate::engine::checks::check_ntypes(ntypes).map_err(|m| format!("restart: {m}"))?;
     for a in &r.atoms {
         if a.kind < 1 || a.kind > ntypes {
             return Err(format!(

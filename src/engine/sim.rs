@@ -918,7 +918,7 @@ impl Simulation {
         let body = name
             .strip_prefix("c_")
             .ok_or_else(|| format!("dump column {name}: fix columns are not supported yet"))?;
-        let (id, index) = crate::commands::sim_run::split_reference(body)
+        let (id, index) = crate::util::numbers::split_reference(body)
             .ok_or_else(|| format!("Invalid attribute {name} in dump custom command"))?;
         let c = self
             .computes
@@ -1210,7 +1210,7 @@ impl Simulation {
         };
         let values = fix.args[start..]
             .iter()
-            .map(|w| crate::engine::numbers::numeric(w).unwrap_or(0.0))
+            .map(|w| crate::util::numbers::numeric(w).unwrap_or(0.0))
             .collect();
         Some((style, columns, values))
     }
@@ -1909,7 +1909,7 @@ impl Simulation {
         let loop_time = self.stats_loop_time(started);
         out(&format!(
             "Loop time of {} on 1 procs for {} steps with {} atoms\n\n",
-            crate::script::format::g(loop_time),
+            crate::util::format::g(loop_time),
             nsteps,
             self.particles.len()
         ));
@@ -1922,7 +1922,7 @@ impl Simulation {
                  3.8.0 leaves them out: such particles may pass through each other. A larger \
                  neighbor skin, or a new run after the growth, finds them.\n",
                 self.list.missed,
-                crate::script::format::g(self.neighbor.cutneighmax)
+                crate::util::format::g(self.neighbor.cutneighmax)
             ));
             self.list.missed = 0;
         }
@@ -1937,7 +1937,7 @@ impl Simulation {
     /// regolith has no ghost atoms, periodic images are handled in the pair list) and the
     /// neighbour-list figures; plus the pairs in contact at the last step.
     fn run_statistics(&self, loop_time: f64) -> String {
-        use crate::script::format::g;
+        use crate::util::format::g;
         let t = &self.stats;
         let pct = |x: f64| {
             if loop_time > 0.0 {
@@ -2132,9 +2132,7 @@ impl Simulation {
                 maxattempt: sf.maxattempt,
                 ntry_mc: sf.ntry_mc,
                 verbose: sf.verbose,
-                rng: crate::script::random::RanPark::new(
-                    restored.map_or(sf.seed, |r| r.rng_state),
-                )?,
+                rng: crate::util::random::RanPark::new(restored.map_or(sf.seed, |r| r.rng_state))?,
                 next: Some(sf.start),
                 measured: false,
                 inserted: restored.map_or(0, |r| r.inserted),
@@ -2692,7 +2690,7 @@ impl Simulation {
                                 .get(t.wrapping_sub(1))
                                 .cloned()
                                 .unwrap_or_else(|| t.to_string());
-                            let g = crate::script::format::g;
+                            let g = crate::util::format::g;
                             let x = p.x[i];
                             writeln!(text, "{element} {} {} {}", g(x[0]), g(x[1]), g(x[2]))?;
                         }

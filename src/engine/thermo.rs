@@ -2,7 +2,50 @@
 //! integers as `%8d`, reals as `%14.8g`, each followed by a blank, as LIGGGHTS prints them.
 
 use crate::engine::sim::{Simulation, Sink, VariableSource};
-use crate::script::format;
+use crate::util::format;
+
+/// Keywords a formula may use for thermo values (LIGGGHTS 3.8.0's `Thermo::evaluate_keyword`).
+pub const THERMO_KEYWORDS: &[&str] = &[
+    "atoms",
+    "cella",
+    "cellalpha",
+    "cellb",
+    "cellbeta",
+    "cellc",
+    "cellgamma",
+    "cpu",
+    "cpuremain",
+    "cu",
+    "density",
+    "dt",
+    "elaplong",
+    "elapsed",
+    "erotate",
+    "fmax",
+    "fnorm",
+    "ke",
+    "lx",
+    "ly",
+    "lz",
+    "part",
+    "spcpu",
+    "step",
+    "time",
+    "tpcpu",
+    "vol",
+    "xhi",
+    "xlat",
+    "xlo",
+    "xy",
+    "xz",
+    "yhi",
+    "ylat",
+    "ylo",
+    "yz",
+    "zhi",
+    "zlat",
+    "zlo",
+];
 
 /// Whether a column holds an integer or a real number.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -109,7 +152,7 @@ impl Thermo {
                 continue;
             }
             let Some(&(_, label, kind)) = KEYWORDS.iter().find(|e| e.0 == *k) else {
-                let known = crate::commands::THERMO_KEYWORDS.contains(k);
+                let known = crate::engine::thermo::THERMO_KEYWORDS.contains(k);
                 return Err(if known {
                     format!("thermo keyword {k}: not supported yet")
                 } else {

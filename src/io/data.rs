@@ -240,7 +240,7 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
 }
 
 fn e16(x: f64) -> String {
-    crate::script::format::with_spec("%.16e", x).unwrap_or_else(|_| x.to_string())
+    crate::util::format::with_spec("%.16e", x).unwrap_or_else(|_| x.to_string())
 }
 
 /// The data file LIGGGHTS's `write_data` writes for these particles at `step`.

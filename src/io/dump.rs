@@ -7,7 +7,7 @@ use std::io::Write;
 
 use crate::engine::domain::Domain;
 use crate::engine::particles::Particles;
-use crate::script::format::{self, CFormat, Conversion, Piece};
+use crate::util::format::{self, CFormat, Conversion, Piece};
 
 /// A per-atom quantity a dump column shows.
 #[derive(Debug, Clone, PartialEq)]

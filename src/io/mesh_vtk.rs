@@ -33,7 +33,7 @@
 
 use std::io::{self, Write};
 
-use crate::script::format::{g, g_precision};
+use crate::util::format::{g, g_precision};
 
 /// Where the per-triangle data goes in the file (`output face|interpolate|original`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

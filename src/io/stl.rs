@@ -231,7 +231,7 @@ pub fn check(triangles: &[Triangle], name: &str, box_size: Option<f64>) -> Resul
 
 /// The ASCII STL LIGGGHTS's `dump mesh/stl` writes (`%g` numbers), with the given normals.
 pub fn write_ascii(triangles: &[Triangle], normals: &[[f64; 3]]) -> String {
-    use crate::script::format::g;
+    use crate::util::format::g;
     let mut s = String::from("solid LIGGGHTS_STL_EXPORT\n");
     for (t, n) in triangles.iter().zip(normals) {
         s.push_str(&format!(

@@ -8,7 +8,7 @@
 use std::io::Write;
 
 use crate::engine::domain::Domain;
-use crate::script::format::{g, g_precision};
+use crate::util::format::{g, g_precision};
 
 /// One point-data field: its name, whether it is integer, and the dump columns (indices
 /// into the dump's column list) that make its components.

@@ -24,8 +24,8 @@
 
 use std::fmt;
 
-use crate::script::random::RanMars;
-use crate::script::variables::c_atof;
+use crate::util::numbers::c_atof;
+use crate::util::random::RanMars;
 
 /// Error from parsing or evaluating an expression; `offset` is a byte offset into the text.
 #[derive(Debug, Clone, PartialEq)]
@@ -1726,7 +1726,7 @@ mod tests {
                 &mut self.equal_rng
             };
             if slot.is_none() {
-                crate::script::random::check_seed(i64::from(seed))?;
+                crate::util::random::check_seed(i64::from(seed))?;
                 *slot = Some(RanMars::new(seed)?);
             }
             Ok(slot.as_mut().expect("just made"))
@@ -1749,7 +1749,7 @@ mod tests {
 
     /// What LIGGGHTS prints for `${a}` (%.15g), to compare with its output.
     fn g15(x: f64) -> String {
-        crate::script::format::g_precision(x, 15)
+        crate::util::format::g_precision(x, 15)
     }
 
     // Every expected value below is what Debian's liggghts 3.8.0 printed for

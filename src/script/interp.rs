@@ -9,11 +9,12 @@ use std::rc::Rc;
 
 use crate::commands::{CommandLine, Engine};
 use crate::error::{Diagnostic, Location, Severity};
+use crate::script::expr;
 use crate::script::line::{self, LexError, VarRef, Word};
 use crate::script::scope::{Scope, UNKNOWN_QUERY};
 use crate::script::system::{Mode, System};
 use crate::script::variables::{Value, Variables};
-use crate::script::{expr, format};
+use crate::util::format;
 
 /// Commands the interpreter executes itself (the script language).
 pub const SCRIPT_COMMANDS: &[&str] = &[
@@ -953,7 +954,8 @@ impl Interpreter {
             "no" => false,
             _ => return Err(at_arg(illegal("partition", "yes or no"), cmd, 0)),
         };
-        let (lo, hi) = bounds(&args[1], 1).map_err(|m| at_arg(Diagnostic::error(m), cmd, 1))?;
+        let (lo, hi) = crate::util::numbers::bounds(&args[1], 1)
+            .map_err(|m| at_arg(Diagnostic::error(m.to_string()), cmd, 1))?;
         let inside = lo <= 1 && 1 <= hi;
         if inside == yes {
             let rest = &cmd.text[cmd.words[3].start..];
@@ -961,24 +963,4 @@ impl Interpreter {
         }
         Ok(())
     }
-}
-
-/// LIGGGHTS's `force->bounds`: `N`, `*`, `*N`, `N*`, `M*N` within 1..=nmax.
-pub fn bounds(text: &str, nmax: i64) -> Result<(i64, i64), String> {
-    let bad = || format!("Numeric index {text} is out of bounds");
-    let parse = |s: &str| s.parse::<i64>().map_err(|_| bad());
-    let (lo, hi) = match text.split_once('*') {
-        None => {
-            let n = parse(text)?;
-            (n, n)
-        }
-        Some(("", "")) => (1, nmax),
-        Some(("", b)) => (1, parse(b)?),
-        Some((a, "")) => (parse(a)?, nmax),
-        Some((a, b)) => (parse(a)?, parse(b)?),
-    };
-    if lo < 1 || hi > nmax || lo > hi {
-        return Err(bad());
-    }
-    Ok((lo, hi))
 }

@@ -59,10 +59,7 @@ pub fn next_logical_line(lines: &[String], pos: &mut usize) -> Option<(String, u
     Some((text, first))
 }
 
-/// C's `isspace` for ASCII: space, \t, \n, \v, \f, \r.
-pub fn is_c_space(c: char) -> bool {
-    matches!(c, ' ' | '\t' | '\n' | '\u{0b}' | '\u{0c}' | '\r')
-}
+pub use crate::util::numbers::is_c_space;
 
 /// Cut a `#` comment off, unless the `#` is inside single or double quotes.
 pub fn strip_comment(text: &str) -> &str {

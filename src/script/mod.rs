@@ -2,10 +2,8 @@
 //! the control-flow commands (`next`, `jump`, `label`, `if`, `include`, `print`, ...).
 
 pub mod expr;
-pub mod format;
 pub mod interp;
 pub mod line;
-pub mod random;
 pub mod scope;
 pub mod system;
 pub mod variables;

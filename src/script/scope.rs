@@ -6,10 +6,11 @@ use std::rc::Rc;
 
 use crate::engine::sim::{Simulation, VariableSource};
 use crate::script::expr::{self, Expr, ExprContext, RefKind};
-use crate::script::format::g_precision;
-use crate::script::random::{check_seed, RanMars};
 use crate::script::system::{Mode, System};
-use crate::script::variables::{c_atof, Style, Value, Variables};
+use crate::script::variables::{Style, Value, Variables};
+use crate::util::format::g_precision;
+use crate::util::numbers::c_atof;
+use crate::util::random::{check_seed, RanMars};
 
 /// Error text meaning "only a real run can know this" (check mode).
 pub const UNKNOWN_QUERY: &str = "\u{0}value known only when the deck runs";
@@ -182,7 +183,7 @@ impl ExprContext for Scope<'_> {
     }
 
     fn thermo(&mut self, name: &str) -> Result<f64, String> {
-        if !crate::commands::THERMO_KEYWORDS.contains(&name) {
+        if !crate::engine::thermo::THERMO_KEYWORDS.contains(&name) {
             return Err("Invalid thermo keyword in variable formula".into());
         }
         if self.sys.mode == Mode::Check {

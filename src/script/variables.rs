@@ -1,7 +1,7 @@
 //! The `variable` command's store: every style LIGGGHTS 3.8.0 has, `next`, and retrieval of
 //! a variable's text for `$` substitution.
 
-use crate::script::random::RanMars;
+use crate::util::random::RanMars;
 
 /// A variable's style, as named in the `variable` command.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -476,57 +476,6 @@ impl Variables {
     }
 }
 
-/// C's `atof`: the longest numeric prefix after leading blanks, 0 if there is none.
-pub fn c_atof(text: &str) -> f64 {
-    let t = text.trim_start_matches(crate::script::line::is_c_space);
-    let b = t.as_bytes();
-    let mut end = 0;
-    let mut best = 0;
-    if end < b.len() && (b[end] == b'+' || b[end] == b'-') {
-        end += 1;
-    }
-    let lower = t.to_ascii_lowercase();
-    for special in ["infinity", "inf", "nan"] {
-        if lower[end..].starts_with(special) {
-            let v = if special == "nan" {
-                f64::NAN
-            } else {
-                f64::INFINITY
-            };
-            return if b.first() == Some(&b'-') { -v } else { v };
-        }
-    }
-    let mut digits = 0;
-    while end < b.len() && b[end].is_ascii_digit() {
-        end += 1;
-        digits += 1;
-    }
-    if end < b.len() && b[end] == b'.' {
-        end += 1;
-        while end < b.len() && b[end].is_ascii_digit() {
-            end += 1;
-            digits += 1;
-        }
-    }
-    if digits > 0 {
-        best = end;
-        if end < b.len() && (b[end] == b'e' || b[end] == b'E') {
-            let mut e = end + 1;
-            if e < b.len() && (b[e] == b'+' || b[e] == b'-') {
-                e += 1;
-            }
-            let start = e;
-            while e < b.len() && b[e].is_ascii_digit() {
-                e += 1;
-            }
-            if e > start {
-                best = e;
-            }
-        }
-    }
-    t[..best].parse::<f64>().unwrap_or(0.0)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -597,13 +546,5 @@ mod tests {
         assert_eq!(text(&v, "h").as_deref(), Some("here"));
         assert!(v.set(&words("bad-name index 1"), &mut Host).is_err());
         assert!(v.next(&words("s"), &mut Host).is_err());
-    }
-
-    #[test]
-    fn atof_prefix() {
-        assert_eq!(c_atof("  1.5e3xyz"), 1500.0);
-        assert_eq!(c_atof("abc"), 0.0);
-        assert_eq!(c_atof("-2e"), -2.0);
-        assert_eq!(c_atof(".5"), 0.5);
     }
 }

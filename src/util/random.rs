@@ -7,25 +7,46 @@
 //! prime above 10000 ([`check_seed`]); the generators' own range checks come afterwards
 //! ([`RanMars::new`], [`RanPark::new`]). Callers run both, in that order.
 
-/// Seeds LIGGGHTS suggests when it rejects one (printed in its error message).
-const SUGGESTED_SEEDS: &str = "15485863, 15485867, 32452843, 32452867, 49979687, 49979693, \
-                               67867967, 67867979, 86028121, 86028157";
+/// A seed LIGGGHTS refuses (its own words, hints included).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum SeedError {
+    /// Beyond a C `int` in either direction (LIGGGHTS blames INT_MAX for both).
+    #[error("Seed {0} is larger than INT_MAX (2147483647)")]
+    TooLarge(i64),
+    /// Not a prime above 10000 (the message suggests valid seeds).
+    #[error(
+        "Random number generation: It is required that the random seed value is > 10000 \
+         and a prime number.\nThe random seed used was {0}\n  Hint 1: start with \
+         'liggghts -echo both < in.script' to find out which command caused this\n  \
+         Hint 2: possible valid seeds would be the following numbers:\n          \
+         15485863, 15485867, 32452843, 32452867, 49979687, 49979693, \
+                               67867967, 67867979, 86028121, 86028157"
+    )]
+    NotPrime(i64),
+    /// Marsaglia's generator needs a seed in 1..=900000000.
+    #[error("Invalid seed for Marsaglia random # generator")]
+    Marsaglia,
+    /// Park and Miller's generator needs a positive seed.
+    #[error("Invalid seed for Park random # generator")]
+    Park,
+}
+
+/// The message alone, for callers that still report errors as text.
+impl From<SeedError> for String {
+    fn from(e: SeedError) -> String {
+        e.to_string()
+    }
+}
 
 /// LIGGGHTS's rule for user seeds: a prime above 10000 that fits a C `int` (relaxed to a
 /// warning by `-seedtolerant`); the error text is LIGGGHTS's own, hints included.
-pub fn check_seed(seed: i64) -> Result<(), String> {
+pub fn check_seed(seed: i64) -> Result<(), SeedError> {
     if seed > i32::MAX as i64 || seed < i32::MIN as i64 {
         // LIGGGHTS compares atol() with atoi() and blames INT_MAX for either direction
-        return Err(format!("Seed {seed} is larger than INT_MAX ({})", i32::MAX));
+        return Err(SeedError::TooLarge(seed));
     }
     if seed < 10000 || !is_prime(seed) {
-        return Err(format!(
-            "Random number generation: It is required that the random seed value is > 10000 \
-             and a prime number.\nThe random seed used was {seed}\n  Hint 1: start with \
-             'liggghts -echo both < in.script' to find out which command caused this\n  \
-             Hint 2: possible valid seeds would be the following numbers:\n          \
-             {SUGGESTED_SEEDS}"
-        ));
+        return Err(SeedError::NotPrime(seed));
     }
     Ok(())
 }
@@ -85,9 +106,9 @@ pub struct RanMars {
 impl RanMars {
     /// A generator for `seed` in 1..=900000000 (else LIGGGHTS's error text); the first
     /// uniform deviate is drawn and discarded, as LIGGGHTS does.
-    pub fn new(seed: i32) -> Result<RanMars, String> {
+    pub fn new(seed: i32) -> Result<RanMars, SeedError> {
         if seed <= 0 || seed > 900_000_000 {
-            return Err("Invalid seed for Marsaglia random # generator".into());
+            return Err(SeedError::Marsaglia);
         }
         // split the seed into the four small seeds of the lagged-Fibonacci initialisation
         let ij = (seed - 1) / 30082;
@@ -177,9 +198,9 @@ pub struct RanPark {
 
 impl RanPark {
     /// A generator for a positive `seed` (else LIGGGHTS's error text).
-    pub fn new(seed: i32) -> Result<RanPark, String> {
+    pub fn new(seed: i32) -> Result<RanPark, SeedError> {
         if seed <= 0 {
-            return Err("Invalid seed for Park random # generator".into());
+            return Err(SeedError::Park);
         }
         Ok(RanPark {
             state: seed,
@@ -210,7 +231,7 @@ impl RanPark {
     }
 
     /// Restart from a new positive seed, dropping any saved normal deviate.
-    pub fn reset(&mut self, seed: i32) -> Result<(), String> {
+    pub fn reset(&mut self, seed: i32) -> Result<(), SeedError> {
         *self = RanPark::new(seed)?;
         Ok(())
     }
@@ -412,19 +433,19 @@ mod tests {
     #[test]
     fn seeds() {
         assert_eq!(
-            RanMars::new(0).unwrap_err(),
+            RanMars::new(0).unwrap_err().to_string(),
             "Invalid seed for Marsaglia random # generator"
         );
         assert!(RanMars::new(900_000_001).is_err());
         assert!(RanMars::new(900_000_000).is_ok());
         assert_eq!(
-            RanPark::new(-5).unwrap_err(),
+            RanPark::new(-5).unwrap_err().to_string(),
             "Invalid seed for Park random # generator"
         );
         assert!(check_seed(15485863).is_ok());
         assert!(check_seed(2147483647).is_ok());
         // print "$(random(0,1,12345))" in liggghts:
-        let e = check_seed(12345).unwrap_err();
+        let e = check_seed(12345).unwrap_err().to_string();
         assert!(e.starts_with(
             "Random number generation: It is required that the random seed value is > 10000 \
              and a prime number.\nThe random seed used was 12345\n  Hint 1: start with"
@@ -432,7 +453,7 @@ mod tests {
         assert!(e.ends_with("67867967, 67867979, 86028121, 86028157"));
         assert!(check_seed(7).is_err());
         assert_eq!(
-            check_seed(3_000_000_000).unwrap_err(),
+            check_seed(3_000_000_000).unwrap_err().to_string(),
             "Seed 3000000000 is larger than INT_MAX (2147483647)"
         );
     }

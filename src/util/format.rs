@@ -33,6 +33,30 @@ pub enum Piece {
     Convert(Conversion),
 }
 
+/// A C format string regolith cannot print with.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum FormatError {
+    /// The text ends inside a conversion (its byte offset).
+    #[error("format ends inside the conversion starting at byte {0}")]
+    Unfinished(usize),
+    /// A conversion letter C's printf has but numbers do not use (letter, byte offset).
+    #[error("unsupported conversion '%{0}' at byte {1} (expected one of d i u x X o e E f F g G)")]
+    Conversion(char, usize),
+    /// One value, two conversions.
+    #[error("format '{0}' has more than one conversion")]
+    TwoConversions(String),
+    /// No conversion at all.
+    #[error("format '{0}' has no conversion")]
+    NoConversion(String),
+}
+
+/// The message alone, for callers that still report errors as text.
+impl From<FormatError> for String {
+    fn from(e: FormatError) -> String {
+        e.to_string()
+    }
+}
+
 /// A parsed C format string such as `"%d %d %20.15g"`.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct CFormat {
@@ -42,7 +66,7 @@ pub struct CFormat {
 
 impl CFormat {
     /// Parse `text`; errors name the offending conversion.
-    pub fn parse(text: &str) -> Result<CFormat, String> {
+    pub fn parse(text: &str) -> Result<CFormat, FormatError> {
         let mut pieces = Vec::new();
         let mut literal = String::new();
         let mut chars = text.char_indices().peekable();
@@ -80,17 +104,13 @@ impl CFormat {
                 }
             }
             let Some((_, kind)) = chars.next() else {
-                return Err(format!(
-                    "format ends inside the conversion starting at byte {start}"
-                ));
+                return Err(FormatError::Unfinished(start));
             };
             if !matches!(
                 kind,
                 'd' | 'i' | 'u' | 'x' | 'X' | 'o' | 'e' | 'E' | 'f' | 'F' | 'g' | 'G' | 'a' | 'A'
             ) {
-                return Err(format!(
-                    "unsupported conversion '%{kind}' at byte {start} (expected one of d i u x X o e E f F g G)"
-                ));
+                return Err(FormatError::Conversion(kind, start));
             }
             spec.push(kind);
             if !literal.is_empty() {
@@ -197,7 +217,7 @@ pub fn g(value: f64) -> String {
 }
 
 /// Format `value` with an arbitrary single-conversion C spec such as `%14.8g` or `%8d`.
-pub fn with_spec(spec: &str, value: f64) -> Result<String, String> {
+pub fn with_spec(spec: &str, value: f64) -> Result<String, FormatError> {
     let fmt = CFormat::parse(spec)?;
     let mut out = String::new();
     let mut used = 0;
@@ -207,14 +227,14 @@ pub fn with_spec(spec: &str, value: f64) -> Result<String, String> {
             Piece::Convert(c) => {
                 used += 1;
                 if used > 1 {
-                    return Err(format!("format '{spec}' has more than one conversion"));
+                    return Err(FormatError::TwoConversions(spec.to_string()));
                 }
                 out.push_str(&format_one(c, value));
             }
         }
     }
     if used == 0 {
-        return Err(format!("format '{spec}' has no conversion"));
+        return Err(FormatError::NoConversion(spec.to_string()));
     }
     Ok(out)
 }

@@ -1,0 +1,7 @@
+//! The bottom layer, shared by every other: numbers printed exactly as LIGGGHTS's C printf
+//! prints them, LIGGGHTS's random-number streams, and numbers read from words as LIGGGHTS reads
+//! them. Nothing here knows about decks, commands or the engine.
+
+pub mod format;
+pub mod numbers;
+pub mod random;

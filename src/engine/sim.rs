@@ -668,7 +668,7 @@ impl Simulation {
                     ENERGY_GROWTH,
                     RUNAWAY_RADII_PER_STEP,
                     p.id[fastest],
-                    crate::script::format::g(per_step)
+                    crate::util::format::g(per_step)
                 ));
             }
         }
@@ -684,7 +684,7 @@ impl Simulation {
                      The run goes on (said once a run; counted at its end)\n",
                     self.step,
                     id,
-                    crate::script::format::g(per_step)
+                    crate::util::format::g(per_step)
                 ));
             }
         }
@@ -749,7 +749,7 @@ impl Simulation {
             guard_say(&format!(
                 "WARNING: a particle moved more than its radius in one time step at {} steps of this run; the most {} radii at step {step} (atom {a})\n",
                 notes.jump.steps,
-                crate::script::format::g(v)
+                crate::util::format::g(v)
             ));
         }
     }

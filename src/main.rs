@@ -247,9 +247,12 @@ fn main() -> ExitCode {
                         return exit(ExitStatus::DeckError);
                     }
                 };
-                let diagnostics = session::check_deck(source, &opts);
+                let (diagnostics, margins) = session::check_deck_with_margins(source, &opts);
                 for d in &diagnostics {
                     println!("{}", d.one_line());
+                }
+                for m in &margins {
+                    print!("{m}");
                 }
                 let status = session::status_of(&diagnostics);
                 if status == ExitStatus::DeckError || worst == ExitStatus::Success {

@@ -48,8 +48,25 @@ pub fn check_deck(source: Source, opts: &DeckOptions) -> Vec<Diagnostic> {
     check_deck_in(source, opts, None)
 }
 
+/// Check a deck as `check_deck` does; also the time-step margins its runs would have
+/// (one text per `run` where it changed).
+pub fn check_deck_with_margins(
+    source: Source,
+    opts: &DeckOptions,
+) -> (Vec<Diagnostic>, Vec<String>) {
+    check_deck_full(source, opts, None)
+}
+
 /// Check a deck as if run from folder `cwd` (default: the current directory).
 pub fn check_deck_in(source: Source, opts: &DeckOptions, cwd: Option<&Path>) -> Vec<Diagnostic> {
+    check_deck_full(source, opts, cwd).0
+}
+
+fn check_deck_full(
+    source: Source,
+    opts: &DeckOptions,
+    cwd: Option<&Path>,
+) -> (Vec<Diagnostic>, Vec<String>) {
     let mut interp = Interpreter::new(Mode::Check, Output::silent());
     interp.engine.sim.seed_tolerant = opts.seed_tolerant;
     interp.engine.sim.zero_restitution = opts.zero_restitution;
@@ -64,7 +81,8 @@ pub fn check_deck_in(source: Source, opts: &DeckOptions, cwd: Option<&Path>) -> 
         }
     }
     let _ = interp.run_source(source);
-    interp.diagnostics
+    let margins = std::mem::take(&mut interp.engine.sim.margin_notes);
+    (interp.diagnostics, margins)
 }
 
 /// The exit status a list of check diagnostics leads to.

@@ -265,3 +265,59 @@ fn check_handles_lattice_regions_and_script_commands_in_unknown_branches() {
     );
     assert_eq!(out.status.code(), Some(3));
 }
+
+/// Issue 16: `check` and the run header state the time-step margin. The trade study's
+/// collision (R 1.25 mm, density 2500, E 5e6, nu 0.2, both spheres at 1 m/s) by hand:
+/// G = E / 2.4 = 2.08333e6 Pa, Rayleigh time pi R sqrt(rho / G) / (0.1631 nu + 0.8766)
+/// = 1.360350e-4 / 0.90922 = 1.49617e-4 s; dt = 0.0067 of it (0.67 %). Hertz contact time at
+/// the impact speed 2 m/s: m* = 1.022654e-5 kg, R* = 6.25e-4 m, Y* = 2.604167e6 Pa,
+/// 2.87 (m*^2 / (R* Y*^2 v))^(1/5) = 2.99312e-4 s; dt is 0.335 % of it. With E / 10 both
+/// times grow: the Rayleigh time by sqrt(10) (4.73131e-4 s), the Hertz time by 10^(2/5)
+/// (7.51837e-4 s).
+#[test]
+fn check_and_run_state_the_time_step_margin() {
+    let dir = scratch("margin");
+    let deck = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/trade/in.collision");
+    let out = regolith(&dir, &["check", deck], None);
+    assert_eq!(out.status.code(), Some(0));
+    let stdout = text(&out.stdout);
+    assert!(
+        stdout.contains(
+            "type 1: radius 0.00125, density 2500, E 5e+06, nu 0.2: Rayleigh time 0.000149617 s\n"
+        ),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("types 1-1: dt is 0.67 % of the Rayleigh time and 0.33 % of the Hertz contact time 0.000299312 s at impact speed 2\n"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("impact speed: twice the fastest expected speed 1 (two particles head-on), from the fastest particle now"),
+        "{stdout}"
+    );
+    let out = regolith(
+        &dir,
+        &["check", deck, "-var", "frac", "0.2", "-var", "soften", "10"],
+        None,
+    );
+    let stdout = text(&out.stdout);
+    assert!(stdout.contains("Rayleigh time 0.000473131 s\n"), "{stdout}");
+    assert!(
+        stdout.contains("types 1-1: dt is 20.0 % of the Rayleigh time and 12.6 % of the Hertz contact time 0.000751837 s"),
+        "{stdout}"
+    );
+    // a run says it on standard error: the screen and log keep LIGGGHTS's lines
+    let out = regolith(&dir, &["-in", deck, "-log", "none"], None);
+    assert_eq!(out.status.code(), Some(0));
+    let stderr = text(&out.stderr);
+    assert!(
+        stderr.starts_with("Time-step margin (regolith; dt = 1.00244e-06 s):\n"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("0.33 % of the Hertz contact time"),
+        "{stderr}"
+    );
+    assert!(!text(&out.stdout).contains("margin"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -533,6 +533,25 @@ fn a_piston_squeezing_a_soft_bed_warns_and_runs_to_the_end() {
         }
     }
     assert!(!out.stdout.contains("nan") && !out.stdout.contains("inf"));
+    // the run header on standard error names the composed contact models and their history:
+    // tangential history keeps 3 doubles (the shear displacement), epsd 3 more (the rolling
+    // spring), sjkr none; the pair's history is per listed pair
+    let e = &out.stderr;
+    assert!(e.contains("Contact models (regolith):\n  pair_style gran: normal hertz, tangential history, cohesion sjkr, rolling epsd; history 6 doubles (48 bytes) per neighbour pair, "), "{e}");
+    assert!(e.contains("\n  fix floor (wall/gran primitive): normal hertz, tangential history, cohesion sjkr, rolling epsd; history 6 doubles (48 bytes) per particle\n"), "{e}");
+    assert!(e.contains("\n  fix front (wall/gran primitive): normal hertz, tangential history; history 3 doubles (24 bytes) per particle\n"), "{e}");
+    let listed = e.split("per neighbour pair, ").nth(1).unwrap();
+    let pairs: f64 = listed.split(' ').next().unwrap().parse().unwrap();
+    let bytes: f64 = listed
+        .split("listed now: ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|t| t.parse().ok())
+        .unwrap();
+    assert!(pairs > 320.0, "{listed}");
+    assert!((bytes - 48.0 * pairs / 320.0).abs() < 0.1, "{listed}");
+    // and the time-step margin of the piston run (dt 5e-6 s, fix push at 10 m/s)
+    assert!(e.contains("from fix push (move linear)"), "{e}");
 }
 
 /// Issue 16: `thermo_modify lost error` names the lost atoms (ID, position, velocity, step);

@@ -1071,6 +1071,9 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         // a dry run validates the deck but never steps: it makes LIGGGHTS's init checks, keeps
         // the restart files the run would write, and moves the step count to the run's end
         ctx.sim.check_run().map_err(|m| a.error(0, &m))?;
+        if let Some(m) = ctx.sim.new_margin() {
+            ctx.sim.margin_notes.push(m);
+        }
         if ctx.sim.restart_output.iter().any(Option::is_some) {
             ctx.sim.check_restart_size().map_err(|m| a.error(0, &m))?;
         }

@@ -11,6 +11,7 @@ pub mod fixes;
 pub mod granular;
 pub mod insert;
 pub mod integrate;
+pub mod margin;
 pub mod mesh;
 pub mod mesh_motion;
 pub mod mesh_stress;

@@ -227,6 +227,11 @@ pub struct Simulation {
     /// What the guards have seen in this run that does not stop it (warned once, summed up
     /// at the run's end).
     pub(crate) guard_notes: GuardNotes,
+    /// The time-step margin said last (a run says it again only when it changed).
+    pub margin_said: Option<String>,
+    /// A dry run's time-step margins, one per `run` where it changed (`regolith check`
+    /// prints them).
+    pub margin_notes: Vec<String>,
     /// A run has been set up before (`run ... pre no` only skips setup after the first).
     pub has_run: bool,
     /// `read_restart` read fix states that the next run's setup consumes (LIGGGHTS's
@@ -355,6 +360,8 @@ impl Default for Simulation {
             mesh_rebuild_at: None,
             energy_watch: None,
             guard_notes: GuardNotes::default(),
+            margin_said: None,
+            margin_notes: Vec::new(),
             has_run: false,
             particles: Particles::default(),
             domain: Domain::default(),
@@ -651,6 +658,27 @@ impl Simulation {
             return Err(self.non_finite(i));
         }
         let (energy, per_step, fastest) = self.motion_scan();
+        if !energy.is_finite() {
+            // finite velocities whose squares overflow: a state no step can carry on from
+            let p = &self.particles;
+            let kinetic = |i: usize| {
+                let v = p.v[i];
+                0.5 * p.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+            };
+            let i = (0..p.len())
+                .find(|&i| !kinetic(i).is_finite())
+                .or((fastest < p.len()).then_some(fastest))
+                .unwrap_or(0);
+            return Err(format!(
+                "blow-up at step {}: the kinetic energy is not finite (bound: finite); atom {} has v = {:?} and mass {}, and 0.5 m |v|^2 = {}; {}",
+                self.step,
+                p.id[i],
+                p.v[i],
+                p.mass[i],
+                kinetic(i),
+                self.blow_up_cause(i)
+            ));
+        }
         if setup || self.energy_watch.is_none() {
             self.energy_watch = Some((self.step, energy));
             return Ok(());
@@ -732,6 +760,18 @@ impl Simulation {
             }
         }
         Ok(())
+    }
+
+    /// The time-step margin and the composed contact models (see [`crate::engine::margin`])
+    /// when they differ from those said last; None when unchanged or when there is nothing
+    /// to say.
+    pub fn new_margin(&mut self) -> Option<String> {
+        let m = self.timestep_margin() + &self.contact_models();
+        if m.is_empty() || self.margin_said.as_deref() == Some(m.as_str()) {
+            return None;
+        }
+        self.margin_said = Some(m.clone());
+        Some(m)
     }
 
     /// At a run's end: how often the guards' warnings recurred, and the worst case.
@@ -1809,6 +1849,9 @@ impl Simulation {
             self.guard_forces()?;
         }
         self.has_run = true;
+        if let Some(m) = self.new_margin() {
+            guard_say(&m);
+        }
         if self.accel.fast {
             self.say_unaccelerated(out);
         }

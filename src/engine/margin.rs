@@ -1,0 +1,334 @@
+//! The time-step margin a deck runs at (issue 16): the time step as a percentage of the
+//! Rayleigh time of each material pair and of its Hertz contact time at the fastest speed the
+//! deck can be expected to reach. `regolith check` prints it; a run prints it on standard
+//! error (the screen and log keep LIGGGHTS's lines). LIGGGHTS says nothing of this unless the
+//! deck asks (`fix check/timestep/gran`).
+
+use crate::engine::fixes::{FixKind, Motion};
+use crate::engine::insert::Velocity;
+use crate::engine::sim::Simulation;
+use std::f64::consts::PI;
+
+/// The Rayleigh time of a sphere of radius `r` and density `rho` of a material with Young's
+/// modulus `e` and Poisson ratio `nu`: pi r sqrt(rho / G) / (0.1631 nu + 0.8766), with the
+/// shear modulus G = E / (2 (1 + nu)).
+pub fn rayleigh_time(r: f64, rho: f64, e: f64, nu: f64) -> f64 {
+    let g = e / (2.0 * (1.0 + nu));
+    PI * r * (rho / g).sqrt() / (0.1631 * nu + 0.8766)
+}
+
+/// The contact time of an undamped Hertz collision of two spheres (radii `r1`, `r2`,
+/// densities `rho1`, `rho2`, effective Young's modulus `yeff`) at impact speed `v`:
+/// 2.87 (m*^2 / (R* Y*^2 v))^(1/5), m* and R* the reduced mass and radius.
+pub fn hertz_time(r1: f64, rho1: f64, r2: f64, rho2: f64, yeff: f64, v: f64) -> f64 {
+    let m = |r: f64, rho: f64| 4.0 / 3.0 * PI * r * r * r * rho;
+    let (m1, m2) = (m(r1, rho1), m(r2, rho2));
+    let meff = m1 * m2 / (m1 + m2);
+    let reff = r1 * r2 / (r1 + r2);
+    2.87 * (meff * meff / (reff * yeff * yeff * v)).powf(0.2)
+}
+
+/// The fastest speed a deck can be expected to reach, and where it comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExpectedSpeed {
+    /// Speed (length/time).
+    pub value: f64,
+    /// What gives it ("free fall over the box height (0.5 m)", "fix push (move linear)", ...).
+    pub source: String,
+}
+
+/// One atom type's smallest particle: (radius, density).
+type Size = (f64, f64);
+
+fn g(x: f64) -> String {
+    crate::script::format::g(x)
+}
+
+fn pct(x: f64) -> String {
+    if x >= 10.0 {
+        format!("{x:.1} %")
+    } else if x >= 0.1 {
+        format!("{x:.2} %")
+    } else {
+        format!("{} %", g(x))
+    }
+}
+
+impl Simulation {
+    /// Per atom type (index type - 1): the particle (present or from a particle template)
+    /// with the shortest Rayleigh time, as (radius, density); None for a type without any.
+    fn type_sizes(&self) -> Vec<Option<Size>> {
+        let n = self.ntypes.max(0) as usize;
+        let mut sizes: Vec<Option<Size>> = vec![None; n];
+        let mut offer = |t: usize, r: f64, rho: f64| {
+            if t == 0 || t > n || !(r > 0.0 && rho > 0.0) {
+                return;
+            }
+            // the Rayleigh time grows as r sqrt(rho)
+            let key = |s: Size| s.0 * s.1.sqrt();
+            if sizes[t - 1].is_none_or(|s| key((r, rho)) < key(s)) {
+                sizes[t - 1] = Some((r, rho));
+            }
+        };
+        let p = &self.particles;
+        for i in 0..p.len() {
+            offer(p.kind[i] as usize, p.radius[i], p.density[i]);
+        }
+        for f in &self.fixes {
+            if let FixKind::Template(t) = &f.kind {
+                offer(t.atom_type as usize, t.radius, t.density);
+            }
+        }
+        sizes
+    }
+
+    /// The fastest speed the deck can be expected to reach: the fastest particle now, the
+    /// insertion velocities, prescribed motion (`fix move linear`), a sheared wall, and free
+    /// fall over the box height under `fix gravity`.
+    pub fn expected_speed(&self) -> ExpectedSpeed {
+        let mut best = ExpectedSpeed {
+            value: 0.0,
+            source: "no particle moves and nothing drives them".into(),
+        };
+        let mut offer = |v: f64, source: String| {
+            if v.is_finite() && v > best.value {
+                best = ExpectedSpeed { value: v, source };
+            }
+        };
+        let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        let p = &self.particles;
+        if let Some(i) = (0..p.len()).max_by(|&a, &b| norm(p.v[a]).total_cmp(&norm(p.v[b]))) {
+            offer(
+                norm(p.v[i]),
+                format!("the fastest particle now (atom {})", p.id[i]),
+            );
+        }
+        let insertion = |v: &Velocity| match v {
+            Velocity::Constant(v) => norm(*v),
+            Velocity::Uniform(v, d) | Velocity::Gaussian(v, d) => norm(*v) + norm(*d),
+        };
+        for f in &self.fixes {
+            match &f.kind {
+                FixKind::Gravity(grav) => {
+                    let a = norm(grav.acc);
+                    if a > 0.0 {
+                        let h: f64 = (0..3)
+                            .map(|d| grav.acc[d].abs() / a * self.domain.length(d))
+                            .sum();
+                        offer(
+                            (2.0 * a * h).sqrt(),
+                            format!("free fall over the box height ({} at {})", g(h), g(a)),
+                        );
+                    }
+                }
+                FixKind::Move(m) => {
+                    if let Motion::Linear(v) = &m.motion {
+                        offer(
+                            norm(v.map(|c| c.unwrap_or(0.0))),
+                            format!("fix {} (move linear)", f.id),
+                        );
+                    }
+                }
+                FixKind::InsertPack(ins) => {
+                    offer(
+                        insertion(&ins.velocity),
+                        format!("fix {} (insertion velocity)", f.id),
+                    );
+                }
+                FixKind::InsertStream(s) => {
+                    offer(
+                        insertion(&s.velocity),
+                        format!("fix {} (insertion velocity)", f.id),
+                    );
+                }
+                FixKind::WallGran(w) => {
+                    if let Some((_, v)) = w.shear {
+                        offer(v.abs(), format!("fix {} (wall shear)", f.id));
+                    }
+                }
+                _ => {}
+            }
+        }
+        best
+    }
+
+    /// The time-step margin, as lines of text (each ending in a newline); empty when the deck
+    /// has no granular pair style, no Young's modulus and Poisson ratio per type, or no
+    /// particle sizes yet.
+    pub fn timestep_margin(&self) -> String {
+        let Some(sel) = &self.pair_selection else {
+            return String::new();
+        };
+        let table = |name: &str| self.property(name).map(|(_, _, v)| v);
+        let (Some(e), Some(nu)) = (table("youngsModulus"), table("poissonsRatio")) else {
+            return String::new();
+        };
+        let sizes = self.type_sizes();
+        let n = sizes.len().min(e.len()).min(nu.len());
+        let dt = self.dt.abs();
+        if n == 0 || !(dt > 0.0) || sizes.iter().all(Option::is_none) {
+            return String::new();
+        }
+        let speed = self.expected_speed();
+        // two particles meeting head-on, each at the fastest expected speed
+        let impact = 2.0 * speed.value;
+        let hertz = sel.normal == "hertz" || sel.normal == "hertz/stiffness";
+        let mut s = format!("Time-step margin (regolith; dt = {} s):\n", g(self.dt));
+        for (t, size) in sizes.iter().enumerate().take(n) {
+            if let Some((r, rho)) = size {
+                s.push_str(&format!(
+                    "  type {}: radius {}, density {}, E {}, nu {}: Rayleigh time {} s\n",
+                    t + 1,
+                    g(*r),
+                    g(*rho),
+                    g(e[t]),
+                    g(nu[t]),
+                    g(rayleigh_time(*r, *rho, e[t], nu[t]))
+                ));
+            }
+        }
+        for i in 0..n {
+            for j in i..n {
+                let (Some((ri, rhoi)), Some((rj, rhoj))) = (sizes[i], sizes[j]) else {
+                    continue;
+                };
+                // the pair's Rayleigh time: the shorter of its two types'
+                let tr =
+                    rayleigh_time(ri, rhoi, e[i], nu[i]).min(rayleigh_time(rj, rhoj, e[j], nu[j]));
+                s.push_str(&format!(
+                    "  types {}-{}: dt is {} of the Rayleigh time",
+                    i + 1,
+                    j + 1,
+                    pct(100.0 * dt / tr),
+                ));
+                if hertz && impact > 0.0 {
+                    let yeff = crate::engine::contact::material::mix_yeff(e[i], e[j], nu[i], nu[j]);
+                    let th = hertz_time(ri, rhoi, rj, rhoj, yeff, impact);
+                    s.push_str(&format!(
+                        " and {} of the Hertz contact time {} s at impact speed {}",
+                        pct(100.0 * dt / th),
+                        g(th),
+                        g(impact)
+                    ));
+                }
+                s.push('\n');
+            }
+        }
+        if hertz {
+            if impact > 0.0 {
+                s.push_str(&format!(
+                    "  impact speed: twice the fastest expected speed {} (two particles head-on), from {}\n",
+                    g(speed.value),
+                    speed.source
+                ));
+            } else {
+                s.push_str(&format!("  no Hertz contact time: {}\n", speed.source));
+            }
+        }
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn contact_times_by_hand() {
+        // lunar material, R = 1.25 mm: G = 5e6 / 2.4 = 2.08333e6 Pa, sqrt(2500 / G) = 0.0346410,
+        // pi R 0.0346410 / (0.1631 * 0.2 + 0.8766) = 1.360350e-4 / 0.90922 = 1.496172e-4 s
+        let t = rayleigh_time(0.00125, 2500.0, 5e6, 0.2);
+        assert!((t / 1.496172e-4 - 1.0).abs() < 1e-6, "{t}");
+        // two such spheres meeting at 2 m/s: m = 2.045308e-5 kg, m* = m / 2, R* = 6.25e-4 m,
+        // Y* = 5e6 / (2 (1 - 0.04)) = 2.604167e6 Pa:
+        // 2.87 (m*^2 / (R* Y*^2 v))^(1/5) = 2.87 (1.045822e-10 / 8.477105e9)^(1/5) = 2.993118e-4 s
+        let y = 5e6 / (2.0 * (1.0 - 0.04));
+        let th = hertz_time(0.00125, 2500.0, 0.00125, 2500.0, y, 2.0);
+        assert!((th / 2.993118e-4 - 1.0).abs() < 1e-6, "{th}");
+    }
+}
+
+/// A contact model's sub-models, as LIGGGHTS's keywords name them.
+fn composed(sel: &crate::engine::granular::Selection) -> String {
+    let mut s = format!("normal {}, tangential {}", sel.normal, sel.tangential);
+    if sel.cohesion != "off" {
+        s.push_str(&format!(", cohesion {}", sel.cohesion));
+    }
+    if sel.rolling != "off" {
+        s.push_str(&format!(", rolling {}", sel.rolling));
+    }
+    if sel.surface != "default" {
+        s.push_str(&format!(", surface {}", sel.surface));
+    }
+    s
+}
+
+fn doubles(w: usize) -> String {
+    let unit = if w == 1 { "double" } else { "doubles" };
+    format!("{w} {unit} ({} bytes)", 8 * w)
+}
+
+impl Simulation {
+    /// The composed contact models of the pair style and of each granular wall, with their
+    /// contact-history widths and the history's bytes per particle (the pair's from the
+    /// listed pairs at this moment); empty without contact models. Models are built at a
+    /// run's setup, so a run (not a dry run) reports widths.
+    pub fn contact_models(&self) -> String {
+        let mut lines = Vec::new();
+        let n = self.particles.len();
+        if let Some(sel) = &self.pair_selection {
+            let mut line = format!("  pair_style gran: {}", composed(sel));
+            if let Some(pair) = &self.pair {
+                let w = pair.history_width();
+                line.push_str(&format!("; history {} per neighbour pair", doubles(w)));
+                if w > 0 && n > 0 {
+                    let pairs = self.list.pairs.len();
+                    line.push_str(&format!(
+                        ", {} pairs listed now: {} bytes per particle",
+                        pairs,
+                        g((8 * w * pairs) as f64 / n as f64)
+                    ));
+                }
+            }
+            lines.push(line);
+        }
+        for f in &self.fixes {
+            match &f.kind {
+                FixKind::WallGran(w) => {
+                    let mut line = format!(
+                        "  fix {} (wall/gran primitive): {}",
+                        f.id,
+                        composed(&w.selection)
+                    );
+                    if let Some(m) = &w.model {
+                        line.push_str(&format!(
+                            "; history {} per particle",
+                            doubles(m.history_width())
+                        ));
+                    }
+                    lines.push(line);
+                }
+                FixKind::MeshWall(w) => {
+                    let mut line = format!(
+                        "  fix {} (wall/gran mesh {}): {}",
+                        f.id,
+                        w.meshes.join(" "),
+                        composed(&w.selection)
+                    );
+                    if w.model.is_some() {
+                        line.push_str(&format!(
+                            "; history {} per contact with a triangle",
+                            doubles(w.history_width())
+                        ));
+                    }
+                    lines.push(line);
+                }
+                _ => {}
+            }
+        }
+        if lines.is_empty() {
+            return String::new();
+        }
+        format!("Contact models (regolith):\n{}\n", lines.join("\n"))
+    }
+}

@@ -285,4 +285,5 @@ pub const SUPPORTED_COMMANDS: &[&str] = &[
     "unfix",
     "units",
     "velocity",
+    "write_dump",
 ];

@@ -216,6 +216,8 @@ enum StressPhase {
 
 /// Everything the engine simulates.
 pub struct Simulation {
+    /// State of the commands added for researchers' decks (issue 15).
+    pub extras: crate::engine::extras::Extras,
     /// An insertion fix has been defined (a check run cannot know the atoms it adds).
     pub inserts_atoms: bool,
     /// `restart N ROOT` and `restart N FILE1 FILE2` (both may be active).
@@ -340,6 +342,7 @@ pub struct Simulation {
 impl Default for Simulation {
     fn default() -> Self {
         Simulation {
+            extras: Default::default(),
             inserts_atoms: false,
             restart_output: [None, None],
             pending_history: None,
@@ -1156,7 +1159,7 @@ impl Simulation {
 
     /// The material inputs from the `fix property/global` definitions (each present one,
     /// whether or not a model will ask for it).
-    fn material_input(&self) -> crate::engine::contact::MaterialInput {
+    pub(crate) fn material_input(&self) -> crate::engine::contact::MaterialInput {
         let table = |name: &str| self.property(name).map(|(_, _, v)| v);
         let scalar = |name: &str| table(name).and_then(|v| v.first().copied());
         crate::engine::contact::MaterialInput {
@@ -2462,7 +2465,11 @@ impl Simulation {
         Ok(())
     }
 
-    fn write_dumps(&mut self, setup: bool, vars: &mut dyn VariableSource) -> Result<(), String> {
+    pub(crate) fn write_dumps(
+        &mut self,
+        setup: bool,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), String> {
         let step = self.step;
         // a local compute is evaluated once per step, however many columns and dumps use it
         let mut local_rows: std::collections::HashMap<String, std::rc::Rc<(usize, Vec<f64>)>> =

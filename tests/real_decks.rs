@@ -201,3 +201,38 @@ fn cfd_coupling_and_sph_are_said_plainly() {
         text(&out.stdout)
     );
 }
+
+#[test]
+fn check_stops_blaming_lines_after_an_error() {
+    // LIGGGHTS stops at the missing restart file: the box-less lines after it are not errors
+    let dir = scratch("aftererror");
+    std::fs::write(
+        dir.join("in.t"),
+        "atom_style granular\nread_restart missing.restart\nfix g all gravity 9.81 vector 0 0 -1\nrun 10\n",
+    )
+    .unwrap();
+    let out = regolith(&dir, &["check", "in.t"]);
+    let stdout = text(&out.stdout);
+    assert_eq!(stdout.lines().count(), 1, "{stdout}");
+    assert!(
+        stdout.starts_with("in.t:2: Cannot open restart file missing.restart"),
+        "{stdout}"
+    );
+    assert_eq!(out.status.code(), Some(1));
+}
+
+#[test]
+fn thermo_log_and_modify_timing_arguments() {
+    let dir = scratch("thermolog");
+    for (body, needle) in [
+        ("thermo_log a.log extra", "Illegal thermo_log command"),
+        ("thermo_log", "Illegal thermo_log command"),
+        ("modify_timing sometimes", "Illegal modify_timing command"),
+    ] {
+        std::fs::write(dir.join("in.t"), format!("{HEAD}{body}\n")).unwrap();
+        let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+        let err = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{body}: {err}");
+        assert!(err.contains(needle), "{body}: {err}");
+    }
+}

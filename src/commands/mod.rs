@@ -6,6 +6,7 @@ pub mod args;
 pub mod computes_extra;
 pub mod diverged;
 pub mod fix_state;
+pub mod logs;
 pub mod material_check;
 pub mod names;
 pub mod out_of_scope;
@@ -222,6 +223,9 @@ impl Engine {
                     // the dry run's state no longer matches LIGGGHTS's: this error may be an
                     // artefact of something skipped earlier, so only names are held against it
                     return Ok(());
+                } else if check {
+                    // LIGGGHTS stops here: what follows sees a state it never reaches
+                    self.diverged = true;
                 }
             }
             return result;

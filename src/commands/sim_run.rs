@@ -44,6 +44,8 @@ pub fn execute(name: &str, a: &Args, ctx: &mut Ctx) -> Option<Result> {
         "pair_coeff" => pair_coeff(a, ctx),
         "soft_particles" | "hard_particles" => soft_hard(name, a, ctx),
         "write_dump" => super::write_dump::write_dump(a, ctx),
+        "thermo_log" => super::logs::thermo_log(a, ctx),
+        "modify_timing" => super::logs::modify_timing(a, ctx),
         _ => return None,
     })
 }

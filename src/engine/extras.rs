@@ -21,6 +21,19 @@ pub struct Origin {
 pub struct Extras {
     /// `fix property/global NAME ...`: the line that last defined each property name.
     pub property_origins: HashMap<String, Origin>,
+    /// `thermo_log FILE`: thermo headers and lines also go to this file.
+    pub thermo_file: Option<std::fs::File>,
+    /// `modify_timing off|on|verbose` (0, 1, 2).
+    pub modify_timing: u8,
+}
+
+/// Copy thermo output to the `thermo_log` file, if one is open.
+pub fn tee(file: &mut Option<std::fs::File>, text: &str) {
+    use std::io::Write;
+    if let Some(f) = file {
+        // a failing thermo log must not stop the run (LIGGGHTS ignores fprintf's result)
+        let _ = f.write_all(text.as_bytes());
+    }
 }
 
 impl crate::engine::sim::Simulation {

@@ -1689,7 +1689,11 @@ impl Simulation {
         self.setup_averages(vars)?;
         self.thermo.run_start = first;
         self.thermo.prepare_run(self.domain.shrinks());
-        self.thermo.header(out);
+        let thermo_file = &mut self.extras.thermo_file;
+        self.thermo.header(&mut |s: &str| {
+            out(s);
+            crate::engine::extras::tee(thermo_file, s)
+        });
         self.thermo_line(out, vars)?;
         self.write_dumps(true, vars)?;
         self.loop_clock = Some(std::time::Instant::now());
@@ -2396,7 +2400,11 @@ impl Simulation {
             ));
         }
         let cpu = self.loop_clock.map_or(0.0, |t| t.elapsed().as_secs_f64());
-        self.thermo.line(&values, self.step, cpu, out);
+        let thermo_file = &mut self.extras.thermo_file;
+        self.thermo.line(&values, self.step, cpu, &mut |s: &str| {
+            out(s);
+            crate::engine::extras::tee(thermo_file, s)
+        });
         Ok(())
     }
 

@@ -257,8 +257,12 @@ pub fn support_table(
                 .or_default()
                 .push(line);
         }
+        let sph = diagnostics
+            .iter()
+            .any(|d| d.message.contains("out of scope: SPH"));
         let status = match status_of(&diagnostics) {
             ExitStatus::Success => "runs",
+            ExitStatus::Unsupported if sph => "out of scope (SPH)",
             ExitStatus::Unsupported => "unsupported",
             _ => "invalid",
         };

@@ -3,12 +3,20 @@
 //! ([`crate::script::interp`]); everything else arrives here as a [`CommandLine`].
 
 pub mod args;
+pub mod computes_extra;
+pub mod diverged;
 pub mod fix_state;
+pub mod logs;
+pub mod material_check;
 pub mod names;
+pub mod out_of_scope;
 pub mod registry;
+pub mod set;
 pub mod sim_run;
 pub mod sim_setup;
 pub mod suggest;
+pub mod velocity_vars;
+pub mod write_dump;
 
 use crate::engine::sim::Simulation;
 use crate::error::{Diagnostic, Location};
@@ -162,14 +170,17 @@ impl Engine {
             vars,
         };
         if let Some(run) = registry::handler(cmd.name()) {
-            let result = run(&args, &mut ctx);
+            let result = run(&args, &mut ctx).map_err(|d| out_of_scope::explain(cmd, d));
             if let Err(d) = &result {
                 if check && d.severity == crate::error::Severity::Unsupported {
                     self.diverged = true;
-                } else if check && self.diverged {
+                } else if check && self.diverged && !diverged::stands_alone(d) {
                     // the dry run's state no longer matches LIGGGHTS's: this error may be an
                     // artefact of something skipped earlier, so only names are held against it
                     return Ok(());
+                } else if check {
+                    // LIGGGHTS stops here: what follows sees a state it never reaches
+                    self.diverged = true;
                 }
             }
             return result;
@@ -177,8 +188,11 @@ impl Engine {
         if check {
             self.diverged = true;
         }
-        Err(Diagnostic::unsupported(registry::feature_name(cmd))
-            .with_source(&cmd.text, Some(registry::feature_span(cmd))))
+        Err(out_of_scope::explain(
+            cmd,
+            Diagnostic::unsupported(registry::feature_name(cmd))
+                .with_source(&cmd.text, Some(registry::feature_span(cmd))),
+        ))
     }
 
     /// Check a command's names without executing it (supported commands pass).
@@ -187,7 +201,10 @@ impl Engine {
         if registry::is_supported(cmd) {
             return Ok(());
         }
-        Err(Diagnostic::unsupported(registry::feature_name(cmd)))
+        Err(out_of_scope::explain(
+            cmd,
+            Diagnostic::unsupported(registry::feature_name(cmd)),
+        ))
     }
 
     /// True if a `fix property/global` with this variable name exists (the `if property_X` test).

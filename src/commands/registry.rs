@@ -268,6 +268,7 @@ pub const FIX_STYLES: &[&str] = &[
     "mesh/surface/stress",
     "move",
     "move/mesh",
+    "nve/noforce",
     "nve/sphere",
     "particledistribution/discrete",
     "particledistribution/discrete/massbased",

@@ -32,6 +32,9 @@ pub const COMMANDS: &[(&str, Handler)] = &[
     ("hard_particles", |a, ctx| {
         soft_hard("hard_particles", a, ctx)
     }),
+    ("write_dump", super::write_dump::write_dump),
+    ("thermo_log", super::logs::thermo_log),
+    ("modify_timing", super::logs::modify_timing),
 ];
 
 fn fix(a: &Args, ctx: &mut Ctx) -> Result {
@@ -50,6 +53,12 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
     registry::require_style(a, "fix")?;
     let kind = 'style: {
         match style {
+            "nve/noforce" => {
+                if a.len() != 3 {
+                    return Err(a.error(3, "Illegal fix nve/noforce command"));
+                }
+                FixKind::NveNoforce
+            }
             "nve/sphere" => {
                 if a.len() > 3 {
                     return Err(a.unsupported(3, "fix nve/sphere keywords"));
@@ -136,6 +145,7 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                 for i in first_value..a.len() {
                     a.real(i)?;
                 }
+                super::material_check::remember(a, ctx);
                 FixKind::Settings
             }
             "mesh/surface" | "mesh/surface/planar" | "mesh/surface/stress" => {
@@ -155,7 +165,10 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                 insert_stream(a, ctx, &id)?
             }
             "wall/gran" => {
-                let (selection, next) = gran_models(a, 3, "history", "fix wall/gran")?;
+                let (selection, next, pending) = gran_models(a, 3, "history", "fix wall/gran")?;
+                if let Some(d) = pending {
+                    return Err(d);
+                }
                 if a.word(next)? == "mesh" {
                     break 'style mesh_wall(a, ctx, group, selection, next)?;
                 }
@@ -711,7 +724,7 @@ fn thermo_modify(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
-fn dump(a: &Args, ctx: &mut Ctx) -> Result {
+pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(5..=usize::MAX, "dump ID GROUP custom N FILE columns...")?;
     let (id, group, style) = (a.word(0)?, a.word(1)?, a.word(2)?);
     let bit = ctx
@@ -931,7 +944,15 @@ fn dump(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
-fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
+/// `ID` or `ID[N]` of a `c_`/`f_` reference: the ID and the 1-based index.
+pub fn split_reference(body: &str) -> Option<(&str, Option<usize>)> {
+    match body.split_once('[') {
+        Some((id, rest)) => Some((id, Some(rest.strip_suffix(']')?.parse().ok()?))),
+        None => Some((body, None)),
+    }
+}
+
+pub(super) fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(3..=usize::MAX, "dump_modify ID keyword value ...")?;
     let id = a.word(0)?;
     let k = ctx
@@ -1067,6 +1088,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     if stop.is_some_and(|s| s < ctx.sim.step + nsteps) {
         return Err(a.error(0, "Run command stop value is before end of run"));
     }
+    super::material_check::validate(a, ctx)?;
     if ctx.sys.mode == Mode::Check {
         // a dry run validates the deck but never steps: it makes LIGGGHTS's init checks, keeps
         // the restart files the run would write, and moves the step count to the run's end
@@ -1148,12 +1170,20 @@ fn keep_periodic_restarts(ctx: &mut Ctx, nsteps: i64) {
 /// Parse `model M tangential T ... [option on|off ...]` starting at argument `start` in
 /// LIGGGHTS's fixed keyword order; returns the selection and the index after the on/off
 /// settings. Without a `tangential` keyword the model is `default_tangential`.
+#[allow(clippy::type_complexity)]
 fn gran_models(
     a: &Args,
     start: usize,
     default_tangential: &str,
     what: &str,
-) -> std::result::Result<(crate::engine::granular::Selection, usize), Diagnostic> {
+) -> std::result::Result<
+    (
+        crate::engine::granular::Selection,
+        usize,
+        Option<Diagnostic>,
+    ),
+    Diagnostic,
+> {
     use crate::engine::granular::Selection;
     let words: Vec<&str> = (start..a.len())
         .map(|i| a.word(i))
@@ -1192,27 +1222,48 @@ fn gran_models(
             w => w,
         })
         .collect();
-    sel.apply_settings(&settings).map_err(|m| {
-        a.error(start + used, &m).with_help(format!(
-            "{what}: model keywords go in the order model, tangential, cohesion, rolling_friction, surface, then on/off settings"
-        ))
-    })?;
+    let mut pending = None;
+    if let Err(m) = sel.apply_settings(&settings) {
+        match m.strip_suffix(" is not supported by regolith") {
+            // a valid LIGGGHTS setting regolith cannot run: the rest of the style stands
+            Some(setting) => {
+                let at = (start + used..start + end)
+                    .find(|&i| setting.starts_with(&format!("'{} ", a.word(i).unwrap_or(""))))
+                    .unwrap_or(start + used);
+                pending = Some(a.unsupported(
+                    at,
+                    &format!("{what} setting {}", setting.trim_matches('\'')),
+                ));
+            }
+            None => {
+                return Err(a.error(start + used, &m).with_help(format!(
+                    "{what}: model keywords go in the order model, tangential, cohesion, rolling_friction, surface, then on/off settings"
+                )))
+            }
+        }
+    }
     crate::engine::contact::AnyContactModel::new(&sel).map_err(|m| {
         let m = m.trim_end_matches(" is not supported by regolith");
         a.unsupported(start, &format!("{what} {m}"))
     })?;
-    Ok((sel, start + end))
+    Ok((sel, start + end, pending))
 }
 
 fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(1..=usize::MAX, "pair_style gran model M tangential T ...")?;
-    registry::require_style(a, "pair_style")?;
-    let (sel, next) = gran_models(a, 1, "no_history", "pair_style gran")?;
+    if a.word(0)? != "gran" {
+        return Err(a.unsupported(0, &format!("pair_style {}", a.word(0)?)));
+    }
+    let (sel, next, pending) = gran_models(a, 1, "no_history", "pair_style gran")?;
     if next < a.len() {
         return Err(a.unsupported(next, &format!("pair_style gran option {}", a.word(next)?)));
     }
     ctx.sim.pair_selection = Some(sel);
     ctx.sim.pair_coeff_set = false;
+    if let Some(d) = pending {
+        // the style is defined (so `pair_coeff` is not refused), only this setting is reported
+        return Err(d);
+    }
     // the per-type-pair tables this pair style needs must fit the machine (the style stays
     // defined, so that a dry run does not also report every later pair command)
     let n = ctx.sim.ntypes.max(1) as f64;
@@ -1276,6 +1327,18 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
     registry::require_style(a, "compute")?;
     let kind = match style {
         "erotate/sphere" => no_keywords(ComputeKind::ErotateSphere)?,
+        // LIGGGHTS's `erotate` sums erotate/sphere (and multisphere) of its group
+        "erotate" => {
+            if ctx.sim.computes.iter().any(|c| c.style == "erotate") {
+                // each adds an internal compute `erotate_sphere_`
+                return Err(a.error(0, "Reuse of compute ID").with_help(
+                    "LIGGGHTS 3.8.0's compute erotate defines an internal compute \
+                     erotate_sphere_, so a deck can have only one; use compute erotate/sphere",
+                ));
+            }
+            no_keywords(ComputeKind::ErotateSphere)?
+        }
+        "pe" => super::computes_extra::pe(a, ctx)?,
         "ke" => no_keywords(ComputeKind::Ke)?,
         "ke/atom" => no_keywords(ComputeKind::KeAtom)?,
         "contact/atom" => {
@@ -1928,7 +1991,9 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
     }
     let d = &ctx.sim.domain;
     let size = (0..3).map(|k| d.length(k)).fold(0.0, f64::max);
-    crate::io::stl::check(&triangles, &file, Some(size)).map_err(|m| a.error(4, &m))?;
+    for w in crate::io::stl::check(&triangles, &file, Some(size)).map_err(|m| a.error(4, &m))? {
+        ctx.say(&format!("WARNING: {w}\n"));
+    }
     if style == "mesh/surface/planar" {
         let n0 = crate::io::stl::normal(&triangles[0]);
         let p0 = triangles[0][0];
@@ -2311,11 +2376,21 @@ fn distribution(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
                 )
             })?;
         let w = a.real(6 + 2 * k)?;
-        if w <= 0.0 {
-            return Err(a.error(6 + 2 * k, &format!("Fix {style}: weights must be > 0")));
+        // LIGGGHTS refuses only negative weights (a zero weight never inserts its template)
+        if w < 0.0 {
+            return Err(a.error(
+                6 + 2 * k,
+                &format!("Fix {style}: invalid weight (must be >= 0)"),
+            ));
         }
         templates.push(t);
         weights.push(w);
+    }
+    if weights.iter().all(|&w| w == 0.0) {
+        return Err(a.error(
+            6,
+            &format!("Fix {style}: all weights are 0, nothing to insert"),
+        ));
     }
     let number_based = style.ends_with("numberbased");
     crate::engine::insert::Distribution::new(seed, templates, &weights, number_based)

@@ -30,7 +30,7 @@ pub const COMMANDS: &[(&str, Handler)] = &[
     ("lattice", lattice),
     ("displace_atoms", displace_atoms),
     ("delete_atoms", delete_atoms),
-    ("set", set),
+    ("set", super::set::set),
     ("group", group),
     ("velocity", velocity),
     ("neighbor", neighbor),
@@ -711,7 +711,7 @@ fn delete_atoms(a: &Args, ctx: &mut Ctx) -> Result {
 }
 
 /// Atoms selected by `set atom|type|group|region ID`.
-fn selection(a: &Args, ctx: &Ctx) -> std::result::Result<Vec<usize>, Diagnostic> {
+pub(super) fn selection(a: &Args, ctx: &Ctx) -> std::result::Result<Vec<usize>, Diagnostic> {
     let p = &ctx.sim.particles;
     let what = a.word_in(0, &["atom", "type", "group", "region", "mol"])?;
     let id = a.word(1)?;
@@ -749,129 +749,6 @@ fn selection(a: &Args, ctx: &Ctx) -> std::result::Result<Vec<usize>, Diagnostic>
         }
         _ => return Err(a.unsupported(0, "set mol")),
     })
-}
-
-fn set(a: &Args, ctx: &mut Ctx) -> Result {
-    ctx.reshape_regions(false).map_err(|m| a.error(0, &m))?;
-    if !ctx.sim.domain.exists {
-        return Err(a.error(0, "Set command before simulation box is defined"));
-    }
-    a.count(
-        4..=usize::MAX,
-        "set atom|type|group|region ID keyword value ...",
-    )?;
-    let atoms = selection(a, ctx)?;
-    ctx.say("Setting atom values ...\n");
-    let mut i = 2;
-    while i < a.len() {
-        let key = a.word(i)?;
-        if key == "type/fraction" {
-            // each selected atom draws from a generator reseeded by its position
-            let t = a.int(i + 1)?;
-            let fraction = a.real(i + 2)?;
-            let seed = a.int(i + 3)?;
-            if t <= 0 || t > ctx.sim.ntypes as i64 || !(0.0..=1.0).contains(&fraction) {
-                return Err(a.error(i + 1, "Invalid value in set command"));
-            }
-            if seed <= 0 || seed > i32::MAX as i64 {
-                return Err(a.error(i + 3, "Invalid random number seed in set command"));
-            }
-            let mut rng =
-                crate::util::random::RanPark::new(12345787).map_err(|m| a.error(i + 3, &m))?;
-            let p = &mut ctx.sim.particles;
-            let mut count = 0;
-            for &k in &atoms {
-                rng.reset_at(seed as i32, p.x[k]);
-                if rng.uniform() > fraction {
-                    continue;
-                }
-                p.kind[k] = t as u32;
-                count += 1;
-            }
-            ctx.say(&format!("  {count} settings made for {key}\n"));
-            i += 4;
-            continue;
-        }
-        let value = a.real(i + 1)?;
-        let p = &mut ctx.sim.particles;
-        for &k in &atoms {
-            match key {
-                "diameter" => {
-                    if value < 0.0 {
-                        return Err(a.error(i + 1, "Invalid diameter in set command"));
-                    }
-                    crate::engine::checks::check_sphere(value, p.density[k], "diameter").map_err(
-                        |m| a.error(i + 1, &format!("Invalid diameter in set command: {m}")),
-                    )?;
-                    p.radius[k] = 0.5 * value * 1.0;
-                    if p.density[k] > 0.0 {
-                        let r = p.radius[k];
-                        p.mass[k] = 4.0 * std::f64::consts::PI / 3.0 * r * r * r * p.density[k];
-                    }
-                }
-                "density" => {
-                    if value <= 0.0 {
-                        return Err(a.error(i + 1, "Invalid density in set command"));
-                    }
-                    crate::engine::checks::check_sphere(2.0 * p.radius[k], value, "density")
-                        .map_err(|m| {
-                            a.error(i + 1, &format!("Invalid density in set command: {m}"))
-                        })?;
-                    p.density[k] = value;
-                    if p.radius[k] > 0.0 {
-                        let r = p.radius[k];
-                        p.mass[k] = 4.0 * std::f64::consts::PI / 3.0 * r * r * r * p.density[k];
-                    }
-                }
-                "mass" => {
-                    if value <= 0.0 {
-                        return Err(a.error(i + 1, "Invalid mass in set command"));
-                    }
-                    p.mass[k] = value;
-                }
-                "type" => {
-                    let t = value as i64;
-                    if t < 1 || t > ctx.sim.ntypes as i64 {
-                        return Err(a.error(i + 1, "Invalid value in set command"));
-                    }
-                    p.kind[k] = t as u32;
-                }
-                "x" => p.x[k][0] = value,
-                "y" => p.x[k][1] = value,
-                "z" => p.x[k][2] = value,
-                "vx" => p.v[k][0] = value,
-                "vy" => p.v[k][1] = value,
-                "vz" => p.v[k][2] = value,
-                "omegax" => p.omega[k][0] = value,
-                "omegay" => p.omega[k][1] = value,
-                "omegaz" => p.omega[k][2] = value,
-                _ => {
-                    return Err(a.keyword_error(
-                        i,
-                        &[
-                            "diameter",
-                            "density",
-                            "mass",
-                            "type",
-                            "type/fraction",
-                            "x",
-                            "y",
-                            "z",
-                            "vx",
-                            "vy",
-                            "vz",
-                            "omegax",
-                            "omegay",
-                            "omegaz",
-                        ],
-                    ))
-                }
-            }
-        }
-        ctx.say(&format!("  {} settings made for {key}\n", atoms.len()));
-        i += 2;
-    }
-    Ok(())
 }
 
 fn group(a: &Args, ctx: &mut Ctx) -> Result {
@@ -1088,6 +965,9 @@ fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
     } else {
         1.0
     };
+    if style == "set" && (2..5).any(|d| a.word(d).is_ok_and(|w| w.starts_with("v_"))) {
+        return super::velocity_vars::set(a, ctx, bit, sum, scale);
+    }
     let sim = &mut *ctx.sim;
     match style {
         "set" => {
@@ -1492,7 +1372,8 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
         }),
         None => crate::io::restart::read(&path),
     }
-    .map_err(|m| a.error(0, &m))?;
+    // the file as the deck names it (not the folder it was resolved against)
+    .map_err(|m| a.error(0, &m.replace(&path, name)))?;
     ctx.say("Reading restart file ...\n");
     let pair = ctx.sim.load_restart(&r).map_err(|m| a.error(0, &m))?;
     ctx.sim.restart_in_progress = !r.global_fixes.is_empty() || !r.peratom_fixes.is_empty();

@@ -14,6 +14,8 @@ pub enum ComputeKind {
     ErotateSphere,
     /// `ke`: translational kinetic energy, 0.5 m v^2 summed (energy).
     Ke,
+    /// `pe`: potential energy (energy); granular pair styles and walls tally none, so 0.
+    PotentialEnergy,
     /// `ke/atom`: 0.5 m v^2 per atom (energy).
     KeAtom,
     /// `stress/atom`: per-atom stress times volume, xx yy zz xy xz yz (pressure volume =
@@ -212,9 +214,11 @@ pub const STYLES: &[&str] = &[
     "pair/gran/local",
     "wall/gran/local",
     "contact/atom",
+    "erotate",
     "erotate/sphere",
     "ke",
     "ke/atom",
+    "pe",
     "property/atom",
     "reduce",
     "stress/atom",
@@ -258,6 +262,7 @@ impl Compute {
                 sum * (0.5 * 1.0 * SPHERE_INERTIA)
             }
             ComputeKind::Ke => kinetic_energy(p, self.group),
+            ComputeKind::PotentialEnergy => 0.0,
             ComputeKind::Reduce { mode, inputs } if inputs.len() == 1 => {
                 self.reduce(sim, *mode, &inputs[0], vars)?
             }

@@ -229,6 +229,8 @@ impl Move {
 pub enum FixKind {
     /// `fix nve/sphere`.
     NveSphere,
+    /// `fix nve/noforce`.
+    NveNoforce,
     /// `fix move`.
     Move(Move),
     /// `fix gravity`.
@@ -604,6 +606,7 @@ pub fn initial_integrate(fixes: &[Fix], p: &mut Particles, step: i64, dt: f64, d
     for fix in fixes {
         match &fix.kind {
             FixKind::NveSphere => integrate::initial_integrate(p, fix.group, dt),
+            FixKind::NveNoforce => crate::engine::nve_noforce::initial_integrate(p, fix.group, dt),
             FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt, domain),
             _ => {}
         }

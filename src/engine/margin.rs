@@ -41,7 +41,7 @@ pub struct ExpectedSpeed {
 type Size = (f64, f64);
 
 fn g(x: f64) -> String {
-    crate::script::format::g(x)
+    crate::util::format::g(x)
 }
 
 fn pct(x: f64) -> String {

@@ -216,6 +216,8 @@ enum StressPhase {
 
 /// Everything the engine simulates.
 pub struct Simulation {
+    /// State of the commands added for researchers' decks (issue 15).
+    pub extras: crate::engine::extras::Extras,
     /// An insertion fix has been defined (a check run cannot know the atoms it adds).
     pub inserts_atoms: bool,
     /// `restart N ROOT` and `restart N FILE1 FILE2` (both may be active).
@@ -348,6 +350,7 @@ pub struct Simulation {
 impl Default for Simulation {
     fn default() -> Self {
         Simulation {
+            extras: Default::default(),
             inserts_atoms: false,
             restart_output: [None, None],
             pending_history: None,
@@ -1343,7 +1346,7 @@ impl Simulation {
 
     /// The material inputs from the `fix property/global` definitions (each present one,
     /// whether or not a model will ask for it).
-    fn material_input(&self) -> crate::engine::contact::MaterialInput {
+    pub(crate) fn material_input(&self) -> crate::engine::contact::MaterialInput {
         let table = |name: &str| self.property(name).map(|(_, _, v)| v);
         let scalar = |name: &str| table(name).and_then(|v| v.first().copied());
         crate::engine::contact::MaterialInput {
@@ -1878,7 +1881,11 @@ impl Simulation {
         self.setup_averages(vars)?;
         self.thermo.run_start = first;
         self.thermo.prepare_run(self.domain.shrinks());
-        self.thermo.header(out);
+        let thermo_file = &mut self.extras.thermo_file;
+        self.thermo.header(&mut |s: &str| {
+            out(s);
+            crate::engine::extras::tee(thermo_file, s)
+        });
         self.thermo_line(out, vars)?;
         self.write_dumps(true, vars)?;
         self.loop_clock = Some(std::time::Instant::now());
@@ -2581,7 +2588,11 @@ impl Simulation {
             ));
         }
         let cpu = self.loop_clock.map_or(0.0, |t| t.elapsed().as_secs_f64());
-        self.thermo.line(&values, self.step, cpu, out);
+        let thermo_file = &mut self.extras.thermo_file;
+        self.thermo.line(&values, self.step, cpu, &mut |s: &str| {
+            out(s);
+            crate::engine::extras::tee(thermo_file, s)
+        });
         Ok(())
     }
 
@@ -2650,7 +2661,11 @@ impl Simulation {
         Ok(())
     }
 
-    fn write_dumps(&mut self, setup: bool, vars: &mut dyn VariableSource) -> Result<(), String> {
+    pub(crate) fn write_dumps(
+        &mut self,
+        setup: bool,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), String> {
         let step = self.step;
         // a local compute is evaluated once per step, however many columns and dumps use it
         let mut local_rows: std::collections::HashMap<String, std::rc::Rc<(usize, Vec<f64>)>> =

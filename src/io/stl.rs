@@ -60,6 +60,8 @@ fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, String> {
     let mut out = Vec::new();
     let mut current: Vec<[f64; 3]> = Vec::new();
     for (n, line) in text.lines().enumerate() {
+        // LIGGGHTS strips `#` comments from STL lines as from deck lines
+        let line = line.split('#').next().unwrap_or("");
         let mut w = line.split_whitespace();
         match w.next() {
             Some("vertex") => {
@@ -102,7 +104,17 @@ fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, String> {
 pub fn read(path: &str) -> Result<Vec<Triangle>, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("Cannot open mesh file {path}: {e}"))?;
     let head = String::from_utf8_lossy(&bytes[..bytes.len().min(512)]).to_string();
-    let ascii = head.trim_start().starts_with("solid") && head.contains("facet");
+    // LIGGGHTS reads a file as binary only when its first line is not blank, not a `#`
+    // comment and does not start with `solid`
+    let first = head.lines().next().unwrap_or("");
+    let commented = first.split('#').next().unwrap_or("").trim().is_empty() && !bytes.is_empty();
+    let significant: String = head
+        .lines()
+        .map(|l| l.split('#').next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let ascii = (commented && head.lines().count() > 1 && std::str::from_utf8(&bytes).is_ok())
+        || (significant.trim_start().starts_with("solid") && head.contains("facet"));
     let triangles = if ascii {
         let text = String::from_utf8(bytes)
             .map_err(|_| format!("{path}: an ASCII STL file with bytes that are not text"))?;
@@ -173,9 +185,15 @@ fn rotate(v: [f64; 3], axis: [f64; 3], degrees: f64) -> [f64; 3] {
     [r[1], r[2], r[3]]
 }
 
-/// Check a mesh for degenerate triangles, edges shared by more than two triangles, and a
-/// size that suggests the wrong unit next to a box of size `box_size` (length).
-pub fn check(triangles: &[Triangle], name: &str, box_size: Option<f64>) -> Result<(), String> {
+/// Check a mesh for degenerate triangles and a size that suggests the wrong unit next to a
+/// box of size `box_size` (length); returns warnings (edges shared by more than two
+/// triangles, which LIGGGHTS imports).
+pub fn check(
+    triangles: &[Triangle],
+    name: &str,
+    box_size: Option<f64>,
+) -> Result<Vec<String>, String> {
+    let mut warnings = Vec::new();
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for (k, t) in triangles.iter().enumerate() {
@@ -213,8 +231,10 @@ pub fn check(triangles: &[Triangle], name: &str, box_size: Option<f64>) -> Resul
         .filter(|(_, f)| f.len() > 2)
         .min_by_key(|(_, f)| f[0])
     {
-        return Err(format!(
-            "{name}: non-manifold mesh: triangles {} share one edge (a wall edge may border at most two triangles)",
+        let count = edges.values().filter(|f| f.len() > 2).count();
+        warnings.push(format!(
+            "{name}: non-manifold mesh: triangles {} share one edge ({count} such edge(s) in all); \
+             LIGGGHTS imports it and so does regolith",
             faces.iter().map(|f| (f + 1).to_string()).collect::<Vec<_>>().join(", ")
         ));
     }
@@ -226,7 +246,7 @@ pub fn check(triangles: &[Triangle], name: &str, box_size: Option<f64>) -> Resul
             ));
         }
     }
-    Ok(())
+    Ok(warnings)
 }
 
 /// The ASCII STL LIGGGHTS's `dump mesh/stl` writes (`%g` numbers), with the given normals.
@@ -287,6 +307,21 @@ mod tests {
     }
 
     #[test]
+    fn ascii_after_comment_lines_is_not_binary() {
+        let dir = std::env::temp_dir().join(format!("regolith-stl-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("commented.stl");
+        std::fs::write(
+            &path,
+            format!("# exported by a CAD tool\n# units: m\n{SQUARE}"),
+        )
+        .unwrap();
+        let t = read(path.to_str().unwrap()).unwrap();
+        assert_eq!(t, parse_ascii(SQUARE, "sq.stl").unwrap());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
     fn broken_meshes_are_named() {
         let flat = SQUARE.replace(
             "vertex 0.21 -0.005 -0.02\n endloop\nendfacet\nfacet",
@@ -298,8 +333,9 @@ mod tests {
         let t = parse_ascii(SQUARE, "sq.stl").unwrap();
         let mut three = t.clone();
         three.push([t[0][1], t[0][2], [0.3, 0.3, 0.3]]); // the shared edge again
-        let e = check(&three, "nm.stl", None).unwrap_err();
-        assert!(e.contains("triangles 1, 2, 3 share one edge"), "{e}");
+                                                         // LIGGGHTS imports a non-manifold mesh: a warning, not an error
+        let w = check(&three, "nm.stl", None).unwrap();
+        assert!(w[0].contains("triangles 1, 2, 3 share one edge"), "{w:?}");
         let e = check(&t, "mm.stl", Some(0.0001)).unwrap_err();
         assert!(e.contains("wrong length unit"), "{e}");
         let e = parse_ascii(

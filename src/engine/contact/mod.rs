@@ -839,6 +839,7 @@ impl ModelSelection {
     /// error.
     pub fn apply_settings(&mut self, args: &[&str]) -> Result<(), String> {
         let known = self.settings();
+        let mut unsupported: Option<&str> = None;
         let mut k = 0;
         while k < args.len() {
             let kw = args[k];
@@ -856,7 +857,10 @@ impl ModelSelection {
                 }
             };
             if on && !supported {
-                return Err(format!("'{kw} on' is not supported by regolith"));
+                // the rest still applies: the caller reports this one as unsupported
+                unsupported.get_or_insert(kw);
+                k += 2;
+                continue;
             }
             let o = &mut self.options;
             match kw {
@@ -871,7 +875,10 @@ impl ModelSelection {
             }
             k += 2;
         }
-        Ok(())
+        match unsupported {
+            Some(kw) => Err(format!("'{kw} on' is not supported by regolith")),
+            None => Ok(()),
+        }
     }
 
     /// Parse a whole `pair_style gran` argument list (after `gran`): model keywords, then

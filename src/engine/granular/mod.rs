@@ -448,7 +448,7 @@ fn add_pair(
 }
 
 /// The model of a selection and its coefficient tables, with LIGGGHTS's material checks.
-fn model_and_material(
+pub(crate) fn model_and_material(
     sel: &Selection,
     input: &MaterialInput,
 ) -> Result<(AnyContactModel, Material), String> {

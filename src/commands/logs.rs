@@ -1,0 +1,51 @@
+//! `thermo_log FILE [append]` (thermo headers and lines copied to a file of their own, or
+//! `none`) and `modify_timing off|on|verbose`, as LIGGGHTS 3.8.0 parses them.
+
+use crate::commands::{Args, Ctx};
+use crate::error::Diagnostic;
+use crate::script::system::Mode;
+
+type Result = std::result::Result<(), Diagnostic>;
+
+/// `thermo_log FILE [append]`.
+pub fn thermo_log(a: &Args, ctx: &mut Ctx) -> Result {
+    if a.is_empty() || a.len() > 2 {
+        return Err(a
+            .error(a.len().saturating_sub(1), "Illegal thermo_log command")
+            .with_help("thermo_log FILE [append] or thermo_log none"));
+    }
+    let append = a.len() == 2;
+    if append && a.word(1)? != "append" {
+        return Err(a.error(1, "Illegal thermo_log command"));
+    }
+    let name = a.word(0)?;
+    ctx.sim.extras.thermo_file = None;
+    if name == "none" || ctx.sys.mode != Mode::Run {
+        return Ok(());
+    }
+    let path = ctx.sys.resolve(name);
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .write(true)
+        .append(append)
+        .truncate(!append)
+        .open(&path)
+        .map_err(|e| a.error(0, &format!("Cannot open thermo log file {name}: {e}")))?;
+    ctx.sim.extras.thermo_file = Some(file);
+    Ok(())
+}
+
+/// `modify_timing off|on|verbose`: accepted; regolith's end-of-run summary has no timing
+/// breakdown to add the per-fix times to.
+pub fn modify_timing(a: &Args, ctx: &mut Ctx) -> Result {
+    if a.len() != 1 {
+        return Err(a.error(0, "Illegal modify_timing command"));
+    }
+    ctx.sim.extras.modify_timing = match a.word(0)? {
+        "off" => 0,
+        "on" => 1,
+        "verbose" => 2,
+        _ => return Err(a.error(0, "Illegal modify_timing command")),
+    };
+    Ok(())
+}

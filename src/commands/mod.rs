@@ -8,6 +8,7 @@ pub mod names;
 pub mod registry;
 pub mod sim_run;
 pub mod sim_setup;
+pub mod specs;
 pub mod suggest;
 
 use crate::engine::sim::Simulation;

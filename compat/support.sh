@@ -20,6 +20,14 @@ does not run yet (each item with the lines it occurs on); *invalid*: the deck ha
 LIGGGHTS 3.8.0 also reports (or is not a LIGGGHTS deck at all, such as ParScale's `in.pascal`).
 
 HEAD
+    echo '## Commands and styles regolith runs'
+    echo
+    echo 'Declared once in `src/commands/specs.rs`; `regolith help COMMAND [STYLE]` prints a signature.'
+    echo
+    cargo run --quiet --release -- help --markdown
+    echo
+    echo '## The tutorials'
+    echo
     cargo run --quiet --release -- check --table --root "$tutorials/" "${decks[@]}"
 } > compat/SUPPORT.md.tmp
 mv compat/SUPPORT.md.tmp compat/SUPPORT.md

@@ -11,6 +11,7 @@ use std::path::PathBuf;
 #[derive(Parser)]
 #[command(
     name = "regolith",
+    disable_help_subcommand = true,
     version,
     about = "Soft-sphere DEM solver that runs LIGGGHTS 3.8.0 decks unchanged",
     long_about = "Soft-sphere DEM solver that runs LIGGGHTS 3.8.0 decks unchanged.\n\n\
@@ -44,6 +45,15 @@ enum Command {
         /// Deck files, then LIGGGHTS-style flags (-var NAME VALUE ...).
         #[arg(required = true, trailing_var_arg = true, allow_hyphen_values = true)]
         args: Vec<String>,
+    },
+    /// The commands and styles regolith runs: `help` lists them, `help COMMAND [STYLE]` prints
+    /// one's declared signature (arguments, keywords with their kinds, description).
+    Help {
+        /// A command, then a style (`fix wall/gran`).
+        words: Vec<String>,
+        /// Print the Markdown table of every command and style instead (compat/SUPPORT.md).
+        #[arg(long)]
+        markdown: bool,
     },
     /// Compare two dumps (text or gzip, a file or a `*` series) atom by atom, or the thermo
     /// columns of two logs. Exit 0 within tolerance, 1 outside, 2 on unreadable input.
@@ -260,6 +270,23 @@ fn main() -> ExitCode {
                 }
             }
             exit(worst)
+        }
+        Command::Help { words, markdown } => {
+            if markdown {
+                print!("{}", regolith::commands::specs::markdown());
+                return ExitCode::from(0);
+            }
+            let words: Vec<&str> = words.iter().map(String::as_str).collect();
+            match regolith::commands::specs::help(&words) {
+                Ok(text) => {
+                    print!("{text}");
+                    ExitCode::from(0)
+                }
+                Err(m) => {
+                    eprintln!("regolith help: {m}");
+                    ExitCode::from(2)
+                }
+            }
         }
         Command::Diff {
             a,

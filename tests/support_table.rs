@@ -60,3 +60,21 @@ fn support_table_is_current() {
         "compat/SUPPORT.md is out of date: run compat/support.sh"
     );
 }
+
+#[test]
+fn support_table_lists_the_declared_commands() {
+    let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
+        .args(["help", "--markdown"])
+        .output()
+        .expect("regolith runs");
+    assert!(out.status.success());
+    let table = String::from_utf8(out.stdout).expect("utf-8 table");
+    assert!(table.contains("| `fix` | `wall/gran` |"), "{table}");
+    let committed =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/compat/SUPPORT.md"))
+            .expect("compat/SUPPORT.md exists");
+    assert!(
+        committed.contains(&table),
+        "compat/SUPPORT.md is out of date: run compat/support.sh"
+    );
+}

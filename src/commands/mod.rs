@@ -14,6 +14,7 @@ pub mod registry;
 pub mod set;
 pub mod sim_run;
 pub mod sim_setup;
+pub mod specs;
 pub mod suggest;
 pub mod velocity_vars;
 pub mod write_dump;

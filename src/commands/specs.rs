@@ -1,0 +1,499 @@
+//! The declared signature of every command and style regolith runs: its positional
+//! arguments, its keywords with the kinds (and physical quantities) of their values, and a
+//! one-line description. The table is the one place that says what regolith runs: the
+//! support lookup used by `check` reads it (see [`crate::commands::registry`]), `regolith
+//! help` prints it, misspelt names in `help` get the nearest declared ones, and
+//! `compat/SUPPORT.md` lists it.
+
+use crate::commands::suggest::did_you_mean;
+
+/// The kind of value an argument takes; reals name the physical quantity they measure (in
+/// the deck's `units`, SI or cgs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Value {
+    /// An integer (a count, a step number, a seed, an atom type).
+    Int,
+    /// A real number measuring this quantity (`""` for a pure number).
+    Real(&'static str),
+    /// One of these words.
+    OneOf(&'static [&'static str]),
+    /// The ID of something defined earlier (a region, group, fix, compute, mesh, variable).
+    Id(&'static str),
+    /// A file name.
+    File,
+    /// Any other word (a text, a format, a list).
+    Word,
+}
+
+/// One argument: the name usage lines give it, and its kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Arg {
+    /// The placeholder in usage lines (`X`, `SEED`).
+    pub name: &'static str,
+    /// What it takes.
+    pub value: Value,
+}
+
+/// An optional keyword and the arguments that follow it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Keyword {
+    /// The keyword as written in decks.
+    pub name: &'static str,
+    /// The values that follow it.
+    pub args: &'static [Arg],
+    /// What it sets, in one line.
+    pub about: &'static str,
+}
+
+/// The declared signature of a command, or of one style of a styled command.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Spec {
+    /// The command (`fix`, `run`).
+    pub command: &'static str,
+    /// The style (`wall/gran`), for commands whose argument names one.
+    pub style: Option<&'static str>,
+    /// The positional arguments as a usage line.
+    pub usage: &'static str,
+    /// The optional keywords regolith reads.
+    pub keywords: &'static [Keyword],
+    /// What it does, in one line.
+    pub about: &'static str,
+}
+
+const fn arg(name: &'static str, value: Value) -> Arg {
+    Arg { name, value }
+}
+
+const fn kw(name: &'static str, args: &'static [Arg], about: &'static str) -> Keyword {
+    Keyword { name, args, about }
+}
+
+const fn command(usage: &'static str, about: &'static str) -> Spec {
+    let name = first_word(usage);
+    Spec {
+        command: name,
+        style: None,
+        usage,
+        keywords: &[],
+        about,
+    }
+}
+
+const fn style(
+    command: &'static str,
+    style: &'static str,
+    usage: &'static str,
+    keywords: &'static [Keyword],
+    about: &'static str,
+) -> Spec {
+    Spec {
+        command,
+        style: Some(style),
+        usage,
+        keywords,
+        about,
+    }
+}
+
+const fn with(spec: Spec, keywords: &'static [Keyword]) -> Spec {
+    Spec { keywords, ..spec }
+}
+
+/// The text up to the first blank (a usage line's command name).
+const fn first_word(text: &'static str) -> &'static str {
+    let bytes = text.as_bytes();
+    let mut n = 0;
+    while n < bytes.len() && bytes[n] != b' ' {
+        n += 1;
+    }
+    let (head, _) = bytes.split_at(n);
+    match std::str::from_utf8(head) {
+        Ok(word) => word,
+        Err(_) => panic!("usage lines are ASCII"),
+    }
+}
+
+const YES_NO: Value = Value::OneOf(&["yes", "no"]);
+const ON_OFF: Value = Value::OneOf(&["on", "off"]);
+const LENGTH: Value = Value::Real("length");
+const VELOCITY: Value = Value::Real("velocity");
+const NUMBER: Value = Value::Real("");
+
+/// Keywords the insertion fixes share.
+const INSERT_KEYWORDS: &[Keyword] = &[
+    kw(
+        "seed",
+        &[arg("SEED", Value::Int)],
+        "prime above 10000 seeding the random positions",
+    ),
+    kw(
+        "distributiontemplate",
+        &[arg("D", Value::Id("fix"))],
+        "the particle distribution to insert",
+    ),
+    kw(
+        "maxattempt",
+        &[arg("N", Value::Int)],
+        "placement attempts per particle",
+    ),
+    kw(
+        "insert_every",
+        &[arg("N", Value::Word)],
+        "steps between insertions, or once",
+    ),
+    kw(
+        "overlapcheck",
+        &[arg("yes|no", YES_NO)],
+        "refuse positions overlapping other particles",
+    ),
+    kw(
+        "all_in",
+        &[arg("yes|no", YES_NO)],
+        "keep whole particles inside the region",
+    ),
+    kw(
+        "vel",
+        &[arg("constant VX VY VZ", VELOCITY)],
+        "initial velocity",
+    ),
+    kw(
+        "omega",
+        &[arg("constant WX WY WZ", Value::Real("angular velocity"))],
+        "initial angular velocity",
+    ),
+    kw("start", &[arg("STEP", Value::Int)], "first insertion step"),
+    kw(
+        "ntry_mc",
+        &[arg("N", Value::Int)],
+        "Monte Carlo trials for the region volume",
+    ),
+    kw(
+        "verbose",
+        &[arg("yes|no", YES_NO)],
+        "report every insertion",
+    ),
+];
+
+/// Every command and style regolith runs (script-language commands are the interpreter's).
+pub const SPECS: &[Spec] = &[
+    command("atom_modify map array|hash [sort N BINSIZE]", "atom map and spatial sorting settings"),
+    style("atom_style", "granular", "atom_style granular", &[], "spheres with radius, density, angular velocity"),
+    style("atom_style", "sphere", "atom_style sphere", &[], "the same as granular"),
+    command("boundary X Y Z", "boundary conditions per axis: p, f, s, m or two of them"),
+    command("comm_modify KEYWORD VALUE ...", "communication settings (accepted; one process)"),
+    command("communicate single|multi [vel yes|no] [cutoff C]", "communication settings (accepted; one process)"),
+    style("compute", "com", "compute ID GROUP com", &[], "centre of mass of the group"),
+    style("compute", "contact/atom", "compute ID GROUP contact/atom", &[kw("skin", &[arg("S", LENGTH)], "count contacts within this gap")], "number of contacts per particle"),
+    style("compute", "erotate", "compute ID GROUP erotate", &[], "rotational kinetic energy of the group (through an erotate/sphere compute)"),
+    style("compute", "erotate/sphere", "compute ID GROUP erotate/sphere", &[], "rotational kinetic energy of the group"),
+    style("compute", "ke", "compute ID GROUP ke", &[], "translational kinetic energy of the group"),
+    style("compute", "ke/atom", "compute ID GROUP ke/atom", &[], "kinetic energy per particle"),
+    style("compute", "pe", "compute ID all pe [pair] [bond] ...", &[], "potential energy (0 for granular pair styles)"),
+    style("compute", "pair/gran/local", "compute ID GROUP pair/gran/local [FIELDS...]", &[], "per-contact positions, forces, overlaps of particle pairs"),
+    style("compute", "property/atom", "compute ID GROUP property/atom ATTRIBUTE ...", &[], "per-particle attributes as columns"),
+    style("compute", "reduce", "compute ID GROUP reduce sum|min|max|ave INPUT ...", &[], "sum, minimum, maximum or mean of per-particle values"),
+    style("compute", "stress/atom", "compute ID GROUP stress/atom [ke|pair|virial ...]", &[], "per-particle stress tensor (pressure times volume)"),
+    style("compute", "wall/gran/local", "compute ID GROUP wall/gran/local [FIELDS...]", &[], "per-contact data of particles with a wall"),
+    command("create_atoms TYPE box|region ID|single X Y Z|random N SEED REGION", "place particles on the lattice, at a point or at random"),
+    command("create_box N REGION", "define the simulation box from a region, with N atom types"),
+    command("delete_atoms group|region|overlap ...", "remove particles"),
+    command("dimension 3", "the dimension (3 only)"),
+    command("displace_atoms GROUP move|random ...", "move particles by a displacement or at random"),
+    style("dump", "atom", "dump ID GROUP atom N FILE", &[], "positions, scaled, every N steps (LAMMPS layout)"),
+    style("dump", "custom", "dump ID GROUP custom N FILE COLUMN ...", &[], "chosen per-particle columns every N steps"),
+    style("dump", "custom/vtk", "dump ID GROUP custom/vtk N FILE.vtk|vtp|vtu COLUMN ...", &[], "chosen per-particle columns as VTK files"),
+    style("dump", "local", "dump ID GROUP local N FILE c_ID[N] ...", &[], "per-contact columns of local computes"),
+    style("dump", "mesh/gran/VTK", "dump ID GROUP mesh/gran/VTK N FILE [MESH ...]", &[], "meshes as legacy VTK"),
+    style("dump", "mesh/stl", "dump ID GROUP mesh/stl N FILE [MESH ...]", &[], "meshes as STL"),
+    style("dump", "mesh/vtk", "dump ID GROUP mesh/vtk N FILE [MESH ...]", &[], "meshes as VTK"),
+    style("dump", "xyz", "dump ID GROUP xyz N FILE", &[], "type and position every N steps"),
+    with(command("dump_modify ID KEYWORD VALUE ...", "change a dump's settings"), &[
+        kw("every", &[arg("N", Value::Int)], "steps between snapshots"),
+        kw("first", &[arg("yes|no", YES_NO)], "write on the first step of the run"),
+        kw("format", &[arg("FORMAT", Value::Word)], "C format of a line"),
+        kw("pad", &[arg("N", Value::Int)], "zero-pad step numbers in file names"),
+        kw("sort", &[arg("id|off", Value::OneOf(&["id", "off"]))], "order of particles"),
+        kw("element", &[arg("NAME ...", Value::Word)], "element names per type"),
+    ]),
+    style("fix", "adapt", "fix ID GROUP adapt N atom diameter v_NAME", &[kw("scale", &[arg("yes|no", YES_NO)], "scale mass with the diameter"), kw("reset", &[arg("yes|no", YES_NO)], "restore at the end of the run")], "change particle diameters by a variable during a run"),
+    style("fix", "addforce", "fix ID GROUP addforce FX FY FZ", &[kw("region", &[arg("R", Value::Id("region"))], "act only inside this region")], "add a force (or v_ variables) to every particle"),
+    style("fix", "ave/time", "fix ID GROUP ave/time NEVERY NREPEAT NFREQ VALUE ...", &[kw("mode", &[arg("scalar", Value::OneOf(&["scalar"]))], "average global scalars"), kw("ave", &[arg("one|running", Value::OneOf(&["one", "running"]))], "averaging window"), kw("start", &[arg("STEP", Value::Int)], "first step averaged"), kw("file", &[arg("F", Value::File)], "write averages to this file"), kw("off", &[arg("M", Value::Int)], "leave value M out")], "time averages of global values"),
+    style("fix", "check/timestep/gran", "fix ID GROUP check/timestep/gran N RAYLEIGH_FRACTION HERTZ_FRACTION", &[kw("warn", &[arg("yes|no", YES_NO)], "warn when a limit is exceeded"), kw("vmax", &[arg("V", VELOCITY)], "largest expected relative velocity")], "compare the time step with Rayleigh and Hertz times"),
+    style("fix", "freeze", "fix ID GROUP freeze", &[], "hold particles still (zero force and torque)"),
+    style("fix", "gravity", "fix ID GROUP gravity G vector X Y Z", &[], "gravitational acceleration G (acceleration) along a direction"),
+    style("fix", "insert/pack", "fix ID GROUP insert/pack seed SEED distributiontemplate D region R ...", INSERT_KEYWORDS, "fill a region with particles to a count, mass or volume fraction"),
+    style("fix", "insert/rate/region", "fix ID GROUP insert/rate/region seed SEED distributiontemplate D nparticles N particlerate R insert_every N region R", INSERT_KEYWORDS, "insert particles into a region at a rate"),
+    style("fix", "insert/stream", "fix ID GROUP insert/stream seed SEED distributiontemplate D nparticles N particlerate R insertion_face MESH extrude_length L", INSERT_KEYWORDS, "stream particles through a mesh face"),
+    style("fix", "mesh/surface", "fix ID GROUP mesh/surface file FILE type T", &[kw("scale", &[arg("S", NUMBER)], "scale the mesh"), kw("move", &[arg("DX DY DZ", LENGTH)], "translate the mesh"), kw("rotate", &[arg("axis X Y Z angle A", Value::Real("angle in degrees"))], "rotate the mesh"), kw("curvature", &[arg("C", NUMBER)], "edge curvature tolerance"), kw("surface_vel", &[arg("VX VY VZ", VELOCITY)], "conveyor velocity of the surface"), kw("verbose", &[arg("yes|no", YES_NO)], "report mesh checks")], "a triangle mesh from an STL or VTK file"),
+    style("fix", "mesh/surface/planar", "fix ID GROUP mesh/surface/planar file FILE type T", &[], "a planar triangle mesh"),
+    style("fix", "mesh/surface/stress", "fix ID GROUP mesh/surface/stress file FILE type T", &[kw("stress", &[arg("on|off", ON_OFF)], "sum forces and torques on the mesh"), kw("wear", &[arg("finnie|off", Value::OneOf(&["finnie", "off"]))], "Finnie wear of the mesh")], "a triangle mesh that sums the forces on it"),
+    style("fix", "move", "fix ID GROUP move linear|wiggle|rotate|variable ...", &[kw("units", &[arg("box|lattice", Value::OneOf(&["box", "lattice"]))], "lengths in box or lattice units")], "prescribed particle motion"),
+    style("fix", "move/mesh", "fix ID GROUP move/mesh mesh MESH linear|wiggle|rotate|riggle|viblin|vibrot ...", &[], "prescribed mesh motion"),
+    style("fix", "nve/noforce", "fix ID GROUP nve/noforce", &[], "positions advance with the velocities; forces leave velocities unchanged"),
+    style("fix", "nve/sphere", "fix ID GROUP nve/sphere", &[], "velocity-Verlet integration of positions and rotations"),
+    style("fix", "particledistribution/discrete", "fix ID GROUP particledistribution/discrete SEED N TEMPLATE FRACTION ...", &[], "a mix of particle templates by mass fraction"),
+    style("fix", "particledistribution/discrete/massbased", "fix ID GROUP particledistribution/discrete/massbased SEED N TEMPLATE FRACTION ...", &[], "a mix of particle templates by mass fraction"),
+    style("fix", "particledistribution/discrete/numberbased", "fix ID GROUP particledistribution/discrete/numberbased SEED N TEMPLATE FRACTION ...", &[], "a mix of particle templates by number fraction"),
+    style("fix", "particletemplate/sphere", "fix ID GROUP particletemplate/sphere SEED atom_type T density constant D radius constant|gaussian|lognormal|uniform ...", &[kw("volume_limit", &[arg("V", Value::Real("volume"))], "smallest particle volume")], "one kind of sphere: type, density (density), radius (length)"),
+    style("fix", "print", "fix ID GROUP print N TEXT", &[kw("file", &[arg("F", Value::File)], "write to this file"), kw("append", &[arg("F", Value::File)], "append to this file"), kw("screen", &[arg("yes|no", YES_NO)], "print to the screen"), kw("title", &[arg("T", Value::Word)], "first line of the file")], "print a text every N steps"),
+    style("fix", "property/global", "fix ID GROUP property/global NAME scalar|vector|peratomtype|peratomtypepair N VALUES ...", &[], "material properties (youngsModulus, poissonsRatio, coefficientRestitution, coefficientFriction ...)"),
+    style("fix", "setforce", "fix ID GROUP setforce FX FY FZ", &[kw("region", &[arg("R", Value::Id("region"))], "act only inside this region")], "set force components (force, NULL to leave one)"),
+    style("fix", "viscous", "fix ID GROUP viscous GAMMA", &[], "drag force -GAMMA v (force per velocity)"),
+    style("fix", "wall/gran", "fix ID GROUP wall/gran model M tangential T ... primitive type T xplane|yplane|zplane|xcylinder|ycylinder|zcylinder ARGS | mesh n_meshes N meshes MESH ...", &[kw("model", &[arg("M", Value::Word)], "normal contact model"), kw("tangential", &[arg("T", Value::Word)], "tangential contact model"), kw("cohesion", &[arg("C", Value::Word)], "cohesion model"), kw("rolling_friction", &[arg("R", Value::Word)], "rolling-friction model"), kw("primitive", &[arg("type T SHAPE ARGS", Value::Word)], "a plane or cylinder wall (positions in length)"), kw("mesh", &[arg("n_meshes N meshes MESH ...", Value::Id("fix"))], "walls made of meshes"), kw("shear", &[arg("x|y|z V", VELOCITY)], "the wall slides at velocity V"), kw("store_force", &[arg("yes|no", YES_NO)], "keep per-particle wall forces")], "granular walls: planes, cylinders or meshes"),
+    command("group ID region|type|id|subtract|union|delete ...", "define a group of particles"),
+    command("hard_particles yes|no", "refuse particles stiffer than LIGGGHTS's limit"),
+    style("lattice", "bcc", "lattice bcc SCALE", &[kw("origin", &[arg("X Y Z", NUMBER)], "offset in lattice units")], "body-centred cubic lattice of spacing SCALE (length)"),
+    style("lattice", "fcc", "lattice fcc SCALE", &[kw("origin", &[arg("X Y Z", NUMBER)], "offset in lattice units")], "face-centred cubic lattice of spacing SCALE (length)"),
+    style("lattice", "none", "lattice none SCALE", &[], "no lattice; SCALE (length) is the unit of lattice lengths"),
+    style("lattice", "sc", "lattice sc SCALE", &[kw("origin", &[arg("X Y Z", NUMBER)], "offset in lattice units")], "simple cubic lattice of spacing SCALE (length)"),
+    with(command("neigh_modify KEYWORD VALUE ...", "neighbour-list settings"), &[
+        kw("delay", &[arg("N", Value::Int)], "steps before a rebuild is considered"),
+        kw("every", &[arg("N", Value::Int)], "steps between rebuild checks"),
+        kw("check", &[arg("yes|no", YES_NO)], "rebuild only when particles moved half the skin"),
+        kw("exclude", &[arg("type|group ...", Value::Word)], "pairs left out of the list"),
+    ]),
+    command("neighbor SKIN bin", "neighbour skin distance (length)"),
+    command("newton on|off [on|off]", "Newton's third law settings (accepted)"),
+    command("package fast N", "threads of the fast engine path"),
+    command("pair_coeff * *", "coefficients for all type pairs (from fix property/global)"),
+    style("pair_style", "gran", "pair_style gran model M tangential T [cohesion C] [rolling_friction R] [surface S] [SETTING on|off ...]", &[kw("model", &[arg("M", Value::Word)], "normal contact model"), kw("tangential", &[arg("T", Value::Word)], "tangential contact model"), kw("cohesion", &[arg("C", Value::Word)], "cohesion model"), kw("rolling_friction", &[arg("R", Value::Word)], "rolling-friction model"), kw("surface", &[arg("S", Value::Word)], "surface model")], "granular contact forces between particles"),
+    command("processors Px Py Pz", "processor grid (accepted; one process)"),
+    command("read_data FILE", "read particles and box from a data file"),
+    command("read_restart FILE", "continue from a LIGGGHTS restart file"),
+    style("region", "block", "region ID block XLO XHI YLO YHI ZLO ZHI", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside"), kw("units", &[arg("box|lattice", Value::OneOf(&["box", "lattice"]))], "lengths in box or lattice units")], "a box (bounds in length, INF for unbounded)"),
+    style("region", "cone", "region ID cone x|y|z C1 C2 RLO RHI LO HI", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "a truncated cone (length)"),
+    style("region", "cylinder", "region ID cylinder x|y|z C1 C2 RADIUS LO HI", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "a cylinder (length; RADIUS may be v_NAME)"),
+    style("region", "intersect", "region ID intersect N REGION ...", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "the intersection of regions"),
+    style("region", "plane", "region ID plane PX PY PZ NX NY NZ", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "the half-space behind a plane (point in length)"),
+    style("region", "prism", "region ID prism XLO XHI YLO YHI ZLO ZHI XY XZ YZ", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "a parallelepiped (length)"),
+    style("region", "sphere", "region ID sphere X Y Z RADIUS", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "a sphere (length; RADIUS may be v_NAME)"),
+    style("region", "union", "region ID union N REGION ...", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "the union of regions"),
+    command("reset_timestep N", "set the step counter"),
+    command("restart 0 | restart N ROOT | restart N FILE1 FILE2", "write restart files every N steps"),
+    with(command("run N", "run N time steps"), &[
+        kw("upto", &[], "N is the final step, not a count"),
+        kw("start", &[arg("STEP", Value::Int)], "first step for time-dependent settings"),
+        kw("stop", &[arg("STEP", Value::Int)], "last step for time-dependent settings"),
+        kw("pre", &[arg("yes|no", YES_NO)], "set up before the run"),
+        kw("post", &[arg("yes|no", YES_NO)], "print statistics after the run"),
+    ]),
+    command("set atom|type|group|region ID KEYWORD VALUE ...", "change per-particle values (type, diameter, density, velocity ...)"),
+    command("soft_particles yes|no", "allow particles softer than LIGGGHTS's limit"),
+    command("suffix fast|off", "the fast engine path on or off"),
+    command("thermo N", "print thermo output every N steps"),
+    with(command("thermo_modify KEYWORD VALUE ...", "thermo output settings"), &[
+        kw("norm", &[arg("yes|no", YES_NO)], "divide extensive values by the atom count"),
+        kw("lost", &[arg("ignore|warn|error", Value::OneOf(&["ignore", "warn", "error"]))], "what to do with lost particles"),
+        kw("format", &[arg("int|float|N FORMAT", Value::Word)], "C formats of the columns"),
+        kw("flush", &[arg("yes|no", YES_NO)], "flush the output after each line"),
+        kw("line", &[arg("one|multi", Value::OneOf(&["one", "multi"]))], "one or several lines per output"),
+    ]),
+    command("thermo_style one|multi|custom KEYWORD ...", "columns of thermo output"),
+    command("timestep DT", "the time step (time)"),
+    command("uncompute ID", "delete a compute"),
+    command("undump ID", "delete a dump"),
+    command("thermo_log FILE [append] | none", "a log of the thermo output alone"),
+    command("modify_timing on|off", "per-fix timing (accepted; regolith prints no per-fix times)"),
+    command("unfix ID", "delete a fix"),
+    command("units si|cgs", "unit system of the deck"),
+    command("velocity GROUP create|set|zero|ramp ...", "set particle velocities (velocity)"),
+    command("write_data FILE", "write particles and box to a data file"),
+    command("write_dump GROUP STYLE FILE ARGS ... [modify KEYWORD VALUE ...]", "write one dump snapshot now"),
+    command("write_restart FILE", "write a LIGGGHTS restart file"),
+];
+
+/// The spec of `command` (with `style`, for styled commands).
+pub fn find(command: &str, style: Option<&str>) -> Option<&'static Spec> {
+    SPECS
+        .iter()
+        .find(|spec| spec.command == command && spec.style == style)
+}
+
+/// Whether any spec declares styles for `command`.
+pub fn is_styled(command: &str) -> bool {
+    SPECS
+        .iter()
+        .any(|spec| spec.command == command && spec.style.is_some())
+}
+
+/// The styles declared for `command`, in table order.
+pub fn styles(command: &str) -> Vec<&'static str> {
+    SPECS
+        .iter()
+        .filter(|spec| spec.command == command)
+        .filter_map(|spec| spec.style)
+        .collect()
+}
+
+/// The commands declared, each once, in table order.
+pub fn commands() -> Vec<&'static str> {
+    let mut names: Vec<&'static str> = Vec::new();
+    for spec in SPECS {
+        if !names.contains(&spec.command) {
+            names.push(spec.command);
+        }
+    }
+    names
+}
+
+/// A keyword's arguments as a usage fragment (`seed SEED`).
+fn keyword_usage(keyword: &Keyword) -> String {
+    let mut text = keyword.name.to_string();
+    for a in keyword.args {
+        text.push(' ');
+        text.push_str(a.name);
+    }
+    text
+}
+
+/// What an argument's kind says in help (`length`, `yes|no`, `region ID`).
+fn value_label(value: Value) -> String {
+    match value {
+        Value::Int => "integer".into(),
+        Value::Real("") => "number".into(),
+        Value::Real(quantity) => quantity.into(),
+        Value::OneOf(words) => words.join("|"),
+        Value::Id(what) => format!("{what} ID"),
+        Value::File => "file".into(),
+        Value::Word => "word".into(),
+    }
+}
+
+/// The help text of one spec: usage, description and keywords.
+pub fn render(spec: &Spec) -> String {
+    let mut text = format!("{}\n    {}\n", spec.usage, spec.about);
+    if !spec.keywords.is_empty() {
+        text.push_str("keywords:\n");
+        for keyword in spec.keywords {
+            let kinds: Vec<String> = keyword.args.iter().map(|a| value_label(a.value)).collect();
+            let kinds = if kinds.is_empty() {
+                String::new()
+            } else {
+                format!(" [{}]", kinds.join(", "))
+            };
+            text.push_str(&format!(
+                "  {:<32} {}{kinds}\n",
+                keyword_usage(keyword),
+                keyword.about
+            ));
+        }
+    }
+    text
+}
+
+/// `regolith help [COMMAND [STYLE]]`: every command, one command's styles, or one
+/// signature; a name not declared gets the nearest declared ones.
+pub fn help(words: &[&str]) -> Result<String, String> {
+    match words {
+        [] => Ok(overview()),
+        [command] => {
+            let command = known(command, &commands(), "command")?;
+            if is_styled(command) {
+                let mut text = format!("{command} styles regolith runs:\n");
+                for spec in SPECS.iter().filter(|s| s.command == command) {
+                    let name = spec.style.unwrap_or("");
+                    text.push_str(&format!("  {name:<44} {}\n", spec.about));
+                }
+                text.push_str(&format!("`regolith help {command} STYLE` shows one.\n"));
+                Ok(text)
+            } else {
+                Ok(render(find(command, None).expect("declared")))
+            }
+        }
+        [command, style, ..] => {
+            let command = known(command, &commands(), "command")?;
+            let style = known(style, &styles(command), &format!("{command} style"))?;
+            Ok(render(find(command, Some(style)).expect("declared")))
+        }
+    }
+}
+
+/// `word` if it is one of `names`, else an error with the nearest ones.
+fn known<'a>(word: &str, names: &[&'a str], what: &str) -> Result<&'a str, String> {
+    if let Some(&name) = names.iter().find(|&&n| n == word) {
+        return Ok(name);
+    }
+    let hint = did_you_mean(word, names)
+        .map(|h| format!("; {h}"))
+        .unwrap_or_default();
+    Err(format!("regolith runs no {what} '{word}'{hint}"))
+}
+
+/// Every command regolith runs, with its styles.
+fn overview() -> String {
+    let mut text = String::from(
+        "Commands regolith runs (besides the script language: variable, print, if, jump, ...).\n\
+         `regolith help COMMAND [STYLE]` shows one.\n",
+    );
+    for command in commands() {
+        match find(command, None) {
+            Some(spec) => text.push_str(&format!("  {command:<16} {}\n", spec.about)),
+            None => text.push_str(&format!("  {command:<16} {}\n", styles(command).join(" "))),
+        }
+    }
+    text
+}
+
+/// The table of commands and styles for `compat/SUPPORT.md` (Markdown).
+pub fn markdown() -> String {
+    let mut text = String::from("| command | style | what it does |\n|---|---|---|\n");
+    for spec in SPECS {
+        text.push_str(&format!(
+            "| `{}` | {} | {} |\n",
+            spec.command,
+            spec.style.map(|s| format!("`{s}`")).unwrap_or_default(),
+            spec.about.replace('|', "\\|")
+        ));
+    }
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn help_prints_declared_keywords() {
+        let text = help(&["fix", "wall/gran"]).unwrap();
+        for word in ["model M", "primitive", "mesh", "shear", "granular walls"] {
+            assert!(text.contains(word), "{word}:\n{text}");
+        }
+        let text = help(&["fix", "insert/stream"]).unwrap();
+        assert!(
+            text.contains("seed SEED") && text.contains("integer"),
+            "{text}"
+        );
+        assert!(help(&["run"]).unwrap().contains("upto"));
+        assert!(help(&["region"]).unwrap().contains("cylinder"));
+        assert!(help(&[]).unwrap().contains("wall/gran"));
+    }
+
+    #[test]
+    fn typos_get_the_nearest_names() {
+        let e = help(&["fix", "wall/gren"]).unwrap_err();
+        assert!(e.contains("did you mean 'wall/gran'?"), "{e}");
+        let e = help(&["fix", "insert/strem"]).unwrap_err();
+        assert!(e.contains("'insert/stream'"), "{e}");
+        let e = help(&["neigh_modfy"]).unwrap_err();
+        assert!(e.contains("'neigh_modify'"), "{e}");
+    }
+
+    #[test]
+    fn every_spec_is_declared_once_and_reads_well() {
+        for (i, spec) in SPECS.iter().enumerate() {
+            assert!(
+                !SPECS[..i]
+                    .iter()
+                    .any(|s| s.command == spec.command && s.style == spec.style),
+                "{} {:?} declared twice",
+                spec.command,
+                spec.style
+            );
+            assert!(spec.usage.starts_with(spec.command), "{}", spec.usage);
+            if let Some(style) = spec.style {
+                assert!(spec.usage.contains(style), "{}", spec.usage);
+            }
+            assert!(!spec.about.is_empty());
+        }
+    }
+}

@@ -236,8 +236,18 @@ fn main() -> ExitCode {
                 Ok(o) => o,
                 Err(code) => return code,
             };
+            // `check -in DECK` names its deck as `run` does; with none at all, nothing is checked
+            let mut decks = decks.to_vec();
+            decks.extend(opts.input.clone());
+            if decks.is_empty() {
+                eprintln!(
+                    "ERROR: regolith check: no deck file given (flags such as -var go after the deck \
+                     files: regolith check DECK -var NAME VALUE, or give the deck as -in DECK)"
+                );
+                return exit(ExitStatus::Usage);
+            }
             if table {
-                return match session::support_table(decks, root.as_deref(), &opts) {
+                return match session::support_table(&decks, root.as_deref(), &opts) {
                     Ok(text) => {
                         print!("{text}");
                         exit(ExitStatus::Success)
@@ -249,8 +259,8 @@ fn main() -> ExitCode {
                 };
             }
             let mut worst = ExitStatus::Success;
-            for deck in decks {
-                let source = match session::load_source(Some(deck)) {
+            for deck in &decks {
+                let source = match session::load_source(Some(deck.as_str())) {
                     Ok(s) => s,
                     Err(d) => {
                         eprint!("{}", d.render());

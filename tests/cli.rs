@@ -321,3 +321,24 @@ fn check_and_run_state_the_time_step_margin() {
     assert!(!text(&out.stdout).contains("margin"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn check_without_a_deck_is_a_usage_error_and_check_reads_minus_in() {
+    let dir = scratch("check_flags_first");
+    std::fs::write(
+        dir.join("in.t"),
+        "atom_style granular\nregion b block 0 1 0 1 0 1\ncreate_box 1 b\ncompute s all rdf 50\n",
+    )
+    .unwrap();
+    // flags before the deck swallow it as -var values: nothing would be checked
+    let out = regolith(&dir, &["check", "-var", "frac", "0.2", "in.t"], None);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("no deck file given"));
+    // -in names the deck, as for a run
+    let out = regolith(&dir, &["check", "-var", "frac", "0.2", "-in", "in.t"], None);
+    assert_eq!(out.status.code(), Some(3));
+    assert_eq!(
+        text(&out.stdout),
+        "in.t:4: compute rdf: not supported yet\n"
+    );
+}

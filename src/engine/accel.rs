@@ -161,12 +161,7 @@ impl Simulation {
     /// Fast path: particles inserted since the last look go last in the exact order, in
     /// the order they were inserted (appended).
     fn assign_ranks(&mut self) {
-        let Some(k) = self
-            .particles
-            .extra
-            .iter()
-            .position(|e| e.name == ORDER_ARRAY)
-        else {
+        let Some(k) = self.order_record_index() else {
             return;
         };
         for r in self.particles.extra[k].data.iter_mut() {
@@ -177,16 +172,19 @@ impl Simulation {
         }
     }
 
+    /// Index of the order record among the per-particle arrays, if there is one.
+    fn order_record_index(&self) -> Option<usize> {
+        self.particles
+            .extra
+            .iter()
+            .position(|e| e.name == ORDER_ARRAY)
+    }
+
     /// Fast path: LIGGGHTS's spatial sort applied to the record of the exact order (the
     /// exact path permutes the particles themselves at this point).
     pub(crate) fn sort_order_record(&mut self, sorted: impl Fn(&[[f64; 3]]) -> Option<Vec<u32>>) {
         self.assign_ranks();
-        let Some(k) = self
-            .particles
-            .extra
-            .iter()
-            .position(|e| e.name == ORDER_ARRAY)
-        else {
+        let Some(k) = self.order_record_index() else {
             return;
         };
         let ranks = &self.particles.extra[k].data;
@@ -210,12 +208,7 @@ impl Simulation {
     /// and drop the record.
     pub(crate) fn restore_order(&mut self) {
         self.assign_ranks();
-        let Some(k) = self
-            .particles
-            .extra
-            .iter()
-            .position(|e| e.name == ORDER_ARRAY)
-        else {
+        let Some(k) = self.order_record_index() else {
             return;
         };
         let ranks = self.particles.extra[k].data.clone();

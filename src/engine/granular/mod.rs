@@ -295,30 +295,28 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             let mut w = w;
             let seconds =
                 &inc.second[inc.second_start[i] as usize..inc.second_start[i + 1] as usize];
-            for &e in seconds {
-                let s = slot_r[e as usize];
-                if s != u32::MAX {
-                    let r = &results_r[s as usize];
-                    for d in 0..3 {
-                        f[d] += r.fj[d];
-                        t[d] += r.tj[d];
-                    }
-                    if let Some(w) = w.as_deref_mut() {
-                        add_virial(x, &pairs[e as usize], r, w);
-                    }
+            // as second particle (the j side of each result), then its own block (the i side)
+            let entries = seconds
+                .iter()
+                .map(|&e| (e as usize, true))
+                .chain((inc.first[i]..inc.first[i + 1]).map(|e| (e as usize, false)));
+            for (e, second) in entries {
+                let s = slot_r[e];
+                if s == u32::MAX {
+                    continue;
                 }
-            }
-            for e in inc.first[i]..inc.first[i + 1] {
-                let s = slot_r[e as usize];
-                if s != u32::MAX {
-                    let r = &results_r[s as usize];
-                    for d in 0..3 {
-                        f[d] += r.fi[d];
-                        t[d] += r.ti[d];
-                    }
-                    if let Some(w) = w.as_deref_mut() {
-                        add_virial(x, &pairs[e as usize], r, w);
-                    }
+                let r = &results_r[s as usize];
+                let (rf, rt) = if second {
+                    (&r.fj, &r.tj)
+                } else {
+                    (&r.fi, &r.ti)
+                };
+                for d in 0..3 {
+                    f[d] += rf[d];
+                    t[d] += rt[d];
+                }
+                if let Some(w) = w.as_deref_mut() {
+                    add_virial(x, &pairs[e], r, w);
                 }
             }
         };

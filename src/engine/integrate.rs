@@ -24,7 +24,6 @@ pub const SPHERE_INERTIA: f64 = 0.4;
 
 /// First half of a velocity-Verlet step for particles whose `mask` has `group` bits:
 /// half-kick v and omega with the current force and torque, then drift x by a full `dt`.
-/// (A plain loop: the work per particle is too small for threads to pay off.)
 pub fn initial_integrate(p: &mut Particles, group: u32, dt: f64) {
     let dtf = 0.5 * dt;
     let dtfrotate = dtf / SPHERE_INERTIA;
@@ -39,38 +38,43 @@ pub fn initial_integrate(p: &mut Particles, group: u32, dt: f64) {
         mask,
         ..
     } = p;
-    let (f, torque, mass, radius, mask) = (&*f, &*torque, &*mass, &*radius, &*mask);
-    let step = |i: usize, x: &mut [f64; 3], v: &mut [f64; 3], w: &mut [f64; 3]| {
-        if mask[i] & group == 0 {
-            return;
-        }
-        let m = mass[i];
-        let dtfm = dtf / (m * 1.0);
-        for d in 0..3 {
-            v[d] += dtfm * f[i][d];
-        }
-        for d in 0..3 {
-            x[d] += dt * v[d];
-        }
-        let dtirotate = dtfrotate / (radius[i] * radius[i] * m);
-        for d in 0..3 {
-            w[d] += dtirotate * torque[i][d];
+    let n = x.len();
+    // one chunk of particles: zipped slices, so the loop carries no bounds checks
+    let chunk = |start: usize, x: &mut [[f64; 3]], v: &mut [[f64; 3]], w: &mut [[f64; 3]]| {
+        let end = start + x.len();
+        let cols = f[start..end]
+            .iter()
+            .zip(&torque[start..end])
+            .zip(&mass[start..end])
+            .zip(&radius[start..end])
+            .zip(&mask[start..end]);
+        for ((((((f, t), &m), &r), &bits), x), (v, w)) in
+            cols.zip(x.iter_mut()).zip(v.iter_mut().zip(w.iter_mut()))
+        {
+            if bits & group == 0 {
+                continue;
+            }
+            let dtfm = dtf / (m * 1.0);
+            for d in 0..3 {
+                v[d] += dtfm * f[d];
+            }
+            for d in 0..3 {
+                x[d] += dt * v[d];
+            }
+            let dtirotate = dtfrotate / (r * r * m);
+            for d in 0..3 {
+                w[d] += dtirotate * t[d];
+            }
         }
     };
-    if parallel(x.len()) {
+    if parallel(n) {
         x.par_chunks_mut(CHUNK)
             .zip(v.par_chunks_mut(CHUNK))
             .zip(omega.par_chunks_mut(CHUNK))
             .enumerate()
-            .for_each(|(c, ((x, v), w))| {
-                for k in 0..x.len() {
-                    step(c * CHUNK + k, &mut x[k], &mut v[k], &mut w[k]);
-                }
-            });
+            .for_each(|(c, ((x, v), w))| chunk(c * CHUNK, x, v, w));
     } else {
-        for i in 0..x.len() {
-            step(i, &mut x[i], &mut v[i], &mut omega[i]);
-        }
+        chunk(0, x, v, omega);
     }
 }
 
@@ -88,33 +92,36 @@ pub fn final_integrate(p: &mut Particles, group: u32, dt: f64) {
         mask,
         ..
     } = p;
-    let (f, torque, mass, radius, mask) = (&*f, &*torque, &*mass, &*radius, &*mask);
-    let step = |i: usize, v: &mut [f64; 3], w: &mut [f64; 3]| {
-        if mask[i] & group == 0 {
-            return;
-        }
-        let dtfm = dtf / (mass[i] * 1.0);
-        for d in 0..3 {
-            v[d] += dtfm * f[i][d];
-        }
-        let dtirotate = dtfrotate / (radius[i] * radius[i] * mass[i]);
-        for d in 0..3 {
-            w[d] += dtirotate * torque[i][d];
+    let n = v.len();
+    let chunk = |start: usize, v: &mut [[f64; 3]], w: &mut [[f64; 3]]| {
+        let end = start + v.len();
+        let cols = f[start..end]
+            .iter()
+            .zip(&torque[start..end])
+            .zip(&mass[start..end])
+            .zip(&radius[start..end])
+            .zip(&mask[start..end]);
+        for (((((f, t), &m), &r), &bits), (v, w)) in cols.zip(v.iter_mut().zip(w.iter_mut())) {
+            if bits & group == 0 {
+                continue;
+            }
+            let dtfm = dtf / (m * 1.0);
+            for d in 0..3 {
+                v[d] += dtfm * f[d];
+            }
+            let dtirotate = dtfrotate / (r * r * m);
+            for d in 0..3 {
+                w[d] += dtirotate * t[d];
+            }
         }
     };
-    if parallel(v.len()) {
+    if parallel(n) {
         v.par_chunks_mut(CHUNK)
             .zip(omega.par_chunks_mut(CHUNK))
             .enumerate()
-            .for_each(|(c, (v, w))| {
-                for k in 0..v.len() {
-                    step(c * CHUNK + k, &mut v[k], &mut w[k]);
-                }
-            });
+            .for_each(|(c, (v, w))| chunk(c * CHUNK, v, w));
     } else {
-        for i in 0..v.len() {
-            step(i, &mut v[i], &mut omega[i]);
-        }
+        chunk(0, v, omega);
     }
 }
 

@@ -662,6 +662,46 @@ pub struct Incidence {
     pub second: Vec<u32>,
 }
 
+/// How a pair pass adds its contributions to the particles' forces and torques.
+#[derive(Debug, Clone, Default)]
+pub enum SumOrder {
+    /// One pass in list order (the exact path's sums, LIGGGHTS's round-off).
+    #[default]
+    ListOrder,
+    /// In parallel, each particle's contributions gathered in list order (the exact path on
+    /// several threads: the same sums as `ListOrder`).
+    Gathered(Incidence),
+    /// The fast path: fixed blocks of [`BLOCK_PARTICLES`] particles each add their own list
+    /// entries' contributions (blocks in parallel), then contributions to other blocks'
+    /// particles are added in block order. The same sums for any thread count. Holds where
+    /// each block starts in the list ([`block_starts`]).
+    Blocks(Vec<u32>),
+}
+
+/// Particles per block of the fast path's sums (fixed, so sums do not depend on threads).
+pub const BLOCK_PARTICLES: usize = 1024;
+
+/// Where each block of [`BLOCK_PARTICLES`] particles starts in `pairs` (one more value than
+/// blocks, the last `pairs.len()`), or None if the list is not grouped by ascending first
+/// particle.
+pub fn block_starts(pairs: &[Pair], n: usize) -> Option<Vec<u32>> {
+    if pairs.windows(2).any(|w| w[1].i < w[0].i) || pairs.iter().any(|p| p.i as usize >= n) {
+        return None;
+    }
+    let blocks = n.div_ceil(BLOCK_PARTICLES).max(1);
+    let mut starts = Vec::with_capacity(blocks + 1);
+    let mut e = 0;
+    for b in 0..blocks {
+        let lo = (b * BLOCK_PARTICLES) as u32;
+        while e < pairs.len() && pairs[e].i < lo {
+            e += 1;
+        }
+        starts.push(e as u32);
+    }
+    starts.push(pairs.len() as u32);
+    Some(starts)
+}
+
 impl Incidence {
     /// The incidence of `pairs` over `n` particles, or None if the list is not grouped by
     /// ascending first particle with the second particle above the first.
@@ -791,5 +831,30 @@ mod tests {
         assert_eq!(carried, vec![-1.0, -2.0, -3.0]);
         let fresh = carry_history(&old, &hist, &new, &[9, 7], &[5, 9], &[true; 3]);
         assert_eq!(fresh, vec![0.0; 3]);
+    }
+
+    #[test]
+    fn blocks_start_at_their_first_particles_entries() {
+        let pair = |i: u32, j: u32| Pair {
+            i,
+            j,
+            shift: [0.0; 3],
+        };
+        let b = BLOCK_PARTICLES as u32;
+        // block 0: entries 0..3, block 1 (no entries): 3..3, block 2: 3..5
+        let pairs = [
+            pair(0, 1),
+            pair(0, b + 3),
+            pair(b - 1, 2 * b),
+            pair(2 * b, 2 * b + 1),
+            pair(2 * b + 5, 7),
+        ];
+        let n = 2 * BLOCK_PARTICLES + 10;
+        assert_eq!(block_starts(&pairs, n), Some(vec![0, 3, 3, 5]));
+        // no list, one block per BLOCK_PARTICLES particles all the same
+        assert_eq!(block_starts(&[], n), Some(vec![0, 0, 0, 0]));
+        // not grouped by ascending first particle, or a particle past the end: none
+        assert_eq!(block_starts(&[pair(5, 6), pair(1, 2)], n), None);
+        assert_eq!(block_starts(&[pair(n as u32, 1)], n), None);
     }
 }

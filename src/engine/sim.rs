@@ -79,8 +79,7 @@ pub trait PairInteraction: Send {
     /// `update` is false in the setup evaluation: contact history is used but not advanced.
     /// With `virial`, each pair also adds half its virial del_a F_b to both particles
     /// (xx yy zz xy xz yz, force length).
-    /// With `incidence` (the list's per-particle entries), the sums run in parallel over
-    /// particles, each in the list order a sequential pass adds them in.
+    /// `order` says in which order (and how parallel) contributions are added.
     #[allow(clippy::too_many_arguments)]
     fn compute(
         &mut self,
@@ -90,7 +89,7 @@ pub trait PairInteraction: Send {
         dt: f64,
         update: bool,
         virial: Option<&mut [[f64; 6]]>,
-        incidence: Option<&crate::engine::neighbor::Incidence>,
+        order: &crate::engine::neighbor::SumOrder,
     );
 }
 
@@ -343,8 +342,8 @@ pub struct Simulation {
     pub accel: crate::engine::accel::Accel,
     /// Timers and counters of the run in progress (LIGGGHTS's end-of-run statistics).
     pub(crate) stats: RunStats,
-    /// Each particle's list entries, for the parallel pair sums (None: sequential sums).
-    pub(crate) incidence: Option<crate::engine::neighbor::Incidence>,
+    /// How the pair pass adds contributions (set at each list build).
+    pub(crate) sum_order: crate::engine::neighbor::SumOrder,
 }
 
 impl Default for Simulation {
@@ -407,7 +406,7 @@ impl Default for Simulation {
             next_sort: 0,
             natoms_expected: 0,
             accel: crate::engine::accel::Accel::default(),
-            incidence: None,
+            sum_order: Default::default(),
             stats: RunStats::default(),
         }
     }
@@ -727,8 +726,18 @@ impl Simulation {
     /// smaller radius are warned about (once a run, on standard error) and the run goes on.
     fn guard_forces(&mut self) -> Result<(), String> {
         let p = &self.particles;
-        if let Some(i) = first_where(p.len(), |i| !p.f[i].iter().all(|c| c.is_finite())) {
-            return Err(self.non_finite(i));
+        // a branch-free block scan first; the particle is looked for only when one is flagged
+        const BLOCK: usize = 256;
+        let flagged = |b: usize| {
+            let block = &p.f[b * BLOCK..((b + 1) * BLOCK).min(p.len())];
+            block.iter().fold(false, |hit, f| {
+                hit | !f[0].is_finite() | !f[1].is_finite() | !f[2].is_finite()
+            })
+        };
+        if first_where(p.len().div_ceil(BLOCK), flagged).is_some() {
+            if let Some(i) = first_where(p.len(), |i| !p.f[i].iter().all(|c| c.is_finite())) {
+                return Err(self.non_finite(i));
+            }
         }
         if let Some((ratio, i, j)) = self.pair.as_ref().and_then(|m| m.worst_overlap()) {
             // a particle that insert/stream still carries feels no force; LIGGGHTS can
@@ -1185,11 +1194,19 @@ impl Simulation {
         self.list_ids = self.particles.id.clone();
         self.ago = 0;
         self.box_at_build = (self.domain.lo, self.domain.hi);
-        // the parallel pair sums need each particle's entries; small lists stay sequential
-        self.incidence = (self.accel.thread_count() > 1
-            && self.list.pairs.len() >= crate::engine::granular::parallel_pairs())
-        .then(|| crate::engine::neighbor::Incidence::new(&self.list.pairs, self.particles.len()))
-        .flatten();
+        // the fast path sums by blocks of particles on any thread count; the exact path's
+        // parallel sums need each particle's entries; small lists stay sequential
+        use crate::engine::neighbor::{block_starts, Incidence, SumOrder};
+        let (pairs, n) = (&self.list.pairs, self.particles.len());
+        let threads = self.accel.thread_count() > 1;
+        self.sum_order = if self.accel.fast {
+            block_starts(pairs, n).map(SumOrder::Blocks)
+        } else if threads && pairs.len() >= crate::engine::granular::parallel_pairs() {
+            Incidence::new(pairs, n).map(SumOrder::Gathered)
+        } else {
+            None
+        }
+        .unwrap_or_default();
     }
 
     /// `delete_atoms overlap CUT G1 G2`: which atoms go. In memory order, an atom of G1 goes
@@ -1760,10 +1777,10 @@ impl Simulation {
                 None
             };
             let (pairs, history, dt) = (&self.list.pairs, &mut self.history, self.dt);
-            let incidence = self.incidence.as_ref();
+            let order = &self.sum_order;
             let started = std::time::Instant::now();
             self.accel.install(|| {
-                pair.compute(p, pairs, history, dt, update, virial, incidence);
+                pair.compute(p, pairs, history, dt, update, virial, order);
             });
             if self.loop_clock.is_some() {
                 self.stats.pair += started.elapsed().as_secs_f64();
@@ -1806,6 +1823,23 @@ impl Simulation {
     /// `run N pre yes|no`: with `pre no` after the first run, the atoms, neighbour list and
     /// forces of the last step are kept (LIGGGHTS then only sets up output).
     pub fn run_with_setup(
+        &mut self,
+        nsteps: i64,
+        pre: bool,
+        out: Sink<'_>,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), String> {
+        self.accel.settle_threads();
+        let accel = self.accel.clone();
+        let mut job = crate::engine::accel::Handed((self, out, vars));
+        accel.run_on_engine_thread(move || {
+            let (sim, out, vars) = job.get();
+            sim.run_here(nsteps, pre, &mut **out, &mut **vars)
+        })
+    }
+
+    /// `run_with_setup` on the thread it is called from.
+    fn run_here(
         &mut self,
         nsteps: i64,
         pre: bool,

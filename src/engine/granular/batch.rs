@@ -11,7 +11,7 @@
 use crate::engine::contact::real::M4;
 use crate::engine::contact::{
     CoeffLanes, Coeffs, CohesionModel, ContactModel, F64x4, Material, NormalModel, PairCoeffs,
-    PairLanes, RollingModel, TangentialModel, LANES,
+    PairLanes, PairLanesOutput, RollingModel, TangentialModel, LANES,
 };
 use crate::engine::neighbor::Pair;
 use crate::engine::particles::Particles;
@@ -88,20 +88,35 @@ impl Packed {
 /// order, appended to `out`. Branch-free: every entry is written, the count advances only
 /// on contact.
 pub fn touching_entries(packed: &Packed, pairs: &[Pair], offset: usize, out: &mut Vec<u32>) {
+    let rec = &packed.records[..];
+    let Some(last) = rec.len().checked_sub(1) else {
+        return;
+    };
     let start = out.len();
-    out.resize(start + pairs.len(), 0);
-    let rec = &packed.records;
-    let mut n = start;
+    out.reserve(pairs.len());
+    let dst = &mut out.spare_capacity_mut()[..pairs.len()];
+    let mut n = 0;
     for (k, pair) in pairs.iter().enumerate() {
-        let (a, b) = (&rec[pair.i as usize].0, &rec[pair.j as usize].0);
+        // every pair indexes packed particles; clamped all the same (two conditional
+        // moves, no branch), so the unchecked loads below stay inside the records
+        let (i, j) = ((pair.i as usize).min(last), (pair.j as usize).min(last));
+        // SAFETY: i, j <= last < rec.len(); n <= k < dst.len()
+        let (a, b, slot) = unsafe {
+            (
+                &rec.get_unchecked(i).0,
+                &rec.get_unchecked(j).0,
+                dst.get_unchecked_mut(n),
+            )
+        };
         let dx = a[0] - (b[0] + pair.shift[0]);
         let dy = a[1] - (b[1] + pair.shift[1]);
         let dz = a[2] - (b[2] + pair.shift[2]);
         let radsum = a[3] + b[3];
-        out[n] = (offset + k) as u32;
+        slot.write((offset + k) as u32);
         n += (dx * dx + dy * dy + dz * dz < radsum * radsum) as usize;
     }
-    out.truncate(n);
+    // SAFETY: the first n slots past `start` were written above
+    unsafe { out.set_len(start + n) };
 }
 
 /// The coefficients of a run with one atom type: the same in every lane.
@@ -181,6 +196,30 @@ pub struct Kernel<'a, N, T, C, R> {
 pub trait Sink {
     /// Take the result of list entry `entry` (called in the order of the entries).
     fn take(&mut self, entry: usize, pair: &Pair, result: &PairResult);
+
+    /// Take a batch's results: lane k is entry `batch[k]` (`pairs[k]`), `ratio` the
+    /// overlaps as fractions of the smaller radius. By default, lane by lane through
+    /// [`Sink::take`].
+    #[inline(always)]
+    fn take_batch(
+        &mut self,
+        batch: &[u32],
+        pairs: &[&Pair; LANES],
+        out: &PairLanesOutput,
+        ratio: &F64x4,
+    ) {
+        for (k, &entry) in batch.iter().enumerate() {
+            let pick = |v: &[F64x4; 3]| [v[0].0[k], v[1].0[k], v[2].0[k]];
+            let result = PairResult {
+                fi: pick(&out.fi),
+                fj: pick(&out.fj),
+                ti: pick(&out.ti),
+                tj: pick(&out.tj),
+                overlap_ratio: ratio.0[k],
+            };
+            self.take(entry as usize, pairs[k], &result);
+        }
+    }
 }
 
 /// Four records' 12 fields as lanes.
@@ -264,11 +303,15 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
     ) {
         let width = self.model.history_len();
         let rec = &packed.records;
+        assert!(width <= MAX_HISTORY);
         let mut hist = [F64x4::default(); MAX_HISTORY];
         for batch in entries.chunks(LANES) {
             // pad a short last batch with copies of its first pair (results dropped)
             let e: [usize; LANES] = std::array::from_fn(|k| batch[k.min(batch.len() - 1)] as usize);
             let pr: [&Pair; LANES] = e.map(|k| &pairs[k]);
+            // the batch's history lies inside `history` (one check for the four entries)
+            let top = e.iter().copied().max().unwrap_or(0);
+            assert!((top + 1) * width <= history.len());
             let i: [usize; LANES] = pr.map(|q| q.i as usize);
             let j: [usize; LANES] = pr.map(|q| q.j as usize);
             let a = transpose(rec, i);
@@ -301,23 +344,18 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
                 j.map(|n| kinds[n] as usize),
             );
             for (h, slot) in hist.iter_mut().enumerate().take(width) {
-                *slot = F64x4(e.map(|k| history[k * width + h]));
+                // SAFETY: e[k] <= top and h < width (checked above)
+                *slot = F64x4(e.map(|k| unsafe { *history.get_unchecked(k * width + h) }));
             }
             let out = self.model.pair_force_lanes(&lanes, &c, &mut hist[..width]);
             for (k, &entry) in batch.iter().enumerate() {
                 for (h, slot) in hist.iter().enumerate().take(width) {
-                    history[entry as usize * width + h] = slot.0[k];
+                    // SAFETY: as above
+                    unsafe { *history.get_unchecked_mut(entry as usize * width + h) = slot.0[k] };
                 }
-                let pick = |v: &[F64x4; 3]| [v[0].0[k], v[1].0[k], v[2].0[k]];
-                let result = PairResult {
-                    fi: pick(&out.fi),
-                    fj: pick(&out.fj),
-                    ti: pick(&out.ti),
-                    tj: pick(&out.tj),
-                    overlap_ratio: out.deltan.0[k] / a[3].0[k].min(b[3].0[k]),
-                };
-                sink.take(entry as usize, pr[k], &result);
             }
+            let smaller = F64x4(std::array::from_fn(|k| a[3].0[k].min(b[3].0[k])));
+            sink.take_batch(batch, &pr, &out, &(out.deltan / smaller));
         }
     }
 }

@@ -7,10 +7,10 @@
 use rayon::prelude::*;
 
 use crate::engine::contact::{
-    AnyContactModel, CohesionModel, ContactKernel, ContactModel, Material, MaterialInput,
-    NormalModel, PairInput, RollingModel, TangentialModel, WallInput,
+    AnyContactModel, CohesionModel, ContactKernel, ContactModel, F64x4, Material, MaterialInput,
+    NormalModel, PairInput, PairLanesOutput, RollingModel, TangentialModel, WallInput, LANES,
 };
-use crate::engine::neighbor::{Incidence, Pair};
+use crate::engine::neighbor::{Incidence, Pair, SumOrder, BLOCK_PARTICLES};
 use crate::engine::particles::Particles;
 use crate::engine::sim::PairInteraction;
 
@@ -39,6 +39,8 @@ pub struct PairGran<N, T, C, R> {
     pub parts: Vec<Vec<u32>>,
     /// The largest overlap of the last evaluation: (ratio to the smaller radius, i, j).
     pub worst: Option<(f64, u32, u32)>,
+    /// The fast path's contributions between blocks of particles, per block (reused).
+    pub foreign: Vec<Vec<Foreign>>,
 }
 
 /// Below this many listed pairs the contact loop stays on one thread (the fork-join cost of
@@ -172,13 +174,24 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         dt: f64,
         update: bool,
         virial: Option<&mut [[f64; 6]]>,
-        incidence: Option<&Incidence>,
+        order: &SumOrder,
     ) {
         self.packed.fill(p, self.frozen);
         let threads = rayon::current_num_threads();
-        if let Some(inc) = incidence.filter(|i| threads > 1 && i.first.len() == p.len() + 1) {
-            self.compute_gather(p, pairs, history, dt, update, virial, inc);
-            return;
+        match order {
+            SumOrder::Gathered(inc) if threads > 1 && inc.first.len() == p.len() + 1 => {
+                self.compute_gather(p, pairs, history, dt, update, virial, inc);
+                return;
+            }
+            SumOrder::Blocks(starts)
+                if virial.is_none()
+                    && starts.len() == p.len().div_ceil(BLOCK_PARTICLES).max(1) + 1
+                    && starts.last() == Some(&(pairs.len() as u32)) =>
+            {
+                self.compute_blocks(p, pairs, history, dt, update, starts);
+                return;
+            }
+            _ => {}
         }
         let kernel = batch::Kernel {
             model: &self.model,
@@ -265,28 +278,30 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
                 offset += part.len() as u32;
             }
             let kinds = &p.kind;
-            jobs.into_par_iter()
-                .for_each(|(base, part, out, h, sl, offset)| {
+            let worst_of_parts: Vec<Option<(f64, u32, u32)>> = jobs
+                .into_par_iter()
+                .map(|(base, part, out, h, sl, offset)| {
                     for (n, &k) in part.iter().enumerate() {
                         sl[k as usize] = offset + n as u32;
                     }
-                    let mut collect = Collect { out, n: 0 };
+                    let mut collect = Collect {
+                        out,
+                        n: 0,
+                        worst: None,
+                    };
                     kernel.run(packed, kinds, &pairs[base..], part, h, &mut collect);
-                });
+                    collect.worst
+                })
+                .collect();
+            // the worst overlap, first in list order among equals (as the sequential pass)
+            self.worst = worst_of_parts.into_iter().flatten().fold(None, |worst, w| {
+                if worst.is_none_or(|b: (f64, u32, u32)| w.0 > b.0) {
+                    Some(w)
+                } else {
+                    worst
+                }
+            });
         }
-        // the worst overlap, first in list order among equals (as the sequential pass)
-        let mut worst: Option<(f64, u32, u32)> = None;
-        let entries = parts
-            .iter()
-            .enumerate()
-            .flat_map(|(c, part)| part.iter().map(move |&k| c * chunk + k as usize));
-        for (k, res) in entries.zip(&results) {
-            if worst.is_none_or(|w| res.overlap_ratio > w.0) {
-                let pair = &pairs[k];
-                worst = Some((res.overlap_ratio, pair.i, pair.j));
-            }
-        }
-        self.worst = worst;
         // each particle adds its contacts: as second particle, then its own block
         let (slot_r, results_r) = (&slot, &results);
         let x = &p.x;
@@ -354,6 +369,196 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
     }
 }
 
+/// A contribution to a particle of another block: particle index, force (N), torque (N m).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Foreign {
+    j: u32,
+    f: [f64; 3],
+    t: [f64; 3],
+}
+
+/// One block's sums: its own particles' forces and torques from its list entries (first
+/// particles all in the block), and its contributions to other blocks' particles, kept in
+/// list order.
+struct BlockSums<'a> {
+    /// First particle of the block.
+    lo: usize,
+    f: &'a mut [[f64; 3]],
+    torque: &'a mut [[f64; 3]],
+    foreign: &'a mut Vec<Foreign>,
+    worst: Option<(f64, u32, u32)>,
+}
+
+impl BlockSums<'_> {
+    #[inline(never)]
+    fn add(&mut self, n: usize, f: [f64; 3], t: [f64; 3]) {
+        match n.checked_sub(self.lo).filter(|&k| k < self.f.len()) {
+            Some(k) => {
+                for d in 0..3 {
+                    self.f[k][d] += f[d];
+                    self.torque[k][d] += t[d];
+                }
+            }
+            None => self.foreign.push(Foreign { j: n as u32, f, t }),
+        }
+    }
+}
+
+impl batch::Sink for BlockSums<'_> {
+    #[inline(always)]
+    fn take_batch(
+        &mut self,
+        batch: &[u32],
+        pairs: &[&Pair; LANES],
+        out: &PairLanesOutput,
+        ratio: &F64x4,
+    ) {
+        let len = self.f.len().min(self.torque.len());
+        for k in 0..batch.len() {
+            let (i, j) = (pairs[k].i as usize, pairs[k].j as usize);
+            let (ki, kj) = (i.wrapping_sub(self.lo), j.wrapping_sub(self.lo));
+            if ki < len && kj < len {
+                // both particles in the block (most contacts)
+                // SAFETY: ki, kj < len (just checked)
+                unsafe {
+                    let (f, t) = (
+                        self.f.get_unchecked_mut(ki),
+                        self.torque.get_unchecked_mut(ki),
+                    );
+                    for d in 0..3 {
+                        f[d] += out.fi[d].0[k];
+                        t[d] += out.ti[d].0[k];
+                    }
+                    let (f, t) = (
+                        self.f.get_unchecked_mut(kj),
+                        self.torque.get_unchecked_mut(kj),
+                    );
+                    for d in 0..3 {
+                        f[d] += out.fj[d].0[k];
+                        t[d] += out.tj[d].0[k];
+                    }
+                }
+            } else {
+                let pick = |v: &[F64x4; 3]| [v[0].0[k], v[1].0[k], v[2].0[k]];
+                self.add(i, pick(&out.fi), pick(&out.ti));
+                self.add(j, pick(&out.fj), pick(&out.tj));
+            }
+            let r = ratio.0[k];
+            if self.worst.is_none_or(|w| r > w.0) {
+                self.worst = Some((r, pairs[k].i, pairs[k].j));
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn take(&mut self, _: usize, pair: &Pair, res: &PairResult) {
+        self.add(pair.i as usize, res.fi, res.ti);
+        self.add(pair.j as usize, res.fj, res.tj);
+        if self.worst.is_none_or(|w| res.overlap_ratio > w.0) {
+            self.worst = Some((res.overlap_ratio, pair.i, pair.j));
+        }
+    }
+}
+
+impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> PairGran<N, T, C, R> {
+    /// The fast path's pair pass ([`SumOrder::Blocks`]): each block of particles finds and
+    /// computes its touching entries and adds them to its own particles (blocks on the
+    /// engine's threads), then contributions to other blocks' particles are added in block
+    /// order. No step depends on the number of threads.
+    fn compute_blocks(
+        &mut self,
+        p: &mut Particles,
+        pairs: &[Pair],
+        history: &mut [f64],
+        dt: f64,
+        update: bool,
+        starts: &[u32],
+    ) {
+        let kernel = batch::Kernel {
+            model: &self.model,
+            material: &self.material,
+            ntypes: self.material.ntypes(),
+            dt,
+            update,
+        };
+        let packed = &self.packed;
+        let width = self.model.history_len();
+        let blocks = starts.len() - 1;
+        let mut parts = std::mem::take(&mut self.parts);
+        parts.resize_with(blocks, Vec::new);
+        let mut foreign = std::mem::take(&mut self.foreign);
+        foreign.resize_with(blocks, Vec::new);
+        // each block owns its particles' forces, its entries' history and its buffers
+        let mut jobs = Vec::with_capacity(blocks);
+        {
+            let (mut f, mut t, mut h) = (&mut p.f[..], &mut p.torque[..], &mut history[..]);
+            for (b, (touch, out)) in parts.iter_mut().zip(foreign.iter_mut()).enumerate() {
+                let own = BLOCK_PARTICLES.min(f.len());
+                let (fb, rest) = std::mem::take(&mut f).split_at_mut(own);
+                f = rest;
+                let (tb, rest) = std::mem::take(&mut t).split_at_mut(own);
+                t = rest;
+                let (s, e) = (starts[b] as usize, starts[b + 1] as usize);
+                let (hb, rest) = std::mem::take(&mut h).split_at_mut((e - s) * width);
+                h = rest;
+                let sums = BlockSums {
+                    lo: b * BLOCK_PARTICLES,
+                    f: fb,
+                    torque: tb,
+                    foreign: out,
+                    worst: None,
+                };
+                jobs.push((s..e, touch, hb, sums));
+            }
+        }
+        let kinds = &p.kind;
+        let run = |(range, touch, h, mut sums): (
+            std::ops::Range<usize>,
+            &mut Vec<u32>,
+            &mut [f64],
+            BlockSums,
+        )| {
+            let part = &pairs[range];
+            touch.clear();
+            sums.foreign.clear();
+            batch::touching_entries(packed, part, 0, touch);
+            kernel.run(packed, kinds, part, touch, h, &mut sums);
+            sums.worst
+        };
+        let worst: Vec<Option<(f64, u32, u32)>> = if rayon::current_num_threads() > 1 && blocks > 1
+        {
+            jobs.into_par_iter().with_max_len(1).map(run).collect()
+        } else {
+            jobs.into_iter().map(run).collect()
+        };
+        // contributions between blocks, in block order
+        for out in &foreign {
+            for c in out {
+                let j = c.j as usize;
+                for d in 0..3 {
+                    p.f[j][d] += c.f[d];
+                    p.torque[j][d] += c.t[d];
+                }
+            }
+        }
+        // the worst overlap, first in block order among equals
+        self.worst = worst.into_iter().flatten().fold(None, |worst, w| {
+            if worst.is_none_or(|b: (f64, u32, u32)| w.0 > b.0) {
+                Some(w)
+            } else {
+                worst
+            }
+        });
+        self.touching.clear();
+        for (b, part) in parts.iter().enumerate() {
+            let base = starts[b];
+            self.touching.extend(part.iter().map(|&k| base + k));
+        }
+        self.parts = parts;
+        self.foreign = foreign;
+    }
+}
+
 /// Half a pair's virial (LIGGGHTS's `ev_tally_xyz` with del = x_i - x_j and F the force
 /// on i) added to `w`.
 #[inline(always)]
@@ -389,6 +594,55 @@ struct Accumulate<'a, 'b> {
 
 impl batch::Sink for Accumulate<'_, '_> {
     #[inline(always)]
+    fn take_batch(
+        &mut self,
+        batch: &[u32],
+        pairs: &[&Pair; LANES],
+        out: &PairLanesOutput,
+        ratio: &F64x4,
+    ) {
+        let n = self.f.len().min(self.torque.len());
+        assert!(pairs
+            .iter()
+            .all(|q| (q.i as usize) < n && (q.j as usize) < n));
+        for k in 0..batch.len() {
+            let (i, j) = (pairs[k].i as usize, pairs[k].j as usize);
+            if let Some(w) = self.virial.as_deref_mut() {
+                let pick = |v: &[F64x4; 3]| [v[0].0[k], v[1].0[k], v[2].0[k]];
+                let res = PairResult {
+                    fi: pick(&out.fi),
+                    ..PairResult::default()
+                };
+                add_virial(self.x, pairs[k], &res, &mut w[i]);
+                add_virial(self.x, pairs[k], &res, &mut w[j]);
+            }
+            // SAFETY: i, j < n (checked above)
+            unsafe {
+                let (f, t) = (
+                    self.f.get_unchecked_mut(i),
+                    self.torque.get_unchecked_mut(i),
+                );
+                for d in 0..3 {
+                    f[d] += out.fi[d].0[k];
+                    t[d] += out.ti[d].0[k];
+                }
+                let (f, t) = (
+                    self.f.get_unchecked_mut(j),
+                    self.torque.get_unchecked_mut(j),
+                );
+                for d in 0..3 {
+                    f[d] += out.fj[d].0[k];
+                    t[d] += out.tj[d].0[k];
+                }
+            }
+            let r = ratio.0[k];
+            if self.worst.is_none_or(|w| r > w.0) {
+                self.worst = Some((r, pairs[k].i, pairs[k].j));
+            }
+        }
+    }
+
+    #[inline(always)]
     fn take(&mut self, _: usize, pair: &Pair, res: &PairResult) {
         add_pair(
             self.x,
@@ -409,13 +663,18 @@ impl batch::Sink for Accumulate<'_, '_> {
 struct Collect<'a> {
     out: &'a mut [PairResult],
     n: usize,
+    /// The largest overlap ratio of the part, first in order among equals.
+    worst: Option<(f64, u32, u32)>,
 }
 
 impl batch::Sink for Collect<'_> {
     #[inline(always)]
-    fn take(&mut self, _: usize, _: &Pair, res: &PairResult) {
+    fn take(&mut self, _: usize, pair: &Pair, res: &PairResult) {
         self.out[self.n] = *res;
         self.n += 1;
+        if self.worst.is_none_or(|w| res.overlap_ratio > w.0) {
+            self.worst = Some((res.overlap_ratio, pair.i, pair.j));
+        }
     }
 }
 
@@ -480,6 +739,7 @@ pub fn build(
                 slot: Vec::new(),
                 parts: Vec::new(),
                 worst: None,
+                foreign: Vec::new(),
             })
         }
     }

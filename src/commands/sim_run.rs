@@ -1089,6 +1089,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.error(0, "Run command stop value is before end of run"));
     }
     super::material_check::validate(a, ctx)?;
+    super::compute_modify::setup_counts(ctx.sim);
     if ctx.sys.mode == Mode::Check {
         // a dry run validates the deck but never steps: it makes LIGGGHTS's init checks, keeps
         // the restart files the run would write, and moves the step count to the run's end
@@ -1106,6 +1107,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     if ctx.sim.pair_selection.is_some() && !ctx.sim.pair_coeff_set {
         return Err(a.error(0, "All pair coeffs are not set"));
     }
+    super::neigh_binsize::note(ctx);
     ctx.sim.ramp_bounds = (start, stop);
     let out = &mut *ctx.out;
     let mut sink = |s: &str| out.both(s);
@@ -1340,6 +1342,7 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
         }
         "pe" => super::computes_extra::pe(a, ctx)?,
         "ke" => no_keywords(ComputeKind::Ke)?,
+        "temp" => no_keywords(ComputeKind::Temp)?,
         "ke/atom" => no_keywords(ComputeKind::KeAtom)?,
         "contact/atom" => {
             let mut skin = 0.0;

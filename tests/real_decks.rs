@@ -486,3 +486,46 @@ fn compute_modify_and_group_variable_errors() {
     );
     assert_eq!(regolith(&dir, &["check", "in.t"]).status.code(), Some(0));
 }
+
+#[test]
+fn dump_columns_of_fixes_as_liggghts_checks_them() {
+    let dir = scratch("dumpfix");
+    for (body, needle) in [
+        (
+            "fix mv all move linear 0 0 0\ndump d all custom 1 d.dump id f_mv",
+            "Dump custom fix does not compute per-atom vector",
+        ),
+        (
+            "fix mv all move linear 0 0 0\ndump d all custom 1 d.dump id f_mv[4]",
+            "Dump custom fix vector is accessed out-of-range",
+        ),
+        (
+            "fix g all gravity 9.81 vector 0 0 -1\ndump d all custom 1 d.dump id x f_g",
+            "Dump custom fix does not compute per-atom info",
+        ),
+        (
+            "dump d all custom 1 d.dump id f_nope[1]",
+            "Could not find dump custom fix ID",
+        ),
+    ] {
+        let line = 11 + body.matches('\n').count();
+        fails_alike(&dir, body, needle, line);
+    }
+    // fix move's start positions, 0 outside its group
+    std::fs::write(
+        dir.join("in.t"),
+        format!(
+            "{HEAD}create_atoms 1 single 0.05 0.05 0.05\ncreate_atoms 1 single 0.02 0.03 0.04\n\
+             group one id 2\nfix mv one move linear 1 0 0\ntimestep 1e-3\n\
+             dump d all custom 1 d.dump id f_mv[1] f_mv[2] f_mv[3]\ndump_modify d sort id\nrun 2\n"
+        ),
+    )
+    .unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let dump = std::fs::read_to_string(dir.join("d.dump")).unwrap();
+    assert!(
+        dump.ends_with("ITEM: ATOMS id f_mv[1] f_mv[2] f_mv[3] \n1 0 0 0 \n2 0.02 0.03 0.04 \n"),
+        "{dump}"
+    );
+}

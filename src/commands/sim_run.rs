@@ -825,8 +825,15 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                     .error(4, "Illegal dump custom command")
                     .with_help("list the columns to dump"));
             }
-            if let Some(k) = names.iter().position(|n| n.starts_with("f_")) {
-                return Err(a.unsupported(5 + k, "dump columns of fixes"));
+            for (k, n) in names.iter().enumerate() {
+                if let Some(body) = n.strip_prefix("f_") {
+                    let (fid, index) =
+                        crate::util::numbers::split_reference(body).ok_or_else(|| {
+                            a.error(5 + k, "Invalid attribute in dump custom command")
+                        })?;
+                    crate::engine::fix_columns::column(ctx.sim, fid, index)
+                        .map_err(|m| a.error(5 + k, &m))?;
+                }
             }
             for (k, n) in names.iter().enumerate() {
                 if let Some(var) = n.strip_prefix("v_") {

@@ -958,9 +958,14 @@ impl Simulation {
             let values = vars.atom(self, var)?;
             return Ok((crate::engine::computes::PerAtom { columns: 1, values }, 0));
         }
+        if let Some(body) = name.strip_prefix("f_") {
+            let (id, index) = crate::util::numbers::split_reference(body)
+                .ok_or_else(|| format!("Invalid attribute {name} in dump custom command"))?;
+            return crate::engine::fix_columns::per_atom(self, id, index);
+        }
         let body = name
             .strip_prefix("c_")
-            .ok_or_else(|| format!("dump column {name}: fix columns are not supported yet"))?;
+            .ok_or_else(|| format!("Invalid attribute {name} in dump custom command"))?;
         let (id, index) = crate::util::numbers::split_reference(body)
             .ok_or_else(|| format!("Invalid attribute {name} in dump custom command"))?;
         let c = self

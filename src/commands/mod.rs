@@ -12,7 +12,6 @@ pub mod group_variable;
 pub mod logs;
 pub mod material_check;
 pub mod names;
-pub mod neigh_binsize;
 pub mod out_of_scope;
 pub mod registry;
 pub mod set;

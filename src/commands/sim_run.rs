@@ -1114,7 +1114,6 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     if ctx.sim.pair_selection.is_some() && !ctx.sim.pair_coeff_set {
         return Err(a.error(0, "All pair coeffs are not set"));
     }
-    super::neigh_binsize::note(ctx);
     ctx.sim.ramp_bounds = (start, stop);
     let out = &mut *ctx.out;
     let mut sink = |s: &str| out.both(s);

@@ -376,10 +376,11 @@ impl Compute {
         let mut out = Vec::new();
         // rows in LIGGGHTS's order: by the reporting atom, then its partners in bin order
         // (positions of the last list build, ghosts of periodic partners beyond the box)
-        let order = crate::engine::neighbor::BinOrder::new(
+        let order = crate::engine::neighbor::BinOrder::sized(
             sim.domain.lo,
             sim.domain.hi,
             sim.neighbor.cutneighmax,
+            sim.extras.neigh_binsize,
         );
         let built = sim.list.built_positions();
         let mut keyed: Vec<((usize, [i64; 3], usize), usize)> = Vec::new();
@@ -513,10 +514,11 @@ impl Compute {
         // walks bins x-outermost, z-innermost (positions of the last list build) and atoms
         // in index order within a bin
         let mut contacts = crate::engine::fixes::mesh_wall_contacts(&sim.fixes, k, p, sim.dt);
-        let order = crate::engine::neighbor::BinOrder::new(
+        let order = crate::engine::neighbor::BinOrder::sized(
             sim.domain.lo,
             sim.domain.hi,
             sim.neighbor.cutneighmax,
+            sim.extras.neigh_binsize,
         );
         let built = sim.list.built_positions();
         contacts.sort_by_cached_key(|c| {

@@ -1103,10 +1103,11 @@ impl Simulation {
         let old_pairs = std::mem::take(&mut self.list.pairs);
         let width = self.pair.as_ref().map_or(0, |p| p.history_width());
         if !(self.accel.fast && self.build_list_fast()) {
-            let order = crate::engine::neighbor::BinOrder::new(
+            let order = crate::engine::neighbor::BinOrder::sized(
                 self.domain.lo,
                 self.domain.hi,
                 self.neighbor.cutneighmax,
+                self.extras.neigh_binsize,
             );
             // LIGGGHTS's stencil walk; the general search where particles have grown
             // (pairs beyond the stencil are counted) or the box is too short

@@ -239,3 +239,288 @@ fn thermo_log_and_modify_timing_arguments() {
         assert!(err.contains(needle), "{body}: {err}");
     }
 }
+
+#[test]
+fn neigh_modify_binsize_as_liggghts_checks_it() {
+    let dir = scratch("binsize");
+    let body = |binsize: &str| {
+        format!(
+            "{HEAD}neigh_modify binsize {binsize}\n{MATERIAL}pair_style gran model hertz tangential history\n\
+             pair_coeff * *\ncreate_atoms 1 single 0.05 0.05 0.05\nset atom 1 diameter 0.01 density 2500\n\
+             timestep 1e-5\nfix i all nve/sphere\nrun 1\n"
+        )
+    };
+    // bins a hundred box lengths wide, and more bins than an int counts: errors at the run
+    for (binsize, needle) in [
+        ("20", "Cannot use neighbor bins - box size << cutoff"),
+        ("1e-6", "Too many neighbor bins"),
+    ] {
+        std::fs::write(dir.join("in.t"), body(binsize)).unwrap();
+        let out = regolith(&dir, &["check", "in.t"]);
+        let stdout = text(&out.stdout);
+        assert!(
+            stdout.starts_with(&format!("in.t:22: {needle}")),
+            "{stdout}"
+        );
+        let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+        let err = text(&out.stderr);
+        assert!(err.contains(needle) && err.contains("--> in.t:22"), "{err}");
+        assert_eq!(out.status.code(), Some(1));
+    }
+    // a bin grid other than the default (compat deck neigh_binsize: LIGGGHTS's order)
+    std::fs::write(dir.join("in.t"), body("0.003")).unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    // 0 (or less) is LIGGGHTS's default; a missing value is an error at the line
+    std::fs::write(dir.join("in.t"), body("0")).unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(!text(&out.stderr).contains("binsize"));
+    std::fs::write(dir.join("in.t"), format!("{HEAD}neigh_modify binsize\n")).unwrap();
+    for mode in [&["check", "in.t"][..], &["-in", "in.t", "-log", "none"]] {
+        let out = regolith(&dir, mode);
+        let all = text(&out.stdout) + &text(&out.stderr);
+        assert!(all.contains("Illegal neigh_modify command"), "{all}");
+        assert_eq!(out.status.code(), Some(1));
+    }
+}
+
+/// `body` appended to HEAD fails in both `check` and `-in` with `needle`, at `line`.
+fn fails_alike(dir: &PathBuf, body: &str, needle: &str, line: usize) {
+    stops_alike(dir, body, needle, line, 1);
+}
+
+/// As [`fails_alike`], with exit status `code` (3: not supported yet).
+fn stops_alike(dir: &PathBuf, body: &str, needle: &str, line: usize, code: i32) {
+    std::fs::write(dir.join("in.t"), format!("{HEAD}{body}\n")).unwrap();
+    let out = regolith(dir, &["check", "in.t"]);
+    let stdout = text(&out.stdout);
+    assert!(
+        stdout.starts_with(&format!("in.t:{line}: {needle}")),
+        "{body}: {stdout}"
+    );
+    assert_eq!(out.status.code(), Some(code), "{body}");
+    let out = regolith(dir, &["-in", "in.t", "-log", "none"]);
+    let err = text(&out.stderr);
+    assert!(
+        err.contains(needle) && err.contains(&format!("--> in.t:{line}")),
+        "{body}: {err}"
+    );
+    assert_eq!(out.status.code(), Some(code), "{body}");
+}
+
+#[test]
+fn change_box_errors_as_liggghts_reports_them() {
+    let dir = scratch("changebox");
+    for (body, needle) in [
+        ("change_box all", "Illegal change_box command"),
+        ("change_box all units box", "Illegal change_box command"),
+        (
+            "change_box nog x final 0 1",
+            "Could not find change_box group ID",
+        ),
+        // options end the operations: nothing may follow them
+        (
+            "change_box all x final 0 1 units lattice remap",
+            "Illegal change_box command",
+        ),
+        ("change_box all x final 0.2 0.1", "Box bounds are invalid"),
+        ("change_box all x scale", "Illegal change_box command"),
+        (
+            "change_box all y volume",
+            "Change_box volume used incorrectly",
+        ),
+        (
+            "change_box all x final 0 1 y volume z volume x volume",
+            "Change_box volume used incorrectly",
+        ),
+        (
+            "change_box all xy final 0.1",
+            "Cannot change box tilt factors for orthogonal box",
+        ),
+        ("change_box all boundary p p", "Illegal change_box command"),
+        (
+            "change_box all boundary p p x",
+            "Illegal change_box command",
+        ),
+        (
+            "change_box all boundary p p fp",
+            "Both sides of boundary must be periodic",
+        ),
+        // a shrink-wrapped face around no atoms turns the box inside out, as in LIGGGHTS
+        ("change_box all boundary p p fs", "Illegal simulation box"),
+        (
+            "dump d all custom 1 d.dump id\nchange_box all ortho",
+            "Cannot change box ortho/triclinic with dumps defined",
+        ),
+    ] {
+        let line = 11 + body.matches('\n').count();
+        fails_alike(&dir, body, needle, line);
+    }
+    stops_alike(
+        &dir,
+        "change_box all triclinic",
+        "change_box triclinic: not supported yet",
+        11,
+        3,
+    );
+    // before the box
+    std::fs::write(dir.join("in.t"), "change_box all x final 0 1\n").unwrap();
+    let out = regolith(&dir, &["check", "in.t"]);
+    assert!(text(&out.stdout)
+        .starts_with("in.t:1: Change_box command before simulation box is defined"));
+    // bounds in lattice units (a lattice of spacing 1 when none was defined)
+    std::fs::write(
+        dir.join("in.t"),
+        format!("{HEAD}change_box all x final 0 2 units lattice\nlattice sc 0.5\nchange_box all y final 0 2 z scale 2 units lattice\n"),
+    )
+    .unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    let stdout = text(&out.stdout);
+    assert!(
+        stdout.contains("Changing box ...\n  orthogonal box = (0 0 0) to (2 0.1 0.1)\n"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("  orthogonal box = (0 0 0) to (2 1 0.1)\n  orthogonal box = (0 0 -0.05) to (2 1 0.15)\n"),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn change_box_after_a_restart_with_per_atom_state_needs_force() {
+    let dir = scratch("changeboxrestart");
+    let deck = format!(
+        "{HEAD}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n\
+         create_atoms 1 single 0.05 0.05 0.05\nset atom 1 diameter 0.01 density 2500\n\
+         timestep 1e-5\nfix i all nve/sphere\nrun 1\nwrite_restart r.restart\n"
+    );
+    std::fs::write(dir.join("in.w"), deck).unwrap();
+    assert!(regolith(&dir, &["-in", "in.w", "-log", "none"])
+        .status
+        .success());
+    let read = "atom_style granular\nread_restart r.restart\nchange_box all boundary p p fs";
+    std::fs::write(dir.join("in.t"), format!("{read}\n")).unwrap();
+    for mode in [&["check", "in.t"][..], &["-in", "in.t", "-log", "none"]] {
+        let out = regolith(&dir, mode);
+        let all = text(&out.stdout) + &text(&out.stderr);
+        assert!(
+            all.contains("Cannot change_box after reading restart file with per-atom info"),
+            "{all}"
+        );
+        assert_eq!(out.status.code(), Some(1));
+    }
+    std::fs::write(dir.join("in.t"), format!("{read} force\n")).unwrap();
+    for mode in [&["check", "in.t"][..], &["-in", "in.t", "-log", "none"]] {
+        let out = regolith(&dir, mode);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
+    }
+}
+
+#[test]
+fn compute_modify_and_group_variable_errors() {
+    let dir = scratch("computemodify");
+    for (body, needle) in [
+        (
+            "compute_modify thermo_temp",
+            "Illegal compute_modify command",
+        ),
+        (
+            "compute_modify nope dynamic yes",
+            "Could not find compute_modify ID",
+        ),
+        // extra/dof is a later LAMMPS keyword
+        (
+            "compute_modify thermo_temp extra/dof 0",
+            "Illegal compute_modify command",
+        ),
+        (
+            "compute_modify thermo_temp dynamic maybe",
+            "Illegal compute_modify command",
+        ),
+        (
+            "compute_modify thermo_temp extra",
+            "Illegal compute_modify command",
+        ),
+        (
+            "compute_modify thermo_temp extra 1.5",
+            "Expected integer parameter",
+        ),
+        ("compute thermo_temp all temp", "Reuse of compute ID"),
+        ("compute t all temp extra", "Illegal compute temp command"),
+        (
+            "group g variable nov",
+            "Variable name for group does not exist",
+        ),
+        (
+            "variable e equal 1\ngroup g variable e",
+            "Variable for group is invalid style",
+        ),
+        ("group g initialize extra", "Illegal group command"),
+    ] {
+        let line = 11 + body.matches('\n').count();
+        fails_alike(&dir, body, needle, line);
+    }
+    // accepted: the deprecation warning LIGGGHTS prints for thermo_temp, and both defaults
+    std::fs::write(
+        dir.join("in.t"),
+        format!("{HEAD}compute_modify thermo_temp dynamic yes extra 0\ncompute_modify thermo_kin_eng thermo no\ngroup g initialize\ngroup g initialize\n"),
+    )
+    .unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    assert!(
+        stdout.contains("WARNING: Changing thermo_temp compute object."),
+        "{stdout}"
+    );
+    assert_eq!(
+        stdout.matches("0 atoms in group g\n").count(),
+        2,
+        "{stdout}"
+    );
+    assert_eq!(regolith(&dir, &["check", "in.t"]).status.code(), Some(0));
+}
+
+#[test]
+fn dump_columns_of_fixes_as_liggghts_checks_them() {
+    let dir = scratch("dumpfix");
+    for (body, needle) in [
+        (
+            "fix mv all move linear 0 0 0\ndump d all custom 1 d.dump id f_mv",
+            "Dump custom fix does not compute per-atom vector",
+        ),
+        (
+            "fix mv all move linear 0 0 0\ndump d all custom 1 d.dump id f_mv[4]",
+            "Dump custom fix vector is accessed out-of-range",
+        ),
+        (
+            "fix g all gravity 9.81 vector 0 0 -1\ndump d all custom 1 d.dump id x f_g",
+            "Dump custom fix does not compute per-atom info",
+        ),
+        (
+            "dump d all custom 1 d.dump id f_nope[1]",
+            "Could not find dump custom fix ID",
+        ),
+    ] {
+        let line = 11 + body.matches('\n').count();
+        fails_alike(&dir, body, needle, line);
+    }
+    // fix move's start positions, 0 outside its group
+    std::fs::write(
+        dir.join("in.t"),
+        format!(
+            "{HEAD}create_atoms 1 single 0.05 0.05 0.05\ncreate_atoms 1 single 0.02 0.03 0.04\n\
+             group one id 2\nfix mv one move linear 1 0 0\ntimestep 1e-3\n\
+             dump d all custom 1 d.dump id f_mv[1] f_mv[2] f_mv[3]\ndump_modify d sort id\nrun 2\n"
+        ),
+    )
+    .unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let dump = std::fs::read_to_string(dir.join("d.dump")).unwrap();
+    assert!(
+        dump.ends_with("ITEM: ATOMS id f_mv[1] f_mv[2] f_mv[3] \n1 0 0 0 \n2 0.02 0.03 0.04 \n"),
+        "{dump}"
+    );
+}

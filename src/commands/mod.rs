@@ -3,9 +3,12 @@
 //! ([`crate::script::interp`]); everything else arrives here as a [`CommandLine`].
 
 pub mod args;
+pub mod change_box;
+pub mod compute_modify;
 pub mod computes_extra;
 pub mod diverged;
 pub mod fix_state;
+pub mod group_variable;
 pub mod logs;
 pub mod material_check;
 pub mod names;
@@ -129,8 +132,11 @@ impl Default for Engine {
 impl Engine {
     /// An engine with no box and LIGGGHTS's default settings.
     pub fn new() -> Engine {
+        let mut sim = Simulation::default();
+        // LIGGGHTS's computes of every deck (its Output constructor makes them)
+        sim.computes = compute_modify::default_computes();
         Engine {
-            sim: Simulation::default(),
+            sim,
             diverged: false,
         }
     }

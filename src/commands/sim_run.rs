@@ -825,8 +825,15 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                     .error(4, "Illegal dump custom command")
                     .with_help("list the columns to dump"));
             }
-            if let Some(k) = names.iter().position(|n| n.starts_with("f_")) {
-                return Err(a.unsupported(5 + k, "dump columns of fixes"));
+            for (k, n) in names.iter().enumerate() {
+                if let Some(body) = n.strip_prefix("f_") {
+                    let (fid, index) =
+                        crate::util::numbers::split_reference(body).ok_or_else(|| {
+                            a.error(5 + k, "Invalid attribute in dump custom command")
+                        })?;
+                    crate::engine::fix_columns::column(ctx.sim, fid, index)
+                        .map_err(|m| a.error(5 + k, &m))?;
+                }
             }
             for (k, n) in names.iter().enumerate() {
                 if let Some(var) = n.strip_prefix("v_") {
@@ -1089,6 +1096,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.error(0, "Run command stop value is before end of run"));
     }
     super::material_check::validate(a, ctx)?;
+    super::compute_modify::setup_counts(ctx.sim);
     if ctx.sys.mode == Mode::Check {
         // a dry run validates the deck but never steps: it makes LIGGGHTS's init checks, keeps
         // the restart files the run would write, and moves the step count to the run's end
@@ -1340,6 +1348,7 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
         }
         "pe" => super::computes_extra::pe(a, ctx)?,
         "ke" => no_keywords(ComputeKind::Ke)?,
+        "temp" => no_keywords(ComputeKind::Temp)?,
         "ke/atom" => no_keywords(ComputeKind::KeAtom)?,
         "contact/atom" => {
             let mut skin = 0.0;

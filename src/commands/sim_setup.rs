@@ -26,6 +26,8 @@ pub const COMMANDS: &[(&str, Handler)] = &[
     ("processors", |a, _| processors(a)),
     ("region", region),
     ("create_box", create_box),
+    ("change_box", super::change_box::change_box),
+    ("compute_modify", super::compute_modify::compute_modify),
     ("create_atoms", create_atoms),
     ("lattice", lattice),
     ("displace_atoms", displace_atoms),
@@ -759,6 +761,12 @@ fn group(a: &Args, ctx: &mut Ctx) -> Result {
     )?;
     let name = a.word(0)?;
     let style = a.word(1)?;
+    let mut by_variable = None;
+    match style {
+        "variable" => by_variable = Some(super::group_variable::selected(a, ctx)?),
+        "initialize" => super::group_variable::initialize(a)?,
+        _ => {}
+    }
     let sim = &mut ctx.sim;
     if style == "delete" {
         if name == "all" {
@@ -860,6 +868,9 @@ fn group(a: &Args, ctx: &mut Ctx) -> Result {
                 sel
             }
         }
+        // a dry run that cannot evaluate the variable selects nobody
+        "variable" => by_variable.flatten().unwrap_or_else(|| vec![false; n]),
+        "initialize" => vec![false; n],
         "subtract" | "union" | "intersect" => {
             let mut bits = Vec::new();
             for k in 2..a.len() {
@@ -887,6 +898,8 @@ fn group(a: &Args, ctx: &mut Ctx) -> Result {
                     "subtract",
                     "union",
                     "intersect",
+                    "variable",
+                    "initialize",
                     "delete",
                     "clear",
                 ],
@@ -1208,13 +1221,20 @@ fn neigh_modify(a: &Args, ctx: &mut Ctx) -> Result {
                 }
                 continue;
             }
-            "include" | "binsize" | "contact_distance_factor" => {
+            "binsize" => {
+                // LIGGGHTS scales it by the coarse-graining factor, which regolith has not
+                ctx.sim.extras.neigh_binsize = a.real(i + 1)?.max(0.0);
+            }
+            "include" | "contact_distance_factor" => {
                 return Err(a.unsupported(i, &format!("neigh_modify {}", a.word(i)?)))
             }
             _ => {
-                return Err(
-                    a.keyword_error(i, &["every", "delay", "check", "one", "page", "exclude"])
-                )
+                return Err(a.keyword_error(
+                    i,
+                    &[
+                        "every", "delay", "check", "one", "page", "exclude", "binsize",
+                    ],
+                ))
             }
         }
         i += 2;
@@ -1377,6 +1397,7 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
     ctx.say("Reading restart file ...\n");
     let pair = ctx.sim.load_restart(&r).map_err(|m| a.error(0, &m))?;
     ctx.sim.restart_in_progress = !r.global_fixes.is_empty() || !r.peratom_fixes.is_empty();
+    ctx.sim.extras.restart_peratom_fixes = r.peratom_fixes.len();
     ctx.sim.restart_fixes = r.global_fixes.clone();
     ctx.sim.restart_peratom = r
         .peratom_fixes

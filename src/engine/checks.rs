@@ -14,7 +14,19 @@ const CUT_TO_BIN: f64 = 100.0;
 /// direction, or its error when the cutoff does not fit the box ("box size << cutoff") or the
 /// box holds more bins than an int counts.
 pub fn neighbor_bins(bbox: [f64; 3], cut: f64) -> Result<[f64; 3], String> {
-    let size = if cut == 0.0 { bbox[0] } else { 0.5 * cut };
+    neighbor_bins_sized(bbox, cut, 0.0)
+}
+
+/// [`neighbor_bins`] with `neigh_modify binsize` (length; 0 for LIGGGHTS's default of half
+/// the cutoff).
+pub fn neighbor_bins_sized(bbox: [f64; 3], cut: f64, user: f64) -> Result<[f64; 3], String> {
+    let size = if user > 0.0 {
+        user
+    } else if cut == 0.0 {
+        bbox[0]
+    } else {
+        0.5 * cut
+    };
     let inv = 1.0 / size;
     if bbox
         .iter()
@@ -33,6 +45,14 @@ pub fn neighbor_bins(bbox: [f64; 3], cut: f64) -> Result<[f64; 3], String> {
     for d in 0..3 {
         nbins[d] = (bbox[d] * inv).trunc().max(1.0);
         let binsize = bbox[d] / nbins[d];
+        if size / binsize > CUT_TO_BIN && user > 0.0 {
+            return Err(format!(
+                "Cannot use neighbor bins - box size << cutoff (neigh_modify binsize {} is more than {CUT_TO_BIN} times the box length {} along {})",
+                g(user),
+                g(bbox[d]),
+                ["x", "y", "z"][d]
+            ));
+        }
         if size / binsize > CUT_TO_BIN {
             return Err(format!(
                 "Cannot use neighbor bins - box size << cutoff (the neighbor cutoff {} is more than {} times the box length {} along {})",
@@ -47,10 +67,14 @@ pub fn neighbor_bins(bbox: [f64; 3], cut: f64) -> Result<[f64; 3], String> {
         total *= nbins[d] + 2.0 * ghost + 3.0;
     }
     if total > MAX_BINS {
+        let why = if user > 0.0 {
+            format!("neigh_modify binsize {}", g(user))
+        } else {
+            format!("a neighbor cutoff of {}", g(cut))
+        };
         return Err(format!(
-            "Too many neighbor bins (about {} for a neighbor cutoff of {} in this box)",
-            g(total),
-            g(cut)
+            "Too many neighbor bins (about {} for {why} in this box)",
+            g(total)
         ));
     }
     Ok(nbins)
@@ -204,7 +228,7 @@ impl Simulation {
             } else {
                 0.0
             };
-            neighbor_bins(bbox, cut)?;
+            neighbor_bins_sized(bbox, cut, self.extras.neigh_binsize)?;
         }
         Ok(())
     }

@@ -14,6 +14,8 @@ pub enum ComputeKind {
     ErotateSphere,
     /// `ke`: translational kinetic energy, 0.5 m v^2 summed (energy).
     Ke,
+    /// `temp`: temperature of the group (temperature; see `commands::compute_modify`).
+    Temp,
     /// `pe`: potential energy (energy); granular pair styles and walls tally none, so 0.
     PotentialEnergy,
     /// `ke/atom`: 0.5 m v^2 per atom (energy).
@@ -222,6 +224,7 @@ pub const STYLES: &[&str] = &[
     "property/atom",
     "reduce",
     "stress/atom",
+    "temp",
 ];
 
 impl Compute {
@@ -262,6 +265,7 @@ impl Compute {
                 sum * (0.5 * 1.0 * SPHERE_INERTIA)
             }
             ComputeKind::Ke => kinetic_energy(p, self.group),
+            ComputeKind::Temp => crate::commands::compute_modify::temperature(sim, self),
             ComputeKind::PotentialEnergy => 0.0,
             ComputeKind::Reduce { mode, inputs } if inputs.len() == 1 => {
                 self.reduce(sim, *mode, &inputs[0], vars)?
@@ -372,10 +376,11 @@ impl Compute {
         let mut out = Vec::new();
         // rows in LIGGGHTS's order: by the reporting atom, then its partners in bin order
         // (positions of the last list build, ghosts of periodic partners beyond the box)
-        let order = crate::engine::neighbor::BinOrder::new(
+        let order = crate::engine::neighbor::BinOrder::sized(
             sim.domain.lo,
             sim.domain.hi,
             sim.neighbor.cutneighmax,
+            sim.extras.neigh_binsize,
         );
         let built = sim.list.built_positions();
         let mut keyed: Vec<((usize, [i64; 3], usize), usize)> = Vec::new();
@@ -509,10 +514,11 @@ impl Compute {
         // walks bins x-outermost, z-innermost (positions of the last list build) and atoms
         // in index order within a bin
         let mut contacts = crate::engine::fixes::mesh_wall_contacts(&sim.fixes, k, p, sim.dt);
-        let order = crate::engine::neighbor::BinOrder::new(
+        let order = crate::engine::neighbor::BinOrder::sized(
             sim.domain.lo,
             sim.domain.hi,
             sim.neighbor.cutneighmax,
+            sim.extras.neigh_binsize,
         );
         let built = sim.list.built_positions();
         contacts.sort_by_cached_key(|c| {

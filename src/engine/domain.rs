@@ -260,6 +260,29 @@ impl Domain {
         Ok(())
     }
 
+    /// LIGGGHTS's `set_initial_box` after the box was changed in place (`change_box`): the
+    /// bounds must enclose a volume, the shrink-wrap padding becomes 1e-4 of each current
+    /// length, `s` faces move out by it and `m` faces take their current position as limit.
+    pub fn reset_initial(&mut self) -> Result<(), String> {
+        if (0..3).any(|d| !(self.lo[d] < self.hi[d])) {
+            return Err("Box bounds are invalid".into());
+        }
+        for d in 0..3 {
+            self.pad[d] = SHRINK_PAD * (self.hi[d] - self.lo[d]);
+            match self.boundary[d][0] {
+                Boundary::Shrink => self.lo[d] -= self.pad[d],
+                Boundary::ShrinkMin => self.initial_lo[d] = self.lo[d],
+                _ => {}
+            }
+            match self.boundary[d][1] {
+                Boundary::Shrink => self.hi[d] += self.pad[d],
+                Boundary::ShrinkMin => self.initial_hi[d] = self.hi[d],
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
     /// Does any face shrink-wrap?
     pub fn shrinks(&self) -> bool {
         self.boundary

@@ -25,6 +25,15 @@ pub struct Extras {
     pub thermo_file: Option<std::fs::File>,
     /// `modify_timing off|on|verbose` (0, 1, 2).
     pub modify_timing: u8,
+    /// `neigh_modify binsize`: the neighbour bin size (length; 0 for LIGGGHTS's default,
+    /// half the neighbour cutoff). The bins order each particle's partners, and with them
+    /// the round-off of its contact sums, on the exact path.
+    pub neigh_binsize: f64,
+    /// `compute_modify` settings (and setup atom counts of temperature computes) by ID.
+    pub compute_settings: HashMap<String, crate::commands::compute_modify::ComputeSettings>,
+    /// Fixes with per-atom state in the last restart file read (LIGGGHTS then refuses
+    /// `change_box` without `force`).
+    pub restart_peratom_fixes: usize,
 }
 
 /// Copy thermo output to the `thermo_log` file, if one is open.

@@ -8,6 +8,7 @@ pub mod computes;
 pub mod contact;
 pub mod domain;
 pub mod extras;
+pub mod fix_columns;
 pub mod fixes;
 pub mod granular;
 pub mod insert;

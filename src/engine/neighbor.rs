@@ -33,11 +33,18 @@ pub struct BinOrder {
 impl BinOrder {
     /// Bins for the box `lo`..`hi` and LIGGGHTS's `cutneighmax` (length).
     pub fn new(lo: [f64; 3], hi: [f64; 3], cutneighmax: f64) -> BinOrder {
+        BinOrder::sized(lo, hi, cutneighmax, 0.0)
+    }
+
+    /// [`BinOrder::new`] with `neigh_modify binsize` (length; 0 for half `cutneighmax`).
+    pub fn sized(lo: [f64; 3], hi: [f64; 3], cutneighmax: f64, binsize: f64) -> BinOrder {
         let mut inv = [0.0; 3];
         let mut n = [1i64; 3];
         for d in 0..3 {
             let bbox = hi[d] - lo[d];
-            let optimal = if cutneighmax > 0.0 {
+            let optimal = if binsize > 0.0 {
+                binsize
+            } else if cutneighmax > 0.0 {
                 0.5 * cutneighmax
             } else {
                 bbox

@@ -967,9 +967,14 @@ impl Simulation {
             let values = vars.atom(self, var)?;
             return Ok((crate::engine::computes::PerAtom { columns: 1, values }, 0));
         }
+        if let Some(body) = name.strip_prefix("f_") {
+            let (id, index) = crate::util::numbers::split_reference(body)
+                .ok_or_else(|| format!("Invalid attribute {name} in dump custom command"))?;
+            return crate::engine::fix_columns::per_atom(self, id, index);
+        }
         let body = name
             .strip_prefix("c_")
-            .ok_or_else(|| format!("dump column {name}: fix columns are not supported yet"))?;
+            .ok_or_else(|| format!("Invalid attribute {name} in dump custom command"))?;
         let (id, index) = crate::util::numbers::split_reference(body)
             .ok_or_else(|| format!("Invalid attribute {name} in dump custom command"))?;
         let c = self
@@ -1107,10 +1112,11 @@ impl Simulation {
         let old_pairs = std::mem::take(&mut self.list.pairs);
         let width = self.pair.as_ref().map_or(0, |p| p.history_width());
         if !(self.accel.fast && self.build_list_fast()) {
-            let order = crate::engine::neighbor::BinOrder::new(
+            let order = crate::engine::neighbor::BinOrder::sized(
                 self.domain.lo,
                 self.domain.hi,
                 self.neighbor.cutneighmax,
+                self.extras.neigh_binsize,
             );
             // LIGGGHTS's stencil walk; the general search where particles have grown
             // (pairs beyond the stencil are counted) or the box is too short

@@ -143,10 +143,11 @@ impl Thermo {
                 .or_else(|| k.strip_prefix("f_"))
                 .or_else(|| k.strip_prefix("v_"))
             {
-                // LIGGGHTS labels a compute column by its reference without the c_ prefix
+                // LIGGGHTS labels a compute column by its reference without the c_ prefix,
+                // cut to its first 8 characters (`c_thermo_temp` is `thermo_t`)
                 fields.push(Field {
                     keyword: k.to_string(),
-                    label: rest.to_string(),
+                    label: rest.chars().take(8).collect(),
                     kind: Kind::Real,
                 });
                 continue;

@@ -74,16 +74,16 @@ impl Accel {
         }
     }
 
-    /// The threads of a run nobody chose them for, decided when a run starts: one, on either
-    /// path, unless `RAYON_NUM_THREADS` is set. (Measured on two cores, a second thread makes
-    /// a 10 000-sphere bed 1.3x slower and a 50 000-sphere bed no faster: threads are asked
-    /// for with `-pk fast N` until they pay; see README's speed section.)
+    /// The threads of a run nobody chose them for, decided when a run starts: every core (or
+    /// `RAYON_NUM_THREADS`) on the fast path, whose sums by blocks of particles split across
+    /// threads; one on the exact path (its parallel sums gather every contact in list
+    /// order and do not pay on two cores) unless `RAYON_NUM_THREADS` is set.
     pub fn settle_threads(&mut self) {
         if self.asked {
             return;
         }
         let env = std::env::var_os("RAYON_NUM_THREADS").is_some();
-        let want = if env { None } else { Some(1) };
+        let want = if env || self.fast { None } else { Some(1) };
         if want != self.threads || (want.is_none() && self.pool.is_some()) {
             self.set_threads(want);
         }
@@ -332,7 +332,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn runs_nobody_chose_threads_for_use_one_on_either_path() {
+    fn runs_nobody_chose_threads_for_use_every_core_on_the_fast_path_and_one_on_the_exact() {
         if std::env::var_os("RAYON_NUM_THREADS").is_some() {
             return; // the environment chose
         }
@@ -340,6 +340,10 @@ mod tests {
         a.settle_threads();
         assert_eq!(a.thread_count(), 1);
         a.fast = true;
+        a.settle_threads();
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        assert_eq!(a.thread_count(), cores);
+        a.fast = false;
         a.settle_threads();
         assert_eq!(a.thread_count(), 1);
         // asked for: kept on either path

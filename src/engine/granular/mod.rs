@@ -420,24 +420,7 @@ impl batch::Sink for BlockSums<'_> {
             if ki < len && kj < len {
                 // both particles in the block (most contacts)
                 // SAFETY: ki, kj < len (just checked)
-                unsafe {
-                    let (f, t) = (
-                        self.f.get_unchecked_mut(ki),
-                        self.torque.get_unchecked_mut(ki),
-                    );
-                    for d in 0..3 {
-                        f[d] += out.fi[d].0[k];
-                        t[d] += out.ti[d].0[k];
-                    }
-                    let (f, t) = (
-                        self.f.get_unchecked_mut(kj),
-                        self.torque.get_unchecked_mut(kj),
-                    );
-                    for d in 0..3 {
-                        f[d] += out.fj[d].0[k];
-                        t[d] += out.tj[d].0[k];
-                    }
-                }
+                unsafe { add_lane(self.f, self.torque, (ki, kj), out, k) };
             } else {
                 let pick = |v: &[F64x4; 3]| [v[0].0[k], v[1].0[k], v[2].0[k]];
                 self.add(i, pick(&out.fi), pick(&out.ti));
@@ -583,6 +566,29 @@ fn add_virial(x: &[[f64; 3]], pair: &Pair, res: &PairResult, w: &mut [f64; 6]) {
     }
 }
 
+/// Add lane `k` of a batch's forces and torques to particles `a` (the i side) and `b` (the
+/// j side), i's first.
+///
+/// # Safety
+/// `a` and `b` must be below `f.len()` and `torque.len()`.
+#[inline(always)]
+unsafe fn add_lane(
+    f: &mut [[f64; 3]],
+    torque: &mut [[f64; 3]],
+    (a, b): (usize, usize),
+    out: &PairLanesOutput,
+    k: usize,
+) {
+    let sides = [(a, &out.fi, &out.ti), (b, &out.fj, &out.tj)];
+    for (n, force, moment) in sides {
+        let (f, t) = (f.get_unchecked_mut(n), torque.get_unchecked_mut(n));
+        for d in 0..3 {
+            f[d] += force[d].0[k];
+            t[d] += moment[d].0[k];
+        }
+    }
+}
+
 /// Adds each pair's result to its particles, in the order given (the exact path's sums).
 struct Accumulate<'a, 'b> {
     x: &'a [[f64; 3]],
@@ -617,24 +623,7 @@ impl batch::Sink for Accumulate<'_, '_> {
                 add_virial(self.x, pairs[k], &res, &mut w[j]);
             }
             // SAFETY: i, j < n (checked above)
-            unsafe {
-                let (f, t) = (
-                    self.f.get_unchecked_mut(i),
-                    self.torque.get_unchecked_mut(i),
-                );
-                for d in 0..3 {
-                    f[d] += out.fi[d].0[k];
-                    t[d] += out.ti[d].0[k];
-                }
-                let (f, t) = (
-                    self.f.get_unchecked_mut(j),
-                    self.torque.get_unchecked_mut(j),
-                );
-                for d in 0..3 {
-                    f[d] += out.fj[d].0[k];
-                    t[d] += out.tj[d].0[k];
-                }
-            }
+            unsafe { add_lane(self.f, self.torque, (i, j), out, k) };
             let r = ratio.0[k];
             if self.worst.is_none_or(|w| r > w.0) {
                 self.worst = Some((r, pairs[k].i, pairs[k].j));

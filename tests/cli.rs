@@ -306,6 +306,18 @@ fn check_and_run_state_the_time_step_margin() {
         stdout.contains("types 1-1: dt is 20.0 % of the Rayleigh time and 12.6 % of the Hertz contact time 0.000751837 s"),
         "{stdout}"
     );
+    assert!(!stdout.contains("WARNING: types"), "{stdout}");
+    // past 40 % of the Rayleigh time the margin warns
+    let out = regolith(&dir, &["check", deck, "-var", "frac", "0.5"], None);
+    let stdout = text(&out.stdout);
+    assert!(
+        stdout.contains("types 1-1: dt is 50.0 % of the Rayleigh time"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("WARNING: types 1-1: dt is above 40.0 % of the Rayleigh time"),
+        "{stdout}"
+    );
     // a run says it on standard error: the screen and log keep LIGGGHTS's lines
     let out = regolith(&dir, &["-in", deck, "-log", "none"], None);
     assert_eq!(out.status.code(), Some(0));

@@ -9,6 +9,11 @@ use crate::engine::insert::Velocity;
 use crate::engine::sim::Simulation;
 use std::f64::consts::PI;
 
+/// Fraction of the Rayleigh time above which the margin warns (a single Hertz collision
+/// at 90 % of it loses 45 % of its energy to the integrator; EDEM's guidance is 20 % for
+/// four or more contacts per particle, 40 % below).
+pub const RAYLEIGH_WARN: f64 = 0.4;
+
 /// The Rayleigh time of a sphere of radius `r` and density `rho` of a material with Young's
 /// modulus `e` and Poisson ratio `nu`: pi r sqrt(rho / G) / (0.1631 nu + 0.8766), with the
 /// shear modulus G = E / (2 (1 + nu)).
@@ -212,6 +217,16 @@ impl Simulation {
                     ));
                 }
                 s.push('\n');
+                if dt > RAYLEIGH_WARN * tr {
+                    s.push_str(&format!(
+                        "  WARNING: types {}-{}: dt is above {} of the Rayleigh time: contacts \
+                         lose energy they should keep and the run may blow up (a dense packing \
+                         wants at most 20 %)\n",
+                        i + 1,
+                        j + 1,
+                        pct(100.0 * RAYLEIGH_WARN)
+                    ));
+                }
             }
         }
         if hertz {

@@ -17,6 +17,9 @@ use std::sync::Arc;
 /// may run on one of them.
 const ENGINE_STACK: usize = 64 << 20;
 
+/// rayon's global pool was built here (so its threads have the engine's stack size).
+static GLOBAL_POOL_OURS: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
 /// A value handed to the engine's thread that runs a whole `run` command, while the thread
 /// that owns it waits for the run to end (so the value is never used by two threads at
 /// once). Parallel stages started from an engine thread cost a few microseconds; started
@@ -110,7 +113,14 @@ impl Accel {
             .num_threads(n)
             .stack_size(ENGINE_STACK)
             .build_global();
-        if global.is_ok() || rayon::current_num_threads() == n {
+        if global.is_ok() {
+            GLOBAL_POOL_OURS.store(true, std::sync::atomic::Ordering::Relaxed);
+            return;
+        }
+        // the global pool, if built here with the same size; else a pool of the engine's own
+        if rayon::current_num_threads() == n
+            && GLOBAL_POOL_OURS.load(std::sync::atomic::Ordering::Relaxed)
+        {
             return;
         }
         self.pool = rayon::ThreadPoolBuilder::new()
@@ -125,7 +135,11 @@ impl Accel {
     pub fn run_on_engine_thread<R: Send>(&self, f: impl FnOnce() -> R + Send) -> R {
         match &self.pool {
             Some(p) => p.install(f),
-            None if rayon::current_thread_index().is_none() && rayon::current_num_threads() > 1 => {
+            // rayon's global pool, if this module built it (with the engine's stack size)
+            None if rayon::current_thread_index().is_none()
+                && rayon::current_num_threads() > 1
+                && GLOBAL_POOL_OURS.load(std::sync::atomic::Ordering::Relaxed) =>
+            {
                 rayon::scope(|_| f())
             }
             None => f(),

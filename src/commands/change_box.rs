@@ -255,8 +255,13 @@ fn wrap_atoms(sim: &mut Simulation) {
 }
 
 fn print_box(ctx: &mut Ctx) {
-    let (lo, hi) = (ctx.sim.domain.lo, ctx.sim.domain.hi);
-    ctx.say(&format!(
+    let line = orthogonal_box_line(ctx.sim.domain.lo, ctx.sim.domain.hi);
+    ctx.say(&line);
+}
+
+/// LIGGGHTS's `  orthogonal box = (lo) to (hi)` line, lengths in box units.
+pub(crate) fn orthogonal_box_line(lo: [f64; 3], hi: [f64; 3]) -> String {
+    format!(
         "  orthogonal box = ({} {} {}) to ({} {} {})\n",
         g(lo[0]),
         g(lo[1]),
@@ -264,7 +269,7 @@ fn print_box(ctx: &mut Ctx) {
         g(hi[0]),
         g(hi[1]),
         g(hi[2])
-    ));
+    )
 }
 
 fn apply(a: &Args, ctx: &mut Ctx, ops: &[Op], group: u32, scale: f64) -> Result {

@@ -1404,17 +1404,12 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
         .iter()
         .map(|f| (f.id.clone(), f.style.clone()))
         .collect();
-    let (lo, hi) = (ctx.sim.domain.lo, ctx.sim.domain.hi);
-    ctx.say(&format!(
-        "  orthogonal box = ({} {} {}) to ({} {} {})\n  1 by 1 by 1 MPI processor grid\n  {} atoms\n",
-        g(lo[0]),
-        g(lo[1]),
-        g(lo[2]),
-        g(hi[0]),
-        g(hi[1]),
-        g(hi[2]),
+    let line = format!(
+        "{}  1 by 1 by 1 MPI processor grid\n  {} atoms\n",
+        super::change_box::orthogonal_box_line(ctx.sim.domain.lo, ctx.sim.domain.hi),
         ctx.sim.particles.len()
-    ));
+    );
+    ctx.say(&line);
     // the pair style stored in the file, as LIGGGHTS recreates it (decks usually repeat it)
     if let Some(words) = pair {
         for text in [format!("pair_style {words}"), "pair_coeff * *".to_string()] {

@@ -138,8 +138,13 @@ impl Real for f64 {
 /// Number of lanes of [`F64x4`].
 pub const LANES: usize = 4;
 
-/// Four doubles, one per contact of a batch (lane-wise IEEE arithmetic; the compiler maps
-/// it onto SIMD registers).
+/// Four doubles, one per contact of a batch (lane-wise IEEE arithmetic).
+///
+/// On x86-64 every operation is one AVX instruction on a 256-bit register, so **the
+/// processor must support AVX**: the pair kernel runs `F64x4` code only after checking
+/// (`batch::Kernel`), and runs the `f64` code one pair at a time otherwise. Elsewhere the
+/// lanes are plain arrays. Either way each lane rounds exactly as `f64` does (no fused
+/// multiply-add).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 #[repr(C, align(32))]
 pub struct F64x4(pub [f64; LANES]);
@@ -158,22 +163,141 @@ impl M4 {
     }
 }
 
+/// The 256-bit AVX operations behind [`F64x4`] and [`M4`] on x86-64.
+#[cfg(target_arch = "x86_64")]
+mod avx {
+    use super::{F64x4, M4};
+    use std::arch::x86_64::*;
+
+    // SAFETY (every function here): F64x4 and M4 are 32-byte aligned arrays of four
+    // 8-byte lanes, the layout of __m256d; the AVX instructions are available because
+    // F64x4 code runs only where the processor has AVX (see F64x4's documentation).
+
+    /// The lanes as a register.
+    #[inline(always)]
+    pub fn get(a: F64x4) -> __m256d {
+        unsafe { _mm256_load_pd(a.0.as_ptr()) }
+    }
+
+    /// A register as lanes.
+    #[inline(always)]
+    pub fn put(r: __m256d) -> F64x4 {
+        let mut out = F64x4::default();
+        unsafe { _mm256_store_pd(out.0.as_mut_ptr(), r) };
+        out
+    }
+
+    /// A mask as a register.
+    #[inline(always)]
+    pub fn get_mask(m: M4) -> __m256d {
+        unsafe { _mm256_load_pd(m.0.as_ptr().cast()) }
+    }
+
+    /// A register as a mask.
+    #[inline(always)]
+    pub fn put_mask(r: __m256d) -> M4 {
+        let mut out = M4::default();
+        unsafe { _mm256_store_pd(out.0.as_mut_ptr().cast(), r) };
+        out
+    }
+
+    macro_rules! binary {
+        ($name:ident, $intr:ident) => {
+            /// Lane-wise operation.
+            #[inline(always)]
+            pub fn $name(a: F64x4, b: F64x4) -> F64x4 {
+                put(unsafe { $intr(get(a), get(b)) })
+            }
+        };
+    }
+    binary!(add, _mm256_add_pd);
+    binary!(sub, _mm256_sub_pd);
+    binary!(mul, _mm256_mul_pd);
+    binary!(div, _mm256_div_pd);
+
+    /// Lane-wise square root (correctly rounded, as `f64::sqrt`).
+    #[inline(always)]
+    pub fn sqrt(a: F64x4) -> F64x4 {
+        put(unsafe { _mm256_sqrt_pd(get(a)) })
+    }
+
+    /// Lane-wise sign flip (as `-x`, also for zeros and NaN).
+    #[inline(always)]
+    pub fn neg(a: F64x4) -> F64x4 {
+        put(unsafe { _mm256_xor_pd(get(a), _mm256_set1_pd(-0.0)) })
+    }
+
+    /// Lane-wise absolute value (sign bit cleared, as `f64::abs`).
+    #[inline(always)]
+    pub fn abs(a: F64x4) -> F64x4 {
+        put(unsafe { _mm256_andnot_pd(_mm256_set1_pd(-0.0), get(a)) })
+    }
+
+    /// Lane-wise comparison with predicate `P` (an `_CMP_*` constant).
+    #[inline(always)]
+    pub fn cmp<const P: i32>(a: F64x4, b: F64x4) -> M4 {
+        put_mask(unsafe { _mm256_cmp_pd::<P>(get(a), get(b)) })
+    }
+
+    /// `a` where `m` holds, `b` elsewhere.
+    #[inline(always)]
+    pub fn select(m: M4, a: F64x4, b: F64x4) -> F64x4 {
+        put(unsafe { _mm256_blendv_pd(get(b), get(a), get_mask(m)) })
+    }
+
+    macro_rules! mask_binary {
+        ($name:ident, $intr:ident) => {
+            /// Lane-wise bit operation.
+            #[inline(always)]
+            pub fn $name(a: M4, b: M4) -> M4 {
+                put_mask(unsafe { $intr(get_mask(a), get_mask(b)) })
+            }
+        };
+    }
+    mask_binary!(and, _mm256_and_pd);
+    mask_binary!(or, _mm256_or_pd);
+
+    /// Lane-wise not.
+    #[inline(always)]
+    pub fn not(a: M4) -> M4 {
+        put_mask(unsafe { _mm256_xor_pd(get_mask(a), _mm256_castsi256_pd(_mm256_set1_epi64x(-1))) })
+    }
+
+    /// True if any lane is set.
+    #[inline(always)]
+    pub fn any(a: M4) -> bool {
+        unsafe { _mm256_movemask_pd(get_mask(a)) != 0 }
+    }
+}
+
 impl Mask for M4 {
     #[inline(always)]
     fn and(self, o: M4) -> M4 {
+        #[cfg(target_arch = "x86_64")]
+        return avx::and(self, o);
+        #[cfg(not(target_arch = "x86_64"))]
         M4(std::array::from_fn(|k| self.0[k] & o.0[k]))
     }
     #[inline(always)]
     fn or(self, o: M4) -> M4 {
+        #[cfg(target_arch = "x86_64")]
+        return avx::or(self, o);
+        #[cfg(not(target_arch = "x86_64"))]
         M4(std::array::from_fn(|k| self.0[k] | o.0[k]))
     }
     #[inline(always)]
     fn not(self) -> M4 {
+        #[cfg(target_arch = "x86_64")]
+        return avx::not(self);
+        #[cfg(not(target_arch = "x86_64"))]
         M4(self.0.map(|b| !b))
     }
     #[inline(always)]
     fn any(self) -> bool {
-        (self.0[0] | self.0[1] | self.0[2] | self.0[3]) != 0
+        #[cfg(target_arch = "x86_64")]
+        return avx::any(self);
+        #[cfg(not(target_arch = "x86_64"))]
+        ((self.0[0] | self.0[1] | self.0[2] | self.0[3]) != 0)
     }
 }
 
@@ -183,6 +307,9 @@ macro_rules! lanewise {
             type Output = F64x4;
             #[inline(always)]
             fn $f(self, o: F64x4) -> F64x4 {
+                #[cfg(target_arch = "x86_64")]
+                return avx::$f(self, o);
+                #[cfg(not(target_arch = "x86_64"))]
                 F64x4([
                     self.0[0] $op o.0[0],
                     self.0[1] $op o.0[1],
@@ -202,6 +329,9 @@ impl Neg for F64x4 {
     type Output = F64x4;
     #[inline(always)]
     fn neg(self) -> F64x4 {
+        #[cfg(target_arch = "x86_64")]
+        return avx::neg(self);
+        #[cfg(not(target_arch = "x86_64"))]
         F64x4(self.0.map(|x| -x))
     }
 }
@@ -228,9 +358,12 @@ impl MulAssign for F64x4 {
 }
 
 macro_rules! compare {
-    ($f:ident, $op:tt) => {
+    ($f:ident, $op:tt, $pred:ident) => {
         #[inline(always)]
         fn $f(self, o: F64x4) -> M4 {
+            #[cfg(target_arch = "x86_64")]
+            return avx::cmp::<{ std::arch::x86_64::$pred }>(self, o);
+            #[cfg(not(target_arch = "x86_64"))]
             M4::from_bools([
                 self.0[0] $op o.0[0],
                 self.0[1] $op o.0[1],
@@ -249,31 +382,55 @@ impl Real for F64x4 {
     }
     #[inline(always)]
     fn sqrt(self) -> F64x4 {
+        #[cfg(target_arch = "x86_64")]
+        return avx::sqrt(self);
+        #[cfg(not(target_arch = "x86_64"))]
         F64x4(self.0.map(f64::sqrt))
     }
     #[inline(always)]
     fn abs(self) -> F64x4 {
+        #[cfg(target_arch = "x86_64")]
+        return avx::abs(self);
+        #[cfg(not(target_arch = "x86_64"))]
         F64x4(self.0.map(f64::abs))
     }
     #[inline(always)]
     fn powf(self, e: f64) -> F64x4 {
         F64x4(self.0.map(|x| x.powf(e)))
     }
-    compare!(lt, <);
-    compare!(gt, >);
-    compare!(ge, >=);
-    compare!(ne, !=);
-    compare!(eq, ==);
+    // ordered predicates are false for NaN, as Rust's <, >, >=, ==; != is unordered (true)
+    compare!(lt, <, _CMP_LT_OQ);
+    compare!(gt, >, _CMP_GT_OQ);
+    compare!(ge, >=, _CMP_GE_OQ);
+    compare!(ne, !=, _CMP_NEQ_UQ);
+    compare!(eq, ==, _CMP_EQ_OQ);
     #[inline(always)]
     fn is_infinite(self) -> M4 {
-        M4::from_bools(self.0.map(f64::is_infinite))
+        self.abs().eq(F64x4::splat(f64::INFINITY))
     }
     #[inline(always)]
     fn select(m: M4, a: F64x4, b: F64x4) -> F64x4 {
+        #[cfg(target_arch = "x86_64")]
+        return avx::select(m, a, b);
+        #[cfg(not(target_arch = "x86_64"))]
         F64x4(std::array::from_fn(|k| {
             f64::from_bits((a.0[k].to_bits() & m.0[k]) | (b.0[k].to_bits() & !m.0[k]))
         }))
     }
+}
+
+/// Does this processor run [`F64x4`] code (AVX on x86-64; always elsewhere)? Checked once;
+/// `REGOLITH_NO_AVX2` answers no (the pair kernel then runs one pair at a time).
+pub fn lanes_supported() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        static HAS: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+        *HAS.get_or_init(|| {
+            std::env::var_os("REGOLITH_NO_AVX2").is_none() && is_x86_feature_detected!("avx2")
+        })
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    true
 }
 
 #[cfg(test)]
@@ -282,6 +439,9 @@ mod tests {
 
     #[test]
     fn lanes_compute_what_scalars_compute() {
+        if !lanes_supported() {
+            return;
+        }
         let a = F64x4([1.0, -2.0, 0.1, 3.0]);
         let b = F64x4([0.3, 0.7, -0.2, 3.0]);
         let r = ((a * b + a) / b).sqrt().abs() - F64x4::splat(0.5);
@@ -298,5 +458,18 @@ mod tests {
             m.not().and(a.eq(b)),
             M4::from_bools([false, false, false, true])
         );
+        // signs of zeros and NaN comparisons as f64 has them
+        let z = F64x4([0.0, -0.0, f64::NAN, f64::NEG_INFINITY]);
+        let flipped = -z;
+        for k in 0..LANES {
+            assert_eq!(flipped.0[k].to_bits(), (-z.0[k]).to_bits());
+            assert_eq!(z.abs().0[k].to_bits(), z.0[k].abs().to_bits());
+        }
+        let one = F64x4::splat(1.0);
+        assert_eq!(z.lt(one), M4::from_bools([true, true, false, true]));
+        assert_eq!(z.ge(one), M4::from_bools([false; 4]));
+        assert_eq!(z.ne(z), M4::from_bools([false, false, true, false]));
+        assert_eq!(z.is_infinite(), M4::from_bools([false, false, false, true]));
+        assert!(!M4::from_bools([false; 4]).or(M4::default()).any());
     }
 }

@@ -40,11 +40,19 @@ pub const MAX_HISTORY: usize = 8;
 #[repr(C, align(32))]
 pub struct Record(pub [f64; 12]);
 
+/// One particle's sphere as the touching test reads it: x y z (m), radius (m).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[repr(C, align(32))]
+pub struct Sphere(pub [f64; 4]);
+
 /// The particle records of one force evaluation (rebuilt from the particle arrays).
 #[derive(Debug, Clone, Default)]
 pub struct Packed {
     /// One record per particle.
     pub records: Vec<Record>,
+    /// The records' first four fields again, a third of the size: the touching test runs
+    /// over every listed pair and finds these in cache more often.
+    pub spheres: Vec<Sphere>,
 }
 
 impl Packed {
@@ -54,7 +62,8 @@ impl Packed {
         let n = p.len();
         // every record is overwritten below: keep the old values rather than clear
         self.records.resize(n, Record::default());
-        let write = |start: usize, out: &mut [Record]| {
+        self.spheres.resize(n, Sphere::default());
+        let write = |start: usize, (out, spheres): (&mut [Record], &mut [Sphere])| {
             let end = start + out.len();
             let cols = (
                 &p.x[start..end],
@@ -64,22 +73,24 @@ impl Packed {
                 &p.mass[start..end],
                 &p.mask[start..end],
             );
-            for (k, rec) in out.iter_mut().enumerate() {
+            for (k, (rec, sphere)) in out.iter_mut().zip(spheres.iter_mut()).enumerate() {
                 let (x, v, w) = (cols.0[k], cols.1[k], cols.2[k]);
                 let fz = if cols.5[k] & frozen != 0 { 1.0 } else { 0.0 };
                 rec.0 = [
                     x[0], x[1], x[2], cols.3[k], v[0], v[1], v[2], cols.4[k], w[0], w[1], w[2], fz,
                 ];
+                sphere.0 = [x[0], x[1], x[2], cols.3[k]];
             }
         };
         if crate::engine::integrate::parallel(n) {
             const PART: usize = 2048;
             self.records
                 .par_chunks_mut(PART)
+                .zip(self.spheres.par_chunks_mut(PART))
                 .enumerate()
                 .for_each(|(c, out)| write(c * PART, out));
         } else {
-            write(0, &mut self.records);
+            write(0, (&mut self.records, &mut self.spheres));
         }
     }
 }
@@ -88,7 +99,7 @@ impl Packed {
 /// order, appended to `out`. Branch-free: every entry is written, the count advances only
 /// on contact.
 pub fn touching_entries(packed: &Packed, pairs: &[Pair], offset: usize, out: &mut Vec<u32>) {
-    let rec = &packed.records[..];
+    let rec = &packed.spheres[..];
     let Some(last) = rec.len().checked_sub(1) else {
         return;
     };
@@ -262,15 +273,66 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
         history: &mut [f64],
         sink: &mut S,
     ) {
+        if !crate::engine::contact::real::lanes_supported() {
+            self.run_scalar(packed, kinds, pairs, entries, history, sink);
+            return;
+        }
         #[cfg(target_arch = "x86_64")]
         {
-            if avx2() {
-                // SAFETY: the processor supports AVX2 (checked at run time).
-                unsafe { self.run_avx2(coeffs, packed, kinds, pairs, entries, history, sink) };
-                return;
-            }
+            // SAFETY: the processor supports AVX2 (checked at run time).
+            unsafe { self.run_avx2(coeffs, packed, kinds, pairs, entries, history, sink) };
         }
+        #[cfg(not(target_arch = "x86_64"))]
         self.run_lanes(coeffs, packed, kinds, pairs, entries, history, sink);
+    }
+
+    /// The pairs one at a time with `f64` arithmetic (processors without AVX): each result
+    /// is the one a lane would compute.
+    fn run_scalar<S: Sink>(
+        &self,
+        packed: &Packed,
+        kinds: &[u32],
+        pairs: &[Pair],
+        entries: &[u32],
+        history: &mut [f64],
+        sink: &mut S,
+    ) {
+        let width = self.model.history_len();
+        let rec = &packed.records;
+        for &entry in entries {
+            let e = entry as usize;
+            let pair = &pairs[e];
+            let (i, j) = (pair.i as usize, pair.j as usize);
+            let (a, b) = (&rec[i].0, &rec[j].0);
+            let input = crate::engine::contact::PairInput {
+                xi: [a[0], a[1], a[2]],
+                xj: [b[0] + pair.shift[0], b[1] + pair.shift[1], b[2] + pair.shift[2]],
+                radi: a[3],
+                radj: b[3],
+                mi: a[7],
+                mj: b[7],
+                frozen_i: a[11] != 0.0,
+                frozen_j: b[11] != 0.0,
+                vi: [a[4], a[5], a[6]],
+                vj: [b[4], b[5], b[6]],
+                omegai: [a[8], a[9], a[10]],
+                omegaj: [b[8], b[9], b[10]],
+                dt: self.dt,
+                update_history: self.update,
+                coeffs: self.material.pair(kinds[i] as usize, kinds[j] as usize),
+            };
+            let out = self
+                .model
+                .pair_force(&input, &mut history[e * width..(e + 1) * width]);
+            let result = PairResult {
+                fi: out.fi,
+                fj: out.fj,
+                ti: out.ti,
+                tj: out.tj,
+                overlap_ratio: out.deltan / a[3].min(b[3]),
+            };
+            sink.take(e, pair, &result);
+        }
     }
 
     #[cfg(target_arch = "x86_64")]
@@ -358,13 +420,4 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
             sink.take_batch(batch, &pr, &out, &(out.deltan / smaller));
         }
     }
-}
-
-/// Does this processor have AVX2 (checked once; `REGOLITH_NO_AVX2` turns it off)?
-#[cfg(target_arch = "x86_64")]
-fn avx2() -> bool {
-    static HAS: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    *HAS.get_or_init(|| {
-        std::env::var_os("REGOLITH_NO_AVX2").is_none() && is_x86_feature_detected!("avx2")
-    })
 }

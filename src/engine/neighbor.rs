@@ -6,8 +6,10 @@
 
 use crate::engine::domain::Domain;
 
-/// One listed pair.
+/// One listed pair (laid out as written: the fast touching test reads the shift as the
+/// last three of four doubles).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub struct Pair {
     /// Index of the first particle.
     pub i: u32,

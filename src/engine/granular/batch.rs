@@ -100,12 +100,33 @@ impl Packed {
 /// on contact.
 pub fn touching_entries(packed: &Packed, pairs: &[Pair], offset: usize, out: &mut Vec<u32>) {
     let rec = &packed.spheres[..];
-    let Some(last) = rec.len().checked_sub(1) else {
+    if rec.is_empty() {
         return;
-    };
+    }
     let start = out.len();
     out.reserve(pairs.len());
     let dst = &mut out.spare_capacity_mut()[..pairs.len()];
+    let mut n = 0;
+    let mut done = 0;
+    #[cfg(target_arch = "x86_64")]
+    if crate::engine::contact::real::lanes_supported() {
+        // SAFETY: the processor has AVX2 (checked at run time)
+        (n, done) = unsafe { touching_avx2(rec, pairs, offset, dst) };
+    }
+    n += touching_one_by_one(rec, &pairs[done..], offset + done, &mut dst[n..]);
+    // SAFETY: the first n slots past `start` were written above
+    unsafe { out.set_len(start + n) };
+}
+
+/// The touching test pair by pair: writes the touching entries to `dst`, returns how many.
+fn touching_one_by_one(
+    rec: &[Sphere],
+    pairs: &[Pair],
+    offset: usize,
+    dst: &mut [std::mem::MaybeUninit<u32>],
+) -> usize {
+    let last = rec.len() - 1;
+    let dst = &mut dst[..pairs.len()];
     let mut n = 0;
     for (k, pair) in pairs.iter().enumerate() {
         // every pair indexes packed particles; clamped all the same (two conditional
@@ -126,8 +147,91 @@ pub fn touching_entries(packed: &Packed, pairs: &[Pair], offset: usize, out: &mu
         slot.write((offset + k) as u32);
         n += (dx * dx + dy * dy + dz * dz < radsum * radsum) as usize;
     }
-    // SAFETY: the first n slots past `start` were written above
-    unsafe { out.set_len(start + n) };
+    n
+}
+
+/// For each 4-bit mask of touching lanes, the lanes in order (then padding).
+#[cfg(target_arch = "x86_64")]
+const COMPRESS: [[u32; 4]; 16] = {
+    let mut table = [[0u32; 4]; 16];
+    let mut m = 0;
+    while m < 16 {
+        let mut n = 0;
+        let mut k = 0;
+        while k < 4 {
+            if m & (1 << k) != 0 {
+                table[m][n] = k as u32;
+                n += 1;
+            }
+            k += 1;
+        }
+        m += 1;
+    }
+    table
+};
+
+/// The touching test four pairs at a time (the same arithmetic per pair as
+/// [`touching_one_by_one`], so the same answers): returns (entries written, pairs done).
+///
+/// # Safety
+/// The processor must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn touching_avx2(
+    rec: &[Sphere],
+    pairs: &[Pair],
+    offset: usize,
+    dst: &mut [std::mem::MaybeUninit<u32>],
+) -> (usize, usize) {
+    use std::arch::x86_64::*;
+    let last = rec.len() - 1;
+    let quads = pairs.len() / 4;
+    let mut n = 0;
+    // four rows [a b c d] of four doubles as four columns
+    #[inline(always)]
+    unsafe fn columns(r: [__m256d; 4]) -> [__m256d; 4] {
+        let t0 = _mm256_unpacklo_pd(r[0], r[1]);
+        let t1 = _mm256_unpackhi_pd(r[0], r[1]);
+        let t2 = _mm256_unpacklo_pd(r[2], r[3]);
+        let t3 = _mm256_unpackhi_pd(r[2], r[3]);
+        [
+            _mm256_permute2f128_pd::<0x20>(t0, t2),
+            _mm256_permute2f128_pd::<0x20>(t1, t3),
+            _mm256_permute2f128_pd::<0x31>(t0, t2),
+            _mm256_permute2f128_pd::<0x31>(t1, t3),
+        ]
+    }
+    for q in 0..quads {
+        // SAFETY: 4q + 3 < pairs.len()
+        let p: [&Pair; 4] = std::array::from_fn(|k| unsafe { pairs.get_unchecked(4 * q + k) });
+        // SAFETY: indices clamped to the records; Sphere is 32-byte aligned
+        let a = columns(p.map(|p| unsafe {
+            _mm256_load_pd(rec.get_unchecked((p.i as usize).min(last)).0.as_ptr())
+        }));
+        let b = columns(p.map(|p| unsafe {
+            _mm256_load_pd(rec.get_unchecked((p.j as usize).min(last)).0.as_ptr())
+        }));
+        // each Pair is (i, j) then its shift: four doubles, the first not a number we use
+        let s = columns(p.map(|p| unsafe { _mm256_loadu_pd((p as *const Pair).cast::<f64>()) }));
+        let dx = _mm256_sub_pd(a[0], _mm256_add_pd(b[0], s[1]));
+        let dy = _mm256_sub_pd(a[1], _mm256_add_pd(b[1], s[2]));
+        let dz = _mm256_sub_pd(a[2], _mm256_add_pd(b[2], s[3]));
+        let radsum = _mm256_add_pd(a[3], b[3]);
+        let rsq = _mm256_add_pd(
+            _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)),
+            _mm256_mul_pd(dz, dz),
+        );
+        let mask = _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(
+            rsq,
+            _mm256_mul_pd(radsum, radsum),
+        )) as usize;
+        let base = _mm_set1_epi32((offset + 4 * q) as i32);
+        let lanes = _mm_loadu_si128(COMPRESS[mask & 15].as_ptr().cast());
+        // SAFETY: n <= 4q, so slots n..n + 4 lie inside dst[..4q + 4]
+        _mm_storeu_si128(dst.as_mut_ptr().add(n).cast(), _mm_add_epi32(base, lanes));
+        n += mask.count_ones() as usize;
+    }
+    (n, 4 * quads)
 }
 
 /// The coefficients of a run with one atom type: the same in every lane.
@@ -306,7 +410,11 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
             let (a, b) = (&rec[i].0, &rec[j].0);
             let input = crate::engine::contact::PairInput {
                 xi: [a[0], a[1], a[2]],
-                xj: [b[0] + pair.shift[0], b[1] + pair.shift[1], b[2] + pair.shift[2]],
+                xj: [
+                    b[0] + pair.shift[0],
+                    b[1] + pair.shift[1],
+                    b[2] + pair.shift[2],
+                ],
                 radi: a[3],
                 radj: b[3],
                 mi: a[7],
@@ -419,5 +527,54 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
             let smaller = F64x4(std::array::from_fn(|k| a[3].0[k].min(b[3].0[k])));
             sink.take_batch(batch, &pr, &out, &(out.deltan / smaller));
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn four_at_a_time_touching_test_finds_what_the_pair_by_pair_one_finds() {
+        let mut r = crate::util::random::RanPark::new(4711).unwrap();
+        let packed = Packed {
+            records: Vec::new(),
+            spheres: (0..50)
+                .map(|_| {
+                    Sphere([
+                        r.uniform(),
+                        r.uniform(),
+                        r.uniform(),
+                        0.1 + 0.2 * r.uniform(),
+                    ])
+                })
+                .collect(),
+        };
+        let pairs: Vec<Pair> = (0..403)
+            .map(|k| Pair {
+                i: (k % 50) as u32,
+                j: ((k * 7 + 3) % 50) as u32,
+                shift: if k % 5 == 0 {
+                    [1.0, 0.0, -1.0]
+                } else {
+                    [0.0; 3]
+                },
+            })
+            .collect();
+        let mut fast = vec![7];
+        touching_entries(&packed, &pairs, 10, &mut fast);
+        let mut slow = vec![0; pairs.len()];
+        let spare: &mut [std::mem::MaybeUninit<u32>] =
+            // SAFETY: u32 and MaybeUninit<u32> share a layout
+            unsafe { std::mem::transmute(&mut slow[..]) };
+        let n = touching_one_by_one(&packed.spheres, &pairs, 10, spare);
+        slow.truncate(n);
+        assert!(
+            n > 20 && n < pairs.len() - 20,
+            "{n} touching of {}",
+            pairs.len()
+        );
+        assert_eq!(fast[0], 7);
+        assert_eq!(&fast[1..], &slow[..]);
     }
 }

@@ -17,7 +17,7 @@ pub fn pe(a: &Args, ctx: &mut Ctx) -> Result<ComputeKind, Diagnostic> {
         )
         .map_err(|d| {
             a.error(i, "Illegal compute pe command")
-                .with_help(d.help.unwrap_or_default())
+                .with_help(d.help.clone().unwrap_or_default())
         })?;
     }
     Ok(ComputeKind::PotentialEnergy)

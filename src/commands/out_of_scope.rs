@@ -22,7 +22,7 @@ fn reason(cmd: &CommandLine) -> Option<(String, &'static str)> {
         }
         "set" => {
             let k = (2..cmd.nargs())
-                .map(|i| style(i))
+                .map(style)
                 .find(|w| w.starts_with("meso_") || *w == "sphkernel")?;
             Some((format!("set {k}"), sph))
         }
@@ -44,11 +44,10 @@ pub fn explain(cmd: &CommandLine, d: Diagnostic) -> Diagnostic {
             } else {
                 "SPH (smoothed-particle hydrodynamics) decks need LIGGGHTS itself"
             };
-            Diagnostic {
-                message: format!("{what}: {why}"),
-                help: Some(help.to_string()),
-                ..d
-            }
+            let mut d = d;
+            d.message = format!("{what}: {why}");
+            d.help = Some(help.to_string());
+            d
         }
         None => d,
     }

@@ -175,7 +175,10 @@ fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
 /// Rotation of `v` about `axis` (through the origin) by `degrees`, as LIGGGHTS rotates
 /// meshes: the angle converted with pi = 3.14159265, then q v q* with the unit axis.
 fn rotate(v: [f64; 3], axis: [f64; 3], degrees: f64) -> [f64; 3] {
-    let angle = degrees * 3.14159265 / 180.0;
+    // LIGGGHTS's own truncated pi: the rotated nodes must match its bit for bit.
+    #[allow(clippy::approx_constant)]
+    const LIGGGHTS_PI: f64 = 3.14159265;
+    let angle = degrees * LIGGGHTS_PI / 180.0;
     let l = norm(axis);
     let n = axis.map(|c| c / l);
     let (s, c) = ((angle * 0.5).sin(), (angle * 0.5).cos());

@@ -39,7 +39,7 @@ impl<'a> Args<'a> {
             .unwrap_or_else(|| format!("expected one of: {}", known.join(", ")));
         self.error(
             i,
-            &format!(
+            format!(
                 "Illegal {} command: unknown keyword '{word}'",
                 self.cmd.name()
             ),
@@ -59,7 +59,7 @@ impl<'a> Args<'a> {
             Err(self
                 .error(
                     self.len().saturating_sub(1),
-                    &format!("Illegal {} command", self.cmd.name()),
+                    format!("Illegal {} command", self.cmd.name()),
                 )
                 .with_help(format!("expected: {usage}")))
         }
@@ -70,7 +70,7 @@ impl<'a> Args<'a> {
         self.cmd.arg(i).ok_or_else(|| {
             self.error(
                 self.len().saturating_sub(1),
-                &format!("Illegal {} command", self.cmd.name()),
+                format!("Illegal {} command", self.cmd.name()),
             )
             .with_help(format!("missing argument {}", i + 1))
         })
@@ -106,7 +106,7 @@ impl<'a> Args<'a> {
             let w = self.word(i)?;
             return Err(self.error(
                 i,
-                &format!("Integer parameter '{w}' is out of range (LIGGGHTS counts it in an int, at most {})", i32::MAX),
+                format!("Integer parameter '{w}' is out of range (LIGGGHTS counts it in an int, at most {})", i32::MAX),
             ));
         }
         Ok(n)

@@ -30,7 +30,7 @@ pub fn thermo_log(a: &Args, ctx: &mut Ctx) -> Result {
         .append(append)
         .truncate(!append)
         .open(&path)
-        .map_err(|e| a.error(0, &format!("Cannot open thermo log file {name}: {e}")))?;
+        .map_err(|e| a.error(0, format!("Cannot open thermo log file {name}: {e}")))?;
     ctx.sim.extras.thermo_file = Some(file);
     Ok(())
 }

@@ -208,9 +208,8 @@ fn apply(a: &Args, ctx: &mut Ctx, i: usize, key: &str, v: &Value, atoms: &[usize
                 if value < 0.0 {
                     return Err(a.error(i + 1, "Invalid diameter in set command"));
                 }
-                crate::engine::checks::check_sphere(value, p.density[k], "diameter").map_err(
-                    |m| a.error(i + 1, &format!("Invalid diameter in set command: {m}")),
-                )?;
+                crate::engine::checks::check_sphere(value, p.density[k], "diameter")
+                    .map_err(|m| a.error(i + 1, format!("Invalid diameter in set command: {m}")))?;
                 p.radius[k] = 0.5 * value * 1.0;
                 if p.density[k] > 0.0 {
                     let r = p.radius[k];
@@ -222,7 +221,7 @@ fn apply(a: &Args, ctx: &mut Ctx, i: usize, key: &str, v: &Value, atoms: &[usize
                     return Err(a.error(i + 1, "Invalid density in set command"));
                 }
                 crate::engine::checks::check_sphere(2.0 * p.radius[k], value, "density")
-                    .map_err(|m| a.error(i + 1, &format!("Invalid density in set command: {m}")))?;
+                    .map_err(|m| a.error(i + 1, format!("Invalid density in set command: {m}")))?;
                 p.density[k] = value;
                 if p.radius[k] > 0.0 {
                     let r = p.radius[k];

@@ -266,7 +266,7 @@ fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
     if let Some(d) = (0..3).find(|&d| !(lo[d] < hi[d] && (hi[d] - lo[d]).is_finite())) {
         return Err(a.error(
             1,
-            &format!(
+            format!(
                 "Box bounds are invalid ({} {} along {})",
                 g(lo[d]),
                 g(hi[d]),
@@ -442,7 +442,7 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
                 if tries == MAX_RANDOM_TRIES {
                     return Err(a.error(
                         4,
-                        &format!(
+                        format!(
                             "Could not create all random atoms: no position inside the region in {MAX_RANDOM_TRIES} tries (has it any volume inside the box?)"
                         ),
                     ));
@@ -615,16 +615,16 @@ fn displace_atoms(a: &Args, ctx: &mut Ctx) -> Result {
         for k in 0..p.len() {
             if p.mask[k] & bit != 0 {
                 rng.reset_at(seed as i32, p.x[k]);
-                for d in 0..3 {
-                    p.x[k][d] += del[d] * 2.0 * (rng.uniform() - 0.5);
+                for (x, shift) in p.x[k].iter_mut().zip(del) {
+                    *x += shift * 2.0 * (rng.uniform() - 0.5);
                 }
             }
         }
     } else {
         for k in 0..p.len() {
             if p.mask[k] & bit != 0 {
-                for d in 0..3 {
-                    p.x[k][d] += del[d];
+                for (x, shift) in p.x[k].iter_mut().zip(del) {
+                    *x += shift;
                 }
             }
         }
@@ -997,8 +997,8 @@ fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
             let p = &mut sim.particles;
             for k in 0..p.len() {
                 if p.mask[k] & bit != 0 {
-                    for d in 0..3 {
-                        if let Some(value) = v[d] {
+                    for (d, component) in v.iter().enumerate() {
+                        if let Some(value) = *component {
                             if sum {
                                 p.v[k][d] += value;
                             } else {
@@ -1024,6 +1024,8 @@ fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
             let p = &mut sim.particles;
             for k in 0..p.len() {
                 if p.mask[k] & bit != 0 {
+                    // max then min as LIGGGHTS's MAX and MIN: a NaN becomes 0, clamp keeps it
+                    #[allow(clippy::manual_clamp)]
                     let fraction = ((p.x[k][cdim] - clo) / (chi - clo)).max(0.0).min(1.0);
                     let vramp = vlo + fraction * (vhi - vlo);
                     if sum {
@@ -1061,8 +1063,8 @@ fn zero_momentum(sim: &mut crate::engine::sim::Simulation, members: &[usize]) {
     let mass: f64 = members.iter().fold(0.0, |s, &k| s + p.mass[k]);
     let mut vcm = [0.0; 3];
     for &k in members {
-        for d in 0..3 {
-            vcm[d] += p.v[k][d] * p.mass[k];
+        for (c, v) in vcm.iter_mut().zip(p.v[k]) {
+            *c += v * p.mass[k];
         }
     }
     if mass > 0.0 {
@@ -1071,8 +1073,8 @@ fn zero_momentum(sim: &mut crate::engine::sim::Simulation, members: &[usize]) {
         }
     }
     for &k in members {
-        for d in 0..3 {
-            p.v[k][d] -= vcm[d];
+        for (v, c) in p.v[k].iter_mut().zip(vcm) {
+            *v -= c;
         }
     }
 }
@@ -1084,8 +1086,8 @@ fn zero_rotation(sim: &mut crate::engine::sim::Simulation, members: &[usize]) {
     let p = &mut sim.particles;
     let unwrap = |p: &crate::engine::particles::Particles, k: usize| -> [f64; 3] {
         let mut u = [0.0; 3];
-        for d in 0..3 {
-            u[d] = p.x[k][d] + p.image[k][d] as f64 * domain.length(d);
+        for (d, ud) in u.iter_mut().enumerate() {
+            *ud = p.x[k][d] + p.image[k][d] as f64 * domain.length(d);
         }
         u
     };
@@ -1279,10 +1281,10 @@ fn read_data(a: &Args, ctx: &mut Ctx) -> Result {
     } else {
         ctx.sys.read(name)
     }
-    .map_err(|m| a.error(0, &format!("Cannot open file {name}: {m}")))?;
+    .map_err(|m| a.error(0, format!("Cannot open file {name}: {m}")))?;
     let data = crate::io::data::parse(&text, name).map_err(|m| a.error(0, &m))?;
     crate::engine::checks::check_ntypes(data.ntypes as i64)
-        .map_err(|m| a.error(0, &format!("{name}: {m}")))?;
+        .map_err(|m| a.error(0, format!("{name}: {m}")))?;
     let sim = &mut *ctx.sim;
     sim.domain.create(data.lo, data.hi);
     sim.ntypes = data.ntypes;
@@ -1294,7 +1296,7 @@ fn read_data(a: &Args, ctx: &mut Ctx) -> Result {
             if !inside && !sim.domain.periodic(d) {
                 return Err(a.error(
                     0,
-                    &format!(
+                    format!(
                         "Did not assign all atoms correctly: {name}: atom {} at ({}, {}, {}) lies outside the box",
                         atom.id, x[0], x[1], x[2]
                     ),
@@ -1351,7 +1353,7 @@ fn write_data(a: &Args, ctx: &mut Ctx) -> Result {
     );
     let path = ctx.sys.resolve(name).to_string_lossy().into_owned();
     crate::io::write_atomically(&path, text.as_bytes())
-        .map_err(|e| a.error(0, &format!("Cannot open data file {name}: {e}")))
+        .map_err(|e| a.error(0, format!("Cannot open data file {name}: {e}")))
 }
 
 /// `read_restart FILE` (a `*` picks the largest step, a `%` the multi-file form).
@@ -1393,7 +1395,7 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
         None => crate::io::restart::read(&path),
     }
     // the file as the deck names it (not the folder it was resolved against)
-    .map_err(|m| a.error(0, &m.replace(&path, name)))?;
+    .map_err(|m| a.error(0, m.replace(&path, name)))?;
     ctx.say("Reading restart file ...\n");
     let pair = ctx.sim.load_restart(&r).map_err(|m| a.error(0, &m))?;
     ctx.sim.restart_in_progress = !r.global_fixes.is_empty() || !r.peratom_fixes.is_empty();

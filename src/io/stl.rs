@@ -204,6 +204,8 @@ pub fn check(
             .map(|e| norm(sub(t[(e + 1) % 3], t[e])))
             .fold(0.0, f64::max);
         let area = 0.5 * norm(cross(sub(t[1], t[0]), sub(t[2], t[0])));
+        // a NaN area is degenerate too
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
         if !(area > 1e-10 * longest * longest) {
             return Err(format!(
                 "{name}: triangle {} is degenerate (area {area:e} for an edge of {longest:e}): vertices {:?}",

@@ -2,9 +2,9 @@
 //! `read_restart` taking its stored state, and `compute wall/gran/local`, which reads the
 //! mesh wall's contact state at output.
 
+use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
 use crate::engine::fixes::{Fix, FixKind};
-use crate::error::Diagnostic;
 
 /// `compute ID group wall/gran/local [keywords]`: rows of the mesh wall's contacts
 /// (docs/notes/wall_gran_local.md), with LIGGGHTS's rules and messages.
@@ -12,7 +12,7 @@ pub fn wall_gran_local(
     a: &Args,
     ctx: &mut Ctx,
     id: &str,
-) -> std::result::Result<crate::engine::computes::ComputeKind, Diagnostic> {
+) -> std::result::Result<crate::engine::computes::ComputeKind, CommandError> {
     use crate::engine::computes::{ComputeKind, LocalField};
     if ctx.sim.step > 0 && !ctx.sim.restart_in_progress {
         return Err(a.error(
@@ -93,7 +93,7 @@ pub fn restore_fix_state(
     a: &Args,
     ctx: &mut Ctx,
     fix: &mut Fix,
-) -> std::result::Result<Vec<String>, Diagnostic> {
+) -> std::result::Result<Vec<String>, CommandError> {
     use crate::engine::insert::{InsertRestart, RELEASE_NAME, RELEASE_WIDTH};
     use crate::engine::restart_fixes::doubles;
     let mut lines = Vec::new();

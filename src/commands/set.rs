@@ -2,11 +2,11 @@
 //! keyword in turn, a value or an atom-style variable `v_name` (evaluated for every atom when
 //! the keyword is reached), LIGGGHTS's checks, and `N settings made for KEYWORD` after each.
 
+use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
-use crate::error::Diagnostic;
 use crate::script::system::Mode;
 
-type Result = std::result::Result<(), Diagnostic>;
+type Result = std::result::Result<(), CommandError>;
 
 /// Keywords regolith sets, each with one value (a number or `v_name`).
 const VALUED: &[&str] = &[
@@ -62,7 +62,7 @@ fn value(
     ctx: &mut Ctx,
     i: usize,
     integer: bool,
-) -> std::result::Result<Value, Diagnostic> {
+) -> std::result::Result<Value, CommandError> {
     let word = a.word(i)?;
     let Some(name) = word.strip_prefix("v_") else {
         return Ok(Value::Constant(if integer {
@@ -169,7 +169,7 @@ fn type_fraction(
     ctx: &mut Ctx,
     i: usize,
     atoms: &[usize],
-) -> std::result::Result<usize, Diagnostic> {
+) -> std::result::Result<usize, CommandError> {
     let t = a.int(i + 1)?;
     let fraction = a.real(i + 2)?;
     let seed = a.int(i + 3)?;

@@ -1,15 +1,16 @@
 //! Commands that drive and observe the run: fixes regolith integrates, thermo, dumps, `run`.
 
 use crate::commands::registry::{self, Handler};
+use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
+use crate::engine::error::EngineError;
 use crate::engine::fixes::{Fix, FixKind, Motion, Move};
 use crate::engine::integrate::Gravity;
 use crate::engine::sim::Dump;
-use crate::error::Diagnostic;
 use crate::io::dump::Layout;
 use crate::script::system::Mode;
 
-type Result = std::result::Result<(), Diagnostic>;
+type Result = std::result::Result<(), CommandError>;
 
 /// The commands that drive and observe the run, and their handlers.
 pub const COMMANDS: &[(&str, Handler)] = &[
@@ -398,7 +399,10 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                                     .truncate(kw == "file")
                                     .open(name)
                                     .map_err(|_| {
-                                        a.error(i + 1, format!("Cannot open fix print file {name}"))
+                                        a.file_error(
+                                            i + 1,
+                                            format!("Cannot open fix print file {name}"),
+                                        )
                                     })?;
                                 file = Some(std::io::BufWriter::new(f));
                             }
@@ -436,7 +440,7 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
             }
             "move" => {
                 let components =
-                    |from: usize| -> std::result::Result<[Option<f64>; 3], Diagnostic> {
+                    |from: usize| -> std::result::Result<[Option<f64>; 3], CommandError> {
                         let mut v = [None; 3];
                         for (d, slot) in v.iter_mut().enumerate() {
                             let w = a.word(from + d)?;
@@ -651,15 +655,15 @@ fn thermo_style(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.error(1, "Illegal thermo_style command"));
     }
     ctx.sim.thermo.custom = a.word(0)? == "custom";
-    ctx.sim.thermo.set_style(&words).map_err(|m| {
+    ctx.sim.thermo.set_style(&words).map_err(|e| {
+        let m = e.to_string();
         let at = words
             .iter()
             .position(|w| m.contains(w))
             .map_or(0, |k| k + 1);
-        if m.ends_with("not supported yet") {
-            a.unsupported(at, m.trim_end_matches(": not supported yet"))
-        } else {
-            a.error(at, &m)
+        match e {
+            EngineError::Unsupported(what) => a.unsupported(at, &what),
+            EngineError::Invalid(m) => a.error(at, m),
         }
     })?;
     // LIGGGHTS: a new thermo_style resets thermo_modify settings
@@ -1185,9 +1189,9 @@ fn gran_models(
     (
         crate::engine::granular::Selection,
         usize,
-        Option<Diagnostic>,
+        Option<CommandError>,
     ),
-    Diagnostic,
+    CommandError,
 > {
     use crate::engine::granular::Selection;
     let words: Vec<&str> = (start..a.len())
@@ -1455,7 +1459,7 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
 fn compute_reduce(
     a: &Args,
     ctx: &Ctx,
-) -> std::result::Result<crate::engine::computes::ComputeKind, Diagnostic> {
+) -> std::result::Result<crate::engine::computes::ComputeKind, CommandError> {
     use crate::engine::computes::{column_of, ComputeKind, Input, ReduceMode};
     if a.len() < 5 {
         return Err(a.error(2, "Illegal compute reduce command"));
@@ -1552,7 +1556,7 @@ fn variable_value(
     at: usize,
     name: &str,
     style: &str,
-) -> std::result::Result<crate::engine::fixes::ForceValue, Diagnostic> {
+) -> std::result::Result<crate::engine::fixes::ForceValue, CommandError> {
     use crate::engine::fixes::ForceValue;
     use crate::script::variables::Style;
     match ctx.vars.get(name).map(|v| v.style) {
@@ -1567,7 +1571,7 @@ fn variable_value(
 }
 
 /// `fix ID GROUP ave/time Nevery Nrepeat Nfreq value ... [keyword value ...]` (scalar mode).
-fn ave_time(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, Diagnostic> {
+fn ave_time(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, CommandError> {
     use crate::engine::fixes::{AveInput, AveMode, AveTime};
     a.count(
         7..=usize::MAX,
@@ -1715,7 +1719,7 @@ fn ave_time(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, D
     if let (Some(name), Mode::Run) = (file, ctx.sys.mode) {
         use std::io::Write;
         let f = std::fs::File::create(&name)
-            .map_err(|_| a.error(0, format!("Cannot open fix ave/time file {name}")))?;
+            .map_err(|_| a.file_error(0, format!("Cannot open fix ave/time file {name}")))?;
         let mut f = std::io::BufWriter::new(f);
         let head = format!(
             "{}\n{}\n",
@@ -1741,7 +1745,7 @@ fn mesh_wall(
     group: &str,
     mut selection: crate::engine::granular::Selection,
     at: usize,
-) -> std::result::Result<FixKind, Diagnostic> {
+) -> std::result::Result<FixKind, CommandError> {
     if a.word(at + 1)? != "n_meshes" {
         return Err(a
             .error(at + 1, "Fix wall/gran: expecting keyword 'n_meshes'")
@@ -1813,7 +1817,11 @@ fn mesh_wall(
 /// `fix ID GROUP mesh/surface[/planar] file F type T [scale f] [move x y z]
 /// [rotate axis x y z angle deg] [curvature deg] [curvature_tolerant yes|no]
 /// [precision p] [heal auto_remove_duplicates|no] [verbose yes|no]`.
-fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<FixKind, Diagnostic> {
+fn mesh_surface(
+    a: &Args,
+    ctx: &mut Ctx,
+    style: &str,
+) -> std::result::Result<FixKind, CommandError> {
     use crate::io::stl::MeshOp;
     a.count(
         5..=usize::MAX,
@@ -1960,7 +1968,7 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
         // LIGGGHTS takes the nodes from the restart file (scale/move/rotate act on an empty
         // mesh); the file must still open
         if std::fs::File::open(&path).is_err() {
-            return Err(a.error(
+            return Err(a.file_error(
                 4,
                 format!("Cannot open mesh file {file}. FYI: This file is required, but data will be taken from restart file"),
             ));
@@ -2045,7 +2053,7 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
 
 /// `fix ID group move/mesh mesh MESH STYLE args...` (linear, wiggle, rotate, riggle, viblin,
 /// vibrot), with LIGGGHTS's messages.
-fn move_mesh(a: &Args, ctx: &mut Ctx) -> std::result::Result<FixKind, Diagnostic> {
+fn move_mesh(a: &Args, ctx: &mut Ctx) -> std::result::Result<FixKind, CommandError> {
     use crate::engine::mesh_motion::{unit_axis, Motion, MoveMesh};
     if a.len() < 6 {
         return Err(a.error(
@@ -2070,21 +2078,21 @@ fn move_mesh(a: &Args, ctx: &mut Ctx) -> std::result::Result<FixKind, Diagnostic
     // LIGGGHTS counts the style word as argument 0 of the motion's own list
     let narg = a.len() - 5;
     let at = |k: usize| 5 + k;
-    let need = |n: usize| -> std::result::Result<(), Diagnostic> {
+    let need = |n: usize| -> std::result::Result<(), CommandError> {
         if narg < n {
             Err(a.error(5, format!("Not enough arguments for movement type {style}")))
         } else {
             Ok(())
         }
     };
-    let keyword = |k: usize, w: &str| -> std::result::Result<(), Diagnostic> {
+    let keyword = |k: usize, w: &str| -> std::result::Result<(), CommandError> {
         if a.word(at(k))? != w {
             Err(a.error(at(k), format!("Expected keyword '{w}'")))
         } else {
             Ok(())
         }
     };
-    let vec3 = |k: usize| -> std::result::Result<[f64; 3], Diagnostic> {
+    let vec3 = |k: usize| -> std::result::Result<[f64; 3], CommandError> {
         Ok([a.real(at(k))?, a.real(at(k + 1))?, a.real(at(k + 2))?])
     };
     let mut warn = |n: usize| {
@@ -2095,7 +2103,7 @@ fn move_mesh(a: &Args, ctx: &mut Ctx) -> std::result::Result<FixKind, Diagnostic
     let two_pi = 2.0 * std::f64::consts::PI;
     // (words read, per mode: amplitude, phase, angular frequency)
     type Modes = (usize, Vec<(f64, f64, f64)>);
-    let modes = |order_at: usize| -> std::result::Result<Modes, Diagnostic> {
+    let modes = |order_at: usize| -> std::result::Result<Modes, CommandError> {
         keyword(order_at, "order")?;
         let n = a.int(at(order_at + 1))?;
         if !(1..=30).contains(&n) {
@@ -2229,7 +2237,7 @@ fn move_mesh(a: &Args, ctx: &mut Ctx) -> std::result::Result<FixKind, Diagnostic
     }))
 }
 
-fn seed_arg(a: &Args, ctx: &Ctx, i: usize) -> std::result::Result<i32, Diagnostic> {
+fn seed_arg(a: &Args, ctx: &Ctx, i: usize) -> std::result::Result<i32, CommandError> {
     let seed = a.int(i)?;
     if !ctx.sim.seed_tolerant {
         crate::util::random::check_seed(seed).map_err(|m| a.error(i, &m))?;
@@ -2245,7 +2253,7 @@ fn particle_template(
     a: &Args,
     ctx: &mut Ctx,
     id: &str,
-) -> std::result::Result<FixKind, Diagnostic> {
+) -> std::result::Result<FixKind, CommandError> {
     a.count(4..=usize::MAX, "fix ID GROUP particletemplate/sphere SEED atom_type T density constant D radius constant R")?;
     let seed = seed_arg(a, ctx, 3)?;
     let (mut atom_type, mut density, mut radius) = (1u32, None, None);
@@ -2350,7 +2358,11 @@ fn particle_template(
 }
 
 /// `fix ID GROUP particledistribution/discrete SEED N T1 W1 ... TN WN`.
-fn distribution(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<FixKind, Diagnostic> {
+fn distribution(
+    a: &Args,
+    ctx: &mut Ctx,
+    style: &str,
+) -> std::result::Result<FixKind, CommandError> {
     a.count(
         7..=usize::MAX,
         &format!("fix ID GROUP {style} SEED N TEMPLATE1 WEIGHT1 ..."),
@@ -2410,7 +2422,7 @@ fn insert_pack(
     ctx: &mut Ctx,
     id: &str,
     style: &str,
-) -> std::result::Result<FixKind, Diagnostic> {
+) -> std::result::Result<FixKind, CommandError> {
     let rate_style = style == "insert/rate/region";
     let (mut nparticles, mut particlerate): (Option<i64>, Option<f64>) = (None, None);
     use crate::engine::insert::{InsertPack, Target, Velocity};
@@ -2678,7 +2690,7 @@ fn insert_pack(
 
 /// `fix ID GROUP insert/stream seed S distributiontemplate D nparticles N particlerate R
 /// insertion_face MESH extrude_length L|insert_every N vel ... [overlapcheck ...]`.
-fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, Diagnostic> {
+fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, CommandError> {
     use crate::engine::insert::Velocity;
     a.count(5..=usize::MAX, "fix ID GROUP insert/stream seed S distributiontemplate D nparticles N particlerate R insertion_face MESH extrude_length L ...")?;
     let (mut seed, mut dist, mut face, mut extrude, mut every) = (None, None, None, None, None);

@@ -3,13 +3,14 @@
 
 use crate::commands::registry::{self, Handler};
 use crate::commands::{Args, Ctx};
+use crate::commands::{At, CommandError};
 use crate::engine::domain::parse_boundary;
+use crate::engine::error::EngineError;
 use crate::engine::region::RegionContext;
-use crate::error::Diagnostic;
 use crate::script::system::Mode;
 use crate::util::numbers::inumeric;
 
-type Result = std::result::Result<(), Diagnostic>;
+type Result = std::result::Result<(), CommandError>;
 
 /// The setup commands and their handlers.
 pub const COMMANDS: &[(&str, Handler)] = &[
@@ -130,11 +131,8 @@ fn dimension(a: &Args) -> Result {
 /// `suffix fast|on|off` (LAMMPS's accelerator switch): the fast engine path.
 fn suffix(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(1..=1, "suffix fast|off")?;
-    let fast = crate::cli::parse_suffix(a.word(0)?).map_err(|m| {
-        let mut d = a.error(0, &m);
-        d.help = Some(crate::cli::SUFFIX_HELP.into());
-        d
-    })?;
+    let fast = crate::cli::parse_suffix(a.word(0)?)
+        .map_err(|m| a.error(0, &m).with_help(crate::cli::SUFFIX_HELP))?;
     ctx.sim.accel.fast = fast;
     Ok(())
 }
@@ -142,11 +140,8 @@ fn suffix(a: &Args, ctx: &mut Ctx) -> Result {
 /// `package fast N`: the engine's thread count.
 fn package(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(2..=2, "package fast N")?;
-    let n = crate::cli::parse_package(a.word(0)?, a.word(1)?).map_err(|m| {
-        let mut d = a.error(0, &m);
-        d.help = Some(crate::cli::PACKAGE_HELP.into());
-        d
-    })?;
+    let n = crate::cli::parse_package(a.word(0)?, a.word(1)?)
+        .map_err(|m| a.error(0, &m).with_help(crate::cli::PACKAGE_HELP))?;
     ctx.sim.accel.ask_threads(Some(n));
     Ok(())
 }
@@ -211,12 +206,9 @@ fn region(a: &Args, ctx: &mut Ctx) -> Result {
             .filter(|l| !l.1.is_empty() || l.0 > 0.0)
             .map(|l| [l.0; 3]),
     };
-    ctx.sim.regions.define(&words, rctx).map_err(|m| {
-        if m.ends_with("not supported yet") {
-            Diagnostic::unsupported(m.trim_end_matches(": not supported yet"))
-        } else {
-            a.error(1, &m)
-        }
+    ctx.sim.regions.define(&words, rctx).map_err(|e| match e {
+        EngineError::Unsupported(what) => CommandError::unsupported(what, At::Line),
+        EngineError::Invalid(m) => a.error(1, m),
     })?;
     let index = ctx.sim.regions.list.len() - 1;
     if let Some(name) = ctx.sim.regions.radius_variable(index) {
@@ -713,7 +705,7 @@ fn delete_atoms(a: &Args, ctx: &mut Ctx) -> Result {
 }
 
 /// Atoms selected by `set atom|type|group|region ID`.
-pub(super) fn selection(a: &Args, ctx: &Ctx) -> std::result::Result<Vec<usize>, Diagnostic> {
+pub(super) fn selection(a: &Args, ctx: &Ctx) -> std::result::Result<Vec<usize>, CommandError> {
     let p = &ctx.sim.particles;
     let what = a.word_in(0, &["atom", "type", "group", "region", "mol"])?;
     let id = a.word(1)?;
@@ -1010,7 +1002,7 @@ fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
             }
         }
         "ramp" => {
-            let dim = |k: usize, names: &[&str]| -> std::result::Result<usize, Diagnostic> {
+            let dim = |k: usize, names: &[&str]| -> std::result::Result<usize, CommandError> {
                 let w = a.word(k)?;
                 names
                     .iter()
@@ -1244,7 +1236,7 @@ fn neigh_modify(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
-fn positive(a: &Args, i: usize) -> std::result::Result<u64, Diagnostic> {
+fn positive(a: &Args, i: usize) -> std::result::Result<u64, CommandError> {
     let v = a.int(i)?;
     if v <= 0 {
         return Err(a.error(i, "expected a positive integer"));
@@ -1281,7 +1273,7 @@ fn read_data(a: &Args, ctx: &mut Ctx) -> Result {
     } else {
         ctx.sys.read(name)
     }
-    .map_err(|m| a.error(0, format!("Cannot open file {name}: {m}")))?;
+    .map_err(|m| a.file_error(0, format!("Cannot open file {name}: {m}")))?;
     let data = crate::io::data::parse(&text, name).map_err(|m| a.error(0, &m))?;
     crate::engine::checks::check_ntypes(data.ntypes as i64)
         .map_err(|m| a.error(0, format!("{name}: {m}")))?;
@@ -1353,7 +1345,7 @@ fn write_data(a: &Args, ctx: &mut Ctx) -> Result {
     );
     let path = ctx.sys.resolve(name).to_string_lossy().into_owned();
     crate::io::write_atomically(&path, text.as_bytes())
-        .map_err(|e| a.error(0, format!("Cannot open data file {name}: {e}")))
+        .map_err(|e| a.file_error(0, format!("Cannot open data file {name}: {e}")))
 }
 
 /// `read_restart FILE` (a `*` picks the largest step, a `%` the multi-file form).
@@ -1424,7 +1416,7 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
             };
             let args = Args { cmd: &cmd };
             if let Some(run) = registry::handler(cmd.name()) {
-                run(&args, ctx)?;
+                run(&args, ctx).map_err(|e| CommandError::Reported(e.into_diagnostic(&cmd)))?;
             }
         }
     }

@@ -42,9 +42,14 @@ pub enum Severity {
     Warning,
 }
 
-/// One reported problem.
+/// One reported problem. It is one pointer wide (its parts live on the heap), so the
+/// `Result`s that carry it stay small; its parts read as fields through [`Report`].
 #[derive(Debug, Clone, PartialEq)]
-pub struct Diagnostic {
+pub struct Diagnostic(Box<Report>);
+
+/// The parts of a [`Diagnostic`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Report {
     /// Error, unsupported feature or warning.
     pub severity: Severity,
     /// The message; for errors LIGGGHTS also raises, its own wording comes first.
@@ -59,34 +64,50 @@ pub struct Diagnostic {
     pub help: Option<String>,
 }
 
+impl std::ops::Deref for Diagnostic {
+    type Target = Report;
+    fn deref(&self) -> &Report {
+        &self.0
+    }
+}
+
+impl std::ops::DerefMut for Diagnostic {
+    fn deref_mut(&mut self) -> &mut Report {
+        &mut self.0
+    }
+}
+
+impl From<Report> for Diagnostic {
+    fn from(report: Report) -> Diagnostic {
+        Diagnostic(Box::new(report))
+    }
+}
+
 impl Diagnostic {
     /// A plain error with a message and nothing else yet.
     pub fn error(message: impl Into<String>) -> Diagnostic {
-        Diagnostic {
+        Diagnostic::from(Report {
             severity: Severity::Error,
             message: message.into(),
             location: None,
             source: None,
             span: None,
             help: None,
-        }
+        })
     }
 
     /// A "not supported yet" report for a valid LIGGGHTS feature.
     pub fn unsupported(what: impl Into<String>) -> Diagnostic {
-        Diagnostic {
-            severity: Severity::Unsupported,
-            message: format!("{}: not supported yet", what.into()),
-            ..Diagnostic::error("")
-        }
+        let mut d = Diagnostic::error(format!("{}: not supported yet", what.into()));
+        d.severity = Severity::Unsupported;
+        d
     }
 
     /// A warning.
     pub fn warning(message: impl Into<String>) -> Diagnostic {
-        Diagnostic {
-            severity: Severity::Warning,
-            ..Diagnostic::error(message)
-        }
+        let mut d = Diagnostic::error(message);
+        d.severity = Severity::Warning;
+        d
     }
 
     /// Attach what was expected or the nearest names.

@@ -172,7 +172,7 @@ fn deck_flags(deck: Option<String>, flags: &[String]) -> Result<DeckOptions, Exi
         }
         Err(e) => {
             eprintln!("ERROR: {}", e.message);
-            if let Some(h) = e.help {
+            if let Some(h) = &e.help {
                 eprintln!("  = {h}");
             }
             Err(exit(ExitStatus::Usage))

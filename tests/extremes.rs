@@ -121,10 +121,17 @@ fn scan_dumps(dir: &Path) -> usize {
     n
 }
 
+/// (name, variables, LIGGGHTS's result line, bound on |drift|)
+type Case = (
+    &'static str,
+    &'static [(&'static str, &'static str)],
+    &'static str,
+    f64,
+);
+
 #[test]
 fn elastic_collisions_conserve_energy_and_momentum_at_the_extremes() {
-    // (name, variables, LIGGGHTS's result line, bound on |drift|)
-    let cases: [(&str, &[(&str, &str)], &str, f64); 5] = [
+    let cases: [Case; 5] = [
         // soft_particles' lowest modulus: c = sqrt(1e5 / 2500) = 6.3 m/s, impact 0.2 m/s
         (
             "soft",

@@ -1,8 +1,8 @@
 //! Typed access to a command's arguments with errors that point at the offending word.
 
+use crate::commands::error::{At, CommandError};
 use crate::commands::suggest::did_you_mean;
 use crate::commands::CommandLine;
-use crate::error::Diagnostic;
 use crate::util::numbers::{inumeric, numeric};
 
 /// A command's arguments (after the command name).
@@ -22,29 +22,51 @@ impl<'a> Args<'a> {
         self.len() == 0
     }
 
-    /// An error about argument `i`, in LIGGGHTS's words.
-    pub fn error(&self, i: usize, message: impl std::fmt::Display) -> Diagnostic {
-        Diagnostic::error(message.to_string()).with_source(&self.cmd.text, Some(self.cmd.span(i)))
+    /// An invalid value at argument `i`, in LIGGGHTS's words.
+    pub fn error(&self, i: usize, message: impl std::fmt::Display) -> CommandError {
+        CommandError::InvalidValue {
+            message: message.to_string(),
+            at: At::Arg(i),
+            help: None,
+        }
+    }
+
+    /// A file named at argument `i` that cannot be opened, read or written.
+    pub fn file_error(&self, i: usize, message: impl std::fmt::Display) -> CommandError {
+        CommandError::File {
+            message: message.to_string(),
+            at: At::Arg(i),
+            help: None,
+        }
     }
 
     /// A "not supported yet" report pointing at argument `i`.
-    pub fn unsupported(&self, i: usize, what: &str) -> Diagnostic {
-        Diagnostic::unsupported(what).with_source(&self.cmd.text, Some(self.cmd.span(i)))
+    pub fn unsupported(&self, i: usize, what: &str) -> CommandError {
+        CommandError::unsupported(what, At::Arg(i))
     }
 
     /// An unknown keyword at `i`, with the nearest of `known`.
-    pub fn keyword_error(&self, i: usize, known: &[&str]) -> Diagnostic {
+    pub fn keyword_error(&self, i: usize, known: &[&str]) -> CommandError {
         let word = self.cmd.arg(i).unwrap_or("");
         let help = did_you_mean(word, known)
             .unwrap_or_else(|| format!("expected one of: {}", known.join(", ")));
-        self.error(
-            i,
-            &format!(
+        CommandError::UnknownName {
+            message: format!(
                 "Illegal {} command: unknown keyword '{word}'",
                 self.cmd.name()
             ),
-        )
-        .with_help(help)
+            at: At::Arg(i),
+            help,
+        }
+    }
+
+    /// A missing or extra argument, reported at the last word with what was expected.
+    fn bad_count(&self, expected: String) -> CommandError {
+        CommandError::BadArgument {
+            message: format!("Illegal {} command", self.cmd.name()),
+            at: At::Arg(self.len().saturating_sub(1)),
+            expected,
+        }
     }
 
     /// Check the argument count.
@@ -52,32 +74,23 @@ impl<'a> Args<'a> {
         &self,
         range: std::ops::RangeInclusive<usize>,
         usage: &str,
-    ) -> Result<(), Diagnostic> {
+    ) -> Result<(), CommandError> {
         if range.contains(&self.len()) {
             Ok(())
         } else {
-            Err(self
-                .error(
-                    self.len().saturating_sub(1),
-                    &format!("Illegal {} command", self.cmd.name()),
-                )
-                .with_help(format!("expected: {usage}")))
+            Err(self.bad_count(format!("expected: {usage}")))
         }
     }
 
     /// Argument `i` as a word.
-    pub fn word(&self, i: usize) -> Result<&'a str, Diagnostic> {
-        self.cmd.arg(i).ok_or_else(|| {
-            self.error(
-                self.len().saturating_sub(1),
-                &format!("Illegal {} command", self.cmd.name()),
-            )
-            .with_help(format!("missing argument {}", i + 1))
-        })
+    pub fn word(&self, i: usize) -> Result<&'a str, CommandError> {
+        self.cmd
+            .arg(i)
+            .ok_or_else(|| self.bad_count(format!("missing argument {}", i + 1)))
     }
 
     /// Argument `i`, which must be one of `allowed`.
-    pub fn word_in(&self, i: usize, allowed: &[&str]) -> Result<&'a str, Diagnostic> {
+    pub fn word_in(&self, i: usize, allowed: &[&str]) -> Result<&'a str, CommandError> {
         let w = self.word(i)?;
         if allowed.contains(&w) {
             Ok(w)
@@ -87,26 +100,26 @@ impl<'a> Args<'a> {
     }
 
     /// Argument `i` as a real number (LIGGGHTS's rules).
-    pub fn real(&self, i: usize) -> Result<f64, Diagnostic> {
+    pub fn real(&self, i: usize) -> Result<f64, CommandError> {
         let w = self.word(i)?;
-        numeric(w).map_err(|m| self.error(i, &m))
+        numeric(w).map_err(|m| self.error(i, m))
     }
 
     /// Argument `i` as an integer (LIGGGHTS's rules).
-    pub fn int(&self, i: usize) -> Result<i64, Diagnostic> {
+    pub fn int(&self, i: usize) -> Result<i64, CommandError> {
         let w = self.word(i)?;
-        inumeric(w).map_err(|m| self.error(i, &m))
+        inumeric(w).map_err(|m| self.error(i, m))
     }
 
     /// Argument `i` as an integer LIGGGHTS keeps in an int (a count): one beyond an int's
     /// range is an error naming the word.
-    pub fn int32(&self, i: usize) -> Result<i64, Diagnostic> {
+    pub fn int32(&self, i: usize) -> Result<i64, CommandError> {
         let n = self.int(i)?;
         if n > i32::MAX as i64 || n < i32::MIN as i64 {
             let w = self.word(i)?;
             return Err(self.error(
                 i,
-                &format!("Integer parameter '{w}' is out of range (LIGGGHTS counts it in an int, at most {})", i32::MAX),
+                format!("Integer parameter '{w}' is out of range (LIGGGHTS counts it in an int, at most {})", i32::MAX),
             ));
         }
         Ok(n)

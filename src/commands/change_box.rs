@@ -4,14 +4,14 @@
 //! each operation followed by LIGGGHTS's `set_initial_box` (padding of `s` faces, new limits
 //! of `m` faces), and the box shrink-wrapped and atoms wrapped again at the end.
 
+use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
 use crate::engine::domain::Boundary;
 use crate::engine::sim::{FixKind, Simulation};
-use crate::error::Diagnostic;
 use crate::script::system::Mode;
 use crate::util::format::g;
 
-type Result<T = ()> = std::result::Result<T, Diagnostic>;
+type Result<T = ()> = std::result::Result<T, CommandError>;
 
 /// LIGGGHTS's BIG: the extent of no atoms, which turns a shrink-wrapped box inside out.
 const BIG: f64 = 1.0e20;
@@ -46,7 +46,7 @@ enum Op {
 /// The box state atoms are remapped from: lower corner and inverse lengths.
 type Saved = ([f64; 3], [f64; 3]);
 
-fn illegal(a: &Args, i: usize) -> Diagnostic {
+fn illegal(a: &Args, i: usize) -> CommandError {
     a.error(i, "Illegal change_box command")
 }
 

@@ -2,11 +2,11 @@
 //! it mostly serves: `compute ID GROUP temp` and LIGGGHTS's default `thermo_temp` (and
 //! `thermo_kin_eng`, a `ke` compute), which exist in every deck as in LIGGGHTS 3.8.0.
 
+use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
 use crate::engine::computes::{Compute, ComputeKind};
 use crate::engine::contact::UnitStyle;
 use crate::engine::sim::Simulation;
-use crate::error::Diagnostic;
 
 /// What `compute_modify` sets on one compute.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -52,7 +52,7 @@ pub fn default_computes() -> Vec<Compute> {
 }
 
 /// `compute_modify ID keyword value ...`.
-pub fn compute_modify(a: &Args, ctx: &mut Ctx) -> Result<(), Diagnostic> {
+pub fn compute_modify(a: &Args, ctx: &mut Ctx) -> Result<(), CommandError> {
     if a.len() < 2 {
         return Err(a
             .error(a.len().saturating_sub(1), "Illegal compute_modify command")

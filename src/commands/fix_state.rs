@@ -2,9 +2,9 @@
 //! `read_restart` taking its stored state, and `compute wall/gran/local`, which reads the
 //! mesh wall's contact state at output.
 
+use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
 use crate::engine::fixes::{Fix, FixKind};
-use crate::error::Diagnostic;
 
 /// `compute ID group wall/gran/local [keywords]`: rows of the mesh wall's contacts
 /// (docs/notes/wall_gran_local.md), with LIGGGHTS's rules and messages.
@@ -12,12 +12,12 @@ pub fn wall_gran_local(
     a: &Args,
     ctx: &mut Ctx,
     id: &str,
-) -> std::result::Result<crate::engine::computes::ComputeKind, Diagnostic> {
+) -> std::result::Result<crate::engine::computes::ComputeKind, CommandError> {
     use crate::engine::computes::{ComputeKind, LocalField};
     if ctx.sim.step > 0 && !ctx.sim.restart_in_progress {
         return Err(a.error(
             2,
-            &format!(
+            format!(
                 "Compute wall/gran/local (id {id}): Need to define this compute before first run"
             ),
         ));
@@ -34,7 +34,7 @@ pub fn wall_gran_local(
                     return Err(a
                         .error(
                             i,
-                            &format!("Compute wall/gran/local (id {id}): illegal/unrecognized keyword"),
+                            format!("Compute wall/gran/local (id {id}): illegal/unrecognized keyword"),
                         )
                         .with_help("pos, vel, id, force, force_normal, force_tangential, torque, torque_normal, torque_tangential, history, contactArea, delta, heatFlux, contactPoint"))
                 }
@@ -48,7 +48,7 @@ pub fn wall_gran_local(
         // LIGGGHTS 3.8.0 crashes at the first output of a compute without columns
         return Err(a.error(
             3,
-            &format!("Compute wall/gran/local (id {id}): no output keyword given"),
+            format!("Compute wall/gran/local (id {id}): no output keyword given"),
         ));
     }
     fields.sort();
@@ -77,7 +77,7 @@ pub fn wall_gran_local(
     {
         return Err(a.error(
             2,
-            &format!("Fix wall/gran (id {wall}): Fix wall/gran allows only one compute of type wall/gran/local"),
+            format!("Fix wall/gran (id {wall}): Fix wall/gran allows only one compute of type wall/gran/local"),
         ));
     }
     if history == 0 && fields.contains(&LocalField::History) {
@@ -93,7 +93,7 @@ pub fn restore_fix_state(
     a: &Args,
     ctx: &mut Ctx,
     fix: &mut Fix,
-) -> std::result::Result<Vec<String>, Diagnostic> {
+) -> std::result::Result<Vec<String>, CommandError> {
     use crate::engine::insert::{InsertRestart, RELEASE_NAME, RELEASE_WIDTH};
     use crate::engine::restart_fixes::doubles;
     let mut lines = Vec::new();
@@ -106,7 +106,7 @@ pub fn restore_fix_state(
         let bad = |what: &str| {
             a.error(
                 2,
-                &format!(
+                format!(
                     "restart file: stored state of fix {} ({}) is {what}",
                     fix.id, fix.style
                 ),
@@ -198,7 +198,7 @@ pub fn restore_fix_state(
                 .filter(|_| sim.restart_in_progress);
             if let Some((stored_width, _)) = stored {
                 if *stored_width != width {
-                    return Err(a.error(2, &format!("Fix {tracker}: saved simulation state used different contact history model - can not restart")));
+                    return Err(a.error(2, format!("Fix {tracker}: saved simulation state used different contact history model - can not restart")));
                 }
             }
             if sim
@@ -229,7 +229,7 @@ pub fn restore_fix_state(
             if doubles(bytes).first().map(|&n| n as usize) != Some(RELEASE_WIDTH) {
                 return Err(a.error(
                     2,
-                    &format!("Fix property/atom (id {RELEASE_NAME}): restarted fix has incompatible data size"),
+                    format!("Fix property/atom (id {RELEASE_NAME}): restarted fix has incompatible data size"),
                 ));
             }
             lines.push(format!(

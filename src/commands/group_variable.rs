@@ -2,14 +2,14 @@
 //! and `group ID initialize` (the group is made, empty, if it does not exist), as LIGGGHTS
 //! 3.8.0 does them.
 
+use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
-use crate::error::Diagnostic;
 use crate::script::system::Mode;
 use crate::script::variables::Style;
 
 /// The atoms an atom-style variable selects (non-zero values, NaN included, as C compares);
 /// None in a dry run that cannot evaluate the variable.
-pub fn selected(a: &Args, ctx: &mut Ctx) -> Result<Option<Vec<bool>>, Diagnostic> {
+pub fn selected(a: &Args, ctx: &mut Ctx) -> Result<Option<Vec<bool>>, CommandError> {
     let name = a.word(2).map_err(|_| {
         a.error(1, "Illegal group command")
             .with_help("group ID variable NAME (an atom-style variable)")
@@ -33,7 +33,7 @@ pub fn selected(a: &Args, ctx: &mut Ctx) -> Result<Option<Vec<bool>>, Diagnostic
 }
 
 /// `group ID initialize` takes no further arguments.
-pub fn initialize(a: &Args) -> Result<(), Diagnostic> {
+pub fn initialize(a: &Args) -> Result<(), CommandError> {
     if a.len() != 2 {
         return Err(a
             .error(2, "Illegal group command")

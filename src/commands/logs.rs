@@ -1,11 +1,11 @@
 //! `thermo_log FILE [append]` (thermo headers and lines copied to a file of their own, or
 //! `none`) and `modify_timing off|on|verbose`, as LIGGGHTS 3.8.0 parses them.
 
+use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
-use crate::error::Diagnostic;
 use crate::script::system::Mode;
 
-type Result = std::result::Result<(), Diagnostic>;
+type Result = std::result::Result<(), CommandError>;
 
 /// `thermo_log FILE [append]`.
 pub fn thermo_log(a: &Args, ctx: &mut Ctx) -> Result {
@@ -30,7 +30,7 @@ pub fn thermo_log(a: &Args, ctx: &mut Ctx) -> Result {
         .append(append)
         .truncate(!append)
         .open(&path)
-        .map_err(|e| a.error(0, &format!("Cannot open thermo log file {name}: {e}")))?;
+        .map_err(|e| a.file_error(0, format!("Cannot open thermo log file {name}: {e}")))?;
     ctx.sim.extras.thermo_file = Some(file);
     Ok(())
 }

@@ -2,6 +2,7 @@
 //! SI units`, Poisson ratios, restitution, ...): `run` and `check` make them alike, and an
 //! error points at the `fix property/global` line that set the offending value.
 
+use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
 use crate::engine::extras::Origin;
 use crate::engine::fixes::FixKind;
@@ -33,7 +34,7 @@ fn mentions(message: &str, name: &str) -> bool {
 
 /// The checks of the contact models a run would build (pair style and granular walls), at
 /// the `run` command `a`.
-pub fn validate(a: &Args, ctx: &Ctx) -> Result<(), Diagnostic> {
+pub fn validate(a: &Args, ctx: &Ctx) -> Result<(), CommandError> {
     let sim = &*ctx.sim;
     let input = sim.material_input();
     let mut selections = Vec::new();
@@ -56,15 +57,18 @@ pub fn validate(a: &Args, ctx: &Ctx) -> Result<(), Diagnostic> {
             .find(|n| mentions(&message, n))
             .and_then(|n| sim.extras.property_origins.get(n));
         return Err(match origin {
-            Some(o) => Diagnostic::error(&message)
-                .with_source(&o.text, Some(o.span))
-                .at(&o.location)
-                .with_help(format!(
-                    "LIGGGHTS checks this value when a run starts (here the `{}` at {}:{})",
-                    a.cmd.text.trim(),
-                    a.cmd.location.file,
-                    a.cmd.location.line
-                )),
+            // reported at the line that set the value, not at `run`
+            Some(o) => CommandError::Reported(
+                Diagnostic::error(&message)
+                    .with_source(&o.text, Some(o.span))
+                    .at(&o.location)
+                    .with_help(format!(
+                        "LIGGGHTS checks this value when a run starts (here the `{}` at {}:{})",
+                        a.cmd.text.trim(),
+                        a.cmd.location.file,
+                        a.cmd.location.line
+                    )),
+            ),
             None => a.error(0, &message),
         });
     }

@@ -7,6 +7,7 @@ pub mod change_box;
 pub mod compute_modify;
 pub mod computes_extra;
 pub mod diverged;
+pub mod error;
 pub mod fix_state;
 pub mod group_variable;
 pub mod logs;
@@ -30,6 +31,7 @@ use crate::script::system::{Mode, System};
 use crate::script::variables::Variables;
 
 pub use args::Args;
+pub use error::{At, CommandError};
 pub use registry::validate_names;
 
 /// What a command handler may touch.
@@ -167,7 +169,7 @@ impl Engine {
         vars: &mut Variables,
         out: &mut Output,
     ) -> Result<(), Diagnostic> {
-        validate_names(cmd)?;
+        validate_names(cmd).map_err(|e| e.into_diagnostic(cmd))?;
         let check = sys.mode == Mode::Check;
         let args = Args { cmd };
         let mut ctx = Ctx {
@@ -177,7 +179,9 @@ impl Engine {
             vars,
         };
         if let Some(run) = registry::handler(cmd.name()) {
-            let result = run(&args, &mut ctx).map_err(|d| out_of_scope::explain(cmd, d));
+            // the one place a command's error becomes a report pointing into its line
+            let result = run(&args, &mut ctx)
+                .map_err(|e| out_of_scope::explain(cmd, e).into_diagnostic(cmd));
             if let Err(d) = &result {
                 if check && d.severity == crate::error::Severity::Unsupported {
                     self.diverged = true;
@@ -195,23 +199,18 @@ impl Engine {
         if check {
             self.diverged = true;
         }
-        Err(out_of_scope::explain(
-            cmd,
-            Diagnostic::unsupported(registry::feature_name(cmd))
-                .with_source(&cmd.text, Some(registry::feature_span(cmd))),
-        ))
+        let unsupported = CommandError::unsupported(registry::feature_name(cmd), At::Feature);
+        Err(out_of_scope::explain(cmd, unsupported).into_diagnostic(cmd))
     }
 
     /// Check a command's names without executing it (supported commands pass).
     pub fn validate_names(&self, cmd: &CommandLine) -> Result<(), Diagnostic> {
-        validate_names(cmd)?;
+        validate_names(cmd).map_err(|e| e.into_diagnostic(cmd))?;
         if registry::is_supported(cmd) {
             return Ok(());
         }
-        Err(out_of_scope::explain(
-            cmd,
-            Diagnostic::unsupported(registry::feature_name(cmd)),
-        ))
+        let unsupported = CommandError::unsupported(registry::feature_name(cmd), At::Line);
+        Err(out_of_scope::explain(cmd, unsupported).into_diagnostic(cmd))
     }
 
     /// True if a `fix property/global` with this variable name exists (the `if property_X` test).

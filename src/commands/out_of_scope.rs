@@ -2,8 +2,8 @@
 //! external CFD solver driving LIGGGHTS) and SPH (smoothed-particle hydrodynamics, which is
 //! not DEM).
 
-use crate::commands::CommandLine;
-use crate::error::{Diagnostic, Severity};
+use crate::commands::{CommandError, CommandLine};
+use crate::error::Severity;
 
 /// The plain reason a command's feature is out of scope, if it is.
 fn reason(cmd: &CommandLine) -> Option<(String, &'static str)> {
@@ -22,7 +22,7 @@ fn reason(cmd: &CommandLine) -> Option<(String, &'static str)> {
         }
         "set" => {
             let k = (2..cmd.nargs())
-                .map(|i| style(i))
+                .map(style)
                 .find(|w| w.starts_with("meso_") || *w == "sphkernel")?;
             Some((format!("set {k}"), sph))
         }
@@ -31,25 +31,34 @@ fn reason(cmd: &CommandLine) -> Option<(String, &'static str)> {
 }
 
 /// An unsupported report for an out-of-scope feature, reworded to say why.
-pub fn explain(cmd: &CommandLine, d: Diagnostic) -> Diagnostic {
-    if d.severity != Severity::Unsupported {
-        return d;
+pub fn explain(cmd: &CommandLine, e: CommandError) -> CommandError {
+    if e.severity() != Severity::Unsupported {
+        return e;
     }
-    match reason(cmd) {
-        Some((what, why)) => {
-            let help = if why.contains("CFD") {
-                "CFDEMcoupling runs LIGGGHTS as a library inside an OpenFOAM solver and exchanges \
-                 particle-fluid forces with it every coupling interval; run such cases with \
-                 LIGGGHTS and CFDEMcoupling"
-            } else {
-                "SPH (smoothed-particle hydrodynamics) decks need LIGGGHTS itself"
-            };
-            Diagnostic {
-                message: format!("{what}: {why}"),
-                help: Some(help.to_string()),
-                ..d
+    let Some((feature, reason)) = reason(cmd) else {
+        return e;
+    };
+    let help = if reason.contains("CFD") {
+        "CFDEMcoupling runs LIGGGHTS as a library inside an OpenFOAM solver and exchanges \
+         particle-fluid forces with it every coupling interval; run such cases with \
+         LIGGGHTS and CFDEMcoupling"
+    } else {
+        "SPH (smoothed-particle hydrodynamics) decks need LIGGGHTS itself"
+    };
+    match e {
+        CommandError::Reported(mut d) => {
+            d.message = format!("{feature}: {reason}");
+            d.help = Some(help.to_string());
+            CommandError::Reported(d)
+        }
+        CommandError::Unsupported { at, .. } | CommandError::OutOfScope { at, .. } => {
+            CommandError::OutOfScope {
+                feature,
+                at,
+                reason: reason.to_string(),
+                help: help.to_string(),
             }
         }
-        None => d,
+        other => other,
     }
 }

@@ -3,9 +3,8 @@
 
 use crate::commands::names::{self, NameKind};
 use crate::commands::suggest::did_you_mean;
-use crate::commands::{sim_run, sim_setup, specs, Args, CommandLine, Ctx};
+use crate::commands::{sim_run, sim_setup, specs, Args, At, CommandError, CommandLine, Ctx};
 use crate::engine::contact::{AnyContactModel, ModelSelection};
-use crate::error::Diagnostic;
 
 /// Commands LIGGGHTS 3.8.0 lacks that regolith accepts (newer LAMMPS spellings users type).
 pub const EXTENSION_COMMANDS: &[&str] = &["comm_modify"];
@@ -86,45 +85,50 @@ pub fn legacy_style_hint(kind: NameKind, word: &str) -> Option<String> {
     }
 }
 
-fn unknown(kind: NameKind, word: &str, cmd: &CommandLine, index: usize) -> Diagnostic {
+/// A style or sub-model name (`word`, argument `index`) LIGGGHTS does not have.
+fn unknown(kind: NameKind, word: &str, index: usize) -> CommandError {
     let candidates = names::names(kind);
     let help = legacy_style_hint(kind, word)
         .or_else(|| did_you_mean(word, candidates))
         .unwrap_or_else(|| format!("'{word}' is not a {} of LIGGGHTS 3.8.0", names::label(kind)));
-    Diagnostic::error(names::liggghts_message(kind, word))
-        .with_source(&cmd.text, Some(cmd.span(index)))
-        .with_help(help)
+    CommandError::UnknownName {
+        message: names::liggghts_message(kind, word),
+        at: At::Arg(index),
+        help,
+    }
 }
 
 /// Check that the command and any style or contact sub-model it names exist in LIGGGHTS 3.8.0.
-pub fn validate_names(cmd: &CommandLine) -> Result<(), Diagnostic> {
+pub fn validate_names(cmd: &CommandLine) -> Result<(), CommandError> {
     let name = cmd.name();
     if !names::COMMANDS.contains(&name) && !EXTENSION_COMMANDS.contains(&name) {
         let help = did_you_mean(name, names::COMMANDS)
             .unwrap_or_else(|| format!("'{name}' is not a command of LIGGGHTS 3.8.0"));
-        return Err(
-            Diagnostic::error(format!("Unknown command: {}", cmd.text.trim()))
-                .with_source(&cmd.text, Some((cmd.words[0].start, cmd.words[0].end)))
-                .with_help(help),
-        );
+        return Err(CommandError::UnknownName {
+            message: format!("Unknown command: {}", cmd.text.trim()),
+            at: At::Name,
+            help,
+        });
     }
     let Some(&(_, index, kind, usage)) = STYLED.iter().find(|s| s.0 == name) else {
         return Ok(());
     };
     let Some(style) = cmd.arg(index) else {
-        return Err(Diagnostic::error(format!("Illegal {name} command"))
-            .with_source(&cmd.text, Some(cmd.span(index)))
-            .with_help(format!("expected: {usage}")));
+        return Err(CommandError::BadArgument {
+            message: format!("Illegal {name} command"),
+            at: At::Arg(index),
+            expected: format!("expected: {usage}"),
+        });
     };
     if crate::script::interp::UNKNOWN_VALUE == style {
         return Ok(());
     }
     if kind == NameKind::FixStyle && style.starts_with("mesh/surface") {
-        validate_mesh_modules(style, cmd, index)?;
+        validate_mesh_modules(style, index)?;
     } else if kind == NameKind::DumpStyle && EXTENSION_DUMP_STYLES.contains(&style) {
         // accepted beyond LIGGGHTS
     } else if !names::names(kind).contains(&style) {
-        return Err(unknown(kind, style, cmd, index));
+        return Err(unknown(kind, style, index));
     }
     let model_start = match (name, style) {
         ("pair_style", "gran") => Some(index + 1),
@@ -141,23 +145,23 @@ pub fn validate_names(cmd: &CommandLine) -> Result<(), Diagnostic> {
 pub const MESH_MODULES: &[&str] = &["liquidtransfer", "planar", "servo", "stress"];
 
 /// LIGGGHTS accepts any `mesh/surface[/module...]` fix style whose parts are mesh modules.
-fn validate_mesh_modules(style: &str, cmd: &CommandLine, index: usize) -> Result<(), Diagnostic> {
+fn validate_mesh_modules(style: &str, index: usize) -> Result<(), CommandError> {
     for part in style.split('/').skip(2) {
         if !MESH_MODULES.contains(&part) {
             let help = did_you_mean(part, MESH_MODULES)
                 .unwrap_or_else(|| format!("mesh modules: {}", MESH_MODULES.join(", ")));
-            return Err(Diagnostic::error(format!(
-                "unknown keyword in style definition: {style} ({part})"
-            ))
-            .with_source(&cmd.text, Some(cmd.span(index)))
-            .with_help(help));
+            return Err(CommandError::UnknownName {
+                message: format!("unknown keyword in style definition: {style} ({part})"),
+                at: At::Arg(index),
+                help,
+            });
         }
     }
     Ok(())
 }
 
 /// Check `model X tangential Y cohesion Z rolling_friction W surface V` names.
-fn validate_gran_models(cmd: &CommandLine, start: usize) -> Result<(), Diagnostic> {
+fn validate_gran_models(cmd: &CommandLine, start: usize) -> Result<(), CommandError> {
     let mut i = start;
     while let Some(key) = cmd.arg(i) {
         let kind = match key {
@@ -169,12 +173,14 @@ fn validate_gran_models(cmd: &CommandLine, start: usize) -> Result<(), Diagnosti
             _ => return Ok(()),
         };
         let Some(value) = cmd.arg(i + 1) else {
-            return Err(Diagnostic::error(format!("Illegal {} command", cmd.name()))
-                .with_source(&cmd.text, Some(cmd.span(i)))
-                .with_help(format!("expected a {} after '{key}'", names::label(kind))));
+            return Err(CommandError::BadArgument {
+                message: format!("Illegal {} command", cmd.name()),
+                at: At::Arg(i),
+                expected: format!("expected a {} after '{key}'", names::label(kind)),
+            });
         };
         if value != crate::script::interp::UNKNOWN_VALUE && !names::names(kind).contains(&value) {
-            return Err(unknown(kind, value, cmd, i + 1));
+            return Err(unknown(kind, value, i + 1));
         }
         i += 2;
     }
@@ -182,7 +188,7 @@ fn validate_gran_models(cmd: &CommandLine, start: usize) -> Result<(), Diagnosti
 }
 
 /// A command's handler: reads the command's arguments and applies it to the simulation.
-pub type Handler = fn(&Args, &mut Ctx) -> Result<(), Diagnostic>;
+pub type Handler = fn(&Args, &mut Ctx) -> Result<(), CommandError>;
 
 /// The handler regolith runs a command with (None: a LIGGGHTS command regolith does not run).
 pub fn handler(name: &str) -> Option<Handler> {
@@ -242,7 +248,7 @@ pub fn runs_style(command: &str, style: &str) -> bool {
 
 /// The "not supported yet" report, at the style word, of a handler asked for a style that
 /// [`STYLES`] does not list for `command`.
-pub fn require_style(a: &Args, command: &str) -> Result<(), Diagnostic> {
+pub fn require_style(a: &Args, command: &str) -> Result<(), CommandError> {
     let row = STYLES
         .iter()
         .find(|row| row.command == command)

@@ -2,11 +2,11 @@
 //! keyword in turn, a value or an atom-style variable `v_name` (evaluated for every atom when
 //! the keyword is reached), LIGGGHTS's checks, and `N settings made for KEYWORD` after each.
 
+use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
-use crate::error::Diagnostic;
 use crate::script::system::Mode;
 
-type Result = std::result::Result<(), Diagnostic>;
+type Result = std::result::Result<(), CommandError>;
 
 /// Keywords regolith sets, each with one value (a number or `v_name`).
 const VALUED: &[&str] = &[
@@ -62,7 +62,7 @@ fn value(
     ctx: &mut Ctx,
     i: usize,
     integer: bool,
-) -> std::result::Result<Value, Diagnostic> {
+) -> std::result::Result<Value, CommandError> {
     let word = a.word(i)?;
     let Some(name) = word.strip_prefix("v_") else {
         return Ok(Value::Constant(if integer {
@@ -169,7 +169,7 @@ fn type_fraction(
     ctx: &mut Ctx,
     i: usize,
     atoms: &[usize],
-) -> std::result::Result<usize, Diagnostic> {
+) -> std::result::Result<usize, CommandError> {
     let t = a.int(i + 1)?;
     let fraction = a.real(i + 2)?;
     let seed = a.int(i + 3)?;
@@ -208,9 +208,8 @@ fn apply(a: &Args, ctx: &mut Ctx, i: usize, key: &str, v: &Value, atoms: &[usize
                 if value < 0.0 {
                     return Err(a.error(i + 1, "Invalid diameter in set command"));
                 }
-                crate::engine::checks::check_sphere(value, p.density[k], "diameter").map_err(
-                    |m| a.error(i + 1, &format!("Invalid diameter in set command: {m}")),
-                )?;
+                crate::engine::checks::check_sphere(value, p.density[k], "diameter")
+                    .map_err(|m| a.error(i + 1, format!("Invalid diameter in set command: {m}")))?;
                 p.radius[k] = 0.5 * value * 1.0;
                 if p.density[k] > 0.0 {
                     let r = p.radius[k];
@@ -222,7 +221,7 @@ fn apply(a: &Args, ctx: &mut Ctx, i: usize, key: &str, v: &Value, atoms: &[usize
                     return Err(a.error(i + 1, "Invalid density in set command"));
                 }
                 crate::engine::checks::check_sphere(2.0 * p.radius[k], value, "density")
-                    .map_err(|m| a.error(i + 1, &format!("Invalid density in set command: {m}")))?;
+                    .map_err(|m| a.error(i + 1, format!("Invalid density in set command: {m}")))?;
                 p.density[k] = value;
                 if p.radius[k] > 0.0 {
                     let r = p.radius[k];

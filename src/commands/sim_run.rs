@@ -1,15 +1,16 @@
 //! Commands that drive and observe the run: fixes regolith integrates, thermo, dumps, `run`.
 
 use crate::commands::registry::{self, Handler};
+use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
+use crate::engine::error::EngineError;
 use crate::engine::fixes::{Fix, FixKind, Motion, Move};
 use crate::engine::integrate::Gravity;
 use crate::engine::sim::Dump;
-use crate::error::Diagnostic;
 use crate::io::dump::Layout;
 use crate::script::system::Mode;
 
-type Result = std::result::Result<(), Diagnostic>;
+type Result = std::result::Result<(), CommandError>;
 
 /// The commands that drive and observe the run, and their handlers.
 pub const COMMANDS: &[(&str, Handler)] = &[
@@ -152,17 +153,17 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                 mesh_surface(a, ctx, style)?
             }
             "move/mesh" => move_mesh(a, ctx)?,
-            "particletemplate/sphere" => particle_template(a, ctx, &id)?,
+            "particletemplate/sphere" => particle_template(a, ctx, id)?,
             "particledistribution/discrete"
             | "particledistribution/discrete/numberbased"
             | "particledistribution/discrete/massbased" => distribution(a, ctx, style)?,
             "insert/pack" | "insert/rate/region" => {
                 ctx.sim.inserts_atoms = true;
-                insert_pack(a, ctx, &id, style)?
+                insert_pack(a, ctx, id, style)?
             }
             "insert/stream" => {
                 ctx.sim.inserts_atoms = true;
-                insert_stream(a, ctx, &id)?
+                insert_stream(a, ctx, id)?
             }
             "wall/gran" => {
                 let (selection, next, pending) = gran_models(a, 3, "history", "fix wall/gran")?;
@@ -247,7 +248,7 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                     .collect::<std::result::Result<_, _>>()?;
                 selection
                     .apply_settings(&rest)
-                    .map_err(|m| a.error(k, &format!("Fix wall/gran: {m}")))?;
+                    .map_err(|m| a.error(k, format!("Fix wall/gran: {m}")))?;
                 FixKind::WallGran(crate::engine::fixes::WallFix {
                     selection,
                     plane: shape,
@@ -281,7 +282,7 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                 for (d, slot) in values.iter_mut().enumerate() {
                     let w = a.word(3 + d)?;
                     if let Some(name) = w.strip_prefix("v_") {
-                        *slot = variable_value(&a, ctx, 3 + d, name, style)?;
+                        *slot = variable_value(a, ctx, 3 + d, name, style)?;
                     } else if w != "NULL" {
                         *slot = ForceValue::Constant(a.real(3 + d)?);
                     } else if style == "addforce" {
@@ -295,7 +296,7 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                         "region" => {
                             let id = a.word(i + 1)?;
                             region = Some(ctx.sim.regions.find(id).ok_or_else(|| {
-                                a.error(i + 1, &format!("Region ID for fix {style} does not exist"))
+                                a.error(i + 1, format!("Region ID for fix {style} does not exist"))
                             })?);
                             i += 2;
                         }
@@ -346,7 +347,7 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                             let Some(name) = a.word(i + 2)?.strip_prefix("v_") else {
                                 return Err(a.error(i + 2, "Illegal fix adapt command"));
                             };
-                            diameter = Some(variable_value(&a, ctx, i + 2, name, "adapt")?);
+                            diameter = Some(variable_value(a, ctx, i + 2, name, "adapt")?);
                             i += 3;
                         }
                         w @ ("pair" | "kspace") => {
@@ -398,9 +399,9 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                                     .truncate(kw == "file")
                                     .open(name)
                                     .map_err(|_| {
-                                        a.error(
+                                        a.file_error(
                                             i + 1,
-                                            &format!("Cannot open fix print file {name}"),
+                                            format!("Cannot open fix print file {name}"),
                                         )
                                     })?;
                                 file = Some(std::io::BufWriter::new(f));
@@ -422,7 +423,7 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                     if let Some(h) = head {
                         writeln!(f, "{h}")
                             .and_then(|_| f.flush())
-                            .map_err(|e| a.error(0, &format!("fix print: {e}")))?;
+                            .map_err(|e| a.error(0, format!("fix print: {e}")))?;
                     }
                 }
                 FixKind::Print(crate::engine::fixes::PrintFix {
@@ -432,14 +433,14 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                     file,
                 })
             }
-            "ave/time" => ave_time(a, ctx, &id)?,
+            "ave/time" => ave_time(a, ctx, id)?,
             "viscous" => {
                 a.count(4..=4, "fix ID GROUP viscous GAMMA")?;
                 FixKind::Viscous(a.real(3)?)
             }
             "move" => {
                 let components =
-                    |from: usize| -> std::result::Result<[Option<f64>; 3], Diagnostic> {
+                    |from: usize| -> std::result::Result<[Option<f64>; 3], CommandError> {
                         let mut v = [None; 3];
                         for (d, slot) in v.iter_mut().enumerate() {
                             let w = a.word(from + d)?;
@@ -500,7 +501,7 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
                         for (k, slot) in slots.iter_mut().enumerate() {
                             let w = a.word(4 + k)?;
                             if let Some(name) = w.strip_prefix("v_") {
-                                *slot = variable_value(&a, ctx, 4 + k, name, "move")?;
+                                *slot = variable_value(a, ctx, 4 + k, name, "move")?;
                             } else if w != "NULL" {
                                 return Err(a.error(4 + k, "Illegal fix move command"));
                             }
@@ -588,7 +589,7 @@ fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
     if ctx.sim.computes.iter().any(|c| {
         matches!(&c.kind, crate::engine::computes::ComputeKind::WallGranLocal { wall, .. } if wall == id)
     }) {
-        return Err(a.error(0, &format!("Fix wall/gran (id {id}): need to uncompute the active compute wall/gran/local before unfixing the wall")));
+        return Err(a.error(0, format!("Fix wall/gran (id {id}): need to uncompute the active compute wall/gran/local before unfixing the wall")));
     }
     let movers = |mesh: &str| -> Vec<usize> {
         (0..ctx.sim.fixes.len())
@@ -616,7 +617,7 @@ fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
             }
             FixKind::Mesh(_) => {
                 if let Some(&m) = movers(id).first() {
-                    return Err(a.error(0, &format!("Fix mesh/surface (id {id}): illegal unfix command, may not unfix a moving mesh while a fix move is applied to it. Unfix the fix move/mesh first (id: {})", ctx.sim.fixes[m].id)));
+                    return Err(a.error(0, format!("Fix mesh/surface (id {id}): illegal unfix command, may not unfix a moving mesh while a fix move is applied to it. Unfix the fix move/mesh first (id: {})", ctx.sim.fixes[m].id)));
                 }
             }
             _ => {}
@@ -654,15 +655,15 @@ fn thermo_style(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.error(1, "Illegal thermo_style command"));
     }
     ctx.sim.thermo.custom = a.word(0)? == "custom";
-    ctx.sim.thermo.set_style(&words).map_err(|m| {
+    ctx.sim.thermo.set_style(&words).map_err(|e| {
+        let m = e.to_string();
         let at = words
             .iter()
             .position(|w| m.contains(w))
             .map_or(0, |k| k + 1);
-        if m.ends_with("not supported yet") {
-            a.unsupported(at, m.trim_end_matches(": not supported yet"))
-        } else {
-            a.error(at, &m)
+        match e {
+            EngineError::Unsupported(what) => a.unsupported(at, &what),
+            EngineError::Invalid(m) => a.error(at, m),
         }
     })?;
     // LIGGGHTS: a new thermo_style resets thermo_modify settings
@@ -693,7 +694,7 @@ fn thermo_modify(a: &Args, ctx: &mut Ctx) -> Result {
                 let spec = a.word(i + 2)?.to_string();
                 let probe = if which == "int" { 1.0 } else { 0.5 };
                 crate::util::format::with_spec(&spec, probe)
-                    .map_err(|m| a.error(i + 2, &format!("thermo_modify format: {m}")))?;
+                    .map_err(|m| a.error(i + 2, format!("thermo_modify format: {m}")))?;
                 let t = &mut ctx.sim.thermo;
                 match which {
                     "int" => {
@@ -792,7 +793,7 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                 },
                 |_| false,
             )
-            .map_err(|m| a.error(5, &format!("dump {style}: {m}")))?;
+            .map_err(|m| a.error(5, format!("dump {style}: {m}")))?;
             dump_style = crate::engine::sim::DumpStyle::MeshVtk(spec);
             Layout::new(&[]).expect("no columns")
         }
@@ -863,7 +864,7 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                         .find(|c| c.id == cid)
                         .ok_or_else(|| a.error(5 + k, "Could not find dump custom compute ID"))?;
                     crate::engine::computes::column_of(c, index)
-                        .map_err(|m| a.error(5 + k, &format!("Dump custom: {m}")))?;
+                        .map_err(|m| a.error(5 + k, format!("Dump custom: {m}")))?;
                 }
             }
             let layout = Layout::new(&names).map_err(|m| {
@@ -1188,9 +1189,9 @@ fn gran_models(
     (
         crate::engine::granular::Selection,
         usize,
-        Option<Diagnostic>,
+        Option<CommandError>,
     ),
-    Diagnostic,
+    CommandError,
 > {
     use crate::engine::granular::Selection;
     let words: Vec<&str> = (start..a.len())
@@ -1327,7 +1328,7 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
     }
     let no_keywords = |kind: ComputeKind| {
         if a.len() > 3 {
-            Err(a.error(3, &format!("Illegal compute {style} command")))
+            Err(a.error(3, format!("Illegal compute {style} command")))
         } else {
             Ok(kind)
         }
@@ -1458,7 +1459,7 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
 fn compute_reduce(
     a: &Args,
     ctx: &Ctx,
-) -> std::result::Result<crate::engine::computes::ComputeKind, Diagnostic> {
+) -> std::result::Result<crate::engine::computes::ComputeKind, CommandError> {
     use crate::engine::computes::{column_of, ComputeKind, Input, ReduceMode};
     if a.len() < 5 {
         return Err(a.error(2, "Illegal compute reduce command"));
@@ -1555,7 +1556,7 @@ fn variable_value(
     at: usize,
     name: &str,
     style: &str,
-) -> std::result::Result<crate::engine::fixes::ForceValue, Diagnostic> {
+) -> std::result::Result<crate::engine::fixes::ForceValue, CommandError> {
     use crate::engine::fixes::ForceValue;
     use crate::script::variables::Style;
     match ctx.vars.get(name).map(|v| v.style) {
@@ -1563,14 +1564,14 @@ fn variable_value(
         Some(Style::Atom) => Ok(ForceValue::Atom(name.into())),
         Some(_) => Err(a.error(
             at,
-            &format!("Variable {name} for fix {style} is invalid style"),
+            format!("Variable {name} for fix {style} is invalid style"),
         )),
-        None => Err(a.error(at, &format!("Variable name for fix {style} does not exist"))),
+        None => Err(a.error(at, format!("Variable name for fix {style} does not exist"))),
     }
 }
 
 /// `fix ID GROUP ave/time Nevery Nrepeat Nfreq value ... [keyword value ...]` (scalar mode).
-fn ave_time(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, Diagnostic> {
+fn ave_time(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, CommandError> {
     use crate::engine::fixes::{AveInput, AveMode, AveTime};
     a.count(
         7..=usize::MAX,
@@ -1709,11 +1710,16 @@ fn ave_time(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, D
             }
         }
     }
-    let mut fix = AveTime::new(every, repeat, freq, inputs, off, mode, start, ctx.sim.step);
+    let schedule = crate::engine::fixes::AveSchedule {
+        every,
+        repeat,
+        freq,
+    };
+    let mut fix = AveTime::new(schedule, inputs, off, mode, start, ctx.sim.step);
     if let (Some(name), Mode::Run) = (file, ctx.sys.mode) {
         use std::io::Write;
         let f = std::fs::File::create(&name)
-            .map_err(|_| a.error(0, &format!("Cannot open fix ave/time file {name}")))?;
+            .map_err(|_| a.file_error(0, format!("Cannot open fix ave/time file {name}")))?;
         let mut f = std::io::BufWriter::new(f);
         let head = format!(
             "{}\n{}\n",
@@ -1726,7 +1732,7 @@ fn ave_time(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, D
         );
         f.write_all(head.as_bytes())
             .and_then(|_| f.flush())
-            .map_err(|e| a.error(0, &format!("fix ave/time: {e}")))?;
+            .map_err(|e| a.error(0, format!("fix ave/time: {e}")))?;
         fix.file = Some(f);
     }
     Ok(FixKind::AveTime(fix))
@@ -1739,7 +1745,7 @@ fn mesh_wall(
     group: &str,
     mut selection: crate::engine::granular::Selection,
     at: usize,
-) -> std::result::Result<FixKind, Diagnostic> {
+) -> std::result::Result<FixKind, CommandError> {
     if a.word(at + 1)? != "n_meshes" {
         return Err(a
             .error(at + 1, "Fix wall/gran: expecting keyword 'n_meshes'")
@@ -1763,7 +1769,7 @@ fn mesh_wall(
         {
             return Err(a.error(
                 at + 4 + k,
-                &format!("Fix wall/gran: failed to find fix mesh/surface with ID {id}"),
+                format!("Fix wall/gran: failed to find fix mesh/surface with ID {id}"),
             ));
         }
         meshes.push(id.to_string());
@@ -1796,7 +1802,7 @@ fn mesh_wall(
         .collect::<std::result::Result<_, _>>()?;
     selection
         .apply_settings(&rest)
-        .map_err(|m| a.error(k, &format!("Fix wall/gran: {m}")))?;
+        .map_err(|m| a.error(k, format!("Fix wall/gran: {m}")))?;
     let group_index = ctx.sim.groups.iter().position(|g| g == group).unwrap_or(0) as u32;
     Ok(FixKind::MeshWall(crate::engine::fixes::MeshWallFix {
         selection,
@@ -1811,7 +1817,11 @@ fn mesh_wall(
 /// `fix ID GROUP mesh/surface[/planar] file F type T [scale f] [move x y z]
 /// [rotate axis x y z angle deg] [curvature deg] [curvature_tolerant yes|no]
 /// [precision p] [heal auto_remove_duplicates|no] [verbose yes|no]`.
-fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<FixKind, Diagnostic> {
+fn mesh_surface(
+    a: &Args,
+    ctx: &mut Ctx,
+    style: &str,
+) -> std::result::Result<FixKind, CommandError> {
     use crate::io::stl::MeshOp;
     a.count(
         5..=usize::MAX,
@@ -1849,7 +1859,7 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
         if let Some(at) = module_from {
             return Err(a.error(
                 i,
-                &format!("Fix mesh/surface/stress: unknown keyword or wrong keyword order ('{w}' after the stress keyword at word {at})"),
+                format!("Fix mesh/surface/stress: unknown keyword or wrong keyword order ('{w}' after the stress keyword at word {at})"),
             ));
         }
         match w {
@@ -1958,9 +1968,9 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
         // LIGGGHTS takes the nodes from the restart file (scale/move/rotate act on an empty
         // mesh); the file must still open
         if std::fs::File::open(&path).is_err() {
-            return Err(a.error(
+            return Err(a.file_error(
                 4,
-                &format!("Cannot open mesh file {file}. FYI: This file is required, but data will be taken from restart file"),
+                format!("Cannot open mesh file {file}. FYI: This file is required, but data will be taken from restart file"),
             ));
         }
         ctx.say(&format!("INFO: mesh file ({file}) is required, but data will be taken from restart file (./src/fix_mesh.cpp:417)\n"));
@@ -2038,12 +2048,12 @@ fn mesh_surface(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
         fix.stress = Some(st);
     }
     fix.set_surface_velocity();
-    Ok(FixKind::Mesh(fix))
+    Ok(FixKind::Mesh(Box::new(fix)))
 }
 
 /// `fix ID group move/mesh mesh MESH STYLE args...` (linear, wiggle, rotate, riggle, viblin,
 /// vibrot), with LIGGGHTS's messages.
-fn move_mesh(a: &Args, ctx: &mut Ctx) -> std::result::Result<FixKind, Diagnostic> {
+fn move_mesh(a: &Args, ctx: &mut Ctx) -> std::result::Result<FixKind, CommandError> {
     use crate::engine::mesh_motion::{unit_axis, Motion, MoveMesh};
     if a.len() < 6 {
         return Err(a.error(
@@ -2068,24 +2078,21 @@ fn move_mesh(a: &Args, ctx: &mut Ctx) -> std::result::Result<FixKind, Diagnostic
     // LIGGGHTS counts the style word as argument 0 of the motion's own list
     let narg = a.len() - 5;
     let at = |k: usize| 5 + k;
-    let need = |n: usize| -> std::result::Result<(), Diagnostic> {
+    let need = |n: usize| -> std::result::Result<(), CommandError> {
         if narg < n {
-            Err(a.error(
-                5,
-                &format!("Not enough arguments for movement type {style}"),
-            ))
+            Err(a.error(5, format!("Not enough arguments for movement type {style}")))
         } else {
             Ok(())
         }
     };
-    let keyword = |k: usize, w: &str| -> std::result::Result<(), Diagnostic> {
+    let keyword = |k: usize, w: &str| -> std::result::Result<(), CommandError> {
         if a.word(at(k))? != w {
-            Err(a.error(at(k), &format!("Expected keyword '{w}'")))
+            Err(a.error(at(k), format!("Expected keyword '{w}'")))
         } else {
             Ok(())
         }
     };
-    let vec3 = |k: usize| -> std::result::Result<[f64; 3], Diagnostic> {
+    let vec3 = |k: usize| -> std::result::Result<[f64; 3], CommandError> {
         Ok([a.real(at(k))?, a.real(at(k + 1))?, a.real(at(k + 2))?])
     };
     let mut warn = |n: usize| {
@@ -2094,42 +2101,40 @@ fn move_mesh(a: &Args, ctx: &mut Ctx) -> std::result::Result<FixKind, Diagnostic
         }
     };
     let two_pi = 2.0 * std::f64::consts::PI;
-    let modes =
-        |order_at: usize| -> std::result::Result<(usize, Vec<(f64, f64, f64)>), Diagnostic> {
-            keyword(order_at, "order")?;
-            let n = a.int(at(order_at + 1))?;
-            if !(1..=30).contains(&n) {
-                return Err(a.error(
-                    at(order_at + 1),
-                    "order can be at most 30 and must be greater 0",
-                ));
-            }
-            let n = n as usize;
-            // LIGGGHTS checks for two lists only and reads the periods after them
-            if narg < order_at + 5 + 2 * n {
-                return Err(a.error(
-                    5,
-                    &format!("Not enough arguments for movement type {style}"),
-                ));
-            }
-            if narg < order_at + 5 + 3 * n {
-                return Err(a.error(
-                5,
-                &format!("Not enough arguments for movement type {style} (LIGGGHTS reads the periods past the end of the command and crashes)"),
+    // (words read, per mode: amplitude, phase, angular frequency)
+    type Modes = (usize, Vec<(f64, f64, f64)>);
+    let modes = |order_at: usize| -> std::result::Result<Modes, CommandError> {
+        keyword(order_at, "order")?;
+        let n = a.int(at(order_at + 1))?;
+        if !(1..=30).contains(&n) {
+            return Err(a.error(
+                at(order_at + 1),
+                "order can be at most 30 and must be greater 0",
             ));
-            }
-            keyword(order_at + 2, "amplitude")?;
-            keyword(order_at + 3 + n, "phase")?;
-            keyword(order_at + 4 + 2 * n, "period")?;
-            let mut out = Vec::with_capacity(n);
-            for j in 0..n {
-                let c = a.real(at(order_at + 3 + j))?;
-                let phase = a.real(at(order_at + 4 + n + j))?;
-                let period = a.real(at(order_at + 5 + 2 * n + j))?;
-                out.push((c, phase, two_pi / period));
-            }
-            Ok((n, out))
-        };
+        }
+        let n = n as usize;
+        // LIGGGHTS checks for two lists only and reads the periods after them
+        if narg < order_at + 5 + 2 * n {
+            return Err(a.error(5, format!("Not enough arguments for movement type {style}")));
+        }
+        if narg < order_at + 5 + 3 * n {
+            return Err(a.error(
+                5,
+                format!("Not enough arguments for movement type {style} (LIGGGHTS reads the periods past the end of the command and crashes)"),
+            ));
+        }
+        keyword(order_at + 2, "amplitude")?;
+        keyword(order_at + 3 + n, "phase")?;
+        keyword(order_at + 4 + 2 * n, "period")?;
+        let mut out = Vec::with_capacity(n);
+        for j in 0..n {
+            let c = a.real(at(order_at + 3 + j))?;
+            let phase = a.real(at(order_at + 4 + n + j))?;
+            let period = a.real(at(order_at + 5 + 2 * n + j))?;
+            out.push((c, phase, two_pi / period));
+        }
+        Ok((n, out))
+    };
     let (motion, reference) = match style {
         "linear" => {
             need(4)?;
@@ -2232,7 +2237,7 @@ fn move_mesh(a: &Args, ctx: &mut Ctx) -> std::result::Result<FixKind, Diagnostic
     }))
 }
 
-fn seed_arg(a: &Args, ctx: &Ctx, i: usize) -> std::result::Result<i32, Diagnostic> {
+fn seed_arg(a: &Args, ctx: &Ctx, i: usize) -> std::result::Result<i32, CommandError> {
     let seed = a.int(i)?;
     if !ctx.sim.seed_tolerant {
         crate::util::random::check_seed(seed).map_err(|m| a.error(i, &m))?;
@@ -2248,7 +2253,7 @@ fn particle_template(
     a: &Args,
     ctx: &mut Ctx,
     id: &str,
-) -> std::result::Result<FixKind, Diagnostic> {
+) -> std::result::Result<FixKind, CommandError> {
     a.count(4..=usize::MAX, "fix ID GROUP particletemplate/sphere SEED atom_type T density constant D radius constant R")?;
     let seed = seed_arg(a, ctx, 3)?;
     let (mut atom_type, mut density, mut radius) = (1u32, None, None);
@@ -2274,7 +2279,7 @@ fn particle_template(
                         return Err(a
                             .error(
                                 i + 1,
-                                &format!(
+                                format!(
                                     "Fix particletemplate/sphere (id {id}): invalid {w} random style"
                                 ),
                             )
@@ -2294,7 +2299,7 @@ fn particle_template(
                 if v <= 0.0 {
                     return Err(a.error(
                         i + 2,
-                        &format!("Fix particletemplate/sphere: {w} must be > 0"),
+                        format!("Fix particletemplate/sphere: {w} must be > 0"),
                     ));
                 }
                 if w == "density" {
@@ -2338,7 +2343,7 @@ fn particle_template(
             .find(|&k| a.word(k).ok() == Some("radius"));
         return Err(a.error(
             at.map_or(2, |k| k + 2),
-            &format!(
+            format!(
                 "Fix particletemplate/sphere: radius {}: {m}",
                 crate::util::format::g(radius)
             ),
@@ -2353,7 +2358,11 @@ fn particle_template(
 }
 
 /// `fix ID GROUP particledistribution/discrete SEED N T1 W1 ... TN WN`.
-fn distribution(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<FixKind, Diagnostic> {
+fn distribution(
+    a: &Args,
+    ctx: &mut Ctx,
+    style: &str,
+) -> std::result::Result<FixKind, CommandError> {
     a.count(
         7..=usize::MAX,
         &format!("fix ID GROUP {style} SEED N TEMPLATE1 WEIGHT1 ..."),
@@ -2363,7 +2372,7 @@ fn distribution(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
     if n < 1 || a.len() != 5 + 2 * n as usize {
         return Err(a.error(
             4,
-            &format!("Illegal fix {style} command: expected N template/weight pairs"),
+            format!("Illegal fix {style} command: expected N template/weight pairs"),
         ));
     }
     let mut templates = Vec::new();
@@ -2381,7 +2390,7 @@ fn distribution(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
             .ok_or_else(|| {
                 a.error(
                     5 + 2 * k,
-                    &format!("Fix {style}: could not find fix particletemplate {tid}"),
+                    format!("Fix {style}: could not find fix particletemplate {tid}"),
                 )
             })?;
         let w = a.real(6 + 2 * k)?;
@@ -2389,7 +2398,7 @@ fn distribution(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
         if w < 0.0 {
             return Err(a.error(
                 6 + 2 * k,
-                &format!("Fix {style}: invalid weight (must be >= 0)"),
+                format!("Fix {style}: invalid weight (must be >= 0)"),
             ));
         }
         templates.push(t);
@@ -2398,7 +2407,7 @@ fn distribution(a: &Args, ctx: &mut Ctx, style: &str) -> std::result::Result<Fix
     if weights.iter().all(|&w| w == 0.0) {
         return Err(a.error(
             6,
-            &format!("Fix {style}: all weights are 0, nothing to insert"),
+            format!("Fix {style}: all weights are 0, nothing to insert"),
         ));
     }
     let number_based = style.ends_with("numberbased");
@@ -2413,7 +2422,7 @@ fn insert_pack(
     ctx: &mut Ctx,
     id: &str,
     style: &str,
-) -> std::result::Result<FixKind, Diagnostic> {
+) -> std::result::Result<FixKind, CommandError> {
     let rate_style = style == "insert/rate/region";
     let (mut nparticles, mut particlerate): (Option<i64>, Option<f64>) = (None, None);
     use crate::engine::insert::{InsertPack, Target, Velocity};
@@ -2681,7 +2690,7 @@ fn insert_pack(
 
 /// `fix ID GROUP insert/stream seed S distributiontemplate D nparticles N particlerate R
 /// insertion_face MESH extrude_length L|insert_every N vel ... [overlapcheck ...]`.
-fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, Diagnostic> {
+fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKind, CommandError> {
     use crate::engine::insert::Velocity;
     a.count(5..=usize::MAX, "fix ID GROUP insert/stream seed S distributiontemplate D nparticles N particlerate R insertion_face MESH extrude_length L ...")?;
     let (mut seed, mut dist, mut face, mut extrude, mut every) = (None, None, None, None, None);
@@ -2714,7 +2723,7 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
         } else if own_part {
             return Err(a.error(
                 i,
-                &format!("Fix insert/stream (id {id}): unknown keyword or wrong keyword order"),
+                format!("Fix insert/stream (id {id}): unknown keyword or wrong keyword order"),
             ));
         }
         match w {
@@ -2773,7 +2782,7 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
                 if d < 1 {
                     return Err(a.error(
                         i + 1,
-                        &format!("Fix insert/stream (id {id}): 'duration' can not be < 1"),
+                        format!("Fix insert/stream (id {id}): 'duration' can not be < 1"),
                     ));
                 }
                 duration = Some(d);
@@ -2828,7 +2837,7 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
                 if ntry_mc < 1000 {
                     return Err(a.error(
                         i + 1,
-                        &format!("Fix insert/stream (id {id}): ntry_mc must be > 1000"),
+                        format!("Fix insert/stream (id {id}): ntry_mc must be > 1000"),
                     ));
                 }
                 i += 2;
@@ -2894,14 +2903,14 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
             }
         }
     }
-    let need = |what: &str| a.error(2, &format!("Fix insert/stream: have to define '{what}'"));
+    let need = |what: &str| a.error(2, format!("Fix insert/stream: have to define '{what}'"));
     let seed = seed.ok_or_else(|| need("seed"))?;
     let distribution = dist.ok_or_else(|| need("distributiontemplate"))?;
     let (triangles, planar) = face.ok_or_else(|| need("insertion_face"))?;
     if all_in && !planar {
         return Err(a.error(
             all_in_at,
-            &format!("Fix insert/stream (id {id}): using all_in yes requires you to use a fix mesh/surface/planar"),
+            format!("Fix insert/stream (id {id}): using all_in yes requires you to use a fix mesh/surface/planar"),
         ));
     }
     let total = total.ok_or_else(|| {
@@ -2925,7 +2934,7 @@ fn insert_stream(a: &Args, ctx: &mut Ctx, id: &str) -> std::result::Result<FixKi
     if extrude.is_some() && duration.is_some() {
         return Err(a.error(
             2,
-            &format!("Fix insert/stream (id {id}): must not provide both 'extrude_length' and 'duration'"),
+            format!("Fix insert/stream (id {id}): must not provide both 'extrude_length' and 'duration'"),
         ));
     }
     Ok(FixKind::InsertStream(Box::new(

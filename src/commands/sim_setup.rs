@@ -3,13 +3,14 @@
 
 use crate::commands::registry::{self, Handler};
 use crate::commands::{Args, Ctx};
+use crate::commands::{At, CommandError};
 use crate::engine::domain::parse_boundary;
+use crate::engine::error::EngineError;
 use crate::engine::region::RegionContext;
-use crate::error::Diagnostic;
 use crate::script::system::Mode;
 use crate::util::numbers::inumeric;
 
-type Result = std::result::Result<(), Diagnostic>;
+type Result = std::result::Result<(), CommandError>;
 
 /// The setup commands and their handlers.
 pub const COMMANDS: &[(&str, Handler)] = &[
@@ -130,11 +131,8 @@ fn dimension(a: &Args) -> Result {
 /// `suffix fast|on|off` (LAMMPS's accelerator switch): the fast engine path.
 fn suffix(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(1..=1, "suffix fast|off")?;
-    let fast = crate::cli::parse_suffix(a.word(0)?).map_err(|m| {
-        let mut d = a.error(0, &m);
-        d.help = Some(crate::cli::SUFFIX_HELP.into());
-        d
-    })?;
+    let fast = crate::cli::parse_suffix(a.word(0)?)
+        .map_err(|m| a.error(0, &m).with_help(crate::cli::SUFFIX_HELP))?;
     ctx.sim.accel.fast = fast;
     Ok(())
 }
@@ -142,11 +140,8 @@ fn suffix(a: &Args, ctx: &mut Ctx) -> Result {
 /// `package fast N`: the engine's thread count.
 fn package(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(2..=2, "package fast N")?;
-    let n = crate::cli::parse_package(a.word(0)?, a.word(1)?).map_err(|m| {
-        let mut d = a.error(0, &m);
-        d.help = Some(crate::cli::PACKAGE_HELP.into());
-        d
-    })?;
+    let n = crate::cli::parse_package(a.word(0)?, a.word(1)?)
+        .map_err(|m| a.error(0, &m).with_help(crate::cli::PACKAGE_HELP))?;
     ctx.sim.accel.ask_threads(Some(n));
     Ok(())
 }
@@ -211,12 +206,9 @@ fn region(a: &Args, ctx: &mut Ctx) -> Result {
             .filter(|l| !l.1.is_empty() || l.0 > 0.0)
             .map(|l| [l.0; 3]),
     };
-    ctx.sim.regions.define(&words, rctx).map_err(|m| {
-        if m.ends_with("not supported yet") {
-            Diagnostic::unsupported(m.trim_end_matches(": not supported yet"))
-        } else {
-            a.error(1, &m)
-        }
+    ctx.sim.regions.define(&words, rctx).map_err(|e| match e {
+        EngineError::Unsupported(what) => CommandError::unsupported(what, At::Line),
+        EngineError::Invalid(m) => a.error(1, m),
     })?;
     let index = ctx.sim.regions.list.len() - 1;
     if let Some(name) = ctx.sim.regions.radius_variable(index) {
@@ -266,7 +258,7 @@ fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
     if let Some(d) = (0..3).find(|&d| !(lo[d] < hi[d] && (hi[d] - lo[d]).is_finite())) {
         return Err(a.error(
             1,
-            &format!(
+            format!(
                 "Box bounds are invalid ({} {} along {})",
                 g(lo[d]),
                 g(hi[d]),
@@ -442,7 +434,7 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
                 if tries == MAX_RANDOM_TRIES {
                     return Err(a.error(
                         4,
-                        &format!(
+                        format!(
                             "Could not create all random atoms: no position inside the region in {MAX_RANDOM_TRIES} tries (has it any volume inside the box?)"
                         ),
                     ));
@@ -615,16 +607,16 @@ fn displace_atoms(a: &Args, ctx: &mut Ctx) -> Result {
         for k in 0..p.len() {
             if p.mask[k] & bit != 0 {
                 rng.reset_at(seed as i32, p.x[k]);
-                for d in 0..3 {
-                    p.x[k][d] += del[d] * 2.0 * (rng.uniform() - 0.5);
+                for (x, shift) in p.x[k].iter_mut().zip(del) {
+                    *x += shift * 2.0 * (rng.uniform() - 0.5);
                 }
             }
         }
     } else {
         for k in 0..p.len() {
             if p.mask[k] & bit != 0 {
-                for d in 0..3 {
-                    p.x[k][d] += del[d];
+                for (x, shift) in p.x[k].iter_mut().zip(del) {
+                    *x += shift;
                 }
             }
         }
@@ -713,7 +705,7 @@ fn delete_atoms(a: &Args, ctx: &mut Ctx) -> Result {
 }
 
 /// Atoms selected by `set atom|type|group|region ID`.
-pub(super) fn selection(a: &Args, ctx: &Ctx) -> std::result::Result<Vec<usize>, Diagnostic> {
+pub(super) fn selection(a: &Args, ctx: &Ctx) -> std::result::Result<Vec<usize>, CommandError> {
     let p = &ctx.sim.particles;
     let what = a.word_in(0, &["atom", "type", "group", "region", "mol"])?;
     let id = a.word(1)?;
@@ -997,8 +989,8 @@ fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
             let p = &mut sim.particles;
             for k in 0..p.len() {
                 if p.mask[k] & bit != 0 {
-                    for d in 0..3 {
-                        if let Some(value) = v[d] {
+                    for (d, component) in v.iter().enumerate() {
+                        if let Some(value) = *component {
                             if sum {
                                 p.v[k][d] += value;
                             } else {
@@ -1010,7 +1002,7 @@ fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
             }
         }
         "ramp" => {
-            let dim = |k: usize, names: &[&str]| -> std::result::Result<usize, Diagnostic> {
+            let dim = |k: usize, names: &[&str]| -> std::result::Result<usize, CommandError> {
                 let w = a.word(k)?;
                 names
                     .iter()
@@ -1024,6 +1016,8 @@ fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
             let p = &mut sim.particles;
             for k in 0..p.len() {
                 if p.mask[k] & bit != 0 {
+                    // max then min as LIGGGHTS's MAX and MIN: a NaN becomes 0, clamp keeps it
+                    #[allow(clippy::manual_clamp)]
                     let fraction = ((p.x[k][cdim] - clo) / (chi - clo)).max(0.0).min(1.0);
                     let vramp = vlo + fraction * (vhi - vlo);
                     if sum {
@@ -1061,8 +1055,8 @@ fn zero_momentum(sim: &mut crate::engine::sim::Simulation, members: &[usize]) {
     let mass: f64 = members.iter().fold(0.0, |s, &k| s + p.mass[k]);
     let mut vcm = [0.0; 3];
     for &k in members {
-        for d in 0..3 {
-            vcm[d] += p.v[k][d] * p.mass[k];
+        for (c, v) in vcm.iter_mut().zip(p.v[k]) {
+            *c += v * p.mass[k];
         }
     }
     if mass > 0.0 {
@@ -1071,8 +1065,8 @@ fn zero_momentum(sim: &mut crate::engine::sim::Simulation, members: &[usize]) {
         }
     }
     for &k in members {
-        for d in 0..3 {
-            p.v[k][d] -= vcm[d];
+        for (v, c) in p.v[k].iter_mut().zip(vcm) {
+            *v -= c;
         }
     }
 }
@@ -1084,8 +1078,8 @@ fn zero_rotation(sim: &mut crate::engine::sim::Simulation, members: &[usize]) {
     let p = &mut sim.particles;
     let unwrap = |p: &crate::engine::particles::Particles, k: usize| -> [f64; 3] {
         let mut u = [0.0; 3];
-        for d in 0..3 {
-            u[d] = p.x[k][d] + p.image[k][d] as f64 * domain.length(d);
+        for (d, ud) in u.iter_mut().enumerate() {
+            *ud = p.x[k][d] + p.image[k][d] as f64 * domain.length(d);
         }
         u
     };
@@ -1242,7 +1236,7 @@ fn neigh_modify(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
-fn positive(a: &Args, i: usize) -> std::result::Result<u64, Diagnostic> {
+fn positive(a: &Args, i: usize) -> std::result::Result<u64, CommandError> {
     let v = a.int(i)?;
     if v <= 0 {
         return Err(a.error(i, "expected a positive integer"));
@@ -1279,10 +1273,10 @@ fn read_data(a: &Args, ctx: &mut Ctx) -> Result {
     } else {
         ctx.sys.read(name)
     }
-    .map_err(|m| a.error(0, &format!("Cannot open file {name}: {m}")))?;
+    .map_err(|m| a.file_error(0, format!("Cannot open file {name}: {m}")))?;
     let data = crate::io::data::parse(&text, name).map_err(|m| a.error(0, &m))?;
     crate::engine::checks::check_ntypes(data.ntypes as i64)
-        .map_err(|m| a.error(0, &format!("{name}: {m}")))?;
+        .map_err(|m| a.error(0, format!("{name}: {m}")))?;
     let sim = &mut *ctx.sim;
     sim.domain.create(data.lo, data.hi);
     sim.ntypes = data.ntypes;
@@ -1294,7 +1288,7 @@ fn read_data(a: &Args, ctx: &mut Ctx) -> Result {
             if !inside && !sim.domain.periodic(d) {
                 return Err(a.error(
                     0,
-                    &format!(
+                    format!(
                         "Did not assign all atoms correctly: {name}: atom {} at ({}, {}, {}) lies outside the box",
                         atom.id, x[0], x[1], x[2]
                     ),
@@ -1351,7 +1345,7 @@ fn write_data(a: &Args, ctx: &mut Ctx) -> Result {
     );
     let path = ctx.sys.resolve(name).to_string_lossy().into_owned();
     crate::io::write_atomically(&path, text.as_bytes())
-        .map_err(|e| a.error(0, &format!("Cannot open data file {name}: {e}")))
+        .map_err(|e| a.file_error(0, format!("Cannot open data file {name}: {e}")))
 }
 
 /// `read_restart FILE` (a `*` picks the largest step, a `%` the multi-file form).
@@ -1393,7 +1387,7 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
         None => crate::io::restart::read(&path),
     }
     // the file as the deck names it (not the folder it was resolved against)
-    .map_err(|m| a.error(0, &m.replace(&path, name)))?;
+    .map_err(|m| a.error(0, m.replace(&path, name)))?;
     ctx.say("Reading restart file ...\n");
     let pair = ctx.sim.load_restart(&r).map_err(|m| a.error(0, &m))?;
     ctx.sim.restart_in_progress = !r.global_fixes.is_empty() || !r.peratom_fixes.is_empty();
@@ -1422,7 +1416,7 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
             };
             let args = Args { cmd: &cmd };
             if let Some(run) = registry::handler(cmd.name()) {
-                run(&args, ctx)?;
+                run(&args, ctx).map_err(|e| CommandError::Reported(e.into_diagnostic(&cmd)))?;
             }
         }
     }

@@ -3,8 +3,8 @@
 //! group's velocities set (or added with `sum yes`); NULL leaves a component alone and the
 //! lattice scale applies to constants only.
 
+use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
-use crate::error::Diagnostic;
 use crate::script::system::Mode;
 use crate::script::variables::Style;
 
@@ -16,7 +16,7 @@ enum Component {
 }
 
 /// `velocity GROUP set ...` where a component is a variable.
-pub fn set(a: &Args, ctx: &mut Ctx, bit: u32, sum: bool, scale: f64) -> Result<(), Diagnostic> {
+pub fn set(a: &Args, ctx: &mut Ctx, bit: u32, sum: bool, scale: f64) -> Result<(), CommandError> {
     // names first (LIGGGHTS checks every component's variable before evaluating any)
     let mut kinds = Vec::new();
     for d in 0..3 {

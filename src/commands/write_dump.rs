@@ -2,11 +2,11 @@
 //! LIGGGHTS writes it (a temporary dump `WRITE_DUMP` of the style, its `dump_modify`
 //! settings, written once at the current step and deleted).
 
+use crate::commands::CommandError;
 use crate::commands::{Args, CommandLine, Ctx};
-use crate::error::Diagnostic;
 use crate::script::line::Word;
 
-type Result = std::result::Result<(), Diagnostic>;
+type Result = std::result::Result<(), CommandError>;
 
 /// The temporary dump's ID (LIGGGHTS's).
 const ID: &str = "WRITE_DUMP";
@@ -65,7 +65,8 @@ pub fn write_dump(a: &Args, ctx: &mut Ctx) -> Result {
     if ctx.sim.dumps.iter().any(|d| d.id == ID) {
         return Err(a.error(0, "Reuse of dump ID"));
     }
-    super::sim_run::dump(&Args { cmd: &dump_line }, ctx)?;
+    super::sim_run::dump(&Args { cmd: &dump_line }, ctx)
+        .map_err(|e| CommandError::Reported(e.into_diagnostic(&dump_line)))?;
     let result = write_now(a, ctx, modify);
     // the temporary dump goes whatever happened
     if let Some(k) = ctx.sim.dumps.iter().position(|d| d.id == ID) {
@@ -84,7 +85,8 @@ fn write_now(a: &Args, ctx: &mut Ctx, modify: usize) -> Result {
             return Err(a.error(modify, "Illegal dump_modify command"));
         }
         let modify_line = line(a, "dump_modify", &words);
-        super::sim_run::dump_modify(&Args { cmd: &modify_line }, ctx)?;
+        super::sim_run::dump_modify(&Args { cmd: &modify_line }, ctx)
+            .map_err(|e| CommandError::Reported(e.into_diagnostic(&modify_line)))?;
     }
     if ctx.sys.mode != crate::script::system::Mode::Run {
         return Ok(());

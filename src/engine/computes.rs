@@ -383,7 +383,9 @@ impl Compute {
             sim.extras.neigh_binsize,
         );
         let built = sim.list.built_positions();
-        let mut keyed: Vec<((usize, [i64; 3], usize), usize)> = Vec::new();
+        // (reporting atom, partner's bin, partner) and the row's index in `out`
+        type RowKey = (usize, [i64; 3], usize);
+        let mut keyed: Vec<(RowKey, usize)> = Vec::new();
         for (k, fi, ti, fj, tj) in pair.contacts(
             p,
             pairs,
@@ -588,11 +590,10 @@ impl Compute {
         let mut values = vec![0.0; n * columns];
         match &self.kind {
             ComputeKind::KeAtom => {
-                for i in 0..n {
+                for (i, value) in values.iter_mut().enumerate() {
                     if p.mask[i] & group != 0 {
                         let v = p.v[i];
-                        values[i] =
-                            0.5 * 1.0 * p.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+                        *value = 0.5 * 1.0 * p.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
                     }
                 }
             }
@@ -620,7 +621,7 @@ impl Compute {
                         s[5] += m * v[1] * v[2];
                     }
                     for k in 0..6 {
-                        values[i * 6 + k] = s[k] * -1.0;
+                        values[i * 6 + k] = -s[k];
                     }
                 }
             }
@@ -703,9 +704,9 @@ pub fn center_of_mass(p: &Particles, domain: &Domain, group: u32) -> [f64; 3] {
             continue;
         }
         let m = p.mass[i];
-        for d in 0..3 {
+        for (d, c) in cm.iter_mut().enumerate() {
             let xu = p.x[i][d] + p.image[i][d] as f64 * domain.length(d);
-            cm[d] += xu * m;
+            *c += xu * m;
         }
         mass += m;
     }

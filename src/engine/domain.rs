@@ -218,14 +218,14 @@ impl Domain {
 
     /// Shortest periodic image of a separation vector.
     pub fn minimum_image(&self, delta: &mut [f64; 3]) {
-        for d in 0..3 {
+        for (d, component) in delta.iter_mut().enumerate() {
             if self.periodic(d) {
                 let period = self.length(d);
-                if delta[d].abs() > 0.5 * period {
-                    if delta[d] < 0.0 {
-                        delta[d] += period;
+                if component.abs() > 0.5 * period {
+                    if *component < 0.0 {
+                        *component += period;
                     } else {
-                        delta[d] -= period;
+                        *component -= period;
                     }
                 }
             }
@@ -264,7 +264,10 @@ impl Domain {
     /// bounds must enclose a volume, the shrink-wrap padding becomes 1e-4 of each current
     /// length, `s` faces move out by it and `m` faces take their current position as limit.
     pub fn reset_initial(&mut self) -> Result<(), String> {
-        if (0..3).any(|d| !(self.lo[d] < self.hi[d])) {
+        // a NaN bound fails the negated comparison too
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
+        let invalid = (0..3).any(|d| !(self.lo[d] < self.hi[d]));
+        if invalid {
             return Err("Box bounds are invalid".into());
         }
         for d in 0..3 {

@@ -215,8 +215,8 @@ impl Move {
             if p.mask[i] & group == 0 {
                 continue;
             }
-            for d in 0..3 {
-                if free[d] {
+            for (d, &free) in free.iter().enumerate() {
+                if free {
                     let dtfm = dtf / p.mass[i];
                     p.v[i][d] += dtfm * p.f[i][d];
                 }
@@ -252,7 +252,7 @@ pub enum FixKind {
     /// `fix ave/time` (scalar mode).
     AveTime(AveTime),
     /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
-    Mesh(MeshFix),
+    Mesh(Box<MeshFix>),
     /// `fix particletemplate/sphere`.
     Template(crate::engine::insert::Template),
     /// `fix particledistribution/discrete...`.
@@ -960,18 +960,32 @@ pub struct AveTime {
     window_full: bool,
 }
 
+/// When `fix ave/time` samples: `Nevery Nrepeat Nfreq` (steps).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct AveSchedule {
+    /// Steps between samples.
+    pub every: i64,
+    /// Samples per average.
+    pub repeat: i64,
+    /// Steps between averages.
+    pub freq: i64,
+}
+
 impl AveTime {
     /// A fix defined at `step` whose averages start no earlier than `start`.
     pub fn new(
-        every: i64,
-        repeat: i64,
-        freq: i64,
+        schedule: AveSchedule,
         inputs: Vec<AveInput>,
         off: Vec<bool>,
         mode: AveMode,
         start: i64,
         step: i64,
     ) -> AveTime {
+        let AveSchedule {
+            every,
+            repeat,
+            freq,
+        } = schedule;
         let n = inputs.len();
         // the first sampling step, as LIGGGHTS's nextvalid()
         let mut next = (step / freq) * freq + freq;

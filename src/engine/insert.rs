@@ -742,7 +742,7 @@ impl InsertPack {
             while ntry < maxtry && placed.len() < nl {
                 let t = list[placed.len()];
                 let rb = dist.templates[t].radius;
-                if self.verbose && nl >= 10 && placed.len() % (nl / 10) == 0 {
+                if self.verbose && nl >= 10 && placed.len().is_multiple_of(nl / 10) {
                     lines.push(format!(
                         "insertion: proc 0 at {} %",
                         10 * placed.len() / (nl / 10)
@@ -762,6 +762,8 @@ impl InsertPack {
                         break;
                     }
                     let v = velocity(&mut self.rng);
+                    // a NaN distance counts as clear, as in LIGGGHTS
+                    #[allow(clippy::neg_cmp_op_on_partial_ord)]
                     let clear = near.iter().all(|(q, rq)| {
                         let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
                         let rs = rb + rq;
@@ -839,8 +841,11 @@ pub struct Within {
     /// Per triangle, the smallest recorded distance (length; 1e8 while slots are empty).
     pub min_dist: Vec<f64>,
     /// Per triangle: nodes, unit edge vectors, edge lengths and in-plane edge normals.
-    pub edges: Vec<([[f64; 3]; 3], [[f64; 3]; 3], [f64; 3], [[f64; 3]; 3])>,
+    pub edges: Vec<TriangleEdges>,
 }
+
+/// One triangle's nodes, unit edge vectors, edge lengths (length) and in-plane edge normals.
+pub type TriangleEdges = ([[f64; 3]; 3], [[f64; 3]; 3], [f64; 3], [[f64; 3]; 3]);
 
 /// Most samples `all_in yes` draws for one point before it warns and keeps the last.
 const MAXTRY_WITHIN: usize = 500;
@@ -861,7 +866,7 @@ impl Within {
             .collect();
         let mut nearest = Vec::with_capacity(n);
         let mut min_dist = Vec::with_capacity(n);
-        for i in 0..n {
+        for edges_i in &edges {
             let mut slots = [None; 6];
             let mut dists = [1e8; 6];
             let mut filled = 0;
@@ -875,7 +880,7 @@ impl Within {
                             continue;
                         }
                         // LIGGGHTS measures node je of j against edge ie of i
-                        let d = edge_point_dist(&edges[i], ie, mesh.nodes[j][je]);
+                        let d = edge_point_dist(edges_i, ie, mesh.nodes[j][je]);
                         let k = if filled < 6 {
                             filled += 1;
                             filled - 1
@@ -899,6 +904,8 @@ impl Within {
 
     /// `p` (sampled on triangle `t`) is at least `delta` from the listed edges.
     fn far_enough(&self, t: usize, p: [f64; 3], delta: f64) -> bool {
+        // a NaN distance is far enough, as in LIGGGHTS
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
         if !(self.min_dist[t] < delta) {
             return true;
         }
@@ -926,11 +933,7 @@ fn first_extreme(v: &[f64; 6], better: impl Fn(f64, f64) -> bool) -> usize {
 /// LIGGGHTS's edge–point distance: to the start node before the edge, to the end node past
 /// it, else along the in-plane edge normal (length).
 #[allow(clippy::type_complexity)]
-fn edge_point_dist(
-    e: &([[f64; 3]; 3], [[f64; 3]; 3], [f64; 3], [[f64; 3]; 3]),
-    i: usize,
-    p: [f64; 3],
-) -> f64 {
+fn edge_point_dist(e: &TriangleEdges, i: usize, p: [f64; 3]) -> f64 {
     let (nodes, vec, len, norm) = e;
     let a = nodes[i];
     let d = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
@@ -1026,6 +1029,8 @@ impl Face {
         let (u, v) = loop {
             let u = self.rng.uniform();
             let v = self.rng.uniform();
+            // LIGGGHTS's test, NaN included
+            #[allow(clippy::neg_cmp_op_on_partial_ord)]
             if !(u + v > 1.0) {
                 break (u, v);
             }
@@ -1346,6 +1351,8 @@ impl InsertStream {
                     }
                 }
                 if ntry < maxtry {
+                    // a NaN distance counts as clear, as in LIGGGHTS
+                    #[allow(clippy::neg_cmp_op_on_partial_ord)]
                     let clear = !self.overlapcheck
                         || near.iter().all(|(q, rq)| {
                             let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];

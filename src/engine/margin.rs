@@ -63,7 +63,7 @@ impl Simulation {
     /// Per atom type (index type - 1): the particle (present or from a particle template)
     /// with the shortest Rayleigh time, as (radius, density); None for a type without any.
     fn type_sizes(&self) -> Vec<Option<Size>> {
-        let n = self.ntypes.max(0) as usize;
+        let n = self.ntypes as usize;
         let mut sizes: Vec<Option<Size>> = vec![None; n];
         let mut offer = |t: usize, r: f64, rho: f64| {
             if t == 0 || t > n || !(r > 0.0 && rho > 0.0) {
@@ -171,6 +171,8 @@ impl Simulation {
         let sizes = self.type_sizes();
         let n = sizes.len().min(e.len()).min(nu.len());
         let dt = self.dt.abs();
+        // a NaN time step has no margin either
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
         if n == 0 || !(dt > 0.0) || sizes.iter().all(Option::is_none) {
             return String::new();
         }
@@ -241,25 +243,6 @@ impl Simulation {
             }
         }
         s
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn contact_times_by_hand() {
-        // lunar material, R = 1.25 mm: G = 5e6 / 2.4 = 2.08333e6 Pa, sqrt(2500 / G) = 0.0346410,
-        // pi R 0.0346410 / (0.1631 * 0.2 + 0.8766) = 1.360350e-4 / 0.90922 = 1.496172e-4 s
-        let t = rayleigh_time(0.00125, 2500.0, 5e6, 0.2);
-        assert!((t / 1.496172e-4 - 1.0).abs() < 1e-6, "{t}");
-        // two such spheres meeting at 2 m/s: m = 2.045308e-5 kg, m* = m / 2, R* = 6.25e-4 m,
-        // Y* = 5e6 / (2 (1 - 0.04)) = 2.604167e6 Pa:
-        // 2.87 (m*^2 / (R* Y*^2 v))^(1/5) = 2.87 (1.045822e-10 / 8.477105e9)^(1/5) = 2.993118e-4 s
-        let y = 5e6 / (2.0 * (1.0 - 0.04));
-        let th = hertz_time(0.00125, 2500.0, 0.00125, 2500.0, y, 2.0);
-        assert!((th / 2.993118e-4 - 1.0).abs() < 1e-6, "{th}");
     }
 }
 
@@ -345,5 +328,24 @@ impl Simulation {
             return String::new();
         }
         format!("Contact models (regolith):\n{}\n", lines.join("\n"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn contact_times_by_hand() {
+        // lunar material, R = 1.25 mm: G = 5e6 / 2.4 = 2.08333e6 Pa, sqrt(2500 / G) = 0.0346410,
+        // pi R 0.0346410 / (0.1631 * 0.2 + 0.8766) = 1.360350e-4 / 0.90922 = 1.496172e-4 s
+        let t = rayleigh_time(0.00125, 2500.0, 5e6, 0.2);
+        assert!((t / 1.496172e-4 - 1.0).abs() < 1e-6, "{t}");
+        // two such spheres meeting at 2 m/s: m = 2.045308e-5 kg, m* = m / 2, R* = 6.25e-4 m,
+        // Y* = 5e6 / (2 (1 - 0.04)) = 2.604167e6 Pa:
+        // 2.87 (m*^2 / (R* Y*^2 v))^(1/5) = 2.87 (1.045822e-10 / 8.477105e9)^(1/5) = 2.993118e-4 s
+        let y = 5e6 / (2.0 * (1.0 - 0.04));
+        let th = hertz_time(0.00125, 2500.0, 0.00125, 2500.0, y, 2.0);
+        assert!((th / 2.993118e-4 - 1.0).abs() < 1e-6, "{th}");
     }
 }

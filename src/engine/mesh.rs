@@ -158,8 +158,8 @@ impl TriMesh {
             let n = self.nodes[t];
             let mut c = [0.0; 3];
             for node in &n {
-                for k in 0..3 {
-                    c[k] = node[k] + c[k];
+                for (ck, nk) in c.iter_mut().zip(node) {
+                    *ck += nk;
                 }
             }
             let c = div(c, 3.0);
@@ -225,8 +225,8 @@ impl TriMesh {
                     node[k] += dx[k];
                 }
             }
-            for k in 0..3 {
-                self.center[t][k] += dx[k];
+            for (ck, dk) in self.center[t].iter_mut().zip(dx) {
+                *ck += dk;
             }
         }
     }
@@ -458,7 +458,7 @@ impl TriMesh {
                 }
             }
         }
-        self.corner_active[t][k] = !(colinear || !any_active) && t == max_id;
+        self.corner_active[t][k] = !colinear && any_active && t == max_id;
     }
 
     /// LIGGGHTS's mesh quality checks (angles, duplicates).

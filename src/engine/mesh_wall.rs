@@ -21,6 +21,9 @@ use crate::engine::particles::Particles;
 /// Most history doubles a mesh contact can hold.
 pub const MAX_HISTORY: usize = 8;
 
+/// One particle's mesh contacts as a restart file keeps them: (triangle id, history values).
+pub type MeshContacts = Vec<(i32, Vec<f64>)>;
+
 /// One history slot of a particle: the triangle it belongs to (-1: free) and its values.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Slot {
@@ -96,7 +99,7 @@ impl Tracker {
     /// each one's number of candidate triangles (LIGGGHTS's `n_neighs_mesh_<mesh>`) and its
     /// contacts, (triangle id, the first `width` history values), in LIGGGHTS's packed slot
     /// order.
-    pub fn restart_entries(&self, ids: &[i64], width: usize) -> Vec<(usize, Vec<(i32, Vec<f64>)>)> {
+    pub fn restart_entries(&self, ids: &[i64], width: usize) -> Vec<(usize, MeshContacts)> {
         let index: std::collections::HashMap<i64, usize> =
             self.ids.iter().enumerate().map(|(k, &t)| (t, k)).collect();
         ids.iter()
@@ -479,6 +482,8 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
                     let Some(c) = m.closest(t as usize, q.x[i], q.radius[i]) else {
                         continue;
                     };
+                    // a NaN gap is no contact
+                    #[allow(clippy::neg_cmp_op_on_partial_ord)]
                     if !(c.gap <= 0.0) {
                         continue;
                     }

@@ -7,6 +7,7 @@ pub mod checks;
 pub mod computes;
 pub mod contact;
 pub mod domain;
+pub mod error;
 pub mod extras;
 pub mod fix_columns;
 pub mod fixes;

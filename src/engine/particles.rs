@@ -202,6 +202,12 @@ pub fn sphere_mass(r: f64, rho: f64) -> f64 {
     4.0 * std::f64::consts::PI / 3.0 * r * r * r * rho
 }
 
+impl AsRef<Particles> for Particles {
+    fn as_ref(&self) -> &Particles {
+        self
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -219,11 +225,5 @@ mod tests {
         assert_eq!(p.id, [4, 1, 3]);
         assert_eq!(p.x[0], [3.0, 0.0, 0.0]);
         assert_eq!(p.max_id(), 4);
-    }
-}
-
-impl AsRef<Particles> for Particles {
-    fn as_ref(&self) -> &Particles {
-        self
     }
 }

@@ -2,6 +2,7 @@
 //! their intersections and unions, with `side in/out`. Inside tests follow LIGGGHTS
 //! exactly, boundaries included (a point on a block face is inside).
 
+use crate::engine::error::EngineError;
 use crate::util::numbers::numeric;
 
 /// Region styles regolith runs (`region ID STYLE ...`); others are "not supported yet".
@@ -132,7 +133,7 @@ impl Regions {
     }
 
     /// Parse `region ID STYLE args... [keyword value ...]` (`args` excludes the command name).
-    pub fn define(&mut self, args: &[&str], ctx: RegionContext) -> Result<(), String> {
+    pub fn define(&mut self, args: &[&str], ctx: RegionContext) -> Result<(), EngineError> {
         if args.len() < 2 {
             return Err("Illegal region command".into());
         }
@@ -141,10 +142,10 @@ impl Regions {
             return Err("Reuse of region ID".into());
         }
         if style == "delete" {
-            return Err("region delete: not supported yet".into());
+            return Err(EngineError::Unsupported("region delete".into()));
         }
         if !STYLES.contains(&style) {
-            return Err(format!("region {style}: not supported yet"));
+            return Err(EngineError::Unsupported(format!("region {style}")));
         }
         let nshape = match style {
             "block" => 6,
@@ -158,14 +159,14 @@ impl Regions {
                     .parse()
                     .map_err(|_| "Illegal region command".to_string())?;
                 if n < 2 {
-                    return Err(format!("Illegal region {style} command"));
+                    return Err(format!("Illegal region {style} command").into());
                 }
                 n + 1
             }
-            other => return Err(format!("region {other}: not supported yet")),
+            other => return Err(EngineError::Unsupported(format!("region {other}"))),
         };
         if args.len() < 2 + nshape {
-            return Err(format!("Illegal region {style} command"));
+            return Err(format!("Illegal region {style} command").into());
         }
         let geometry = &args[2..2 + nshape];
         let (interior, scale) = options(&args[2 + nshape..], ctx)?;
@@ -478,7 +479,7 @@ impl Regions {
 }
 
 /// Trailing `units`, `side`, `seed`, `volume_limit` options; returns (interior, scale).
-fn options(words: &[&str], ctx: RegionContext) -> Result<(bool, [f64; 3]), String> {
+fn options(words: &[&str], ctx: RegionContext) -> Result<(bool, [f64; 3]), EngineError> {
     let mut interior = true;
     let mut lattice = false;
     let mut i = 0;
@@ -493,13 +494,12 @@ fn options(words: &[&str], ctx: RegionContext) -> Result<(bool, [f64; 3]), Strin
                 numeric(value)?;
             }
             ("move" | "rotate", _) => {
-                return Err(format!("region {}: not supported yet", words[i]))
+                return Err(EngineError::Unsupported(format!("region {}", words[i])))
             }
             _ => {
-                return Err(format!(
-                    "Illegal region command (unknown option '{}')",
-                    words[i]
-                ))
+                return Err(
+                    format!("Illegal region command (unknown option '{}')", words[i]).into(),
+                )
             }
         }
         i += 2;
@@ -573,7 +573,7 @@ mod tests {
         assert_eq!(
             r.define(&["b", "block", "0", "1", "0", "1", "0", "INF"], none)
                 .unwrap_err(),
-            "Cannot use region INF or EDGE when box does not exist"
+            EngineError::Invalid("Cannot use region INF or EDGE when box does not exist".into())
         );
         assert!(r
             .define(&["b", "block", "0", "1", "0", "1", "0", "x"], none)
@@ -595,7 +595,7 @@ mod tests {
         assert_eq!(
             r.define(&["s", "sphere", "0", "0", "0", "1"], none)
                 .unwrap_err(),
-            "Reuse of region ID"
+            EngineError::Invalid("Reuse of region ID".into())
         );
         assert!(r.define(&["u", "union", "2", "s", "nope"], none).is_err());
     }

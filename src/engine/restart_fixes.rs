@@ -9,6 +9,9 @@ use crate::engine::sim::Simulation;
 use crate::io::restart::{GlobalFix, PeratomFix};
 use crate::io::stl::Triangle;
 
+/// A per-atom block of a restart file: its header and one row of values per atom.
+pub type PeratomBlock = (PeratomFix, Vec<Vec<f64>>);
+
 /// The doubles of a stored fix state (LIGGGHTS writes native little-endian doubles).
 pub fn doubles(bytes: &[u8]) -> Vec<f64> {
     bytes
@@ -196,7 +199,7 @@ impl Simulation {
     /// in fix order: templates, distributions, plain meshes, insertion fixes and the
     /// release data. Returns the global entries and the per-atom blocks' headers with
     /// their values (one row per atom, without the length word).
-    pub fn fix_restart_entries(&self) -> (Vec<GlobalFix>, Vec<(PeratomFix, Vec<Vec<f64>>)>) {
+    pub fn fix_restart_entries(&self) -> (Vec<GlobalFix>, Vec<PeratomBlock>) {
         let mut globals = Vec::new();
         let mut peratom = Vec::new();
         let mut release_written = false;

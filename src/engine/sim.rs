@@ -46,6 +46,10 @@ impl Default for NeighborSettings {
     }
 }
 
+/// A touching pair as `compute pair/gran/local` reports it: (pair index, force on i,
+/// torque on i, force on j, torque on j).
+pub type PairContact = (usize, [f64; 3], [f64; 3], [f64; 3], [f64; 3]);
+
 /// Pairwise forces between listed particles (the granular contact model).
 pub trait PairInteraction: Send {
     /// Doubles of history kept per listed pair (0 when the model keeps none).
@@ -74,7 +78,7 @@ pub trait PairInteraction: Send {
         history: &[f64],
         dt: f64,
         ghost: (&[[f64; 3]], &[[f64; 3]]),
-    ) -> Vec<(usize, [f64; 3], [f64; 3], [f64; 3], [f64; 3])>;
+    ) -> Vec<PairContact>;
     /// Add pair forces and torques to `p.f`/`p.torque` for the listed pairs.
     /// `update` is false in the setup evaluation: contact history is used but not advanced.
     /// With `virial`, each pair also adds half its virial del_a F_b to both particles
@@ -247,7 +251,10 @@ pub struct Simulation {
     /// the history width and, per atom ID, its (triangle id, history) contacts.
     pub restart_mesh_history: std::collections::HashMap<
         String,
-        (usize, std::collections::HashMap<i64, Vec<(i32, Vec<f64>)>>),
+        (
+            usize,
+            std::collections::HashMap<i64, crate::engine::mesh_wall::MeshContacts>,
+        ),
     >,
     /// Start positions stored by `fix move` fixes in that restart file: fix ID to the
     /// unwrapped start position (length) of each atom ID.
@@ -1192,6 +1199,8 @@ impl Simulation {
                 let (i, j) = (pair.i as usize, pair.j as usize);
                 let d = [0, 1, 2].map(|c| p.x[i][c] - p.x[j][c] - pair.shift[c]);
                 let radsum = p.radius[i] + p.radius[j];
+                // a NaN distance is no contact
+                #[allow(clippy::neg_cmp_op_on_partial_ord)]
                 if !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < radsum * radsum) {
                     self.history[k * width..(k + 1) * width].fill(0.0);
                 }
@@ -1424,7 +1433,7 @@ impl Simulation {
             return true;
         }
         let n = &self.neighbor;
-        if self.ago < n.delay || self.ago % n.every != 0 {
+        if self.ago < n.delay || !self.ago.is_multiple_of(n.every) {
             return false;
         }
         if !n.check {
@@ -1657,13 +1666,13 @@ impl Simulation {
                 ForceValue::Null => continue,
             };
             let p = &mut self.particles;
-            for i in 0..p.len() {
+            for (i, &value) in values.iter().enumerate().take(p.len()) {
                 if p.mask[i] & group == 0 {
                     continue;
                 }
                 let r = p.radius[i];
                 let density = p.mass[i] / (4.0 * PI / 3.0 * r * r * r);
-                let mut value = values[i];
+                let mut value = value;
                 if scale {
                     value *= r * 2.0;
                 }
@@ -2117,7 +2126,7 @@ impl Simulation {
                 Velocity::Constant(v) | Velocity::Uniform(v, _) | Velocity::Gaussian(v, _) => v,
             };
             if v[0] * n[0] + v[1] * n[1] + v[2] * n[2] < 0.0 {
-                n = n.map(|x| x * -1.0);
+                n = n.map(|x| -x);
             }
             let dot = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
             let v_normal = n.map(|x| x * dot);
@@ -2815,7 +2824,7 @@ impl Simulation {
                         self.fixes
                             .iter()
                             .filter_map(|f| match &f.kind {
-                                FixKind::Mesh(m) => Some(m),
+                                FixKind::Mesh(m) => Some(&**m),
                                 _ => None,
                             })
                             .collect()
@@ -2824,7 +2833,7 @@ impl Simulation {
                             .iter()
                             .filter_map(|id| {
                                 self.fixes.iter().find_map(|f| match &f.kind {
-                                    FixKind::Mesh(m) if &f.id == id => Some(m),
+                                    FixKind::Mesh(m) if &f.id == id => Some(&**m),
                                     _ => None,
                                 })
                             })

@@ -1,6 +1,7 @@
 //! Thermo output (`thermo`, `thermo_style`, `thermo_modify`): column headers right-aligned,
 //! integers as `%8d`, reals as `%14.8g`, each followed by a blank, as LIGGGHTS prints them.
 
+use crate::engine::error::EngineError;
 use crate::engine::sim::{Simulation, Sink, VariableSource};
 use crate::util::format;
 
@@ -135,7 +136,7 @@ impl Default for Thermo {
 
 impl Thermo {
     /// `thermo_style custom ...` (or the default columns of style `one`).
-    pub fn set_style(&mut self, keywords: &[&str]) -> Result<(), String> {
+    pub fn set_style(&mut self, keywords: &[&str]) -> Result<(), EngineError> {
         let mut fields = Vec::new();
         for k in keywords {
             if let Some(rest) = k
@@ -155,9 +156,11 @@ impl Thermo {
             let Some(&(_, label, kind)) = KEYWORDS.iter().find(|e| e.0 == *k) else {
                 let known = crate::engine::thermo::THERMO_KEYWORDS.contains(k);
                 return Err(if known {
-                    format!("thermo keyword {k}: not supported yet")
+                    EngineError::Unsupported(format!("thermo keyword {k}"))
                 } else {
-                    format!("Invalid keyword in thermo_style custom command: {k}")
+                    EngineError::Invalid(format!(
+                        "Invalid keyword in thermo_style custom command: {k}"
+                    ))
                 });
             };
             fields.push(Field {
@@ -334,11 +337,12 @@ mod tests {
         assert!(t
             .set_style(&["step", "bogus"])
             .unwrap_err()
+            .to_string()
             .starts_with("Invalid keyword"));
-        assert!(t
-            .set_style(&["fmax"])
-            .unwrap_err()
-            .contains("not supported yet"));
+        assert_eq!(
+            t.set_style(&["fmax"]).unwrap_err(),
+            EngineError::Unsupported("thermo keyword fmax".into())
+        );
         t.set_style(&["v_x"]).unwrap();
         assert_eq!(t.fields[0].label, "x");
         // thermo_style multi, then user formats (layouts printed by Debian's LIGGGHTS)

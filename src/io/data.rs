@@ -110,7 +110,7 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
                         | "improper"
                 ) =>
             {
-                if n.parse::<i64>().map_or(true, |n| n != 0) {
+                if n.parse::<i64>() != Ok(0) {
                     return Err(format!(
                         "{at}: '{l}': molecular data is not supported by atom_style granular"
                     ));

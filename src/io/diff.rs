@@ -217,6 +217,8 @@ impl Report {
         let s = &mut self.columns[k].1;
         s.count += 1;
         let both_nan = e.a.is_nan() && e.b.is_nan();
+        // one NaN side is outside any tolerance
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
         let outside = !both_nan && !(abs <= opts.atol + opts.rtol * e.scale);
         if outside {
             s.outside += 1;

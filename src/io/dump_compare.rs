@@ -61,11 +61,7 @@ pub fn parse(text: &str) -> Result<Vec<Snapshot>, String> {
             .next()
             .ok_or_else(|| format!("dump ends early: expected {what}"))
     };
-    loop {
-        let (n, l) = match next("ITEM: TIMESTEP") {
-            Ok(x) => x,
-            Err(_) => break,
-        };
+    while let Ok((n, l)) = next("ITEM: TIMESTEP") {
         if l.trim().is_empty() {
             continue;
         }

@@ -53,8 +53,11 @@ pub enum Value {
     Text(String),
 }
 
+/// Reads one header value of a given type.
+type ReadValue = fn(&mut Reader) -> Result<Value, String>;
+
 /// The value type of header flag `f` (None: unknown flag).
-fn kind_of(f: i32) -> Option<fn(&mut Reader) -> Result<Value, String>> {
+fn kind_of(f: i32) -> Option<ReadValue> {
     Some(match f {
         0 | 4 | 22 => |r| r.string().map(Value::Text),
         5 | 23 | 25 | 28 | 31 | 34 => |r| r.i64().map(Value::Big),
@@ -390,7 +393,7 @@ impl Restart {
                     "{name}: byte {at}: unknown header flag {f} (not a LIGGGHTS 3.x restart file?)"
                 )
             })?;
-            if f >= flag::XY && f <= flag::YZ {
+            if (flag::XY..=flag::YZ).contains(&f) {
                 return Err(format!("{name}: triclinic box: not supported yet"));
             }
             let v = read(&mut r)?;
@@ -840,7 +843,7 @@ pub fn fresh_header(domain: &Domain, ntypes: u32, units: &str) -> Restart {
         h.push((flag::BOXLO_0 + 2 * d as i32 + 1, Double(domain.hi[d])));
     }
     for f in 43..=48 {
-        h.push((f, Double(if f == 43 || f == 46 { 0.0 } else { 0.0 })));
+        h.push((f, Double(0.0)));
     }
     Restart {
         header: h,

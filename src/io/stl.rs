@@ -175,7 +175,10 @@ fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
 /// Rotation of `v` about `axis` (through the origin) by `degrees`, as LIGGGHTS rotates
 /// meshes: the angle converted with pi = 3.14159265, then q v q* with the unit axis.
 fn rotate(v: [f64; 3], axis: [f64; 3], degrees: f64) -> [f64; 3] {
-    let angle = degrees * 3.14159265 / 180.0;
+    // LIGGGHTS's own truncated pi: the rotated nodes must match its bit for bit.
+    #[allow(clippy::approx_constant)]
+    const LIGGGHTS_PI: f64 = 3.14159265;
+    let angle = degrees * LIGGGHTS_PI / 180.0;
     let l = norm(axis);
     let n = axis.map(|c| c / l);
     let (s, c) = ((angle * 0.5).sin(), (angle * 0.5).cos());
@@ -201,6 +204,8 @@ pub fn check(
             .map(|e| norm(sub(t[(e + 1) % 3], t[e])))
             .fold(0.0, f64::max);
         let area = 0.5 * norm(cross(sub(t[1], t[0]), sub(t[2], t[0])));
+        // a NaN area is degenerate too
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
         if !(area > 1e-10 * longest * longest) {
             return Err(format!(
                 "{name}: triangle {} is degenerate (area {area:e} for an edge of {longest:e}): vertices {:?}",

@@ -1385,7 +1385,7 @@ fn binary_column(
 fn plain_math(f: Math) -> Option<fn(f64) -> Option<f64>> {
     use Math::*;
     // explicit comparisons: a NaN argument passes the range checks, as in `math`
-    #[allow(clippy::manual_range_contains)]
+    #[allow(clippy::manual_range_contains, clippy::neg_cmp_op_on_partial_ord)]
     Some(match f {
         Sqrt => |a| (!(a < 0.0)).then(|| a.sqrt()),
         Exp => |a| Some(a.exp()),

@@ -334,6 +334,74 @@ fn check_and_run_state_the_time_step_margin() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Issue 16: next to the margin, `check` and the run header quote the trade study
+/// (docs/trade_margin.csv, written by examples/trade/study.sh and compiled in): the errors it
+/// measured at the deck's dt / Rayleigh time (at the study's next step up: 1 % for the
+/// collision's 0.67 %), the largest step that keeps each observable within 1 %, and the
+/// fastest setting that keeps all of them within 1 % (the collision's contact time limits it
+/// to 5 %: 7.5x the deck's step).
+#[test]
+fn check_and_run_quote_the_trade_study_at_the_decks_margin() {
+    let dir = scratch("trade_margin");
+    let deck = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/trade/in.collision");
+    let out = regolith(&dir, &["check", deck], None);
+    assert_eq!(out.status.code(), Some(0));
+    let stdout = text(&out.stdout);
+    assert!(
+        stdout.contains(
+            "  trade study (docs/trade.md): measured errors at 0.67 % of the Rayleigh time \
+             (the study's 1.00 % column, exact path):\n    restitution 0.17 %, contact time 0.11 %, \
+             energy drift at e = 1 2.7e-6, sliding time < 0.001 %, rolling speed < 0.001 %, \
+             wave speed (weak impact) "
+        ),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains(
+            "  within 1.00 %, dt up to (of the Rayleigh time): restitution 10.0 %, contact time \
+             5.00 %, energy drift at e = 1 20.0 %, sliding time 40.0 %, rolling speed 40.0 %, \
+             wave speed (weak impact) 40.0 %, wave speed (strong impact) 40.0 %\n"
+        ),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains(
+            "  fastest setting within 1.00 % for all of them: dt = 5.00 % of the Rayleigh time \
+             (7.5x this deck's), -sf fast (the study's fast-path errors are the exact path's)\n"
+        ),
+        "{stdout}"
+    );
+    // at 20 % the study's own column; past 40 % beyond it
+    let out = regolith(&dir, &["check", deck, "-var", "frac", "0.2"], None);
+    let stdout = text(&out.stdout);
+    assert!(
+        stdout.contains(
+            "(the study's 20.0 % column, exact path):\n    restitution 1.4 %, contact time 3.7 %,"
+        ),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("dt = 5.00 % of the Rayleigh time, -sf fast"),
+        "{stdout}"
+    );
+    let out = regolith(&dir, &["check", deck, "-var", "frac", "0.5"], None);
+    let stdout = text(&out.stdout);
+    assert!(
+        stdout.contains("50.0 % of the Rayleigh time is beyond the study's largest step; errors at 40.0 % (exact path):\n    restitution 14 %, contact time 9.9 %,"),
+        "{stdout}"
+    );
+    // the run header says the same on standard error
+    let out = regolith(&dir, &["-in", deck, "-log", "none"], None);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(
+        text(&out.stderr).contains("fastest setting within 1.00 % for all of them: dt = 5.00 %"),
+        "{}",
+        text(&out.stderr)
+    );
+    assert!(!text(&out.stdout).contains("trade study"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn check_without_a_deck_is_a_usage_error_and_check_reads_minus_in() {
     let dir = scratch("check_flags_first");

@@ -3,6 +3,12 @@
 //! sets as the time step shrinks, its elastic contact time to Hertz theory's; the exact and
 //! fast paths agree; a time step past the stability limit is reported as a failed run; the CSV,
 //! table and figure are written, and `--merge` gathers sweeps into one table.
+//!
+//! The trade study's reference values against physics (examples/trade/study.sh): the
+//! collision's restitution and contact time against the damped Hertz equation of motion solved
+//! here, its elastic energy balance; the sliding sphere's 5/7 v0 and sliding time; the struck
+//! chain's wave speed exponent 1/5 in the impact speed and 2/5 in Young's modulus; and the
+//! committed table's collision rows are what the decks give.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -15,7 +21,96 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 fn deck() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/trade/in.collision")
+    trade("in.collision")
+}
+
+fn trade(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples/trade")
+        .join(name)
+}
+
+/// Run a trade deck (`regolith -in DECK -var ...`) in a scratch folder; its screen output.
+fn run_deck(name: &str, vars: &[(&str, &str)]) -> String {
+    let dir = scratch(&format!("run-{}", name.replace('.', "_")));
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_regolith"));
+    cmd.current_dir(&dir)
+        .arg("-in")
+        .arg(trade(name))
+        .args(["-log", "none"]);
+    for (n, v) in vars {
+        cmd.args(["-var", n, v]);
+    }
+    let out = cmd.output().unwrap();
+    let screen = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{screen}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+    screen
+}
+
+/// The number after `key ` on the last screen line holding it.
+fn after(screen: &str, key: &str) -> f64 {
+    let line = screen
+        .lines()
+        .rev()
+        .find(|l| l.contains(key) && !l.starts_with("print"))
+        .unwrap_or_else(|| panic!("no '{key}' in {screen}"));
+    let rest = &line[line.find(key).unwrap() + key.len()..];
+    rest.split([' ', ','])
+        .find(|w| !w.is_empty())
+        .unwrap()
+        .parse()
+        .unwrap_or_else(|_| panic!("{line}"))
+}
+
+/// The damped Hertz collision of two equal spheres (radius r, density rho, Young's modulus
+/// young, Poisson ratio nu) at approach speed v with LIGGGHTS's damping for restitution
+/// coefficient e: m* d'' = -4/3 Y* sqrt(R* d) d - gamma_n d', gamma_n = 2 sqrt(5/6) |beta|
+/// sqrt(2 Y* sqrt(R* d) m*), beta = ln e / sqrt(ln^2 e + pi^2). Solved by RK4 from first
+/// touch until the overlap is gone: (restitution, contact time).
+fn damped_hertz(e: f64, r: f64, rho: f64, young: f64, nu: f64, v: f64) -> (f64, f64) {
+    use std::f64::consts::PI;
+    let m = 4.0 / 3.0 * PI * r.powi(3) * rho;
+    let (ms, rs, y) = (m / 2.0, r / 2.0, young / (2.0 * (1.0 - nu * nu)));
+    let beta = if e < 1.0 {
+        e.ln() / (e.ln().powi(2) + PI * PI).sqrt()
+    } else {
+        0.0
+    };
+    let acc = |d: f64, dd: f64| {
+        if d <= 0.0 {
+            return 0.0;
+        }
+        let sq = (rs * d).sqrt();
+        let gamma = -2.0 * (5.0f64 / 6.0).sqrt() * beta * (2.0 * y * sq * ms).sqrt();
+        (-4.0 / 3.0 * y * sq * d - gamma * dd) / ms
+    };
+    let tc0 = 2.87 * (ms * ms / (rs * y * y * v)).powf(0.2);
+    let h = 1.5 * tc0 / 50_000.0;
+    let (mut d, mut dd, mut t) = (0.0f64, v, 0.0f64);
+    loop {
+        let (k1d, k1v) = (dd, acc(d, dd));
+        let (k2d, k2v) = (
+            dd + h / 2.0 * k1v,
+            acc(d + h / 2.0 * k1d, dd + h / 2.0 * k1v),
+        );
+        let (k3d, k3v) = (
+            dd + h / 2.0 * k2v,
+            acc(d + h / 2.0 * k2d, dd + h / 2.0 * k2v),
+        );
+        let (k4d, k4v) = (dd + h * k3v, acc(d + h * k3d, dd + h * k3v));
+        let nd = d + h / 6.0 * (k1d + 2.0 * k2d + 2.0 * k3d + k4d);
+        let nv = dd + h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+        if nd < 0.0 && t > 0.0 {
+            let f = d / (d - nd);
+            return (-(dd + f * (nv - dd)) / v, t + f * h);
+        }
+        (d, dd, t) = (nd, nv, t + h);
+    }
 }
 
 fn sweep(args: &[&str]) -> (i32, String, String) {
@@ -186,6 +281,28 @@ fn elastic_contact_time_meets_hertz_and_blow_ups_are_reported() {
     assert!(md.contains("| elastic | drift (abs.) | "), "{md}");
     assert!(md.contains("blow-up"), "{md}");
     assert!(merged.join("trade.png").is_file());
+    // --cost steps: the figure's cost is steps (deterministic); the table gains the steps and
+    // wall time of each setting
+    let (code, stdout, stderr) = sweep(&[
+        "--merge",
+        out.to_str().unwrap(),
+        "--cost",
+        "steps",
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let md = std::fs::read_to_string(merged.join("trade.md")).unwrap();
+    let steps = md
+        .lines()
+        .find(|l| l.starts_with("| elastic | steps | "))
+        .unwrap_or_else(|| panic!("{md}"));
+    // 0.005 and 0.1 of the Rayleigh time: 1284 and 65 steps; the failed run's steps too
+    assert!(
+        steps.starts_with("| elastic | steps | 1284 | 65 | "),
+        "{steps}"
+    );
+    assert!(md.contains("| elastic | wall (s) | "), "{md}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -233,4 +350,141 @@ fn bad_requests_are_refused() {
         assert_eq!(code, 1, "{args:?}");
         assert!(stderr.contains(want), "{args:?}: {stderr}");
     }
+}
+
+/// The collision's reference setting (the exact path at 0.1 % of the Rayleigh time) against
+/// the damped Hertz equation of motion: LIGGGHTS's damping gives the restitution it is asked
+/// for (the equation's own answer is e within 1e-6), and the run meets it and the damped
+/// contact time within 2e-4; with e = 1 the energy is kept within 1e-8 and the contact time is
+/// the undamped equation's.
+#[test]
+fn collision_reference_meets_the_damped_hertz_equation() {
+    let (e_ode, tc_ode) = damped_hertz(0.5, 0.00125, 2500.0, 5e6, 0.2, 2.0);
+    assert!((e_ode - 0.5).abs() < 1e-6, "{e_ode}");
+    let screen = run_deck("in.collision", &[("frac", "0.001")]);
+    let (e, tc) = (
+        after(&screen, "restitution"),
+        after(&screen, "contact time"),
+    );
+    assert!((e / e_ode - 1.0).abs() < 2e-4, "{e} against {e_ode}");
+    assert!((tc / tc_ode - 1.0).abs() < 2e-4, "{tc} against {tc_ode}");
+    let (e1, tc1) = damped_hertz(1.0, 0.00125, 2500.0, 5e6, 0.2, 2.0);
+    assert!((e1 - 1.0).abs() < 1e-9, "{e1}");
+    let screen = run_deck("in.collision", &[("frac", "0.001"), ("e", "1")]);
+    assert!(after(&screen, "energy drift").abs() < 1e-8, "{screen}");
+    let tc = after(&screen, "contact time");
+    assert!((tc / tc1 - 1.0).abs() < 1e-5, "{tc} against {tc1}");
+}
+
+/// The sliding sphere ends rolling at 5/7 v0 (within 5e-4: the contact point sits a small
+/// overlap below the centre's radius) after sliding for 2 v0 / (7 mu g) of rigid-body theory
+/// (within 1 %: the elastic tangential spring's stretch when it sticks moves the sphere on by
+/// about mu m g / k_t, 0.5 % of the sliding distance here).
+#[test]
+fn slide_rolls_at_five_sevenths_of_its_launch_speed() {
+    let screen = run_deck("in.slide", &[("frac", "0.001")]);
+    let v_roll = after(&screen, "rolling speed");
+    assert!((v_roll - 5.0 / 7.0).abs() < 5e-4, "{v_roll}");
+    let t_slide = 2.0 * 0.1 / (7.0 * 0.5 * 9.81);
+    assert!(
+        (after(&screen, "theory") / t_slide - 1.0).abs() < 1e-12,
+        "{screen}"
+    );
+    let t_roll = after(&screen, "sliding time");
+    assert!(
+        (t_roll / t_slide - 1.0).abs() < 0.01,
+        "{t_roll} against {t_slide}"
+    );
+}
+
+/// The struck chain's wave speed is a Hertz solitary wave's: c_w grows as v_im^(1/5) (from a
+/// weak impact at 1e-4 m/s to a strong one at 1 m/s, within 0.005) and as E^(2/5) (E / 10 at
+/// the strong impact, within 0.01); run at 5 % of the Rayleigh time, where the study's
+/// wave-speed errors are about 0.1 %.
+#[test]
+fn chain_wave_speed_grows_as_hertz_theory_says() {
+    let dir = scratch("chain");
+    let out = dir.join("out");
+    let (code, stdout, stderr) = sweep(&[
+        trade("in.chain").to_str().unwrap(),
+        "--var",
+        "vim",
+        "1e-4,1",
+        "--var",
+        "soften",
+        "1,10",
+        "--set",
+        "frac",
+        "0.05",
+        "--observe",
+        "c=analyze:chain:c_w",
+        "--out",
+        out.to_str().unwrap(),
+        "--jobs",
+        "2",
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let r = rows(&std::fs::read_to_string(out.join("sweep.csv")).unwrap());
+    let c = |vim: &str, soften: &str| {
+        let row = r
+            .iter()
+            .find(|row| get(row, "vim") == vim && get(row, "soften") == soften)
+            .unwrap();
+        num(row, "c")
+    };
+    let p = (c("1", "1") / c("1e-4", "1")).ln() / 1e4f64.ln();
+    assert!((p - 0.2).abs() < 0.005, "exponent {p}: {r:?}");
+    let q = (c("1", "1") / c("1", "10")).ln() / 10f64.ln();
+    assert!((q - 0.4).abs() < 0.01, "exponent {q}: {r:?}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The committed study (docs/trade_margin.csv, which `regolith check` quotes) is what the
+/// collision deck gives: its exact-path errors at 0.5, 10 and 40 % of the Rayleigh time,
+/// rerun here.
+#[test]
+fn committed_trade_table_is_what_the_collision_gives() {
+    let table = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/trade_margin.csv"),
+    )
+    .unwrap();
+    let dir = scratch("committed");
+    let out = dir.join("out");
+    let (code, stdout, stderr) = sweep(&[
+        deck().to_str().unwrap(),
+        "--var",
+        "frac",
+        "0.005,0.1,0.4",
+        "--reference",
+        "frac=0.001",
+        "--observe",
+        "e=v_e_meas",
+        "--observe",
+        "tc=v_tc",
+        "--out",
+        out.to_str().unwrap(),
+        "--jobs",
+        "1",
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let r = rows(&std::fs::read_to_string(out.join("sweep.csv")).unwrap());
+    for row in r.iter().filter(|row| get(row, "reference") == "0") {
+        for name in ["e", "tc"] {
+            let frac = get(row, "frac");
+            let committed: f64 = table
+                .lines()
+                .find_map(|l| {
+                    let w: Vec<&str> = l.split(',').collect();
+                    (w[0] == "collision" && w[1] == name && w[2] == "exact" && w[3] == frac)
+                        .then(|| w[4].parse().unwrap())
+                })
+                .unwrap_or_else(|| panic!("no collision {name} at {frac} in {table}"));
+            let now = num(row, &format!("{name}_relerr"));
+            assert!(
+                (now / committed - 1.0).abs() < 1e-6,
+                "{name} at frac {frac}: {now} now, {committed} committed"
+            );
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

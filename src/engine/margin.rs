@@ -14,6 +14,233 @@ use std::f64::consts::PI;
 /// four or more contacts per particle, 40 % below).
 pub const RAYLEIGH_WARN: f64 = 0.4;
 
+/// The trade study's errors along its time-step axis: `scene,observable,path,frac,error,
+/// absolute`, one row per run (`frac` is dt as a fraction of the Rayleigh time; `error` is
+/// relative to the exact path at 0.1 % of it, or absolute where `absolute` is 1). Written by
+/// `examples/trade/study.sh` (its `docs/trade_margin.csv`) and compiled in, so `check` and the
+/// run header can say what a deck's margin costs in accuracy (docs/trade.md has the whole
+/// study).
+const TRADE_STUDY: &str = include_str!("../../docs/trade_margin.csv");
+
+/// The error the trade's recommendation stays within.
+pub const TRADE_TOLERANCE: f64 = 0.01;
+
+/// One row of [`TRADE_STUDY`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct TradeRow {
+    /// The scene (collision, elastic, slide, chain_weak, chain_strong).
+    pub scene: &'static str,
+    /// The observable's name in the study.
+    pub observable: &'static str,
+    /// The fast path (`-sf fast`) rather than the exact one.
+    pub fast: bool,
+    /// dt as a fraction of the Rayleigh time.
+    pub frac: f64,
+    /// The error (relative, or absolute when `absolute`).
+    pub error: f64,
+    /// The error is absolute (the observable's exact value is 0).
+    pub absolute: bool,
+}
+
+/// The rows of the compiled-in trade study (rows that do not parse are left out).
+pub fn trade_study() -> Vec<TradeRow> {
+    TRADE_STUDY
+        .lines()
+        .skip(1)
+        .filter_map(|l| {
+            let w: Vec<&'static str> = l.split(',').map(str::trim).collect();
+            if w.len() < 6 {
+                return None;
+            }
+            Some(TradeRow {
+                scene: w[0],
+                observable: w[1],
+                fast: w[2] == "fast",
+                frac: w[3].parse().ok()?,
+                error: w[4].parse().ok()?,
+                absolute: w[5] == "1",
+            })
+        })
+        .collect()
+}
+
+/// What an observable of the study is, in words.
+fn trade_label(scene: &str, observable: &str) -> String {
+    match (scene, observable) {
+        ("collision", "e") => "restitution".into(),
+        ("collision", "tc") => "contact time".into(),
+        ("elastic", "drift") => "energy drift at e = 1".into(),
+        ("slide", "v_roll") => "rolling speed".into(),
+        ("slide", "t_roll") => "sliding time".into(),
+        ("chain_weak", "c_w") => "wave speed (weak impact)".into(),
+        ("chain_strong", "c_w") => "wave speed (strong impact)".into(),
+        _ => format!("{scene} {observable}"),
+    }
+}
+
+/// Per observable of the study (in the study's order): its label, the error measured at
+/// `frac` (the study's nearest time step at or above it, or its largest), whether that error
+/// is absolute, and the largest time step (fraction of the Rayleigh time) up to which every
+/// error of the observable stays within `tolerance`, on the given path (None: not even at
+/// the study's smallest step).
+pub fn trade_at(
+    rows: &[TradeRow],
+    frac: f64,
+    fast: bool,
+    tolerance: f64,
+) -> Vec<(String, f64, bool, Option<f64>)> {
+    let mut keys: Vec<(&str, &str)> = Vec::new();
+    for r in rows {
+        if !keys.contains(&(r.scene, r.observable)) {
+            keys.push((r.scene, r.observable));
+        }
+    }
+    let mut out = Vec::new();
+    for (scene, observable) in keys {
+        let mut pts: Vec<&TradeRow> = rows
+            .iter()
+            .filter(|r| r.scene == scene && r.observable == observable && r.fast == fast)
+            .collect();
+        pts.sort_by(|a, b| a.frac.total_cmp(&b.frac));
+        let Some(last) = pts.last() else { continue };
+        // the reference run (error 0 by definition) is no measurement of the error
+        let measured: Vec<&&TradeRow> = pts
+            .iter()
+            .filter(|r| r.error != 0.0 || r.absolute)
+            .collect();
+        let at = measured
+            .iter()
+            .find(|r| r.frac >= frac * (1.0 - 1e-9))
+            .or(measured.last())
+            .map_or(0.0, |r| r.error);
+        let mut within = None;
+        for r in &pts {
+            if r.error.abs() <= tolerance {
+                within = Some(r.frac);
+            } else {
+                break;
+            }
+        }
+        out.push((trade_label(scene, observable), at, last.absolute, within));
+    }
+    out
+}
+
+/// The lines `check` and the run header add after the margin: the study's errors at the
+/// deck's largest dt / Rayleigh time (`frac`) and the largest time step that keeps every
+/// observable within 1 %.
+pub fn trade_lines(frac: f64) -> String {
+    let rows = trade_study();
+    if rows.is_empty() || !(frac > 0.0) {
+        return String::new();
+    }
+    let largest = rows.iter().map(|r| r.frac).fold(0.0, f64::max);
+    let exact = trade_at(&rows, frac, false, TRADE_TOLERANCE);
+    let fast = trade_at(&rows, frac, true, TRADE_TOLERANCE);
+    // the study's column the errors are read from: its next measured step up
+    let column = rows
+        .iter()
+        .filter(|r| r.frac >= frac * (1.0 - 1e-9) && r.error != 0.0)
+        .map(|r| r.frac)
+        .fold(f64::INFINITY, f64::min);
+    let mut s = String::from("  trade study (docs/trade.md): ");
+    if column.is_finite() {
+        s.push_str(&format!(
+            "measured errors at {} of the Rayleigh time (the study's {} column, exact path):\n",
+            pct(100.0 * frac),
+            pct(100.0 * column)
+        ));
+    } else {
+        s.push_str(&format!(
+            "{} of the Rayleigh time is beyond the study's largest step; errors at {} (exact path):\n",
+            pct(100.0 * frac),
+            pct(100.0 * largest)
+        ));
+    }
+    let words: Vec<String> = exact
+        .iter()
+        .map(|(label, e, absolute, _)| {
+            if *absolute {
+                format!("{label} {e:.1e}")
+            } else {
+                format!("{label} {}", pct_err(100.0 * e))
+            }
+        })
+        .collect();
+    s.push_str(&format!("    {}\n", words.join(", ")));
+    let each: Vec<String> = exact
+        .iter()
+        .map(|(label, _, _, within)| match within {
+            Some(f) => format!("{label} {}", pct(100.0 * f)),
+            None => format!("{label} none"),
+        })
+        .collect();
+    s.push_str(&format!(
+        "  within {}, dt up to (of the Rayleigh time): {}\n",
+        pct(100.0 * TRADE_TOLERANCE),
+        each.join(", ")
+    ));
+    let smallest = |set: &[(String, f64, bool, Option<f64>)]| {
+        set.iter()
+            .map(|x| x.3.unwrap_or(0.0))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let (best_exact, best_fast) = (smallest(&exact), smallest(&fast));
+    if best_exact > 0.0 && best_exact.is_finite() {
+        // the fast path's errors in the study, against the exact path's at the same step
+        let same = rows.iter().filter(|r| r.fast).all(|r| {
+            rows.iter().any(|x| {
+                !x.fast
+                    && (x.scene, x.observable, x.frac) == (r.scene, r.observable, r.frac)
+                    && x.error == r.error
+            })
+        });
+        let (best, path) = if best_fast >= best_exact && same {
+            (
+                best_fast,
+                ", -sf fast (the study's fast-path errors are the exact path's)",
+            )
+        } else if best_fast >= best_exact {
+            (best_fast, ", -sf fast")
+        } else {
+            (best_exact, " on the exact path")
+        };
+        let gain = if best > frac * (1.0 + 1e-9) {
+            format!(" ({} this deck's)", times(best / frac))
+        } else {
+            String::new()
+        };
+        s.push_str(&format!(
+            "  fastest setting within {} for all of them: dt = {} of the Rayleigh time{gain}{path}\n",
+            pct(100.0 * TRADE_TOLERANCE),
+            pct(100.0 * best),
+        ));
+    }
+    s
+}
+
+fn times(x: f64) -> String {
+    if x >= 10.0 {
+        format!("{x:.0}x")
+    } else {
+        format!("{x:.1}x")
+    }
+}
+
+/// An error in percent, two significant digits.
+fn pct_err(p: f64) -> String {
+    if p == 0.0 {
+        "0 %".into()
+    } else if p < 0.001 {
+        "< 0.001 %".into()
+    } else if p >= 10.0 {
+        format!("{p:.0} %")
+    } else {
+        let digits = (1 - p.log10().floor() as i32).clamp(0, 12) as usize;
+        format!("{p:.digits$} %")
+    }
+}
+
 /// The Rayleigh time of a sphere of radius `r` and density `rho` of a material with Young's
 /// modulus `e` and Poisson ratio `nu`: pi r sqrt(rho / G) / (0.1631 nu + 0.8766), with the
 /// shear modulus G = E / (2 (1 + nu)).
@@ -181,6 +408,8 @@ impl Simulation {
         let impact = 2.0 * speed.value;
         let hertz = sel.normal == "hertz" || sel.normal == "hertz/stiffness";
         let mut s = format!("Time-step margin (regolith; dt = {} s):\n", g(self.dt));
+        // the largest dt / Rayleigh time over the type pairs
+        let mut worst_frac: f64 = 0.0;
         for (t, size) in sizes.iter().enumerate().take(n) {
             if let Some((r, rho)) = size {
                 s.push_str(&format!(
@@ -202,6 +431,7 @@ impl Simulation {
                 // the pair's Rayleigh time: the shorter of its two types'
                 let tr =
                     rayleigh_time(ri, rhoi, e[i], nu[i]).min(rayleigh_time(rj, rhoj, e[j], nu[j]));
+                worst_frac = worst_frac.max(dt / tr);
                 s.push_str(&format!(
                     "  types {}-{}: dt is {} of the Rayleigh time",
                     i + 1,
@@ -241,6 +471,9 @@ impl Simulation {
             } else {
                 s.push_str(&format!("  no Hertz contact time: {}\n", speed.source));
             }
+        }
+        if hertz && worst_frac.is_finite() {
+            s.push_str(&trade_lines(worst_frac));
         }
         s
     }
@@ -347,5 +580,67 @@ mod tests {
         let y = 5e6 / (2.0 * (1.0 - 0.04));
         let th = hertz_time(0.00125, 2500.0, 0.00125, 2500.0, y, 2.0);
         assert!((th / 2.993118e-4 - 1.0).abs() < 1e-6, "{th}");
+    }
+
+    fn row(observable: &'static str, fast: bool, frac: f64, error: f64) -> TradeRow {
+        TradeRow {
+            scene: "collision",
+            observable,
+            fast,
+            frac,
+            error,
+            absolute: false,
+        }
+    }
+
+    #[test]
+    fn trade_errors_at_a_margin_and_the_largest_step_within_tolerance() {
+        let rows = vec![
+            row("e", false, 0.001, 0.0),
+            row("e", false, 0.01, 0.002),
+            row("e", false, 0.1, 0.005),
+            row("e", false, 0.2, 0.02),
+            row("e", false, 0.4, 0.005),
+            row("tc", false, 0.001, 0.0),
+            row("tc", false, 0.01, 0.001),
+            row("tc", false, 0.1, 0.03),
+            row("e", true, 0.01, 0.002),
+        ];
+        let exact = trade_at(&rows, 0.0067, false, 0.01);
+        // measured at the study's next step up (1 %); within 1 % up to the first step past it
+        // (not again at 40 %, where the error happens to be small)
+        assert_eq!(
+            exact[0],
+            ("restitution".to_string(), 0.002, false, Some(0.1))
+        );
+        assert_eq!(
+            exact[1],
+            ("contact time".to_string(), 0.001, false, Some(0.01))
+        );
+        // beyond the study: its largest step's error
+        assert_eq!(trade_at(&rows, 0.5, false, 0.01)[0].1, 0.005);
+        // below the study's smallest measured step: that step's error (not the reference's 0)
+        assert_eq!(trade_at(&rows, 0.0005, false, 0.01)[0].1, 0.002);
+        assert_eq!(trade_at(&rows, 0.01, true, 0.01)[0].3, Some(0.01));
+    }
+
+    #[test]
+    fn the_compiled_in_study_is_read_and_quoted() {
+        let rows = trade_study();
+        assert!(rows.len() > 50, "{}", rows.len());
+        assert!(rows.iter().any(|r| r.fast) && rows.iter().any(|r| r.absolute));
+        let text = trade_lines(0.0067);
+        assert!(
+            text.starts_with(
+                "  trade study (docs/trade.md): measured errors at 0.67 % of the Rayleigh time \
+                 (the study's 1.00 % column, exact path):\n    restitution "
+            ),
+            "{text}"
+        );
+        assert!(
+            text.contains("fastest setting within 1.00 % for all of them"),
+            "{text}"
+        );
+        assert!(trade_lines(0.5).contains("beyond the study's largest step; errors at 40.0 %"));
     }
 }

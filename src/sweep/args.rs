@@ -51,6 +51,11 @@ pub struct SweepArgs {
     /// With --merge: the figure's title.
     #[arg(long, default_value = "speed/accuracy trade")]
     pub title: String,
+    /// With --merge: the cost the figure plots errors against, `wall` (wall time relative to
+    /// the reference run's) or `steps` (steps relative to the reference run's: deterministic;
+    /// the table then gains a steps and a wall-time row per sweep).
+    #[arg(long, value_enum, default_value = "wall")]
+    pub cost: super::report::Cost,
 }
 
 fn pairs(v: &[String]) -> Vec<(String, String)> {
@@ -135,7 +140,7 @@ pub fn plan(a: &SweepArgs) -> Result<Plan, String> {
 pub fn run(a: &SweepArgs) -> Result<String, String> {
     if !a.merge.is_empty() {
         let out = a.out.clone().unwrap_or_else(|| PathBuf::from("."));
-        let md = super::report::merge(&a.merge, &out, &a.title)?;
+        let md = super::report::merge(&a.merge, &out, &a.title, a.cost)?;
         return Ok(format!(
             "{md}table and figure: {}, {}\n",
             out.join("trade.md").display(),

@@ -414,8 +414,21 @@ pub struct ReadRow {
     pub status: String,
     /// Wall time (s).
     pub wall: f64,
+    /// Steps run (None in a CSV without a steps column).
+    pub steps: Option<f64>,
     /// Per observable its error.
     pub errors: Vec<Option<f64>>,
+}
+
+/// What `--merge` plots (and tabulates) as a run's cost.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum Cost {
+    /// Wall time relative to the reference run's (the figure only).
+    #[default]
+    Wall,
+    /// Steps relative to the reference run's: deterministic (for a fixed simulated time,
+    /// 1 / dt); the table gains a `steps` and a `wall (s)` row per sweep.
+    Steps,
 }
 
 fn split_csv(line: &str) -> Vec<String> {
@@ -448,6 +461,7 @@ pub fn read_csv(label: &str, text: &str) -> Result<ReadSweep, String> {
         at("status").ok_or("no status column")?,
         at("wall_s").ok_or("no wall_s column")?,
     );
+    let steps = at("steps");
     let axes: Vec<String> = header[1..reference].to_vec();
     let mut observables = Vec::new();
     let mut err_cols = Vec::new();
@@ -471,6 +485,7 @@ pub fn read_csv(label: &str, text: &str) -> Result<ReadSweep, String> {
             reference: w[reference] == "1",
             status: w[status].clone(),
             wall: w[wall].parse().unwrap_or(f64::NAN),
+            steps: steps.and_then(|c| w[c].parse().ok()),
             errors: err_cols.iter().map(|&c| w[c].parse().ok()).collect(),
         });
     }
@@ -485,7 +500,7 @@ pub fn read_csv(label: &str, text: &str) -> Result<ReadSweep, String> {
 /// `--merge`: the sweeps in `dirs` (each holding a `sweep.csv`) as one Markdown table (a row
 /// per sweep, observable and combination of the later axes; a column per value of the first
 /// axis) and one figure; written to `out` as `trade.md` and `trade.png`. Returns the table.
-pub fn merge(dirs: &[PathBuf], out: &Path, title: &str) -> Result<String, String> {
+pub fn merge(dirs: &[PathBuf], out: &Path, title: &str, cost: Cost) -> Result<String, String> {
     let mut sweeps = Vec::new();
     for d in dirs {
         let p = d.join("sweep.csv");
@@ -538,20 +553,27 @@ pub fn merge(dirs: &[PathBuf], out: &Path, title: &str) -> Result<String, String
         log_y: true,
         curves: Vec::new(),
     };
+    let (cost_title, cost_label) = match cost {
+        Cost::Wall => ("wall time", "wall time / wall time of the reference run"),
+        Cost::Steps => (
+            "cost (steps)",
+            "steps / steps of the reference run (deterministic cost)",
+        ),
+    };
     let mut by_cost = Chart {
-        title: format!("{title}: error against wall time"),
-        x_label: "wall time / wall time of the reference run".into(),
+        title: format!("{title}: error against {cost_title}"),
+        x_label: cost_label.into(),
         y_label: "error".into(),
         log_x: true,
         log_y: true,
         curves: Vec::new(),
     };
     for s in &sweeps {
-        let ref_wall = s
-            .rows
-            .iter()
-            .find(|r| r.reference)
-            .map_or(f64::NAN, |r| r.wall);
+        let ref_row = s.rows.iter().find(|r| r.reference);
+        let ref_cost = ref_row.map_or(f64::NAN, |r| match cost {
+            Cost::Wall => r.wall,
+            Cost::Steps => r.steps.unwrap_or(f64::NAN),
+        });
         // rows of the table: each combination of the later axes
         let mut rests: Vec<Vec<String>> = Vec::new();
         for r in &s.rows {
@@ -574,7 +596,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path, title: &str) -> Result<String, String
             for (k, (name, absolute)) in s.observables.iter().enumerate() {
                 let mut cells = Vec::new();
                 let mut pts = Vec::new();
-                let mut cost = Vec::new();
+                let mut costs = Vec::new();
                 for c in &columns {
                     let row = s.rows.iter().find(|r| {
                         r.values.first() == Some(c)
@@ -590,8 +612,12 @@ pub fn merge(dirs: &[PathBuf], out: &Path, title: &str) -> Result<String, String
                                 if let Ok(x) = c.parse::<f64>() {
                                     pts.push((x, e));
                                 }
-                                if ref_wall > 0.0 {
-                                    cost.push((r.wall / ref_wall, e));
+                                let c = match cost {
+                                    Cost::Wall => r.wall,
+                                    Cost::Steps => r.steps.unwrap_or(f64::NAN),
+                                };
+                                if ref_cost > 0.0 && c > 0.0 {
+                                    costs.push((c / ref_cost, e));
                                 }
                                 if *absolute {
                                     fmt(e)
@@ -612,10 +638,40 @@ pub fn merge(dirs: &[PathBuf], out: &Path, title: &str) -> Result<String, String
                 by_axis
                     .curves
                     .push(Curve::new(&legend, pts, Style::LinePoints));
-                cost.sort_by(|a, b| a.0.total_cmp(&b.0));
+                costs.sort_by(|a, b| a.0.total_cmp(&b.0));
                 by_cost
                     .curves
-                    .push(Curve::new(&legend, cost, Style::LinePoints));
+                    .push(Curve::new(&legend, costs, Style::LinePoints));
+            }
+            if cost == Cost::Steps {
+                // the cost of each setting: its steps, and its wall time on this machine
+                let cell = |c: &String, f: &dyn Fn(&ReadRow) -> String| {
+                    s.rows
+                        .iter()
+                        .find(|r| {
+                            r.values.first() == Some(c)
+                                && r.values.get(1..).unwrap_or(&[]) == rest.as_slice()
+                        })
+                        .map_or(String::new(), f)
+                };
+                let steps: Vec<String> = columns
+                    .iter()
+                    .map(|c| cell(c, &|r| r.steps.map_or("-".into(), |n| format!("{n}"))))
+                    .collect();
+                let walls: Vec<String> = columns
+                    .iter()
+                    .map(|c| cell(c, &|r| fmt_time(r.wall)))
+                    .collect();
+                md.push_str(&format!(
+                    "| {}{suffix} | steps | {} |\n",
+                    s.label,
+                    steps.join(" | ")
+                ));
+                md.push_str(&format!(
+                    "| {}{suffix} | wall (s) | {} |\n",
+                    s.label,
+                    walls.join(" | ")
+                ));
             }
         }
     }

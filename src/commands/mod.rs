@@ -8,6 +8,7 @@ pub mod compute_modify;
 pub mod computes_extra;
 pub mod diverged;
 pub mod error;
+pub mod fix;
 pub mod fix_state;
 pub mod group_variable;
 pub mod logs;

@@ -1,0 +1,259 @@
+//! Fix styles: one file per style (or small family of styles) and one row per style name in
+//! [`STYLES`]. Adding a fix style is writing its file and adding its row.
+
+mod adapt;
+mod ave_time;
+mod check_timestep;
+mod distribution;
+mod force;
+mod freeze;
+mod gravity;
+mod insert_pack;
+mod insert_stream;
+mod mesh_surface;
+mod move_atoms;
+mod move_mesh;
+mod nve;
+mod particle_template;
+mod print;
+mod property_global;
+mod viscous;
+mod wall_gran;
+
+use crate::commands::{Args, CommandError, Ctx};
+use crate::engine::fixes::{Fix, FixKind};
+
+/// What a style's builder is told about the fix being defined.
+#[derive(Debug, Clone, Copy)]
+pub struct FixDef<'a> {
+    /// The fix ID.
+    pub id: &'a str,
+    /// The group ID as written.
+    pub group: &'a str,
+    /// The group's bit mask.
+    pub bit: u32,
+    /// The style name as written.
+    pub style: &'a str,
+}
+
+/// Builds a fix's state from the `fix` command's arguments (the style is argument 2).
+pub type Build = fn(&Args, &mut Ctx, &FixDef) -> Result<FixKind, CommandError>;
+
+/// The fix styles regolith runs: the style name and the builder in the style's file.
+pub const STYLES: &[(&str, Build)] = &[
+    ("nve/noforce", nve::noforce),
+    ("nve/sphere", nve::sphere),
+    ("gravity", gravity::build),
+    ("check/timestep/gran", check_timestep::build),
+    ("property/global", property_global::build),
+    ("mesh/surface", mesh_surface::build),
+    ("mesh/surface/planar", mesh_surface::build),
+    ("mesh/surface/stress", mesh_surface::build),
+    ("move/mesh", move_mesh::build),
+    ("particletemplate/sphere", particle_template::build),
+    ("particledistribution/discrete", distribution::build),
+    (
+        "particledistribution/discrete/numberbased",
+        distribution::build,
+    ),
+    (
+        "particledistribution/discrete/massbased",
+        distribution::build,
+    ),
+    ("insert/pack", insert_pack::build),
+    ("insert/rate/region", insert_pack::build),
+    ("insert/stream", insert_stream::build),
+    ("wall/gran", wall_gran::build),
+    ("freeze", freeze::build),
+    ("setforce", force::build),
+    ("addforce", force::build),
+    ("adapt", adapt::build),
+    ("print", print::build),
+    ("ave/time", ave_time::build),
+    ("viscous", viscous::build),
+    ("move", move_atoms::build),
+];
+
+/// `fix ID GROUP STYLE ...` with the styles of `styles`: checks what every fix shares, has
+/// the style's builder make its state, then adds the fix (or replaces the one with its ID).
+pub fn define(a: &Args, ctx: &mut Ctx, styles: &[(&str, Build)]) -> Result<(), CommandError> {
+    a.count(3..=usize::MAX, "fix ID GROUP STYLE ...")?;
+    let (id, group, style) = (a.word(0)?, a.word(1)?, a.word(2)?);
+    if !ctx.sim.domain.exists {
+        return Err(a.error(0, "Fix command before simulation box is defined"));
+    }
+    if !id.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_') {
+        return Err(a.error(0, "Fix ID must be alphanumeric or underscore characters"));
+    }
+    let bit = ctx
+        .sim
+        .group_bit(group)
+        .ok_or_else(|| a.error(1, "Could not find fix group ID"))?;
+    let Some(&(_, build)) = styles.iter().find(|(name, _)| *name == style) else {
+        return Err(a.unsupported(2, &format!("fix {style}")));
+    };
+    let definition = FixDef {
+        id,
+        group,
+        bit,
+        style,
+    };
+    let kind = build(a, ctx, &definition)?;
+    let args: Vec<String> = (3..a.len())
+        .map(|i| a.word(i).map(str::to_string))
+        .collect::<std::result::Result<_, _>>()?;
+    let mut fix = Fix {
+        id: id.to_string(),
+        style: style.to_string(),
+        group: bit,
+        kind,
+        args,
+    };
+    for line in crate::commands::fix_state::restore_fix_state(a, ctx, &mut fix)? {
+        ctx.say(&format!("{line}\n"));
+    }
+    match ctx.sim.fixes.iter().position(|f| f.id == id) {
+        Some(i) => {
+            if ctx.sim.fixes[i].style != style {
+                return Err(a.error(2, "Replacing a fix, but new style != old style"));
+            }
+            ctx.sim.fixes[i] = fix;
+        }
+        None => ctx.sim.fixes.push(fix),
+    }
+    Ok(())
+}
+
+/// A `v_name` argument of a fix: equal- or atom-style, its style read as LIGGGHTS reads it.
+fn variable_value(
+    a: &Args,
+    ctx: &Ctx,
+    at: usize,
+    name: &str,
+    style: &str,
+) -> Result<crate::engine::fixes::ForceValue, CommandError> {
+    use crate::engine::fixes::ForceValue;
+    use crate::script::variables::Style;
+    match ctx.vars.get(name).map(|v| v.style) {
+        Some(Style::Equal) => Ok(ForceValue::Equal(name.into())),
+        Some(Style::Atom) => Ok(ForceValue::Atom(name.into())),
+        Some(_) => Err(a.error(
+            at,
+            format!("Variable {name} for fix {style} is invalid style"),
+        )),
+        None => Err(a.error(at, format!("Variable name for fix {style} does not exist"))),
+    }
+}
+
+/// Argument `i` as a seed of LIGGGHTS's Park random generator (positive, within an int).
+fn seed_arg(a: &Args, ctx: &Ctx, i: usize) -> Result<i32, CommandError> {
+    let seed = a.int(i)?;
+    if !ctx.sim.seed_tolerant {
+        crate::util::random::check_seed(seed).map_err(|m| a.error(i, &m))?;
+    }
+    if seed <= 0 || seed > i32::MAX as i64 {
+        return Err(a.error(i, "Invalid seed for Park random # generator"));
+    }
+    Ok(seed as i32)
+}
+
+#[cfg(test)]
+mod toy;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::commands::{CommandLine, Engine};
+    use crate::error::Location;
+    use crate::script::interp::Output;
+    use crate::script::system::{Mode, System};
+    use crate::script::variables::Variables;
+
+    #[test]
+    fn every_declared_fix_style_has_a_row_and_every_row_a_declaration() {
+        let mut rows: Vec<&str> = STYLES.iter().map(|row| row.0).collect();
+        rows.sort();
+        let mut declared = crate::commands::specs::styles("fix");
+        declared.sort();
+        assert_eq!(rows, declared);
+    }
+
+    fn line(text: &str) -> CommandLine {
+        CommandLine {
+            words: crate::script::line::split_words(text).expect("words"),
+            text: text.to_string(),
+            location: Location {
+                file: "in.toy".into(),
+                line: 1,
+            },
+        }
+    }
+
+    struct Deck {
+        engine: Engine,
+        sys: System,
+        vars: Variables,
+        out: Output,
+    }
+
+    impl Deck {
+        fn run(&mut self, text: &str) {
+            let (sys, vars, out) = (&mut self.sys, &mut self.vars, &mut self.out);
+            if let Err(d) = self.engine.execute(&line(text), sys, vars, out) {
+                panic!("{text}: {}", d.render());
+            }
+        }
+    }
+
+    /// One file ([`toy`]) and one row: a style the table lacked is defined and acts in a run.
+    #[test]
+    fn a_toy_style_from_one_file_runs() {
+        let mut deck = Deck {
+            engine: Engine::new(),
+            sys: System::new(Mode::Run),
+            vars: Variables::default(),
+            out: Output::silent(),
+        };
+        for text in [
+            "atom_style granular",
+            "boundary f f f",
+            "units si",
+            "region reg block 0 0.1 0 0.1 0 0.1 units box",
+            "create_box 1 reg",
+            "neighbor 0.002 bin",
+            "fix m1 all property/global youngsModulus peratomtype 5e6",
+            "fix m2 all property/global poissonsRatio peratomtype 0.2",
+            "fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5",
+            "fix m4 all property/global coefficientFriction peratomtypepair 1 0.5",
+            "pair_style gran model hertz tangential history",
+            "pair_coeff * *",
+            "create_atoms 1 single 0.05 0.05 0.05 units box",
+            "set group all diameter 0.004 density 2500",
+        ] {
+            deck.run(text);
+        }
+        let toy_line = line("fix push all toy/push 1e-6");
+        let Deck {
+            engine,
+            sys,
+            vars,
+            out,
+        } = &mut deck;
+        // not a style of the table the `fix` command reads
+        assert!(engine.execute(&toy_line, sys, vars, out).is_err());
+        let mut styles = STYLES.to_vec();
+        styles.push(("toy/push", toy::build));
+        let mut ctx = Ctx {
+            sim: &mut engine.sim,
+            sys,
+            out,
+            vars,
+        };
+        define(&Args { cmd: &toy_line }, &mut ctx, &styles).expect("the toy style is defined");
+        for text in ["fix integr all nve/sphere", "timestep 1e-4", "run 10"] {
+            deck.run(text);
+        }
+        let v = deck.engine.sim.particles.v[0];
+        assert!(v[0] > 0.0 && v[1] == 0.0 && v[2] == 0.0, "{v:?}");
+    }
+}

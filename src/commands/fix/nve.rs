@@ -1,0 +1,21 @@
+//! Velocity-Verlet integration fixes: `nve/sphere` (translation and rotation) and `nve/noforce`.
+
+use crate::commands::fix::FixDef;
+use crate::commands::{Args, CommandError, Ctx};
+use crate::engine::fixes::FixKind;
+
+/// `fix ID GROUP nve/noforce`: positions follow velocities, forces are ignored.
+pub fn noforce(a: &Args, _ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandError> {
+    if a.len() != 3 {
+        return Err(a.error(3, "Illegal fix nve/noforce command"));
+    }
+    Ok(FixKind::NveNoforce)
+}
+
+/// `fix ID GROUP nve/sphere`: positions, velocities and angular velocities of spheres.
+pub fn sphere(a: &Args, _ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandError> {
+    if a.len() > 3 {
+        return Err(a.unsupported(3, "fix nve/sphere keywords"));
+    }
+    Ok(FixKind::NveSphere)
+}

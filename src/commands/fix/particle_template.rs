@@ -1,0 +1,112 @@
+//! `fix particletemplate/sphere`: the spheres an insertion makes.
+
+use super::seed_arg;
+use crate::commands::fix::FixDef;
+use crate::commands::{Args, CommandError, Ctx};
+use crate::engine::fixes::FixKind;
+
+/// `fix ID GROUP particletemplate/sphere SEED atom_type T density constant D radius constant R`.
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+    let id = fix.id;
+    a.count(4..=usize::MAX, "fix ID GROUP particletemplate/sphere SEED atom_type T density constant D radius constant R")?;
+    let seed = seed_arg(a, ctx, 3)?;
+    let (mut atom_type, mut density, mut radius) = (1u32, None, None);
+    let mut volume_limit = 1e-12;
+    let mut i = 4;
+    while i < a.len() {
+        match a.word(i)? {
+            "atom_type" => {
+                let t = a.int(i + 1)?;
+                if t < 1 || t > ctx.sim.ntypes as i64 {
+                    return Err(
+                        a.error(i + 1, "Fix particletemplate/sphere: atom type out of range")
+                    );
+                }
+                atom_type = t as u32;
+                i += 2;
+            }
+            w @ ("density" | "radius") => {
+                match a.word(i + 1)? {
+                    "constant" => {}
+                    "gaussian" | "lognormal" | "uniform" => {
+                        // documented, but LIGGGHTS 3.8.0 rejects every random style
+                        return Err(a
+                            .error(
+                                i + 1,
+                                format!(
+                                    "Fix particletemplate/sphere (id {id}): invalid {w} random style"
+                                ),
+                            )
+                            .with_help(
+                                "LIGGGHTS 3.8.0 accepts only 'constant'; for a size distribution, \
+                                 give several templates to fix particledistribution/discrete",
+                            ));
+                    }
+                    _ => {
+                        return Err(a.error(
+                            i + 1,
+                            "Illegal fix particletemplate/sphere command: expected 'constant'",
+                        ))
+                    }
+                }
+                let v = a.real(i + 2)?;
+                if v <= 0.0 {
+                    return Err(a.error(
+                        i + 2,
+                        format!("Fix particletemplate/sphere: {w} must be > 0"),
+                    ));
+                }
+                if w == "density" {
+                    density = Some(v);
+                } else {
+                    radius = Some(v);
+                }
+                i += 3;
+            }
+            "volume_limit" => {
+                volume_limit = a.real(i + 1)?;
+                if volume_limit <= 0.0 {
+                    return Err(a.error(
+                        i + 1,
+                        "Fix particletemplate/sphere: volume_limit > 0 required",
+                    ));
+                }
+                i += 2;
+            }
+            "relative" => {
+                if a.word_in(i + 1, &["yes", "no"])? == "yes" {
+                    return Err(a.unsupported(i, "fix particletemplate/sphere relative yes"));
+                }
+                i += 2;
+            }
+            _ => {
+                return Err(a.keyword_error(
+                    i,
+                    &["atom_type", "density", "radius", "volume_limit", "relative"],
+                ))
+            }
+        }
+    }
+    let density = density
+        .ok_or_else(|| a.error(2, "Fix particletemplate/sphere: have to define 'density'"))?;
+    let radius =
+        radius.ok_or_else(|| a.error(2, "Fix particletemplate/sphere: have to define 'radius'"))?;
+    if let Err(m) = crate::engine::checks::check_sphere(2.0 * radius, density, "diameter") {
+        let at = (4..a.len())
+            .rev()
+            .find(|&k| a.word(k).ok() == Some("radius"));
+        return Err(a.error(
+            at.map_or(2, |k| k + 2),
+            format!(
+                "Fix particletemplate/sphere: radius {}: {m}",
+                crate::util::format::g(radius)
+            ),
+        ));
+    }
+    let mut template = crate::engine::insert::Template::new(id, atom_type, radius, density);
+    template.rng_state = (seed, seed);
+    if template.volume < volume_limit {
+        return Err(a.error(2, "Fix particletemplate/sphere: Volume expectancy too small. Change 'volume_limit' or particle size in the simulation"));
+    }
+    Ok(FixKind::Template(template))
+}

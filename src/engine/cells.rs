@@ -55,13 +55,13 @@ impl CellGrid {
             length: [0.0; 3],
             rank: Vec::new(),
         };
-        for d in 0..3 {
+        for (d, hi) in hi.iter_mut().enumerate() {
             if domain.periodic(d) {
                 grid.lo[d] = domain.lo[d];
-                hi[d] = domain.hi[d];
+                *hi = domain.hi[d];
                 grid.length[d] = domain.length(d);
             }
-            let span = (hi[d] - grid.lo[d]).max(0.0);
+            let span = (*hi - grid.lo[d]).max(0.0);
             if !span.is_finite() {
                 return None;
             }

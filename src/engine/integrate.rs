@@ -157,8 +157,8 @@ impl Gravity {
         let add = |i: usize, f: &mut [f64; 3]| {
             if mask[i] & self.group != 0 {
                 let m = mass[i] * 1.0;
-                for d in 0..3 {
-                    f[d] += m * self.acc[d];
+                for (fd, ad) in f.iter_mut().zip(self.acc) {
+                    *fd += m * ad;
                 }
             }
         };

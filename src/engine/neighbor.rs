@@ -203,6 +203,8 @@ impl NeighborList {
         o: &BinOrder,
     ) -> bool {
         let n = x.len();
+        // a NaN cutoff lists nothing either
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
         if n == 0 || !(o.cut > 0.0) {
             return false;
         }
@@ -472,7 +474,7 @@ impl NeighborList {
             }
             // small periodic boxes (fewer than 3 bins): take the minimum image instead
             let small_periodic = (0..3).any(|d| domain.periodic(d) && nbins[d] <= 2);
-            candidates.sort_by(|a, b| a.0.cmp(&b.0));
+            candidates.sort_by_key(|a| a.0);
             candidates.dedup_by(|a, b| a.0 == b.0 && a.1 == b.1);
             let first = self.pairs.len();
             for &(j, mut shift) in &candidates {

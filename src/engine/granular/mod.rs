@@ -78,6 +78,8 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         // most listed pairs do not touch: leave before loading anything else
         let del = [xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]];
         let radsum = radi + radj;
+        // a NaN distance is no contact
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
         if !(del[0] * del[0] + del[1] * del[1] + del[2] * del[2] < radsum * radsum) {
             return None;
         }
@@ -414,8 +416,8 @@ impl batch::Sink for BlockSums<'_> {
         ratio: &F64x4,
     ) {
         let len = self.f.len().min(self.torque.len());
-        for k in 0..batch.len() {
-            let (i, j) = (pairs[k].i as usize, pairs[k].j as usize);
+        for (k, pair) in pairs.iter().enumerate().take(batch.len()) {
+            let (i, j) = (pair.i as usize, pair.j as usize);
             let (ki, kj) = (i.wrapping_sub(self.lo), j.wrapping_sub(self.lo));
             if ki < len && kj < len {
                 // both particles in the block (most contacts)
@@ -428,7 +430,7 @@ impl batch::Sink for BlockSums<'_> {
             }
             let r = ratio.0[k];
             if self.worst.is_none_or(|w| r > w.0) {
-                self.worst = Some((r, pairs[k].i, pairs[k].j));
+                self.worst = Some((r, pair.i, pair.j));
             }
         }
     }
@@ -611,22 +613,22 @@ impl batch::Sink for Accumulate<'_, '_> {
         assert!(pairs
             .iter()
             .all(|q| (q.i as usize) < n && (q.j as usize) < n));
-        for k in 0..batch.len() {
-            let (i, j) = (pairs[k].i as usize, pairs[k].j as usize);
+        for (k, pair) in pairs.iter().enumerate().take(batch.len()) {
+            let (i, j) = (pair.i as usize, pair.j as usize);
             if let Some(w) = self.virial.as_deref_mut() {
                 let pick = |v: &[F64x4; 3]| [v[0].0[k], v[1].0[k], v[2].0[k]];
                 let res = PairResult {
                     fi: pick(&out.fi),
                     ..PairResult::default()
                 };
-                add_virial(self.x, pairs[k], &res, &mut w[i]);
-                add_virial(self.x, pairs[k], &res, &mut w[j]);
+                add_virial(self.x, pair, &res, &mut w[i]);
+                add_virial(self.x, pair, &res, &mut w[j]);
             }
             // SAFETY: i, j < n (checked above)
             unsafe { add_lane(self.f, self.torque, (i, j), out, k) };
             let r = ratio.0[k];
             if self.worst.is_none_or(|w| r > w.0) {
-                self.worst = Some((r, pairs[k].i, pairs[k].j));
+                self.worst = Some((r, pair.i, pair.j));
             }
         }
     }
@@ -914,6 +916,8 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Wall
         let (x, v, omega, radius, mass, kind) = (&p.x, &p.v, &p.omega, &p.radius, &p.mass, &p.kind);
         let contact = |i: usize, h: &mut [f64]| -> Option<([f64; 3], [f64; 3])> {
             let (gap, to_wall) = this.shape.resolve(x[i], radius[i]);
+            // a NaN gap is no contact
+            #[allow(clippy::neg_cmp_op_on_partial_ord)]
             if !(gap <= 0.0) {
                 // apart: the history is reset (written only if it holds something)
                 if h.iter().any(|v| *v != 0.0) {

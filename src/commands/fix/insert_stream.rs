@@ -162,22 +162,9 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 i += 2;
             }
             "vel" => {
-                let v = [a.real(i + 2)?, a.real(i + 3)?, a.real(i + 4)?];
-                match a.word_in(i + 1, &["constant", "uniform", "gaussian"])? {
-                    "constant" => {
-                        velocity = Velocity::Constant(v);
-                        i += 5;
-                    }
-                    style => {
-                        let d = [a.real(i + 5)?, a.real(i + 6)?, a.real(i + 7)?];
-                        velocity = if style == "uniform" {
-                            Velocity::Uniform(v, d)
-                        } else {
-                            Velocity::Gaussian(v, d)
-                        };
-                        i += 8;
-                    }
-                }
+                let used;
+                (velocity, used) = super::insertion_velocity(a, i)?;
+                i += used;
             }
             "omega" => {
                 a.word_in(i + 1, &["constant"])?;

@@ -157,6 +157,29 @@ fn seed_arg(a: &Args, ctx: &Ctx, i: usize) -> Result<i32, CommandError> {
     Ok(seed as i32)
 }
 
+/// The `vel constant vx vy vz` or `vel uniform|gaussian vx vy vz dvx dvy dvz` keyword of
+/// the insertion fixes at word `i`: the velocity (m/s) and the words it took.
+fn insertion_velocity(
+    a: &Args,
+    i: usize,
+) -> Result<(crate::engine::insert::Velocity, usize), CommandError> {
+    use crate::engine::insert::Velocity;
+    let v = [a.real(i + 2)?, a.real(i + 3)?, a.real(i + 4)?];
+    Ok(
+        match a.word_in(i + 1, &["constant", "uniform", "gaussian"])? {
+            "constant" => (Velocity::Constant(v), 5),
+            style => {
+                let d = [a.real(i + 5)?, a.real(i + 6)?, a.real(i + 7)?];
+                if style == "uniform" {
+                    (Velocity::Uniform(v, d), 8)
+                } else {
+                    (Velocity::Gaussian(v, d), 8)
+                }
+            }
+        },
+    )
+}
+
 #[cfg(test)]
 mod toy;
 

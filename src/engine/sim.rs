@@ -469,11 +469,21 @@ pub(crate) struct RunStats {
 /// The first index below `n` where `test` holds, searched on the engine's threads when there
 /// are enough particles (the same answer either way).
 fn first_where(n: usize, test: impl Fn(usize) -> bool + Sync) -> Option<usize> {
+    first_where_in(n, 1, test)
+}
+
+/// [`first_where`] over `n` blocks of `per_block` particles each (the thread decision and
+/// the grain count particles, not blocks).
+fn first_where_in(
+    n: usize,
+    per_block: usize,
+    test: impl Fn(usize) -> bool + Sync,
+) -> Option<usize> {
     use rayon::prelude::*;
-    if crate::engine::integrate::parallel(n) {
+    if crate::engine::integrate::parallel(n * per_block) {
         (0..n)
             .into_par_iter()
-            .with_min_len(1024)
+            .with_min_len(1024usize.div_ceil(per_block))
             .find_first(|&i| test(i))
     } else {
         (0..n).find(|&i| test(i))
@@ -602,7 +612,7 @@ impl Simulation {
         let flagged = |b: usize| {
             (b * BLOCK..((b + 1) * BLOCK).min(p.len())).fold(false, |hit, i| hit | cheap(i))
         };
-        first_where(p.len().div_ceil(BLOCK), flagged).is_some()
+        first_where_in(p.len().div_ceil(BLOCK), BLOCK, flagged).is_some()
     }
 
     /// Kinetic energy and the fastest particle as (radii per step, index): one pass, on the
@@ -741,7 +751,7 @@ impl Simulation {
                 hit | !f[0].is_finite() | !f[1].is_finite() | !f[2].is_finite()
             })
         };
-        if first_where(p.len().div_ceil(BLOCK), flagged).is_some() {
+        if first_where_in(p.len().div_ceil(BLOCK), BLOCK, flagged).is_some() {
             if let Some(i) = first_where(p.len(), |i| !p.f[i].iter().all(|c| c.is_finite())) {
                 return Err(self.non_finite(i));
             }

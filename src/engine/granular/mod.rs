@@ -40,7 +40,7 @@ pub struct PairGran<N, T, C, R> {
     /// The largest overlap of the last evaluation: (ratio to the smaller radius, i, j).
     pub worst: Option<(f64, u32, u32)>,
     /// The fast path's contributions between blocks of particles, per block (reused).
-    pub foreign: Vec<Vec<Foreign>>,
+    pub foreign: Vec<Owed>,
 }
 
 /// Below this many listed pairs the contact loop stays on one thread (the fork-join cost of
@@ -379,6 +379,50 @@ pub struct Foreign {
     t: [f64; 3],
 }
 
+/// One block's contributions to other blocks' particles (buffers reused between steps).
+#[derive(Debug, Clone, Default)]
+pub struct Owed {
+    /// In the order they were made.
+    made: Vec<Foreign>,
+    /// The same grouped by the block of the particle, each group in the order made.
+    by_block: Vec<Foreign>,
+    /// Where each block's group starts in `by_block` (one more value than blocks).
+    start: Vec<u32>,
+}
+
+impl Owed {
+    /// Group `made` by block (a counting sort: two passes, no comparisons).
+    fn group(&mut self, blocks: usize) {
+        let block = |c: &Foreign| c.j as usize / BLOCK_PARTICLES;
+        self.start.clear();
+        self.start.resize(blocks + 2, 0);
+        for c in &self.made {
+            self.start[block(c) + 2] += 1;
+        }
+        for t in 2..blocks + 2 {
+            self.start[t] += self.start[t - 1];
+        }
+        // start[t + 1] is where block t's group begins: place each one there, in order
+        self.by_block.clear();
+        self.by_block.resize(self.made.len(), Foreign::default());
+        for c in &self.made {
+            let at = &mut self.start[block(c) + 1];
+            self.by_block[*at as usize] = *c;
+            *at += 1;
+        }
+        // start[t + 1] is now where block t's group ends, so start[t] where it begins
+        self.start.pop();
+    }
+
+    /// The contributions to block `t`'s particles, in the order they were made.
+    fn to_block(&self, t: usize) -> &[Foreign] {
+        match (self.start.get(t), self.start.get(t + 1)) {
+            (Some(&a), Some(&b)) => &self.by_block[a as usize..b as usize],
+            _ => &[],
+        }
+    }
+}
+
 /// One block's sums: its own particles' forces and torques from its list entries (first
 /// particles all in the block), and its contributions to other blocks' particles, kept in
 /// list order.
@@ -387,7 +431,7 @@ struct BlockSums<'a> {
     lo: usize,
     f: &'a mut [[f64; 3]],
     torque: &'a mut [[f64; 3]],
-    foreign: &'a mut Vec<Foreign>,
+    foreign: &'a mut Owed,
     worst: Option<(f64, u32, u32)>,
 }
 
@@ -401,7 +445,7 @@ impl BlockSums<'_> {
                     self.torque[k][d] += t[d];
                 }
             }
-            None => self.foreign.push(Foreign { j: n as u32, f, t }),
+            None => self.foreign.made.push(Foreign { j: n as u32, f, t }),
         }
     }
 }
@@ -472,7 +516,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         let mut parts = std::mem::take(&mut self.parts);
         parts.resize_with(blocks, Vec::new);
         let mut foreign = std::mem::take(&mut self.foreign);
-        foreign.resize_with(blocks, Vec::new);
+        foreign.resize_with(blocks, Owed::default);
         // each block owns its particles' forces, its entries' history and its buffers
         let mut jobs = Vec::with_capacity(blocks);
         {
@@ -505,9 +549,10 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         )| {
             let part = &pairs[range];
             touch.clear();
-            sums.foreign.clear();
+            sums.foreign.made.clear();
             batch::touching_entries(packed, part, 0, touch);
             kernel.run(packed, kinds, part, touch, h, &mut sums);
+            sums.foreign.group(blocks);
             sums.worst
         };
         let worst: Vec<Option<(f64, u32, u32)>> = if rayon::current_num_threads() > 1 && blocks > 1
@@ -516,14 +561,32 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         } else {
             jobs.into_iter().map(run).collect()
         };
-        // contributions between blocks, in block order
-        for out in &foreign {
-            for c in out {
-                let j = c.j as usize;
-                for d in 0..3 {
-                    p.f[j][d] += c.f[d];
-                    p.torque[j][d] += c.t[d];
+        // contributions between blocks: each block adds what the others owe its particles,
+        // in block order (blocks in parallel; the same sums as one pass over the lists)
+        if foreign.iter().any(|out| !out.made.is_empty()) {
+            let owed = |(t, (f, torque)): (usize, (&mut [[f64; 3]], &mut [[f64; 3]]))| {
+                let lo = (t * BLOCK_PARTICLES) as u32;
+                for out in &foreign {
+                    for c in out.to_block(t) {
+                        let k = (c.j - lo) as usize;
+                        for d in 0..3 {
+                            f[k][d] += c.f[d];
+                            torque[k][d] += c.t[d];
+                        }
+                    }
                 }
+            };
+            let (f, torque) = (&mut p.f, &mut p.torque);
+            if rayon::current_num_threads() > 1 && blocks > 1 {
+                let both = f
+                    .par_chunks_mut(BLOCK_PARTICLES)
+                    .zip(torque.par_chunks_mut(BLOCK_PARTICLES));
+                both.enumerate().with_max_len(1).for_each(owed);
+            } else {
+                let both = f
+                    .chunks_mut(BLOCK_PARTICLES)
+                    .zip(torque.chunks_mut(BLOCK_PARTICLES));
+                both.enumerate().for_each(owed);
             }
         }
         // the worst overlap, first in block order among equals
@@ -1024,4 +1087,36 @@ pub fn build_wall(
         }
     }
     Ok(model.dispatch(Make(material, wall_type, shape, shear)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn contributions_grouped_by_block_keep_the_order_they_were_made_in() {
+        let b = BLOCK_PARTICLES as u32;
+        let targets = [3 * b + 1, b, 3 * b + 1, 2 * b + 7, b + 5, 3 * b, b];
+        let mut owed = Owed::default();
+        for (k, &j) in targets.iter().enumerate() {
+            let f = [k as f64, 0.0, 0.0];
+            owed.made.push(Foreign { j, f, t: f });
+        }
+        owed.group(4);
+        assert!(owed.to_block(0).is_empty());
+        let order = |t: usize| -> Vec<(u32, f64)> {
+            owed.to_block(t).iter().map(|c| (c.j, c.f[0])).collect()
+        };
+        assert_eq!(order(1), vec![(b, 1.0), (b + 5, 4.0), (b, 6.0)]);
+        assert_eq!(order(2), vec![(2 * b + 7, 3.0)]);
+        assert_eq!(
+            order(3),
+            vec![(3 * b + 1, 0.0), (3 * b + 1, 2.0), (3 * b, 5.0)]
+        );
+        assert!(owed.to_block(4).is_empty());
+        // a second step reuses the buffers
+        owed.made.clear();
+        owed.group(4);
+        assert!((0..4).all(|t| owed.to_block(t).is_empty()));
+    }
 }

@@ -267,6 +267,8 @@ pub enum FixKind {
     Adapt(Adapt),
     /// `fix move/mesh`: prescribed motion of a mesh.
     MoveMesh(crate::engine::mesh_motion::MoveMesh),
+    /// `fix massflow/mesh`: particles and mass crossing a mesh face.
+    Massflow(Box<crate::engine::massflow::Massflow>),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
 }

@@ -15,6 +15,7 @@ pub mod granular;
 pub mod insert;
 pub mod integrate;
 pub mod margin;
+pub mod massflow;
 pub mod mesh;
 pub mod mesh_motion;
 pub mod mesh_stress;

@@ -941,6 +941,9 @@ impl Simulation {
                 Ok(m.stress.as_ref().and_then(|s| s.value(i)).unwrap_or(0.0))
             }
             (FixKind::AveTime(at), i) if at.value(i).is_some() => Ok(at.value(i).unwrap_or(0.0)),
+            (FixKind::Massflow(m), Some(i)) if (1..=6).contains(&i) => {
+                Ok(m.value(i).unwrap_or(0.0))
+            }
             _ => Err(format!("fix {id} ({}) has no such value", fix.style)),
         }
     }
@@ -1901,6 +1904,7 @@ impl Simulation {
             self.guard_forces()?;
         }
         self.has_run = true;
+        self.massflow_lists(true)?;
         if let Some(m) = self.new_margin() {
             guard_say(&m);
         }
@@ -1953,6 +1957,7 @@ impl Simulation {
                 &self.domain,
             );
             fixes::move_meshes(&mut self.fixes, self.dt);
+            self.massflow_phase(out)?;
             // a runaway shows first in the half-kicked velocities, before atoms are wrapped or lost
             self.guard_motion(false)?;
             // LIGGGHTS inserts in pre_exchange: after the first half-step, before the list
@@ -1973,6 +1978,7 @@ impl Simulation {
                 });
                 self.stats.neigh = neigh;
                 self.stats.builds += 1;
+                self.massflow_lists(false)?;
             }
             self.refresh_moving_meshes(rebuilt);
             self.mesh_stress_phase(StressPhase::PreForce)?;

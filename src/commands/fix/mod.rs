@@ -10,6 +10,7 @@ mod freeze;
 mod gravity;
 mod insert_pack;
 mod insert_stream;
+mod massflow_mesh;
 mod mesh_surface;
 mod move_atoms;
 mod move_mesh;
@@ -72,6 +73,7 @@ pub const STYLES: &[(&str, Build)] = &[
     ("ave/time", ave_time::build),
     ("viscous", viscous::build),
     ("move", move_atoms::build),
+    ("massflow/mesh", massflow_mesh::build),
 ];
 
 /// `fix ID GROUP STYLE ...` with the styles of `styles`: checks what every fix shares, has

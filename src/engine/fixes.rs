@@ -269,6 +269,8 @@ pub enum FixKind {
     MoveMesh(crate::engine::mesh_motion::MoveMesh),
     /// `fix massflow/mesh`: particles and mass crossing a mesh face.
     Massflow(Box<crate::engine::massflow::Massflow>),
+    /// `fix buoyancy`: the weight of displaced liquid below a level.
+    Buoyancy(crate::engine::buoyancy::Buoyancy),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
 }
@@ -716,6 +718,7 @@ pub fn post_force(
     list: (u64, f64),
     moving_skin: bool,
 ) {
+    let buoyancy_g = crate::engine::buoyancy::gravity_for(fixes);
     for k in 0..fixes.len() {
         if let FixKind::MeshWall(_) = fixes[k].kind {
             mesh_wall_force(fixes, k, p, dt, update, list, moving_skin);
@@ -767,6 +770,11 @@ pub fn post_force(
                 for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
                     p.f[i] = [0.0; 3];
                     p.torque[i] = [0.0; 3];
+                }
+            }
+            FixKind::Buoyancy(b) => {
+                if let Some(gv) = buoyancy_g {
+                    b.apply(p, g, gv);
                 }
             }
             _ => {}

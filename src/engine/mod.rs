@@ -2,6 +2,7 @@
 //! computes and the integrator. Commands in [`crate::commands`] configure it.
 
 pub mod accel;
+pub mod buoyancy;
 pub mod cells;
 pub mod checks;
 pub mod computes;

@@ -944,6 +944,7 @@ impl Simulation {
             (FixKind::Massflow(m), Some(i)) if (1..=6).contains(&i) => {
                 Ok(m.value(i).unwrap_or(0.0))
             }
+            (FixKind::Buoyancy(b), Some(i @ 1..=3)) => Ok(b.total[i - 1]),
             _ => Err(format!("fix {id} ({}) has no such value", fix.style)),
         }
     }
@@ -1813,6 +1814,7 @@ impl Simulation {
             self.force_time_state = (self.particles.v.clone(), self.particles.omega.clone());
         }
         self.resolve_force_fixes(vars)?;
+        self.resolve_buoyancy_regions();
         let list = (self.list.builds, self.neighbor.skin);
         // LIGGGHTS's mesh lists use the full skin when a mesh moves or the box can change
         // (a moving mesh's own lists use the full skin as well)
@@ -1879,6 +1881,7 @@ impl Simulation {
         let started = std::time::Instant::now();
         self.neighbor.cutneighmax = self.liggghts_cutneighmax();
         self.check_run_init()?;
+        crate::engine::buoyancy::check(&self.fixes)?;
         self.accel.settle_threads();
         if self.accel.fast {
             self.start_order_record();

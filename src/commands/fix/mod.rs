@@ -3,6 +3,7 @@
 
 mod adapt;
 mod ave_time;
+mod buoyancy;
 mod check_timestep;
 mod distribution;
 mod force;
@@ -74,6 +75,7 @@ pub const STYLES: &[(&str, Build)] = &[
     ("viscous", viscous::build),
     ("move", move_atoms::build),
     ("massflow/mesh", massflow_mesh::build),
+    ("buoyancy", buoyancy::build),
 ];
 
 /// `fix ID GROUP STYLE ...` with the styles of `styles`: checks what every fix shares, has

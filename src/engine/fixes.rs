@@ -271,6 +271,8 @@ pub enum FixKind {
     Massflow(Box<crate::engine::massflow::Massflow>),
     /// `fix buoyancy`: the weight of displaced liquid below a level.
     Buoyancy(crate::engine::buoyancy::Buoyancy),
+    /// `fix momentum`: zero a group's momentum every N steps.
+    Momentum(crate::engine::momentum::Momentum),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
 }

@@ -21,6 +21,7 @@ pub mod mesh;
 pub mod mesh_motion;
 pub mod mesh_stress;
 pub mod mesh_wall;
+pub mod momentum;
 pub mod neighbor;
 pub mod nve_noforce;
 pub mod particles;

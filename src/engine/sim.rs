@@ -873,6 +873,9 @@ impl Simulation {
                         out(&format!("WARNING: {m}\n"));
                     }
                 }
+                FixKind::Momentum(m) if step % m.every == 0 => {
+                    m.apply(&mut self.particles, fix.group, &self.domain);
+                }
                 FixKind::AveTime(at) if at.next == step => {
                     let inputs = at.inputs.clone();
                     let values = inputs
@@ -1882,6 +1885,7 @@ impl Simulation {
         self.neighbor.cutneighmax = self.liggghts_cutneighmax();
         self.check_run_init()?;
         crate::engine::buoyancy::check(&self.fixes)?;
+        self.setup_momentum();
         self.accel.settle_threads();
         if self.accel.fast {
             self.start_order_record();

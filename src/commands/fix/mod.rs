@@ -13,6 +13,7 @@ mod insert_pack;
 mod insert_stream;
 mod massflow_mesh;
 mod mesh_surface;
+mod momentum;
 mod move_atoms;
 mod move_mesh;
 mod nve;
@@ -76,6 +77,7 @@ pub const STYLES: &[(&str, Build)] = &[
     ("move", move_atoms::build),
     ("massflow/mesh", massflow_mesh::build),
     ("buoyancy", buoyancy::build),
+    ("momentum", momentum::build),
 ];
 
 /// `fix ID GROUP STYLE ...` with the styles of `styles`: checks what every fix shares, has

@@ -273,6 +273,8 @@ pub enum FixKind {
     Buoyancy(crate::engine::buoyancy::Buoyancy),
     /// `fix momentum`: zero a group's momentum every N steps.
     Momentum(crate::engine::momentum::Momentum),
+    /// `fix property/atom/tracer`: particles marked in a region.
+    Tracer(Box<crate::engine::tracer::Tracer>),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
 }

@@ -30,3 +30,4 @@ pub mod restart_fixes;
 pub mod restart_state;
 pub mod sim;
 pub mod thermo;
+pub mod tracer;

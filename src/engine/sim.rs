@@ -876,6 +876,9 @@ impl Simulation {
                 FixKind::Momentum(m) if step % m.every == 0 => {
                     m.apply(&mut self.particles, fix.group, &self.domain);
                 }
+                FixKind::Tracer(t) if step % t.every == 0 => {
+                    t.end_of_step(&mut self.particles, fix.group, &self.regions, step);
+                }
                 FixKind::AveTime(at) if at.next == step => {
                     let inputs = at.inputs.clone();
                     let values = inputs
@@ -948,6 +951,7 @@ impl Simulation {
                 Ok(m.value(i).unwrap_or(0.0))
             }
             (FixKind::Buoyancy(b), Some(i @ 1..=3)) => Ok(b.total[i - 1]),
+            (FixKind::Tracer(t), None) => Ok(t.scalar()),
             _ => Err(format!("fix {id} ({}) has no such value", fix.style)),
         }
     }
@@ -1912,6 +1916,7 @@ impl Simulation {
         }
         self.has_run = true;
         self.massflow_lists(true)?;
+        self.apply_tracer_resets();
         if let Some(m) = self.new_margin() {
             guard_say(&m);
         }
@@ -1965,6 +1970,7 @@ impl Simulation {
             );
             fixes::move_meshes(&mut self.fixes, self.dt);
             self.massflow_phase(out)?;
+            self.apply_tracer_resets();
             // a runaway shows first in the half-kicked velocities, before atoms are wrapped or lost
             self.guard_motion(false)?;
             // LIGGGHTS inserts in pre_exchange: after the first half-step, before the list

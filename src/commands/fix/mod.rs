@@ -20,6 +20,7 @@ mod nve;
 mod particle_template;
 mod print;
 mod property_global;
+mod tracer;
 mod viscous;
 mod wall_gran;
 
@@ -78,6 +79,7 @@ pub const STYLES: &[(&str, Build)] = &[
     ("massflow/mesh", massflow_mesh::build),
     ("buoyancy", buoyancy::build),
     ("momentum", momentum::build),
+    ("property/atom/tracer", tracer::build),
 ];
 
 /// `fix ID GROUP STYLE ...` with the styles of `styles`: checks what every fix shares, has

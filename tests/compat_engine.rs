@@ -13,6 +13,11 @@ use regolith::io::dump_compare::{compare, parse};
 const RTOL: f64 = 1e-6;
 const ATOL: f64 = 1e-12;
 
+/// Decks named by `REGOLITH_ENGINE_DECKS` (comma-separated), or all.
+fn selected(deck: &str) -> bool {
+    std::env::var("REGOLITH_ENGINE_DECKS").map_or(true, |v| v.split(',').any(|d| d == deck))
+}
+
 fn engine_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("compat/engine")
 }
@@ -258,6 +263,7 @@ fn engine_decks_match_liggghts() {
                 .strip_prefix("in.")
                 .map(str::to_string)
         })
+        .filter(|d| selected(d))
         .collect();
     decks.sort();
     assert!(!decks.is_empty());
@@ -386,6 +392,7 @@ fn engine_decks_on_the_fast_path() {
                 .strip_prefix("in.")
                 .map(str::to_string)
         })
+        .filter(|d| selected(d))
         .collect();
     decks.sort();
     let fast = ["-sf", "fast", "-pk", "fast", "2"];

@@ -827,6 +827,7 @@ fn compute(a: &Args, ctx: &mut Ctx) -> Result {
             ComputeKind::ContactAtom { skin }
         }
         "com" => no_keywords(ComputeKind::Com)?,
+        "nparticles/tracer/region" => super::computes_extra::nparticles_tracer_region(a, ctx)?,
         "stress/atom" => {
             let (mut ke, mut pair) = (a.len() == 3, a.len() == 3);
             for i in 3..a.len() {

@@ -44,6 +44,8 @@ pub enum ComputeKind {
     },
     /// `com`: centre of mass of the group, unwrapped (length), a 3-vector.
     Com,
+    /// `nparticles/tracer/region`: all and marked particles in a region, and their masses.
+    TracerCount(Box<crate::engine::tracer::TracerCount>),
     /// `pair/gran/local`: one row per touching pair with the selected fields.
     PairGranLocal(Vec<LocalField>),
     /// `wall/gran/local`: one row per particle-mesh contact of the mesh wall fix with this
@@ -242,6 +244,7 @@ impl Compute {
     pub fn vector_len(&self) -> usize {
         match &self.kind {
             ComputeKind::Com => 3,
+            ComputeKind::TracerCount(_) => 4,
             ComputeKind::Reduce { inputs, .. } if inputs.len() > 1 => inputs.len(),
             _ => 0,
         }
@@ -295,6 +298,9 @@ impl Compute {
         match &self.kind {
             ComputeKind::Com => {
                 Ok(center_of_mass(&sim.particles, &sim.domain, self.group)[index - 1])
+            }
+            ComputeKind::TracerCount(t) => {
+                Ok(t.values(&sim.particles, self.group, &sim.regions)[index - 1])
             }
             ComputeKind::Reduce { mode, inputs } => {
                 self.reduce(sim, *mode, &inputs[index - 1], vars)

@@ -23,6 +23,13 @@ pub fn column(sim: &Simulation, id: &str, index: Option<usize>) -> Result<usize,
         .iter()
         .find(|f| f.id == id)
         .ok_or("Could not find dump custom fix ID")?;
+    if matches!(fix.kind, FixKind::Tracer(_)) {
+        // a per-atom scalar: the marker
+        return match index {
+            None => Ok(0),
+            Some(_) => Err("Dump custom fix does not compute per-atom array".into()),
+        };
+    }
     let cols = width(&fix.kind);
     if cols == 0 {
         return Err("Dump custom fix does not compute per-atom info".into());
@@ -43,6 +50,14 @@ pub fn per_atom(
 ) -> Result<(PerAtom, usize), String> {
     let col = column(sim, id, index)?;
     let p = &sim.particles;
+    if let Some(FixKind::Tracer(t)) = sim.fixes.iter().find(|f| f.id == id).map(|f| &f.kind) {
+        let values = p
+            .extra
+            .iter()
+            .find(|e| e.name == t.marker && e.width == 1)
+            .map_or_else(|| vec![0.0; p.len()], |e| e.data.clone());
+        return Ok((PerAtom { columns: 1, values }, col));
+    }
     let mut values = Vec::with_capacity(3 * p.len());
     if let Some(FixKind::Move(m)) = sim.fixes.iter().find(|f| f.id == id).map(|f| &f.kind) {
         for i in 0..p.len() {

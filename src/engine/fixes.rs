@@ -267,6 +267,14 @@ pub enum FixKind {
     Adapt(Adapt),
     /// `fix move/mesh`: prescribed motion of a mesh.
     MoveMesh(crate::engine::mesh_motion::MoveMesh),
+    /// `fix massflow/mesh`: particles and mass crossing a mesh face.
+    Massflow(Box<crate::engine::massflow::Massflow>),
+    /// `fix buoyancy`: the weight of displaced liquid below a level.
+    Buoyancy(crate::engine::buoyancy::Buoyancy),
+    /// `fix momentum`: zero a group's momentum every N steps.
+    Momentum(crate::engine::momentum::Momentum),
+    /// `fix property/atom/tracer`: particles marked in a region.
+    Tracer(Box<crate::engine::tracer::Tracer>),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
 }
@@ -714,6 +722,7 @@ pub fn post_force(
     list: (u64, f64),
     moving_skin: bool,
 ) {
+    let buoyancy_g = crate::engine::buoyancy::gravity_for(fixes);
     for k in 0..fixes.len() {
         if let FixKind::MeshWall(_) = fixes[k].kind {
             mesh_wall_force(fixes, k, p, dt, update, list, moving_skin);
@@ -765,6 +774,11 @@ pub fn post_force(
                 for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
                     p.f[i] = [0.0; 3];
                     p.torque[i] = [0.0; 3];
+                }
+            }
+            FixKind::Buoyancy(b) => {
+                if let Some(gv) = buoyancy_g {
+                    b.apply(p, g, gv);
                 }
             }
             _ => {}

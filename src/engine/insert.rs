@@ -218,6 +218,9 @@ pub struct InsertPack {
     pub inserted_mass: f64,
     /// `insert/rate/region`: (nparticles, particlerate in 1/time).
     pub rate: Option<(i64, f64)>,
+    /// `insert/rate/region ... massrate M`: the mass rate as given (mass/time), which
+    /// LIGGGHTS prints instead of particle rate x expected mass.
+    pub mass_rate: Option<f64>,
     /// `insert/rate/region`: particles per insertion (mean), from the rate at setup.
     pub per_insertion: f64,
 }
@@ -578,7 +581,7 @@ impl InsertPack {
                     f("%f", self.per_insertion),
                     self.every,
                     f("%f", rate),
-                    f("%e", rate * dist.mass_expect),
+                    f("%e", self.mass_rate.unwrap_or(rate * dist.mass_expect)),
                     total,
                     f("%e", total as f64 * dist.mass_expect),
                     within

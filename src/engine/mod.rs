@@ -2,6 +2,7 @@
 //! computes and the integrator. Commands in [`crate::commands`] configure it.
 
 pub mod accel;
+pub mod buoyancy;
 pub mod cells;
 pub mod checks;
 pub mod computes;
@@ -15,10 +16,12 @@ pub mod granular;
 pub mod insert;
 pub mod integrate;
 pub mod margin;
+pub mod massflow;
 pub mod mesh;
 pub mod mesh_motion;
 pub mod mesh_stress;
 pub mod mesh_wall;
+pub mod momentum;
 pub mod neighbor;
 pub mod nve_noforce;
 pub mod particles;
@@ -27,3 +30,4 @@ pub mod restart_fixes;
 pub mod restart_state;
 pub mod sim;
 pub mod thermo;
+pub mod tracer;

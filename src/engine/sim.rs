@@ -883,6 +883,12 @@ impl Simulation {
                         out(&format!("WARNING: {m}\n"));
                     }
                 }
+                FixKind::Momentum(m) if step % m.every == 0 => {
+                    m.apply(&mut self.particles, fix.group, &self.domain);
+                }
+                FixKind::Tracer(t) if step % t.every == 0 => {
+                    t.end_of_step(&mut self.particles, fix.group, &self.regions, step);
+                }
                 FixKind::AveTime(at) if at.next == step => {
                     let inputs = at.inputs.clone();
                     let values = inputs
@@ -951,6 +957,11 @@ impl Simulation {
                 Ok(m.stress.as_ref().and_then(|s| s.value(i)).unwrap_or(0.0))
             }
             (FixKind::AveTime(at), i) if at.value(i).is_some() => Ok(at.value(i).unwrap_or(0.0)),
+            (FixKind::Massflow(m), Some(i)) if (1..=6).contains(&i) => {
+                Ok(m.value(i).unwrap_or(0.0))
+            }
+            (FixKind::Buoyancy(b), Some(i @ 1..=3)) => Ok(b.total[i - 1]),
+            (FixKind::Tracer(t), None) => Ok(t.scalar()),
             _ => Err(format!("fix {id} ({}) has no such value", fix.style)),
         }
     }
@@ -1820,6 +1831,7 @@ impl Simulation {
             self.force_time_state = (self.particles.v.clone(), self.particles.omega.clone());
         }
         self.resolve_force_fixes(vars)?;
+        self.resolve_buoyancy_regions();
         let list = (self.list.builds, self.neighbor.skin);
         // LIGGGHTS's mesh lists use the full skin when a mesh moves or the box can change
         // (a moving mesh's own lists use the full skin as well)
@@ -1886,6 +1898,8 @@ impl Simulation {
         let started = std::time::Instant::now();
         self.neighbor.cutneighmax = self.liggghts_cutneighmax();
         self.check_run_init()?;
+        crate::engine::buoyancy::check(&self.fixes)?;
+        self.setup_momentum();
         self.accel.settle_threads();
         if self.accel.fast {
             self.start_order_record();
@@ -1911,6 +1925,8 @@ impl Simulation {
             self.guard_forces()?;
         }
         self.has_run = true;
+        self.massflow_lists(true)?;
+        self.apply_tracer_resets();
         if let Some(m) = self.new_margin() {
             guard_say(&m);
         }
@@ -1963,6 +1979,8 @@ impl Simulation {
                 &self.domain,
             );
             fixes::move_meshes(&mut self.fixes, self.dt);
+            self.massflow_phase(out)?;
+            self.apply_tracer_resets();
             // a runaway shows first in the half-kicked velocities, before atoms are wrapped or lost
             self.guard_motion(false)?;
             // LIGGGHTS inserts in pre_exchange: after the first half-step, before the list
@@ -1983,6 +2001,7 @@ impl Simulation {
                 });
                 self.stats.neigh = neigh;
                 self.stats.builds += 1;
+                self.massflow_lists(false)?;
             }
             self.refresh_moving_meshes(rebuilt);
             self.mesh_stress_phase(StressPhase::PreForce)?;

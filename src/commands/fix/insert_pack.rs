@@ -11,6 +11,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     ctx.sim.inserts_atoms = true;
     let rate_style = style == "insert/rate/region";
     let (mut nparticles, mut particlerate): (Option<i64>, Option<f64>) = (None, None);
+    let (mut mass, mut massrate): (Option<f64>, Option<f64>) = (None, None);
     use crate::engine::insert::{InsertPack, Target, Velocity};
     a.count(
         5..=usize::MAX,
@@ -180,6 +181,17 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 particlerate = Some(a.real(i + 1)?);
                 i += 2;
             }
+            "mass" if rate_style => {
+                if a.word(i + 1)? == "INF" {
+                    return Err(a.unsupported(i + 1, "fix insert/rate/region mass INF"));
+                }
+                mass = Some(a.real(i + 1)?);
+                i += 2;
+            }
+            "massrate" if rate_style => {
+                massrate = Some(a.real(i + 1)?);
+                i += 2;
+            }
             w @ ("orientation" | "set_property" | "compress_tags" | "nparticles" | "mass"
             | "massrate" | "particlerate") => {
                 return Err(a.unsupported(i, &format!("fix {style} {w}")))
@@ -215,14 +227,49 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         dist.ok_or_else(|| a.error(2, "Fix insert: have to define a 'distributiontemplate'"))?;
     let (region, region_id) =
         region.ok_or_else(|| a.error(2, "Fix insert/pack: must define an insertion region"))?;
+    let mut mass_rate = None;
     let rate = if rate_style {
         if target.is_some() {
             return Err(a.error(2, "Fix insert/rate/region: particles_in_region, volumefraction_region and mass_in_region are insert/pack keywords"));
         }
-        let n = nparticles
-            .ok_or_else(|| a.error(2, "Fix insert/rate/region: have to define 'nparticles'"))?;
-        let r = particlerate
-            .ok_or_else(|| a.error(2, "Fix insert/rate/region: have to define 'particlerate'"))?;
+        // mass and massrate count in particles of the distribution's expected mass
+        let mass_expect = ctx
+            .sim
+            .fixes
+            .iter()
+            .find_map(|f| match &f.kind {
+                FixKind::Distribution(d) if f.id == distribution => Some(d.mass_expect),
+                _ => None,
+            })
+            .unwrap_or(1.0);
+        if nparticles.is_some_and(|n| n > 0) && mass.is_some_and(|m| m > 0.0) {
+            return Err(a.error(2, format!("Fix insert/rate/region (id {id}): must not define both 'nparticles' and 'mass'")));
+        }
+        if particlerate.is_some_and(|r| r > 0.0) && massrate.is_some_and(|r| r > 0.0) {
+            return Err(a.error(2, format!("Fix insert/rate/region (id {id}): both 'nflowrate' and 'massflowrate' not allowed")));
+        }
+        let n = match (nparticles.filter(|&n| n != 0), mass.filter(|&m| m > 0.0)) {
+            (Some(n), _) => n,
+            (None, Some(m)) => (m / mass_expect) as i32 as i64,
+            (None, None) => {
+                return Err(a.error(
+                    2,
+                    format!(
+                    "Fix insert/rate/region (id {id}): must define either 'nparticles' or 'mass'"
+                ),
+                ))
+            }
+        };
+        let r = match (particlerate.filter(|&r| r != 0.0), massrate.filter(|&r| r != 0.0)) {
+            (Some(r), _) => r,
+            (None, Some(m)) => {
+                mass_rate = Some(m);
+                m / mass_expect
+            }
+            (None, None) => {
+                return Err(a.error(2, format!("Fix insert/rate/region (id {id}): must define either 'massrate' or 'particlerate'")))
+            }
+        };
         Some((n, r))
     } else {
         None
@@ -257,6 +304,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         inserted: 0,
         inserted_mass: 0.0,
         rate,
+        mass_rate,
         per_insertion: 0.0,
     })))
 }

@@ -3,6 +3,7 @@
 
 mod adapt;
 mod ave_time;
+mod buoyancy;
 mod check_timestep;
 mod distribution;
 mod force;
@@ -10,13 +11,16 @@ mod freeze;
 mod gravity;
 mod insert_pack;
 mod insert_stream;
+mod massflow_mesh;
 mod mesh_surface;
+mod momentum;
 mod move_atoms;
 mod move_mesh;
 mod nve;
 mod particle_template;
 mod print;
 mod property_global;
+mod tracer;
 mod viscous;
 mod wall_gran;
 
@@ -72,6 +76,10 @@ pub const STYLES: &[(&str, Build)] = &[
     ("ave/time", ave_time::build),
     ("viscous", viscous::build),
     ("move", move_atoms::build),
+    ("massflow/mesh", massflow_mesh::build),
+    ("buoyancy", buoyancy::build),
+    ("momentum", momentum::build),
+    ("property/atom/tracer", tracer::build),
 ];
 
 /// `fix ID GROUP STYLE ...` with the styles of `styles`: checks what every fix shares, has

@@ -1,0 +1,150 @@
+//! `fix massflow/mesh`: particles and mass crossing a mesh face.
+
+use crate::commands::fix::FixDef;
+use crate::commands::{Args, CommandError, Ctx};
+use crate::engine::fixes::FixKind;
+use crate::engine::massflow::{Massflow, Side};
+
+/// `fix ID GROUP massflow/mesh mesh MESH vec_side VX VY VZ [count once|multiple]
+/// [point_at_outlet X Y Z [inside_out]] [file|append F] [writeTime] [screen yes|no]`,
+/// keywords read in LIGGGHTS's order and checks.
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+    let id = fix.id;
+    let fail = |i: usize, m: &str| a.error(i, format!("Fix massflow/mesh (id {id}): {m}"));
+    let mut side = [0.0; 3];
+    let mut mesh = None;
+    let mut once = false;
+    let mut write_time = false;
+    let mut outlet: Option<[f64; 3]> = None;
+    let mut inside_out = false;
+    let mut file = None;
+    let mut screen = false;
+    let mut i = 3;
+    while i < a.len() {
+        match a.word(i)? {
+            "vec_side" => {
+                if a.len() < i + 4 {
+                    return Err(fail(i, "not enough arguments for 'vec_side'"));
+                }
+                side = [a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?];
+                if side.iter().all(|&c| c == 0.0) {
+                    return Err(fail(i, "vec_side > 0 required"));
+                }
+                i += 4;
+            }
+            "mesh" => {
+                if a.len() < i + 2 {
+                    return Err(fail(i, "not enough arguments for 'insert_stream'"));
+                }
+                let m = a.word(i + 1)?;
+                let found = ctx.sim.fixes.iter().find_map(|f| match &f.kind {
+                    FixKind::Mesh(mf) if f.id == m => Some(mf.mesh.clone()),
+                    _ => None,
+                });
+                mesh = Some((
+                    m.to_string(),
+                    found.ok_or_else(|| fail(i + 1, "fix mesh ID does not exist"))?,
+                ));
+                i += 2;
+            }
+            "count" => {
+                if a.len() < i + 2 {
+                    return Err(fail(i, "not enough arguments for 'insert_stream'"));
+                }
+                once = match a.word(i + 1)? {
+                    "once" => true,
+                    "multiple" => false,
+                    _ => return Err(fail(i + 1, "expecting 'once' or 'multiple' after 'count'")),
+                };
+                i += 2;
+            }
+            "writeTime" => {
+                write_time = true;
+                i += 1;
+            }
+            "point_at_outlet" => {
+                if a.len() < i + 4 {
+                    return Err(fail(i, "not enough arguments for 'point_at_outlet'"));
+                }
+                outlet = Some([a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?]);
+                i += 4;
+            }
+            "inside_out" => {
+                inside_out = true;
+                if outlet.is_none() {
+                    return Err(fail(i, "the setting 'inside_out' has no meaning in case you do not use 'point_at_outlet'"));
+                }
+                i += 1;
+            }
+            kw @ ("file" | "append") => {
+                if a.len() < i + 2 {
+                    return Err(fail(i, "Illegal keyword entry"));
+                }
+                let name = a.word(i + 1)?;
+                if ctx.sys.mode == crate::script::system::Mode::Run {
+                    let f = std::fs::OpenOptions::new()
+                        .create(true)
+                        .write(true)
+                        .append(kw == "append")
+                        .truncate(kw == "file")
+                        .open(name)
+                        .map_err(|_| {
+                            a.file_error(
+                                i + 1,
+                                format!("Fix massflow/mesh (id {id}): Cannot open file {name}"),
+                            )
+                        })?;
+                    file = Some(std::io::BufWriter::new(f));
+                }
+                i += 2;
+            }
+            "screen" => {
+                if a.len() < i + 2 {
+                    return Err(fail(i, "Illegal keyword entry"));
+                }
+                screen = match a.word(i + 1)? {
+                    "yes" => true,
+                    "no" => false,
+                    _ => return Err(a.error(i + 1, "Illegal fix print command")),
+                };
+                i += 2;
+            }
+            "delete_atoms" => {
+                if a.len() < i + 2 {
+                    return Err(fail(i, "Illegal keyword entry"));
+                }
+                match a.word(i + 1)? {
+                    "yes" => return Err(a.unsupported(i, "fix massflow/mesh delete_atoms yes")),
+                    "no" => {}
+                    _ => return Err(a.error(i + 1, "Illegal delete command")),
+                }
+                i += 2;
+            }
+            "sum_property" => {
+                return Err(a.unsupported(i, "fix massflow/mesh sum_property"));
+            }
+            _ => return Err(fail(i, "unknown keyword")),
+        }
+    }
+    if outlet.is_some() && !once {
+        return Err(fail(2, "setting 'point_at_outlet' requires 'count once'"));
+    }
+    if side.iter().all(|&c| c == 0.0) && outlet.is_none() {
+        return Err(fail(2, "expecting keyword 'vec_side'"));
+    }
+    let Some((mesh_id, trimesh)) = mesh else {
+        return Err(fail(2, "expecting keyword 'mesh'"));
+    };
+    let side = match outlet {
+        Some(point) => Side::Outlet { point, inside_out },
+        None => Side::Vector(side),
+    };
+    let mut m = Massflow::new(id, &mesh_id, &trimesh, side).map_err(|e| fail(2, &e))?;
+    m.once = once;
+    m.screen = screen;
+    m.write_time = write_time;
+    m.file = file;
+    m.write_header()
+        .map_err(|e| a.error(0, format!("fix massflow/mesh: {e}")))?;
+    Ok(FixKind::Massflow(Box::new(m)))
+}

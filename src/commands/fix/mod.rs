@@ -8,6 +8,7 @@ mod distribution;
 mod force;
 mod freeze;
 mod gravity;
+mod heat_gran;
 mod insert_pack;
 mod insert_stream;
 mod mesh_surface;
@@ -16,6 +17,7 @@ mod move_mesh;
 mod nve;
 mod particle_template;
 mod print;
+mod property_atom;
 mod property_global;
 mod viscous;
 mod wall_gran;
@@ -72,6 +74,9 @@ pub const STYLES: &[(&str, Build)] = &[
     ("ave/time", ave_time::build),
     ("viscous", viscous::build),
     ("move", move_atoms::build),
+    ("property/atom", property_atom::build),
+    ("heat/gran", heat_gran::build),
+    ("heat/gran/conduction", heat_gran::build),
 ];
 
 /// `fix ID GROUP STYLE ...` with the styles of `styles`: checks what every fix shares, has

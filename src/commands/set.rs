@@ -153,8 +153,7 @@ pub fn set(a: &Args, ctx: &mut Ctx) -> Result {
                 i = a.len();
                 n
             }
-            k if ELSEWHERE.contains(&k) || k.starts_with("i_") || k.starts_with("d_") =>
-            {
+            k if ELSEWHERE.contains(&k) || k.starts_with("i_") || k.starts_with("d_") => {
                 return Err(a.unsupported(i, &format!("set {k}")));
             }
             _ => {

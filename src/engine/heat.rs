@@ -215,22 +215,6 @@ pub fn thermal_energy(p: &Particles, temp: &str, capacity: &[f64]) -> f64 {
     sum
 }
 
-/// Sum over the group's particles of column `col` of the property/atom array `id`
-/// (LIGGGHTS's global vector of `fix property/atom`, `f_ID[col + 1]`).
-pub fn property_sum(p: &Particles, id: &str, width: usize, col: usize, group: u32) -> f64 {
-    let Some(k) = array(p, id, width) else {
-        return 0.0;
-    };
-    let data = &p.extra[k].data;
-    let mut sum = 0.0;
-    for i in 0..p.len() {
-        if p.mask[i] & group != 0 {
-            sum += data[i * width + col];
-        }
-    }
-    sum
-}
-
 /// The per-atom values of the property/atom array `id` (particle-major, `width` columns),
 /// zeros if the particles do not hold it.
 pub fn property_values(p: &Particles, id: &str, width: usize) -> Vec<f64> {
@@ -259,7 +243,7 @@ impl crate::engine::sim::Simulation {
                 ));
             }
             heat_styles.push(&f.style);
-            if self.pair.is_none() {
+            if self.pair.is_none() && self.pair_selection.is_none() {
                 return Err(format!(
                     "Fix {} (id {}): needs a granular pair style to be used",
                     f.style, f.id
@@ -312,9 +296,10 @@ impl crate::engine::sim::Simulation {
         }
     }
 
-    /// The global values of the heat fixes: `f_ID` of a heat fix (thermal energy, J) and
-    /// `f_ID[N]` of a property/atom fix (the group's sum of column N); None for other fixes.
-    pub(crate) fn heat_value(&self, id: &str, index: Option<usize>) -> Option<f64> {
+    /// The global values of the heat fixes: `f_ID` of a heat fix is the thermal energy (J);
+    /// a property/atom fix has no global value LIGGGHTS's thermo reads (its error). None for
+    /// other fixes.
+    pub(crate) fn heat_value(&self, id: &str, index: Option<usize>) -> Option<Result<f64, String>> {
         use crate::engine::fixes::FixKind;
         let f = self.fixes.iter().find(|f| f.id == id)?;
         match (&f.kind, index) {
@@ -326,16 +311,16 @@ impl crate::engine::sim::Simulation {
                 } else {
                     h.capacity.clone()
                 };
-                Some(thermal_energy(&self.particles, &h.arrays[0], &capacity))
+                Some(Ok(thermal_energy(&self.particles, &h.arrays[0], &capacity)))
             }
-            (FixKind::PropertyAtom(pa), Some(n)) if n >= 1 && n <= pa.defaults.len() => {
-                Some(property_sum(
-                    &self.particles,
-                    &f.id,
-                    pa.defaults.len(),
-                    n - 1,
-                    f.group,
-                ))
+            (FixKind::HeatGran(_), Some(_)) => {
+                Some(Err("Thermo fix does not compute vector".into()))
+            }
+            (FixKind::PropertyAtom(_), None) => {
+                Some(Err("Thermo fix does not compute scalar".into()))
+            }
+            (FixKind::PropertyAtom(_), Some(_)) => {
+                Some(Err("Thermo fix does not compute vector".into()))
             }
             _ => None,
         }

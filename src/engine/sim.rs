@@ -936,7 +936,7 @@ impl Simulation {
             .find(|f| f.id == id)
             .ok_or_else(|| format!("Could not find fix ID {id}"))?;
         if let Some(v) = self.heat_value(id, index) {
-            return Ok(v);
+            return v;
         }
         match (&fix.kind, index) {
             (FixKind::CheckTimestep(c), Some(i @ 1..=3)) => Ok(c.values[i - 1]),

@@ -69,7 +69,8 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         }
     }
     let mut lines = Vec::new();
-    let directional = super::property_atom::ensure(ctx, heat::DIRECTIONAL, &[0.0; 3], false, &mut lines);
+    let directional =
+        super::property_atom::ensure(ctx, heat::DIRECTIONAL, &[0.0; 3], false, &mut lines);
     let temp = super::property_atom::ensure(ctx, heat::TEMP, &[t0], true, &mut lines);
     let flux = super::property_atom::ensure(ctx, heat::HEAT_FLUX, &[0.0], true, &mut lines);
     let source = super::property_atom::ensure(ctx, heat::HEAT_SOURCE, &[0.0], true, &mut lines);

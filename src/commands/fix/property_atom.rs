@@ -16,7 +16,9 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 a.len().saturating_sub(1),
                 "Illegal fix property/atom command, not enough arguments",
             )
-            .with_help("fix ID GROUP property/atom NAME scalar|vector yes|no yes|no yes|no VALUE ..."));
+            .with_help(
+                "fix ID GROUP property/atom NAME scalar|vector yes|no yes|no yes|no VALUE ...",
+            ));
     }
     if a.len() > 29 {
         ctx.say("WARNING: Vector length in fix property/atom larger than 20. Are you sure you want that?\n");
@@ -34,7 +36,9 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
             "no" => Ok(false),
             _ => Err(a.error(
                 i,
-                format!("Unknown {what} style for fix property/atom. Valid styles are 'yes' or 'no'"),
+                format!(
+                    "Unknown {what} style for fix property/atom. Valid styles are 'yes' or 'no'"
+                ),
             )),
         }
     };
@@ -59,9 +63,12 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         }
         defaults.push(a.real(i)?);
     }
-    if ctx.sim.fixes.iter().any(
-        |f| matches!(&f.kind, FixKind::PropertyAtom(pa) if pa.name == name),
-    ) {
+    if ctx
+        .sim
+        .fixes
+        .iter()
+        .any(|f| matches!(&f.kind, FixKind::PropertyAtom(pa) if pa.name == name))
+    {
         return Err(a.error(
             3,
             format!(
@@ -140,7 +147,12 @@ pub fn ensure(
     let flag = |b: bool| if b { "yes" } else { "no" };
     let mut args = vec![
         name.to_string(),
-        if defaults.len() == 1 { "scalar" } else { "vector" }.to_string(),
+        if defaults.len() == 1 {
+            "scalar"
+        } else {
+            "vector"
+        }
+        .to_string(),
         flag(restart).to_string(),
         "yes".to_string(),
         "no".to_string(),

@@ -208,9 +208,9 @@ pub fn thermal_energy(p: &Particles, temp: &str, capacity: &[f64]) -> f64 {
     };
     let temp = &p.extra[kt].data;
     let mut sum = 0.0;
-    for i in 0..p.len() {
-        let c = capacity.get(p.kind[i] as usize - 1).copied().unwrap_or(0.0);
-        sum += c * p.mass[i] * temp[i];
+    for ((&kind, &mass), &t) in p.kind.iter().zip(&p.mass).zip(temp) {
+        let c = capacity.get(kind as usize - 1).copied().unwrap_or(0.0);
+        sum += c * mass * t;
     }
     sum
 }

@@ -125,6 +125,18 @@ pub fn restore_fix_state(
                 dist.rng.reset(state as i32).map_err(|m| a.error(2, &m))?;
             }
             FixKind::Mesh(_) => {} // its nodes were taken from the file when it was built
+            FixKind::PropertyAtom(pa) => {
+                // the number of values; the builder kept the restart's per-atom values
+                if d.first().map(|&n| n as usize) != Some(pa.defaults.len()) {
+                    return Err(a.error(
+                        2,
+                        format!(
+                            "Fix {} (id {}): restarted fix has incompatible data size",
+                            fix.style, fix.id
+                        ),
+                    ));
+                }
+            }
             FixKind::MoveMesh(mv) => {
                 // the mover's clock; the mesh took its moved nodes from the file
                 mv.time = *d.first().ok_or_else(|| bad("empty"))?;
@@ -170,7 +182,9 @@ pub fn restore_fix_state(
             "Resetting global state of Fix {} Style {} from restart file info",
             fix.id, fix.style
         ));
-        if matches!(fix.kind, FixKind::Move(_)) && ctx.sim.held_peratom(&fix.id, &fix.style) {
+        if matches!(fix.kind, FixKind::Move(_) | FixKind::PropertyAtom(_))
+            && ctx.sim.held_peratom(&fix.id, &fix.style)
+        {
             lines.push(format!(
                 "Resetting per-atom state of Fix {} Style {} from restart file info",
                 fix.id, fix.style

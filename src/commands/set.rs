@@ -103,6 +103,8 @@ pub fn set(a: &Args, ctx: &mut Ctx) -> Result {
     let atoms = super::sim_setup::selection(a, ctx)?;
     ctx.say("Setting atom values ...\n");
     let mut i = 2;
+    // LIGGGHTS's `add yes` with `until STEP` stops property/atom settings from that step on
+    let (mut add, mut until) = (false, 1.0);
     while i < a.len() {
         let key = a.word(i)?;
         let count = match key {
@@ -113,13 +115,15 @@ pub fn set(a: &Args, ctx: &mut Ctx) -> Result {
             }
             // LIGGGHTS's add/until only gate `property/atom` settings
             "add" => {
-                a.word_in(i + 1, &["yes", "no"])
-                    .map_err(|_| a.error(i + 1, "Illegal 'add' option called"))?;
+                add = a
+                    .word_in(i + 1, &["yes", "no"])
+                    .map_err(|_| a.error(i + 1, "Illegal 'add' option called"))?
+                    == "yes";
                 i += 2;
                 0
             }
             "until" => {
-                let until = crate::util::numbers::c_atof(a.word(i + 1)?);
+                until = crate::util::numbers::c_atof(a.word(i + 1)?);
                 if until <= 0.0 {
                     return Err(a.error(
                         i + 1,
@@ -143,11 +147,13 @@ pub fn set(a: &Args, ctx: &mut Ctx) -> Result {
                 i += 2;
                 atoms.len()
             }
-            k if ELSEWHERE.contains(&k)
-                || k.starts_with("i_")
-                || k.starts_with("d_")
-                || k.starts_with("property/atom") =>
-            {
+            k if k.starts_with("property/atom") => {
+                let skip = add && ctx.sim.step as f64 >= until;
+                let n = property_atom(a, ctx, i, &atoms, skip)?;
+                i = a.len();
+                n
+            }
+            k if ELSEWHERE.contains(&k) || k.starts_with("i_") || k.starts_with("d_") => {
                 return Err(a.unsupported(i, &format!("set {k}")));
             }
             _ => {
@@ -160,6 +166,79 @@ pub fn set(a: &Args, ctx: &mut Ctx) -> Result {
         ctx.say(&format!("  {count} settings made for {key}\n"));
     }
     Ok(())
+}
+
+/// `property/atom NAME VALUE...` (the rest of the command): the values of a property/atom
+/// fix's property for the selected atoms (constants, or `v_name` atom-style variables for a
+/// scalar or three-column property); `skip` (`add yes` past `until`) sets nothing.
+fn property_atom(
+    a: &Args,
+    ctx: &mut Ctx,
+    i: usize,
+    atoms: &[usize],
+    skip: bool,
+) -> std::result::Result<usize, CommandError> {
+    use crate::engine::fixes::FixKind;
+    if i + 1 >= a.len() {
+        return Err(a.error(i, "Illegal set command for property/atom"));
+    }
+    let name = a.word(i + 1)?;
+    let Some((id, width, fresh)) = ctx.sim.fixes.iter().rev().find_map(|f| match &f.kind {
+        FixKind::PropertyAtom(pa) if pa.name == name => {
+            Some((f.id.clone(), pa.defaults.len(), pa.fresh))
+        }
+        _ => None,
+    }) else {
+        return Err(a.error(
+            i + 1,
+            "Could not identify the per-atom property you want to set",
+        ));
+    };
+    if width != a.len() - i - 2 {
+        return Err(a.error(
+            i + 1,
+            "The number of values for the set property/atom does not match the number needed",
+        ));
+    }
+    let values: Vec<Value> = if a.word(i + 2)?.starts_with("v_") {
+        if width != 1 && width != 3 {
+            return Err(a.error(i + 2, "Set command for property/atom and variables does only work with scalar and 3-vector quantities"));
+        }
+        let mut v = Vec::with_capacity(width);
+        for c in 0..width {
+            v.push(value(a, ctx, i + 2 + c, false)?);
+        }
+        v
+    } else {
+        (0..width)
+            .map(|c| {
+                a.word(i + 2 + c)
+                    .map(|w| Value::Constant(crate::util::numbers::c_atof(w)))
+            })
+            .collect::<std::result::Result<_, _>>()?
+    };
+    if values.iter().any(|v| matches!(v, Value::Unknown)) {
+        return Ok(atoms.len());
+    }
+    if fresh && !atoms.is_empty() {
+        return Err(a.error(i, "May not use the set command right after fix property/atom without a prior run. Add a 'run 0' between fix property/atom and set"));
+    }
+    if skip {
+        return Ok(0);
+    }
+    let p = &mut ctx.sim.particles;
+    let k = p.extra_index(&id, width);
+    let data = &mut p.extra[k].data;
+    for &atom in atoms {
+        for (c, v) in values.iter().enumerate() {
+            data[atom * width + c] = match v {
+                Value::Constant(x) => *x,
+                Value::PerAtom(per) => per[atom],
+                Value::Unknown => continue,
+            };
+        }
+    }
+    Ok(atoms.len())
 }
 
 /// `type/fraction T FRACTION SEED`: each selected atom draws from a generator reseeded by

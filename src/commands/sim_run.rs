@@ -561,6 +561,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         // a dry run validates the deck but never steps: it makes LIGGGHTS's init checks, keeps
         // the restart files the run would write, and moves the step count to the run's end
         ctx.sim.check_run().map_err(|m| a.error(0, &m))?;
+        ctx.sim.init_heat().map_err(|m| a.error(0, &m))?;
         if let Some(m) = ctx.sim.new_margin() {
             ctx.sim.margin_notes.push(m);
         }

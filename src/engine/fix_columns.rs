@@ -1,17 +1,22 @@
 //! Per-atom values of fixes in `dump custom` columns (`f_ID[N]`). Of the fixes regolith
-//! runs, LIGGGHTS 3.8.0 gives per-atom values only for `fix move`: a three-column array of
-//! each atom's unwrapped position when the fix was defined (length; 0 for atoms that were
-//! not in its group then).
+//! runs, LIGGGHTS 3.8.0 gives per-atom values for `fix move` (a three-column array of each
+//! atom's unwrapped position when the fix was defined, length; 0 for atoms that were not in
+//! its group then), `fix property/atom` (its values: a per-atom vector for a scalar
+//! property, read as `f_ID` or `f_ID[0]`, an array for a vector one) and the heat fixes
+//! (the temperature, K, as a per-atom vector).
 
 use crate::engine::computes::PerAtom;
 use crate::engine::fixes::FixKind;
 use crate::engine::sim::Simulation;
 
-/// Per-atom columns of a fix kind (0: none).
-fn width(kind: &FixKind) -> usize {
+/// Per-atom columns of a fix kind (0: none) and whether they are a per-atom vector
+/// (one value per atom, LIGGGHTS's `size_peratom_cols` 0) rather than an array.
+fn width(kind: &FixKind) -> (usize, bool) {
     match kind {
-        FixKind::Move(_) => 3,
-        _ => 0,
+        FixKind::Move(_) => (3, false),
+        FixKind::PropertyAtom(pa) => (pa.defaults.len(), !pa.vector),
+        FixKind::HeatGran(_) => (1, true),
+        _ => (0, false),
     }
 }
 
@@ -30,12 +35,17 @@ pub fn column(sim: &Simulation, id: &str, index: Option<usize>) -> Result<usize,
             Some(_) => Err("Dump custom fix does not compute per-atom array".into()),
         };
     }
-    let cols = width(&fix.kind);
+    let (cols, vector) = width(&fix.kind);
     if cols == 0 {
         return Err("Dump custom fix does not compute per-atom info".into());
     }
+    if vector {
+        return match index {
+            None | Some(0) => Ok(0),
+            Some(_) => Err("Dump custom fix does not calculate per-atom array".into()),
+        };
+    }
     match index {
-        // every fix with per-atom values here has an array of them
         None | Some(0) => Err("Dump custom fix does not compute per-atom vector".into()),
         Some(k) if k > cols => Err("Dump custom fix vector is accessed out-of-range".into()),
         Some(k) => Ok(k - 1),
@@ -50,13 +60,25 @@ pub fn per_atom(
 ) -> Result<(PerAtom, usize), String> {
     let col = column(sim, id, index)?;
     let p = &sim.particles;
-    if let Some(FixKind::Tracer(t)) = sim.fixes.iter().find(|f| f.id == id).map(|f| &f.kind) {
-        let values = p
-            .extra
-            .iter()
-            .find(|e| e.name == t.marker && e.width == 1)
-            .map_or_else(|| vec![0.0; p.len()], |e| e.data.clone());
-        return Ok((PerAtom { columns: 1, values }, col));
+    match sim.fixes.iter().find(|f| f.id == id).map(|f| &f.kind) {
+        Some(FixKind::Tracer(t)) => {
+            let values = p
+                .extra
+                .iter()
+                .find(|e| e.name == t.marker && e.width == 1)
+                .map_or_else(|| vec![0.0; p.len()], |e| e.data.clone());
+            return Ok((PerAtom { columns: 1, values }, col));
+        }
+        Some(FixKind::PropertyAtom(pa)) => {
+            let columns = pa.defaults.len();
+            let values = crate::engine::heat::property_values(p, id, columns);
+            return Ok((PerAtom { columns, values }, col));
+        }
+        Some(FixKind::HeatGran(h)) => {
+            let values = crate::engine::heat::property_values(p, &h.arrays[0], 1);
+            return Ok((PerAtom { columns: 1, values }, col));
+        }
+        _ => {}
     }
     let mut values = Vec::with_capacity(3 * p.len());
     if let Some(FixKind::Move(m)) = sim.fixes.iter().find(|f| f.id == id).map(|f| &f.kind) {

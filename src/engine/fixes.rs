@@ -277,6 +277,10 @@ pub enum FixKind {
     Tracer(Box<crate::engine::tracer::Tracer>),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
+    /// `fix property/atom`: a per-atom property (values in the particle array of the fix ID).
+    PropertyAtom(crate::engine::heat::PropertyAtom),
+    /// `fix heat/gran`, `heat/gran/conduction`: heat conduction between touching particles.
+    HeatGran(crate::engine::heat::HeatGran),
 }
 
 /// `fix adapt N atom diameter v_name [scale yes|no] [reset yes|no]`.
@@ -616,6 +620,7 @@ pub fn initial_integrate(fixes: &[Fix], p: &mut Particles, step: i64, dt: f64, d
             FixKind::NveSphere => integrate::initial_integrate(p, fix.group, dt),
             FixKind::NveNoforce => crate::engine::nve_noforce::initial_integrate(p, fix.group, dt),
             FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt, domain),
+            FixKind::HeatGran(h) => h.initial_integrate(p),
             _ => {}
         }
     }
@@ -792,6 +797,7 @@ pub fn final_integrate(fixes: &[Fix], p: &mut Particles, dt: f64) {
         match &fix.kind {
             FixKind::NveSphere => integrate::final_integrate(p, fix.group, dt),
             FixKind::Move(m) => m.final_integrate(p, fix.group, dt),
+            FixKind::HeatGran(h) => h.final_integrate(p, fix.group, dt),
             _ => {}
         }
     }

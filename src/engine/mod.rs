@@ -13,6 +13,7 @@ pub mod extras;
 pub mod fix_columns;
 pub mod fixes;
 pub mod granular;
+pub mod heat;
 pub mod insert;
 pub mod integrate;
 pub mod margin;

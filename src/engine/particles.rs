@@ -42,6 +42,8 @@ pub struct PerAtom {
     pub width: usize,
     /// The values, particle-major.
     pub data: Vec<f64>,
+    /// The values a new particle starts with (`width` of them; empty: zeros).
+    pub fill: Vec<f64>,
 }
 
 impl Particles {
@@ -59,6 +61,7 @@ impl Particles {
             name: name.to_string(),
             width,
             data: vec![0.0; width * self.len()],
+            fill: Vec::new(),
         });
         self.extra.len() - 1
     }
@@ -91,7 +94,11 @@ impl Particles {
         self.density.push(density);
         self.image.push([0; 3]);
         for e in &mut self.extra {
-            e.data.extend(std::iter::repeat_n(0.0, e.width));
+            if e.fill.len() == e.width {
+                e.data.extend_from_slice(&e.fill);
+            } else {
+                e.data.extend(std::iter::repeat_n(0.0, e.width));
+            }
         }
     }
 

@@ -423,6 +423,8 @@ impl Simulation {
             .iter()
             .filter(|e| {
                 self.fixes.iter().any(|f| matches!(&f.kind, crate::engine::fixes::FixKind::WallGran(w) if w.history_name == e.name))
+                    // property/atom fixes with restart `yes` (the heat fixes' Temp too)
+                    || self.fixes.iter().any(|f| matches!(&f.kind, crate::engine::fixes::FixKind::PropertyAtom(pa) if pa.restart && f.id == e.name && pa.defaults.len() == e.width))
             })
             .collect();
         for w in &walls {

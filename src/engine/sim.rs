@@ -951,6 +951,9 @@ impl Simulation {
             .iter()
             .find(|f| f.id == id)
             .ok_or_else(|| format!("Could not find fix ID {id}"))?;
+        if let Some(v) = self.heat_value(id, index) {
+            return v;
+        }
         match (&fix.kind, index) {
             (FixKind::CheckTimestep(c), Some(i @ 1..=3)) => Ok(c.values[i - 1]),
             (FixKind::Mesh(m), Some(i)) if m.stress.as_ref().and_then(|s| s.value(i)).is_some() => {
@@ -1844,6 +1847,9 @@ impl Simulation {
             list,
             moving_skin,
         );
+        if update {
+            self.conduct_heat();
+        }
         Ok(())
     }
 
@@ -1887,6 +1893,7 @@ impl Simulation {
             return Err("Run command before simulation box is defined".into());
         }
         self.init_pair()?;
+        self.init_heat()?;
         self.check_meshes_in_box()?;
         let first = self.step;
         let last = self.step + nsteps;

@@ -222,8 +222,14 @@ impl Thermo {
             .iter()
             .map(|f| match f.keyword.strip_prefix("v_") {
                 Some(name) => vars.equal(sim, name),
-                None => keyword_value(&f.keyword, sim, self, vars)
-                    .ok_or_else(|| format!("Thermo keyword {}: no value", f.keyword)),
+                None => keyword_value(&f.keyword, sim, self, vars).ok_or_else(|| {
+                    // a fix's own reason (LIGGGHTS's message) where it has one
+                    f.keyword
+                        .strip_prefix("f_")
+                        .and_then(crate::util::numbers::split_reference)
+                        .and_then(|(id, index)| sim.fix_value(id, index).err())
+                        .unwrap_or_else(|| format!("Thermo keyword {}: no value", f.keyword))
+                }),
             })
             .collect()
     }

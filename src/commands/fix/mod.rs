@@ -9,6 +9,7 @@ mod distribution;
 mod force;
 mod freeze;
 mod gravity;
+mod heat_gran;
 mod insert_pack;
 mod insert_stream;
 mod massflow_mesh;
@@ -19,6 +20,7 @@ mod move_mesh;
 mod nve;
 mod particle_template;
 mod print;
+mod property_atom;
 mod property_global;
 mod tracer;
 mod viscous;
@@ -80,6 +82,9 @@ pub const STYLES: &[(&str, Build)] = &[
     ("buoyancy", buoyancy::build),
     ("momentum", momentum::build),
     ("property/atom/tracer", tracer::build),
+    ("property/atom", property_atom::build),
+    ("heat/gran", heat_gran::build),
+    ("heat/gran/conduction", heat_gran::build),
 ];
 
 /// `fix ID GROUP STYLE ...` with the styles of `styles`: checks what every fix shares, has

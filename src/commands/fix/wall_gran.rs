@@ -74,6 +74,9 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 }
                 k += 2;
             }
+            "temperature" => {
+                return Err(a.unsupported(k, "fix wall/gran temperature (heat transfer with walls)"))
+            }
             _ => break,
         }
     }

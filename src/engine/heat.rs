@@ -1,0 +1,380 @@
+//! Heat conduction between touching spheres (`fix heat/gran`, `fix heat/gran/conduction`)
+//! and the user per-atom properties it keeps its state in (`fix property/atom`).
+//!
+//! As LIGGGHTS 3.8.0 does it: the heat fix owns per-atom properties `Temp` (temperature, K),
+//! `heatFlux` (W), `heatSource` (W) and `directionalHeatFlux` (W m, three columns), each a
+//! property/atom fix of that ID. At the start of each step the fluxes are zeroed; after the
+//! forces every listed pair that overlaps exchanges `(T_j - T_i) h` with
+//! `h = 4 k_i k_j / (k_i + k_j) sqrt(A)` (A the contact area); at the end of the step
+//! `T += (heatFlux + heatSource) dt / (m c)`. Its global value is the thermal energy
+//! `sum c m T` (J) of all particles.
+
+use crate::engine::neighbor::Pair;
+use crate::engine::particles::Particles;
+
+/// Name (fix ID) of the per-atom temperature (K).
+pub const TEMP: &str = "Temp";
+/// Name of the per-atom conductive heat flow into each particle (W).
+pub const HEAT_FLUX: &str = "heatFlux";
+/// Name of the per-atom heat source (W).
+pub const HEAT_SOURCE: &str = "heatSource";
+/// Name of the per-atom directional heat flux (three columns, W m).
+pub const DIRECTIONAL: &str = "directionalHeatFlux";
+
+/// `fix ID GROUP property/atom NAME scalar|vector RESTART COMM_GHOST COMM_REV VALUES...`:
+/// a per-atom property, its values held in the particle array named by the fix ID.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PropertyAtom {
+    /// The variable name (`set ... property/atom NAME` and other fixes find it by it).
+    pub name: String,
+    /// The default values, one per column (one for a scalar); new particles start with them.
+    pub defaults: Vec<f64>,
+    /// `vector` style (a per-atom array), else a per-atom scalar.
+    pub vector: bool,
+    /// Restart flag `yes`: the values travel through restart files.
+    pub restart: bool,
+    /// Defined and not yet through a run's setup (LIGGGHTS refuses `set` on it then).
+    pub fresh: bool,
+}
+
+/// How the conduction contact area is taken (`contact_area` keyword).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ContactArea {
+    /// The intersection circle of the two spheres (default).
+    Overlap,
+    /// A fixed area (length^2).
+    Constant(f64),
+    /// The cross-section of the larger sphere.
+    Projection,
+}
+
+/// `fix ID GROUP heat/gran[/conduction] initial_temperature T0 [contact_area ...]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeatGran {
+    /// The initial temperature (K) as LIGGGHTS passes it on (rounded through `%f`, `%e`).
+    pub t0: f64,
+    /// The contact-area model.
+    pub area: ContactArea,
+    /// Thermal conductivity per type (W/(m K), index type - 1), read at each run's start.
+    pub conductivity: Vec<f64>,
+    /// Thermal capacity per type (J/(kg K), index type - 1), read at each run's start.
+    pub capacity: Vec<f64>,
+    /// IDs of the property/atom fixes (and particle arrays) holding `Temp`, `heatFlux`,
+    /// `heatSource` and `directionalHeatFlux`.
+    pub arrays: [String; 4],
+}
+
+/// LIGGGHTS's floor below which a conductivity conducts nothing (W/(m K)).
+const SMALL_CONDUCTIVITY: f64 = 1e-6;
+/// LIGGGHTS's floor below which a capacity leaves the temperature unchanged (J/(kg K)).
+const SMALL_CAPACITY: f64 = 1e-8;
+
+/// `T0` as LIGGGHTS hands it on: written with `%f` to the transport equation, which writes
+/// it with `%e` as the default of `Temp`.
+pub fn initial_temperature(t0: f64) -> f64 {
+    let fixed: f64 = format!("{t0:.6}").parse().unwrap_or(t0);
+    format!("{fixed:.6e}").parse().unwrap_or(fixed)
+}
+
+/// Index of the per-atom array `name` of `width` columns, if the particles hold it.
+fn array(p: &Particles, name: &str, width: usize) -> Option<usize> {
+    p.extra
+        .iter()
+        .position(|e| e.name == name && e.width == width)
+}
+
+/// Add (or reset) the per-atom array of a property/atom fix `id`: every particle takes
+/// the defaults, and particles added later start with them.
+pub fn add_property(p: &mut Particles, id: &str, defaults: &[f64]) {
+    let k = p.extra_index(id, defaults.len());
+    let e = &mut p.extra[k];
+    for row in e.data.chunks_mut(defaults.len()) {
+        row.copy_from_slice(defaults);
+    }
+    e.fill = defaults.to_vec();
+}
+
+impl HeatGran {
+    /// Start of a step: heat flows (W) and directional flows (W m) back to zero.
+    pub fn initial_integrate(&self, p: &mut Particles) {
+        if let Some(k) = array(p, &self.arrays[1], 1) {
+            p.extra[k].data.fill(0.0);
+        }
+        if let Some(k) = array(p, &self.arrays[3], 3) {
+            p.extra[k].data.fill(0.0);
+        }
+    }
+
+    /// Conduction through every listed pair that overlaps, in list order (`group`: the
+    /// fix's group bit; a pair counts when either particle is in it).
+    pub fn conduct(&self, p: &mut Particles, pairs: &[Pair], group: u32) {
+        let (Some(kt), Some(kf), Some(kd)) = (
+            array(p, &self.arrays[0], 1),
+            array(p, &self.arrays[1], 1),
+            array(p, &self.arrays[3], 3),
+        ) else {
+            return;
+        };
+        let mut flux_arr = std::mem::take(&mut p.extra[kf].data);
+        let mut dir = std::mem::take(&mut p.extra[kd].data);
+        let temp = &p.extra[kt].data;
+        for pair in pairs {
+            let (i, j) = (pair.i as usize, pair.j as usize);
+            if p.mask[i] & group == 0 && p.mask[j] & group == 0 {
+                continue;
+            }
+            let (xi, xj) = (p.x[i], p.x[j]);
+            let del = [
+                xi[0] - (xj[0] + pair.shift[0]),
+                xi[1] - (xj[1] + pair.shift[1]),
+                xi[2] - (xj[2] + pair.shift[2]),
+            ];
+            let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+            let (ri, rj) = (p.radius[i], p.radius[j]);
+            let radsum = ri + rj;
+            if rsq >= radsum * radsum {
+                continue;
+            }
+            let r = rsq.sqrt();
+            let area = match self.area {
+                ContactArea::Overlap => {
+                    if r < ri.max(rj) {
+                        let small = ri.min(rj);
+                        small * small * std::f64::consts::PI
+                    } else {
+                        -std::f64::consts::PI / 4.0
+                            * ((r - ri - rj) * (r + ri - rj) * (r - ri + rj) * (r + ri + rj))
+                            / (r * r)
+                    }
+                }
+                ContactArea::Constant(a) => a,
+                ContactArea::Projection => {
+                    let big = ri.max(rj);
+                    std::f64::consts::PI * big * big
+                }
+            };
+            let ki = self.conductivity[p.kind[i] as usize - 1];
+            let kj = self.conductivity[p.kind[j] as usize - 1];
+            let hc = if ki < SMALL_CONDUCTIVITY || kj < SMALL_CONDUCTIVITY {
+                0.0
+            } else {
+                4.0 * ki * kj / (ki + kj) * area.sqrt()
+            };
+            let flux = (temp[j] - temp[i]) * hc;
+            let d = [flux * del[0], flux * del[1], flux * del[2]];
+            flux_arr[i] += flux;
+            for c in 0..3 {
+                dir[3 * i + c] += 0.50 * d[c];
+            }
+            flux_arr[j] -= flux;
+            for c in 0..3 {
+                dir[3 * j + c] += 0.50 * d[c];
+            }
+        }
+        p.extra[kf].data = flux_arr;
+        p.extra[kd].data = dir;
+    }
+
+    /// End of a step: the temperatures (K) of the group's particles advance by
+    /// `(heatFlux + heatSource) dt / (m c)` (dt in s).
+    pub fn final_integrate(&self, p: &mut Particles, group: u32, dt: f64) {
+        let (Some(kt), Some(kf), Some(ks)) = (
+            array(p, &self.arrays[0], 1),
+            array(p, &self.arrays[1], 1),
+            array(p, &self.arrays[2], 1),
+        ) else {
+            return;
+        };
+        let mut temp = std::mem::take(&mut p.extra[kt].data);
+        let (flux, source) = (&p.extra[kf].data, &p.extra[ks].data);
+        for (i, t) in temp.iter_mut().enumerate() {
+            if p.mask[i] & group == 0 {
+                continue;
+            }
+            let c = self.capacity[p.kind[i] as usize - 1];
+            if c.abs() > SMALL_CAPACITY {
+                *t += (flux[i] + source[i] * 1.0) * dt / (p.mass[i] * c);
+            }
+        }
+        p.extra[kt].data = temp;
+    }
+}
+
+/// The thermal energy `sum c m T` (J) of all particles, summed in particle order
+/// (`capacity` per type, J/(kg K); `temp`: the temperature array's ID); 0 without it.
+pub fn thermal_energy(p: &Particles, temp: &str, capacity: &[f64]) -> f64 {
+    let Some(kt) = array(p, temp, 1) else {
+        return 0.0;
+    };
+    let temp = &p.extra[kt].data;
+    let mut sum = 0.0;
+    for ((&kind, &mass), &t) in p.kind.iter().zip(&p.mass).zip(temp) {
+        let c = capacity.get(kind as usize - 1).copied().unwrap_or(0.0);
+        sum += c * mass * t;
+    }
+    sum
+}
+
+/// The per-atom values of the property/atom array `id` (particle-major, `width` columns),
+/// zeros if the particles do not hold it.
+pub fn property_values(p: &Particles, id: &str, width: usize) -> Vec<f64> {
+    match array(p, id, width) {
+        Some(k) => p.extra[k].data.clone(),
+        None => vec![0.0; width * p.len()],
+    }
+}
+
+impl crate::engine::sim::Simulation {
+    /// At each run's start (LIGGGHTS's `init`): the heat fixes read the conductivities and
+    /// capacities per type, and new property/atom fixes are no longer fresh.
+    pub(crate) fn init_heat(&mut self) -> Result<(), String> {
+        use crate::engine::fixes::FixKind;
+        let ntypes = self.ntypes as usize;
+        let mut heat_styles: Vec<&str> = Vec::new();
+        let mut resolved = Vec::new();
+        for (k, f) in self.fixes.iter().enumerate() {
+            if !matches!(f.kind, FixKind::HeatGran(_)) {
+                continue;
+            }
+            if heat_styles.contains(&f.style.as_str()) {
+                return Err(format!(
+                    "Fix {} (id {}): cannot have more than one fix of this style",
+                    f.style, f.id
+                ));
+            }
+            heat_styles.push(&f.style);
+            if self.pair.is_none() && self.pair_selection.is_none() {
+                return Err(format!(
+                    "Fix {} (id {}): needs a granular pair style to be used",
+                    f.style, f.id
+                ));
+            }
+            let per_type = |name: &str| -> Result<Vec<f64>, String> {
+                let missing = || {
+                    format!(
+                        "Could not locate a fix/property storing value(s) for {name} as requested by {}.",
+                        f.style
+                    )
+                };
+                let (style, _, values) = self.property(name).ok_or_else(missing)?;
+                if style != "peratomtype" || values.len() < ntypes {
+                    return Err(missing());
+                }
+                Ok(values[..ntypes].to_vec())
+            };
+            let conductivity = per_type("thermalConductivity")?;
+            if conductivity.iter().any(|&k| k < 0.0) {
+                return Err(format!(
+                    "Fix {}: Thermal conductivity must not be < 0",
+                    f.style
+                ));
+            }
+            let capacity = per_type("thermalCapacity")?;
+            resolved.push((k, conductivity, capacity));
+        }
+        for (k, conductivity, capacity) in resolved {
+            if let FixKind::HeatGran(h) = &mut self.fixes[k].kind {
+                h.conductivity = conductivity;
+                h.capacity = capacity;
+            }
+        }
+        for f in &mut self.fixes {
+            if let FixKind::PropertyAtom(pa) = &mut f.kind {
+                pa.fresh = false;
+            }
+        }
+        Ok(())
+    }
+
+    /// After the forces: conduction of every heat fix through the pair list.
+    pub(crate) fn conduct_heat(&mut self) {
+        use crate::engine::fixes::FixKind;
+        for f in &self.fixes {
+            if let FixKind::HeatGran(h) = &f.kind {
+                h.conduct(&mut self.particles, &self.list.pairs, f.group);
+            }
+        }
+    }
+
+    /// The global values of the heat fixes: `f_ID` of a heat fix is the thermal energy (J);
+    /// a property/atom fix has no global value LIGGGHTS's thermo reads (its error). None for
+    /// other fixes.
+    pub(crate) fn heat_value(&self, id: &str, index: Option<usize>) -> Option<Result<f64, String>> {
+        use crate::engine::fixes::FixKind;
+        let f = self.fixes.iter().find(|f| f.id == id)?;
+        match (&f.kind, index) {
+            (FixKind::HeatGran(h), None) => {
+                let capacity = if h.capacity.is_empty() {
+                    self.property("thermalCapacity")
+                        .map(|(_, _, v)| v)
+                        .unwrap_or_default()
+                } else {
+                    h.capacity.clone()
+                };
+                Some(Ok(thermal_energy(&self.particles, &h.arrays[0], &capacity)))
+            }
+            (FixKind::HeatGran(_), Some(_)) => {
+                Some(Err("Thermo fix does not compute vector".into()))
+            }
+            (FixKind::PropertyAtom(_), None) => {
+                Some(Err("Thermo fix does not compute scalar".into()))
+            }
+            (FixKind::PropertyAtom(_), Some(_)) => {
+                Some(Err("Thermo fix does not compute vector".into()))
+            }
+            _ => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn initial_temperature_rounds_as_liggghts_prints_it() {
+        assert_eq!(initial_temperature(300.0), 300.0);
+        assert_eq!(initial_temperature(1234.56789), 1234.568);
+        assert_eq!(initial_temperature(0.0000004), 0.0);
+    }
+
+    #[test]
+    fn two_touching_spheres_exchange_heat_and_keep_energy() {
+        let mut p = Particles::default();
+        p.push(1, 1, [0.0, 0.0, 0.0], 0.5, 1000.0);
+        p.push(2, 1, [0.9, 0.0, 0.0], 0.5, 1000.0);
+        for (name, d) in [
+            (TEMP, vec![300.0]),
+            (HEAT_FLUX, vec![0.0]),
+            (HEAT_SOURCE, vec![0.0]),
+            (DIRECTIONAL, vec![0.0; 3]),
+        ] {
+            add_property(&mut p, name, &d);
+        }
+        let k = array(&p, TEMP, 1).unwrap();
+        p.extra[k].data[1] = 400.0;
+        let h = HeatGran {
+            t0: 300.0,
+            area: ContactArea::Overlap,
+            conductivity: vec![2.0],
+            capacity: vec![10.0],
+            arrays: [TEMP, HEAT_FLUX, HEAT_SOURCE, DIRECTIONAL].map(String::from),
+        };
+        let before = thermal_energy(&p, TEMP, &h.capacity);
+        let pairs = [Pair {
+            i: 0,
+            j: 1,
+            shift: [0.0; 3],
+        }];
+        h.initial_integrate(&mut p);
+        h.conduct(&mut p, &pairs, 1);
+        let kf = array(&p, HEAT_FLUX, 1).unwrap();
+        // contact radius^2 = 0.25 - 0.45^2 = 0.0475; h = 4 * 1 * sqrt(pi 0.0475)
+        let hc = 4.0 * (std::f64::consts::PI * 0.0475f64).sqrt();
+        assert!((p.extra[kf].data[0] - 100.0 * hc).abs() < 1e-9);
+        assert_eq!(p.extra[kf].data[1], -p.extra[kf].data[0]);
+        h.final_integrate(&mut p, 1, 1e-3);
+        assert!((thermal_energy(&p, TEMP, &h.capacity) - before).abs() < 1e-9 * before);
+        assert!(p.extra[k].data[0] > 300.0 && p.extra[k].data[1] < 400.0);
+    }
+}

@@ -85,6 +85,9 @@ pub struct ClumpTemplate {
     pub axes: [[f64; 3]; 3],
     /// Whether no two spheres overlap.
     pub no_overlap: bool,
+    /// Each sphere's share of the clump volume (spheres' overlaps split evenly), summing
+    /// to 1: the mass fraction a member keeps if its body is dissolved.
+    pub volume_weights: Vec<f64>,
     /// State of the Monte Carlo generator after the template was built.
     pub mc_state: i32,
 }
@@ -155,12 +158,7 @@ pub fn jacobi(m: &mut [[f64; 3]; 3]) -> Option<([f64; 3], [[f64; 3]; 3])> {
     let mut b = val;
     let mut z = [0.0; 3];
     for sweep in 1..=JACOBI_SWEEPS {
-        let mut off = 0.0;
-        for i in 0..2 {
-            for j in i + 1..3 {
-                off += m[i][j].abs();
-            }
-        }
+        let off = m[0][1].abs() + m[0][2].abs() + m[1][2].abs();
         if off == 0.0 {
             return Some((val, vec));
         }
@@ -317,6 +315,7 @@ impl ClumpTemplate {
         }
         let (principal, axes) = principal_axes(&tensor)?;
         let displace = centres.iter().map(|c| to_body(c, &axes)).collect();
+        let volume_weights = sample_volume_weights(&mut sampler, &centres, &radii, spec.ntry);
         let x_bound_body = to_body(&x_bound, &axes);
         Ok(ClumpTemplate {
             spec,
@@ -334,6 +333,7 @@ impl ClumpTemplate {
             principal,
             axes,
             no_overlap,
+            volume_weights,
             mc_state: sampler.rng.state(),
         })
     }
@@ -463,6 +463,48 @@ fn sample_volume(
     }
     let e = s.extent();
     (hits as f64 / ntry as f64 * e[0] * e[1] * e[2], xcm)
+}
+
+/// Each sphere's share of the sampled volume: a point inside k spheres adds 1/k to each,
+/// normalised by the number of points inside the clump.
+fn sample_volume_weights(
+    s: &mut Sampler,
+    centres: &[[f64; 3]],
+    radii: &[f64],
+    ntry: i32,
+) -> Vec<f64> {
+    let n = centres.len();
+    let mut weights = vec![0.0; n];
+    let mut hit = vec![false; n];
+    let mut points_inside = 0i32;
+    for _ in 0..ntry {
+        let p = s.point();
+        let mut k = 0.0;
+        for (j, (c, r)) in centres.iter().zip(radii).enumerate() {
+            let d = (p[0] - c[0]) * (p[0] - c[0])
+                + (p[1] - c[1]) * (p[1] - c[1])
+                + (p[2] - c[2]) * (p[2] - c[2]);
+            hit[j] = d < r * r;
+            if hit[j] {
+                k += 1.0;
+            }
+        }
+        for (w, h) in weights.iter_mut().zip(&hit) {
+            if *h {
+                *w += 1.0 / k;
+            }
+        }
+        if k > 0.0 {
+            points_inside += 1;
+        }
+    }
+    if points_inside > 0 {
+        let f = 1.0 / points_inside as f64;
+        for w in weights.iter_mut() {
+            *w *= f;
+        }
+    }
+    weights
 }
 
 /// Inertia tensor about the origin (the centre of mass) by sampling (mass*length^2).
@@ -640,6 +682,12 @@ mod tests {
         // centre of mass at the contact point: the spheres sit at -r and +r on x
         assert!((t.centres[0][0] + r).abs() < 1e-5 && (t.centres[1][0] - r).abs() < 1e-5);
         assert!(!t.no_overlap || (t.centres[1][0] - t.centres[0][0] - 2.0 * r).abs() < 1e-12);
+        // equal spheres share the volume equally
+        let w = &t.volume_weights;
+        assert!(
+            (w[0] + w[1] - 1.0).abs() < 1e-12 && (w[0] - 0.5).abs() < 3e-3,
+            "{w:?}"
+        );
         // the body-frame centres are the template centres seen along the principal axes
         for (c, d) in t.centres.iter().zip(&t.displace) {
             assert!((norm(c) - norm(d)).abs() < 1e-15);

@@ -314,8 +314,8 @@ impl Body {
     /// Adds a member's force (force) and torque (force*length) acting at space-frame offset
     /// `d` from the centre of mass.
     pub fn add_member_force(&mut self, d: &Vec3, f: &Vec3, t: &Vec3) {
-        for k in 0..3 {
-            self.fcm[k] += f[k];
+        for (c, x) in self.fcm.iter_mut().zip(f) {
+            *c += x;
         }
         self.torque[0] += d[1] * f[2] - d[2] * f[1] + t[0];
         self.torque[1] += d[2] * f[0] - d[0] * f[2] + t[1];

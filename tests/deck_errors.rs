@@ -141,3 +141,36 @@ fix ins all pour 1000 1 1 vol 0.7 1000 diam 0.003 0.003 dens 2500 2500 vel 0. 0.
         ],
     );
 }
+
+#[test]
+fn multisphere_template_errors_are_liggghts_s() {
+    let fix = "fix t1 all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 \
+               nspheres 2 ntry";
+    let spheres = "spheres 0 0 0 0.001 0.002 0 0 0.001";
+    // each message checked against LIGGGHTS 3.8.0
+    for (name, tail, message) in [
+        (
+            "ms_ntry",
+            format!("100 {spheres} type 1"),
+            "ntry is too low",
+        ),
+        (
+            "ms_type",
+            format!("1000 {spheres}"),
+            "have to provide a type >=1",
+        ),
+        (
+            "ms_mass",
+            format!("1000 {spheres} type 1 mass 1"),
+            "have to define either both 'mass' and 'inertia_tensor' or none of the two",
+        ),
+    ] {
+        fails_with(
+            name,
+            &with(&format!("{fix} {tail}\n")),
+            &[&format!(
+                "Fix particletemplate/multisphere (id t1): {message}"
+            )],
+        );
+    }
+}

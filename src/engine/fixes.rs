@@ -255,6 +255,8 @@ pub enum FixKind {
     Mesh(Box<MeshFix>),
     /// `fix particletemplate/sphere`.
     Template(crate::engine::insert::Template),
+    /// `fix particletemplate/multisphere`: a rigid clump of spheres.
+    ClumpTemplate(Box<crate::engine::multisphere::ClumpTemplate>),
     /// `fix particledistribution/discrete...`.
     Distribution(crate::engine::insert::Distribution),
     /// `fix insert/pack`.

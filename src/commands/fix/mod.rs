@@ -19,6 +19,7 @@ mod move_atoms;
 mod move_mesh;
 mod nve;
 mod particle_template;
+mod particle_template_multisphere;
 mod print;
 mod property_atom;
 mod property_global;
@@ -57,6 +58,10 @@ pub const STYLES: &[(&str, Build)] = &[
     ("mesh/surface/stress", mesh_surface::build),
     ("move/mesh", move_mesh::build),
     ("particletemplate/sphere", particle_template::build),
+    (
+        "particletemplate/multisphere",
+        particle_template_multisphere::build,
+    ),
     ("particledistribution/discrete", distribution::build),
     (
         "particledistribution/discrete/numberbased",

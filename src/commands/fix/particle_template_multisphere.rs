@@ -1,0 +1,288 @@
+//! `fix particletemplate/multisphere`: a rigid clump of spheres and its mass properties.
+
+use super::seed_arg;
+use crate::commands::fix::FixDef;
+use crate::commands::{Args, CommandError, Ctx};
+use crate::engine::fixes::FixKind;
+use crate::engine::multisphere::{ClumpSpec, ClumpTemplate, GivenMass};
+use crate::script::system::Mode;
+
+const USAGE: &str = "fix ID GROUP particletemplate/multisphere SEED atom_type T density constant D nspheres N ntry N spheres file F scale S type MT";
+
+/// `fix ID GROUP particletemplate/multisphere SEED [atom_type T] density constant D
+/// nspheres N ntry N spheres (file F scale S | x y z r ...) type MT [mass M inertia_tensor
+/// Ixx Ixy Ixz Iyy Iyz Izz use_volume|use_density] [fflag f f f] [tflag f f f]`.
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+    let id = fix.id;
+    let fail = |i: usize, m: &str| {
+        a.error(
+            i,
+            format!("Fix particletemplate/multisphere (id {id}): {m}"),
+        )
+    };
+    a.count(4..=usize::MAX, USAGE)?;
+    let seed = seed_arg(a, ctx, 3)?;
+    let (mut atom_type, mut density) = (1u32, None);
+    let mut i = 4;
+    // the keywords every particle template takes come first
+    while i < a.len() {
+        match a.word(i)? {
+            "atom_type" => {
+                let t = a.int(i + 1)?;
+                if t < 1 {
+                    return Err(fail(i + 1, "invalid atom type (must be >=1)"));
+                }
+                if t > ctx.sim.ntypes as i64 {
+                    return Err(fail(i + 1, "atom type out of range"));
+                }
+                atom_type = t as u32;
+                i += 2;
+            }
+            "density" => {
+                if a.word(i + 1)? != "constant" {
+                    return Err(fail(i + 1, "invalid density random style"));
+                }
+                let v = a.real(i + 2)?;
+                if v <= 0.0 {
+                    return Err(fail(i + 2, "density must be >= 0"));
+                }
+                density = Some(v);
+                i += 3;
+            }
+            "volume_limit" => {
+                if a.real(i + 1)? <= 0.0 {
+                    return Err(fail(i + 1, "volume_limit > 0 required"));
+                }
+                i += 2;
+            }
+            "relative" => {
+                if a.word_in(i + 1, &["yes", "no"])? == "yes" {
+                    return Err(a.unsupported(i, "fix particletemplate/multisphere relative yes"));
+                }
+                i += 2;
+            }
+            "radius" => {
+                return Err(fail(
+                    i,
+                    "keyword radius only valid for particletemplate/sphere",
+                ))
+            }
+            w @ ("region" | "region_variable" | "additional_group") => {
+                return Err(a.unsupported(i, &format!("fix particletemplate/multisphere {w}")))
+            }
+            _ => break,
+        }
+    }
+    let density = density.ok_or_else(|| fail(2, "have to define 'density'"))?;
+    if a.word(i)? != "nspheres" {
+        return Err(fail(i, "expecting argument 'nspheres'"));
+    }
+    let nspheres = a.int32(i + 1)?;
+    if nspheres < 2 {
+        return Err(fail(i + 1, "illegal number of spheres"));
+    }
+    i += 2;
+    if a.len() < i + 4 {
+        return Err(fail(a.len() - 1, "not enough arguments"));
+    }
+    if a.word(i)? != "ntry" {
+        return Err(fail(i, "need 'ntry' to be defined"));
+    }
+    let ntry_at = i + 1;
+    let ntry = a.int32(ntry_at)? as i32;
+    i += 2;
+    let mut spheres = None;
+    while i < a.len() {
+        match a.word(i)? {
+            "spheres" => {
+                i += 1;
+                if a.word(i)? == "file" {
+                    if a.len() < i + 4 {
+                        return Err(fail(a.len() - 1, "not enough arguments for 'file'"));
+                    }
+                    let name = a.word(i + 1)?;
+                    if a.word(i + 2)? != "scale" {
+                        return Err(fail(i + 2, "you have to specify a scale factor"));
+                    }
+                    let scale = a.real(i + 3)?;
+                    if scale <= 0.0 {
+                        return Err(fail(i + 3, "scale factor must be >0"));
+                    }
+                    let text = ctx.sys.read(name).map_err(|m| {
+                        a.file_error(i + 1, format!("Cannot open clump file {name}: {m}"))
+                    })?;
+                    let mut list =
+                        crate::engine::multisphere::read_clump_file(&text, nspheres as usize)
+                            .map_err(|m| a.error(i + 1, format!("{name}: {m}")))?;
+                    for s in list.iter_mut() {
+                        if s[3] <= 0.0 {
+                            return Err(fail(i + 1, "radius must be > 0"));
+                        }
+                        for x in s.iter_mut() {
+                            *x *= scale;
+                        }
+                    }
+                    spheres = Some(list);
+                    i += 4;
+                } else {
+                    let n = nspheres as usize;
+                    if a.len() < i + 4 * n {
+                        return Err(fail(a.len() - 1, "not enough arguments"));
+                    }
+                    let mut list = Vec::with_capacity(n);
+                    for k in 0..n {
+                        let at = i + 4 * k;
+                        let s = [
+                            a.real(at)?,
+                            a.real(at + 1)?,
+                            a.real(at + 2)?,
+                            a.real(at + 3)?,
+                        ];
+                        if s[3] <= 0.0 {
+                            return Err(fail(at + 3, "radius must be >0"));
+                        }
+                        list.push(s);
+                    }
+                    spheres = Some(list);
+                    i += 4 * n;
+                }
+            }
+            "spheres_different_types" => {
+                return Err(a.unsupported(
+                    i,
+                    "fix particletemplate/multisphere spheres_different_types",
+                ))
+            }
+            "bonded" => {
+                if a.word_in(i + 1, &["yes", "no"])? == "yes" {
+                    return Err(a.unsupported(i, "fix particletemplate/multisphere bonded yes"));
+                }
+                i += 2;
+            }
+            _ => break,
+        }
+    }
+    let spheres = spheres.ok_or_else(|| fail(2, "need to define spheres for the template"))?;
+    if ntry < 1000 {
+        return Err(fail(ntry_at, "ntry is too low"));
+    }
+    let mut shape_type = 0i64;
+    let (mut mass, mut tensor, mut use_density) = (None, None, None);
+    let (mut fflag, mut tflag) = ([true; 3], [true; 3]);
+    while i < a.len() {
+        match a.word(i)? {
+            "type" => {
+                shape_type = a.int(i + 1)?;
+                i += 2;
+            }
+            "mass" => {
+                mass = Some(a.real(i + 1)?);
+                i += 2;
+            }
+            "use_volume" => {
+                use_density = Some(false);
+                i += 1;
+            }
+            "use_density" => {
+                use_density = Some(true);
+                i += 1;
+            }
+            w @ ("fflag" | "tflag") => {
+                if a.len() < i + 4 {
+                    return Err(fail(
+                        a.len() - 1,
+                        &format!("not enough arguments for '{w}'"),
+                    ));
+                }
+                let mut f = [true; 3];
+                for (k, x) in f.iter_mut().enumerate() {
+                    *x = match a.word(i + 1 + k)? {
+                        "on" => true,
+                        "off" => false,
+                        _ => {
+                            return Err(fail(
+                                i + 1 + k,
+                                &format!("expecting 'on or 'off' after '{w}'"),
+                            ))
+                        }
+                    };
+                }
+                if w == "fflag" {
+                    fflag = f;
+                } else {
+                    tflag = f;
+                }
+                i += 4;
+            }
+            "inertia_tensor" => {
+                if a.len() < i + 7 {
+                    return Err(fail(
+                        a.len() - 1,
+                        "not enough arguments for 'inertia_tensor'",
+                    ));
+                }
+                let v: Vec<f64> = (1..=6).map(|k| a.real(i + k)).collect::<Result<_, _>>()?;
+                tensor = Some([[v[0], v[1], v[2]], [v[1], v[3], v[4]], [v[2], v[4], v[5]]]);
+                i += 7;
+            }
+            _ => {
+                return Err(a.keyword_error(
+                    i,
+                    &[
+                        "type",
+                        "mass",
+                        "inertia_tensor",
+                        "use_volume",
+                        "use_density",
+                        "fflag",
+                        "tflag",
+                    ],
+                ))
+            }
+        }
+    }
+    if shape_type < 1 || shape_type > u32::MAX as i64 {
+        return Err(fail(2, "have to provide a type >=1"));
+    }
+    let given = match (mass, tensor) {
+        (None, None) => None,
+        (Some(mass), Some(inertia)) => Some(GivenMass {
+            mass,
+            inertia,
+            use_density: use_density.ok_or_else(|| {
+                fail(2, "have to use either 'use_volume' or 'use_density' in case 'mass' and 'moi' are specified")
+            })?,
+        }),
+        _ => {
+            return Err(fail(
+                2,
+                "have to define either both 'mass' and 'inertia_tensor' or none of the two",
+            ))
+        }
+    };
+    if ctx.sys.mode == Mode::Run {
+        ctx.out.screen(
+            "Calculating the properties of the given template.\n   Depending on ntry, this may take a while...\n",
+        );
+    }
+    if ntry < 100_000 {
+        ctx.say("WARNING: fix particletemplate/multisphere: ntry is very low (./src/fix_template_multiplespheres.cpp:230)\n");
+    }
+    let template = ClumpTemplate::build(ClumpSpec {
+        id: id.to_string(),
+        atom_type,
+        shape_type: shape_type as u32,
+        density,
+        spheres,
+        ntry,
+        seed,
+        given,
+        fflag,
+        tflag,
+    })
+    .map_err(|m| fail(2, &m))?;
+    if ctx.sys.mode == Mode::Run {
+        ctx.out.log(&template.report());
+    }
+    Ok(FixKind::ClumpTemplate(Box::new(template)))
+}

@@ -105,7 +105,9 @@ impl BinOrder {
             let size = 1.0 / self.inv[d];
             let mut s = (self.cut * self.inv[d]) as i64;
             if (s as f64) * size < self.cut {
-                s += 1;
+                // a cutoff beyond the integers (a hostile deck) saturates; the caller then
+                // finds the grid too large and searches another way
+                s = s.saturating_add(1);
             }
             s
         })
@@ -268,9 +270,14 @@ impl NeighborList {
             }
         }
         // the grid of bins (z, y, x) over every entry, with the stencil's margin
-        let dims: [usize; 3] =
-            std::array::from_fn(|k| (hi[k] - lo[k] + 1 + 2 * sr[2 - k]).max(1) as usize);
-        let total = dims[0] as u64 * dims[1] as u64 * dims[2] as u64;
+        // (saturating: bins of extreme coordinates or reach make a grid too large, refused below)
+        let dims: [usize; 3] = std::array::from_fn(|k| {
+            let span = hi[k].saturating_sub(lo[k]).saturating_add(1);
+            span.saturating_add(sr[2 - k].saturating_mul(2)).max(1) as usize
+        });
+        let total = (dims[0] as u64)
+            .saturating_mul(dims[1] as u64)
+            .saturating_mul(dims[2] as u64);
         if total > 64 * (entries.len() as u64 + 1024) {
             return false;
         }

@@ -371,6 +371,9 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
     }
 }
 
+/// One block's forces (N) and torques (N m).
+type BlockForces<'a> = (&'a mut [[f64; 3]], &'a mut [[f64; 3]]);
+
 /// A contribution to a particle of another block: particle index, force (N), torque (N m).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Foreign {
@@ -564,7 +567,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         // contributions between blocks: each block adds what the others owe its particles,
         // in block order (blocks in parallel; the same sums as one pass over the lists)
         if foreign.iter().any(|out| !out.made.is_empty()) {
-            let owed = |(t, (f, torque)): (usize, (&mut [[f64; 3]], &mut [[f64; 3]]))| {
+            let owed = |(t, (f, torque)): (usize, BlockForces)| {
                 let lo = (t * BLOCK_PARTICLES) as u32;
                 for out in &foreign {
                     for c in out.to_block(t) {

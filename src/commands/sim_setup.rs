@@ -1116,37 +1116,7 @@ fn zero_rotation(sim: &mut crate::engine::sim::Simulation, members: &[usize]) {
     t[1][0] = t[0][1];
     t[2][1] = t[1][2];
     t[2][0] = t[0][2];
-    // the adjugate, divided by the determinant when it is positive (as LIGGGHTS does)
-    let mut inv = [
-        [
-            t[1][1] * t[2][2] - t[1][2] * t[2][1],
-            -(t[0][1] * t[2][2] - t[0][2] * t[2][1]),
-            t[0][1] * t[1][2] - t[0][2] * t[1][1],
-        ],
-        [
-            -(t[1][0] * t[2][2] - t[1][2] * t[2][0]),
-            t[0][0] * t[2][2] - t[0][2] * t[2][0],
-            -(t[0][0] * t[1][2] - t[0][2] * t[1][0]),
-        ],
-        [
-            t[1][0] * t[2][1] - t[1][1] * t[2][0],
-            -(t[0][0] * t[2][1] - t[0][1] * t[2][0]),
-            t[0][0] * t[1][1] - t[0][1] * t[1][0],
-        ],
-    ];
-    let det =
-        t[0][0] * t[1][1] * t[2][2] + t[0][1] * t[1][2] * t[2][0] + t[0][2] * t[1][0] * t[2][1]
-            - t[0][0] * t[1][2] * t[2][1]
-            - t[0][1] * t[1][0] * t[2][2]
-            - t[2][0] * t[1][1] * t[0][2];
-    if det > 0.0 {
-        for row in &mut inv {
-            for x in row.iter_mut() {
-                *x /= det;
-            }
-        }
-    }
-    let w = [0, 1, 2].map(|r| inv[r][0] * l[0] + inv[r][1] * l[1] + inv[r][2] * l[2]);
+    let w = crate::engine::momentum::omega(l, t);
     for &k in members {
         let u = unwrap(p, k);
         let (dx, dy, dz) = (u[0] - cm[0], u[1] - cm[1], u[2] - cm[2]);

@@ -123,7 +123,10 @@ impl Momentum {
 
 /// The angular velocity (1/time) of angular momentum `l` with inertia tensor `t`, through
 /// the adjugate and determinant as LAMMPS's Group::omega computes it.
-fn omega(l: [f64; 3], t: [[f64; 3]; 3]) -> [f64; 3] {
+/// The angular velocity (rad/s) of angular momentum `l` (kg m^2/s) about inertia tensor `t`
+/// (kg m^2), through the adjugate divided by the determinant when it is positive (as LIGGGHTS
+/// does for `fix momentum angular` and `velocity ... rot yes`).
+pub fn omega(l: [f64; 3], t: [[f64; 3]; 3]) -> [f64; 3] {
     let mut inv = [[0.0; 3]; 3];
     inv[0][0] = t[1][1] * t[2][2] - t[1][2] * t[2][1];
     inv[0][1] = -(t[0][1] * t[2][2] - t[0][2] * t[2][1]);

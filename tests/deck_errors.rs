@@ -174,3 +174,31 @@ fn multisphere_template_errors_are_liggghts_s() {
         );
     }
 }
+
+/// A `compute stress/atom` defined after a run reads the pair virial of the run's last
+/// step; LIGGGHTS tallies it only when some compute needed it then, so without one the
+/// dump stops with LIGGGHTS's error (with one, compat deck `stress_atom_steps` matches
+/// LIGGGHTS's values).
+#[test]
+fn a_stress_compute_defined_after_a_run_needs_the_last_step_tallied() {
+    let deck = with(
+        "timestep 1e-5
+fix gr all gravity 9.81 vector 0 0 -1
+lattice sc 0.01
+region col block -1 1 -1 1 0 3 units lattice
+create_atoms 1 region col
+set type 1 diameter 0.0102 density 2500
+fix nve all nve/sphere
+thermo 50
+run 100
+compute s all stress/atom
+write_dump all custom after.dump id c_s[1]
+",
+    );
+    let (status, err) = run("virial_untallied", &deck);
+    assert_eq!(status, Some(1), "{err}");
+    assert!(
+        err.contains("Per-atom virial was not tallied on needed timestep"),
+        "{err}"
+    );
+}

@@ -604,6 +604,9 @@ impl Compute {
                 }
             }
             ComputeKind::StressAtom { ke, pair } => {
+                if *pair && sim.pair.is_some() && sim.virial_step != Some(sim.step) {
+                    return Err("Per-atom virial was not tallied on needed timestep".into());
+                }
                 for i in 0..n {
                     if p.mask[i] & group == 0 {
                         continue;

@@ -285,6 +285,39 @@ pub enum FixKind {
     HeatGran(crate::engine::heat::HeatGran),
 }
 
+impl FixKind {
+    /// Can the fix evaluate variables or computes inside a step (so per-atom computes must
+    /// be current on every step)? Kinds not listed answer yes.
+    pub fn may_read_computes(&self) -> bool {
+        let variable = |v: &ForceValue| matches!(v, ForceValue::Equal(_) | ForceValue::Atom(_));
+        match self {
+            FixKind::NveSphere
+            | FixKind::NveNoforce
+            | FixKind::Gravity(_)
+            | FixKind::Viscous(_)
+            | FixKind::Freeze
+            | FixKind::WallGran(_)
+            | FixKind::CheckTimestep(_)
+            | FixKind::Mesh(_)
+            | FixKind::Template(_)
+            | FixKind::ClumpTemplate(_)
+            | FixKind::Distribution(_)
+            | FixKind::InsertPack(_)
+            | FixKind::InsertStream(_)
+            | FixKind::MeshWall(_)
+            | FixKind::Massflow(_)
+            | FixKind::Momentum(_)
+            | FixKind::Tracer(_)
+            | FixKind::Settings
+            | FixKind::PropertyAtom(_)
+            | FixKind::HeatGran(_) => false,
+            FixKind::SetForce(f) | FixKind::AddForce(f) => f.values.iter().any(variable),
+            FixKind::Move(m) => matches!(m.motion, Motion::Variable { .. }),
+            _ => true,
+        }
+    }
+}
+
 /// `fix adapt N atom diameter v_name [scale yes|no] [reset yes|no]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Adapt {

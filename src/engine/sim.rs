@@ -318,6 +318,8 @@ pub struct Simulation {
     /// Per-particle pair virial of the last force evaluation (xx yy zz xy xz yz, force
     /// length); empty unless a `compute stress/atom` needs it.
     pub virial: Vec<[f64; 6]>,
+    /// The step whose force evaluation tallied `virial` (None: not tallied since the last).
+    pub virial_step: Option<i64>,
     /// Velocities and angular velocities at the last force evaluation (kept only while a
     /// `compute pair/gran/local` exists).
     pub force_time_state: (Vec<[f64; 3]>, Vec<[f64; 3]>),
@@ -401,6 +403,7 @@ impl Default for Simulation {
             thermo: Thermo::default(),
             dumps: Vec::new(),
             virial: Vec::new(),
+            virial_step: None,
             loop_clock: None,
             observer: None,
             force_time_state: (Vec::new(), Vec::new()),
@@ -600,17 +603,19 @@ impl Simulation {
         let p = &self.particles;
         let dt = self.dt.abs();
         let dt2 = dt * dt;
-        let (x, v, w, radius) = (&p.x, &p.v, &p.omega, &p.radius);
-        let cheap = |i: usize| {
-            let (x, v, w) = (&x[i], &v[i], &w[i]);
+        let n = p.len();
+        let (x, v, w, radius) = (&p.x[..n], &p.v[..n], &p.omega[..n], &p.radius[..n]);
+        let cheap = |((x, v), (w, &r)): ((&[f64; 3], &[f64; 3]), (&[f64; 3], &f64))| {
             let sum = x[0] + x[1] + x[2] + v[0] + v[1] + v[2] + w[0] + w[1] + w[2];
             let v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-            let r = radius[i];
             !sum.is_finite() | ((r > 0.0) & (v2 * dt2 > 0.25 * r * r))
         };
         const BLOCK: usize = 256;
         let flagged = |b: usize| {
-            (b * BLOCK..((b + 1) * BLOCK).min(p.len())).fold(false, |hit, i| hit | cheap(i))
+            let (lo, hi) = (b * BLOCK, ((b + 1) * BLOCK).min(n));
+            let cols = x[lo..hi].iter().zip(&v[lo..hi]);
+            let cols = cols.zip(w[lo..hi].iter().zip(&radius[lo..hi]));
+            cols.fold(false, |hit, c| hit | cheap(c))
         };
         first_where_in(p.len().div_ceil(BLOCK), BLOCK, flagged).is_some()
     }
@@ -1488,12 +1493,17 @@ impl Simulation {
             });
         }
         let (x, built) = (&self.particles.x, self.list_positions());
-        first_where(x.len(), |i| {
-            let (a, b) = (x[i], built[i]);
-            let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-            d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > limit
-        })
-        .is_some()
+        // blocks of particles tested without early exit (a loop the compiler vectorises)
+        const BLOCK: usize = 256;
+        let moved = |b: usize| {
+            let (lo, hi) = (b * BLOCK, ((b + 1) * BLOCK).min(x.len()));
+            let pairs = x[lo..hi].iter().zip(&built[lo..hi]);
+            pairs.fold(false, |hit, (a, b)| {
+                let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+                hit | (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > limit)
+            })
+        };
+        first_where_in(x.len().div_ceil(BLOCK), BLOCK, moved).is_some()
     }
 
     /// LIGGGHTS's mesh setup at the first run: neighbours and active edges and corners of
@@ -1791,21 +1801,36 @@ impl Simulation {
         Ok(())
     }
 
+    /// Does anything read the per-atom pair virial after the forces of this step of a run
+    /// ending at `last`? As LIGGGHTS, it is tallied only then: thermo and dump steps, the
+    /// run's last step, and every step while a fix that evaluates variables is defined.
+    fn virial_wanted(&self, last: i64) -> bool {
+        let step = self.step;
+        self.thermo.due(step, last)
+            || self.dumps.iter().any(|d| d.every > 0 && step % d.every == 0)
+            || self.fixes.iter().any(|f| f.kind.may_read_computes())
+    }
+
+    /// Zero forces and torques and evaluate the pair style, walls and forcing fixes;
+    /// `want_virial`: tally the per-atom pair virial if a `compute stress/atom` uses it.
     fn compute_forces(
         &mut self,
         update: bool,
+        want_virial: bool,
         vars: &mut dyn VariableSource,
     ) -> Result<(), String> {
         let p = &mut self.particles;
         p.f.iter_mut().for_each(|f| *f = [0.0; 3]);
         p.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
-        let tally = self.computes.iter().any(|c| {
-            matches!(
-                c.kind,
-                crate::engine::computes::ComputeKind::StressAtom { pair: true, .. }
-            )
-        });
+        let tally = want_virial
+            && self.computes.iter().any(|c| {
+                matches!(
+                    c.kind,
+                    crate::engine::computes::ComputeKind::StressAtom { pair: true, .. }
+                )
+            });
         self.virial.clear();
+        self.virial_step = tally.then_some(self.step);
         if tally {
             self.virial.resize(p.len(), [0.0; 6]);
         }
@@ -1926,7 +1951,7 @@ impl Simulation {
             self.mesh_stress_phase(StressPhase::Setup)?;
             self.adapt_radii(true, vars)?;
             // LIGGGHTS's setup evaluation does not advance contact history
-            self.compute_forces(false, vars)?;
+            self.compute_forces(false, true, vars)?;
             self.zero_mesh_velocities(false);
             self.guard_motion(true)?;
             self.guard_forces()?;
@@ -2013,7 +2038,8 @@ impl Simulation {
             self.refresh_moving_meshes(rebuilt);
             self.mesh_stress_phase(StressPhase::PreForce)?;
             self.adapt_radii(false, vars)?;
-            self.compute_forces(true, vars)?;
+            let tally = self.virial_wanted(last);
+            self.compute_forces(true, tally, vars)?;
             self.guard_forces()?;
             fixes::final_integrate(&self.fixes, &mut self.particles, self.dt);
             self.mesh_stress_phase(StressPhase::EndOfStep)?;

@@ -229,9 +229,12 @@ impl Layout {
                     col => col.value(p, domain, i),
                 };
                 match &self.format {
-                    Some(convs) => line.push_str(&format::format_one(&convs[k], value)),
-                    None if col.is_integer() => line.push_str(&(value as i64).to_string()),
-                    None => line.push_str(&format::g(value)),
+                    Some(convs) => format::push_one(&mut line, &convs[k], value),
+                    None if col.is_integer() => {
+                        use std::fmt::Write as _;
+                        let _ = write!(line, "{}", value as i64);
+                    }
+                    None => format::push_g(&mut line, value),
                 }
                 line.push(' ');
             }
@@ -280,8 +283,8 @@ pub fn write_local(
         line.clear();
         for c in 0..names.len() {
             match formats {
-                Some(convs) => line.push_str(&format::format_one(&convs[c], value(r, c))),
-                None => line.push_str(&format::g(value(r, c))),
+                Some(convs) => format::push_one(&mut line, &convs[c], value(r, c)),
+                None => format::push_g(&mut line, value(r, c)),
             }
             line.push(' ');
         }

@@ -150,12 +150,52 @@ fn take_digits(chars: &mut std::iter::Peekable<std::str::CharIndices<'_>>, spec:
 /// Format one value with one conversion spec (`%g`, `%8d`, ...), as C's `printf` would.
 /// Integer conversions receive the value truncated toward zero.
 pub fn format_one(conv: &Conversion, value: f64) -> String {
+    let mut out = String::new();
+    push_one(&mut out, conv, value);
+    out
+}
+
+/// [`format_one`] appended to `out` (no allocation for the usual short numbers).
+pub fn push_one(out: &mut String, conv: &Conversion, value: f64) {
     if conv.is_float() {
-        c_format_f64(&conv.spec, value)
+        push_c_f64(out, &conv.spec, value);
     } else {
         // integers go through a 64-bit conversion so %d of large ids stays exact
         let spec = format!("{}ll{}", &conv.spec[..conv.spec.len() - 1], conv.kind);
-        c_format_i64(&spec, value as i64)
+        out.push_str(&c_format_i64(&spec, value as i64));
+    }
+}
+
+/// `%g` of `value` appended to `out`, as dumps print floats (no allocation).
+pub fn push_g(out: &mut String, value: f64) {
+    push_c_f64(out, "%g", value);
+}
+
+/// `sprintf(spec, value)` appended to `out`; `spec` must hold exactly one float conversion.
+/// Short specs and results go through buffers on the stack.
+fn push_c_f64(out: &mut String, spec: &str, value: f64) {
+    let mut fmt = [0u8; 40];
+    if spec.len() >= fmt.len() || spec.contains('\0') {
+        out.push_str(&c_format_f64(spec, value));
+        return;
+    }
+    fmt[..spec.len()].copy_from_slice(spec.as_bytes());
+    let mut buf = [0u8; 64];
+    // SAFETY: fmt is NUL-terminated and holds exactly one floating conversion (checked by
+    // CFormat::parse or the callers) and we pass exactly one double; snprintf never writes
+    // past buf.len().
+    let n = unsafe {
+        libc::snprintf(
+            buf.as_mut_ptr() as *mut libc::c_char,
+            buf.len(),
+            fmt.as_ptr() as *const libc::c_char,
+            value,
+        )
+    };
+    let n = n.max(0) as usize;
+    match std::str::from_utf8(&buf[..n.min(buf.len())]) {
+        Ok(text) if n < buf.len() => out.push_str(text),
+        _ => out.push_str(&c_format_f64(spec, value)),
     }
 }
 
@@ -208,12 +248,16 @@ fn c_format_i64(spec: &str, value: i64) -> String {
 
 /// `%.Ng` formatting, e.g. `g_precision(1.0/3.0, 15)` gives `0.333333333333333`.
 pub fn g_precision(value: f64, precision: usize) -> String {
-    c_format_f64(&format!("%.{}g", precision.min(99)), value)
+    let mut out = String::new();
+    push_c_f64(&mut out, &format!("%.{}g", precision.min(99)), value);
+    out
 }
 
 /// `%g` formatting (6 significant digits), as dumps print floats.
 pub fn g(value: f64) -> String {
-    c_format_f64("%g", value)
+    let mut out = String::new();
+    push_g(&mut out, value);
+    out
 }
 
 /// Format `value` with an arbitrary single-conversion C spec such as `%14.8g` or `%8d`.
@@ -254,6 +298,12 @@ mod tests {
         assert_eq!(with_spec("%8d", 42.0).unwrap(), "      42");
         assert_eq!(with_spec("%05d", 7.9).unwrap(), "00007");
         assert_eq!(g_precision(f64::INFINITY, 15), "inf");
+        // results longer than the stack buffer
+        assert_eq!(with_spec("%.40f", 0.5).unwrap(), format!("0.5{}", "0".repeat(39)));
+        assert_eq!(with_spec("%f", 1e70).unwrap().len(), 71 + 7);
+        let mut line = String::from("x ");
+        push_g(&mut line, 2.0 / 3.0);
+        assert_eq!(line, "x 0.666667");
     }
 
     #[test]

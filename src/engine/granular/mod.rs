@@ -186,11 +186,10 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
                 return;
             }
             SumOrder::Blocks(starts)
-                if virial.is_none()
-                    && starts.len() == p.len().div_ceil(BLOCK_PARTICLES).max(1) + 1
+                if starts.len() == p.len().div_ceil(BLOCK_PARTICLES).max(1) + 1
                     && starts.last() == Some(&(pairs.len() as u32)) =>
             {
-                self.compute_blocks(p, pairs, history, dt, update, starts);
+                self.compute_blocks(p, pairs, history, dt, update, virial, starts);
                 return;
             }
             _ => {}
@@ -371,8 +370,12 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
     }
 }
 
-/// One block's forces (N) and torques (N m).
-type BlockForces<'a> = (&'a mut [[f64; 3]], &'a mut [[f64; 3]]);
+/// One block's forces (N), torques (N m) and, on steps that tally them, virials (N m).
+type BlockForces<'a> = (
+    &'a mut [[f64; 3]],
+    &'a mut [[f64; 3]],
+    Option<&'a mut [[f64; 6]]>,
+);
 
 /// A contribution to a particle of another block: particle index, force (N), torque (N m).
 #[derive(Debug, Clone, Copy, Default)]
@@ -387,6 +390,10 @@ pub struct Foreign {
 pub struct Owed {
     /// In the order they were made.
     made: Vec<Foreign>,
+    /// Their half virials (force length), in the same order, on steps that tally them.
+    made_virial: Vec<[f64; 6]>,
+    /// The same grouped as `by_block`.
+    virial_by_block: Vec<[f64; 6]>,
     /// The same grouped by the block of the particle, each group in the order made.
     by_block: Vec<Foreign>,
     /// Where each block's group starts in `by_block` (one more value than blocks).
@@ -408,9 +415,17 @@ impl Owed {
         // start[t + 1] is where block t's group begins: place each one there, in order
         self.by_block.clear();
         self.by_block.resize(self.made.len(), Foreign::default());
-        for c in &self.made {
+        let virial = self.made_virial.len() == self.made.len();
+        self.virial_by_block.clear();
+        if virial {
+            self.virial_by_block.resize(self.made.len(), [0.0; 6]);
+        }
+        for (n, c) in self.made.iter().enumerate() {
             let at = &mut self.start[block(c) + 1];
             self.by_block[*at as usize] = *c;
+            if virial {
+                self.virial_by_block[*at as usize] = self.made_virial[n];
+            }
             *at += 1;
         }
         // start[t + 1] is now where block t's group ends, so start[t] where it begins
@@ -424,6 +439,16 @@ impl Owed {
             _ => &[],
         }
     }
+
+    /// The half virials of [`Self::to_block`] (empty on steps that do not tally them).
+    fn virial_to_block(&self, t: usize) -> &[[f64; 6]] {
+        match (self.start.get(t), self.start.get(t + 1)) {
+            (Some(&a), Some(&b)) if !self.virial_by_block.is_empty() => {
+                &self.virial_by_block[a as usize..b as usize]
+            }
+            _ => &[],
+        }
+    }
 }
 
 /// One block's sums: its own particles' forces and torques from its list entries (first
@@ -434,21 +459,43 @@ struct BlockSums<'a> {
     lo: usize,
     f: &'a mut [[f64; 3]],
     torque: &'a mut [[f64; 3]],
+    /// Positions of all particles and the block's per-particle virials, on steps that
+    /// tally the virial.
+    virial: Option<(&'a [[f64; 3]], &'a mut [[f64; 6]])>,
     foreign: &'a mut Owed,
     worst: Option<(f64, u32, u32)>,
 }
 
 impl BlockSums<'_> {
+    /// Add one side of a pair to particle `n`: force (N), torque (N m) and, when tallied,
+    /// half the pair's virial `w`.
     #[inline(never)]
-    fn add(&mut self, n: usize, f: [f64; 3], t: [f64; 3]) {
+    fn add(&mut self, n: usize, f: [f64; 3], t: [f64; 3], w: &[f64; 6]) {
         match n.checked_sub(self.lo).filter(|&k| k < self.f.len()) {
             Some(k) => {
                 for d in 0..3 {
                     self.f[k][d] += f[d];
                     self.torque[k][d] += t[d];
                 }
+                if let Some((_, v)) = self.virial.as_mut() {
+                    add6(&mut v[k], w);
+                }
             }
-            None => self.foreign.made.push(Foreign { j: n as u32, f, t }),
+            None => {
+                self.foreign.made.push(Foreign { j: n as u32, f, t });
+                if self.virial.is_some() {
+                    self.foreign.made_virial.push(*w);
+                }
+            }
+        }
+    }
+
+    /// Half the virial of a pair whose force on i is `fi` (zeros when not tallied).
+    #[inline(always)]
+    fn half_virial(&self, pair: &Pair, fi: [f64; 3]) -> [f64; 6] {
+        match &self.virial {
+            Some((x, _)) => half_virial(x, pair, fi),
+            None => [0.0; 6],
         }
     }
 }
@@ -466,14 +513,20 @@ impl batch::Sink for BlockSums<'_> {
         for (k, pair) in pairs.iter().enumerate().take(batch.len()) {
             let (i, j) = (pair.i as usize, pair.j as usize);
             let (ki, kj) = (i.wrapping_sub(self.lo), j.wrapping_sub(self.lo));
+            let pick = |v: &[F64x4; 3]| [v[0].0[k], v[1].0[k], v[2].0[k]];
             if ki < len && kj < len {
                 // both particles in the block (most contacts)
                 // SAFETY: ki, kj < len (just checked)
                 unsafe { add_lane(self.f, self.torque, (ki, kj), out, k) };
+                if let Some((x, v)) = self.virial.as_mut() {
+                    let w = half_virial(x, pair, pick(&out.fi));
+                    add6(&mut v[ki], &w);
+                    add6(&mut v[kj], &w);
+                }
             } else {
-                let pick = |v: &[F64x4; 3]| [v[0].0[k], v[1].0[k], v[2].0[k]];
-                self.add(i, pick(&out.fi), pick(&out.ti));
-                self.add(j, pick(&out.fj), pick(&out.tj));
+                let w = self.half_virial(pair, pick(&out.fi));
+                self.add(i, pick(&out.fi), pick(&out.ti), &w);
+                self.add(j, pick(&out.fj), pick(&out.tj), &w);
             }
             let r = ratio.0[k];
             if self.worst.is_none_or(|w| r > w.0) {
@@ -484,8 +537,9 @@ impl batch::Sink for BlockSums<'_> {
 
     #[inline(always)]
     fn take(&mut self, _: usize, pair: &Pair, res: &PairResult) {
-        self.add(pair.i as usize, res.fi, res.ti);
-        self.add(pair.j as usize, res.fj, res.tj);
+        let w = self.half_virial(pair, res.fi);
+        self.add(pair.i as usize, res.fi, res.ti, &w);
+        self.add(pair.j as usize, res.fj, res.tj, &w);
         if self.worst.is_none_or(|w| res.overlap_ratio > w.0) {
             self.worst = Some((res.overlap_ratio, pair.i, pair.j));
         }
@@ -504,6 +558,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         history: &mut [f64],
         dt: f64,
         update: bool,
+        mut virial: Option<&mut [[f64; 6]]>,
         starts: &[u32],
     ) {
         let kernel = batch::Kernel {
@@ -522,8 +577,11 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         foreign.resize_with(blocks, Owed::default);
         // each block owns its particles' forces, its entries' history and its buffers
         let mut jobs = Vec::with_capacity(blocks);
+        let tally = virial.is_some();
         {
+            let x = &p.x[..];
             let (mut f, mut t, mut h) = (&mut p.f[..], &mut p.torque[..], &mut history[..]);
+            let mut w: &mut [[f64; 6]] = virial.as_deref_mut().unwrap_or_default();
             for (b, (touch, out)) in parts.iter_mut().zip(foreign.iter_mut()).enumerate() {
                 let own = BLOCK_PARTICLES.min(f.len());
                 let (fb, rest) = std::mem::take(&mut f).split_at_mut(own);
@@ -533,10 +591,18 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
                 let (s, e) = (starts[b] as usize, starts[b + 1] as usize);
                 let (hb, rest) = std::mem::take(&mut h).split_at_mut((e - s) * width);
                 h = rest;
+                let virial = if tally {
+                    let (wb, rest) = std::mem::take(&mut w).split_at_mut(own);
+                    w = rest;
+                    Some((x, wb))
+                } else {
+                    None
+                };
                 let sums = BlockSums {
                     lo: b * BLOCK_PARTICLES,
                     f: fb,
                     torque: tb,
+                    virial,
                     foreign: out,
                     worst: None,
                 };
@@ -553,6 +619,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             let part = &pairs[range];
             touch.clear();
             sums.foreign.made.clear();
+            sums.foreign.made_virial.clear();
             batch::touching_entries(packed, part, 0, touch);
             kernel.run(packed, kinds, part, touch, h, &mut sums);
             sums.foreign.group(blocks);
@@ -567,29 +634,53 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         // contributions between blocks: each block adds what the others owe its particles,
         // in block order (blocks in parallel; the same sums as one pass over the lists)
         if foreign.iter().any(|out| !out.made.is_empty()) {
-            let owed = |(t, (f, torque)): (usize, BlockForces)| {
+            let owed = |(t, (f, torque, mut w)): (usize, BlockForces)| {
                 let lo = (t * BLOCK_PARTICLES) as u32;
                 for out in &foreign {
-                    for c in out.to_block(t) {
+                    let half = out.virial_to_block(t);
+                    for (n, c) in out.to_block(t).iter().enumerate() {
                         let k = (c.j - lo) as usize;
                         for d in 0..3 {
                             f[k][d] += c.f[d];
                             torque[k][d] += c.t[d];
                         }
+                        if let (Some(w), Some(h)) = (w.as_deref_mut(), half.get(n)) {
+                            add6(&mut w[k], h);
+                        }
                     }
                 }
             };
             let (f, torque) = (&mut p.f, &mut p.torque);
-            if rayon::current_num_threads() > 1 && blocks > 1 {
-                let both = f
+            let parallel = rayon::current_num_threads() > 1 && blocks > 1;
+            match virial {
+                Some(w) if parallel => f
                     .par_chunks_mut(BLOCK_PARTICLES)
-                    .zip(torque.par_chunks_mut(BLOCK_PARTICLES));
-                both.enumerate().with_max_len(1).for_each(owed);
-            } else {
-                let both = f
+                    .zip(torque.par_chunks_mut(BLOCK_PARTICLES))
+                    .zip(w.par_chunks_mut(BLOCK_PARTICLES))
+                    .map(|((f, t), w)| (f, t, Some(w)))
+                    .enumerate()
+                    .with_max_len(1)
+                    .for_each(owed),
+                Some(w) => f
                     .chunks_mut(BLOCK_PARTICLES)
-                    .zip(torque.chunks_mut(BLOCK_PARTICLES));
-                both.enumerate().for_each(owed);
+                    .zip(torque.chunks_mut(BLOCK_PARTICLES))
+                    .zip(w.chunks_mut(BLOCK_PARTICLES))
+                    .map(|((f, t), w)| (f, t, Some(w)))
+                    .enumerate()
+                    .for_each(owed),
+                None if parallel => f
+                    .par_chunks_mut(BLOCK_PARTICLES)
+                    .zip(torque.par_chunks_mut(BLOCK_PARTICLES))
+                    .map(|(f, t)| (f, t, None))
+                    .enumerate()
+                    .with_max_len(1)
+                    .for_each(owed),
+                None => f
+                    .chunks_mut(BLOCK_PARTICLES)
+                    .zip(torque.chunks_mut(BLOCK_PARTICLES))
+                    .map(|(f, t)| (f, t, None))
+                    .enumerate()
+                    .for_each(owed),
             }
         }
         // the worst overlap, first in block order among equals
@@ -614,13 +705,27 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
 /// on i) added to `w`.
 #[inline(always)]
 fn add_virial(x: &[[f64; 3]], pair: &Pair, res: &PairResult, w: &mut [f64; 6]) {
+    add6(w, &half_virial(x, pair, res.fi));
+}
+
+/// `w += h`, component by component.
+#[inline(always)]
+fn add6(w: &mut [f64; 6], h: &[f64; 6]) {
+    for k in 0..6 {
+        w[k] += h[k];
+    }
+}
+
+/// Half a pair's virial (force length): what [`add_virial`] adds to each particle, with
+/// `fi` the force on i (N).
+#[inline(always)]
+fn half_virial(x: &[[f64; 3]], pair: &Pair, fi: [f64; 3]) -> [f64; 6] {
     let (i, j) = (pair.i as usize, pair.j as usize);
     let del = [
         x[i][0] - (x[j][0] + pair.shift[0]),
         x[i][1] - (x[j][1] + pair.shift[1]),
         x[i][2] - (x[j][2] + pair.shift[2]),
     ];
-    let fi = res.fi;
     let v = [
         del[0] * fi[0],
         del[1] * fi[1],
@@ -629,9 +734,7 @@ fn add_virial(x: &[[f64; 3]], pair: &Pair, res: &PairResult, w: &mut [f64; 6]) {
         del[0] * fi[2],
         del[1] * fi[2],
     ];
-    for k in 0..6 {
-        w[k] += 0.5 * v[k];
-    }
+    v.map(|c| 0.5 * c)
 }
 
 /// Add lane `k` of a batch's forces and torques to particles `a` (the i side) and `b` (the

@@ -213,10 +213,12 @@ pub const SPECS: &[Spec] = &[
     style("dump", "atom", "dump ID GROUP atom N FILE", &[], "positions, scaled, every N steps (LAMMPS layout)"),
     style("dump", "custom", "dump ID GROUP custom N FILE COLUMN ...", &[], "chosen per-particle columns every N steps"),
     style("dump", "custom/vtk", "dump ID GROUP custom/vtk N FILE.vtk|vtp|vtu COLUMN ...", &[], "chosen per-particle columns as VTK files"),
+    style("dump", "local/gran/vtk", "dump ID GROUP local/gran/vtk N FILE.vtk COMPUTE", &[], "the contacts of a compute pair/gran/local or wall/gran/local as VTK lines"),
     style("dump", "local", "dump ID GROUP local N FILE c_ID[N] ...", &[], "per-contact columns of local computes"),
     style("dump", "mesh/gran/VTK", "dump ID GROUP mesh/gran/VTK N FILE [MESH ...]", &[], "meshes as legacy VTK"),
     style("dump", "mesh/stl", "dump ID GROUP mesh/stl N FILE [MESH ...]", &[], "meshes as STL"),
     style("dump", "mesh/vtk", "dump ID GROUP mesh/vtk N FILE [MESH ...]", &[], "meshes as VTK"),
+    style("dump", "stl", "dump ID GROUP stl N FILE [MESH ...]", &[], "the same as mesh/stl"),
     style("dump", "xyz", "dump ID GROUP xyz N FILE", &[], "type and position every N steps"),
     with(command("dump_modify ID KEYWORD VALUE ...", "change a dump's settings"), &[
         kw("every", &[arg("N", Value::Int)], "steps between snapshots"),

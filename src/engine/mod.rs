@@ -16,6 +16,8 @@ pub mod granular;
 pub mod heat;
 pub mod insert;
 pub mod integrate;
+pub mod lattice;
+pub mod local_vtk;
 pub mod margin;
 pub mod massflow;
 pub mod mesh;

@@ -204,6 +204,8 @@ pub enum DumpStyle {
     MeshStl(Vec<String>),
     /// `mesh/vtk` (`mesh/gran/VTK`): meshes with per-triangle data as legacy VTK.
     MeshVtk(crate::io::mesh_vtk::MeshDumpSpec),
+    /// `local/gran/vtk`: the contacts of this local compute (ID) as VTK lines.
+    LocalGranVtk(String),
 }
 
 /// When the stress module of `mesh/surface/stress` acts.
@@ -2721,7 +2723,12 @@ impl Simulation {
             let box_name = crate::io::vtk::bounding_box_name(&dump.file, &step_text);
             crate::io::write_atomically(&box_name, &bbox)
                 .map_err(|e| format!("Cannot open dump file {box_name}: {e}"))?;
-        } else if multi || matches!(dump.style, DumpStyle::MeshStl(_) | DumpStyle::MeshVtk(_)) {
+        } else if multi
+            || matches!(
+                dump.style,
+                DumpStyle::MeshStl(_) | DumpStyle::MeshVtk(_) | DumpStyle::LocalGranVtk(_)
+            )
+        {
             crate::io::write_atomically(&name, text)
                 .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
         } else {
@@ -2800,6 +2807,11 @@ impl Simulation {
                     |r, c| data[c].0 .1[r * data[c].0 .0 + data[c].1],
                 )
                 .map_err(|e| e.to_string())?;
+                self.write_dump_text(k, step, &text)?;
+                continue;
+            }
+            if let DumpStyle::LocalGranVtk(cid) = &self.dumps[k].style {
+                let text = crate::engine::local_vtk::snapshot(self, cid)?;
                 self.write_dump_text(k, step, &text)?;
                 continue;
             }
@@ -2910,6 +2922,8 @@ impl Simulation {
                     crate::io::mesh_vtk::write_mesh_vtk(&mut text, spec, &snaps)
                         .map_err(|e| e.to_string())?;
                 }
+                // written before the per-atom columns are evaluated
+                DumpStyle::LocalGranVtk(_) => {}
                 DumpStyle::Vtk(fields) => {
                     let mut atoms: Vec<usize> = (0..p.len())
                         .filter(|&i| p.mask[i] & dump.group != 0)

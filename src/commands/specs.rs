@@ -264,6 +264,7 @@ pub const SPECS: &[Spec] = &[
     command("group ID region|type|id|subtract|union|intersect|variable|initialize|delete ...", "define a group of particles"),
     command("hard_particles yes|no", "refuse particles stiffer than LIGGGHTS's limit"),
     style("lattice", "bcc", "lattice bcc SCALE", &[kw("origin", &[arg("X Y Z", NUMBER)], "offset in lattice units")], "body-centred cubic lattice of spacing SCALE (length)"),
+    style("lattice", "custom", "lattice custom SCALE basis X Y Z ...", &[kw("a1", &[arg("X Y Z", NUMBER)], "first primitive vector (lattice units)"), kw("a2", &[arg("X Y Z", NUMBER)], "second primitive vector"), kw("a3", &[arg("X Y Z", NUMBER)], "third primitive vector"), kw("basis", &[arg("X Y Z", NUMBER)], "a basis point (fractions of the cell, repeatable)"), kw("origin", &[arg("X Y Z", NUMBER)], "offset in lattice spacings")], "a lattice of primitive vectors a1 a2 a3 scaled by SCALE (length) with basis points"),
     style("lattice", "fcc", "lattice fcc SCALE", &[kw("origin", &[arg("X Y Z", NUMBER)], "offset in lattice units")], "face-centred cubic lattice of spacing SCALE (length)"),
     style("lattice", "none", "lattice none SCALE", &[], "no lattice; SCALE (length) is the unit of lattice lengths"),
     style("lattice", "sc", "lattice sc SCALE", &[kw("origin", &[arg("X Y Z", NUMBER)], "offset in lattice units")], "simple cubic lattice of spacing SCALE (length)"),

@@ -30,6 +30,7 @@ pub mod neighbor;
 pub mod nve_noforce;
 pub mod particles;
 pub mod region;
+pub mod region_motion;
 pub mod restart_fixes;
 pub mod restart_state;
 pub mod rigid_body;

@@ -282,6 +282,8 @@ pub struct Simulation {
     pub lattice: Option<(f64, Vec<[f64; 3]>)>,
     /// `lattice ... origin x y z`: the lattice's shift in lattice units (0 <= x < 1).
     pub lattice_origin: [f64; 3],
+    /// `lattice custom`: its primitive vectors and spacings (None for the cubic styles).
+    pub lattice_cell: Option<crate::engine::lattice::Cell>,
     /// Current step.
     pub step: i64,
     /// Time-step size (time units).
@@ -381,6 +383,7 @@ impl Default for Simulation {
             ntypes: 0,
             lattice: None,
             lattice_origin: [0.0; 3],
+            lattice_cell: None,
             step: 0,
             dt: 0.001,
             atime: 0.0,
@@ -1717,12 +1720,7 @@ impl Simulation {
     /// Evaluate the variables and regions of `fix setforce`/`addforce` for this step.
     fn resolve_force_fixes(&mut self, vars: &mut dyn VariableSource) -> Result<(), String> {
         use crate::engine::fixes::ForceValue;
-        if self
-            .regions
-            .list
-            .iter()
-            .any(|r| r.radius_variable.is_some())
-        {
+        if self.regions.list.iter().any(|r| r.is_dynamic()) {
             let mut regions = std::mem::take(&mut self.regions);
             let result = regions.reshape(Some(self.step), &mut |name| vars.equal(self, name));
             self.regions = regions;

@@ -965,7 +965,7 @@ impl Simulation {
                 Ok(m.stress.as_ref().and_then(|s| s.value(i)).unwrap_or(0.0))
             }
             (FixKind::AveTime(at), i) if at.value(i).is_some() => Ok(at.value(i).unwrap_or(0.0)),
-            (FixKind::Massflow(m), Some(i)) if (1..=6).contains(&i) => {
+            (FixKind::Massflow(m), Some(i)) if m.value(i).is_some() => {
                 Ok(m.value(i).unwrap_or(0.0))
             }
             (FixKind::Buoyancy(b), Some(i @ 1..=3)) => Ok(b.total[i - 1]),
@@ -1996,6 +1996,7 @@ impl Simulation {
             self.insert_streams(out)?;
             let rebuilt = self.decide();
             if rebuilt {
+                self.massflow_delete();
                 let mut comm = self.stats.comm;
                 timed(&mut comm, || self.pbc_and_box())?;
                 self.stats.comm = comm;

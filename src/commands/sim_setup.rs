@@ -764,10 +764,12 @@ fn delete_atoms(a: &Args, ctx: &mut Ctx) -> Result {
         i += 2;
     }
     let before = p.len();
-    ctx.sim.particles.retain_by(&remove);
+    // as LIGGGHTS: each deleted particle's slot is taken by the last one
+    ctx.sim.particles.remove_filling_from_last(&remove);
     let p = &mut ctx.sim.particles;
     if compress {
-        // IDs 1..N in memory order (LIGGGHTS's memory order also reflects its spatial sort)
+        // IDs 1..N in memory order (LIGGGHTS's memory order also reflects its spatial sort
+        // and the slots filled above)
         for (k, id) in p.id.iter_mut().enumerate() {
             *id = k as i64 + 1;
         }

@@ -1442,11 +1442,14 @@ impl Simulation {
 
     /// LIGGGHTS's `Neighbor::decide`: rebuild now?
     fn decide(&mut self) -> bool {
+        // a rebuild a fix or a changed atom count forces is never dangerous
+        let forced = self.mesh_rebuild_at == Some(self.step)
+            || self.list.built_positions().len() != self.particles.len();
         let rebuild = self.decide_by_rules();
         // LIGGGHTS's dangerous build: a distance-triggered rebuild at the first step the
         // delay and every settings allowed (the list may have been out of date already)
         let n = &self.neighbor;
-        if rebuild && n.check && self.ago == n.every.max(n.delay) {
+        if rebuild && !forced && n.check && self.ago == n.every.max(n.delay) {
             self.stats.dangerous += 1;
         }
         rebuild

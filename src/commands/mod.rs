@@ -51,14 +51,7 @@ impl Ctx<'_> {
     /// Evaluate variable region radii before regions are matched: at most once per step, or
     /// unconditionally (`definition`) when a region is defined.
     pub fn reshape_regions(&mut self, definition: bool) -> std::result::Result<(), String> {
-        if self.sys.mode != Mode::Run
-            || self
-                .sim
-                .regions
-                .list
-                .iter()
-                .all(|r| r.radius_variable.is_none())
-        {
+        if self.sys.mode != Mode::Run || self.sim.regions.list.iter().all(|r| !r.is_dynamic()) {
             return Ok(());
         }
         let step = (!definition).then_some(self.sim.step);

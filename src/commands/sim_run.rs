@@ -256,7 +256,7 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
             dump_style = crate::engine::sim::DumpStyle::MeshVtk(spec);
             Layout::new(&[]).expect("no columns")
         }
-        "mesh/stl" => {
+        "mesh/stl" | "stl" => {
             let ids: Vec<String> = (5..a.len())
                 .map(|i| a.word(i).map(str::to_string))
                 .collect::<std::result::Result<_, _>>()?;
@@ -392,6 +392,40 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                 style: crate::engine::sim::DumpStyle::Text,
             });
             return Ok(());
+        }
+        "local/gran/vtk" => {
+            if a.len() < 6 {
+                return Err(a
+                    .error(4, "dump local/gran/vtk requires 6 arguments")
+                    .with_help("name a compute pair/gran/local after the file"));
+            }
+            let cid = a.word(5)?;
+            let fields = ctx
+                .sim
+                .computes
+                .iter()
+                .find(|c| c.id == cid)
+                .and_then(|c| crate::engine::local_vtk::local_fields(&c.kind))
+                .ok_or_else(|| {
+                    a.error(
+                        5,
+                        "dump local/gran/vtk requires a valid ID of a compute pair/gran/local to be provided",
+                    )
+                })?;
+            if !fields.contains(&crate::engine::computes::LocalField::Pos) {
+                return Err(a.error(
+                    5,
+                    "dump local/gran/vtk requires a valid ID of a compute pair/gran/local that writes the positions",
+                ));
+            }
+            if !file.ends_with(".vtk") && (file.ends_with(".vtp") || file.ends_with(".vtu")) {
+                return Err(a.unsupported(
+                    4,
+                    "dump local/gran/vtk to XML or parallel VTK files (regolith writes legacy .vtk)",
+                ));
+            }
+            dump_style = crate::engine::sim::DumpStyle::LocalGranVtk(cid.to_string());
+            Layout::new(&[]).expect("no columns")
         }
         other => return Err(a.unsupported(2, &format!("dump {other}"))),
     };

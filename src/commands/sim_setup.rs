@@ -204,7 +204,12 @@ fn region(a: &Args, ctx: &mut Ctx) -> Result {
             .lattice
             .as_ref()
             .filter(|l| !l.1.is_empty() || l.0 > 0.0)
-            .map(|l| [l.0; 3]),
+            .map(|l| {
+                ctx.sim
+                    .lattice_cell
+                    .as_ref()
+                    .map_or([l.0; 3], |c| c.spacing)
+            }),
     };
     ctx.sim.regions.define(&words, rctx).map_err(|e| match e {
         EngineError::Unsupported(what) => CommandError::unsupported(what, At::Line),
@@ -222,6 +227,29 @@ fn region(a: &Args, ctx: &mut Ctx) -> Result {
         if let Some(m) = problem {
             ctx.sim.regions.list.pop();
             return Err(a.error(at.unwrap_or(1), &m));
+        }
+        if ctx.sys.mode == Mode::Run {
+            ctx.reshape_regions(true).map_err(|m| a.error(1, &m))?;
+        }
+    }
+    if let Some(m) = &ctx.sim.regions.list[index].motion {
+        let mut problem = None;
+        for (name, wrong_style) in m.variables() {
+            let at = (2..a.len())
+                .find(|&i| a.word(i).ok() == Some(&format!("v_{name}")))
+                .unwrap_or(1);
+            problem = match ctx.vars.get(name).map(|v| v.style) {
+                None => Some((at, "Variable name for region does not exist")),
+                Some(crate::script::variables::Style::Equal) => None,
+                Some(_) => Some((at, wrong_style)),
+            };
+            if problem.is_some() {
+                break;
+            }
+        }
+        if let Some((at, m)) = problem {
+            ctx.sim.regions.list.pop();
+            return Err(a.error(at, m));
         }
         if ctx.sys.mode == Mode::Run {
             ctx.reshape_regions(true).map_err(|m| a.error(1, &m))?;
@@ -300,36 +328,75 @@ fn lattice(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.keyword_error(0, LATTICE_STYLES));
     }
     registry::require_style(a, "lattice")?;
-    let basis: Vec<[f64; 3]> = match style {
-        "none" => Vec::new(),
+    let mut basis: Vec<[f64; 3]> = match style {
+        "none" | "custom" => Vec::new(),
         "sc" => vec![[0.0; 3]],
         "bcc" => vec![[0.0; 3], [0.5, 0.5, 0.5]],
         "fcc" => vec![[0.0; 3], [0.5, 0.5, 0.0], [0.5, 0.0, 0.5], [0.0, 0.5, 0.5]],
         _ => return Err(a.unsupported(0, &format!("lattice {style}"))),
     };
     let mut origin = [0.0; 3];
+    let mut primitive = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     let mut i = 2;
     while i < a.len() {
-        match a.word(i)? {
-            "origin" => {
-                for (k, o) in origin.iter_mut().enumerate() {
+        let w = a.word(i)?;
+        match w {
+            "origin" | "a1" | "a2" | "a3" | "basis" => {
+                if i + 4 > a.len() {
+                    return Err(a.error(i, "Illegal lattice command"));
+                }
+                if w != "origin" && style != "custom" {
+                    return Err(
+                        a.error(i, "Invalid option in lattice command for non-custom style")
+                    );
+                }
+                let mut v = [0.0; 3];
+                for (k, o) in v.iter_mut().enumerate() {
                     *o = a.real(i + 1 + k)?;
-                    if !(0.0..1.0).contains(o) {
-                        return Err(a.error(i + 1 + k, "Illegal lattice command"));
+                }
+                let fraction = |k: usize| (0.0..1.0).contains(&v[k]);
+                match w {
+                    "origin" | "basis" => {
+                        if let Some(k) = (0..3).find(|&k| !fraction(k)) {
+                            return Err(a
+                                .error(i + 1 + k, "Illegal lattice command")
+                                .with_help("each value must be at least 0 and less than 1"));
+                        }
+                        if w == "origin" {
+                            origin = v;
+                        } else {
+                            basis.push(v);
+                        }
                     }
+                    "a1" => primitive[0] = v,
+                    "a2" => primitive[1] = v,
+                    _ => primitive[2] = v,
                 }
                 i += 4;
             }
             w => return Err(a.unsupported(i, &format!("lattice keyword {w}"))),
         }
     }
+    let mut spacing = [scale; 3];
+    ctx.sim.lattice_cell = None;
+    if style == "custom" {
+        if basis.is_empty() {
+            return Err(a
+                .error(0, "No basis atoms in lattice")
+                .with_help("add basis x y z (fractions of the cell)"));
+        }
+        let cell = crate::engine::lattice::Cell::new(scale, primitive, origin)
+            .map_err(|m| a.error(0, &m))?;
+        spacing = cell.spacing;
+        ctx.sim.lattice_cell = Some(cell);
+    }
     ctx.sim.lattice = Some((scale, basis));
     ctx.sim.lattice_origin = origin;
     ctx.say(&format!(
         "Lattice spacing in x,y,z = {} {} {}\n",
-        g(scale),
-        g(scale),
-        g(scale)
+        g(spacing[0]),
+        g(spacing[1]),
+        g(spacing[2])
     ));
     Ok(())
 }
@@ -488,7 +555,11 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
             }
             (l, mx.trunc() + 1.0)
         };
-        let bounds = [range(0), range(1), range(2)];
+        let cell = ctx.sim.lattice_cell.clone();
+        let bounds = match &cell {
+            Some(c) => c.ranges(d.lo, d.hi),
+            None => [range(0), range(1), range(2)],
+        };
         let points = bounds.iter().map(|(l, h)| h - l + 1.0).product::<f64>() * basis.len() as f64;
         if let Some(m) = too_many_atoms(points, next_id, "lattice points in the box") {
             return Err(a.error(1, &m));
@@ -517,11 +588,16 @@ fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
                 for ii in ilo..=ihi {
                     for b in &basis {
                         let o = ctx.sim.lattice_origin;
-                        let x = [
-                            (ii as f64 + b[0]) * scale + scale * o[0],
-                            (jj as f64 + b[1]) * scale + scale * o[1],
-                            (kk as f64 + b[2]) * scale + scale * o[2],
-                        ];
+                        let x = match &cell {
+                            Some(c) => {
+                                c.to_box([ii as f64 + b[0], jj as f64 + b[1], kk as f64 + b[2]])
+                            }
+                            None => [
+                                (ii as f64 + b[0]) * scale + scale * o[0],
+                                (jj as f64 + b[1]) * scale + scale * o[1],
+                                (kk as f64 + b[2]) * scale + scale * o[2],
+                            ],
+                        };
                         if let Some(r) = region {
                             if !ctx.sim.regions.matches(r, x) {
                                 continue;
@@ -688,10 +764,12 @@ fn delete_atoms(a: &Args, ctx: &mut Ctx) -> Result {
         i += 2;
     }
     let before = p.len();
-    ctx.sim.particles.retain_by(&remove);
+    // as LIGGGHTS: each deleted particle's slot is taken by the last one
+    ctx.sim.particles.remove_filling_from_last(&remove);
     let p = &mut ctx.sim.particles;
     if compress {
-        // IDs 1..N in memory order (LIGGGHTS's memory order also reflects its spatial sort)
+        // IDs 1..N in memory order (LIGGGHTS's memory order also reflects its spatial sort
+        // and the slots filled above)
         for (k, id) in p.id.iter_mut().enumerate() {
             *id = k as i64 + 1;
         }

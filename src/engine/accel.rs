@@ -209,7 +209,7 @@ impl Simulation {
 
     /// Fast path: particles inserted since the last look go last in the exact order, in
     /// the order they were inserted (appended).
-    fn assign_ranks(&mut self) {
+    pub(crate) fn assign_ranks(&mut self) {
         let Some(k) = self.order_record_index() else {
             return;
         };

@@ -62,6 +62,15 @@ pub struct HeatGran {
     /// IDs of the property/atom fixes (and particle arrays) holding `Temp`, `heatFlux`,
     /// `heatSource` and `directionalHeatFlux`.
     pub arrays: [String; 4],
+    /// `area_correction yes`: overlaps scaled per type pair by
+    /// `(Y_eff / Y_eff,original)^(1/stress-strain exponent)` before the area is taken.
+    pub area_correction: bool,
+    /// Those factors (row-major over type pairs), set at each run's start.
+    pub overlap_ratio: Vec<f64>,
+    /// `store_contact_data yes`: the arrays of `contactAreaConduction` (mean conduction
+    /// area per contact, length^2), `nContactsConduction`, `wallHeattransferCoeff` and
+    /// `wallTemp` (zero: no wall heat transfer).
+    pub contact_data: Option<[String; 4]>,
 }
 
 /// LIGGGHTS's floor below which a conductivity conducts nothing (W/(m K)).
@@ -117,6 +126,21 @@ impl HeatGran {
         };
         let mut flux_arr = std::mem::take(&mut p.extra[kf].data);
         let mut dir = std::mem::take(&mut p.extra[kd].data);
+        // per-particle contact data: (area sum, contact count), zeroed each step
+        let stored = self.contact_data.as_ref().and_then(|ids| {
+            let ks: Vec<usize> = ids.iter().filter_map(|id| array(p, id, 1)).collect();
+            (ks.len() == 4).then_some(ks)
+        });
+        let (mut area_sum, mut contacts) = match &stored {
+            Some(ks) => {
+                for &k in &ks[2..] {
+                    p.extra[k].data.fill(0.0);
+                }
+                (vec![0.0; p.len()], vec![0.0; p.len()])
+            }
+            None => (Vec::new(), Vec::new()),
+        };
+        let ntypes = (self.overlap_ratio.len() as f64).sqrt() as usize;
         let temp = &p.extra[kt].data;
         for pair in pairs {
             let (i, j) = (pair.i as usize, pair.j as usize);
@@ -135,7 +159,12 @@ impl HeatGran {
             if rsq >= radsum * radsum {
                 continue;
             }
-            let r = rsq.sqrt();
+            let mut r = rsq.sqrt();
+            if self.area_correction && ntypes > 0 {
+                let (ti, tj) = (p.kind[i] as usize - 1, p.kind[j] as usize - 1);
+                let delta_n = (radsum - r) * self.overlap_ratio[ti * ntypes + tj];
+                r = radsum - delta_n;
+            }
             let area = match self.area {
                 ContactArea::Overlap => {
                     if r < ri.max(rj) {
@@ -170,9 +199,24 @@ impl HeatGran {
             for c in 0..3 {
                 dir[3 * j + c] += 0.50 * d[c];
             }
+            if stored.is_some() {
+                area_sum[i] += area;
+                contacts[i] += 1.0;
+                area_sum[j] += area;
+                contacts[j] += 1.0;
+            }
         }
         p.extra[kf].data = flux_arr;
         p.extra[kd].data = dir;
+        if let Some(ks) = stored {
+            for (a, &n) in area_sum.iter_mut().zip(&contacts) {
+                if n > 0.5 {
+                    *a /= n;
+                }
+            }
+            p.extra[ks[0]].data = area_sum;
+            p.extra[ks[1]].data = contacts;
+        }
     }
 
     /// End of a step: the temperatures (K) of the group's particles advance by
@@ -270,12 +314,21 @@ impl crate::engine::sim::Simulation {
                 ));
             }
             let capacity = per_type("thermalCapacity")?;
-            resolved.push((k, conductivity, capacity));
+            let FixKind::HeatGran(h) = &f.kind else {
+                continue;
+            };
+            let ratio = if h.area_correction {
+                self.overlap_ratios(&f.style, &per_type)?
+            } else {
+                Vec::new()
+            };
+            resolved.push((k, conductivity, capacity, ratio));
         }
-        for (k, conductivity, capacity) in resolved {
+        for (k, conductivity, capacity, ratio) in resolved {
             if let FixKind::HeatGran(h) = &mut self.fixes[k].kind {
                 h.conductivity = conductivity;
                 h.capacity = capacity;
+                h.overlap_ratio = ratio;
             }
         }
         for f in &mut self.fixes {
@@ -284,6 +337,44 @@ impl crate::engine::sim::Simulation {
             }
         }
         Ok(())
+    }
+
+    /// `area_correction`: per type pair `(Y_eff / Y_eff,original)^(1/e)`, e the normal
+    /// model's stress-strain exponent (Hertz 3/2, Hooke 1), from `youngsModulus`,
+    /// `poissonsRatio` and `youngsModulusOriginal` (read by `per_type`).
+    fn overlap_ratios(
+        &self,
+        style: &str,
+        per_type: &dyn Fn(&str) -> Result<Vec<f64>, String>,
+    ) -> Result<Vec<f64>, String> {
+        let normal = self
+            .pair_selection
+            .as_ref()
+            .map(|s| s.normal.as_str())
+            .unwrap_or("");
+        let exponent = if normal.starts_with("hertz") {
+            1.5
+        } else if normal.starts_with("hooke") {
+            1.0
+        } else {
+            return Err(format!(
+                "Fix {style}: area_correction with normal model {normal}: not supported yet"
+            ));
+        };
+        let expo = 1.0 / exponent;
+        let y = per_type("youngsModulus")?;
+        let nu = per_type("poissonsRatio")?;
+        let y0 = per_type("youngsModulusOriginal")?;
+        let n = y.len();
+        let mut out = vec![0.0; n * n];
+        for i in 0..n {
+            for j in 0..n {
+                let yeff = 1. / ((1. - nu[i].powf(2.)) / y[i] + (1. - nu[j].powf(2.)) / y[j]);
+                let yorig = 1. / ((1. - nu[i].powf(2.)) / y0[i] + (1. - nu[j].powf(2.)) / y0[j]);
+                out[i * n + j] = (yeff / yorig).powf(expo);
+            }
+        }
+        Ok(out)
     }
 
     /// After the forces: conduction of every heat fix through the pair list.
@@ -359,6 +450,9 @@ mod tests {
             conductivity: vec![2.0],
             capacity: vec![10.0],
             arrays: [TEMP, HEAT_FLUX, HEAT_SOURCE, DIRECTIONAL].map(String::from),
+            area_correction: false,
+            overlap_ratio: Vec::new(),
+            contact_data: None,
         };
         let before = thermal_energy(&p, TEMP, &h.capacity);
         let pairs = [Pair {

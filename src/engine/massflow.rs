@@ -71,6 +71,16 @@ pub struct Massflow {
     pub count: f64,
     /// Mass and count at the previous output.
     last: (f64, f64),
+    /// `delete_atoms yes`: counted particles are deleted at the next re-neighbouring.
+    pub delete: bool,
+    /// IDs of counted particles waiting to be deleted, in counting order.
+    pub doomed: Vec<i64>,
+    /// Mass (mass) and number of the particles deleted so far.
+    pub deleted: (f64, f64),
+    /// `sum_property NAME`: the particle array (fix ID) of that per-atom scalar.
+    pub property: Option<String>,
+    /// The sum of that property over the counted particles.
+    pub property_sum: f64,
     /// Output clock (read by thermo through a shared reference).
     clock: Mutex<Clock>,
 }
@@ -97,6 +107,11 @@ impl Massflow {
             mass: 0.0,
             count: 0.0,
             last: (0.0, 0.0),
+            delete: false,
+            doomed: Vec::new(),
+            deleted: (0.0, 0.0),
+            property: None,
+            property_sum: 0.0,
             clock: Mutex::new(Clock {
                 t_count: 0.0,
                 delta_t: 0.0,
@@ -231,7 +246,8 @@ impl Massflow {
             }
         }
         let k = p.extra_index(&self.marker, 1);
-        let (mut mass_this, mut count_this) = (0.0, 0.0);
+        let prop = self.property.as_ref().map(|n| p.extra_index(n, 1));
+        let (mut mass_this, mut count_this, mut property_this) = (0.0, 0.0, 0.0);
         let lists = std::mem::take(&mut self.lists);
         let mut result = Ok(());
         'tris: for (t, list) in lists.iter().enumerate().take(mesh.len()) {
@@ -277,12 +293,22 @@ impl Massflow {
                     if marker == 0.0 {
                         mass_this += p.mass[i];
                         count_this += 1.0;
+                        if let Some(q) = prop {
+                            property_this += p.extra[q].data[i];
+                        }
+                        if self.delete {
+                            // unseen again, and gone at the next re-neighbouring
+                            p.extra[k].data[i] = 0.0;
+                            self.doomed.push(p.id[i]);
+                        }
                         result = self.report(p, i, time, out);
                         if result.is_err() {
                             break 'tris;
                         }
                     }
-                    p.extra[k].data[i] = if self.once { 3.0 } else { 2.0 };
+                    if !self.delete {
+                        p.extra[k].data[i] = if self.once { 3.0 } else { 2.0 };
+                    }
                 } else if dot <= 0.0 {
                     p.extra[k].data[i] = 1.0;
                 }
@@ -291,6 +317,7 @@ impl Massflow {
         self.lists = lists;
         self.mass += mass_this;
         self.count += count_this;
+        self.property_sum += property_this;
         result
     }
 
@@ -328,7 +355,8 @@ impl Massflow {
     }
 
     /// `f_ID[index]` (1-based): crossed mass, count, mass rate and count rate since the
-    /// previous output, deleted mass and count (mass, 1, mass/time, 1/time). The first
+    /// previous output, deleted mass and count (mass, 1, mass/time, 1/time, mass, 1), and
+    /// with `sum_property` the property's sum over the counted particles. The first
     /// value read after a step starts a new output interval, as in LIGGGHTS.
     pub fn value(&self, index: usize) -> Option<f64> {
         let mut clock = self.clock.lock().unwrap_or_else(|e| e.into_inner());
@@ -349,13 +377,57 @@ impl Massflow {
             2 => Some(self.count),
             3 => Some(rate(self.mass, self.last.0)),
             4 => Some(rate(self.count, self.last.1)),
-            5 | 6 => Some(0.0),
+            5 => Some(self.deleted.0),
+            6 => Some(self.deleted.1),
+            7 if self.property.is_some() => Some(self.property_sum),
             _ => None,
         }
     }
 }
 
 impl crate::engine::sim::Simulation {
+    /// LIGGGHTS's `pre_exchange` of `fix massflow/mesh ... delete_atoms yes` (at a
+    /// re-neighbouring, before atoms are wrapped): each particle counted since is removed,
+    /// in counting order, its slot filled by the last particle.
+    pub(crate) fn massflow_delete(&mut self) {
+        use crate::engine::fixes::FixKind;
+        if !self
+            .fixes
+            .iter()
+            .any(|f| matches!(&f.kind, FixKind::Massflow(m) if !m.doomed.is_empty()))
+        {
+            return;
+        }
+        // the fast path keeps the exact order as ranks: the exact last takes the slot
+        self.assign_ranks();
+        let order = self
+            .particles
+            .extra
+            .iter()
+            .position(|e| e.name == crate::engine::accel::ORDER_ARRAY);
+        for f in &mut self.fixes {
+            let FixKind::Massflow(mf) = &mut f.kind else {
+                continue;
+            };
+            let p = &mut self.particles;
+            for id in std::mem::take(&mut mf.doomed) {
+                let Some(i) = p.id.iter().position(|&x| x == id) else {
+                    continue;
+                };
+                mf.deleted.0 += p.mass[i];
+                mf.deleted.1 += 1.0;
+                if let Some(k) = order {
+                    let ranks = &mut p.extra[k].data;
+                    let last = (0..ranks.len()).max_by(|&a, &b| ranks[a].total_cmp(&ranks[b]));
+                    if let Some(m) = last {
+                        ranks[m] = ranks[i];
+                    }
+                }
+                p.fill_from_last(i);
+            }
+        }
+    }
+
     /// Rebuild the triangle lists of every `fix massflow/mesh` (after each pair-list build
     /// and at each run's setup, where a `vec_side` face must also be planar).
     pub(crate) fn massflow_lists(&mut self, setup: bool) -> Result<(), String> {

@@ -171,6 +171,49 @@ impl Particles {
         }
     }
 
+    /// Remove the particles for which `remove` is true as LIGGGHTS's `delete_atoms` does:
+    /// walking up from the first, each removed particle's slot is filled by the last
+    /// particle (which is examined next).
+    pub fn remove_filling_from_last(&mut self, remove: &[bool]) {
+        let mut flags = remove.to_vec();
+        let mut i = 0;
+        while i < self.len() && i < flags.len() {
+            if flags[i] {
+                flags.swap_remove(i);
+                self.fill_from_last(i);
+            } else {
+                i += 1;
+            }
+        }
+    }
+
+    /// Remove particle `i` as LIGGGHTS deletes one: the last particle moves into its slot.
+    pub fn fill_from_last(&mut self, i: usize) {
+        fn fill<T: Copy>(v: &mut Vec<T>, i: usize) {
+            v.swap_remove(i);
+        }
+        fill(&mut self.id, i);
+        fill(&mut self.kind, i);
+        fill(&mut self.mask, i);
+        fill(&mut self.x, i);
+        fill(&mut self.v, i);
+        fill(&mut self.f, i);
+        fill(&mut self.omega, i);
+        fill(&mut self.torque, i);
+        fill(&mut self.radius, i);
+        fill(&mut self.mass, i);
+        fill(&mut self.density, i);
+        fill(&mut self.image, i);
+        let n = self.id.len();
+        for e in &mut self.extra {
+            let w = e.width;
+            if i < n {
+                e.data.copy_within(n * w..(n + 1) * w, i * w);
+            }
+            e.data.truncate(n * w);
+        }
+    }
+
     /// Reorder every array by `order` (new index -> old index), e.g. to sort by cell.
     pub fn permute(&mut self, order: &[usize]) {
         fn apply<T: Copy>(v: &mut Vec<T>, order: &[usize]) {

@@ -76,6 +76,15 @@ pub struct Region {
     pub radius_variable: Option<(String, f64)>,
     /// The step the variable radius was last evaluated at (once per step, as LIGGGHTS).
     pub shaped_at: Option<i64>,
+    /// `move`/`rotate`: a dynamic region's motion.
+    pub motion: Option<crate::engine::region_motion::Motion>,
+}
+
+impl Region {
+    /// Whether variables change the region during a run (a variable radius or a motion).
+    pub fn is_dynamic(&self) -> bool {
+        self.radius_variable.is_some() || self.motion.is_some()
+    }
 }
 
 /// All regions defined so far, in order.
@@ -169,7 +178,10 @@ impl Regions {
             return Err(format!("Illegal region {style} command").into());
         }
         let geometry = &args[2..2 + nshape];
-        let (interior, scale) = options(&args[2 + nshape..], ctx)?;
+        let (interior, scale, motion) = options(&args[2 + nshape..], ctx)?;
+        if motion.is_some() && matches!(style, "union" | "intersect") {
+            return Err("Region union or intersect cannot be dynamic".into());
+        }
         let coord = |w: &str, d: usize, lo_side: bool| -> Result<f64, String> {
             if w == "INF" || w == "EDGE" {
                 let (lo, hi) = ctx
@@ -319,6 +331,7 @@ impl Regions {
             interior,
             radius_variable,
             shaped_at: None,
+            motion,
         });
         Ok(())
     }
@@ -340,12 +353,18 @@ impl Regions {
         equal: &mut dyn FnMut(&str) -> Result<f64, String>,
     ) -> Result<(), String> {
         for r in &mut self.list {
-            let Some((name, scale)) = &r.radius_variable else {
-                continue;
-            };
-            if step.is_some() && r.shaped_at == step {
+            if !r.is_dynamic() || (step.is_some() && r.shaped_at == step) {
                 continue;
             }
+            if let Some(m) = &mut r.motion {
+                m.update(equal)?;
+            }
+            let Some((name, scale)) = &r.radius_variable else {
+                if step.is_some() {
+                    r.shaped_at = step;
+                }
+                continue;
+            };
             let value = equal(name)?;
             if value < 0.0 {
                 return Err("Variable evaluation in region gave bad value".into());
@@ -366,6 +385,10 @@ impl Regions {
     /// Is point `x` in region `index`, honouring `side`?
     pub fn matches(&self, index: usize, x: [f64; 3]) -> bool {
         let r = &self.list[index];
+        let x = match &r.motion {
+            Some(m) => m.inverse(x),
+            None => x,
+        };
         self.inside(&r.shape, x) == r.interior
     }
 
@@ -478,12 +501,26 @@ impl Regions {
     }
 }
 
-/// Trailing `units`, `side`, `seed`, `volume_limit` options; returns (interior, scale).
-fn options(words: &[&str], ctx: RegionContext) -> Result<(bool, [f64; 3]), EngineError> {
+/// A region's interior flag, lattice scale and motion.
+type Options = (bool, [f64; 3], Option<crate::engine::region_motion::Motion>);
+
+/// Trailing `units`, `side`, `seed`, `volume_limit`, `move`, `rotate` options.
+fn options(words: &[&str], ctx: RegionContext) -> Result<Options, EngineError> {
     let mut interior = true;
     let mut lattice = false;
+    // the motion keywords, parsed once the scale is known
+    let mut moves: Vec<usize> = Vec::new();
     let mut i = 0;
     while i < words.len() {
+        if matches!(words[i], "move" | "rotate") {
+            let n = if words[i] == "move" { 4 } else { 8 };
+            if i + n > words.len() {
+                return Err("Illegal region command".into());
+            }
+            moves.push(i);
+            i += n;
+            continue;
+        }
         let value = words.get(i + 1).ok_or("Illegal region command")?;
         match (words[i], *value) {
             ("units", "box") => lattice = false,
@@ -492,9 +529,6 @@ fn options(words: &[&str], ctx: RegionContext) -> Result<(bool, [f64; 3]), Engin
             ("side", "out") => interior = false,
             ("seed", _) | ("volume_limit", _) => {
                 numeric(value)?;
-            }
-            ("move" | "rotate", _) => {
-                return Err(EngineError::Unsupported(format!("region {}", words[i])))
             }
             _ => {
                 return Err(
@@ -509,7 +543,11 @@ fn options(words: &[&str], ctx: RegionContext) -> Result<(bool, [f64; 3]), Engin
     } else {
         [1.0; 3]
     };
-    Ok((interior, scale))
+    let mut motion = None;
+    for k in moves {
+        crate::engine::region_motion::Motion::parse(&mut motion, &words[k..], scale)?;
+    }
+    Ok((interior, scale, motion))
 }
 
 #[cfg(test)]

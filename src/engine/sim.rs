@@ -204,6 +204,8 @@ pub enum DumpStyle {
     MeshStl(Vec<String>),
     /// `mesh/vtk` (`mesh/gran/VTK`): meshes with per-triangle data as legacy VTK.
     MeshVtk(crate::io::mesh_vtk::MeshDumpSpec),
+    /// `local/gran/vtk`: the contacts of this local compute (ID) as VTK lines.
+    LocalGranVtk(String),
 }
 
 /// When the stress module of `mesh/surface/stress` acts.
@@ -280,6 +282,8 @@ pub struct Simulation {
     pub lattice: Option<(f64, Vec<[f64; 3]>)>,
     /// `lattice ... origin x y z`: the lattice's shift in lattice units (0 <= x < 1).
     pub lattice_origin: [f64; 3],
+    /// `lattice custom`: its primitive vectors and spacings (None for the cubic styles).
+    pub lattice_cell: Option<crate::engine::lattice::Cell>,
     /// Current step.
     pub step: i64,
     /// Time-step size (time units).
@@ -381,6 +385,7 @@ impl Default for Simulation {
             ntypes: 0,
             lattice: None,
             lattice_origin: [0.0; 3],
+            lattice_cell: None,
             step: 0,
             dt: 0.001,
             atime: 0.0,
@@ -965,7 +970,7 @@ impl Simulation {
                 Ok(m.stress.as_ref().and_then(|s| s.value(i)).unwrap_or(0.0))
             }
             (FixKind::AveTime(at), i) if at.value(i).is_some() => Ok(at.value(i).unwrap_or(0.0)),
-            (FixKind::Massflow(m), Some(i)) if (1..=6).contains(&i) => {
+            (FixKind::Massflow(m), Some(i)) if m.value(i).is_some() => {
                 Ok(m.value(i).unwrap_or(0.0))
             }
             (FixKind::Buoyancy(b), Some(i @ 1..=3)) => Ok(b.total[i - 1]),
@@ -1442,11 +1447,14 @@ impl Simulation {
 
     /// LIGGGHTS's `Neighbor::decide`: rebuild now?
     fn decide(&mut self) -> bool {
+        // a rebuild a fix or a changed atom count forces is never dangerous
+        let forced = self.mesh_rebuild_at == Some(self.step)
+            || self.list.built_positions().len() != self.particles.len();
         let rebuild = self.decide_by_rules();
         // LIGGGHTS's dangerous build: a distance-triggered rebuild at the first step the
         // delay and every settings allowed (the list may have been out of date already)
         let n = &self.neighbor;
-        if rebuild && n.check && self.ago == n.every.max(n.delay) {
+        if rebuild && !forced && n.check && self.ago == n.every.max(n.delay) {
             self.stats.dangerous += 1;
         }
         rebuild
@@ -1725,12 +1733,7 @@ impl Simulation {
     /// Evaluate the variables and regions of `fix setforce`/`addforce` for this step.
     fn resolve_force_fixes(&mut self, vars: &mut dyn VariableSource) -> Result<(), String> {
         use crate::engine::fixes::ForceValue;
-        if self
-            .regions
-            .list
-            .iter()
-            .any(|r| r.radius_variable.is_some())
-        {
+        if self.regions.list.iter().any(|r| r.is_dynamic()) {
             let mut regions = std::mem::take(&mut self.regions);
             let result = regions.reshape(Some(self.step), &mut |name| vars.equal(self, name));
             self.regions = regions;
@@ -2021,6 +2024,7 @@ impl Simulation {
             self.insert_streams(out)?;
             let rebuilt = self.decide();
             if rebuilt {
+                self.massflow_delete();
                 let mut comm = self.stats.comm;
                 timed(&mut comm, || self.pbc_and_box())?;
                 self.stats.comm = comm;
@@ -2747,7 +2751,12 @@ impl Simulation {
             let box_name = crate::io::vtk::bounding_box_name(&dump.file, &step_text);
             crate::io::write_atomically(&box_name, &bbox)
                 .map_err(|e| format!("Cannot open dump file {box_name}: {e}"))?;
-        } else if multi || matches!(dump.style, DumpStyle::MeshStl(_) | DumpStyle::MeshVtk(_)) {
+        } else if multi
+            || matches!(
+                dump.style,
+                DumpStyle::MeshStl(_) | DumpStyle::MeshVtk(_) | DumpStyle::LocalGranVtk(_)
+            )
+        {
             crate::io::write_atomically(&name, text)
                 .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
         } else {
@@ -2826,6 +2835,11 @@ impl Simulation {
                     |r, c| data[c].0 .1[r * data[c].0 .0 + data[c].1],
                 )
                 .map_err(|e| e.to_string())?;
+                self.write_dump_text(k, step, &text)?;
+                continue;
+            }
+            if let DumpStyle::LocalGranVtk(cid) = &self.dumps[k].style {
+                let text = crate::engine::local_vtk::snapshot(self, cid)?;
                 self.write_dump_text(k, step, &text)?;
                 continue;
             }
@@ -2936,6 +2950,8 @@ impl Simulation {
                     crate::io::mesh_vtk::write_mesh_vtk(&mut text, spec, &snaps)
                         .map_err(|e| e.to_string())?;
                 }
+                // written before the per-atom columns are evaluated
+                DumpStyle::LocalGranVtk(_) => {}
                 DumpStyle::Vtk(fields) => {
                     let mut atoms: Vec<usize> = (0..p.len())
                         .filter(|&i| p.mask[i] & dump.group != 0)

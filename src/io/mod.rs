@@ -5,6 +5,7 @@ pub mod data;
 pub mod diff;
 pub mod dump;
 pub mod dump_compare;
+pub mod local_vtk;
 pub mod mesh_vtk;
 pub mod restart;
 pub mod stl;

@@ -128,7 +128,7 @@ pub fn fields(names: &[String]) -> Vec<Field> {
 
 /// Writes values with `format`, each followed by a blank, a line break after every ninth,
 /// and a line break at the end (VTK's legacy array layout).
-fn write_array(
+pub(crate) fn write_array(
     out: &mut impl Write,
     count: usize,
     mut value: impl FnMut(usize) -> String,

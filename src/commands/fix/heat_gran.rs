@@ -7,8 +7,8 @@ use crate::engine::fixes::FixKind;
 use crate::engine::heat::{self, ContactArea, HeatGran};
 
 /// `fix ID GROUP heat/gran[/conduction] initial_temperature T0 [contact_area overlap|
-/// projection|constant A] [area_correction no] [store_contact_data no]` (T0 in K, A in
-/// length^2).
+/// projection|constant A] [area_correction yes|no] [store_contact_data yes|no]` (T0 in K,
+/// A in length^2).
 pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
     let fail = |i: usize, m: &str| a.error(i, format!("Fix {} (id {}): {m}", fix.style, fix.id));
     if a.len() < 5 {
@@ -20,6 +20,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     }
     let t0 = heat::initial_temperature(crate::util::numbers::c_atof(a.word(4)?));
     let mut area = ContactArea::Overlap;
+    let (mut area_correction, mut store) = (false, false);
     let mut i = 5;
     while i < a.len() {
         match a.word(i)? {
@@ -54,12 +55,15 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 if i + 2 > a.len() {
                     return Err(fail(i, &format!("not enough arguments for keyword '{w}'")));
                 }
-                match a.word(i + 1)? {
-                    "no" => {}
-                    "yes" => {
-                        return Err(a.unsupported(i, &format!("fix {} {w} yes", fix.style)));
-                    }
+                let yes = match a.word(i + 1)? {
+                    "no" => false,
+                    "yes" => true,
                     _ => return Err(fail(i + 1, &format!("expecting 'yes' or 'no' after '{w}'"))),
+                };
+                if w == "area_correction" {
+                    area_correction = yes;
+                } else {
+                    store = yes;
                 }
                 i += 2;
             }
@@ -68,12 +72,27 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
             _ => return Err(fail(i, "unknown keyword")),
         }
     }
+    if area_correction && area != ContactArea::Overlap {
+        return Err(fail(
+            2,
+            "can use 'area_correction' only for 'contact_area = overlap'",
+        ));
+    }
     let mut lines = Vec::new();
     let directional =
         super::property_atom::ensure(ctx, heat::DIRECTIONAL, &[0.0; 3], false, &mut lines);
     let temp = super::property_atom::ensure(ctx, heat::TEMP, &[t0], true, &mut lines);
     let flux = super::property_atom::ensure(ctx, heat::HEAT_FLUX, &[0.0], true, &mut lines);
     let source = super::property_atom::ensure(ctx, heat::HEAT_SOURCE, &[0.0], true, &mut lines);
+    let contact_data = store.then(|| {
+        [
+            "contactAreaConduction",
+            "nContactsConduction",
+            "wallHeattransferCoeff",
+            "wallTemp",
+        ]
+        .map(|name| super::property_atom::ensure(ctx, name, &[0.0], false, &mut lines))
+    });
     for line in lines {
         ctx.say(&format!("{line}\n"));
     }
@@ -83,5 +102,8 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         conductivity: Vec::new(),
         capacity: Vec::new(),
         arrays: [temp, flux, source, directional],
+        area_correction,
+        overlap_ratio: Vec::new(),
+        contact_data,
     }))
 }

@@ -55,7 +55,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 let reg = &ctx.sim.regions.list[k];
                 let simple = |k: usize| {
                     let r = &ctx.sim.regions.list[k];
-                    r.radius_variable.is_none()
+                    !r.is_dynamic()
                         && matches!(
                             r.shape,
                             crate::engine::region::Shape::Block { .. }

@@ -6,7 +6,8 @@ use crate::engine::fixes::FixKind;
 use crate::engine::massflow::{Massflow, Side};
 
 /// `fix ID GROUP massflow/mesh mesh MESH vec_side VX VY VZ [count once|multiple]
-/// [point_at_outlet X Y Z [inside_out]] [file|append F] [writeTime] [screen yes|no]`,
+/// [point_at_outlet X Y Z [inside_out]] [file|append F] [writeTime] [screen yes|no]
+/// [delete_atoms yes|no] [sum_property NAME]`,
 /// keywords read in LIGGGHTS's order and checks.
 pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
     let id = fix.id;
@@ -19,6 +20,8 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     let mut inside_out = false;
     let mut file = None;
     let mut screen = false;
+    let mut delete = false;
+    let mut property = None;
     let mut i = 3;
     while i < a.len() {
         match a.word(i)? {
@@ -113,18 +116,38 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 if a.len() < i + 2 {
                     return Err(fail(i, "Illegal keyword entry"));
                 }
-                match a.word(i + 1)? {
-                    "yes" => return Err(a.unsupported(i, "fix massflow/mesh delete_atoms yes")),
-                    "no" => {}
+                delete = match a.word(i + 1)? {
+                    "yes" => true,
+                    "no" => false,
                     _ => return Err(a.error(i + 1, "Illegal delete command")),
-                }
+                };
                 i += 2;
             }
             "sum_property" => {
-                return Err(a.unsupported(i, "fix massflow/mesh sum_property"));
+                if a.len() < i + 2 {
+                    return Err(fail(i, "not enough arguments for 'sum_property'"));
+                }
+                let name = a.word(i + 1)?;
+                // a per-atom scalar of fix property/atom, found by its variable name
+                let found = ctx.sim.fixes.iter().find_map(|f| match &f.kind {
+                    FixKind::PropertyAtom(pa) if pa.name == name && !pa.vector => {
+                        Some(f.id.clone())
+                    }
+                    _ => None,
+                });
+                property = Some(found.ok_or_else(|| {
+                    a.error(
+                        i + 1,
+                        format!("Could not locate a fix/property storing value(s) for {name} as requested by massflow/mesh."),
+                    )
+                })?);
+                i += 2;
             }
             _ => return Err(fail(i, "unknown keyword")),
         }
+    }
+    if delete && !once {
+        return Err(fail(2, "using 'delete_atoms yes' requires 'count once'"));
     }
     if outlet.is_some() && !once {
         return Err(fail(2, "setting 'point_at_outlet' requires 'count once'"));
@@ -144,6 +167,8 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     m.screen = screen;
     m.write_time = write_time;
     m.file = file;
+    m.delete = delete;
+    m.property = property;
     m.write_header()
         .map_err(|e| a.error(0, format!("fix massflow/mesh: {e}")))?;
     Ok(FixKind::Massflow(Box::new(m)))

@@ -1,0 +1,33 @@
+//! One snapshot of `dump local/gran/vtk`: the rows of its local compute, evaluated now,
+//! written as a VTK contact network.
+
+use crate::engine::computes::{ComputeKind, LocalField};
+use crate::engine::sim::Simulation;
+use crate::io::local_vtk::{write_contacts, ContactLayout};
+
+/// The fields of a `pair/gran/local` or `wall/gran/local` compute (else `None`).
+pub fn local_fields(kind: &ComputeKind) -> Option<&[LocalField]> {
+    match kind {
+        ComputeKind::PairGranLocal(f) | ComputeKind::WallGranLocal { fields: f, .. } => Some(f),
+        _ => None,
+    }
+}
+
+/// The VTK text of compute `cid`'s contacts at the current step.
+pub fn snapshot(sim: &Simulation, cid: &str) -> Result<Vec<u8>, String> {
+    let c = sim
+        .computes
+        .iter()
+        .find(|c| c.id == cid)
+        .ok_or_else(|| format!("Could not find dump local/gran/vtk compute ID {cid}"))?;
+    let fields = local_fields(&c.kind)
+        .ok_or_else(|| format!("compute {cid} is not a compute pair/gran/local"))?;
+    let (ncols, rows) = c.local(sim)?;
+    // the history columns are what the other fields leave of a row
+    let fixed: usize = fields.iter().map(|f| f.width(0)).sum();
+    let layout = ContactLayout::new(fields, ncols.saturating_sub(fixed))
+        .ok_or_else(|| format!("compute {cid} does not write the positions"))?;
+    let mut text = Vec::new();
+    write_contacts(&mut text, &layout, ncols, &rows).map_err(|e| e.to_string())?;
+    Ok(text)
+}

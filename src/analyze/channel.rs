@@ -128,6 +128,9 @@ pub struct ChannelResult {
     pub end_margin: f64,
     /// Mean and spread of the dilation over the columns kept (m).
     pub dilation_mean: Option<(f64, f64)>,
+    /// Surface rise behind the front: mean and spread of the final minus initial height over
+    /// the columns of the c_w range past the first (the piston's) cell (m).
+    pub rise: Option<(f64, f64)>,
     /// Mean packing fraction of the bed's filled cells at the first frame.
     pub packing: f64,
     /// Per-particle profiles at the panel times.
@@ -239,6 +242,7 @@ pub fn analyze(series: &Series, o: &ChannelOptions) -> Result<ChannelResult, Ana
         frames: height_frames,
     };
     let (dilation, dilation_mean) = dilation(&heights, o, scale, grid.y0, length);
+    let rise = rise(&dilation, grid.y0, grid.cell, o.cw_range.1 * fit_scale);
     let packing = bed_packing(&grid, &cells[0].1, &heights.frames[0].1);
     let mut times = o.panel_times.clone();
     let t_end = cells.last().map_or(0.0, |c| c.0);
@@ -265,9 +269,21 @@ pub fn analyze(series: &Series, o: &ChannelOptions) -> Result<ChannelResult, Ana
         dilation,
         end_margin: o.end_exclusion * scale,
         dilation_mean,
+        rise,
         packing,
         panels,
     })
+}
+
+/// Mean and spread of the per-column height change over the columns whose centres lie
+/// between one cell from the piston wall and `end` (m from it).
+fn rise(per_column: &[(f64, f64, bool)], y0: f64, cell: f64, end: f64) -> Option<(f64, f64)> {
+    let kept: Vec<f64> = per_column
+        .iter()
+        .filter(|c| c.0 - y0 >= cell && c.0 - y0 <= end && c.1.is_finite())
+        .map(|c| c.1)
+        .collect();
+    mean_std(&kept)
 }
 
 fn arrivals(grid: &Grid, cells: &[(f64, CellStats)], factor: f64) -> Vec<Arrival> {

@@ -88,6 +88,14 @@ pub fn write_run(
         ),
         None => "dilation: no column away from the ends".into(),
     });
+    lines.push(match (r.rise, &r.c_w) {
+        (Some((m, s)), Some(c)) => format!(
+            "surface rise behind the front (final minus initial bed height, columns in ({:.3}, {:.3}] m): {m:.3e} m, spread {s:.2e} m",
+            r.grid.cell, c.range.1
+        ),
+        (Some((m, s)), None) => format!("surface rise behind the front: {m:.3e} m, spread {s:.2e} m"),
+        (None, _) => "surface rise behind the front: no column".into(),
+    });
     lines.push(format!(
         "initial packing fraction of the bed: {:.4}",
         r.packing

@@ -15,8 +15,10 @@ use std::f64::consts::PI;
 pub const RAYLEIGH_WARN: f64 = 0.4;
 
 /// The trade study's errors along its time-step axis: `scene,observable,path,frac,error,
-/// absolute`, one row per run (`frac` is dt as a fraction of the Rayleigh time; `error` is
-/// relative to the exact path at 0.1 % of it, or absolute where `absolute` is 1). Written by
+/// absolute,spread`, one row per run (`frac` is dt as a fraction of the Rayleigh time; `error`
+/// is relative to the exact path at the scene's reference step, or absolute where `absolute`
+/// is 1; `spread` is the observable's relative run-to-run spread, 0 for a deterministic one,
+/// and may be missing). Written by
 /// `examples/trade/study.sh` (its `docs/trade_margin.csv`) and compiled in, so `check` and the
 /// run header can say what a deck's margin costs in accuracy (docs/trade.md has the whole
 /// study).
@@ -24,6 +26,10 @@ const TRADE_STUDY: &str = include_str!("../../docs/trade_margin.csv");
 
 /// The error the trade's recommendation stays within.
 pub const TRADE_TOLERANCE: f64 = 0.01;
+
+/// A statistical observable's error counts as a draw (not a time-step error) up to this many
+/// times its relative run-to-run spread.
+pub const SPREAD_SIGMAS: f64 = 3.0;
 
 /// One row of [`TRADE_STUDY`].
 #[derive(Debug, Clone, PartialEq)]
@@ -40,6 +46,26 @@ pub struct TradeRow {
     pub error: f64,
     /// The error is absolute (the observable's exact value is 0).
     pub absolute: bool,
+    /// The observable's relative run-to-run spread (0: deterministic): a statistical
+    /// observable's errors within it are draws, not time-step errors.
+    pub spread: f64,
+}
+
+/// One observable of the study at a deck's margin ([`trade_at`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TradeAt {
+    /// What it is, in words.
+    pub label: String,
+    /// The error measured at the margin (relative, or absolute when `absolute`).
+    pub error: f64,
+    /// The error is absolute.
+    pub absolute: bool,
+    /// The largest dt / Rayleigh time up to which every error stays within the tolerance (or
+    /// within [`SPREAD_SIGMAS`] run-to-run spreads where that is larger); None: not even the
+    /// smallest step.
+    pub within: Option<f64>,
+    /// The relative run-to-run spread (0: deterministic).
+    pub spread: f64,
 }
 
 /// The rows of the compiled-in trade study (rows that do not parse are left out).
@@ -59,6 +85,7 @@ pub fn trade_study() -> Vec<TradeRow> {
                 frac: w[3].parse().ok()?,
                 error: w[4].parse().ok()?,
                 absolute: w[5] == "1",
+                spread: w.get(6).and_then(|x| x.parse().ok()).unwrap_or(0.0),
             })
         })
         .collect()
@@ -74,6 +101,10 @@ fn trade_label(scene: &str, observable: &str) -> String {
         ("slide", "t_roll") => "sliding time".into(),
         ("chain_weak", "c_w") => "wave speed (weak impact)".into(),
         ("chain_strong", "c_w") => "wave speed (strong impact)".into(),
+        ("bed", "phi") => "bed packing fraction".into(),
+        ("bed", "H") => "bed height".into(),
+        ("channel", "c_w") => "channel front speed".into(),
+        ("channel", "rise") => "channel surface rise".into(),
         _ => format!("{scene} {observable}"),
     }
 }
@@ -81,14 +112,10 @@ fn trade_label(scene: &str, observable: &str) -> String {
 /// Per observable of the study (in the study's order): its label, the error measured at
 /// `frac` (the study's nearest time step at or above it, or its largest), whether that error
 /// is absolute, and the largest time step (fraction of the Rayleigh time) up to which every
-/// error of the observable stays within `tolerance`, on the given path (None: not even at
-/// the study's smallest step).
-pub fn trade_at(
-    rows: &[TradeRow],
-    frac: f64,
-    fast: bool,
-    tolerance: f64,
-) -> Vec<(String, f64, bool, Option<f64>)> {
+/// error of the observable stays within `tolerance` (or within [`SPREAD_SIGMAS`] times its
+/// run-to-run spread, where that is larger), on the given path (None: not even at the study's
+/// smallest step).
+pub fn trade_at(rows: &[TradeRow], frac: f64, fast: bool, tolerance: f64) -> Vec<TradeAt> {
     let mut keys: Vec<(&str, &str)> = Vec::new();
     for r in rows {
         if !keys.contains(&(r.scene, r.observable)) {
@@ -113,15 +140,23 @@ pub fn trade_at(
             .find(|r| r.frac >= frac * (1.0 - 1e-9))
             .or(measured.last())
             .map_or(0.0, |r| r.error);
+        let spread = pts.iter().map(|r| r.spread).fold(0.0, f64::max);
+        let bound = tolerance.max(SPREAD_SIGMAS * spread);
         let mut within = None;
         for r in &pts {
-            if r.error.abs() <= tolerance {
+            if r.error.abs() <= bound {
                 within = Some(r.frac);
             } else {
                 break;
             }
         }
-        out.push((trade_label(scene, observable), at, last.absolute, within));
+        out.push(TradeAt {
+            label: trade_label(scene, observable),
+            error: at,
+            absolute: last.absolute,
+            within,
+            spread,
+        });
     }
     out
 }
@@ -161,20 +196,34 @@ pub fn trade_lines(frac: f64) -> String {
     }
     let words: Vec<String> = exact
         .iter()
-        .map(|(label, e, absolute, _)| {
-            if *absolute {
-                format!("{label} {e:.1e}")
+        .map(|t| {
+            if t.absolute {
+                format!("{} {:.1e}", t.label, t.error)
+            } else if t.spread > 0.0 {
+                format!(
+                    "{} {} (run-to-run spread {})",
+                    t.label,
+                    pct_err(100.0 * t.error),
+                    pct_err(100.0 * t.spread)
+                )
             } else {
-                format!("{label} {}", pct_err(100.0 * e))
+                format!("{} {}", t.label, pct_err(100.0 * t.error))
             }
         })
         .collect();
     s.push_str(&format!("    {}\n", words.join(", ")));
     let each: Vec<String> = exact
         .iter()
-        .map(|(label, _, _, within)| match within {
-            Some(f) => format!("{label} {}", pct(100.0 * f)),
-            None => format!("{label} none"),
+        .map(|t| {
+            let within = match t.within {
+                Some(f) => pct(100.0 * f),
+                None => "none".into(),
+            };
+            if t.spread > 0.0 {
+                format!("{} {within} (statistical)", t.label)
+            } else {
+                format!("{} {within}", t.label)
+            }
         })
         .collect();
     s.push_str(&format!(
@@ -182,15 +231,18 @@ pub fn trade_lines(frac: f64) -> String {
         pct(100.0 * TRADE_TOLERANCE),
         each.join(", ")
     ));
-    let smallest = |set: &[(String, f64, bool, Option<f64>)]| {
+    // statistical observables do not resolve a time-step error below their spread: they are
+    // quoted, but do not set the fastest setting
+    let smallest = |set: &[TradeAt]| {
         set.iter()
-            .map(|x| x.3.unwrap_or(0.0))
+            .filter(|x| x.spread == 0.0)
+            .map(|x| x.within.unwrap_or(0.0))
             .fold(f64::INFINITY, f64::min)
     };
     let (best_exact, best_fast) = (smallest(&exact), smallest(&fast));
     if best_exact > 0.0 && best_exact.is_finite() {
         // the fast path's errors in the study, against the exact path's at the same step
-        let same = rows.iter().filter(|r| r.fast).all(|r| {
+        let same = rows.iter().filter(|r| r.fast && r.spread == 0.0).all(|r| {
             rows.iter().any(|x| {
                 !x.fast
                     && (x.scene, x.observable, x.frac) == (r.scene, r.observable, r.frac)
@@ -212,8 +264,13 @@ pub fn trade_lines(frac: f64) -> String {
         } else {
             String::new()
         };
+        let aside = if exact.iter().any(|t| t.spread > 0.0) {
+            " (the statistical ones aside)"
+        } else {
+            ""
+        };
         s.push_str(&format!(
-            "  fastest setting within {} for all of them: dt = {} of the Rayleigh time{gain}{path}\n",
+            "  fastest setting within {} for all of them{aside}: dt = {} of the Rayleigh time{gain}{path}\n",
             pct(100.0 * TRADE_TOLERANCE),
             pct(100.0 * best),
         ));
@@ -592,6 +649,7 @@ mod tests {
             frac,
             error,
             absolute: false,
+            spread: 0.0,
         }
     }
 
@@ -611,19 +669,31 @@ mod tests {
         let exact = trade_at(&rows, 0.0067, false, 0.01);
         // measured at the study's next step up (1 %); within 1 % up to the first step past it
         // (not again at 40 %, where the error happens to be small)
+        let t = |x: &TradeAt| (x.label.clone(), x.error, x.absolute, x.within);
         assert_eq!(
-            exact[0],
+            t(&exact[0]),
             ("restitution".to_string(), 0.002, false, Some(0.1))
         );
         assert_eq!(
-            exact[1],
+            t(&exact[1]),
             ("contact time".to_string(), 0.001, false, Some(0.01))
         );
         // beyond the study: its largest step's error
-        assert_eq!(trade_at(&rows, 0.5, false, 0.01)[0].1, 0.005);
+        assert_eq!(trade_at(&rows, 0.5, false, 0.01)[0].error, 0.005);
         // below the study's smallest measured step: that step's error (not the reference's 0)
-        assert_eq!(trade_at(&rows, 0.0005, false, 0.01)[0].1, 0.002);
-        assert_eq!(trade_at(&rows, 0.01, true, 0.01)[0].3, Some(0.01));
+        assert_eq!(trade_at(&rows, 0.0005, false, 0.01)[0].error, 0.002);
+        assert_eq!(trade_at(&rows, 0.01, true, 0.01)[0].within, Some(0.01));
+        // a statistical observable: errors within three run-to-run spreads (3 x 1 %) are draws
+        let noisy: Vec<TradeRow> = rows
+            .iter()
+            .map(|r| TradeRow {
+                spread: 0.01,
+                ..r.clone()
+            })
+            .collect();
+        let at = trade_at(&noisy, 0.0067, false, 0.01);
+        assert_eq!((at[0].within, at[0].spread), (Some(0.4), 0.01));
+        assert_eq!(at[1].within, Some(0.1));
     }
 
     #[test]

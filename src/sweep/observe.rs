@@ -2,7 +2,7 @@
 //!
 //! `--observe NAME=EXPR` where EXPR is
 //! - `thermo:COLUMN`: the column's value on the last thermo line of the log;
-//! - `analyze:chain:c_w`, `analyze:channel:c_w|c_p|dilation|packing`,
+//! - `analyze:chain:c_w`, `analyze:channel:c_w|c_p|dilation|rise|packing`,
 //!   `analyze:ring:r_mean|amplitude|front` (optionally `:DUMPS`, a file or `*` series relative
 //!   to the run's folder; default `post/chain_*.dump`, `post/shock_*.dump`, `post/ring_*.dump`):
 //!   a `regolith analyze` result from the run's dumps, its time step from the run's log;
@@ -46,7 +46,7 @@ const ANALYSES: &[(&str, &[&str], &str)] = &[
     ("chain", &["c_w"], "post/chain_*.dump"),
     (
         "channel",
-        &["c_w", "c_p", "dilation", "packing"],
+        &["c_w", "c_p", "dilation", "rise", "packing"],
         "post/shock_*.dump",
     ),
     (
@@ -195,6 +195,7 @@ fn analysis(
                     .dilation_mean
                     .map(|d| d.0)
                     .ok_or_else(|| missing("dilation")),
+                "rise" => r.rise.map(|d| d.0).ok_or_else(|| missing("rise")),
                 _ => Ok(r.packing),
             }
         }
@@ -231,6 +232,10 @@ mod tests {
         );
         let o = parse("rise=analyze:channel:dilation:out/s_*.dump").unwrap();
         assert!(matches!(o.source, Source::Analyze { ref dumps, .. } if dumps == "out/s_*.dump"));
+        let o = parse("rise=analyze:channel:rise").unwrap();
+        assert!(
+            matches!(o.source, Source::Analyze { ref quantity, ref dumps, .. } if quantity == "rise" && dumps == "post/shock_*.dump")
+        );
         assert!(parse("x").is_err());
         assert!(parse("a b=1").is_err());
         assert!(parse("c=analyze:chain:speed").is_err());

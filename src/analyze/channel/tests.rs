@@ -56,6 +56,12 @@ fn a_front_at_a_set_speed_and_a_known_rise() {
     let (dh, spread) = r.dilation_mean.unwrap();
     assert!((dh - 0.001).abs() < 1e-9 && spread < 1e-9, "{dh} {spread}");
     assert!(r.dilation.iter().filter(|d| d.2).count() == 50);
+    // behind the front: the c_w range's columns past the piston's cell (0.0075 .. 0.1475 m)
+    let (rise, spread) = r.rise.unwrap();
+    assert!(
+        (rise - 0.001).abs() < 1e-9 && spread < 1e-9,
+        "{rise} {spread}"
+    );
     assert!(
         (r.packing - std::f64::consts::PI / 6.0).abs() < 1e-9,
         "{}",

@@ -333,6 +333,12 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                     .unwrap_or(0);
                 a.error(5 + k, &m)
             })?;
+            // the molecule ID exists only with fix multisphere (its body tags)
+            if let Some(k) = names.iter().position(|n| *n == "mol") {
+                if ctx.sim.clumps().is_none() {
+                    return Err(a.error(5 + k, "Dumping an atom property that isn't allocated"));
+                }
+            }
             if style == "custom/vtk" {
                 dump_style =
                     crate::engine::sim::DumpStyle::Vtk(crate::io::vtk::fields(&layout.names));

@@ -84,7 +84,11 @@ fn a_spinning_clump_in_free_fall_keeps_its_shape_and_follows_g() {
     for flags in [&[][..], &["-sf", "fast"][..]] {
         let (dir, out) = run("fall", &deck, flags);
         let snaps = snapshots(&dir);
-        assert_eq!(snaps.len(), 12, "dumps at steps 500, 1000, ..., 6000: {out}");
+        assert_eq!(
+            snaps.len(),
+            12,
+            "dumps at steps 500, 1000, ..., 6000: {out}"
+        );
         let first = &snaps[0].1;
         assert_eq!(first.len(), 4);
         assert!(first.iter().all(|r| r[1] == 1.0), "every member in body 1");
@@ -165,4 +169,71 @@ fn two_clumps_colliding_keep_their_momentum() {
         }
     }
     let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Runs `deck` and returns its exit code with stdout and stderr together.
+fn failing(name: &str, deck: &str) -> (Option<i32>, String) {
+    let dir = std::env::temp_dir().join(format!("regolith-ms-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("in.deck"), deck).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
+        .args(["-in", "in.deck", "-log", "none"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let _ = std::fs::remove_dir_all(dir);
+    (
+        out.status.code(),
+        format!(
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        ),
+    )
+}
+
+#[test]
+fn clump_decks_regolith_cannot_run_yet_are_refused_and_misuse_is_an_error() {
+    let insert = "region r block -0.02 0.02 -0.02 0.02 0.3 0.32 units box\n\
+         fix ins all insert/pack seed 32452843 distributiontemplate d vel constant 0 0 0 \
+         insert_every once overlapcheck yes region r particles_in_region 1\n";
+    // clumps inserted without fix multisphere: LIGGGHTS's error at the insertion
+    let (code, text) = failing("nofix", &format!("{HEADER}{CROSS}{insert}run 2\n"));
+    assert_eq!(code, Some(1), "{text}");
+    assert!(
+        text.contains("You have to use exactly one fix multisphere"),
+        "{text}"
+    );
+    // the body data cannot be unfixed
+    let (code, text) = failing(
+        "unfix",
+        &format!("{HEADER}{CROSS}fix ms all multisphere\nunfix ms\n"),
+    );
+    assert_eq!(code, Some(1), "{text}");
+    assert!(text.contains("may not be unfixed"), "{text}");
+    // the mol column needs the bodies' tags
+    let (code, text) = failing(
+        "mol",
+        &format!("{HEADER}dump d all custom 10 d.dump id mol x\n"),
+    );
+    assert_eq!(code, Some(1), "{text}");
+    assert!(
+        text.contains("Dumping an atom property that isn't allocated"),
+        "{text}"
+    );
+    // repeated insertion of clumps, and keywords of fix multisphere, are not supported yet
+    let every = insert.replace("insert_every once", "insert_every 100");
+    let (code, text) = failing("every", &format!("{HEADER}{CROSS}{every}"));
+    assert_eq!(code, Some(3), "{text}");
+    assert!(text.contains("not supported yet"), "{text}");
+    let (code, text) = failing(
+        "keyword",
+        &format!("{HEADER}fix ms all multisphere allow_heatsource yes\n"),
+    );
+    assert_eq!(code, Some(3), "{text}");
+    assert!(
+        text.contains("fix multisphere allow_heatsource: not supported yet"),
+        "{text}"
+    );
 }

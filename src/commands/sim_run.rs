@@ -57,6 +57,9 @@ fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
     };
     if let Some(k) = ctx.sim.fixes.iter().position(|f| f.id == id) {
         match &ctx.sim.fixes[k].kind {
+            FixKind::Multisphere(_) => {
+                return Err(a.error(0, format!("Fix multisphere (id {id}): this fix may not be unfixed as it holds all the internal data for multi-spheres")));
+            }
             FixKind::MoveMesh(mv) => {
                 let on_mesh = movers(&mv.mesh);
                 if on_mesh.len() > 1 && on_mesh[0] == k {

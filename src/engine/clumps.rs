@@ -211,8 +211,8 @@ impl Clumps {
         }
         if let Some(g) = gravity {
             for b in &mut self.bodies {
-                for c in 0..3 {
-                    b.fcm[c] += b.mass * g[c];
+                for (f, a) in b.fcm.iter_mut().zip(g) {
+                    *f += b.mass * a;
                 }
             }
         }

@@ -892,14 +892,14 @@ mod tests {
             0,
         );
         assert_eq!(m.origin[&1][0], 1.2);
-        let fixes = vec![Fix {
+        let mut fixes = vec![Fix {
             id: "m".into(),
             style: "move".into(),
             group: 1,
             kind: FixKind::Move(m),
             args: vec![],
         }];
-        initial_integrate(&fixes, &mut p, 1, 1e-3, &domain);
+        initial_integrate(&mut fixes, &mut p, 1, 1e-3, &domain);
         assert!((p.x[0][0] - 0.2).abs() < 1e-12, "x = {:?}", p.x[0]);
         assert!((p.x[0][2] - (0.5 + 1e-3 * (1e-2f64).sin())).abs() < 1e-15);
     }

@@ -100,7 +100,7 @@ fn unsupported_feature_exits_3_and_check_lists_every_item() {
     let dir = scratch("unsupported");
     std::fs::write(
         dir.join("in.t"),
-        "atom_style granular\n# comment\nregion b block 0 1 0 1 0 1\ncreate_box 1 b\nfix ins all multisphere\npair_style gran model hertz tangential history cohesion washino/capillary/viscous\ncompute s all rdf 50\n",
+        "atom_style granular\n# comment\nregion b block 0 1 0 1 0 1\ncreate_box 1 b\nfix ins all multisphere/break\npair_style gran model hertz tangential history cohesion washino/capillary/viscous\ncompute s all rdf 50\n",
     )
     .unwrap();
     let out = regolith(&dir, &["-in", "in.t", "-log", "none"], None);
@@ -109,7 +109,7 @@ fn unsupported_feature_exits_3_and_check_lists_every_item() {
     assert_eq!(out.status.code(), Some(3));
     assert_eq!(
         text(&out.stdout),
-        "in.t:5: fix multisphere: not supported yet\n\
+        "in.t:5: fix multisphere/break: not supported yet\n\
          in.t:6: pair_style gran cohesion washino/capillary/viscous: not supported yet\n\
          in.t:7: compute rdf: not supported yet\n"
     );
@@ -155,7 +155,7 @@ fn check_does_not_blame_follow_on_effects_of_unsupported_commands() {
     let dir = scratch("diverged");
     std::fs::write(
         dir.join("in.t"),
-        "region b block 0 1 0 1 0 1\ncreate_box 1 b\nfix ins all multisphere\nunfix ins\n\
+        "region b block 0 1 0 1 0 1\ncreate_box 1 b\nfix ins all multisphere/break\nunfix ins\n\
          velocity all set 0 0 0\nfix g all gravty 9.81 vector 0 0 -1\n",
     )
     .unwrap();
@@ -163,7 +163,7 @@ fn check_does_not_blame_follow_on_effects_of_unsupported_commands() {
     let stdout = text(&out.stdout);
     assert_eq!(stdout.lines().count(), 2, "{stdout}");
     assert!(
-        stdout.starts_with("in.t:3: fix multisphere: not supported yet\n"),
+        stdout.starts_with("in.t:3: fix multisphere/break: not supported yet\n"),
         "{stdout}"
     );
     assert!(

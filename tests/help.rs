@@ -47,9 +47,9 @@ fn misspelt_names_get_the_nearest_ones() {
     assert!(err.contains("did you mean 'wall/gran'?"), "{err}");
     let (ok, _, err) = help(&["dumb"]);
     assert!(!ok && err.contains("'dump'"), "{err}");
-    let (ok, _, err) = help(&["fix", "multisphere"]);
+    let (ok, _, err) = help(&["fix", "multisphere/break"]);
     assert!(
-        !ok && err.contains("regolith runs no fix style 'multisphere'"),
+        !ok && err.contains("regolith runs no fix style 'multisphere/break'"),
         "{err}"
     );
 }

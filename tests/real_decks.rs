@@ -100,14 +100,14 @@ fn check_reports_errors_after_an_unsupported_command() {
     let dir = scratch("afterunsupported");
     let deck = format!(
         "{HEAD}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n\
-         fix heat all multisphere\n\
+         fix heat all multisphere/break\n\
          fix pts all particletemplate/sphere 12345 atom_type 1 density constant 2500 radius constant 0.003\n"
     );
     std::fs::write(dir.join("in.t"), deck).unwrap();
     let out = regolith(&dir, &["check", "in.t"]);
     let stdout = text(&out.stdout);
     assert!(
-        stdout.starts_with("in.t:17: fix multisphere: not supported yet\n"),
+        stdout.starts_with("in.t:17: fix multisphere/break: not supported yet\n"),
         "{stdout}"
     );
     assert!(

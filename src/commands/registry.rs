@@ -469,7 +469,9 @@ mod tests {
         ] {
             assert!(is_supported(&command(line)), "`{line}`");
         }
-        assert!(!is_supported(&command("fix m all multisphere")));
+        assert!(!is_supported(&command(
+            "fix m all multisphere/nointegration"
+        )));
         assert!(!is_supported(&command("compute c all rigid")));
     }
 }

@@ -57,6 +57,9 @@ fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
     };
     if let Some(k) = ctx.sim.fixes.iter().position(|f| f.id == id) {
         match &ctx.sim.fixes[k].kind {
+            FixKind::Multisphere(_) => {
+                return Err(a.error(0, format!("Fix multisphere (id {id}): this fix may not be unfixed as it holds all the internal data for multi-spheres")));
+            }
             FixKind::MoveMesh(mv) => {
                 let on_mesh = movers(&mv.mesh);
                 if on_mesh.len() > 1 && on_mesh[0] == k {
@@ -333,6 +336,12 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                     .unwrap_or(0);
                 a.error(5 + k, &m)
             })?;
+            // the molecule ID exists only with fix multisphere (its body tags)
+            if let Some(k) = names.iter().position(|n| *n == "mol") {
+                if ctx.sim.clumps().is_none() {
+                    return Err(a.error(5 + k, "Dumping an atom property that isn't allocated"));
+                }
+            }
             if style == "custom/vtk" {
                 dump_style =
                     crate::engine::sim::DumpStyle::Vtk(crate::io::vtk::fields(&layout.names));

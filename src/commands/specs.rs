@@ -249,6 +249,7 @@ pub const SPECS: &[Spec] = &[
     style("fix", "move/mesh", "fix ID GROUP move/mesh mesh MESH linear|wiggle|rotate|riggle|viblin|vibrot ...", &[], "prescribed mesh motion"),
     style("fix", "nve/noforce", "fix ID GROUP nve/noforce", &[], "positions advance with the velocities; forces leave velocities unchanged"),
     style("fix", "nve/sphere", "fix ID GROUP nve/sphere", &[], "velocity-Verlet integration of positions and rotations"),
+    style("fix", "multisphere", "fix ID GROUP multisphere", &[], "rigid-body integration of the multisphere clumps (centre of mass and orientation)"),
     style("fix", "particledistribution/discrete", "fix ID GROUP particledistribution/discrete SEED N TEMPLATE FRACTION ...", &[], "a mix of particle templates by mass fraction"),
     style("fix", "particledistribution/discrete/massbased", "fix ID GROUP particledistribution/discrete/massbased SEED N TEMPLATE FRACTION ...", &[], "a mix of particle templates by mass fraction"),
     style("fix", "particledistribution/discrete/numberbased", "fix ID GROUP particledistribution/discrete/numberbased SEED N TEMPLATE FRACTION ...", &[], "a mix of particle templates by number fraction"),

@@ -317,6 +317,7 @@ impl Simulation {
                 FixKind::MoveMesh(_) => "moving meshes (fix move/mesh)",
                 FixKind::Mesh(m) if m.stress.is_some() => "mesh stresses (fix mesh/surface/stress)",
                 FixKind::Adapt(_) => "growing particles (fix adapt)",
+                FixKind::Multisphere(_) => "multisphere clumps (fix multisphere)",
                 _ => continue,
             };
             if !parts.contains(&part) {

@@ -185,11 +185,13 @@ pub struct Compute {
 }
 
 /// Translational kinetic energy of the particles in `group`, summed as LIGGGHTS's
-/// `compute ke` does: 0.5 * sum m v^2 (energy).
+/// `compute ke` does: 0.5 * sum m v^2 (energy); members of multisphere clumps are left out
+/// (their bodies' energy is [`crate::engine::clumps::Clumps::kinetic_energy`]).
 pub fn kinetic_energy(p: &Particles, group: u32) -> f64 {
+    let tags = crate::engine::clumps::body_tags(p);
     let mut sum = 0.0;
     for i in 0..p.len() {
-        if p.mask[i] & group != 0 {
+        if p.mask[i] & group != 0 && !crate::engine::clumps::is_member(tags, i) {
             let v = p.v[i];
             sum += p.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
         }
@@ -255,9 +257,10 @@ impl Compute {
         let p = &sim.particles;
         Ok(match &self.kind {
             ComputeKind::ErotateSphere => {
+                let tags = crate::engine::clumps::body_tags(p);
                 let mut sum = 0.0;
                 for i in 0..p.len() {
-                    if p.mask[i] & self.group != 0 {
+                    if p.mask[i] & self.group != 0 && !crate::engine::clumps::is_member(tags, i) {
                         let w = p.omega[i];
                         sum += (w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
                             * p.radius[i]
@@ -267,7 +270,9 @@ impl Compute {
                 }
                 sum * (0.5 * 1.0 * SPHERE_INERTIA)
             }
-            ComputeKind::Ke => kinetic_energy(p, self.group),
+            ComputeKind::Ke => {
+                kinetic_energy(p, self.group) + sim.clumps().map_or(0.0, |c| c.kinetic_energy())
+            }
             ComputeKind::Temp => crate::commands::compute_modify::temperature(sim, self),
             ComputeKind::PotentialEnergy => 0.0,
             ComputeKind::Reduce { mode, inputs } if inputs.len() == 1 => {

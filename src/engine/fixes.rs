@@ -283,6 +283,8 @@ pub enum FixKind {
     PropertyAtom(crate::engine::heat::PropertyAtom),
     /// `fix heat/gran`, `heat/gran/conduction`: heat conduction between touching particles.
     HeatGran(crate::engine::heat::HeatGran),
+    /// `fix multisphere`: the rigid clumps and their integration.
+    Multisphere(Box<crate::engine::clumps::Clumps>),
 }
 
 impl FixKind {
@@ -649,10 +651,17 @@ pub fn move_meshes(fixes: &mut [Fix], dt: f64) {
 }
 
 /// Run the `initial_integrate` phase of all fixes.
-pub fn initial_integrate(fixes: &[Fix], p: &mut Particles, step: i64, dt: f64, domain: &Domain) {
+pub fn initial_integrate(
+    fixes: &mut [Fix],
+    p: &mut Particles,
+    step: i64,
+    dt: f64,
+    domain: &Domain,
+) {
     for fix in fixes {
-        match &fix.kind {
+        match &mut fix.kind {
             FixKind::NveSphere => integrate::initial_integrate(p, fix.group, dt),
+            FixKind::Multisphere(ms) => ms.initial_integrate(p, dt, domain),
             FixKind::NveNoforce => crate::engine::nve_noforce::initial_integrate(p, fix.group, dt),
             FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt, domain),
             FixKind::HeatGran(h) => h.initial_integrate(p),
@@ -827,10 +836,19 @@ pub fn post_force(
 }
 
 /// Run the `final_integrate` phase of all fixes.
-pub fn final_integrate(fixes: &[Fix], p: &mut Particles, dt: f64) {
+pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, dt: f64, domain: &Domain) {
+    // the clumps' weight comes from the (single) gravity fix
+    let gravity = fixes.iter().find_map(|f| match &f.kind {
+        FixKind::Gravity(g) => Some(g.acc),
+        _ => None,
+    });
     for fix in fixes {
-        match &fix.kind {
+        match &mut fix.kind {
             FixKind::NveSphere => integrate::final_integrate(p, fix.group, dt),
+            FixKind::Multisphere(ms) => {
+                ms.calc_force(p, domain, gravity);
+                ms.final_integrate(p, dt);
+            }
             FixKind::Move(m) => m.final_integrate(p, fix.group, dt),
             FixKind::HeatGran(h) => h.final_integrate(p, fix.group, dt),
             _ => {}
@@ -877,10 +895,10 @@ mod tests {
         }];
         let dt = 1e-4;
         for step in 1..=200 {
-            initial_integrate(&fixes, &mut p, step, dt, &domain);
+            initial_integrate(&mut fixes, &mut p, step, dt, &domain);
             p.f[0] = [0.0; 3];
             post_force(&mut fixes, &mut p, dt, true, (0, 0.0), false);
-            final_integrate(&fixes, &mut p, dt);
+            final_integrate(&mut fixes, &mut p, dt, &domain);
         }
         assert!((p.v[0][2] - a * omega).abs() < 1e-9);
         assert!((p.x[0][2] - 1.0).abs() < 1e-12);
@@ -907,14 +925,14 @@ mod tests {
             0,
         );
         assert_eq!(m.origin[&1][0], 1.2);
-        let fixes = vec![Fix {
+        let mut fixes = vec![Fix {
             id: "m".into(),
             style: "move".into(),
             group: 1,
             kind: FixKind::Move(m),
             args: vec![],
         }];
-        initial_integrate(&fixes, &mut p, 1, 1e-3, &domain);
+        initial_integrate(&mut fixes, &mut p, 1, 1e-3, &domain);
         assert!((p.x[0][0] - 0.2).abs() < 1e-12, "x = {:?}", p.x[0]);
         assert!((p.x[0][2] - (0.5 + 1e-3 * (1e-2f64).sin())).abs() < 1e-15);
     }

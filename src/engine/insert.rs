@@ -25,6 +25,8 @@ pub struct Template {
     /// State of the template's insertion generator and its Monte Carlo seed (constant
     /// templates never draw; both are kept for restart files).
     pub rng_state: (i32, i32),
+    /// A multisphere template: its clump (`radius` is then the bounding-sphere radius).
+    pub clump: Option<Box<crate::engine::multisphere::ClumpTemplate>>,
 }
 
 impl Template {
@@ -39,6 +41,44 @@ impl Template {
             volume,
             mass: density * volume,
             rng_state: (0, 0),
+            clump: None,
+        }
+    }
+
+    /// A multisphere template: bounding radius, sampled volume and mass of the clump.
+    pub fn clump(t: &crate::engine::multisphere::ClumpTemplate) -> Template {
+        Template {
+            id: t.spec.id.clone(),
+            atom_type: t.spec.atom_type,
+            radius: t.r_bound,
+            density: t.density,
+            volume: t.volume,
+            mass: t.mass,
+            rng_state: (0, 0),
+            clump: Some(Box::new(t.clone())),
+        }
+    }
+
+    /// Member sphere centres (length) and radii of this template placed at `p` (a clump's
+    /// centre of mass, unrotated; a sphere's centre).
+    pub fn spheres_at(&self, p: [f64; 3]) -> Vec<([f64; 3], f64)> {
+        match &self.clump {
+            None => vec![(p, self.radius)],
+            Some(c) => {
+                let (ex, ey, ez) = (&c.axes[0], &c.axes[1], &c.axes[2]);
+                c.displace
+                    .iter()
+                    .zip(&c.radii)
+                    .map(|(d, &r)| {
+                        let g = [
+                            d[0] * ex[0] + d[1] * ey[0] + d[2] * ez[0],
+                            d[0] * ex[1] + d[1] * ey[1] + d[2] * ez[1],
+                            d[0] * ex[2] + d[1] * ey[2] + d[2] * ez[2],
+                        ];
+                        ([p[0] + g[0], p[1] + g[1], p[2] + g[2]], r)
+                    })
+                    .collect()
+            }
         }
     }
 }
@@ -655,8 +695,14 @@ impl InsertPack {
         // existing atoms near the region (periodic images too), then placed ones
         let (elo, ehi) = regions.extent(self.region).unwrap_or(([0.0; 3], [0.0; 3]));
         let exact_near = matches!(shape, Shape::Block { .. } | Shape::Cylinder { .. });
-        let bblo = [0, 1, 2].map(|d| elo[d].max(w.lo[d]) - 2.0 * maxrad);
-        let bbhi = [0, 1, 2].map(|d| ehi[d].min(w.hi[d]) + 2.0 * maxrad);
+        // a clump's members reach up to two bounding radii from its centre of mass
+        let reach = if dist.templates.iter().any(|t| t.clump.is_some()) {
+            2.0 * maxrad
+        } else {
+            maxrad
+        };
+        let bblo = [0, 1, 2].map(|d| elo[d].max(w.lo[d]) - 2.0 * reach);
+        let bbhi = [0, 1, 2].map(|d| ehi[d].min(w.hi[d]) + 2.0 * reach);
         let mut near: Vec<([f64; 3], f64)> = Vec::new();
         if self.overlapcheck {
             let len = [0, 1, 2].map(|d| w.hi[d] - w.lo[d]);
@@ -669,9 +715,9 @@ impl InsertPack {
             };
             for i in 0..w.x.len() {
                 let cut = if self.all_in {
-                    maxrad
+                    reach
                 } else {
-                    w.radius[i] + maxrad
+                    w.radius[i] + reach
                 };
                 for sx in shifts(0) {
                     for sy in shifts(1) {
@@ -765,15 +811,19 @@ impl InsertPack {
                         break;
                     }
                     let v = velocity(&mut self.rng);
-                    // a NaN distance counts as clear, as in LIGGGHTS
+                    // every sphere of the template (a clump's members) against the near
+                    // ones; a NaN distance counts as clear, as in LIGGGHTS
+                    let spheres = dist.templates[t].spheres_at(p);
                     #[allow(clippy::neg_cmp_op_on_partial_ord)]
-                    let clear = near.iter().all(|(q, rq)| {
-                        let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
-                        let rs = rb + rq;
-                        !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= rs * rs)
+                    let clear = spheres.iter().all(|&(s, rs_new)| {
+                        near.iter().all(|(q, rq)| {
+                            let d = [s[0] - q[0], s[1] - q[1], s[2] - q[2]];
+                            let rs = rs_new + rq;
+                            !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= rs * rs)
+                        })
                     });
                     if clear {
-                        near.push((p, rb));
+                        near.extend(spheres);
                         placed.push((t, p, v));
                         done = true;
                     }

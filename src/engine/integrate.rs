@@ -153,9 +153,11 @@ impl Gravity {
 
     /// Add m g to every particle's force (LIGGGHTS's post_force).
     pub fn apply(&self, p: &mut Particles) {
+        // members of multisphere clumps get their weight through their body
+        let tags = crate::engine::clumps::body_array(p).map(|k| &p.extra[k].data[..]);
         let (mass, mask) = (&p.mass, &p.mask);
         let add = |i: usize, f: &mut [f64; 3]| {
-            if mask[i] & self.group != 0 {
+            if mask[i] & self.group != 0 && !crate::engine::clumps::is_member(tags, i) {
                 let m = mass[i] * 1.0;
                 for (fd, ad) in f.iter_mut().zip(self.acc) {
                     *fd += m * ad;

@@ -5,6 +5,7 @@ pub mod accel;
 pub mod buoyancy;
 pub mod cells;
 pub mod checks;
+pub mod clumps;
 pub mod computes;
 pub mod contact;
 pub mod domain;

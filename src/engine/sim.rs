@@ -1146,6 +1146,7 @@ impl Simulation {
             }
             p.retain_by(&lost);
         }
+        self.drop_broken_clumps();
         Ok(())
     }
 
@@ -1180,6 +1181,7 @@ impl Simulation {
                 );
             }
         }
+        self.exclude_clump_pairs();
         let n = &self.neighbor;
         if !n.exclude_types.is_empty() || !n.exclude_groups.is_empty() {
             let p = &self.particles;
@@ -1822,6 +1824,7 @@ impl Simulation {
         want_virial: bool,
         vars: &mut dyn VariableSource,
     ) -> Result<(), String> {
+        self.reset_clump_forces();
         let p = &mut self.particles;
         p.f.iter_mut().for_each(|f| *f = [0.0; 3]);
         p.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
@@ -1955,6 +1958,7 @@ impl Simulation {
             self.adapt_radii(true, vars)?;
             // LIGGGHTS's setup evaluation does not advance contact history
             self.compute_forces(false, true, vars)?;
+            self.setup_clump_forces();
             self.zero_mesh_velocities(false);
             self.guard_motion(true)?;
             self.guard_forces()?;
@@ -1987,6 +1991,7 @@ impl Simulation {
         self.restart_peratom.clear();
         self.restart_move_origins.clear();
         self.restart_mesh_history.clear();
+        self.say_clump_energy(out);
         self.setup_insertions(out)?;
         self.setup_averages(vars)?;
         self.thermo.run_start = first;
@@ -2007,7 +2012,7 @@ impl Simulation {
             self.step += 1;
             self.resolve_move_fixes(vars)?;
             fixes::initial_integrate(
-                &self.fixes,
+                &mut self.fixes,
                 &mut self.particles,
                 self.step,
                 self.dt,
@@ -2045,7 +2050,7 @@ impl Simulation {
             let tally = self.virial_wanted(last);
             self.compute_forces(true, tally, vars)?;
             self.guard_forces()?;
-            fixes::final_integrate(&self.fixes, &mut self.particles, self.dt);
+            fixes::final_integrate(&mut self.fixes, &mut self.particles, self.dt, &self.domain);
             self.mesh_stress_phase(StressPhase::EndOfStep)?;
             self.end_of_step(out, vars)?;
             let started_output = std::time::Instant::now();
@@ -2541,6 +2546,11 @@ impl Simulation {
             let mut tag = self.particles.max_id();
             for (t, xp, v) in placed {
                 let tpl = &dist.templates[t];
+                if let Some(c) = &tpl.clump {
+                    self.insert_clump(c, tag + 1, xp, v, omega, group)?;
+                    tag += c.displace.len() as i64;
+                    continue;
+                }
                 tag += 1;
                 self.particles
                     .push(tag, tpl.atom_type, xp, tpl.radius, tpl.density);
@@ -2593,6 +2603,7 @@ impl Simulation {
     /// Write the current state as a restart file (`write_restart`): pair history taken from
     /// the current list, then positions wrapped and the box reset as LIGGGHTS does.
     pub fn save_restart(&mut self, path: &str) -> Result<(), String> {
+        self.refuse_clump_restart()?;
         self.check_restart_size()?;
         let partners = self.contact_partners();
         self.pbc_and_box()?;

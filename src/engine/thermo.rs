@@ -296,7 +296,10 @@ pub fn keyword_value(
         "dt" => sim.dt,
         "time" => sim.time(),
         "cpu" => sim.loop_clock.map_or(0.0, |t| t.elapsed().as_secs_f64()),
-        "ke" => norm(crate::engine::computes::kinetic_energy(&sim.particles, 1)),
+        "ke" => norm(
+            crate::engine::computes::kinetic_energy(&sim.particles, 1)
+                + sim.clumps().map_or(0.0, |c| c.kinetic_energy()),
+        ),
         "vol" => d.length(0) * d.length(1) * d.length(2),
         "lx" => d.length(0),
         "ly" => d.length(1),

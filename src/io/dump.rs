@@ -16,6 +16,8 @@ pub enum Column {
     Id,
     /// Atom type.
     Type,
+    /// Molecule ID: the multisphere body tag (-1 outside a body).
+    Mol,
     /// Position component 0..3 (length).
     X(usize),
     /// Position scaled to the box, 0..1.
@@ -57,6 +59,7 @@ impl Column {
         Ok(match word {
             "id" => Column::Id,
             "type" => Column::Type,
+            "mol" => Column::Mol,
             "x" | "y" | "z" => Column::X(axis(word.chars().next().unwrap()).unwrap()),
             "xs" | "ys" | "zs" => Column::Scaled(axis(word.chars().next().unwrap()).unwrap()),
             "xu" | "yu" | "zu" => Column::Unwrapped(axis(word.chars().next().unwrap()).unwrap()),
@@ -85,6 +88,7 @@ impl Column {
         match self {
             Column::Id => p.id[i] as f64,
             Column::Type => p.kind[i] as f64,
+            Column::Mol => crate::engine::clumps::body_tags(p).map_or(-1.0, |t| t[i]),
             Column::X(d) => p.x[i][*d],
             Column::Scaled(d) => (p.x[i][*d] - domain.lo[*d]) / domain.length(*d),
             Column::Unwrapped(d) => p.x[i][*d] + p.image[i][*d] as f64 * domain.length(*d),
@@ -103,7 +107,10 @@ impl Column {
 
     /// True for the columns LIGGGHTS prints as integers.
     pub fn is_integer(&self) -> bool {
-        matches!(self, Column::Id | Column::Type | Column::Image(_))
+        matches!(
+            self,
+            Column::Id | Column::Type | Column::Mol | Column::Image(_)
+        )
     }
 }
 

@@ -24,23 +24,15 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     let mut weights = Vec::new();
     for k in 0..n as usize {
         let tid = a.word(5 + 2 * k)?;
-        let clump = ctx
-            .sim
-            .fixes
-            .iter()
-            .any(|f| f.id == tid && matches!(f.kind, FixKind::ClumpTemplate(_)));
-        if clump {
-            return Err(a.unsupported(
-                5 + 2 * k,
-                &format!("fix {style} of particletemplate/multisphere templates"),
-            ));
-        }
         let t = ctx
             .sim
             .fixes
             .iter()
             .find_map(|f| match &f.kind {
                 FixKind::Template(t) if f.id == tid => Some(t.clone()),
+                FixKind::ClumpTemplate(c) if f.id == tid => {
+                    Some(crate::engine::insert::Template::clump(c))
+                }
                 _ => None,
             })
             .ok_or_else(|| {

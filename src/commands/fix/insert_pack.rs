@@ -280,6 +280,19 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         (None, None) => return Err(a.error(2, "Fix insert/pack: must define exactly one keyword out of 'volumefraction_region', 'particles_in_region', and 'mass_in_region'")),
     };
     let every = every.ok_or_else(|| a.error(2, "Fix insert/pack: must define 'insert_every'"))?;
+    let clumps = ctx.sim.fixes.iter().any(|f| {
+        matches!(&f.kind, FixKind::Distribution(d)
+            if f.id == distribution && d.templates.iter().any(|t| t.clump.is_some()))
+    });
+    if clumps && (rate.is_some() || every != 0) {
+        return Err(a.unsupported(
+            2,
+            &format!(
+                "fix {} of multisphere clumps other than insert_every once",
+                fix.style
+            ),
+        ));
+    }
     Ok(FixKind::InsertPack(Box::new(InsertPack {
         id: id.to_string(),
         distribution,

@@ -17,6 +17,7 @@ mod mesh_surface;
 mod momentum;
 mod move_atoms;
 mod move_mesh;
+mod multisphere;
 mod nve;
 mod particle_template;
 mod particle_template_multisphere;
@@ -90,6 +91,7 @@ pub const STYLES: &[(&str, Build)] = &[
     ("property/atom", property_atom::build),
     ("heat/gran", heat_gran::build),
     ("heat/gran/conduction", heat_gran::build),
+    ("multisphere", multisphere::build),
 ];
 
 /// `fix ID GROUP STYLE ...` with the styles of `styles`: checks what every fix shares, has

@@ -154,7 +154,7 @@ fn reference_final(name: &str) -> Final {
 
 /// Particles, mean z and probe count of the dump file with the largest step.
 fn dump_final(work: &Path, pattern: &str, probe: &[f64; 6]) -> Result<Final, String> {
-    let files = expand(&work.join(pattern).to_string_lossy())?;
+    let files = expand(&work.join(pattern).to_string_lossy()).map_err(|e| e.to_string())?;
     let last = files.last().unwrap();
     // the step stands for the `*` of the pattern: the last run of digits in the name
     let stem = last.strip_suffix(".vtk").unwrap_or(last);

@@ -80,7 +80,7 @@ pub fn contact_depths(
     id_cols: (usize, usize),
     delta_col: Option<usize>,
 ) -> Result<Vec<(f64, f64)>, AnalyzeError> {
-    let text = read_text(file).map_err(AnalyzeError::Read)?;
+    let text = read_text(file).map_err(|e| AnalyzeError::Read(e.to_string()))?;
     let snaps = parse(&text).map_err(|m| AnalyzeError::Read(format!("{file}: {m}")))?;
     let snap = snaps
         .iter()

@@ -94,7 +94,7 @@ pub struct Series {
 impl Series {
     /// Open a dump (text or gzip) or a `*` series; `dt` in seconds.
     pub fn open(pattern: &str, dt: f64) -> Result<Series, AnalyzeError> {
-        let files = expand(pattern).map_err(AnalyzeError::Read)?;
+        let files = expand(pattern).map_err(|e| AnalyzeError::Read(e.to_string()))?;
         let loaded = if files.len() == 1 {
             Some(read_snapshots(&files[0])?)
         } else {
@@ -171,7 +171,7 @@ impl Series {
 }
 
 fn read_snapshots(file: &str) -> Result<Vec<Snapshot>, AnalyzeError> {
-    let text = read_text(file).map_err(AnalyzeError::Read)?;
+    let text = read_text(file).map_err(|e| AnalyzeError::Read(e.to_string()))?;
     let snaps = parse(&text).map_err(|m| AnalyzeError::Read(format!("{file}: {m}")))?;
     if snaps.iter().any(|s| s.local) {
         return Err(AnalyzeError::Read(format!(

@@ -27,8 +27,8 @@ pub fn selected(a: &Args, ctx: &mut Ctx) -> Result<Option<Vec<bool>>, CommandErr
     let mut scope = crate::script::scope::Scope::new(ctx.vars, ctx.sys, ctx.sim);
     match scope.atom_variable(name) {
         Ok(values) => Ok(Some(values.iter().map(|&v| v != 0.0).collect())),
-        Err(m) if check || m == crate::script::scope::UNKNOWN_QUERY => Ok(None),
-        Err(m) => Err(a.error(2, &m)),
+        Err(e) if check || e.is_known_when_run() => Ok(None),
+        Err(e) => Err(a.error(2, e.to_string())),
     }
 }
 

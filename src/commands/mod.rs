@@ -58,7 +58,9 @@ impl Ctx<'_> {
         let mut regions = std::mem::take(&mut self.sim.regions);
         let result = {
             let mut scope = crate::script::scope::Scope::new(self.vars, self.sys, self.sim);
-            regions.reshape(step, &mut |name| scope.equal_variable(name))
+            regions.reshape(step, &mut |name| {
+                scope.equal_variable(name).map_err(String::from)
+            })
         };
         self.sim.regions = regions;
         result

@@ -83,10 +83,8 @@ fn value(
     let mut scope = crate::script::scope::Scope::new(ctx.vars, ctx.sys, ctx.sim);
     match scope.atom_variable(name) {
         Ok(v) => Ok(Value::PerAtom(v)),
-        Err(m) if m == crate::script::scope::UNKNOWN_QUERY || ctx.sys.mode == Mode::Check => {
-            Ok(Value::Unknown)
-        }
-        Err(m) => Err(a.error(i, &m)),
+        Err(e) if e.is_known_when_run() || ctx.sys.mode == Mode::Check => Ok(Value::Unknown),
+        Err(e) => Err(a.error(i, e.to_string())),
     }
 }
 

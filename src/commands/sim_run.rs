@@ -329,12 +329,14 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                         .map_err(|m| a.error(5 + k, format!("Dump custom: {m}")))?;
                 }
             }
-            let layout = Layout::new(&names).map_err(|m| {
-                let k = names
-                    .iter()
-                    .position(|n| m.contains(&format!(" {n} ")))
-                    .unwrap_or(0);
-                a.error(5 + k, &m)
+            let layout = Layout::new(&names).map_err(|e| {
+                let k = match &e {
+                    crate::io::dump::ColumnError::Attribute(w) => {
+                        names.iter().position(|n| n == w).unwrap_or(0)
+                    }
+                    _ => 0,
+                };
+                a.error(5 + k, &e)
             })?;
             // the molecule ID exists only with fix multisphere (its body tags)
             if let Some(k) = names.iter().position(|n| *n == "mol") {

@@ -1318,8 +1318,9 @@ fn read_data(a: &Args, ctx: &mut Ctx) -> Result {
     let name = a.word(0)?;
     let text = if name.ends_with(".gz") {
         crate::io::diff::read_text(&ctx.sys.resolve(name).to_string_lossy())
+            .map_err(|e| e.to_string())
     } else {
-        ctx.sys.read(name)
+        ctx.sys.read(name).map_err(|e| e.to_string())
     }
     .map_err(|m| a.file_error(0, format!("Cannot open file {name}: {m}")))?;
     let data = crate::io::data::parse(&text, name).map_err(|m| a.error(0, &m))?;
@@ -1435,7 +1436,7 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
         None => crate::io::restart::read(&path),
     }
     // the file as the deck names it (not the folder it was resolved against)
-    .map_err(|m| a.error(0, m.replace(&path, name)))?;
+    .map_err(|e| a.error(0, e.to_string().replace(&path, name)))?;
     ctx.say("Reading restart file ...\n");
     let pair = ctx.sim.load_restart(&r).map_err(|m| a.error(0, &m))?;
     ctx.sim.restart_in_progress = !r.global_fixes.is_empty() || !r.peratom_fixes.is_empty();

@@ -37,19 +37,19 @@ pub fn set(a: &Args, ctx: &mut Ctx, bit: u32, sum: bool, scale: f64) -> Result<(
         let w = a.word(2 + d)?;
         let mut scope = crate::script::scope::Scope::new(ctx.vars, ctx.sys, ctx.sim);
         // a dry run may not know what a variable needs
-        let unknown = |m: &String| check || m == crate::script::scope::UNKNOWN_QUERY;
+        let unknown = |e: &crate::script::error::VariableError| check || e.is_known_when_run();
         components.push(match kind {
             None if w == "NULL" => Component::Keep,
             None => Component::Constant(scale * a.real(2 + d)?),
             Some((name, true)) => match scope.atom_variable(name) {
                 Ok(v) => Component::PerAtom(v),
-                Err(m) if unknown(&m) => Component::Unknown,
-                Err(m) => return Err(a.error(2 + d, &m)),
+                Err(e) if unknown(&e) => Component::Unknown,
+                Err(e) => return Err(a.error(2 + d, e.to_string())),
             },
             Some((name, false)) => match scope.equal_variable(name) {
                 Ok(v) => Component::Constant(v),
-                Err(m) if unknown(&m) => Component::Unknown,
-                Err(m) => return Err(a.error(2 + d, &m)),
+                Err(e) if unknown(&e) => Component::Unknown,
+                Err(e) => return Err(a.error(2 + d, e.to_string())),
             },
         });
     }

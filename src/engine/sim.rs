@@ -2608,7 +2608,7 @@ impl Simulation {
         let partners = self.contact_partners();
         self.pbc_and_box()?;
         let r = self.to_restart(&partners);
-        crate::io::restart::write(&r, path)
+        crate::io::restart::write(&r, path).map_err(|e| e.to_string())
     }
 
     /// The `restart` command's files, due at multiples of its interval (not at setup).
@@ -2635,7 +2635,7 @@ impl Simulation {
         let partners = self.contact_partners();
         let r = self.to_restart(&partners);
         for path in paths {
-            crate::io::restart::write(&r, &path)?;
+            crate::io::restart::write(&r, &path).map_err(|e| e.to_string())?;
         }
         Ok(())
     }

@@ -6,6 +6,7 @@
 use crate::engine::domain::{parse_boundary, Domain};
 use crate::engine::particles::Particles;
 use crate::io::dump::Layout;
+pub use crate::io::error::ConvertError;
 
 /// File formats `convert` knows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -22,15 +23,13 @@ pub enum Format {
 
 impl Format {
     /// Parse a `--from`/`--to` word.
-    pub fn parse(word: &str) -> Result<Format, String> {
+    pub fn parse(word: &str) -> Result<Format, ConvertError> {
         match word {
             "restart" => Ok(Format::Restart),
             "data" => Ok(Format::Data),
             "dump" => Ok(Format::Dump),
             "vtk" => Ok(Format::Vtk),
-            _ => Err(format!(
-                "unknown format '{word}': expected restart, data, dump or vtk"
-            )),
+            _ => Err(ConvertError::UnknownFormat(word.to_string())),
         }
     }
 
@@ -78,20 +77,27 @@ pub struct ConvertOptions {
     pub boundary: Option<String>,
 }
 
-fn format_of(name: &str, given: Option<Format>, which: &str) -> Result<Format, String> {
-    given.or_else(|| Format::of_name(name)).ok_or_else(|| {
-        format!("{name}: cannot tell the {which} format from the name; give --{which} restart|data|dump|vtk")
-    })
+fn format_of(
+    name: &str,
+    given: Option<Format>,
+    which: &'static str,
+) -> Result<Format, ConvertError> {
+    given
+        .or_else(|| Format::of_name(name))
+        .ok_or_else(|| ConvertError::FormatOfName {
+            name: name.to_string(),
+            which,
+        })
 }
 
 /// Read a data file as a bed.
-pub fn read_data_bed(path: &str, boundary: Option<&str>) -> Result<Bed, String> {
+pub fn read_data_bed(path: &str, boundary: Option<&str>) -> Result<Bed, ConvertError> {
     let text = crate::io::diff::read_text(path)?;
     let data = crate::io::data::parse(&text, path)?;
     let mut domain = Domain::default();
     if let Some(b) = boundary {
         let words: Vec<&str> = b.split_whitespace().collect();
-        domain.boundary = parse_boundary(&words).map_err(|m| format!("--boundary: {m}"))?;
+        domain.boundary = parse_boundary(&words).map_err(ConvertError::Boundary)?;
     }
     domain.create(data.lo, data.hi);
     let mut p = Particles::default();
@@ -121,7 +127,7 @@ const BED_COLUMNS: &[&str] = &[
 ];
 
 /// Write a bed as a text dump (full precision), gzip for `.gz` names.
-fn write_bed_dump(bed: &Bed, path: &str) -> Result<(), String> {
+fn write_bed_dump(bed: &Bed, path: &str) -> Result<(), ConvertError> {
     let mut layout = Layout::new(BED_COLUMNS)?;
     let fmt: Vec<&str> = BED_COLUMNS
         .iter()
@@ -145,24 +151,32 @@ fn write_bed_dump(bed: &Bed, path: &str) -> Result<(), String> {
             &bed.domain,
             |_, _| 0.0,
         )
-        .map_err(|e| e.to_string())?;
+        .map_err(ConvertError::Encode)?;
     write_maybe_gzip(path, &text)
 }
 
-fn write_maybe_gzip(path: &str, text: &[u8]) -> Result<(), String> {
+fn write_maybe_gzip(path: &str, text: &[u8]) -> Result<(), ConvertError> {
     use std::io::Write;
     let bytes = if path.ends_with(".gz") {
         let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
-        enc.write_all(text).map_err(|e| e.to_string())?;
-        enc.finish().map_err(|e| e.to_string())?
+        enc.write_all(text).map_err(ConvertError::Encode)?;
+        enc.finish().map_err(ConvertError::Encode)?
     } else {
         text.to_vec()
     };
-    crate::io::write_atomically(path, &bytes).map_err(|e| format!("{path}: {e}"))
+    write(path, &bytes)
+}
+
+/// Write a file atomically; errors name it.
+fn write(path: &str, bytes: &[u8]) -> Result<(), ConvertError> {
+    crate::io::write_atomically(path, bytes).map_err(|source| ConvertError::Write {
+        path: path.to_string(),
+        source,
+    })
 }
 
 /// Write a bed as legacy VTK (with its `_boundingBox` file).
-fn write_bed_vtk(bed: &Bed, path: &str) -> Result<(), String> {
+fn write_bed_vtk(bed: &Bed, path: &str) -> Result<(), ConvertError> {
     let names: Vec<String> = BED_COLUMNS.iter().map(|s| s.to_string()).collect();
     let layout = Layout::new(BED_COLUMNS)?;
     let fields = crate::io::vtk::fields(&names);
@@ -177,41 +191,43 @@ fn write_bed_vtk(bed: &Bed, path: &str) -> Result<(), String> {
         |i| p.x[i],
         |c, i| layout.columns[c].value(p, &bed.domain, i),
     )
-    .map_err(|e| e.to_string())?;
+    .map_err(ConvertError::Encode)?;
     let mut bbox = Vec::new();
-    crate::io::vtk::write_bounding_box(&mut bbox, &bed.domain).map_err(|e| e.to_string())?;
+    crate::io::vtk::write_bounding_box(&mut bbox, &bed.domain).map_err(ConvertError::Encode)?;
     let step = bed.step.to_string();
     let name = path.replace('*', &step);
-    crate::io::write_atomically(&name, &text).map_err(|e| format!("{name}: {e}"))?;
+    write(&name, &text)?;
     let box_name = crate::io::vtk::bounding_box_name(path, &step);
-    crate::io::write_atomically(&box_name, &bbox).map_err(|e| format!("{box_name}: {e}"))
+    write(&box_name, &bbox)
 }
 
 /// Convert each snapshot of a dump to VTK: `*` in the output name becomes the step (needed
 /// when the dump has more than one snapshot).
-fn dump_to_vtk(input: &str, output: &str) -> Result<usize, String> {
+fn dump_to_vtk(input: &str, output: &str) -> Result<usize, ConvertError> {
     let text = crate::io::diff::read_text(input)?;
-    let snaps = crate::io::dump_compare::parse(&text).map_err(|m| format!("{input}: {m}"))?;
+    let snaps = crate::io::dump_compare::parse(&text).map_err(|source| ConvertError::Dump {
+        input: input.to_string(),
+        source,
+    })?;
     if snaps.is_empty() {
-        return Err(format!(
-            "{input}: not a text dump: no snapshot (no 'ITEM: TIMESTEP'); nothing was written"
-        ));
+        return Err(ConvertError::NoSnapshot(input.to_string()));
     }
     if snaps.len() > 1 && !output.contains('*') {
-        return Err(format!(
-            "{input} holds {} snapshots: put a * in the output name ({output}) for the step",
-            snaps.len()
-        ));
+        return Err(ConvertError::NeedStar {
+            input: input.to_string(),
+            snapshots: snaps.len(),
+            output: output.to_string(),
+        });
     }
     for s in &snaps {
         let fields = crate::io::vtk::fields(&s.columns);
         let col = |n: &str| s.columns.iter().position(|c| c == n);
         let (Some(cx), Some(cy), Some(cz)) = (col("x"), col("y"), col("z")) else {
-            return Err(format!(
-                "{input}: step {}: VTK needs x y z columns (found {})",
-                s.step,
-                s.columns.join(" ")
-            ));
+            return Err(ConvertError::NoPositions {
+                input: input.to_string(),
+                step: s.step,
+                columns: s.columns.join(" "),
+            });
         };
         let rows: Vec<&Vec<f64>> = s.rows.values().collect();
         let atoms: Vec<usize> = (0..rows.len()).collect();
@@ -223,25 +239,25 @@ fn dump_to_vtk(input: &str, output: &str) -> Result<usize, String> {
             |i| [rows[i][cx], rows[i][cy], rows[i][cz]],
             |c, i| rows[i][c],
         )
-        .map_err(|e| e.to_string())?;
+        .map_err(ConvertError::Encode)?;
         let step = s.step.to_string();
         let name = output.replace('*', &step);
-        crate::io::write_atomically(&name, &out).map_err(|e| format!("{name}: {e}"))?;
+        write(&name, &out)?;
         let mut domain = Domain::default();
         domain.create(
             [s.bounds[0][0], s.bounds[1][0], s.bounds[2][0]],
             [s.bounds[0][1], s.bounds[1][1], s.bounds[2][1]],
         );
         let mut bbox = Vec::new();
-        crate::io::vtk::write_bounding_box(&mut bbox, &domain).map_err(|e| e.to_string())?;
+        crate::io::vtk::write_bounding_box(&mut bbox, &domain).map_err(ConvertError::Encode)?;
         let box_name = crate::io::vtk::bounding_box_name(output, &step);
-        crate::io::write_atomically(&box_name, &bbox).map_err(|e| format!("{box_name}: {e}"))?;
+        write(&box_name, &bbox)?;
     }
     Ok(snaps.len())
 }
 
 /// Run a conversion; returns a one-line summary.
-pub fn convert(input: &str, output: &str, opts: &ConvertOptions) -> Result<String, String> {
+pub fn convert(input: &str, output: &str, opts: &ConvertOptions) -> Result<String, ConvertError> {
     let from = format_of(input, opts.from, "from")?;
     let to = format_of(output, opts.to, "to")?;
     if from == Format::Dump {
@@ -250,15 +266,13 @@ pub fn convert(input: &str, output: &str, opts: &ConvertOptions) -> Result<Strin
                 let n = dump_to_vtk(input, output)?;
                 Ok(format!("{input} -> {output}: {n} snapshot(s) as VTK"))
             }
-            _ => Err(format!(
-                "{input}: a dump converts only to VTK (a dump lacks what restart and data files need)"
-            )),
+            _ => Err(ConvertError::DumpOnlyToVtk(input.to_string())),
         };
     }
     let bed = match from {
         Format::Restart => crate::io::restart::read_bed(input)?,
         Format::Data => read_data_bed(input, opts.boundary.as_deref())?,
-        Format::Vtk => return Err(format!("{input}: VTK files are output only")),
+        Format::Vtk => return Err(ConvertError::VtkInput(input.to_string())),
         Format::Dump => unreachable!("handled above"),
     };
     match to {
@@ -270,8 +284,7 @@ pub fn convert(input: &str, output: &str, opts: &ConvertOptions) -> Result<Strin
                 bed.step,
                 concat!("regolith ", env!("CARGO_PKG_VERSION")),
             );
-            crate::io::write_atomically(output, text.as_bytes())
-                .map_err(|e| format!("{output}: {e}"))?
+            write(output, text.as_bytes())?
         }
         Format::Dump => write_bed_dump(&bed, output)?,
         Format::Vtk => write_bed_vtk(&bed, output)?,

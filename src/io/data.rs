@@ -9,6 +9,8 @@ use std::fmt::Write as _;
 
 use crate::engine::domain::Domain;
 use crate::engine::particles::Particles;
+pub use crate::io::error::DataError;
+use crate::io::error::Line;
 
 /// One atom of a data file.
 #[derive(Debug, Clone, PartialEq)]
@@ -46,35 +48,45 @@ pub struct DataFile {
     pub velocities: usize,
 }
 
-fn number<T: std::str::FromStr>(w: &str, at: &str, what: &str) -> Result<T, String> {
-    w.parse()
-        .map_err(|_| format!("{at}: expected {what}, found '{w}'"))
+fn number<T: std::str::FromStr>(w: &str, at: &Line, what: &'static str) -> Result<T, DataError> {
+    w.parse().map_err(|_| DataError::Expected {
+        at: at.clone(),
+        what,
+        found: w.to_string(),
+    })
 }
 
 /// A real number of the file: finite (`nan`, `inf` and overflowing values like `1e400` are
 /// errors naming the word).
-fn real(w: &str, at: &str, what: &str) -> Result<f64, String> {
+fn real(w: &str, at: &Line, what: &'static str) -> Result<f64, DataError> {
     let x: f64 = number(w, at, what)?;
     if !x.is_finite() {
-        return Err(format!(
-            "{at}: expected {what}, found '{w}' (not a finite number)"
-        ));
+        return Err(DataError::NotFinite {
+            at: at.clone(),
+            what,
+            found: w.to_string(),
+        });
     }
     Ok(x)
 }
 
 /// Parse a data file; errors name `path` and the line.
-pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
+pub fn parse(text: &str, path: &str) -> Result<DataFile, DataError> {
     let lines: Vec<&str> = text.lines().collect();
     let mut data = DataFile::default();
     let mut natoms: Option<usize> = None;
     let mut bounds = [None; 3];
     let strip = |l: &str| l.split('#').next().unwrap_or("").trim().to_string();
+    let line = |k: usize| Line {
+        path: path.to_string(),
+        line: k,
+    };
+    let file = || path.to_string();
     // header: the first line is a title; then keyword lines until one is not
     let mut k = 1;
     while k < lines.len() {
         let l = strip(lines[k]);
-        let at = format!("{path}:{}", k + 1);
+        let at = line(k + 1);
         if l.is_empty() {
             k += 1;
             continue;
@@ -90,9 +102,7 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
                     .unwrap_or(0);
                 bounds[d] = Some((real(lo, &at, "a number")?, real(hi, &at, "a number")?));
             }
-            [_, _, _, "xy", "xz", "yz"] => {
-                return Err(format!("{at}: triclinic boxes are not supported yet"))
-            }
+            [_, _, _, "xy", "xz", "yz"] => return Err(DataError::Triclinic { at }),
             [n, what, ..]
                 if matches!(
                     *what,
@@ -111,29 +121,34 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
                 ) =>
             {
                 if n.parse::<i64>() != Ok(0) {
-                    return Err(format!(
-                        "{at}: '{l}': molecular data is not supported by atom_style granular"
-                    ));
+                    return Err(DataError::Molecular { at, text: l });
                 }
             }
             _ => break,
         }
         k += 1;
     }
-    let natoms = natoms.ok_or_else(|| format!("{path}: no 'N atoms' line in the header"))?;
+    let natoms = natoms.ok_or_else(|| DataError::MissingHeader {
+        path: file(),
+        line: "N atoms",
+    })?;
     if data.ntypes == 0 {
-        return Err(format!("{path}: no 'N atom types' line in the header"));
+        return Err(DataError::MissingHeader {
+            path: file(),
+            line: "N atom types",
+        });
     }
     for (d, b) in bounds.iter().enumerate() {
-        let (lo, hi) = b.ok_or_else(|| {
-            format!(
-                "{path}: no '{} {}' line in the header",
-                ["xlo", "ylo", "zlo"][d],
-                ["xhi", "yhi", "zhi"][d]
-            )
+        let (lo, hi) = b.ok_or_else(|| DataError::MissingHeader {
+            path: file(),
+            line: ["xlo xhi", "ylo yhi", "zlo zhi"][d],
         })?;
         if lo >= hi || !(hi - lo).is_finite() {
-            return Err(format!("{path}: box bounds {lo} {hi} are not a box"));
+            return Err(DataError::NotABox {
+                path: file(),
+                lo,
+                hi,
+            });
         }
         data.lo[d] = lo;
         data.hi[d] = hi;
@@ -142,7 +157,7 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
     let mut index = std::collections::HashMap::new();
     while k < lines.len() {
         let l = strip(lines[k]);
-        let at = format!("{path}:{}", k + 1);
+        let at = line(k + 1);
         if l.is_empty() {
             k += 1;
             continue;
@@ -152,21 +167,25 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
         match section.as_str() {
             "Atoms" => {
                 for r in 0..natoms {
-                    let line = lines
-                        .get(k + r)
-                        .ok_or_else(|| format!("{path}: Atoms section ends after {r} of {natoms} atoms"))?;
-                    let at = format!("{path}:{}", k + r + 1);
-                    let text = strip(line);
+                    let text = lines.get(k + r).ok_or_else(|| DataError::SectionEnds {
+                        path: file(),
+                        section: "Atoms",
+                        read: r,
+                        atoms: natoms,
+                    })?;
+                    let at = line(k + r + 1);
+                    let text = strip(text);
                     let w: Vec<&str> = text.split_whitespace().collect();
                     if w.len() != 7 && w.len() != 10 {
-                        return Err(format!(
-                            "{at}: expected 'id type diameter density x y z [ix iy iz]' (7 or 10 values), found {}",
-                            w.len()
-                        ));
+                        return Err(DataError::AtomColumns { at, found: w.len() });
                     }
                     let kind: u32 = number(w[1], &at, "an atom type")?;
                     if kind < 1 || kind > data.ntypes {
-                        return Err(format!("{at}: atom type {kind} outside 1..{}", data.ntypes));
+                        return Err(DataError::TypeRange {
+                            at,
+                            kind,
+                            ntypes: data.ntypes,
+                        });
                     }
                     let mut atom = DataAtom {
                         id: number(w[0], &at, "an atom ID")?,
@@ -185,14 +204,22 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
                         }
                     }
                     if atom.diameter < 0.0 || atom.density <= 0.0 {
-                        return Err(format!("{at}: diameter must be >= 0 and density > 0"));
+                        return Err(DataError::BadSize { at });
                     }
                     if atom.diameter > 0.0 {
-                        crate::engine::checks::check_sphere(atom.diameter, atom.density, "diameter")
-                            .map_err(|m| format!("{at}: atom {}: {m}", atom.id))?;
+                        crate::engine::checks::check_sphere(
+                            atom.diameter,
+                            atom.density,
+                            "diameter",
+                        )
+                        .map_err(|reason| DataError::Sphere {
+                            at: at.clone(),
+                            id: atom.id,
+                            reason,
+                        })?;
                     }
                     if index.insert(atom.id, data.atoms.len()).is_some() {
-                        return Err(format!("{at}: atom ID {} appears twice", atom.id));
+                        return Err(DataError::DuplicateId { at, id: atom.id });
                     }
                     data.atoms.push(atom);
                 }
@@ -200,22 +227,22 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
             }
             "Velocities" => {
                 for r in 0..natoms {
-                    let line = lines.get(k + r).ok_or_else(|| {
-                        format!("{path}: Velocities section ends after {r} of {natoms} atoms")
+                    let text = lines.get(k + r).ok_or_else(|| DataError::SectionEnds {
+                        path: file(),
+                        section: "Velocities",
+                        read: r,
+                        atoms: natoms,
                     })?;
-                    let at = format!("{path}:{}", k + r + 1);
-                    let text = strip(line);
+                    let at = line(k + r + 1);
+                    let text = strip(text);
                     let w: Vec<&str> = text.split_whitespace().collect();
                     if w.len() != 7 {
-                        return Err(format!(
-                            "{at}: expected 'id vx vy vz omegax omegay omegaz', found {} values",
-                            w.len()
-                        ));
+                        return Err(DataError::VelocityColumns { at, found: w.len() });
                     }
                     let id: i64 = number(w[0], &at, "an atom ID")?;
-                    let i = *index.get(&id).ok_or_else(|| {
-                        format!("{at}: velocity of atom {id}, which the Atoms section lacks (Atoms must come first)")
-                    })?;
+                    let i = *index
+                        .get(&id)
+                        .ok_or_else(|| DataError::VelocityWithoutAtom { at: at.clone(), id })?;
                     for d in 0..3 {
                         data.atoms[i].v[d] = real(w[1 + d], &at, "a velocity")?;
                         data.atoms[i].omega[d] = real(w[4 + d], &at, "an angular velocity")?;
@@ -225,16 +252,18 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, String> {
                 k += natoms;
             }
             other => {
-                return Err(format!(
-                    "{at}: section '{other}' is not supported yet (granular data files have Atoms and Velocities)"
-                ))
+                return Err(DataError::UnsupportedSection {
+                    at,
+                    section: other.to_string(),
+                })
             }
         }
     }
     if data.atoms.len() != natoms && natoms > 0 {
-        return Err(format!(
-            "{path}: the header promises {natoms} atoms but there is no Atoms section"
-        ));
+        return Err(DataError::NoAtoms {
+            path: file(),
+            atoms: natoms,
+        });
     }
     Ok(data)
 }
@@ -292,4 +321,77 @@ pub fn write(p: &Particles, domain: &Domain, ntypes: u32, step: i64, version: &s
         );
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = "title\n\n2 atoms\n1 atom types\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n1 1 0.1 2500 0.5 0.5 0.5\n2 1 0.1 2500 0.2 0.5 0.5\n";
+
+    fn fails(text: &str) -> DataError {
+        parse(text, "in.data").unwrap_err()
+    }
+
+    #[test]
+    fn bad_files_give_variants_naming_file_and_line() {
+        assert_eq!(parse(GOOD, "in.data").unwrap().atoms.len(), 2);
+        let e = fails(&GOOD.replace("2 atoms", "two atoms"));
+        assert_eq!(
+            e,
+            DataError::Expected {
+                at: Line {
+                    path: "in.data".into(),
+                    line: 3
+                },
+                what: "an atom count",
+                found: "two".into()
+            }
+        );
+        assert_eq!(
+            e.to_string(),
+            "in.data:3: expected an atom count, found 'two'"
+        );
+        let e = fails(&GOOD.replace("0.2 0.5", "inf 0.5"));
+        assert!(
+            matches!(&e, DataError::NotFinite { at, what: "a coordinate", .. } if at.line == 12),
+            "{e:?}"
+        );
+        let e = fails(&GOOD.replace("0 1 ylo yhi\n", ""));
+        assert_eq!(
+            e,
+            DataError::MissingHeader {
+                path: "in.data".into(),
+                line: "ylo yhi"
+            }
+        );
+        assert_eq!(e.to_string(), "in.data: no 'ylo yhi' line in the header");
+        let e = fails(&GOOD.replace("2 1 0.1", "1 1 0.1"));
+        assert!(matches!(e, DataError::DuplicateId { id: 1, .. }), "{e:?}");
+        let e = fails(&GOOD.replace("2 1 0.1", "2 3 0.1"));
+        assert!(
+            matches!(
+                e,
+                DataError::TypeRange {
+                    kind: 3,
+                    ntypes: 1,
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        let e = fails(&format!("{GOOD}\nBonds\n\n1 1 1 2\n"));
+        assert!(e.is_unsupported(), "{e:?}");
+        assert!(matches!(&e, DataError::UnsupportedSection { section, .. } if section == "Bonds"));
+        let e = fails(&GOOD.replace("2 1 0.1 2500 0.2 0.5 0.5\n", ""));
+        assert_eq!(
+            e,
+            DataError::SectionEnds {
+                path: "in.data".into(),
+                section: "Atoms",
+                read: 1,
+                atoms: 2
+            }
+        );
+    }
 }

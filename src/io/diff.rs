@@ -10,6 +10,7 @@ use std::collections::BTreeMap;
 use std::io::Read;
 
 use crate::io::dump_compare::{parse, Snapshot};
+pub use crate::io::error::{DiffError, TextError};
 
 /// What to compare and how closely.
 #[derive(Debug, Clone)]
@@ -54,13 +55,11 @@ pub enum Scale {
 
 impl Scale {
     /// `max` or `rms`.
-    pub fn parse(word: &str) -> Result<Scale, String> {
+    pub fn parse(word: &str) -> Result<Scale, DiffError> {
         match word {
             "max" => Ok(Scale::Max),
             "rms" => Ok(Scale::Rms),
-            w => Err(format!(
-                "--scale {w}: expected max (the column's largest magnitude in A) or rms (its root mean square in A)"
-            )),
+            w => Err(DiffError::Scale(w.to_string())),
         }
     }
 
@@ -105,10 +104,10 @@ impl Scales {
 }
 
 /// Parse `--steps` text: `N`, `A:B`, or a comma list of them.
-pub fn parse_steps(text: &str) -> Result<Vec<(i64, i64)>, String> {
+pub fn parse_steps(text: &str) -> Result<Vec<(i64, i64)>, DiffError> {
     text.split(',')
         .map(|part| {
-            let bad = || format!("--steps: expected N, A:B or a comma list of them, got '{part}'");
+            let bad = || DiffError::Steps(part.to_string());
             match part.split_once(':') {
                 Some((a, b)) => {
                     let lo = if a.is_empty() {
@@ -538,21 +537,29 @@ pub fn compare_logs(a: &str, b: &str, opts: &DiffOptions) -> Report {
 }
 
 /// The text of a file, gunzipped when it starts with the gzip magic bytes.
-pub fn read_text(path: &str) -> Result<String, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("{path}: {e}"))?;
+pub fn read_text(path: &str) -> Result<String, TextError> {
+    let bytes = std::fs::read(path).map_err(|source| TextError::Open {
+        path: path.to_string(),
+        source,
+    })?;
     if bytes.starts_with(&[0x1f, 0x8b]) {
         let mut s = String::new();
         flate2::read::MultiGzDecoder::new(&bytes[..])
             .read_to_string(&mut s)
-            .map_err(|e| format!("{path}: corrupted gzip data ({e})"))?;
+            .map_err(|source| TextError::Gzip {
+                path: path.to_string(),
+                source,
+            })?;
         return Ok(s);
     }
-    String::from_utf8(bytes).map_err(|_| format!("{path}: not a text file (nor gzip)"))
+    String::from_utf8(bytes).map_err(|_| TextError::NotText {
+        path: path.to_string(),
+    })
 }
 
 /// The files a name stands for: itself, or for a name with `*`, every file in its folder
 /// that matches, ordered by the number in place of the `*`.
-pub fn expand(pattern: &str) -> Result<Vec<String>, String> {
+pub fn expand(pattern: &str) -> Result<Vec<String>, DiffError> {
     let Some(star) = pattern.find('*') else {
         return Ok(vec![pattern.to_string()]);
     };
@@ -562,8 +569,12 @@ pub fn expand(pattern: &str) -> Result<Vec<String>, String> {
     };
     let (prefix, suffix) = file.split_once('*').expect("has a star");
     let mut found = Vec::new();
-    for e in std::fs::read_dir(dir).map_err(|e| format!("{pattern}: {e}"))? {
-        let name = e.map_err(|e| format!("{pattern}: {e}"))?.file_name();
+    let folder = |source| DiffError::Folder {
+        pattern: pattern.to_string(),
+        source,
+    };
+    for e in std::fs::read_dir(dir).map_err(folder)? {
+        let name = e.map_err(folder)?.file_name();
         let Some(name) = name.to_str() else { continue };
         if let Some(mid) = name
             .strip_prefix(prefix)
@@ -580,7 +591,7 @@ pub fn expand(pattern: &str) -> Result<Vec<String>, String> {
         }
     }
     if found.is_empty() {
-        return Err(format!("{pattern}: no file matches"));
+        return Err(DiffError::NoMatch(pattern.to_string()));
     }
     found.sort();
     Ok(found.into_iter().map(|(_, p)| p).collect())
@@ -612,7 +623,7 @@ pub enum Loaded {
 }
 
 /// Read a dump (series) or log.
-pub fn load(pattern: &str) -> Result<Loaded, String> {
+pub fn load(pattern: &str) -> Result<Loaded, DiffError> {
     let files = expand(pattern)?;
     let first = read_text(&files[0])?;
     if first.starts_with("# vtk DataFile") {
@@ -621,8 +632,12 @@ pub fn load(pattern: &str) -> Result<Loaded, String> {
         for (k, f) in files.iter().enumerate() {
             let text = if k == 0 { first.clone() } else { read_text(f)? };
             snaps.push(
-                crate::io::dump_compare::parse_vtk(&text, step_of_name(f))
-                    .map_err(|m| format!("{f}: {m}"))?,
+                crate::io::dump_compare::parse_vtk(&text, step_of_name(f)).map_err(|source| {
+                    DiffError::Parse {
+                        file: f.clone(),
+                        source,
+                    }
+                })?,
             );
         }
         return Ok(Loaded::Dump(snaps));
@@ -631,7 +646,10 @@ pub fn load(pattern: &str) -> Result<Loaded, String> {
         let mut snaps = Vec::new();
         for (k, f) in files.iter().enumerate() {
             let text = if k == 0 { first.clone() } else { read_text(f)? };
-            snaps.extend(parse(&text).map_err(|m| format!("{f}: {m}"))?);
+            snaps.extend(parse(&text).map_err(|source| DiffError::Parse {
+                file: f.clone(),
+                source,
+            })?);
         }
         return Ok(Loaded::Dump(snaps));
     }
@@ -640,18 +658,15 @@ pub fn load(pattern: &str) -> Result<Loaded, String> {
         .any(|l| l.split_whitespace().next() == Some("Step"))
     {
         if files.len() > 1 {
-            return Err(format!("{pattern}: a `*` series must be dumps"));
+            return Err(DiffError::SeriesOfLogs(pattern.to_string()));
         }
         return Ok(Loaded::Log(first));
     }
-    Err(format!(
-        "{}: neither a text dump (no 'ITEM: TIMESTEP'), a legacy VTK file, nor a log with thermo output (no 'Step' header)",
-        files[0]
-    ))
+    Err(DiffError::Unknown(files[0].clone()))
 }
 
 /// Run a comparison of two files; Err for unreadable input.
-pub fn diff(a: &str, b: &str, opts: &DiffOptions) -> Result<Report, String> {
+pub fn diff(a: &str, b: &str, opts: &DiffOptions) -> Result<Report, DiffError> {
     match (load(a)?, load(b)?) {
         (Loaded::Dump(mut x), Loaded::Dump(mut y)) => {
             for s in x.iter_mut().chain(y.iter_mut()).filter(|s| s.local) {
@@ -660,7 +675,10 @@ pub fn diff(a: &str, b: &str, opts: &DiffOptions) -> Result<Report, String> {
             Ok(compare_dumps(&x, &y, opts))
         }
         (Loaded::Log(x), Loaded::Log(y)) => Ok(compare_logs(&x, &y, opts)),
-        _ => Err(format!("{a} and {b}: one is a dump, the other a log")),
+        _ => Err(DiffError::Mixed {
+            a: a.to_string(),
+            b: b.to_string(),
+        }),
     }
 }
 

@@ -7,6 +7,7 @@ use std::io::Write;
 
 use crate::engine::domain::Domain;
 use crate::engine::particles::Particles;
+pub use crate::io::error::ColumnError;
 use crate::util::format::{self, CFormat, Conversion, Piece};
 
 /// A per-atom quantity a dump column shows.
@@ -49,7 +50,7 @@ pub enum Column {
 
 impl Column {
     /// Parse one column keyword of `dump custom`.
-    pub fn parse(word: &str) -> Result<Column, String> {
+    pub fn parse(word: &str) -> Result<Column, ColumnError> {
         let axis = |c: char| match c {
             'x' => Some(0),
             'y' => Some(1),
@@ -77,7 +78,7 @@ impl Column {
             w if w.starts_with("c_") || w.starts_with("f_") || w.starts_with("v_") => {
                 Column::Reference(w.to_string())
             }
-            w => return Err(format!("Invalid attribute {w} in dump custom command")),
+            w => return Err(ColumnError::Attribute(w.to_string())),
         })
     }
 
@@ -143,7 +144,7 @@ pub struct Layout {
 
 impl Layout {
     /// A layout for the given column keywords.
-    pub fn new(names: &[&str]) -> Result<Layout, String> {
+    pub fn new(names: &[&str]) -> Result<Layout, ColumnError> {
         let columns = names
             .iter()
             .map(|n| Column::parse(n))
@@ -158,7 +159,7 @@ impl Layout {
     }
 
     /// `dump_modify format "..."`: one conversion per column, separated by blanks.
-    pub fn set_format(&mut self, text: &str) -> Result<(), String> {
+    pub fn set_format(&mut self, text: &str) -> Result<(), ColumnError> {
         let mut convs = Vec::new();
         for token in text.split(' ').filter(|t| !t.is_empty()) {
             let parsed = CFormat::parse(token)?;
@@ -168,17 +169,15 @@ impl Layout {
             });
             let c = found
                 .next()
-                .ok_or_else(|| format!("format element '{token}' has no conversion"))?;
+                .ok_or_else(|| ColumnError::NoConversion(token.to_string()))?;
             if found.next().is_some() || parsed.pieces.len() != 1 {
-                return Err(format!(
-                    "format element '{token}' must be a single conversion"
-                ));
+                return Err(ColumnError::NotSingle(token.to_string()));
             }
             convs.push(c);
         }
         let ncols = self.columns.len().max(self.names.len());
         if convs.len() < ncols {
-            return Err("Dump_modify format string is too short".into());
+            return Err(ColumnError::TooShort);
         }
         convs.truncate(ncols);
         self.format = Some(convs);

@@ -3,6 +3,8 @@
 
 use std::collections::BTreeMap;
 
+pub use crate::io::error::DumpReadError;
+
 /// One snapshot of a text dump.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Snapshot {
@@ -23,15 +25,17 @@ impl Snapshot {
     /// Number a `dump local` snapshot's entries 1, 2, ... in the order of the `key` columns
     /// (all columns, first to last, if None), so that two programs' entries, which come in
     /// different orders, meet by their place in that order. Err names a missing key column.
-    pub fn order_entries(&mut self, key: Option<&[String]>) -> Result<(), String> {
+    pub fn order_entries(&mut self, key: Option<&[String]>) -> Result<(), DumpReadError> {
         let idx: Vec<usize> = match key {
             Some(names) => names
                 .iter()
                 .map(|n| {
-                    self.columns
-                        .iter()
-                        .position(|c| c == n)
-                        .ok_or_else(|| format!("step {}: no key column {n}", self.step))
+                    self.columns.iter().position(|c| c == n).ok_or_else(|| {
+                        DumpReadError::NoKeyColumn {
+                            step: self.step,
+                            column: n.clone(),
+                        }
+                    })
                 })
                 .collect::<Result<_, _>>()?,
             None => (0..self.columns.len()).collect(),
@@ -53,42 +57,38 @@ impl Snapshot {
 }
 
 /// Parse every snapshot of a `dump custom`/`dump atom` text file.
-pub fn parse(text: &str) -> Result<Vec<Snapshot>, String> {
+pub fn parse(text: &str) -> Result<Vec<Snapshot>, DumpReadError> {
     let mut lines = text.lines().enumerate().peekable();
     let mut out = Vec::new();
-    let mut next = |what: &str| -> Result<(usize, &str), String> {
+    let mut next = |what: &'static str| -> Result<(usize, &str), DumpReadError> {
         lines
             .next()
-            .ok_or_else(|| format!("dump ends early: expected {what}"))
+            .ok_or(DumpReadError::DumpEnds { expected: what })
     };
     while let Ok((n, l)) = next("ITEM: TIMESTEP") {
         if l.trim().is_empty() {
             continue;
         }
         if l.trim() != "ITEM: TIMESTEP" {
-            return Err(format!(
-                "line {}: expected 'ITEM: TIMESTEP', found '{l}'",
-                n + 1
-            ));
+            return Err(DumpReadError::Expected {
+                line: n + 1,
+                expected: "'ITEM: TIMESTEP'",
+                found: l.to_string(),
+            });
         }
         let (n, l) = next("a timestep")?;
-        let step: i64 = l
-            .trim()
-            .parse()
-            .map_err(|_| format!("line {}: bad timestep '{l}'", n + 1))?;
+        let step: i64 = l.trim().parse().map_err(|_| bad(n, "timestep", l))?;
         let (n, l) = next("ITEM: NUMBER OF ATOMS")?;
         let local = l.trim() == "ITEM: NUMBER OF ENTRIES";
         if !local && l.trim() != "ITEM: NUMBER OF ATOMS" {
-            return Err(format!(
-                "line {}: expected 'ITEM: NUMBER OF ATOMS' or 'ITEM: NUMBER OF ENTRIES', found '{l}'",
-                n + 1
-            ));
+            return Err(DumpReadError::Expected {
+                line: n + 1,
+                expected: "'ITEM: NUMBER OF ATOMS' or 'ITEM: NUMBER OF ENTRIES'",
+                found: l.to_string(),
+            });
         }
         let (n, l) = next("an atom count")?;
-        let count: usize = l
-            .trim()
-            .parse()
-            .map_err(|_| format!("line {}: bad atom count '{l}'", n + 1))?;
+        let count: usize = l.trim().parse().map_err(|_| bad(n, "atom count", l))?;
         next("ITEM: BOX BOUNDS")?;
         let mut bounds = [[0.0; 2]; 3];
         for b in &mut bounds {
@@ -98,7 +98,7 @@ pub fn parse(text: &str) -> Result<Vec<Snapshot>, String> {
                 .filter_map(|w| w.parse().ok())
                 .collect();
             if v.len() < 2 {
-                return Err(format!("line {}: bad box bounds '{l}'", n + 1));
+                return Err(bad(n, "box bounds", l));
             }
             *b = [v[0], v[1]];
         }
@@ -110,7 +110,7 @@ pub fn parse(text: &str) -> Result<Vec<Snapshot>, String> {
         };
         let columns: Vec<String> = l
             .strip_prefix(item)
-            .ok_or_else(|| format!("line {}: expected '{item}'", n + 1))?
+            .ok_or(DumpReadError::MissingItem { line: n + 1, item })?
             .split_whitespace()
             .map(str::to_string)
             .collect();
@@ -121,21 +121,23 @@ pub fn parse(text: &str) -> Result<Vec<Snapshot>, String> {
                 columns
                     .iter()
                     .position(|c| c == "id")
-                    .ok_or("dump has no id column")?,
+                    .ok_or(DumpReadError::NoIdColumn)?,
             )
         };
         let mut rows = BTreeMap::new();
         for _ in 0..count {
             let (n, l) = next("an atom line")?;
             let v: Result<Vec<f64>, _> = l.split_whitespace().map(str::parse::<f64>).collect();
-            let v = v.map_err(|_| format!("line {}: non-numeric value in '{l}'", n + 1))?;
+            let v = v.map_err(|_| DumpReadError::NonNumeric {
+                line: n + 1,
+                text: l.to_string(),
+            })?;
             if v.len() != columns.len() {
-                return Err(format!(
-                    "line {}: {} values for {} columns",
-                    n + 1,
-                    v.len(),
-                    columns.len()
-                ));
+                return Err(DumpReadError::RowLength {
+                    line: n + 1,
+                    values: v.len(),
+                    columns: columns.len(),
+                });
             }
             let key = id_col.map_or(rows.len() as i64 + 1, |c| v[c] as i64);
             rows.insert(key, v);
@@ -151,10 +153,19 @@ pub fn parse(text: &str) -> Result<Vec<Snapshot>, String> {
     Ok(out)
 }
 
+/// A value on 0-based line `n` that does not read as `what`.
+fn bad(n: usize, what: &'static str, line: &str) -> DumpReadError {
+    DumpReadError::Bad {
+        line: n + 1,
+        what,
+        found: line.to_string(),
+    }
+}
+
 /// Parse a legacy ASCII VTK particle file (`dump custom/vtk`, `dump vtk`) as one snapshot at
 /// `step`: columns x y z from POINTS, then every point array of the FIELD (or SCALARS and
 /// VECTORS) sections, a 3-component array `v` giving `vx vy vz`. Atoms are keyed by `id`.
-pub fn parse_vtk(text: &str, step: i64) -> Result<Snapshot, String> {
+pub fn parse_vtk(text: &str, step: i64) -> Result<Snapshot, DumpReadError> {
     let tokens: Vec<(usize, &str)> = text
         .lines()
         .enumerate()
@@ -179,7 +190,7 @@ pub fn parse_vtk(text: &str, step: i64) -> Result<Snapshot, String> {
     while let Ok((n, w)) = t.next("") {
         match w {
             "ASCII" => {}
-            "BINARY" => return Err(format!("line {n}: binary VTK files are not supported")),
+            "BINARY" => return Err(DumpReadError::BinaryVtk { line: n }),
             "DATASET" => {
                 t.next("a dataset type")?;
             }
@@ -203,7 +214,7 @@ pub fn parse_vtk(text: &str, step: i64) -> Result<Snapshot, String> {
             "POINT_DATA" => {
                 let np = t.count("a point count")?;
                 if npoints.is_some_and(|p| p != np) {
-                    return Err(format!("line {n}: POINT_DATA {np} does not match POINTS"));
+                    return Err(DumpReadError::PointData { line: n, count: np });
                 }
             }
             "CELL_DATA" => break,
@@ -227,14 +238,19 @@ pub fn parse_vtk(text: &str, step: i64) -> Result<Snapshot, String> {
                 let np = npoints.unwrap_or(0);
                 add(name, ncomp, t.numbers(ncomp * np)?, np);
             }
-            other => return Err(format!("line {n}: unexpected '{other}'")),
+            other => {
+                return Err(DumpReadError::Unexpected {
+                    line: n,
+                    word: other.to_string(),
+                })
+            }
         }
     }
     let id_col = columns
         .iter()
         .position(|c| c == "id")
-        .ok_or("VTK file has no id array")?;
-    let np = npoints.ok_or("VTK file has no POINTS")?;
+        .ok_or(DumpReadError::NoIdArray)?;
+    let np = npoints.ok_or(DumpReadError::NoPoints)?;
     let mut rows = BTreeMap::new();
     for i in 0..np {
         let row: Vec<f64> = data.iter().map(|c| c[i]).collect();
@@ -256,36 +272,42 @@ struct Tokens<'a> {
 }
 
 impl<'a> Tokens<'a> {
-    fn next(&mut self, what: &str) -> Result<(usize, &'a str), String> {
+    fn next(&mut self, what: &'static str) -> Result<(usize, &'a str), DumpReadError> {
         let t = self
             .tokens
             .get(self.at)
             .copied()
-            .ok_or_else(|| format!("file ends early: expected {what}"))?;
+            .ok_or(DumpReadError::FileEnds { expected: what })?;
         self.at += 1;
         Ok(t)
     }
     fn peek(&self) -> Option<&'a str> {
         self.tokens.get(self.at).map(|t| t.1)
     }
-    fn skip(&mut self, n: usize) -> Result<(), String> {
+    fn skip(&mut self, n: usize) -> Result<(), DumpReadError> {
         if self.at + n > self.tokens.len() {
-            return Err("file ends early".into());
+            return Err(DumpReadError::FileEndsInBlock);
         }
         self.at += n;
         Ok(())
     }
-    fn count(&mut self, what: &str) -> Result<usize, String> {
+    fn count(&mut self, what: &'static str) -> Result<usize, DumpReadError> {
         let (n, w) = self.next(what)?;
-        w.parse()
-            .map_err(|_| format!("line {n}: expected {what}, found '{w}'"))
+        w.parse().map_err(|_| DumpReadError::Expected {
+            line: n,
+            expected: what,
+            found: w.to_string(),
+        })
     }
-    fn numbers(&mut self, k: usize) -> Result<Vec<f64>, String> {
+    fn numbers(&mut self, k: usize) -> Result<Vec<f64>, DumpReadError> {
         (0..k)
             .map(|_| {
                 let (n, w) = self.next("a value")?;
-                w.parse()
-                    .map_err(|_| format!("line {n}: expected a number, found '{w}'"))
+                w.parse().map_err(|_| DumpReadError::Expected {
+                    line: n,
+                    expected: "a number",
+                    found: w.to_string(),
+                })
             })
             .collect()
     }
@@ -379,6 +401,36 @@ mod tests {
         assert_eq!(compare(&a, &c, 0.0).mismatches.len(), 2);
         assert!(parse("ITEM: TIMESTEP\nx\n").is_err());
         assert!(parse(&DUMP.replace("0.5 ", "nan? ")).is_err());
+    }
+
+    #[test]
+    fn broken_dumps_give_variants() {
+        let e = parse("ITEM: TIMESTEP\nx\n").unwrap_err();
+        assert_eq!(
+            e,
+            DumpReadError::Bad {
+                line: 2,
+                what: "timestep",
+                found: "x".into()
+            }
+        );
+        assert_eq!(e.to_string(), "line 2: bad timestep 'x'");
+        let e = parse(&DUMP.replace("0.5 ", "nan? ")).unwrap_err();
+        assert!(
+            matches!(&e, DumpReadError::NonNumeric { line: 10, .. }),
+            "{e:?}"
+        );
+        let e = parse(&DUMP.replace("\n1 0.25 \n", "\n")).unwrap_err();
+        assert_eq!(
+            e,
+            DumpReadError::DumpEnds {
+                expected: "an atom line"
+            }
+        );
+        let e = parse(&DUMP.replace("ATOMS id x", "ATOMS type x")).unwrap_err();
+        assert_eq!(e, DumpReadError::NoIdColumn);
+        let e = parse_vtk(&VTK.replace("ASCII", "BINARY"), 0).unwrap_err();
+        assert_eq!(e, DumpReadError::BinaryVtk { line: 3 });
     }
 
     /// A LIGGGHTS `dump custom/vtk` file (VTK 5.1 layout), two atoms.

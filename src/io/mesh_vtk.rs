@@ -33,6 +33,7 @@
 
 use std::io::{self, Write};
 
+pub use crate::io::error::MeshDumpError;
 use crate::util::format::{g, g_precision};
 
 /// Where the per-triangle data goes in the file (`output face|interpolate|original`).
@@ -183,7 +184,7 @@ impl MeshKeyword {
 }
 
 /// The keyword words, for messages.
-fn keyword_list() -> String {
+pub fn keyword_list() -> String {
     MeshKeyword::ALL.map(MeshKeyword::word).join(" ")
 }
 
@@ -214,7 +215,7 @@ pub fn parse_keywords<S: AsRef<str>>(
     words: &[S],
     is_mesh: impl Fn(&str) -> bool,
     is_property: impl Fn(&str) -> bool,
-) -> Result<MeshDumpSpec, String> {
+) -> Result<MeshDumpSpec, MeshDumpError> {
     let mut spec = MeshDumpSpec::default();
     let mut i = 0;
     while i < words.len() {
@@ -222,20 +223,13 @@ pub fn parse_keywords<S: AsRef<str>>(
         i += 1;
         if word == "output" {
             let Some(mode) = words.get(i) else {
-                return Err(
-                    "Dump mesh/vtk: not enough arguments for 'output' (expected face, interpolate or original)"
-                        .to_string(),
-                );
+                return Err(MeshDumpError::OutputMissing);
             };
             spec.output = match mode.as_ref() {
                 "face" => OutputMode::Face,
                 "interpolate" => OutputMode::Interpolate,
                 "original" => OutputMode::Original,
-                other => {
-                    return Err(format!(
-                        "Dump mesh/vtk: wrong argument '{other}' for 'output' (expected face, interpolate or original)"
-                    ))
-                }
+                other => return Err(MeshDumpError::OutputMode(other.to_string())),
             };
             i += 1;
         } else if is_mesh(word) {
@@ -249,18 +243,14 @@ pub fn parse_keywords<S: AsRef<str>>(
                 spec.properties.push(word.to_string());
             }
         } else {
-            return Err(format!(
-                "Illegal dump mesh/vtk command, unknown keyword or mesh '{word}': expected a mesh/surface fix ID, 'output face|interpolate|original', one of the keywords {} or the name of a per-triangle mesh property",
-                keyword_list()
-            ));
+            return Err(MeshDumpError::UnknownWord {
+                word: word.to_string(),
+            });
         }
     }
     spec.keywords.sort();
     if spec.keywords.is_empty() && spec.properties.is_empty() {
-        return Err(format!(
-            "Dump mesh/vtk: No dump quantity selected (keywords: {})",
-            keyword_list()
-        ));
+        return Err(MeshDumpError::NoQuantity);
     }
     Ok(spec)
 }
@@ -725,7 +715,7 @@ mod tests {
         String::from_utf8(out).unwrap()
     }
 
-    fn parse(words: &str) -> Result<MeshDumpSpec, String> {
+    fn parse(words: &str) -> Result<MeshDumpSpec, MeshDumpError> {
         let w: Vec<&str> = words.split_whitespace().collect();
         parse_keywords(
             &w,
@@ -924,20 +914,27 @@ v 3 6 double\n0.1 0 0 0.1 0 0 0.1 0 0 \n0.1 0 0 0.1 0 0 0.1 0 0 \n\n"
         assert_eq!(spec.keywords, vec![MeshKeyword::Stress, MeshKeyword::Wear]);
         assert_eq!(spec.properties, vec!["f", "wear_step"]);
         assert_eq!(parse("stress").unwrap().output, OutputMode::Face);
-        assert!(parse("cad")
-            .unwrap_err()
-            .contains("No dump quantity selected"));
+        let err = parse("cad").unwrap_err();
+        assert_eq!(err, MeshDumpError::NoQuantity);
+        assert!(err.to_string().contains("No dump quantity selected"));
         assert!(parse("").is_err());
         let err = parse("stress wearr cad").unwrap_err();
+        assert_eq!(
+            err,
+            MeshDumpError::UnknownWord {
+                word: "wearr".into()
+            }
+        );
+        let err = err.to_string();
         assert!(err.contains("'wearr'"), "{err}");
         assert!(
             err.contains("stresscomponents") && err.contains("distaa"),
             "{err}"
         );
-        assert!(parse("stress output")
-            .unwrap_err()
-            .contains("not enough arguments"));
-        let err = parse("stress output faces").unwrap_err();
+        let err = parse("stress output").unwrap_err();
+        assert_eq!(err, MeshDumpError::OutputMissing);
+        assert!(err.to_string().contains("not enough arguments"));
+        let err = parse("stress output faces").unwrap_err().to_string();
         assert!(
             err.contains("'faces'") && err.contains("interpolate"),
             "{err}"

@@ -5,9 +5,11 @@ pub mod data;
 pub mod diff;
 pub mod dump;
 pub mod dump_compare;
+pub mod error;
 pub mod local_vtk;
 pub mod mesh_vtk;
 pub mod restart;
+pub mod restart_error;
 pub mod stl;
 pub mod vtk;
 

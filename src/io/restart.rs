@@ -23,6 +23,7 @@
 
 use crate::engine::domain::{Boundary, Domain};
 use crate::engine::particles::Particles;
+pub use crate::io::restart_error::RestartError;
 
 /// Header flags, in LIGGGHTS's numbering.
 pub mod flag {
@@ -54,7 +55,7 @@ pub enum Value {
 }
 
 /// Reads one header value of a given type.
-type ReadValue = fn(&mut Reader) -> Result<Value, String>;
+type ReadValue = fn(&mut Reader) -> Result<Value, RestartError>;
 
 /// The value type of header flag `f` (None: unknown flag).
 fn kind_of(f: i32) -> Option<ReadValue> {
@@ -157,54 +158,58 @@ struct Reader<'a> {
 }
 
 impl<'a> Reader<'a> {
-    fn take(&mut self, n: usize, what: &str) -> Result<&'a [u8], String> {
+    fn take(&mut self, n: usize, what: &'static str) -> Result<&'a [u8], RestartError> {
         if self.bytes.len() - self.at < n {
-            return Err(format!(
-                "{}: truncated at byte {} (reading {what}, file has {} bytes)",
-                self.name,
-                self.at,
-                self.bytes.len()
-            ));
+            return Err(RestartError::Truncated {
+                file: self.name.to_string(),
+                offset: self.at,
+                reading: what,
+                size: self.bytes.len(),
+            });
         }
         let s = &self.bytes[self.at..self.at + n];
         self.at += n;
         Ok(s)
     }
-    fn i32(&mut self) -> Result<i32, String> {
+    fn i32(&mut self) -> Result<i32, RestartError> {
         Ok(i32::from_le_bytes(
             self.take(4, "an int")?.try_into().expect("4 bytes"),
         ))
     }
-    fn i64(&mut self) -> Result<i64, String> {
+    fn i64(&mut self) -> Result<i64, RestartError> {
         Ok(i64::from_le_bytes(
             self.take(8, "a bigint")?.try_into().expect("8 bytes"),
         ))
     }
-    fn f64(&mut self) -> Result<f64, String> {
+    fn f64(&mut self) -> Result<f64, RestartError> {
         Ok(f64::from_le_bytes(
             self.take(8, "a double")?.try_into().expect("8 bytes"),
         ))
     }
-    fn count(&mut self, what: &str, limit: usize) -> Result<usize, String> {
+    fn count(&mut self, what: &'static str, limit: usize) -> Result<usize, RestartError> {
         let at = self.at;
         let n = self.i32()?;
         if n < 0 || n as usize > limit {
-            return Err(format!(
-                "{}: byte {at}: {what} {n} is not plausible",
-                self.name
-            ));
+            return Err(RestartError::Implausible {
+                file: self.name.to_string(),
+                offset: at,
+                what,
+                value: n,
+            });
         }
         Ok(n as usize)
     }
-    fn string(&mut self) -> Result<String, String> {
+    fn string(&mut self) -> Result<String, RestartError> {
         let n = self.count("string length", 1 << 16)?;
         let at = self.at;
         let raw = self.take(n, "a string")?;
         let raw = raw.strip_suffix(&[0]).unwrap_or(raw);
-        String::from_utf8(raw.to_vec())
-            .map_err(|_| format!("{}: byte {at}: a string that is not text", self.name))
+        String::from_utf8(raw.to_vec()).map_err(|_| RestartError::NotText {
+            file: self.name.to_string(),
+            offset: at,
+        })
     }
-    fn doubles(&mut self, n: usize) -> Result<Vec<f64>, String> {
+    fn doubles(&mut self, n: usize) -> Result<Vec<f64>, RestartError> {
         let raw = self.take(8 * n, "doubles")?;
         Ok(raw
             .chunks_exact(8)
@@ -222,16 +227,21 @@ fn from_int(i: i64) -> f64 {
 }
 
 /// Decode the atom records of `n` doubles.
-fn records(buf: &[f64], nfix: usize, name: &str, out: &mut Vec<AtomRecord>) -> Result<(), String> {
+fn records(
+    buf: &[f64],
+    nfix: usize,
+    name: &str,
+    out: &mut Vec<AtomRecord>,
+) -> Result<(), RestartError> {
     let mut m = 0;
     while m < buf.len() {
         let len = buf[m] as usize;
         if !(17..=buf.len() - m).contains(&len) || buf[m].fract() != 0.0 {
-            return Err(format!(
-                "{name}: atom record {} has length {} (expected at least 17 values for atom_style granular)",
-                out.len() + 1,
-                buf[m]
-            ));
+            return Err(RestartError::RecordLength {
+                file: name.to_string(),
+                record: out.len() + 1,
+                length: buf[m],
+            });
         }
         let r = &buf[m..m + len];
         let mut extra = Vec::with_capacity(nfix);
@@ -239,22 +249,21 @@ fn records(buf: &[f64], nfix: usize, name: &str, out: &mut Vec<AtomRecord>) -> R
         for f in 0..nfix {
             let bl = r.get(k).copied().unwrap_or(0.0) as usize;
             if bl < 1 || bl > len - k {
-                return Err(format!(
-                    "{name}: atom {}: per-atom block {} of fix {} overruns the record",
-                    as_int(r[4]),
-                    f + 1,
-                    f + 1
-                ));
+                return Err(RestartError::FixBlockOverrun {
+                    file: name.to_string(),
+                    atom: as_int(r[4]),
+                    fix: f + 1,
+                });
             }
             extra.push(r[k + 1..k + bl].to_vec());
             k += bl;
         }
         if k != len {
-            return Err(format!(
-                "{name}: atom {}: {} values left over after the per-atom fix blocks",
-                as_int(r[4]),
-                len - k
-            ));
+            return Err(RestartError::LeftOver {
+                file: name.to_string(),
+                atom: as_int(r[4]),
+                count: len - k,
+            });
         }
         out.push(AtomRecord {
             x: [r[1], r[2], r[3]],
@@ -363,20 +372,17 @@ impl Restart {
     pub fn parse(
         bytes: &[u8],
         name: &str,
-        chunks: Option<&dyn Fn(usize) -> Result<Vec<u8>, String>>,
-    ) -> Result<Restart, String> {
+        chunks: Option<&dyn Fn(usize) -> Result<Vec<u8>, RestartError>>,
+    ) -> Result<Restart, RestartError> {
+        let file = || name.to_string();
         if bytes.starts_with(b"LammpS RestartT") {
-            return Err(format!(
-                "{name}: a restart file of a newer LAMMPS (magic 'LammpS RestartT'); regolith reads LIGGGHTS 3.x restart files"
-            ));
+            return Err(RestartError::NewerLammps { file: file() });
         }
         if bytes.len() >= 8 && bytes[..4] == [0, 0, 0, 0] {
             let le = u32::from_le_bytes(bytes[4..8].try_into().expect("4 bytes"));
             let be = u32::from_be_bytes(bytes[4..8].try_into().expect("4 bytes"));
             if le > 4096 && be <= 4096 {
-                return Err(format!(
-                    "{name}: big-endian restart file (written on a machine of the other byte order); regolith reads little-endian files"
-                ));
+                return Err(RestartError::BigEndian { file: file() });
             }
         }
         let mut r = Reader { bytes, at: 0, name };
@@ -388,13 +394,13 @@ impl Restart {
             if f < 0 {
                 break;
             }
-            let read = kind_of(f).ok_or_else(|| {
-                format!(
-                    "{name}: byte {at}: unknown header flag {f} (not a LIGGGHTS 3.x restart file?)"
-                )
+            let read = kind_of(f).ok_or_else(|| RestartError::UnknownFlag {
+                file: file(),
+                offset: at,
+                flag: f,
             })?;
             if (flag::XY..=flag::YZ).contains(&f) {
-                return Err(format!("{name}: triclinic box: not supported yet"));
+                return Err(RestartError::Triclinic { file: file() });
             }
             let v = read(&mut r)?;
             if f == flag::VERSION {
@@ -405,37 +411,35 @@ impl Restart {
                     .and_then(|s| s.split('.').next())
                     .and_then(|s| s.parse::<i32>().ok());
                 if !t.starts_with("Version LIGGGHTS") || major.is_none_or(|m| m < 3) {
-                    return Err(format!(
-                        "{name}: written by '{t}'; regolith reads restart files of LIGGGHTS 3.x"
-                    ));
+                    return Err(RestartError::Version {
+                        file: file(),
+                        version: t.clone(),
+                    });
                 }
             }
             if f == flag::ATOM_STYLE {
                 let Value::Text(t) = &v else { unreachable!() };
                 if t != "granular" && t != "sphere" {
-                    return Err(format!(
-                        "{name}: atom_style {t}: regolith reads granular and sphere restarts"
-                    ));
+                    return Err(RestartError::AtomStyle {
+                        file: file(),
+                        style: t.clone(),
+                    });
                 }
             }
             if matches!(f, 25 | 28 | 31 | 34) && v != Value::Big(0) {
-                return Err(format!(
-                    "{name}: molecular topology (bonds, angles, ...): not supported"
-                ));
+                return Err(RestartError::Molecular { file: file() });
             }
             out.header.push((f, v));
         }
         if out.text(flag::VERSION).is_none() {
-            return Err(format!(
-                "{name}: no version in the header: not a LIGGGHTS restart file"
-            ));
+            return Err(RestartError::NoVersion { file: file() });
         }
         // 2. groups
         out.ngroup = r.count("group count", 32)? as i32;
         let mut found = 0;
         while found < out.ngroup as usize {
             if out.groups.len() >= 32 {
-                return Err(format!("{name}: more group slots than LIGGGHTS has"));
+                return Err(RestartError::TooManyGroups { file: file() });
             }
             let n = r.count("group name length", 4096)?;
             if n == 0 {
@@ -456,9 +460,11 @@ impl Restart {
                 f if f < 0 => break,
                 0 => out.masses = Some(r.doubles(ntypes)?),
                 f => {
-                    return Err(format!(
-                        "{name}: byte {at}: invalid flag {f} in the type arrays"
-                    ))
+                    return Err(RestartError::TypeArrayFlag {
+                        file: file(),
+                        offset: at,
+                        flag: f,
+                    })
                 }
             }
         }
@@ -470,23 +476,29 @@ impl Restart {
                 0 => {
                     let style = r.string()?;
                     if style != "gran" {
-                        return Err(format!("{name}: pair style {style}: not supported (regolith reads pair_style gran)"));
+                        return Err(RestartError::PairStyle {
+                            file: file(),
+                            style,
+                        });
                     }
                     // 8 bytes of model hash, an int per type pair (i <= j)
                     let size = ntypes
                         .checked_mul(ntypes + 1)
                         .and_then(|n| (n / 2).checked_mul(4))
                         .and_then(|n| n.checked_add(8))
-                        .ok_or_else(|| {
-                            format!("{name}: {ntypes} atom types: pair settings of impossible size")
+                        .ok_or_else(|| RestartError::PairSize {
+                            file: file(),
+                            ntypes,
                         })?;
                     let raw = r.take(size, "pair gran settings")?;
                     out.pair = Some((style, raw.to_vec()));
                 }
                 f => {
-                    return Err(format!(
-                        "{name}: byte {at}: bond/angle/dihedral/improper style (flag {f}): not supported"
-                    ))
+                    return Err(RestartError::TopologyStyle {
+                        file: file(),
+                        offset: at,
+                        flag: f,
+                    })
                 }
             }
         }
@@ -516,10 +528,10 @@ impl Restart {
                     records(&buf, nperatom, name, &mut out.atoms)?;
                 }
                 if r.at != bytes.len() {
-                    return Err(format!(
-                        "{name}: {} bytes after the last atom chunk",
-                        bytes.len() - r.at
-                    ));
+                    return Err(RestartError::Trailing {
+                        file: file(),
+                        count: bytes.len() - r.at,
+                    });
                 }
             }
             Some(read_chunk) => {
@@ -539,10 +551,11 @@ impl Restart {
         }
         let natoms = out.int(flag::NATOMS).unwrap_or(-1);
         if natoms != out.atoms.len() as i64 {
-            return Err(format!(
-                "{name}: the header counts {natoms} atoms but the file holds {}",
-                out.atoms.len()
-            ));
+            return Err(RestartError::AtomCount {
+                file: file(),
+                header: natoms,
+                found: out.atoms.len(),
+            });
         }
         Ok(out)
     }
@@ -659,23 +672,29 @@ impl Restart {
 }
 
 /// Read a restart file: a plain name, or a `%` name (base file plus one per processor).
-pub fn read(path: &str) -> Result<Restart, String> {
+pub fn read(path: &str) -> Result<Restart, RestartError> {
     if let Some(k) = path.find('%') {
         let base = format!("{}base{}", &path[..k], &path[k + 1..]);
-        let bytes =
-            std::fs::read(&base).map_err(|e| format!("Cannot open restart file {base}: {e}"))?;
+        let bytes = std::fs::read(&base).map_err(|e| open_error(&base, e))?;
         let chunk = |p: usize| {
             let f = format!("{}{p}{}", &path[..k], &path[k + 1..]);
-            std::fs::read(&f).map_err(|e| format!("Cannot open restart file {f}: {e}"))
+            std::fs::read(&f).map_err(|e| open_error(&f, e))
         };
         return Restart::parse(&bytes, &base, Some(&chunk));
     }
-    let bytes = std::fs::read(path).map_err(|e| format!("Cannot open restart file {path}: {e}"))?;
+    let bytes = std::fs::read(path).map_err(|e| open_error(path, e))?;
     Restart::parse(&bytes, path, None)
 }
 
+fn open_error(path: &str, source: std::io::Error) -> RestartError {
+    RestartError::Open {
+        path: path.to_string(),
+        source,
+    }
+}
+
 /// Write a restart file atomically (a `%` name gives the base file and one processor file).
-pub fn write(restart: &Restart, path: &str) -> Result<(), String> {
+pub fn write(restart: &Restart, path: &str) -> Result<(), RestartError> {
     if let Some(k) = path.find('%') {
         let base = format!("{}base{}", &path[..k], &path[k + 1..]);
         let proc0 = format!("{}0{}", &path[..k], &path[k + 1..]);
@@ -687,20 +706,21 @@ pub fn write(restart: &Restart, path: &str) -> Result<(), String> {
         for d in chunk {
             c.extend_from_slice(&d.to_le_bytes());
         }
-        crate::io::write_atomically(&proc0, &c)
-            .map_err(|e| format!("Cannot open restart file {proc0}: {e}"))?;
-        return crate::io::write_atomically(&base, &b)
-            .map_err(|e| format!("Cannot open restart file {base}: {e}"));
+        crate::io::write_atomically(&proc0, &c).map_err(|e| open_error(&proc0, e))?;
+        return crate::io::write_atomically(&base, &b).map_err(|e| open_error(&base, e));
     }
-    crate::io::write_atomically(path, &restart.to_bytes())
-        .map_err(|e| format!("Cannot open restart file {path}: {e}"))
+    crate::io::write_atomically(path, &restart.to_bytes()).map_err(|e| open_error(path, e))
 }
 
 /// The particles and box of a restart file.
-pub fn read_bed(path: &str) -> Result<crate::io::convert::Bed, String> {
+pub fn read_bed(path: &str) -> Result<crate::io::convert::Bed, RestartError> {
     let r = read(path)?;
-    crate::engine::restart_state::check_restart_values(&r, true)
-        .map_err(|m| format!("{path}: {m}"))?;
+    crate::engine::restart_state::check_restart_values(&r, true).map_err(|reason| {
+        RestartError::Values {
+            path: path.to_string(),
+            reason,
+        }
+    })?;
     let mut domain = Domain::default();
     domain.boundary = r.boundary();
     let (lo, hi) = r.bounds();
@@ -734,7 +754,7 @@ pub const VERSION: &str = concat!(
 /// Write a bed as a restart file: the particles (masks, images, spins) with the rest of
 /// the restart it came from, or a fresh header (units si, no pair style, no fixes) for a
 /// bed read from a data file.
-pub fn write_bed(bed: &crate::io::convert::Bed, path: &str) -> Result<(), String> {
+pub fn write_bed(bed: &crate::io::convert::Bed, path: &str) -> Result<(), RestartError> {
     let mut r = match &bed.restart {
         Some(r) => r.clone(),
         None => fresh_header(&bed.domain, bed.ntypes, "si"),
@@ -863,6 +883,59 @@ mod tests {
             assert_eq!(unpack_image(pack_image(im)), im);
         }
         assert_eq!(pack_image([0, 0, 0]), 512 | (512 << 10) | (512 << 20));
+    }
+
+    #[test]
+    fn truncated_and_foreign_files_are_typed_errors() {
+        let r = fresh_header(&Domain::default(), 1, "si");
+        let bytes = r.to_bytes();
+        // the version string's length word starts at byte 4
+        let e = Restart::parse(&bytes[..6], "cut", None).unwrap_err();
+        assert!(
+            matches!(
+                &e,
+                RestartError::Truncated {
+                    file,
+                    offset: 4,
+                    reading: "an int",
+                    size: 6,
+                } if file == "cut"
+            ),
+            "{e:?}"
+        );
+        assert_eq!(
+            e.to_string(),
+            "cut: truncated at byte 4 (reading an int, file has 6 bytes)"
+        );
+        // the last word is the atom chunk's count
+        let n = bytes.len();
+        let e = Restart::parse(&bytes[..n - 2], "cut", None).unwrap_err();
+        assert!(
+            matches!(e, RestartError::Truncated { offset, size, .. } if offset == n - 4 && size == n - 2),
+            "{e:?}"
+        );
+        let e = Restart::parse(&99i32.to_le_bytes(), "odd", None).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                RestartError::UnknownFlag {
+                    offset: 0,
+                    flag: 99,
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        let e = Restart::parse(b"LammpS RestartT\0\0", "new", None).unwrap_err();
+        assert!(matches!(e, RestartError::NewerLammps { .. }), "{e:?}");
+        assert!(!e.is_unsupported());
+        let mut tri = r.clone();
+        tri.header.push((flag::XY, Value::Double(0.0)));
+        let e = Restart::parse(&tri.to_bytes(), "tri", None).unwrap_err();
+        assert!(e.is_unsupported(), "{e:?}");
+        assert_eq!(e.to_string(), "tri: triclinic box: not supported yet");
+        let e = read("/nonexistent/regolith.restart").unwrap_err();
+        assert!(matches!(e, RestartError::Open { .. }), "{e:?}");
     }
 
     #[test]

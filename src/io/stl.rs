@@ -4,6 +4,9 @@
 //! degenerate triangles, edges shared by more than two triangles, and sizes that suggest
 //! the wrong length unit. Errors name the file and the triangle (1-based).
 
+use crate::io::error::Line;
+pub use crate::io::error::StlError;
+
 /// A triangle: three vertices (length).
 pub type Triangle = [[f64; 3]; 3];
 
@@ -56,34 +59,36 @@ pub fn normal(t: &Triangle) -> [f64; 3] {
 }
 
 /// Parse an ASCII STL text; `name` labels errors.
-fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, String> {
+fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, StlError> {
     let mut out = Vec::new();
     let mut current: Vec<[f64; 3]> = Vec::new();
     for (n, line) in text.lines().enumerate() {
         // LIGGGHTS strips `#` comments from STL lines as from deck lines
         let line = line.split('#').next().unwrap_or("");
         let mut w = line.split_whitespace();
+        let at = || Line {
+            path: name.to_string(),
+            line: n + 1,
+        };
         match w.next() {
             Some("vertex") => {
                 let mut v = [0.0; 3];
                 for c in v.iter_mut() {
-                    let word = w.next().ok_or_else(|| {
-                        format!("{name}:{}: a vertex needs three coordinates", n + 1)
+                    let word = w.next().ok_or_else(|| StlError::ShortVertex { at: at() })?;
+                    *c = word.parse().map_err(|_| StlError::Coordinate {
+                        at: at(),
+                        word: word.to_string(),
                     })?;
-                    *c = word
-                        .parse()
-                        .map_err(|_| format!("{name}:{}: '{word}' is not a coordinate", n + 1))?;
                 }
                 current.push(v);
             }
             Some("endloop") => {
                 if current.len() != 3 {
-                    return Err(format!(
-                        "{name}:{}: facet {} has {} vertices (STL facets are triangles)",
-                        n + 1,
-                        out.len() + 1,
-                        current.len()
-                    ));
+                    return Err(StlError::NotTriangle {
+                        at: at(),
+                        facet: out.len() + 1,
+                        vertices: current.len(),
+                    });
                 }
                 out.push([current[0], current[1], current[2]]);
                 current.clear();
@@ -92,17 +97,21 @@ fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, String> {
         }
     }
     if !current.is_empty() {
-        return Err(format!(
-            "{name}: the file ends inside facet {}",
-            out.len() + 1
-        ));
+        return Err(StlError::EndsInFacet {
+            path: name.to_string(),
+            facet: out.len() + 1,
+        });
     }
     Ok(out)
 }
 
 /// Read an STL file (ASCII or binary).
-pub fn read(path: &str) -> Result<Vec<Triangle>, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("Cannot open mesh file {path}: {e}"))?;
+pub fn read(path: &str) -> Result<Vec<Triangle>, StlError> {
+    let file = || path.to_string();
+    let bytes = std::fs::read(path).map_err(|source| StlError::Open {
+        path: file(),
+        source,
+    })?;
     let head = String::from_utf8_lossy(&bytes[..bytes.len().min(512)]).to_string();
     // LIGGGHTS reads a file as binary only when its first line is not blank, not a `#`
     // comment and does not start with `solid`
@@ -116,33 +125,36 @@ pub fn read(path: &str) -> Result<Vec<Triangle>, String> {
     let ascii = (commented && head.lines().count() > 1 && std::str::from_utf8(&bytes).is_ok())
         || (significant.trim_start().starts_with("solid") && head.contains("facet"));
     let triangles = if ascii {
-        let text = String::from_utf8(bytes)
-            .map_err(|_| format!("{path}: an ASCII STL file with bytes that are not text"))?;
+        let text = String::from_utf8(bytes).map_err(|_| StlError::NotText { path: file() })?;
         parse_ascii(&text, path)?
     } else {
         if bytes.len() < 84 {
-            return Err(format!(
-                "{path}: neither ASCII STL nor a binary STL (only {} bytes)",
-                bytes.len()
-            ));
+            return Err(StlError::TooShort {
+                path: file(),
+                size: bytes.len(),
+            });
         }
         let n = u32::from_le_bytes(bytes[80..84].try_into().expect("4 bytes")) as usize;
         if bytes.len() != 84 + 50 * n {
-            return Err(format!(
-                "{path}: binary STL header counts {n} triangles ({} bytes) but the file has {} bytes",
-                84 + 50 * n,
-                bytes.len()
-            ));
+            return Err(StlError::BinarySize {
+                path: file(),
+                triangles: n,
+                expected: 84 + 50 * n,
+                size: bytes.len(),
+            });
         }
         let mut cursor = std::io::Cursor::new(bytes);
-        let mesh = stl_io::read_stl(&mut cursor).map_err(|e| format!("{path}: {e}"))?;
+        let mesh = stl_io::read_stl(&mut cursor).map_err(|source| StlError::Binary {
+            path: file(),
+            source,
+        })?;
         mesh.faces
             .iter()
             .map(|f| f.vertices.map(|k| mesh.vertices[k].0.map(|c| c as f64)))
             .collect()
     };
     if triangles.is_empty() {
-        return Err(format!("{path}: the mesh has no triangles"));
+        return Err(StlError::Empty { path: file() });
     }
     Ok(triangles)
 }
@@ -195,7 +207,7 @@ pub fn check(
     triangles: &[Triangle],
     name: &str,
     box_size: Option<f64>,
-) -> Result<Vec<String>, String> {
+) -> Result<Vec<String>, StlError> {
     let mut warnings = Vec::new();
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
@@ -207,11 +219,13 @@ pub fn check(
         // a NaN area is degenerate too
         #[allow(clippy::neg_cmp_op_on_partial_ord)]
         if !(area > 1e-10 * longest * longest) {
-            return Err(format!(
-                "{name}: triangle {} is degenerate (area {area:e} for an edge of {longest:e}): vertices {:?}",
-                k + 1,
-                t
-            ));
+            return Err(StlError::Degenerate {
+                path: name.to_string(),
+                triangle: k + 1,
+                area,
+                longest,
+                vertices: *t,
+            });
         }
         for v in t {
             for d in 0..3 {
@@ -246,9 +260,11 @@ pub fn check(
     if let Some(size) = box_size.filter(|s| *s > 0.0) {
         let extent = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
         if extent > 100.0 * size {
-            return Err(format!(
-                "{name}: the mesh is {extent:e} across but the box only {size:e}: wrong length unit? (use scale, e.g. scale 0.001 for millimetres)"
-            ));
+            return Err(StlError::WrongUnit {
+                path: name.to_string(),
+                extent,
+                size,
+            });
         }
     }
     Ok(warnings)
@@ -334,6 +350,11 @@ mod tests {
         );
         let t = parse_ascii(&flat, "flat.stl").unwrap();
         let e = check(&t, "flat.stl", None).unwrap_err();
+        assert!(
+            matches!(e, StlError::Degenerate { triangle: 1, .. }),
+            "{e:?}"
+        );
+        let e = e.to_string();
         assert!(e.starts_with("flat.stl: triangle 1 is degenerate"), "{e}");
         let t = parse_ascii(SQUARE, "sq.stl").unwrap();
         let mut three = t.clone();
@@ -342,14 +363,20 @@ mod tests {
         let w = check(&three, "nm.stl", None).unwrap();
         assert!(w[0].contains("triangles 1, 2, 3 share one edge"), "{w:?}");
         let e = check(&t, "mm.stl", Some(0.0001)).unwrap_err();
-        assert!(e.contains("wrong length unit"), "{e}");
+        assert!(matches!(e, StlError::WrongUnit { .. }), "{e:?}");
+        assert!(e.to_string().contains("wrong length unit"), "{e}");
         let e = parse_ascii(
             "solid x\nfacet\nouter loop\nvertex 0 0 0\nvertex 1 0\n",
             "cut.stl",
         )
         .unwrap_err();
         assert!(
-            e.starts_with("cut.stl:5: a vertex needs three coordinates"),
+            matches!(&e, StlError::ShortVertex { at } if at.line == 5),
+            "{e:?}"
+        );
+        assert!(
+            e.to_string()
+                .starts_with("cut.stl:5: a vertex needs three coordinates"),
             "{e}"
         );
     }

@@ -22,60 +22,69 @@
 //!
 //! [`evaluate_boolean`] is the separate, numbers-only evaluator of the `if` command.
 
-use std::fmt;
-
 use crate::util::numbers::c_atof;
 use crate::util::random::RanMars;
 
-/// Error from parsing or evaluating an expression; `offset` is a byte offset into the text.
-#[derive(Debug, Clone, PartialEq)]
+pub use crate::script::error::{ExprErrorKind, VariableError};
+
+/// Error from parsing or evaluating an expression: what is wrong and where.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{kind}")]
 pub struct ExprError {
-    /// What went wrong, in LIGGGHTS's words where it has them.
-    pub message: String,
+    /// What went wrong; its text is LIGGGHTS's where it has one.
+    pub kind: ExprErrorKind,
     /// Byte offset into the expression text of the token that caused the error.
     pub offset: usize,
 }
 
-impl fmt::Display for ExprError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
+impl ExprError {
+    /// Whether only a real run can know the formula's value (check mode).
+    pub fn is_known_when_run(&self) -> bool {
+        matches!(
+            self.kind,
+            ExprErrorKind::Lookup(VariableError::KnownWhenRun)
+        )
     }
 }
 
-impl std::error::Error for ExprError {}
+impl From<ExprError> for VariableError {
+    /// A formula's error as the error of the variable holding it (the position is dropped).
+    fn from(e: ExprError) -> VariableError {
+        match e.kind {
+            ExprErrorKind::Lookup(v) => v,
+            other => VariableError::Formula(Box::new(other)),
+        }
+    }
+}
 
 /// A number written in a formula; one too large for a double (`1e400`) is an error naming it,
 /// not infinity.
 fn literal(word: &str, offset: usize) -> Result<f64, ExprError> {
     let x = c_atof(word);
     if x.is_infinite() {
-        return err(
-            format!("Number {word} in variable formula is out of range (largest: 1.79769e+308)"),
-            offset,
-        );
+        return err(ExprErrorKind::OutOfRange(word.to_string()), offset);
     }
     Ok(x)
 }
 
-fn err<T>(message: impl Into<String>, offset: usize) -> Result<T, ExprError> {
-    Err(ExprError {
-        message: message.into(),
+fn err<T>(kind: ExprErrorKind, offset: usize) -> Result<T, ExprError> {
+    Err(ExprError { kind, offset })
+}
+
+/// Attach an offset to a context lookup's error.
+fn lookup(r: Result<f64, VariableError>, offset: usize) -> Result<f64, ExprError> {
+    r.map_err(|e| ExprError {
+        kind: e.into(),
         offset,
     })
 }
 
-/// Attach an offset to a context lookup's error.
-fn lookup(r: Result<f64, String>, offset: usize) -> Result<f64, ExprError> {
-    r.map_err(|message| ExprError { message, offset })
-}
-
-const SYNTAX: &str = "Invalid syntax in variable formula";
-const BAD_MATH: &str = "Invalid math function in variable formula";
-const BAD_NAME: &str = "Invalid math/group/special function in variable formula";
-const NO_BOX: &str = "Variable evaluation before simulation box is defined";
-const BOOLEAN: &str = "Invalid Boolean syntax in if command";
-/// Not a LIGGGHTS message: LIGGGHTS has no limit but crashes long before this one.
-const TOO_DEEP: &str = "Variable formula is nested too deeply";
+const SYNTAX: ExprErrorKind = ExprErrorKind::Syntax;
+const BAD_MATH: ExprErrorKind = ExprErrorKind::BadMath;
+const BAD_NAME: ExprErrorKind = ExprErrorKind::UnknownFunction;
+const NO_BOX: ExprErrorKind = ExprErrorKind::NoBox;
+const BOOLEAN: ExprErrorKind = ExprErrorKind::Boolean;
+const TOO_DEEP: ExprErrorKind = ExprErrorKind::TooDeep;
 
 /// Deepest parse tree accepted (keeps recursion far from the stack limit).
 const MAX_DEPTH: usize = 1000;
@@ -93,7 +102,7 @@ pub enum RefKind {
     Variable,
 }
 
-/// What a formula can ask of the world. Lookups return `Err(message)` when not available.
+/// What a formula can ask of the world. Lookups return `Err` when not available.
 pub trait ExprContext {
     /// `v_name` (index None) or `v_name[N]`; `atom` is the atom being evaluated in atom style.
     /// The context evaluates the variable (recursively, guarding against cycles).
@@ -102,10 +111,10 @@ pub trait ExprContext {
         name: &str,
         index: Option<usize>,
         atom: Option<usize>,
-    ) -> Result<f64, String>;
+    ) -> Result<f64, VariableError>;
     /// A thermo keyword (`step`, `time`, `atoms`, ...); unknown words give
     /// "Invalid thermo keyword in variable formula".
-    fn thermo(&mut self, name: &str) -> Result<f64, String>;
+    fn thermo(&mut self, name: &str) -> Result<f64, VariableError>;
     /// `c_ID`, `c_ID[i]`, `c_ID[i][j]`; `atom` set inside atom-style formulas.
     fn compute(
         &mut self,
@@ -113,7 +122,7 @@ pub trait ExprContext {
         i: Option<usize>,
         j: Option<usize>,
         atom: Option<usize>,
-    ) -> Result<f64, String>;
+    ) -> Result<f64, VariableError>;
     /// `f_ID`, `f_ID[i]`, `f_ID[i][j]`, same conventions.
     fn fix(
         &mut self,
@@ -121,11 +130,11 @@ pub trait ExprContext {
         i: Option<usize>,
         j: Option<usize>,
         atom: Option<usize>,
-    ) -> Result<f64, String>;
+    ) -> Result<f64, VariableError>;
     /// Group functions `count(g)`, `xcm(g,x)`, `bound(g,zmax,region)` ...: the raw text
     /// between the parentheses split at the first two top-level commas (untrimmed, so
     /// `count( all)` names group " all" and fails as in LIGGGHTS).
-    fn group_function(&mut self, name: &str, args: &[String]) -> Result<f64, String>;
+    fn group_function(&mut self, name: &str, args: &[String]) -> Result<f64, VariableError>;
     /// Special functions `sum() min() max() ave() trap() next()` (atom None) and, in atom
     /// style only, `gmask() rmask() grmask()` for one atom; raw arguments as above.
     fn special_function(
@@ -133,11 +142,11 @@ pub trait ExprContext {
         name: &str,
         args: &[String],
         atom: Option<usize>,
-    ) -> Result<f64, String>;
+    ) -> Result<f64, VariableError>;
     /// Per-atom keyword (`x`, `vx`, `mass`, `r`, ...) of local atom `atom`.
-    fn atom_value(&mut self, name: &str, atom: usize) -> Result<f64, String>;
+    fn atom_value(&mut self, name: &str, atom: usize) -> Result<f64, VariableError>;
     /// The keyword `name` of the first `n` atoms at once (the default asks atom by atom).
-    fn atom_column(&mut self, name: &str, n: usize) -> Result<Vec<f64>, String> {
+    fn atom_column(&mut self, name: &str, n: usize) -> Result<Vec<f64>, VariableError> {
         (0..n).map(|i| self.atom_value(name, i)).collect()
     }
     /// A per-atom `v_name` for the first `n` atoms at once (the default asks atom by atom).
@@ -146,7 +155,7 @@ pub trait ExprContext {
         name: &str,
         index: Option<usize>,
         n: usize,
-    ) -> Result<Vec<f64>, String> {
+    ) -> Result<Vec<f64>, VariableError> {
         (0..n)
             .map(|i| self.variable(name, index, Some(i)))
             .collect()
@@ -158,11 +167,11 @@ pub trait ExprContext {
         i: Option<usize>,
         j: Option<usize>,
         n: usize,
-    ) -> Result<Vec<f64>, String> {
+    ) -> Result<Vec<f64>, VariableError> {
         (0..n).map(|a| self.compute(id, i, j, Some(a))).collect()
     }
     /// `x[N]`: keyword `name` (any word) of the atom whose ID is `id`.
-    fn atom_value_by_id(&mut self, name: &str, id: usize) -> Result<f64, String>;
+    fn atom_value_by_id(&mut self, name: &str, id: usize) -> Result<f64, VariableError>;
     /// Whether the simulation box exists (most lookups need it).
     fn box_exists(&self) -> bool;
     /// The current timestep.
@@ -173,7 +182,7 @@ pub trait ExprContext {
     fn dt(&self) -> f64;
     /// The generator behind `random()`/`normal()` (one for equal style, one for atom style),
     /// made from `seed` on first use and returned unchanged afterwards whatever the seed.
-    fn rng(&mut self, seed: i32, per_atom: bool) -> Result<&mut RanMars, String>;
+    fn rng(&mut self, seed: i32, per_atom: bool) -> Result<&mut RanMars, VariableError>;
     /// Whether a `c_`/`f_`/`v_` reference names per-atom data (one value per atom, looked up
     /// for each atom) rather than one number (looked up once when an atom-style formula is
     /// read, as LIGGGHTS does). Contexts with per-atom computes, fixes or atom-style
@@ -507,20 +516,20 @@ fn bracket_index(bytes: &[u8], open: usize) -> Result<(usize, usize), ExprError>
             break;
         }
         if !c.is_ascii_digit() {
-            return err("Non digit character between brackets in variable", i);
+            return err(ExprErrorKind::NonDigitIndex, i);
         }
         value = value.saturating_mul(10).saturating_add(i64::from(c - b'0'));
         i += 1;
     }
     if bytes.get(i) != Some(&b']') {
-        return err("Mismatched brackets in variable", open);
+        return err(ExprErrorKind::MismatchedBrackets, open);
     }
     if i == open + 1 {
-        return err("Empty brackets in variable", open);
+        return err(ExprErrorKind::EmptyBrackets, open);
     }
     let index = value as i32;
     if index == 0 {
-        return err("Index between variable brackets must be positive", open);
+        return err(ExprErrorKind::IndexNotPositive, open);
     }
     // a negative index (from int overflow) becomes huge and is out of range for the context
     Ok((index as isize as usize, i + 1))
@@ -830,10 +839,7 @@ fn atom_leaf(node: Node, ctx: &mut dyn ExprContext) -> Result<Node, ExprError> {
         Node::Math(f, _, at) => {
             if let Some(name) = f.needs_run() {
                 if ctx.run_bounds().is_none() {
-                    return err(
-                        format!("Cannot use {name} in variable formula between runs"),
-                        *at,
-                    );
+                    return err(ExprErrorKind::NeedsRun(name), *at);
                 }
             }
             false
@@ -862,7 +868,7 @@ fn generator(
     match ctx.rng(seed, per_atom) {
         Ok(r) => Ok(r),
         Err(_) if seed <= 0 => err(BAD_MATH, at),
-        Err(message) => err(message, at),
+        Err(e) => err(e.into(), at),
     }
 }
 
@@ -933,11 +939,11 @@ fn binary(op: Op, x: f64, y: f64, at: usize) -> Result<f64, ExprError> {
         Op::Add => x + y,
         Op::Sub => x - y,
         Op::Mul => x * y,
-        Op::Div if y == 0.0 => return err("Divide by 0 in variable formula", at),
+        Op::Div if y == 0.0 => return err(ExprErrorKind::DivideByZero, at),
         Op::Div => x / y,
-        Op::Mod if y == 0.0 => return err("Modulo 0 in variable formula", at),
+        Op::Mod if y == 0.0 => return err(ExprErrorKind::ModuloZero, at),
         Op::Mod => x % y,
-        Op::Pow if y == 0.0 => return err("Power by 0 in variable formula", at),
+        Op::Pow if y == 0.0 => return err(ExprErrorKind::PowerByZero, at),
         Op::Pow => x.powf(y),
         Op::Eq => truth(x == y),
         Op::Ne => truth(x != y),
@@ -959,30 +965,26 @@ fn math(f: Math, v: &[f64], ctx: &mut dyn ExprContext, at: usize) -> Result<f64,
     let (a, b, c) = (arg(0), arg(1), arg(2));
     let run = |ctx: &dyn ExprContext| -> Result<(i64, i64), ExprError> {
         let name = f.needs_run().unwrap_or("");
-        ctx.run_bounds().ok_or_else(|| ExprError {
-            message: format!("Cannot use {name} in variable formula between runs"),
+        ctx.run_bounds().ok_or(ExprError {
+            kind: ExprErrorKind::NeedsRun(name),
             offset: at,
         })
     };
     let step = ctx.timestep();
     Ok(match f {
-        Sqrt if a < 0.0 => return err("Sqrt of negative value in variable formula", at),
+        Sqrt if a < 0.0 => return err(ExprErrorKind::SqrtNegative, at),
         Sqrt => a.sqrt(),
         Exp => a.exp(),
-        Ln | Log if a <= 0.0 => return err("Log of zero/negative value in variable formula", at),
+        Ln | Log if a <= 0.0 => return err(ExprErrorKind::LogNonPositive, at),
         Ln => a.ln(),
         Log => a.log10(),
         Abs => a.abs(),
         Sin => a.sin(),
         Cos => a.cos(),
         Tan => a.tan(),
-        Asin if a < -1.0 || a > 1.0 => {
-            return err("Arcsin of invalid value in variable formula", at)
-        }
+        Asin if a < -1.0 || a > 1.0 => return err(ExprErrorKind::ArcsinRange, at),
         Asin => a.asin(),
-        Acos if a < -1.0 || a > 1.0 => {
-            return err("Arccos of invalid value in variable formula", at)
-        }
+        Acos if a < -1.0 || a > 1.0 => return err(ExprErrorKind::ArccosRange, at),
         Acos => a.acos(),
         Atan => a.atan(),
         Atan2 => a.atan2(b),
@@ -1081,8 +1083,8 @@ fn math(f: Math, v: &[f64], ctx: &mut dyn ExprContext, at: usize) -> Result<f64,
 
 /// The argument `k` of a math node (always present: the parser checked the count).
 fn nth(args: &[Node], k: usize, at: usize) -> Result<&Node, ExprError> {
-    args.get(k).ok_or_else(|| ExprError {
-        message: BAD_MATH.into(),
+    args.get(k).ok_or(ExprError {
+        kind: BAD_MATH,
         offset: at,
     })
 }
@@ -1126,12 +1128,7 @@ fn eval_node(
         Node::Math(f, args, at) => eval_math(*f, args, *at, ctx, atom)?,
         Node::Group(name, args, at) => lookup(ctx.group_function(name, args), *at)?,
         Node::Special(name, args, at) => match mask_function(name) {
-            Some(label) if !per_atom => {
-                return err(
-                    format!("{label} function in equal-style variable formula"),
-                    *at,
-                )
-            }
+            Some(label) if !per_atom => return err(ExprErrorKind::MaskInEqual(label), *at),
             Some(_) => lookup(ctx.special_function(name, args, atom), *at)?,
             None => lookup(ctx.special_function(name, args, None), *at)?,
         },
@@ -1159,7 +1156,7 @@ fn eval_node(
                 return err(NO_BOX, *at);
             }
             match atom {
-                None => return err("Atom vector in equal-style variable formula", *at),
+                None => return err(ExprErrorKind::AtomVectorInEqual, *at),
                 Some(a) => lookup(ctx.atom_value(name, a), *at)?,
             }
         }
@@ -1407,8 +1404,8 @@ fn plain_math(f: Math) -> Option<fn(f64) -> Option<f64>> {
 
 /// A formula piece for all `n` atoms; any error (the walk then reports it as LIGGGHTS).
 fn eval_column(node: &Node, ctx: &mut dyn ExprContext, n: usize) -> Result<Column, ExprError> {
-    let fail = |m: String| ExprError {
-        message: m,
+    let fail = |e: VariableError| ExprError {
+        kind: e.into(),
         offset: 0,
     };
     Ok(match node {
@@ -1441,8 +1438,8 @@ fn eval_column(node: &Node, ctx: &mut dyn ExprContext, n: usize) -> Result<Colum
                 // one argument, no step or time: a tight loop
                 let mut out = Vec::with_capacity(n);
                 for i in 0..n {
-                    out.push(g(cols[0].at(i)).ok_or_else(|| ExprError {
-                        message: "math error".into(),
+                    out.push(g(cols[0].at(i)).ok_or(ExprError {
+                        kind: ExprErrorKind::NotColumnar,
                         offset: *at,
                     })?);
                 }
@@ -1466,7 +1463,7 @@ fn eval_column(node: &Node, ctx: &mut dyn ExprContext, n: usize) -> Result<Colum
         Node::Compute(id, i, j, _) => {
             Column::Each(ctx.compute_column(id, *i, *j, n).map_err(fail)?)
         }
-        _ => return Err(fail("not columnar".into())),
+        _ => return err(ExprErrorKind::NotColumnar, 0),
     })
 }
 
@@ -1593,6 +1590,14 @@ fn boolean_level(text: &str, start: usize, end: usize, nesting: usize) -> Result
 mod tests {
     use super::*;
 
+    // the messages, to check that each error still reads as LIGGGHTS's
+    const SYNTAX: &str = "Invalid syntax in variable formula";
+    const BAD_MATH: &str = "Invalid math function in variable formula";
+    const BAD_NAME: &str = "Invalid math/group/special function in variable formula";
+    const NO_BOX: &str = "Variable evaluation before simulation box is defined";
+    const BOOLEAN: &str = "Invalid Boolean syntax in if command";
+    const TOO_DEEP: &str = "Variable formula is nested too deeply";
+
     const S: i32 = 15485863;
 
     /// A small world: variable `a` = 2, compute `x` (c_x = 7, c_x[i] = 7 + i), fix `y`
@@ -1628,15 +1633,16 @@ mod tests {
             name: &str,
             index: Option<usize>,
             _: Option<usize>,
-        ) -> Result<f64, String> {
+        ) -> Result<f64, VariableError> {
             self.lookups.push(format!("v_{name}"));
             match (name, index) {
                 ("a", None) => Ok(2.0),
                 ("a", Some(_)) => Err("Mismatched variable in variable formula".into()),
+                ("later", None) => Err(VariableError::KnownWhenRun),
                 _ => Err("Invalid variable name in variable formula".into()),
             }
         }
-        fn thermo(&mut self, name: &str) -> Result<f64, String> {
+        fn thermo(&mut self, name: &str) -> Result<f64, VariableError> {
             self.lookups.push(name.to_string());
             match name {
                 "step" => Ok(self.step as f64),
@@ -1651,7 +1657,7 @@ mod tests {
             i: Option<usize>,
             _: Option<usize>,
             _: Option<usize>,
-        ) -> Result<f64, String> {
+        ) -> Result<f64, VariableError> {
             self.lookups.push(format!("c_{id}"));
             match id {
                 "x" => Ok(7.0 + i.unwrap_or(0) as f64),
@@ -1664,13 +1670,13 @@ mod tests {
             _: Option<usize>,
             _: Option<usize>,
             _: Option<usize>,
-        ) -> Result<f64, String> {
+        ) -> Result<f64, VariableError> {
             match id {
                 "y" => Ok(8.0),
                 _ => Err("Invalid fix ID in variable formula".into()),
             }
         }
-        fn group_function(&mut self, name: &str, args: &[String]) -> Result<f64, String> {
+        fn group_function(&mut self, name: &str, args: &[String]) -> Result<f64, VariableError> {
             self.lookups.push(format!("{name}({})", args.join(",")));
             if args.first().map(String::as_str) != Some("all") {
                 return Err("Group ID in variable formula does not exist".into());
@@ -1686,21 +1692,21 @@ mod tests {
             name: &str,
             args: &[String],
             atom: Option<usize>,
-        ) -> Result<f64, String> {
+        ) -> Result<f64, VariableError> {
             match (name, atom) {
                 ("gmask", Some(_)) if args == ["all"] => Ok(1.0),
                 ("sum", None) if args == ["c_x"] => Ok(21.0),
                 _ => Err("Invalid special function in variable formula".into()),
             }
         }
-        fn atom_value(&mut self, name: &str, atom: usize) -> Result<f64, String> {
+        fn atom_value(&mut self, name: &str, atom: usize) -> Result<f64, VariableError> {
             match name {
                 "x" => Ok(XS[atom]),
                 "id" => Ok(atom as f64 + 1.0),
                 _ => Ok(0.0),
             }
         }
-        fn atom_value_by_id(&mut self, name: &str, id: usize) -> Result<f64, String> {
+        fn atom_value_by_id(&mut self, name: &str, id: usize) -> Result<f64, VariableError> {
             match (name, id) {
                 ("x", 1 | 2) => Ok(XS[id - 1]),
                 ("x", _) => Ok(0.0),
@@ -1719,7 +1725,7 @@ mod tests {
         fn dt(&self) -> f64 {
             self.dt
         }
-        fn rng(&mut self, seed: i32, per_atom: bool) -> Result<&mut RanMars, String> {
+        fn rng(&mut self, seed: i32, per_atom: bool) -> Result<&mut RanMars, VariableError> {
             let slot = if per_atom {
                 &mut self.atom_rng
             } else {
@@ -1738,13 +1744,13 @@ mod tests {
     }
 
     fn fails(text: &str) -> String {
-        evaluate(text, &mut world()).unwrap_err().message
+        evaluate(text, &mut world()).unwrap_err().to_string()
     }
 
     fn fails_without_box(text: &str) -> String {
         let mut w = world();
         w.has_box = false;
-        evaluate(text, &mut w).unwrap_err().message
+        evaluate(text, &mut w).unwrap_err().to_string()
     }
 
     /// What LIGGGHTS prints for `${a}` (%.15g), to compare with its output.
@@ -2208,14 +2214,14 @@ mod tests {
     /// Per-atom values of an atom-style formula for the two atoms (fresh world each time,
     /// as liggghts was run once per formula).
     fn per_atom(formula: &str, w: &mut World) -> Result<Vec<f64>, String> {
-        let e = Expr::parse_atom(formula, w).map_err(|e| e.message)?;
-        e.eval_atoms(w, 2).map_err(|e| e.message)
+        let e = Expr::parse_atom(formula, w).map_err(|e| e.to_string())?;
+        e.eval_atoms(w, 2).map_err(|e| e.to_string())
     }
 
     fn per_atom_walk(formula: &str, w: &mut World) -> Result<Vec<f64>, String> {
-        let e = Expr::parse_atom(formula, w).map_err(|e| e.message)?;
+        let e = Expr::parse_atom(formula, w).map_err(|e| e.to_string())?;
         (0..2)
-            .map(|a| e.eval(w, Some(a)).map_err(|e| e.message))
+            .map(|a| e.eval(w, Some(a)).map_err(|e| e.to_string()))
             .collect()
     }
 
@@ -2407,18 +2413,69 @@ mod tests {
     }
 
     #[test]
+    fn errors_are_variants_with_positions() {
+        let e = evaluate("1 + 2/0", &mut world()).unwrap_err();
+        assert_eq!(e.kind, ExprErrorKind::DivideByZero);
+        assert_eq!(e.to_string(), "Divide by 0 in variable formula");
+        let e = Expr::parse("1 ! 2").unwrap_err();
+        assert_eq!((e.kind, e.offset), (ExprErrorKind::Syntax, 5));
+        let e = evaluate("2*1e400", &mut world()).unwrap_err();
+        assert_eq!(e.kind, ExprErrorKind::OutOfRange("1e400".into()));
+        assert_eq!(e.offset, 2);
+        let e = evaluate("x[0]", &mut world()).unwrap_err();
+        assert_eq!(e.kind, ExprErrorKind::IndexNotPositive);
+        // a lookup's own error, unchanged
+        let e = evaluate("1 + v_nope", &mut world()).unwrap_err();
+        assert_eq!(
+            e.kind,
+            ExprErrorKind::Lookup(VariableError::Invalid(
+                "Invalid variable name in variable formula".into()
+            ))
+        );
+        assert_eq!(e.offset, 4);
+        // a value only a run knows is told apart by its variant, not its text
+        let e = evaluate("1 + v_later", &mut world()).unwrap_err();
+        assert!(e.is_known_when_run(), "{e:?}");
+        assert!(!evaluate("1/0", &mut world())
+            .unwrap_err()
+            .is_known_when_run());
+        // a seed LIGGGHTS refuses, typed
+        let e = evaluate("random(0,1,12345)", &mut world()).unwrap_err();
+        assert!(
+            matches!(
+                e.kind,
+                ExprErrorKind::Lookup(VariableError::Seed(
+                    crate::util::random::SeedError::NotPrime(12345)
+                ))
+            ),
+            "{e:?}"
+        );
+        // a formula's error seen as the variable's: the kind is kept
+        let v: VariableError = evaluate("sqrt(-1)", &mut world()).unwrap_err().into();
+        assert_eq!(
+            v,
+            VariableError::Formula(Box::new(ExprErrorKind::SqrtNegative))
+        );
+        assert_eq!(v.to_string(), "Sqrt of negative value in variable formula");
+        // the text of a value only a run knows, crossing a layer that passes text, comes
+        // back as the variant
+        let v = VariableError::from(String::from(VariableError::KnownWhenRun));
+        assert!(v.is_known_when_run());
+    }
+
+    #[test]
     fn syntax_only_parse() {
         let e = Expr::parse("x*2 + mass").unwrap();
         assert!(e.is_per_atom());
         assert_eq!(
-            e.eval(&mut world(), None).unwrap_err().message,
+            e.eval(&mut world(), None).unwrap_err().to_string(),
             "Atom vector in equal-style variable formula"
         );
-        assert_eq!(Expr::parse("1 ! 2").unwrap_err().message, SYNTAX);
-        assert_eq!(Expr::parse("foo(1)").unwrap_err().message, BAD_NAME);
+        assert_eq!(Expr::parse("1 ! 2").unwrap_err().to_string(), SYNTAX);
+        assert_eq!(Expr::parse("foo(1)").unwrap_err().to_string(), BAD_NAME);
         let e = Expr::parse("1/0").unwrap();
         assert_eq!(
-            e.eval(&mut world(), None).unwrap_err().message,
+            e.eval(&mut world(), None).unwrap_err().to_string(),
             "Divide by 0 in variable formula"
         );
     }
@@ -2461,24 +2518,24 @@ mod tests {
             "1 ! 1/0",
         ] {
             assert_eq!(
-                evaluate_boolean(cond).unwrap_err().message,
+                evaluate_boolean(cond).unwrap_err().to_string(),
                 BOOLEAN,
                 "{cond}"
             );
         }
-        assert_eq!(evaluate_boolean("(1").unwrap_err().message, SYNTAX);
-        assert_eq!(evaluate_boolean("1 ! (2").unwrap_err().message, SYNTAX);
+        assert_eq!(evaluate_boolean("(1").unwrap_err().to_string(), SYNTAX);
+        assert_eq!(evaluate_boolean("1 ! (2").unwrap_err().to_string(), SYNTAX);
     }
 
     #[test]
     fn deep_formulas_do_not_overflow_the_stack() {
         let deep = "(".repeat(5000) + "1" + &")".repeat(5000);
         assert_eq!(fails(&deep), TOO_DEEP);
-        assert_eq!(evaluate_boolean(&deep).unwrap_err().message, TOO_DEEP);
-        assert_eq!(Expr::parse(&deep).unwrap_err().message, TOO_DEEP);
+        assert_eq!(evaluate_boolean(&deep).unwrap_err().to_string(), TOO_DEEP);
+        assert_eq!(Expr::parse(&deep).unwrap_err().to_string(), TOO_DEEP);
         let chain = vec!["1"; 5000].join("+");
         assert_eq!(ev(&chain), 5000.0);
-        assert_eq!(Expr::parse(&chain).unwrap_err().message, TOO_DEEP);
+        assert_eq!(Expr::parse(&chain).unwrap_err().to_string(), TOO_DEEP);
         let fine = vec!["1"; 900].join("+");
         assert_eq!(
             Expr::parse(&fine)
@@ -2490,7 +2547,9 @@ mod tests {
         // equal style computes as it goes, so long prefix chains are no problem there
         assert_eq!(ev(&("-".repeat(5000) + "1")), 1.0);
         assert_eq!(
-            Expr::parse(&("-".repeat(5000) + "1")).unwrap_err().message,
+            Expr::parse(&("-".repeat(5000) + "1"))
+                .unwrap_err()
+                .to_string(),
             TOO_DEEP
         );
     }

@@ -11,7 +11,7 @@ use crate::commands::{CommandLine, Engine};
 use crate::error::{Diagnostic, Location, Severity};
 use crate::script::expr;
 use crate::script::line::{self, LexError, VarRef, Word};
-use crate::script::scope::{Scope, UNKNOWN_QUERY};
+use crate::script::scope::Scope;
 use crate::script::system::{Mode, System};
 use crate::script::variables::{Value, Variables};
 use crate::util::format;
@@ -226,7 +226,7 @@ impl Interpreter {
     ) -> Result<(), Diagnostic> {
         self.vars
             .set_from_command_line(name, values, &mut self.sys)
-            .map_err(|m| Diagnostic::error(m).with_help(format!("in -var {name}")))
+            .map_err(|e| Diagnostic::error(e.to_string()).with_help(format!("in -var {name}")))
     }
 
     /// Execute a whole script (and whatever it includes or jumps to).
@@ -345,28 +345,33 @@ impl Interpreter {
             |r| {
                 let value = match r {
                     VarRef::Named(name) => match vars.retrieve(name, sys) {
-                        None => Err("Substitution for illegal variable".to_string()),
+                        None => Err(None),
                         Some(Value::Text(t)) => Ok(t),
                         Some(Value::Formula(f)) => {
                             let mut scope = Scope::new(vars, sys, &engine.sim);
                             expr::evaluate(&f, &mut scope)
                                 .map(|x| format::g_precision(x, 15))
-                                .map_err(|e| e.message)
+                                .map_err(Some)
                         }
                     },
                     VarRef::Immediate(e) => {
                         let mut scope = Scope::new(vars, sys, &engine.sim);
                         expr::evaluate(e, &mut scope)
                             .map(|x| format::g_precision(x, 20))
-                            .map_err(|e| e.message)
+                            .map_err(Some)
                     }
                 };
                 match value {
-                    Err(m) if check && (m == UNKNOWN_QUERY || uncertain) => {
+                    Err(e)
+                        if check
+                            && (uncertain || e.as_ref().is_some_and(|e| e.is_known_when_run())) =>
+                    {
                         became_uncertain = true;
                         Ok(UNKNOWN_VALUE.to_string())
                     }
-                    other => other,
+                    Ok(text) => Ok(text),
+                    Err(None) => Err("Substitution for illegal variable".to_string()),
+                    Err(Some(e)) => Err(e.to_string()),
                 }
             },
             |progress| {
@@ -425,7 +430,7 @@ impl Interpreter {
                 let outcome = self
                     .vars
                     .next(&args, &mut self.sys)
-                    .map_err(Diagnostic::error)?;
+                    .map_err(|e| Diagnostic::error(e.to_string()))?;
                 if let Some(i) = outcome.universe_index {
                     self.out.both(&format!(
                         "Increment via next: value {} on partition 0\n",
@@ -558,8 +563,8 @@ impl Interpreter {
                 at_arg(Diagnostic::error("Illegal variable command"), cmd, 1).with_help(help),
             );
         }
-        self.vars.set(args, &mut self.sys).map_err(|m| {
-            let d = Diagnostic::error(m);
+        self.vars.set(args, &mut self.sys).map_err(|e| {
+            let d = Diagnostic::error(e.to_string());
             if args.len() < 2 {
                 d.with_help("variable NAME STYLE ARGS ...")
             } else {
@@ -640,7 +645,7 @@ impl Interpreter {
 
     fn open_script(&mut self, name: &str) -> Result<Source, Diagnostic> {
         let text = self.sys.read(name).map_err(|e| {
-            Diagnostic::error(format!("Cannot open input script {name}")).with_help(e)
+            Diagnostic::error(format!("Cannot open input script {name}")).with_help(e.to_string())
         })?;
         Ok(Source::from_text(name, &text, false))
     }
@@ -771,9 +776,10 @@ impl Interpreter {
         }
         match expr::evaluate_boolean(&text) {
             Ok(v) => Ok(Some(v != 0.0)),
-            Err(e) if self.sys.mode == Mode::Check && e.message == UNKNOWN_QUERY => Ok(None),
+            Err(e) if self.sys.mode == Mode::Check && e.is_known_when_run() => Ok(None),
             Err(e) => {
-                Err(Diagnostic::error(e.message).with_help(format!("in the condition \"{text}\"")))
+                Err(Diagnostic::error(e.to_string())
+                    .with_help(format!("in the condition \"{text}\"")))
             }
         }
     }
@@ -884,7 +890,7 @@ impl Interpreter {
                 ""
             };
             self.sys.write(name, content, *append).map_err(|e| {
-                Diagnostic::error(format!("Cannot open print file {name}")).with_help(e)
+                Diagnostic::error(format!("Cannot open print file {name}")).with_help(e.to_string())
             })?;
         }
         if screen {

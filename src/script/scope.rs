@@ -5,6 +5,7 @@ use std::collections::HashMap;
 use std::rc::Rc;
 
 use crate::engine::sim::{Simulation, VariableSource};
+use crate::script::error::VariableError;
 use crate::script::expr::{self, Expr, ExprContext, RefKind};
 use crate::script::system::{Mode, System};
 use crate::script::variables::{Style, Value, Variables};
@@ -12,8 +13,7 @@ use crate::util::format::g_precision;
 use crate::util::numbers::c_atof;
 use crate::util::random::{check_seed, RanMars};
 
-/// Error text meaning "only a real run can know this" (check mode).
-pub const UNKNOWN_QUERY: &str = "\u{0}value known only when the deck runs";
+pub use crate::script::error::UNKNOWN_QUERY;
 
 /// An evaluation context borrowing the interpreter's parts.
 pub struct Scope<'a> {
@@ -43,26 +43,29 @@ impl<'a> Scope<'a> {
     }
 
     /// The values of atom-style variable `name` for every particle (particle order).
-    pub fn atom_variable(&mut self, name: &str) -> Result<Rc<Vec<f64>>, String> {
+    pub fn atom_variable(&mut self, name: &str) -> Result<Rc<Vec<f64>>, VariableError> {
         let key = format!("v_{name}");
         if let Some(v) = self.per_atom.get(&key) {
             return Ok(v.clone());
         }
         let formula = match self.vars.get(name) {
-            None => return Err(format!("Variable name {name} does not exist")),
+            None => return Err(VariableError::NoSuchVariable(name.to_string())),
             Some(v) if v.style != Style::Atom => {
-                return Err(format!("Variable {name} is not atom-style"))
+                return Err(VariableError::WrongStyle {
+                    name: name.to_string(),
+                    wanted: "atom",
+                })
             }
             Some(_) => self.vars.atom_formula(name).expect("atom style"),
         };
         if self.active.iter().any(|a| a == name) {
-            return Err("Variable has circular dependency".into());
+            return Err(VariableError::Circular);
         }
         self.active.push(name.to_string());
-        let result = (|| {
-            let e = Expr::parse_atom(&formula, self).map_err(|e| e.message)?;
+        let result = (|| -> Result<Vec<f64>, VariableError> {
+            let e = Expr::parse_atom(&formula, self)?;
             let n = self.sim.particles.len();
-            e.eval_atoms(self, n).map_err(|e| e.message)
+            Ok(e.eval_atoms(self, n)?)
         })();
         self.active.pop();
         let values = Rc::new(result?);
@@ -75,7 +78,7 @@ impl<'a> Scope<'a> {
         &mut self,
         id: &str,
         i: Option<usize>,
-    ) -> Result<(Rc<Vec<f64>>, usize, usize), String> {
+    ) -> Result<(Rc<Vec<f64>>, usize, usize), VariableError> {
         let c = self
             .sim
             .computes
@@ -96,23 +99,28 @@ impl<'a> Scope<'a> {
 
     /// An equal-style variable's value as LIGGGHTS's `compute_equal` gives it (no text
     /// round trip).
-    pub fn equal_variable(&mut self, name: &str) -> Result<f64, String> {
+    pub fn equal_variable(&mut self, name: &str) -> Result<f64, VariableError> {
         match self.vars.get(name) {
-            None => return Err(format!("Variable name {name} does not exist")),
+            None => return Err(VariableError::NoSuchVariable(name.to_string())),
             Some(v) if matches!(v.style, Style::Atom | Style::AtomFile) => {
-                return Err(format!("Variable {name} is not equal-style"))
+                return Err(VariableError::WrongStyle {
+                    name: name.to_string(),
+                    wanted: "equal",
+                })
             }
             _ => {}
         }
         match self.vars.retrieve(name, self.sys) {
-            None => Err(format!("Variable {name}: invalid evaluation")),
+            None => Err(VariableError::Invalid(format!(
+                "Variable {name}: invalid evaluation"
+            ))),
             Some(Value::Text(t)) => Ok(c_atof(&t)),
             Some(Value::Formula(f)) => {
                 if self.active.iter().any(|a| a == name) {
-                    return Err("Variable has circular dependency".into());
+                    return Err(VariableError::Circular);
                 }
                 self.active.push(name.to_string());
-                let r = expr::evaluate(&f, self).map_err(|e| e.message);
+                let r = expr::evaluate(&f, self).map_err(VariableError::from);
                 self.active.pop();
                 r
             }
@@ -121,10 +129,10 @@ impl<'a> Scope<'a> {
 
     /// What to answer when a formula asks for state the engine does not have yet: in check
     /// mode "unknown" (a real run might have it), else LIGGGHTS's own message.
-    fn no_state(&self, message: &str) -> String {
+    fn no_state(&self, error: VariableError) -> VariableError {
         match self.sys.mode {
-            Mode::Check => UNKNOWN_QUERY.to_string(),
-            Mode::Run => message.to_string(),
+            Mode::Check => VariableError::KnownWhenRun,
+            Mode::Run => error,
         }
     }
 }
@@ -135,12 +143,12 @@ impl ExprContext for Scope<'_> {
         name: &str,
         index: Option<usize>,
         atom: Option<usize>,
-    ) -> Result<f64, String> {
+    ) -> Result<f64, VariableError> {
         let Some(var) = self.vars.get(name) else {
             return Err("Invalid variable name in variable formula".into());
         };
         if self.active.iter().any(|a| a == name) {
-            return Err("Variable has circular dependency".into());
+            return Err(VariableError::Circular);
         }
         match (var.style, index) {
             (Style::Atom | Style::AtomFile, None) if atom.is_none() => {
@@ -149,13 +157,13 @@ impl ExprContext for Scope<'_> {
             (Style::Atom, None) => {
                 let i = atom.expect("checked above");
                 if self.sys.mode == Mode::Check {
-                    return Err(UNKNOWN_QUERY.to_string());
+                    return Err(VariableError::KnownWhenRun);
                 }
                 Ok(self.atom_variable(name)?[i])
             }
             (Style::Atom, Some(id)) => {
                 if self.sys.mode == Mode::Check {
-                    return Err(UNKNOWN_QUERY.to_string());
+                    return Err(VariableError::KnownWhenRun);
                 }
                 let p = &self.sim.particles;
                 let i =
@@ -164,16 +172,16 @@ impl ExprContext for Scope<'_> {
                         .ok_or("Variable atom ID is not currently defined")?;
                 Ok(self.atom_variable(name)?[i])
             }
-            (Style::AtomFile, _) => {
-                Err(self.no_state("atomfile-style variables: not supported yet"))
-            }
+            (Style::AtomFile, _) => Err(self.no_state(VariableError::Unsupported(
+                "atomfile-style variables".into(),
+            ))),
             (_, Some(_)) => Err("Mismatched variable in variable formula".into()),
             (_, None) => match self.vars.retrieve(name, self.sys) {
                 None => Err("Invalid variable evaluation in variable formula".into()),
                 Some(Value::Text(t)) => Ok(c_atof(&t)),
                 Some(Value::Formula(f)) => {
                     self.active.push(name.to_string());
-                    let result = expr::evaluate(&f, self).map_err(|e| e.message);
+                    let result = expr::evaluate(&f, self).map_err(VariableError::from);
                     self.active.pop();
                     // LIGGGHTS hands the value over as %.15g text read back with atof
                     result.map(|x| c_atof(&g_precision(x, 15)))
@@ -182,16 +190,17 @@ impl ExprContext for Scope<'_> {
         }
     }
 
-    fn thermo(&mut self, name: &str) -> Result<f64, String> {
+    fn thermo(&mut self, name: &str) -> Result<f64, VariableError> {
         if !crate::engine::thermo::THERMO_KEYWORDS.contains(&name) {
             return Err("Invalid thermo keyword in variable formula".into());
         }
         if self.sys.mode == Mode::Check {
-            return Err(UNKNOWN_QUERY.to_string());
+            return Err(VariableError::KnownWhenRun);
         }
         let sim = self.sim;
-        sim.thermo_value(name, self)
-            .ok_or_else(|| format!("thermo keyword {name} in a formula: not supported yet"))
+        sim.thermo_value(name, self).ok_or_else(|| {
+            VariableError::Unsupported(format!("thermo keyword {name} in a formula"))
+        })
     }
 
     fn compute(
@@ -200,12 +209,12 @@ impl ExprContext for Scope<'_> {
         i: Option<usize>,
         j: Option<usize>,
         atom: Option<usize>,
-    ) -> Result<f64, String> {
+    ) -> Result<f64, VariableError> {
         if self.sys.mode == Mode::Check {
-            return Err(UNKNOWN_QUERY.to_string());
+            return Err(VariableError::KnownWhenRun);
         }
         if j.is_some() {
-            return Err(format!("c_{id}[i][j]: not supported yet"));
+            return Err(VariableError::Unsupported(format!("c_{id}[i][j]")));
         }
         if let Some(a) = atom {
             let is_per_atom = self
@@ -222,7 +231,7 @@ impl ExprContext for Scope<'_> {
             return Err("Invalid compute ID in variable formula".into());
         }
         let sim = self.sim;
-        sim.compute_value(id, i, self)
+        Ok(sim.compute_value(id, i, self)?)
     }
 
     fn fix(
@@ -231,28 +240,41 @@ impl ExprContext for Scope<'_> {
         _: Option<usize>,
         _: Option<usize>,
         _: Option<usize>,
-    ) -> Result<f64, String> {
-        Err(self.no_state("Invalid fix ID in variable formula"))
+    ) -> Result<f64, VariableError> {
+        Err(self.no_state("Invalid fix ID in variable formula".into()))
     }
 
-    fn group_function(&mut self, name: &str, args: &[String]) -> Result<f64, String> {
-        self.sim.group_function(name, args, self.sys.mode)
+    fn group_function(&mut self, name: &str, args: &[String]) -> Result<f64, VariableError> {
+        Ok(self.sim.group_function(name, args, self.sys.mode)?)
     }
 
-    fn special_function(&mut self, _: &str, _: &[String], _: Option<usize>) -> Result<f64, String> {
-        Err(self.no_state("Invalid special function in variable formula"))
+    fn special_function(
+        &mut self,
+        _: &str,
+        _: &[String],
+        _: Option<usize>,
+    ) -> Result<f64, VariableError> {
+        Err(self.no_state("Invalid special function in variable formula".into()))
     }
 
-    fn atom_value(&mut self, name: &str, atom: usize) -> Result<f64, String> {
+    fn atom_value(&mut self, name: &str, atom: usize) -> Result<f64, VariableError> {
         if self.sys.mode == Mode::Check || atom >= self.sim.particles.len() {
-            return Err(self.no_state("Variable evaluation before simulation box is defined"));
+            return Err(
+                self.no_state("Variable evaluation before simulation box is defined".into())
+            );
         }
-        crate::commands::atom_keyword(&self.sim.particles, name, atom)
+        Ok(crate::commands::atom_keyword(
+            &self.sim.particles,
+            name,
+            atom,
+        )?)
     }
 
-    fn atom_column(&mut self, name: &str, n: usize) -> Result<Vec<f64>, String> {
+    fn atom_column(&mut self, name: &str, n: usize) -> Result<Vec<f64>, VariableError> {
         if self.sys.mode == Mode::Check || n > self.sim.particles.len() {
-            return Err(self.no_state("Variable evaluation before simulation box is defined"));
+            return Err(
+                self.no_state("Variable evaluation before simulation box is defined".into())
+            );
         }
         let p = &self.sim.particles;
         let axis = |c: u8| (c - b'x') as usize;
@@ -278,7 +300,7 @@ impl ExprContext for Scope<'_> {
         name: &str,
         index: Option<usize>,
         n: usize,
-    ) -> Result<Vec<f64>, String> {
+    ) -> Result<Vec<f64>, VariableError> {
         let per_atom = self
             .vars
             .get(name)
@@ -301,7 +323,7 @@ impl ExprContext for Scope<'_> {
         i: Option<usize>,
         j: Option<usize>,
         n: usize,
-    ) -> Result<Vec<f64>, String> {
+    ) -> Result<Vec<f64>, VariableError> {
         let is_per_atom = self
             .sim
             .computes
@@ -317,11 +339,11 @@ impl ExprContext for Scope<'_> {
         Ok((0..n).map(|a| data[a * cols + col]).collect())
     }
 
-    fn atom_value_by_id(&mut self, name: &str, id: usize) -> Result<f64, String> {
+    fn atom_value_by_id(&mut self, name: &str, id: usize) -> Result<f64, VariableError> {
         if self.sys.mode == Mode::Check {
-            return Err(UNKNOWN_QUERY.to_string());
+            return Err(VariableError::KnownWhenRun);
         }
-        self.sim.atom_value_by_id(name, id)
+        Ok(self.sim.atom_value_by_id(name, id)?)
     }
 
     fn box_exists(&self) -> bool {
@@ -341,7 +363,7 @@ impl ExprContext for Scope<'_> {
         self.sim.dt
     }
 
-    fn rng(&mut self, seed: i32, per_atom: bool) -> Result<&mut RanMars, String> {
+    fn rng(&mut self, seed: i32, per_atom: bool) -> Result<&mut RanMars, VariableError> {
         let tolerant = self.sim.seed_tolerant;
         let slot = if per_atom {
             &mut self.vars.random_atom
@@ -381,7 +403,7 @@ impl ExprContext for Scope<'_> {
 
 impl VariableSource for Scope<'_> {
     fn equal(&mut self, _sim: &Simulation, name: &str) -> Result<f64, String> {
-        self.equal_variable(name)
+        Ok(self.equal_variable(name)?)
     }
 
     fn atom(&mut self, _sim: &Simulation, name: &str) -> Result<Vec<f64>, String> {
@@ -413,14 +435,14 @@ impl VariableSource for RunVariables<'_> {
                         let mut scope = Scope::new(vars, sys, sim);
                         expr::evaluate(&f, &mut scope)
                             .map(|x| g_precision(x, 15))
-                            .map_err(|e| e.message)
+                            .map_err(|e| e.to_string())
                     }
                 },
                 crate::script::line::VarRef::Immediate(e) => {
                     let mut scope = Scope::new(vars, sys, sim);
                     expr::evaluate(e, &mut scope)
                         .map(|x| g_precision(x, 20))
-                        .map_err(|e| e.message)
+                        .map_err(|e| e.to_string())
                 }
             },
             |_| {},
@@ -429,7 +451,7 @@ impl VariableSource for RunVariables<'_> {
     }
 
     fn equal(&mut self, sim: &Simulation, name: &str) -> Result<f64, String> {
-        Scope::new(self.vars, self.sys, sim).equal_variable(name)
+        Ok(Scope::new(self.vars, self.sys, sim).equal_variable(name)?)
     }
 
     fn atom(&mut self, sim: &Simulation, name: &str) -> Result<Vec<f64>, String> {

@@ -6,6 +6,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
+use crate::script::error::SystemError;
 use crate::script::variables::VariableHost;
 
 /// Whether commands really act or are only checked.
@@ -101,14 +102,16 @@ impl System {
     }
 
     /// Read a file as text (check mode sees files the deck wrote earlier).
-    pub fn read(&self, name: &str) -> Result<String, String> {
+    pub fn read(&self, name: &str) -> Result<String, SystemError> {
         let path = self.resolve(name);
         if let Some(entry) = self.overlay_files.get(&path) {
-            return entry.clone().ok_or_else(|| format!("{name}: no such file"));
+            return entry
+                .clone()
+                .ok_or_else(|| SystemError::NoSuchFile(name.to_string()));
         }
         std::fs::read(&path)
             .map(|b| String::from_utf8_lossy(&b).into_owned())
-            .map_err(|e| format!("{name}: {e}"))
+            .map_err(|e| file_error(name, e))
     }
 
     /// Check mode: remember a binary file (a restart) the deck would write.
@@ -180,7 +183,7 @@ impl System {
     }
 
     /// Write (or append to) a text file.
-    pub fn write(&mut self, name: &str, text: &str, append: bool) -> Result<(), String> {
+    pub fn write(&mut self, name: &str, text: &str, append: bool) -> Result<(), SystemError> {
         let path = self.resolve(name);
         match self.mode {
             Mode::Run => {
@@ -191,9 +194,9 @@ impl System {
                     .append(append)
                     .truncate(!append)
                     .open(&path)
-                    .map_err(|e| format!("{name}: {e}"))?;
+                    .map_err(|e| file_error(name, e))?;
                 f.write_all(text.as_bytes())
-                    .map_err(|e| format!("{name}: {e}"))
+                    .map_err(|e| file_error(name, e))
             }
             Mode::Check => {
                 let mut content = if append {
@@ -250,11 +253,11 @@ impl System {
     }
 
     /// Create a directory and its parents (for output files); errors are reported.
-    pub fn create_parent_dirs(&mut self, name: &str) -> Result<(), String> {
+    pub fn create_parent_dirs(&mut self, name: &str) -> Result<(), SystemError> {
         if self.mode == Mode::Run {
             if let Some(parent) = self.resolve(name).parent() {
                 std::fs::create_dir_all(parent)
-                    .map_err(|e| format!("{}: {e}", parent.display()))?;
+                    .map_err(|e| file_error(&parent.display().to_string(), e))?;
             }
         }
         Ok(())
@@ -305,11 +308,18 @@ impl System {
     }
 }
 
+fn file_error(name: &str, source: std::io::Error) -> SystemError {
+    SystemError::File {
+        name: name.to_string(),
+        source,
+    }
+}
+
 const UNIVERSE_FILE: &str = "tmp.lammps.variable";
 const UNIVERSE_LOCK: &str = "tmp.lammps.variable.lock";
 
 impl VariableHost for System {
-    fn read_file(&mut self, name: &str) -> Result<String, String> {
+    fn read_file(&mut self, name: &str) -> Result<String, SystemError> {
         self.read(name)
     }
 
@@ -320,20 +330,20 @@ impl VariableHost for System {
             .or_else(|| std::env::var(name).ok())
     }
 
-    fn universe_init(&mut self, worlds: usize) -> Result<(), String> {
+    fn universe_init(&mut self, worlds: usize) -> Result<(), SystemError> {
         self.write(UNIVERSE_FILE, &format!("{worlds}\n"), false)
     }
 
-    fn universe_next(&mut self) -> Result<usize, String> {
+    fn universe_next(&mut self) -> Result<usize, SystemError> {
         // the same file protocol LIGGGHTS uses, so partitions of either program could share it
         self.rename(UNIVERSE_FILE, UNIVERSE_LOCK);
         let text = self
             .read(UNIVERSE_LOCK)
-            .map_err(|e| format!("universe counter: {e}"))?;
+            .map_err(|e| SystemError::CounterUnreadable(Box::new(e)))?;
         let next: usize = text
             .trim()
             .parse()
-            .map_err(|_| format!("universe counter holds '{}'", text.trim()))?;
+            .map_err(|_| SystemError::CounterText(text.trim().to_string()))?;
         self.write(UNIVERSE_LOCK, &format!("{}\n", next + 1), false)?;
         self.rename(UNIVERSE_LOCK, UNIVERSE_FILE);
         Ok(next)

@@ -1,6 +1,7 @@
 //! The `variable` command's store: every style LIGGGHTS 3.8.0 has, `next`, and retrieval of
 //! a variable's text for `$` substitution.
 
+use crate::script::error::{SystemError, VariableCommandError};
 use crate::util::random::RanMars;
 
 /// A variable's style, as named in the `variable` command.
@@ -110,7 +111,7 @@ impl Variable {
 /// What a `variable` command needs from the outside world.
 pub trait VariableHost {
     /// Read a whole file (relative names resolve as the deck sees them).
-    fn read_file(&mut self, name: &str) -> Result<String, String>;
+    fn read_file(&mut self, name: &str) -> Result<String, SystemError>;
     /// The value of an environment variable.
     fn getenv(&mut self, name: &str) -> Option<String>;
     /// Number of partitions (always 1 in regolith) and this one's index.
@@ -118,9 +119,9 @@ pub trait VariableHost {
         (1, 0)
     }
     /// Read and advance the shared universe counter (the `tmp.lammps.variable` file).
-    fn universe_next(&mut self) -> Result<usize, String>;
+    fn universe_next(&mut self) -> Result<usize, SystemError>;
     /// Create the shared universe counter file holding `worlds`.
-    fn universe_init(&mut self, worlds: usize) -> Result<(), String>;
+    fn universe_init(&mut self, worlds: usize) -> Result<(), SystemError>;
 }
 
 /// A variable's value as `$` substitution sees it.
@@ -151,20 +152,18 @@ pub struct Variables {
     pub random_atom: Option<RanMars>,
 }
 
-fn illegal() -> String {
-    "Illegal variable command".to_string()
+fn illegal() -> VariableCommandError {
+    VariableCommandError::Illegal
 }
 
-fn parse_int(word: &str) -> Result<i64, String> {
+fn parse_int(word: &str) -> Result<i64, VariableCommandError> {
     // LIGGGHTS's force->inumeric: digits with an optional leading minus sign only
     let digits = word.strip_prefix('-').unwrap_or(word);
     if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
-        return Err(format!(
-            "Expected integer parameter in input script or data file, got '{word}'"
-        ));
+        return Err(VariableCommandError::ExpectedInteger(word.to_string()));
     }
     word.parse::<i64>()
-        .map_err(|_| format!("Integer '{word}' is out of range"))
+        .map_err(|_| VariableCommandError::IntegerRange(word.to_string()))
 }
 
 fn pad_width(last: i64) -> usize {
@@ -194,14 +193,18 @@ impl Variables {
         name: &str,
         values: &[String],
         host: &mut dyn VariableHost,
-    ) -> Result<(), String> {
+    ) -> Result<(), VariableCommandError> {
         let mut args = vec![name.to_string(), "index".to_string()];
         args.extend(values.iter().cloned());
         self.set(&args, host)
     }
 
     /// The `variable` command: `args` are its words after the command name.
-    pub fn set(&mut self, args: &[String], host: &mut dyn VariableHost) -> Result<(), String> {
+    pub fn set(
+        &mut self,
+        args: &[String],
+        host: &mut dyn VariableHost,
+    ) -> Result<(), VariableCommandError> {
         if args.len() < 2 {
             return Err(illegal());
         }
@@ -243,7 +246,7 @@ impl Variables {
                 let (worlds, me) = host.partitions();
                 if style == Style::World {
                     if v.count != worlds as i64 {
-                        return Err("World variable count doesn't match # of partitions".into());
+                        return Err(VariableCommandError::WorldCount);
                     }
                     v.which = me as i64;
                 }
@@ -318,7 +321,7 @@ impl Variables {
                 };
                 if let Some(i) = exists {
                     if self.vars[i].style != style {
-                        return Err("Cannot redefine variable as a different style".into());
+                        return Err(VariableCommandError::Redefined);
                     }
                     self.vars.remove(i);
                 }
@@ -335,13 +338,15 @@ impl Variables {
                 }
                 let text = host
                     .read_file(&rest[0])
-                    .map_err(|_| format!("Cannot open file variable file {}", rest[0]))?;
+                    .map_err(|_| VariableCommandError::CannotOpen(rest[0].clone()))?;
                 if style_word == "atomfile" {
-                    return Err("variable atomfile: not supported yet".into());
+                    return Err(VariableCommandError::Unsupported(
+                        "variable atomfile".into(),
+                    ));
                 }
                 let mut file = FileValues::from_text(&text);
                 let Some(first) = file.values.pop_front() else {
-                    return Err("File variable could not read value".into());
+                    return Err(VariableCommandError::EmptyFile);
                 };
                 let mut v = new(Style::File, vec![first]);
                 v.count = 1;
@@ -351,16 +356,20 @@ impl Variables {
             _ => return Err(illegal()),
         };
         if !name.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_') {
-            return Err("Variable name must be alphanumeric or underscore characters".into());
+            return Err(VariableCommandError::BadName);
         }
         self.vars.push(var);
         Ok(())
     }
 
-    fn universe_checks(&self, v: &Variable, host: &mut dyn VariableHost) -> Result<(), String> {
+    fn universe_checks(
+        &self,
+        v: &Variable,
+        host: &mut dyn VariableHost,
+    ) -> Result<(), VariableCommandError> {
         let (worlds, me) = host.partitions();
         if v.count < worlds as i64 {
-            return Err("Universe/uloop variable count < # of partitions".into());
+            return Err(VariableCommandError::UniverseCount);
         }
         let _ = me;
         host.universe_init(worlds)?;
@@ -369,7 +378,7 @@ impl Variables {
                 && other.count != 0
                 && other.count != v.count
             {
-                return Err("All universe/uloop variables must have same # of values".into());
+                return Err(VariableCommandError::UniverseMismatch);
             }
         }
         Ok(())
@@ -381,29 +390,29 @@ impl Variables {
         &mut self,
         names: &[String],
         host: &mut dyn VariableHost,
-    ) -> Result<NextOutcome, String> {
+    ) -> Result<NextOutcome, VariableCommandError> {
         let Some(first) = names.first() else {
-            return Err("Illegal next command".into());
+            return Err(VariableCommandError::IllegalNext);
         };
         let mut styles = Vec::with_capacity(names.len());
         for n in names {
             match self.get(n) {
                 Some(v) => styles.push(v.style),
-                None => return Err("Invalid variable in next command".into()),
+                None => return Err(VariableCommandError::NextUnknown),
             }
         }
         let lead = self.get(first).map(|v| v.style).unwrap_or(Style::Index);
         let universe_like = |s: Style| matches!(s, Style::Universe | Style::Uloop);
         for &s in &styles {
             if s != lead && !(universe_like(s) && universe_like(lead)) {
-                return Err("All variables in next command must be same style".into());
+                return Err(VariableCommandError::NextMixed);
             }
         }
         if matches!(
             lead,
             Style::String | Style::Equal | Style::World | Style::Getenv | Style::Atom
         ) {
-            return Err("Invalid variable style with next command".into());
+            return Err(VariableCommandError::NextStyle);
         }
         let mut exhausted = false;
         let universe_index = if universe_like(lead) {
@@ -482,16 +491,16 @@ mod tests {
 
     struct Host;
     impl VariableHost for Host {
-        fn read_file(&mut self, _: &str) -> Result<String, String> {
+        fn read_file(&mut self, _: &str) -> Result<String, SystemError> {
             Ok("# header\n\n 1.5 extra\n two\n".into())
         }
         fn getenv(&mut self, name: &str) -> Option<String> {
             (name == "HOME_X").then(|| "here".into())
         }
-        fn universe_next(&mut self) -> Result<usize, String> {
+        fn universe_next(&mut self) -> Result<usize, SystemError> {
             Ok(1)
         }
-        fn universe_init(&mut self, _: usize) -> Result<(), String> {
+        fn universe_init(&mut self, _: usize) -> Result<(), SystemError> {
             Ok(())
         }
     }
@@ -522,10 +531,9 @@ mod tests {
         assert_eq!(text(&v, "i").as_deref(), Some("03"));
         v.set(&words("j loop 10 pad"), &mut Host).unwrap();
         assert_eq!(text(&v, "j").as_deref(), Some("01"));
-        assert_eq!(
-            v.set(&words("k loop 0"), &mut Host).unwrap_err(),
-            "Illegal variable command"
-        );
+        let e = v.set(&words("k loop 0"), &mut Host).unwrap_err();
+        assert!(matches!(e, VariableCommandError::Illegal), "{e:?}");
+        assert_eq!(e.to_string(), "Illegal variable command");
     }
 
     #[test]
@@ -534,7 +542,10 @@ mod tests {
         v.set(&words("s string abc"), &mut Host).unwrap();
         v.set(&words("s string def"), &mut Host).unwrap();
         assert_eq!(text(&v, "s").as_deref(), Some("def"));
-        assert!(v.set(&words("s equal 1"), &mut Host).is_err());
+        assert!(matches!(
+            v.set(&words("s equal 1"), &mut Host),
+            Err(VariableCommandError::Redefined)
+        ));
         v.set(&words("e equal 1/4"), &mut Host).unwrap();
         assert_eq!(text(&v, "e").as_deref(), Some("=1/4"));
         v.set(&words("f file data.txt"), &mut Host).unwrap();
@@ -544,7 +555,16 @@ mod tests {
         assert!(v.next(&words("f"), &mut Host).unwrap().exhausted);
         v.set(&words("h getenv HOME_X"), &mut Host).unwrap();
         assert_eq!(text(&v, "h").as_deref(), Some("here"));
-        assert!(v.set(&words("bad-name index 1"), &mut Host).is_err());
-        assert!(v.next(&words("s"), &mut Host).is_err());
+        assert!(matches!(
+            v.set(&words("bad-name index 1"), &mut Host),
+            Err(VariableCommandError::BadName)
+        ));
+        assert!(matches!(
+            v.next(&words("s"), &mut Host),
+            Err(VariableCommandError::NextStyle)
+        ));
+        let e = v.set(&words("a atomfile x.txt"), &mut Host).unwrap_err();
+        assert!(matches!(&e, VariableCommandError::Unsupported(f) if f == "variable atomfile"));
+        assert_eq!(e.to_string(), "variable atomfile: not supported yet");
     }
 }

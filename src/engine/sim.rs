@@ -610,7 +610,7 @@ impl Simulation {
         let dt2 = dt * dt;
         let n = p.len();
         let (x, v, w, radius) = (&p.x[..n], &p.v[..n], &p.omega[..n], &p.radius[..n]);
-        let cheap = |((x, v), (w, &r)): ((&[f64; 3], &[f64; 3]), (&[f64; 3], &f64))| {
+        let cheap = |x: &[f64; 3], v: &[f64; 3], w: &[f64; 3], r: f64| {
             let sum = x[0] + x[1] + x[2] + v[0] + v[1] + v[2] + w[0] + w[1] + w[2];
             let v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
             !sum.is_finite() | ((r > 0.0) & (v2 * dt2 > 0.25 * r * r))
@@ -620,7 +620,7 @@ impl Simulation {
             let (lo, hi) = (b * BLOCK, ((b + 1) * BLOCK).min(n));
             let cols = x[lo..hi].iter().zip(&v[lo..hi]);
             let cols = cols.zip(w[lo..hi].iter().zip(&radius[lo..hi]));
-            cols.fold(false, |hit, c| hit | cheap(c))
+            cols.fold(false, |hit, ((x, v), (w, &r))| hit | cheap(x, v, w, r))
         };
         first_where_in(p.len().div_ceil(BLOCK), BLOCK, flagged).is_some()
     }
@@ -1812,7 +1812,10 @@ impl Simulation {
     fn virial_wanted(&self, last: i64) -> bool {
         let step = self.step;
         self.thermo.due(step, last)
-            || self.dumps.iter().any(|d| d.every > 0 && step % d.every == 0)
+            || self
+                .dumps
+                .iter()
+                .any(|d| d.every > 0 && step % d.every == 0)
             || self.fixes.iter().any(|f| f.kind.may_read_computes())
     }
 

@@ -299,7 +299,10 @@ mod tests {
         assert_eq!(with_spec("%05d", 7.9).unwrap(), "00007");
         assert_eq!(g_precision(f64::INFINITY, 15), "inf");
         // results longer than the stack buffer
-        assert_eq!(with_spec("%.40f", 0.5).unwrap(), format!("0.5{}", "0".repeat(39)));
+        assert_eq!(
+            with_spec("%.40f", 0.5).unwrap(),
+            format!("0.5{}", "0".repeat(39))
+        );
         assert_eq!(with_spec("%f", 1e70).unwrap().len(), 71 + 7);
         let mut line = String::from("x ");
         push_g(&mut line, 2.0 / 3.0);

@@ -451,6 +451,10 @@ impl Owed {
     }
 }
 
+/// Positions of all particles (m) and one block's per-particle virials (N m), on steps that
+/// tally the virial.
+type BlockVirial<'a> = Option<(&'a [[f64; 3]], &'a mut [[f64; 6]])>;
+
 /// One block's sums: its own particles' forces and torques from its list entries (first
 /// particles all in the block), and its contributions to other blocks' particles, kept in
 /// list order.
@@ -461,7 +465,7 @@ struct BlockSums<'a> {
     torque: &'a mut [[f64; 3]],
     /// Positions of all particles and the block's per-particle virials, on steps that
     /// tally the virial.
-    virial: Option<(&'a [[f64; 3]], &'a mut [[f64; 6]])>,
+    virial: BlockVirial<'a>,
     foreign: &'a mut Owed,
     worst: Option<(f64, u32, u32)>,
 }
@@ -551,6 +555,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
     /// computes its touching entries and adds them to its own particles (blocks on the
     /// engine's threads), then contributions to other blocks' particles are added in block
     /// order. No step depends on the number of threads.
+    #[allow(clippy::too_many_arguments)]
     fn compute_blocks(
         &mut self,
         p: &mut Particles,

@@ -271,6 +271,14 @@ impl Clumps {
 }
 
 /// The simulation's side of `fix multisphere`: the calls in LIGGGHTS's phases.
+/// The bodies of the `fix multisphere` among `fixes`, if there is one.
+fn clumps_in(fixes: &mut [crate::engine::fixes::Fix]) -> Option<&mut Clumps> {
+    fixes.iter_mut().find_map(|f| match &mut f.kind {
+        crate::engine::fixes::FixKind::Multisphere(ms) => Some(&mut **ms),
+        _ => None,
+    })
+}
+
 impl crate::engine::sim::Simulation {
     /// The `fix multisphere` state, if the deck has one.
     pub fn clumps(&self) -> Option<&Clumps> {
@@ -281,10 +289,7 @@ impl crate::engine::sim::Simulation {
     }
 
     fn clumps_mut(&mut self) -> Option<&mut Clumps> {
-        self.fixes.iter_mut().find_map(|f| match &mut f.kind {
-            crate::engine::fixes::FixKind::Multisphere(ms) => Some(&mut **ms),
-            _ => None,
-        })
+        clumps_in(&mut self.fixes)
     }
 
     /// `pre_force`: the bodies' force sums start from zero.
@@ -300,14 +305,7 @@ impl crate::engine::sim::Simulation {
             crate::engine::fixes::FixKind::Gravity(g) => Some(g.acc),
             _ => None,
         });
-        let Some(k) = self
-            .fixes
-            .iter()
-            .position(|f| matches!(f.kind, crate::engine::fixes::FixKind::Multisphere(_)))
-        else {
-            return;
-        };
-        if let crate::engine::fixes::FixKind::Multisphere(ms) = &mut self.fixes[k].kind {
+        if let Some(ms) = clumps_in(&mut self.fixes) {
             ms.calc_force(&self.particles, &self.domain, gravity);
         }
     }
@@ -329,28 +327,22 @@ impl crate::engine::sim::Simulation {
         omega: Vec3,
         group: u32,
     ) -> Result<(), String> {
-        let Some(k) = self
-            .fixes
-            .iter()
-            .position(|f| matches!(f.kind, crate::engine::fixes::FixKind::Multisphere(_)))
-        else {
+        let Some(ms) = clumps_in(&mut self.fixes) else {
             return Err(
                 "Multi-sphere particle inserted: You have to use exactly one fix multisphere."
                     .into(),
             );
         };
-        if let crate::engine::fixes::FixKind::Multisphere(ms) = &mut self.fixes[k].kind {
-            ms.insert(
-                &mut self.particles,
-                t,
-                first_id,
-                xcm,
-                v,
-                omega,
-                group,
-                &self.domain,
-            );
-        }
+        ms.insert(
+            &mut self.particles,
+            t,
+            first_id,
+            xcm,
+            v,
+            omega,
+            group,
+            &self.domain,
+        );
         Ok(())
     }
 
@@ -368,14 +360,7 @@ impl crate::engine::sim::Simulation {
 
     /// Deletes the bodies that lost a member, with their remaining members.
     pub(crate) fn drop_broken_clumps(&mut self) {
-        let Some(k) = self
-            .fixes
-            .iter()
-            .position(|f| matches!(f.kind, crate::engine::fixes::FixKind::Multisphere(_)))
-        else {
-            return;
-        };
-        if let crate::engine::fixes::FixKind::Multisphere(ms) = &mut self.fixes[k].kind {
+        if let Some(ms) = clumps_in(&mut self.fixes) {
             if let Some(remove) = ms.lost_members(&mut self.particles) {
                 self.particles.retain_by(&remove);
             }

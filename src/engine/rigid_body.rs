@@ -247,20 +247,9 @@ impl Body {
     /// First half of the step: kick with the current force and torque, drift the centre of
     /// mass, rotate. `dt` is the time step (time).
     pub fn initial_integrate(&mut self, dt: f64) {
-        let dtf = 0.5 * dt;
-        let dtfm = dtf / self.mass;
-        for k in 0..3 {
-            if self.fflag[k] {
-                self.vcm[k] += dtfm * self.fcm[k];
-            }
-        }
+        self.half_kick(dt);
         for k in 0..3 {
             self.xcm[k] += dt * self.vcm[k];
-        }
-        for k in 0..3 {
-            if self.tflag[k] {
-                self.angmom[k] += dtf * self.torque[k];
-            }
         }
         self.omega = angmom_to_omega(&self.angmom, &self.axes, &self.moments);
         richardson(
@@ -273,8 +262,9 @@ impl Body {
         self.axes = quat_to_axes(&self.quat);
     }
 
-    /// Second half of the step: kick with the new force and torque.
-    pub fn final_integrate(&mut self, dt: f64) {
+    /// Half a step's kick of the velocity and angular momentum (unfixed components) with
+    /// the current force and torque; `dt` is the whole time step (time).
+    fn half_kick(&mut self, dt: f64) {
         let dtf = 0.5 * dt;
         let dtfm = dtf / self.mass;
         for k in 0..3 {
@@ -287,6 +277,11 @@ impl Body {
                 self.angmom[k] += dtf * self.torque[k];
             }
         }
+    }
+
+    /// Second half of the step: kick with the new force and torque.
+    pub fn final_integrate(&mut self, dt: f64) {
+        self.half_kick(dt);
         self.omega = angmom_to_omega(&self.angmom, &self.axes, &self.moments);
     }
 

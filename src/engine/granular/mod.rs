@@ -790,13 +790,10 @@ impl batch::Sink for Accumulate<'_, '_> {
         for (k, pair) in pairs.iter().enumerate().take(batch.len()) {
             let (i, j) = (pair.i as usize, pair.j as usize);
             if let Some(w) = self.virial.as_deref_mut() {
-                let pick = |v: &[F64x4; 3]| [v[0].0[k], v[1].0[k], v[2].0[k]];
-                let res = PairResult {
-                    fi: pick(&out.fi),
-                    ..PairResult::default()
-                };
-                add_virial(self.x, pair, &res, &mut w[i]);
-                add_virial(self.x, pair, &res, &mut w[j]);
+                let fi = [out.fi[0].0[k], out.fi[1].0[k], out.fi[2].0[k]];
+                let half = half_virial(self.x, pair, fi);
+                add6(&mut w[i], &half);
+                add6(&mut w[j], &half);
             }
             // SAFETY: i, j < n (checked above)
             unsafe { add_lane(self.f, self.torque, (i, j), out, k) };
@@ -856,8 +853,9 @@ fn add_pair(
 ) {
     let (i, j) = (pair.i as usize, pair.j as usize);
     if let Some(w) = virial {
-        add_virial(x, pair, res, &mut w[i]);
-        add_virial(x, pair, res, &mut w[j]);
+        let half = half_virial(x, pair, res.fi);
+        add6(&mut w[i], &half);
+        add6(&mut w[j], &half);
     }
     for d in 0..3 {
         f[i][d] += res.fi[d];

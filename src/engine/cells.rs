@@ -173,8 +173,14 @@ impl CellGrid {
             .into_par_iter()
             .map(|c| {
                 let mut out = Vec::new();
+                // particles sorted by cell: neighbours share their cell's stencil
+                let mut stencil = Stencil::default();
                 for i in c * chunk..((c + 1) * chunk).min(n) {
-                    self.partners(i, x, reach, skin, start, &mut out);
+                    let cell = self.coords(&x[i]);
+                    if stencil.cell != Some(cell) {
+                        self.stencil(cell, start, &mut stencil);
+                    }
+                    partners(i, x, reach, skin, &stencil, &mut out);
                 }
                 out
             })
@@ -186,18 +192,11 @@ impl CellGrid {
         pairs
     }
 
-    /// Append the partners j > i of particle i.
-    fn partners(
-        &self,
-        i: usize,
-        x: &[[f64; 3]],
-        reach: &[f64],
-        skin: f64,
-        start: &[u32],
-        out: &mut Vec<Pair>,
-    ) {
-        let xi = x[i];
-        let c = self.coords(&xi);
+    /// The particle ranges (from `start`) and periodic shifts of the cells around `c`
+    /// (itself included), z slowest then y then x, as `stencil`.
+    fn stencil(&self, c: [usize; 3], start: &[u32], stencil: &mut Stencil) {
+        stencil.cell = Some(c);
+        stencil.len = 0;
         for dz in -1i64..=1 {
             for dy in -1i64..=1 {
                 for dx in -1i64..=1 {
@@ -224,27 +223,54 @@ impl CellGrid {
                         continue;
                     }
                     let f = self.ranked(cell);
-                    let (a, b) = (start[f] as usize, start[f + 1] as usize);
-                    if b <= i + 1 {
-                        continue;
-                    }
-                    for j in a.max(i + 1)..b {
-                        let xj = x[j];
-                        let del = [
-                            xj[0] + shift[0] - xi[0],
-                            xj[1] + shift[1] - xi[1],
-                            xj[2] + shift[2] - xi[2],
-                        ];
-                        let cut = reach[i] + reach[j] + skin;
-                        if del[0] * del[0] + del[1] * del[1] + del[2] * del[2] < cut * cut {
-                            out.push(Pair {
-                                i: i as u32,
-                                j: j as u32,
-                                shift,
-                            });
-                        }
-                    }
+                    stencil.cells[stencil.len] = (start[f], start[f + 1], shift);
+                    stencil.len += 1;
                 }
+            }
+        }
+    }
+}
+
+/// The cells around one cell: (first particle, one past the last, periodic shift (m)) of
+/// each, in the order the half list visits them.
+#[derive(Debug, Clone, Copy, Default)]
+struct Stencil {
+    /// The cell these are around.
+    cell: Option<[usize; 3]>,
+    cells: [(u32, u32, [f64; 3]); 27],
+    len: usize,
+}
+
+/// Append the partners j > i of particle i, from the stencil of its cell.
+#[inline]
+fn partners(
+    i: usize,
+    x: &[[f64; 3]],
+    reach: &[f64],
+    skin: f64,
+    stencil: &Stencil,
+    out: &mut Vec<Pair>,
+) {
+    let xi = x[i];
+    for &(a, b, shift) in &stencil.cells[..stencil.len] {
+        let (a, b) = (a as usize, b as usize);
+        if b <= i + 1 {
+            continue;
+        }
+        for j in a.max(i + 1)..b {
+            let xj = x[j];
+            let del = [
+                xj[0] + shift[0] - xi[0],
+                xj[1] + shift[1] - xi[1],
+                xj[2] + shift[2] - xi[2],
+            ];
+            let cut = reach[i] + reach[j] + skin;
+            if del[0] * del[0] + del[1] * del[1] + del[2] * del[2] < cut * cut {
+                out.push(Pair {
+                    i: i as u32,
+                    j: j as u32,
+                    shift,
+                });
             }
         }
     }

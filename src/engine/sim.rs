@@ -498,6 +498,16 @@ fn first_where_in(
     }
 }
 
+/// True if any value is infinite or not a number: its exponent bits are all set. Integer
+/// operations without early exit, so the loop is vectorised.
+#[inline]
+fn any_not_finite(values: &[f64]) -> bool {
+    const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
+    values.iter().fold(0u64, |hit, v| {
+        hit | u64::from(v.to_bits() & EXPONENT == EXPONENT)
+    }) != 0
+}
+
 /// Time `f`, adding the seconds to `acc`.
 #[inline]
 fn timed<R>(acc: &mut f64, f: impl FnOnce() -> R) -> R {
@@ -757,9 +767,7 @@ impl Simulation {
         const BLOCK: usize = 256;
         let flagged = |b: usize| {
             let block = &p.f[b * BLOCK..((b + 1) * BLOCK).min(p.len())];
-            block.iter().fold(false, |hit, f| {
-                hit | !f[0].is_finite() | !f[1].is_finite() | !f[2].is_finite()
-            })
+            any_not_finite(block.as_flattened())
         };
         if first_where_in(p.len().div_ceil(BLOCK), BLOCK, flagged).is_some() {
             if let Some(i) = first_where(p.len(), |i| !p.f[i].iter().all(|c| c.is_finite())) {
@@ -3023,5 +3031,33 @@ mod guard_tests {
         assert!(energy_runaway(1e-6, 1.0, 1.2));
         // from rest nothing is compared
         assert!(!energy_runaway(0.0, 1.0, 0.9));
+    }
+}
+
+#[cfg(test)]
+mod finite_scan_tests {
+    use super::any_not_finite;
+
+    #[test]
+    fn the_bit_scan_flags_exactly_the_values_that_are_not_finite() {
+        let finite = [
+            0.0,
+            -0.0,
+            1.0,
+            -3.5e300,
+            f64::MAX,
+            f64::MIN,
+            f64::MIN_POSITIVE,
+            5e-324,
+        ];
+        assert!(!any_not_finite(&finite));
+        assert!(!any_not_finite(&[]));
+        for bad in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN, -f64::NAN] {
+            for at in [0, 3, finite.len()] {
+                let mut v = finite.to_vec();
+                v.insert(at, bad);
+                assert!(any_not_finite(&v), "{bad} at {at}");
+            }
+        }
     }
 }

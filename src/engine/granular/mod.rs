@@ -485,12 +485,17 @@ impl BlockSums<'_> {
                     add6(&mut v[k], w);
                 }
             }
-            None => {
-                self.foreign.made.push(Foreign { j: n as u32, f, t });
-                if self.virial.is_some() {
-                    self.foreign.made_virial.push(*w);
-                }
-            }
+            None => self.owe(n, f, t, w),
+        }
+    }
+
+    /// Keep a contribution to particle `n` of another block for the second pass: force
+    /// (N), torque (N m) and, when tallied, half the pair's virial `w`.
+    #[inline(always)]
+    fn owe(&mut self, n: usize, f: [f64; 3], t: [f64; 3], w: &[f64; 6]) {
+        self.foreign.made.push(Foreign { j: n as u32, f, t });
+        if self.virial.is_some() {
+            self.foreign.made_virial.push(*w);
         }
     }
 
@@ -527,6 +532,18 @@ impl batch::Sink for BlockSums<'_> {
                     add6(&mut v[ki], &w);
                     add6(&mut v[kj], &w);
                 }
+            } else if ki < len {
+                // i in the block (the list groups entries by i), j in another block
+                let w = self.half_virial(pair, pick(&out.fi));
+                let (fi, ti) = (pick(&out.fi), pick(&out.ti));
+                for d in 0..3 {
+                    self.f[ki][d] += fi[d];
+                    self.torque[ki][d] += ti[d];
+                }
+                if let Some((_, v)) = self.virial.as_mut() {
+                    add6(&mut v[ki], &w);
+                }
+                self.owe(j, pick(&out.fj), pick(&out.tj), &w);
             } else {
                 let w = self.half_virial(pair, pick(&out.fi));
                 self.add(i, pick(&out.fi), pick(&out.ti), &w);

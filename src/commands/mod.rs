@@ -132,7 +132,7 @@ impl Engine {
     pub fn new() -> Engine {
         let mut sim = Simulation::default();
         // LIGGGHTS's computes of every deck (its Output constructor makes them)
-        sim.computes = compute_modify::default_computes();
+        sim.computes = crate::engine::temperature::default_computes();
         Engine {
             sim,
             diverged: false,

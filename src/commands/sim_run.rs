@@ -601,7 +601,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.error(0, "Run command stop value is before end of run"));
     }
     super::material_check::validate(a, ctx)?;
-    super::compute_modify::setup_counts(ctx.sim);
+    crate::engine::temperature::setup_counts(ctx.sim);
     if ctx.sys.mode == Mode::Check {
         // a dry run validates the deck but never steps: it makes LIGGGHTS's init checks, keeps
         // the restart files the run would write, and moves the step count to the run's end

@@ -11,9 +11,8 @@ use crate::engine::domain::Domain;
 use crate::engine::multisphere::ClumpTemplate;
 use crate::engine::particles::Particles;
 use crate::engine::rigid_body::{Body, Vec3};
+pub use crate::state::bodies::{body_array, body_tags, is_member, BODY_ARRAY};
 
-/// Name of the per-particle array holding the body tag (-1: not in a body).
-pub const BODY_ARRAY: &str = "multisphere_body";
 /// Name of the per-particle array holding the body-frame offset (length).
 pub const DISPLACE_ARRAY: &str = "multisphere_displace";
 
@@ -28,22 +27,6 @@ pub struct Clumps {
     pub r_bound: Vec<f64>,
     /// Largest body tag ever given (tags are never reused).
     pub max_tag: i64,
-}
-
-/// Index of the body-tag array in `p.extra`, if any particle array exists for it.
-pub fn body_array(p: &Particles) -> Option<usize> {
-    p.extra.iter().position(|e| e.name == BODY_ARRAY)
-}
-
-/// The body tags of the particles (None when no clump was ever created).
-pub fn body_tags(p: &Particles) -> Option<&[f64]> {
-    body_array(p).map(|k| &p.extra[k].data[..])
-}
-
-/// True if particle `i` belongs to a body (`tags` from [`body_tags`]).
-#[inline]
-pub fn is_member(tags: Option<&[f64]>, i: usize) -> bool {
-    tags.is_some_and(|t| t[i] >= 0.0)
 }
 
 /// The two per-particle arrays (body tag, offset), created on first use: particles that

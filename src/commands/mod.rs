@@ -24,6 +24,7 @@ pub mod suggest;
 pub mod velocity_vars;
 pub mod write_dump;
 
+use crate::engine::error::EngineError;
 use crate::engine::sim::Simulation;
 use crate::error::{Diagnostic, Location};
 use crate::script::interp::Output;
@@ -59,11 +60,13 @@ impl Ctx<'_> {
         let result = {
             let mut scope = crate::script::scope::Scope::new(self.vars, self.sys, self.sim);
             regions.reshape(step, &mut |name| {
-                scope.equal_variable(name).map_err(String::from)
+                scope
+                    .equal_variable(name)
+                    .map_err(|e| EngineError::Invalid(e.to_string()))
             })
         };
         self.sim.regions = regions;
-        result
+        result.map_err(|e| e.to_string())
     }
 
     /// Print an informational line to screen and log (not in check mode).

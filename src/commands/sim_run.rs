@@ -605,7 +605,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     if ctx.sys.mode == Mode::Check {
         // a dry run validates the deck but never steps: it makes LIGGGHTS's init checks, keeps
         // the restart files the run would write, and moves the step count to the run's end
-        ctx.sim.check_run().map_err(|m| a.error(0, &m))?;
+        ctx.sim.check_run().map_err(|e| a.engine_error(0, e))?;
         ctx.sim.init_heat().map_err(|m| a.error(0, &m))?;
         if let Some(m) = ctx.sim.new_margin() {
             ctx.sim.margin_notes.push(m);
@@ -629,7 +629,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     };
     ctx.sim
         .run_with_setup(nsteps, pre, &mut sink, &mut vars)
-        .map_err(|m| a.error(0, &m))
+        .map_err(|e| a.engine_error(0, e))
 }
 
 /// Check mode: the files `restart N ...` would write during a run of `nsteps` from the current
@@ -698,6 +698,7 @@ pub(super) fn gran_models(
     ),
     CommandError,
 > {
+    use crate::engine::contact::ModelError;
     use crate::engine::granular::Selection;
     let words: Vec<&str> = (start..a.len())
         .map(|i| a.word(i))
@@ -737,10 +738,10 @@ pub(super) fn gran_models(
         })
         .collect();
     let mut pending = None;
-    if let Err(m) = sel.apply_settings(&settings) {
-        match m.strip_suffix(" is not supported by regolith") {
+    if let Err(e) = sel.apply_settings(&settings) {
+        match e {
             // a valid LIGGGHTS setting regolith cannot run: the rest of the style stands
-            Some(setting) => {
+            ModelError::Unsupported(setting) => {
                 let at = (start + used..start + end)
                     .find(|&i| setting.starts_with(&format!("'{} ", a.word(i).unwrap_or(""))))
                     .unwrap_or(start + used);
@@ -749,16 +750,18 @@ pub(super) fn gran_models(
                     &format!("{what} setting {}", setting.trim_matches('\'')),
                 ));
             }
-            None => {
+            ModelError::Invalid(m) => {
                 return Err(a.error(start + used, &m).with_help(format!(
                     "{what}: model keywords go in the order model, tangential, cohesion, rolling_friction, surface, then on/off settings"
                 )))
             }
         }
     }
-    crate::engine::contact::AnyContactModel::new(&sel).map_err(|m| {
-        let m = m.trim_end_matches(" is not supported by regolith");
-        a.unsupported(start, &format!("{what} {m}"))
+    // every model name the engine lacks is valid LIGGGHTS
+    crate::engine::contact::AnyContactModel::new(&sel).map_err(|e| match e {
+        ModelError::Unsupported(m) | ModelError::Invalid(m) => {
+            a.unsupported(start, &format!("{what} {m}"))
+        }
     })?;
     Ok((sel, start + end, pending))
 }

@@ -1384,7 +1384,7 @@ fn write_data(a: &Args, ctx: &mut Ctx) -> Result {
         return Ok(());
     }
     // as LIGGGHTS: positions wrapped and the box shrink-wrapped before writing
-    ctx.sim.pbc_and_box().map_err(|m| a.error(0, &m))?;
+    ctx.sim.pbc_and_box().map_err(|e| a.engine_error(0, e))?;
     let text = crate::io::data::write(
         &ctx.sim.particles,
         &ctx.sim.domain,
@@ -1501,7 +1501,9 @@ fn write_restart(a: &Args, ctx: &mut Ctx) -> Result {
         ctx.sys.keep_binary(std::path::Path::new(&path), bytes);
         return Ok(());
     }
-    ctx.sim.save_restart(&path).map_err(|m| a.error(0, &m))
+    ctx.sim
+        .save_restart(&path)
+        .map_err(|e| a.engine_error(0, e))
 }
 
 /// `restart 0` | `restart N ROOT` (`*` becomes the step; without one, `.STEP` is

@@ -1,6 +1,7 @@
 //! Checks LIGGGHTS makes when a run is set up, beyond the contact models: particles the
 //! integrator can move, and neighbour bins that fit the box.
 
+use crate::engine::error::EngineError;
 use crate::engine::fixes::FixKind;
 use crate::engine::sim::Simulation;
 pub use crate::state::limits::{
@@ -16,13 +17,13 @@ const CUT_TO_BIN: f64 = 100.0;
 /// LIGGGHTS's neighbour bins for a box of lengths `bbox` and cutoff `cut`: the bins per
 /// direction, or its error when the cutoff does not fit the box ("box size << cutoff") or the
 /// box holds more bins than an int counts.
-pub fn neighbor_bins(bbox: [f64; 3], cut: f64) -> Result<[f64; 3], String> {
+pub fn neighbor_bins(bbox: [f64; 3], cut: f64) -> Result<[f64; 3], EngineError> {
     neighbor_bins_sized(bbox, cut, 0.0)
 }
 
 /// [`neighbor_bins`] with `neigh_modify binsize` (length; 0 for LIGGGHTS's default of half
 /// the cutoff).
-pub fn neighbor_bins_sized(bbox: [f64; 3], cut: f64, user: f64) -> Result<[f64; 3], String> {
+pub fn neighbor_bins_sized(bbox: [f64; 3], cut: f64, user: f64) -> Result<[f64; 3], EngineError> {
     let size = if user > 0.0 {
         user
     } else if cut == 0.0 {
@@ -41,7 +42,7 @@ pub fn neighbor_bins_sized(bbox: [f64; 3], cut: f64, user: f64) -> Result<[f64; 
             g(bbox[1]),
             g(bbox[2]),
             g(size)
-        ));
+        ).into());
     }
     let mut nbins = [1.0; 3];
     let mut total = 1.0;
@@ -54,7 +55,7 @@ pub fn neighbor_bins_sized(bbox: [f64; 3], cut: f64, user: f64) -> Result<[f64; 
                 g(user),
                 g(bbox[d]),
                 ["x", "y", "z"][d]
-            ));
+            ).into());
         }
         if size / binsize > CUT_TO_BIN {
             return Err(format!(
@@ -63,7 +64,7 @@ pub fn neighbor_bins_sized(bbox: [f64; 3], cut: f64, user: f64) -> Result<[f64; 
                 2.0 * CUT_TO_BIN,
                 g(bbox[d]),
                 ["x", "y", "z"][d]
-            ));
+            ).into());
         }
         // the bins LIGGGHTS allocates: the box, the ghost cutoff on each side, and one more
         let ghost = (cut / binsize).trunc() + 1.0;
@@ -78,7 +79,8 @@ pub fn neighbor_bins_sized(bbox: [f64; 3], cut: f64, user: f64) -> Result<[f64; 
         return Err(format!(
             "Too many neighbor bins (about {} for {why} in this box)",
             g(total)
-        ));
+        )
+        .into());
     }
     Ok(nbins)
 }
@@ -90,7 +92,7 @@ fn g(x: f64) -> String {
 impl Simulation {
     /// At a run's init: LIGGGHTS's own checks of the integrated particles and of the
     /// neighbour bins.
-    pub fn check_run_init(&self) -> Result<(), String> {
+    pub fn check_run_init(&self) -> Result<(), EngineError> {
         let p = &self.particles;
         for fix in &self.fixes {
             if let FixKind::NveSphere = fix.kind {
@@ -100,7 +102,8 @@ impl Simulation {
                     return Err(format!(
                         "Fix nve/sphere requires extended particles (atom {} has radius 0)",
                         p.id[i]
-                    ));
+                    )
+                    .into());
                 }
             }
         }
@@ -122,7 +125,7 @@ impl Simulation {
                         "Too many atom sorting bins (about {} bins of size {}; a larger bin size can be given with atom_modify sort)",
                         g(bins),
                         g(size)
-                    ));
+                    ).into());
                 }
             }
         }
@@ -153,17 +156,21 @@ mod tests {
         assert_eq!(neighbor_bins(bbox, 0.022).unwrap(), [18.0, 18.0, 45.0]);
         assert!(neighbor_bins(bbox, 1.02).is_ok());
         for cut in [100.02, 1e10, 1e308, f64::INFINITY] {
-            let e = neighbor_bins(bbox, cut).unwrap_err();
+            let e = neighbor_bins(bbox, cut).unwrap_err().to_string();
             assert!(
                 e.starts_with("Cannot use neighbor bins - box size << cutoff"),
                 "{e}"
             );
         }
-        let e = neighbor_bins([2e9, 0.2, 0.5], 0.022).unwrap_err();
+        let e = neighbor_bins([2e9, 0.2, 0.5], 0.022)
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with("Domain too large for neighbor bins"), "{e}");
-        let e = neighbor_bins([2e5, 2e3, 0.5], 0.022).unwrap_err();
+        let e = neighbor_bins([2e5, 2e3, 0.5], 0.022)
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with("Too many neighbor bins"), "{e}");
-        let e = neighbor_bins(bbox, f64::NAN).unwrap_err();
+        let e = neighbor_bins(bbox, f64::NAN).unwrap_err().to_string();
         assert!(e.starts_with("Domain too large"), "{e}");
     }
 }

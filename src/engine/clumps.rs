@@ -8,6 +8,7 @@
 //! (`set_v`). The operations follow LIGGGHTS's order so that the arithmetic agrees to the bit.
 
 use crate::engine::domain::Domain;
+use crate::engine::error::EngineError;
 use crate::engine::multisphere::ClumpTemplate;
 use crate::engine::particles::Particles;
 use crate::engine::rigid_body::{Body, Vec3};
@@ -309,7 +310,7 @@ impl crate::engine::sim::Simulation {
         v: Vec3,
         omega: Vec3,
         group: u32,
-    ) -> Result<(), String> {
+    ) -> Result<(), EngineError> {
         let Some(ms) = clumps_in(&mut self.fixes) else {
             return Err(
                 "Multi-sphere particle inserted: You have to use exactly one fix multisphere."
@@ -351,7 +352,7 @@ impl crate::engine::sim::Simulation {
     }
 
     /// Restart files do not hold the bodies yet.
-    pub(crate) fn refuse_clump_restart(&self) -> Result<(), String> {
+    pub(crate) fn refuse_clump_restart(&self) -> Result<(), EngineError> {
         match self.clumps() {
             Some(ms) if !ms.bodies.is_empty() => Err(
                 "write_restart with multisphere bodies is not supported yet (the bodies' state is not written)"

@@ -2,6 +2,7 @@
 //! output, formulas and dumps, with LIGGGHTS's arithmetic.
 
 use crate::engine::domain::Domain;
+use crate::engine::error::EngineError;
 use crate::engine::integrate::SPHERE_INERTIA;
 use crate::engine::particles::Particles;
 use crate::engine::sim::{Simulation, VariableSource};
@@ -182,7 +183,11 @@ impl Compute {
     }
 
     /// The compute's global scalar.
-    pub fn scalar(&self, sim: &Simulation, vars: &mut dyn VariableSource) -> Result<f64, String> {
+    pub fn scalar(
+        &self,
+        sim: &Simulation,
+        vars: &mut dyn VariableSource,
+    ) -> Result<f64, EngineError> {
         let p = &sim.particles;
         Ok(match &self.kind {
             ComputeKind::ErotateSphere => {
@@ -211,7 +216,8 @@ impl Compute {
                 return Err(format!(
                     "Compute {} ({}) does not calculate a scalar",
                     self.id, self.style
-                ))
+                )
+                .into())
             }
         })
     }
@@ -222,12 +228,13 @@ impl Compute {
         index: usize,
         sim: &Simulation,
         vars: &mut dyn VariableSource,
-    ) -> Result<f64, String> {
+    ) -> Result<f64, EngineError> {
         if index == 0 || index > self.vector_len() {
             return Err(format!(
                 "Compute {} ({}) has no global vector element {index}",
                 self.id, self.style
-            ));
+            )
+            .into());
         }
         match &self.kind {
             ComputeKind::Com => {
@@ -250,7 +257,7 @@ impl Compute {
         mode: ReduceMode,
         input: &Input,
         vars: &mut dyn VariableSource,
-    ) -> Result<f64, String> {
+    ) -> Result<f64, EngineError> {
         let p = &sim.particles;
         let values: Box<dyn Fn(usize) -> f64> = match input {
             Input::Atom(col) => {
@@ -295,7 +302,7 @@ impl Compute {
     }
 
     /// Rows of a local compute: (columns per row, values row-major).
-    pub fn local(&self, sim: &Simulation) -> Result<(usize, Vec<f64>), String> {
+    pub fn local(&self, sim: &Simulation) -> Result<(usize, Vec<f64>), EngineError> {
         if let ComputeKind::WallGranLocal { fields, wall } = &self.kind {
             return self.wall_local(sim, fields, wall);
         }
@@ -303,7 +310,8 @@ impl Compute {
             return Err(format!(
                 "Compute {} ({}) does not calculate local values",
                 self.id, self.style
-            ));
+            )
+            .into());
         };
         let Some(pair) = sim.pair.as_ref() else {
             return Err("compute pair/gran/local needs a granular pair style".into());
@@ -439,7 +447,7 @@ impl Compute {
         sim: &Simulation,
         fields: &[LocalField],
         wall: &str,
-    ) -> Result<(usize, Vec<f64>), String> {
+    ) -> Result<(usize, Vec<f64>), EngineError> {
         let k = sim
             .fixes
             .iter()
@@ -521,7 +529,7 @@ impl Compute {
         &self,
         sim: &Simulation,
         vars: &mut dyn VariableSource,
-    ) -> Result<PerAtom, String> {
+    ) -> Result<PerAtom, EngineError> {
         let _ = vars; // no per-atom compute of regolith reads variables yet
         let p = &sim.particles;
         let n = p.len();
@@ -610,7 +618,8 @@ impl Compute {
                 return Err(format!(
                     "Compute {} ({}) does not calculate per-atom values",
                     self.id, self.style
-                ))
+                )
+                .into())
             }
         }
         Ok(PerAtom { columns, values })
@@ -618,22 +627,23 @@ impl Compute {
 }
 
 /// The 0-based column of `c_ID` / `c_ID[N]` of a per-atom compute, with LIGGGHTS's checks.
-pub fn column_of(c: &Compute, index: Option<usize>) -> Result<usize, String> {
+pub fn column_of(c: &Compute, index: Option<usize>) -> Result<usize, EngineError> {
     let cols = c.per_atom_columns();
     match index {
         _ if cols == 0 => Err(format!(
             "Compute {} ({}) does not calculate per-atom values",
             c.id, c.style
-        )),
+        )
+        .into()),
         None if cols == 1 => Ok(0),
         None => Err(format!(
             "Compute {} ({}) calculates a per-atom array: give a column, c_{}[N]",
             c.id, c.style, c.id
-        )),
-        Some(k) if cols == 1 || k == 0 || k > cols => Err(format!(
-            "Compute {} ({}) has no per-atom column {k}",
-            c.id, c.style
-        )),
+        )
+        .into()),
+        Some(k) if cols == 1 || k == 0 || k > cols => {
+            Err(format!("Compute {} ({}) has no per-atom column {k}", c.id, c.style).into())
+        }
         Some(k) => Ok(k - 1),
     }
 }

@@ -51,7 +51,7 @@ impl crate::engine::sim::Simulation {
         &mut self,
         k: usize,
         vars: &mut dyn crate::engine::sim::VariableSource,
-    ) -> Result<(), String> {
+    ) -> Result<(), crate::engine::error::EngineError> {
         let mut others = std::mem::take(&mut self.dumps);
         self.dumps.push(others.remove(k));
         let result = self.write_dumps(false, vars);

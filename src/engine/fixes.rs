@@ -5,6 +5,7 @@
 use std::collections::HashMap;
 
 use crate::engine::domain::Domain;
+use crate::engine::error::EngineError;
 use crate::engine::integrate::{self, Gravity};
 use crate::engine::particles::Particles;
 
@@ -684,7 +685,7 @@ pub struct PrintFix {
 
 impl PrintFix {
     /// Write one substituted line where the fix sends it.
-    pub fn emit(&mut self, line: &str, out: &mut dyn FnMut(&str)) -> Result<(), String> {
+    pub fn emit(&mut self, line: &str, out: &mut dyn FnMut(&str)) -> Result<(), EngineError> {
         use std::io::Write;
         if self.screen {
             out(&format!("{line}\n"));
@@ -1097,7 +1098,7 @@ impl AveTime {
     }
 
     /// Take one sample of `values` at `step`; at the end of an Nfreq block, write the line.
-    pub fn sample(&mut self, step: i64, values: &[f64]) -> Result<(), String> {
+    pub fn sample(&mut self, step: i64, values: &[f64]) -> Result<(), EngineError> {
         use std::io::Write;
         if self.samples == 0 {
             self.sum.iter_mut().for_each(|s| *s = 0.0);

@@ -4,6 +4,7 @@
 //! distribution: leftover particles), its draw order, placement order, overlap rule and
 //! messages, so that inserted atoms agree with LIGGGHTS's bit for bit.
 
+use crate::engine::error::EngineError;
 use crate::engine::region::{Regions, Shape};
 use crate::util::random::RanPark;
 
@@ -109,7 +110,7 @@ impl Distribution {
         templates: Vec<Template>,
         weights: &[f64],
         number_based: bool,
-    ) -> Result<Distribution, String> {
+    ) -> Result<Distribution, EngineError> {
         let rng = RanPark::new(seed)?;
         let mut s = 0.0;
         for x in weights {
@@ -161,7 +162,7 @@ impl Distribution {
     /// The templates of `n` particles, largest first (`random_distribute exact`); LIGGGHTS's
     /// "Failed to allocate" when the list and the particles placed from it cannot fit in
     /// memory.
-    pub fn list(&mut self, n: i64) -> Result<Vec<usize>, String> {
+    pub fn list(&mut self, n: i64) -> Result<Vec<usize>, EngineError> {
         // a template index now, a placed particle (template, position, velocity) later
         crate::engine::checks::allocation(n as f64, 8 + 56, "insertion list")?;
         let nt = self.templates.len();
@@ -585,7 +586,7 @@ impl InsertPack {
         dist: &Distribution,
         w: &World,
         dt: f64,
-    ) -> Result<Vec<String>, String> {
+    ) -> Result<Vec<String>, EngineError> {
         if self.set_up {
             return Ok(Vec::new());
         }
@@ -639,7 +640,7 @@ impl InsertPack {
         regions: &Regions,
         dist: &mut Distribution,
         w: &World,
-    ) -> Result<(Vec<NewParticle>, Vec<String>), String> {
+    ) -> Result<(Vec<NewParticle>, Vec<String>), EngineError> {
         let mut lines = Vec::new();
         let shape = self.shape(regions).clone();
         self.next = if self.every > 0 {
@@ -1199,12 +1200,13 @@ pub struct InsertRestart {
 
 impl InsertRestart {
     /// Parse the 5 doubles of the stored state.
-    pub fn parse(bytes: &[u8]) -> Result<InsertRestart, String> {
+    pub fn parse(bytes: &[u8]) -> Result<InsertRestart, EngineError> {
         if bytes.len() < 40 {
             return Err(format!(
                 "stored insertion state has {} bytes, expected 40",
                 bytes.len()
-            ));
+            )
+            .into());
         }
         let d = |k: usize| f64::from_le_bytes(bytes[8 * k..8 * k + 8].try_into().expect("8"));
         Ok(InsertRestart {
@@ -1315,7 +1317,7 @@ impl InsertStream {
         dist: &mut Distribution,
         w: &World,
         box_changes: bool,
-    ) -> Result<(Vec<NewParticle>, Vec<String>), String> {
+    ) -> Result<(Vec<NewParticle>, Vec<String>), EngineError> {
         let mut lines = Vec::new();
         let mut n = (self.per_insertion + self.rng.uniform()) as i64;
         if self.inserted + n > self.total {

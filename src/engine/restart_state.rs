@@ -7,6 +7,7 @@
 use std::collections::HashMap;
 
 use crate::engine::contact::UnitStyle;
+use crate::engine::error::EngineError;
 use crate::engine::sim::Simulation;
 use crate::io::restart::{self, GlobalFix, PeratomFix, Restart, Value};
 pub use crate::io::restart_values::check_restart_values;
@@ -82,13 +83,14 @@ pub fn model_words(hash: i64) -> Option<String> {
 }
 
 /// The pair style stored in a restart (its `pair_style` arguments), if any.
-pub fn stored_pair_style(r: &Restart) -> Result<Option<String>, String> {
+pub fn stored_pair_style(r: &Restart) -> Result<Option<String>, EngineError> {
     match &r.pair {
         None => Ok(None),
         Some((_, raw)) => {
             let hash = i64::from_le_bytes(raw[..8].try_into().expect("8 bytes"));
             model_words(hash).map(Some).ok_or_else(|| {
                 format!("the restart's pair style (model hash {hash}) is not one regolith has")
+                    .into()
             })
         }
     }
@@ -97,7 +99,7 @@ pub fn stored_pair_style(r: &Restart) -> Result<Option<String>, String> {
 /// The partner lists of a contact history fix's per-atom blocks (block `k` of every atom):
 /// the history width stored in the fix's global state, and per atom ID its (partner,
 /// values) pairs; partners are atom IDs (pairs) or triangle ids (meshes).
-fn partner_lists(r: &Restart, k: usize, id: &str) -> Result<(usize, PartnerLists), String> {
+fn partner_lists(r: &Restart, k: usize, id: &str) -> Result<(usize, PartnerLists), EngineError> {
     let width = r
         .global_fixes
         .iter()
@@ -118,7 +120,7 @@ fn partner_lists(r: &Restart, k: usize, id: &str) -> Result<(usize, PartnerLists
                 "restart: atom {}: contact history block of {} values for {n} partners of {width} values",
                 a.id,
                 b.len()
-            ));
+            ).into());
         }
         let list = (0..n)
             .map(|c| {
@@ -137,14 +139,12 @@ pub type PartnerLists = HashMap<i64, Vec<(i64, Vec<f64>)>>;
 impl Simulation {
     /// Load a restart's state into an empty simulation (no box yet). Returns the pair
     /// style it names, for the caller to set up.
-    pub fn load_restart(&mut self, r: &Restart) -> Result<Option<String>, String> {
+    pub fn load_restart(&mut self, r: &Restart) -> Result<Option<String>, EngineError> {
         match r.units() {
             "si" => self.units = UnitStyle::Si,
             "cgs" => self.units = UnitStyle::Cgs,
             other => {
-                return Err(format!(
-                    "units {other} in the restart file: not supported yet"
-                ))
+                return Err(format!("units {other} in the restart file: not supported yet").into())
             }
         }
         check_restart_values(r, false)?;
@@ -186,7 +186,8 @@ impl Simulation {
                             return Err(format!(
                                 "restart: fix {} has blocks of different sizes",
                                 fix.id
-                            ));
+                            )
+                            .into());
                         }
                         p.extra[e].data[i * width..(i + 1) * width].copy_from_slice(vals);
                     }
@@ -295,7 +296,7 @@ impl Simulation {
 
     /// Whether a restart file of this simulation fits in memory (the file is built whole,
     /// then encoded): LIGGGHTS's "Failed to allocate" if it does not.
-    pub fn check_restart_size(&self) -> Result<(), String> {
+    pub fn check_restart_size(&self) -> Result<(), EngineError> {
         let n = self.ntypes as f64;
         let pair = if self.pair_selection.is_some() {
             8.0 + 4.0 * n * (n + 1.0) / 2.0
@@ -305,7 +306,11 @@ impl Simulation {
         let extra: usize = self.particles.extra.iter().map(|e| e.width + 1).sum();
         let atoms = self.particles.len() as f64 * 8.0 * (24 + extra) as f64;
         // the file's parts, its atom records and the encoded bytes
-        crate::engine::checks::allocation(3.0 * (pair + atoms), 1, "restart file")
+        Ok(crate::engine::checks::allocation(
+            3.0 * (pair + atoms),
+            1,
+            "restart file",
+        )?)
     }
 
     /// This simulation as a restart file LIGGGHTS 3.8.0 reads, with pair history from

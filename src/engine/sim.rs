@@ -3,6 +3,7 @@
 //! clear, pair forces, post-force fixes, final integrate, output).
 
 use crate::engine::domain::Domain;
+use crate::engine::error::EngineError;
 pub use crate::engine::fixes::FixKind;
 use crate::engine::fixes::{self, Fix};
 use crate::engine::neighbor::{carry_history, NeighborList, Pair};
@@ -665,7 +666,7 @@ impl Simulation {
     /// (see [`energy_runaway`]), stops the run; a particle moving more than its radius in one
     /// step is warned about (once a run, on standard error) and the run goes on. `setup` takes the energy
     /// baseline.
-    fn guard_motion(&mut self, setup: bool) -> Result<(), String> {
+    fn guard_motion(&mut self, setup: bool) -> Result<(), EngineError> {
         let quiet = !setup
             && self.energy_watch.is_some()
             && self.step % ENERGY_WATCH_STEPS != 0
@@ -684,7 +685,7 @@ impl Simulation {
         };
         // the first offending particle in order, found on the engine's threads
         if let Some(i) = first_where(p.len(), |i| !finite(i)) {
-            return Err(self.non_finite(i));
+            return Err(self.non_finite(i).into());
         }
         let (energy, per_step, fastest) = self.motion_scan();
         if !energy.is_finite() {
@@ -706,7 +707,7 @@ impl Simulation {
                 p.mass[i],
                 kinetic(i),
                 self.blow_up_cause(i)
-            ));
+            ).into());
         }
         if setup || self.energy_watch.is_none() {
             self.energy_watch = Some((self.step, energy));
@@ -726,7 +727,7 @@ impl Simulation {
                     RUNAWAY_RADII_PER_STEP,
                     p.id[fastest],
                     crate::util::format::g(per_step)
-                ));
+                ).into());
             }
         }
         if self.step % ENERGY_WATCH_STEPS == 0 {
@@ -751,7 +752,7 @@ impl Simulation {
     /// The blow-up guard on forces, run after each force evaluation: a force that is not
     /// finite stops the run; two particles overlapping by more than [`MAX_OVERLAP`] of the
     /// smaller radius are warned about (once a run, on standard error) and the run goes on.
-    fn guard_forces(&mut self) -> Result<(), String> {
+    fn guard_forces(&mut self) -> Result<(), EngineError> {
         let p = &self.particles;
         // a branch-free block scan first; the particle is looked for only when one is flagged
         const BLOCK: usize = 256;
@@ -763,7 +764,7 @@ impl Simulation {
         };
         if first_where_in(p.len().div_ceil(BLOCK), BLOCK, flagged).is_some() {
             if let Some(i) = first_where(p.len(), |i| !p.f[i].iter().all(|c| c.is_finite())) {
-                return Err(self.non_finite(i));
+                return Err(self.non_finite(i).into());
             }
         }
         if let Some((ratio, i, j)) = self.pair.as_ref().and_then(|m| m.worst_overlap()) {
@@ -882,7 +883,11 @@ impl Simulation {
     }
 
     /// The `end_of_step` phase: fixes that check or report every N steps.
-    fn end_of_step(&mut self, out: Sink<'_>, vars: &mut dyn VariableSource) -> Result<(), String> {
+    fn end_of_step(
+        &mut self,
+        out: Sink<'_>,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
         self.move_streams();
         let (step, dt, skin) = (self.step, self.dt, self.neighbor.skin);
         for k in 0..self.fixes.len() {
@@ -904,7 +909,7 @@ impl Simulation {
                     let values = inputs
                         .iter()
                         .map(|input| self.ave_input(input, vars))
-                        .collect::<Result<Vec<f64>, String>>()?;
+                        .collect::<Result<Vec<f64>, EngineError>>()?;
                     if let FixKind::AveTime(at) = &mut self.fixes[k].kind {
                         at.sample(step, &values)?;
                     }
@@ -927,16 +932,16 @@ impl Simulation {
         &self,
         input: &fixes::AveInput,
         vars: &mut dyn VariableSource,
-    ) -> Result<f64, String> {
+    ) -> Result<f64, EngineError> {
         match input {
             fixes::AveInput::Compute(id, i) => self.compute_value(id, *i, vars),
             fixes::AveInput::Fix(id, i) => self.fix_value(id, *i),
-            fixes::AveInput::Variable(name) => vars.equal(self, name),
+            fixes::AveInput::Variable(name) => Ok(vars.equal(self, name)?),
         }
     }
 
     /// `fix ave/time` samples due at setup (LIGGGHTS runs end_of_step there too).
-    fn setup_averages(&mut self, vars: &mut dyn VariableSource) -> Result<(), String> {
+    fn setup_averages(&mut self, vars: &mut dyn VariableSource) -> Result<(), EngineError> {
         let step = self.step;
         for k in 0..self.fixes.len() {
             let inputs = match &self.fixes[k].kind {
@@ -946,7 +951,7 @@ impl Simulation {
             let values = inputs
                 .iter()
                 .map(|input| self.ave_input(input, vars))
-                .collect::<Result<Vec<f64>, String>>()?;
+                .collect::<Result<Vec<f64>, EngineError>>()?;
             if let FixKind::AveTime(at) = &mut self.fixes[k].kind {
                 at.sample(step, &values)?;
             }
@@ -955,7 +960,7 @@ impl Simulation {
     }
 
     /// Value of `f_ID[i]` (1-based) for fixes with a global vector.
-    pub fn fix_value(&self, id: &str, index: Option<usize>) -> Result<f64, String> {
+    pub fn fix_value(&self, id: &str, index: Option<usize>) -> Result<f64, EngineError> {
         let fix = self
             .fixes
             .iter()
@@ -975,7 +980,7 @@ impl Simulation {
             }
             (FixKind::Buoyancy(b), Some(i @ 1..=3)) => Ok(b.total[i - 1]),
             (FixKind::Tracer(t), None) => Ok(t.scalar()),
-            _ => Err(format!("fix {id} ({}) has no such value", fix.style)),
+            _ => Err(format!("fix {id} ({}) has no such value", fix.style).into()),
         }
     }
 
@@ -985,7 +990,7 @@ impl Simulation {
         id: &str,
         index: Option<usize>,
         vars: &mut dyn VariableSource,
-    ) -> Result<f64, String> {
+    ) -> Result<f64, EngineError> {
         let c = self
             .computes
             .iter()
@@ -1003,7 +1008,7 @@ impl Simulation {
         &self,
         name: &str,
         vars: &mut dyn VariableSource,
-    ) -> Result<(crate::engine::computes::PerAtom, usize), String> {
+    ) -> Result<(crate::engine::computes::PerAtom, usize), EngineError> {
         if let Some(var) = name.strip_prefix("v_") {
             let values = vars.atom(self, var)?;
             return Ok((crate::engine::computes::PerAtom { columns: 1, values }, 0));
@@ -1101,7 +1106,7 @@ impl Simulation {
     /// Wrap periodic coordinates, drop particles outside fixed faces, shrink-wrap the box.
     /// Wrap periodic positions, shrink-wrap the box around the atoms, drop lost atoms (LIGGGHTS's
     /// pbc, reset_box and exchange, as at a re-neighbouring or before writing a file).
-    pub fn pbc_and_box(&mut self) -> Result<(), String> {
+    pub fn pbc_and_box(&mut self) -> Result<(), EngineError> {
         let p = &mut self.particles;
         // a periodic coordinate that is not finite cannot be wrapped: the atom is lost
         let mut unplaced = Vec::new();
@@ -1142,7 +1147,7 @@ impl Simulation {
         if lost.iter().any(|&l| l) {
             if !self.lost_ignore {
                 let remaining = lost.iter().filter(|&&l| !l).count();
-                return Err(lost_atoms_message(p, &lost, remaining, self.step));
+                return Err(lost_atoms_message(p, &lost, remaining, self.step).into());
             }
             p.retain_by(&lost);
         }
@@ -1263,7 +1268,7 @@ impl Simulation {
     /// `delete_atoms overlap CUT G1 G2`: which atoms go. In memory order, an atom of G1 goes
     /// when an atom of G2 that has not gone lies closer than `cut`; across a periodic
     /// boundary only the lower ID of a pair counts as gone (LIGGGHTS's rule for ghosts).
-    pub fn overlapping(&self, cut: f64, g1: u32, g2: u32) -> Result<Vec<bool>, String> {
+    pub fn overlapping(&self, cut: f64, g1: u32, g2: u32) -> Result<Vec<bool>, EngineError> {
         let p = &self.particles;
         let n = p.len();
         let mut list = crate::engine::neighbor::NeighborList::default();
@@ -1327,7 +1332,7 @@ impl Simulation {
     }
 
     /// Build the contact models (pair and walls) from the current material properties.
-    fn init_pair(&mut self) -> Result<(), String> {
+    fn init_pair(&mut self) -> Result<(), EngineError> {
         use crate::engine::contact::material::mix_yeff;
         use crate::engine::granular;
         let input = self.material_input();
@@ -1518,7 +1523,7 @@ impl Simulation {
 
     /// LIGGGHTS's mesh setup at the first run: neighbours and active edges and corners of
     /// every `fix mesh/surface`, within the current box.
-    fn build_mesh_topology(&mut self) -> Result<(), String> {
+    fn build_mesh_topology(&mut self) -> Result<(), EngineError> {
         let (lo, hi) = (self.domain.lo, self.domain.hi);
         for f in &mut self.fixes {
             if let FixKind::Mesh(m) = &mut f.kind {
@@ -1533,7 +1538,7 @@ impl Simulation {
     /// The stress module's bookkeeping at a run's setup (clear triangle forces and step wear;
     /// read `k_finnie`), before a step's forces (clear them and the totals) and at the end of
     /// a step (add the step's wear, form the stresses).
-    fn mesh_stress_phase(&mut self, phase: StressPhase) -> Result<(), String> {
+    fn mesh_stress_phase(&mut self, phase: StressPhase) -> Result<(), EngineError> {
         let k_finnie = match phase {
             StressPhase::Setup => self.property("k_finnie").map(|(_, cols, v)| {
                 v.chunks(cols.max(1))
@@ -1555,7 +1560,7 @@ impl Simulation {
                     match &k_finnie {
                         Some(k) => st.k_finnie = k.clone(),
                         None if st.wear_on => {
-                            return Err(format!("Fix mesh/surface/stress (id {}): wear finnie needs fix property/global k_finnie peratomtypepair", f.id))
+                            return Err(format!("Fix mesh/surface/stress (id {}): wear finnie needs fix property/global k_finnie peratomtypepair", f.id).into())
                         }
                         None => {}
                     }
@@ -1572,7 +1577,7 @@ impl Simulation {
                             st.wear[t],
                             st.sigma_n.get(t).copied().unwrap_or(0.0),
                             st.sigma_t.get(t).copied().unwrap_or(0.0)
-                        ));
+                        ).into());
                     }
                 }
             }
@@ -1672,7 +1677,7 @@ impl Simulation {
     }
 
     /// A dry run's `run`: LIGGGHTS's init checks of particles and neighbour bins, no step.
-    pub fn check_run(&self) -> Result<(), String> {
+    pub fn check_run(&self) -> Result<(), EngineError> {
         self.check_run_init()
     }
 
@@ -1686,7 +1691,11 @@ impl Simulation {
     /// `fix adapt ... atom diameter v_name` (LIGGGHTS's pre_force, and setup_pre_force when
     /// `setup`): every N steps set the diameters of the group's particles from the variable,
     /// keeping each particle's density.
-    fn adapt_radii(&mut self, setup: bool, vars: &mut dyn VariableSource) -> Result<(), String> {
+    fn adapt_radii(
+        &mut self,
+        setup: bool,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
         use crate::engine::fixes::ForceValue;
         use std::f64::consts::PI;
         for k in 0..self.fixes.len() {
@@ -1733,11 +1742,13 @@ impl Simulation {
     }
 
     /// Evaluate the variables and regions of `fix setforce`/`addforce` for this step.
-    fn resolve_force_fixes(&mut self, vars: &mut dyn VariableSource) -> Result<(), String> {
+    fn resolve_force_fixes(&mut self, vars: &mut dyn VariableSource) -> Result<(), EngineError> {
         use crate::engine::fixes::ForceValue;
         if self.regions.list.iter().any(|r| r.is_dynamic()) {
             let mut regions = std::mem::take(&mut self.regions);
-            let result = regions.reshape(Some(self.step), &mut |name| vars.equal(self, name));
+            let result = regions.reshape(Some(self.step), &mut |name| {
+                vars.equal(self, name).map_err(EngineError::from)
+            });
             self.regions = regions;
             result?;
         }
@@ -1774,7 +1785,7 @@ impl Simulation {
     }
 
     /// Evaluate the variables of `fix move variable` for this step (before the moves).
-    fn resolve_move_fixes(&mut self, vars: &mut dyn VariableSource) -> Result<(), String> {
+    fn resolve_move_fixes(&mut self, vars: &mut dyn VariableSource) -> Result<(), EngineError> {
         use crate::engine::fixes::ForceValue;
         for k in 0..self.fixes.len() {
             let values: Vec<ForceValue> = match &self.fixes[k].kind {
@@ -1826,7 +1837,7 @@ impl Simulation {
         update: bool,
         want_virial: bool,
         vars: &mut dyn VariableSource,
-    ) -> Result<(), String> {
+    ) -> Result<(), EngineError> {
         self.reset_clump_forces();
         let p = &mut self.particles;
         p.f.iter_mut().for_each(|f| *f = [0.0; 3]);
@@ -1893,7 +1904,7 @@ impl Simulation {
         nsteps: i64,
         out: Sink<'_>,
         vars: &mut dyn VariableSource,
-    ) -> Result<(), String> {
+    ) -> Result<(), EngineError> {
         self.run_with_setup(nsteps, true, out, vars)
     }
 
@@ -1905,7 +1916,7 @@ impl Simulation {
         pre: bool,
         out: Sink<'_>,
         vars: &mut dyn VariableSource,
-    ) -> Result<(), String> {
+    ) -> Result<(), EngineError> {
         self.accel.settle_threads();
         let accel = self.accel.clone();
         let mut job = crate::engine::accel::Handed((self, out, vars));
@@ -1922,7 +1933,7 @@ impl Simulation {
         pre: bool,
         out: Sink<'_>,
         vars: &mut dyn VariableSource,
-    ) -> Result<(), String> {
+    ) -> Result<(), EngineError> {
         if !self.domain.exists {
             return Err("Run command before simulation box is defined".into());
         }
@@ -2159,7 +2170,7 @@ impl Simulation {
     }
 
     /// First run's setup of `fix insert/stream`: face normal, normal velocity, interval.
-    fn setup_streams(&mut self, out: Sink<'_>) -> Result<(), String> {
+    fn setup_streams(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
         use crate::engine::insert::{Face, InsertStream, Velocity};
         let dt = self.dt;
         for k in 0..self.fixes.len() {
@@ -2208,7 +2219,7 @@ impl Simulation {
                 (v_normal[0] * v_normal[0] + v_normal[1] * v_normal[1] + v_normal[2] * v_normal[2])
                     .sqrt();
             if vn < 1e-3 {
-                return Err(format!("Fix insert/stream (id {}): insertion velocity projected on face normal is < 1e-3", sf.id));
+                return Err(format!("Fix insert/stream (id {}): insertion velocity projected on face normal is < 1e-3", sf.id).into());
             }
             let rbound = dist.max_radius;
             let (every, extrude) = match (sf.extrude, sf.every) {
@@ -2217,11 +2228,12 @@ impl Simulation {
                         return Err(format!(
                             "Fix insert/stream (id {}): 'extrude_length' is too small",
                             sf.id
-                        ));
+                        )
+                        .into());
                     }
                     let every = ((l + 1e-14) / (dt * vn)) as i32 as i64;
                     if every == 0 {
-                        return Err(format!("Fix insert/stream (id {}): insertion velocity too high or extrude_length too low", sf.id));
+                        return Err(format!("Fix insert/stream (id {}): insertion velocity too high or extrude_length too low", sf.id).into());
                     }
                     (every, l)
                 }
@@ -2230,7 +2242,8 @@ impl Simulation {
                         return Err(format!(
                             "Fix insert/stream (id {}): 'insert_every' must be > 0",
                             sf.id
-                        ));
+                        )
+                        .into());
                     }
                     // particles travel `duration` steps (default: insert_every) in the zone
                     let duration = sf.duration.unwrap_or(e);
@@ -2238,11 +2251,12 @@ impl Simulation {
                         return Err(format!(
                             "Fix insert/stream (id {}): 'duration' > 'insert_every' not allowed",
                             sf.id
-                        ));
+                        )
+                        .into());
                     }
                     let l = duration as f64 * dt * vn;
                     if l < 2.0 * rbound {
-                        return Err(format!("Fix insert/stream (id {}): 'insert_every' or 'vel' is too small, or (bounding) radius of inserted particles too large", sf.id));
+                        return Err(format!("Fix insert/stream (id {}): 'insert_every' or 'vel' is too small, or (bounding) radius of inserted particles too large", sf.id).into());
                     }
                     (e, l)
                 }
@@ -2254,7 +2268,7 @@ impl Simulation {
                 Ok(n) => n,
                 Err(mass) => {
                     if mass / me > 2.0e9 {
-                        return Err(format!("Fix insert/stream (id {}): you are attempting to insert more than 2e9 particles. Reduce the mass to be inserted or increase the particle diameter", sf.id));
+                        return Err(format!("Fix insert/stream (id {}): you are attempting to insert more than 2e9 particles. Reduce the mass to be inserted or increase the particle diameter", sf.id).into());
                     }
                     ((mass + 1e-14) / me) as i64
                 }
@@ -2324,7 +2338,7 @@ impl Simulation {
     }
 
     /// `fix insert/stream` insertions due at this step.
-    fn insert_streams(&mut self, out: Sink<'_>) -> Result<(), String> {
+    fn insert_streams(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
         let step = self.step;
         for k in 0..self.fixes.len() {
             let due = matches!(&self.fixes[k].kind, FixKind::InsertStream(sf) if sf.state.as_ref().is_some_and(|s| s.next == Some(step)));
@@ -2342,9 +2356,7 @@ impl Simulation {
                 .position(|f| f.id == dist_id)
                 .ok_or_else(|| format!("Fix insert: could not find distribution {dist_id}"))?;
             let FixKind::Distribution(dist) = &self.fixes[dk].kind else {
-                return Err(format!(
-                    "Fix insert: {dist_id} is not a particle distribution"
-                ));
+                return Err(format!("Fix insert: {dist_id} is not a particle distribution").into());
             };
             let mut dist = dist.clone();
             let (x, periodic, box_changes) = self.insert_world();
@@ -2459,7 +2471,7 @@ impl Simulation {
     }
 
     /// First run's setup of `fix insert/pack`: region generator and volume.
-    fn setup_insertions(&mut self, out: Sink<'_>) -> Result<(), String> {
+    fn setup_insertions(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
         self.setup_streams(out)?;
         for k in 0..self.fixes.len() {
             let FixKind::InsertPack(ins) = &self.fixes[k].kind else {
@@ -2467,12 +2479,10 @@ impl Simulation {
             };
             let dist_id = ins.distribution.clone();
             let Some(dk) = self.fixes.iter().position(|f| f.id == dist_id) else {
-                return Err(format!("Fix insert: could not find distribution {dist_id}"));
+                return Err(format!("Fix insert: could not find distribution {dist_id}").into());
             };
             let FixKind::Distribution(dist) = &self.fixes[dk].kind else {
-                return Err(format!(
-                    "Fix insert: {dist_id} is not a particle distribution"
-                ));
+                return Err(format!("Fix insert: {dist_id} is not a particle distribution").into());
             };
             let dist = dist.clone();
             let (x, periodic, box_changes) = self.insert_world();
@@ -2498,7 +2508,7 @@ impl Simulation {
     }
 
     /// `fix insert/pack` insertions due at this step.
-    fn insert_particles(&mut self, out: Sink<'_>) -> Result<(), String> {
+    fn insert_particles(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
         let step = self.step;
         for k in 0..self.fixes.len() {
             let due =
@@ -2517,9 +2527,7 @@ impl Simulation {
                 .position(|f| f.id == dist_id)
                 .ok_or_else(|| format!("Fix insert: could not find distribution {dist_id}"))?;
             let FixKind::Distribution(dist) = &self.fixes[dk].kind else {
-                return Err(format!(
-                    "Fix insert: {dist_id} is not a particle distribution"
-                ));
+                return Err(format!("Fix insert: {dist_id} is not a particle distribution").into());
             };
             let mut dist = dist.clone();
             let (x, periodic, box_changes) = self.insert_world();
@@ -2572,7 +2580,7 @@ impl Simulation {
 
     /// LIGGGHTS's check at setup: mesh triangles whose centre lies outside the box (along
     /// directions with fixed or periodic faces) are an error.
-    fn check_meshes_in_box(&self) -> Result<(), String> {
+    fn check_meshes_in_box(&self) -> Result<(), EngineError> {
         let d = &self.domain;
         for f in &self.fixes {
             let FixKind::Mesh(m) = &f.kind else { continue };
@@ -2597,7 +2605,7 @@ impl Simulation {
                 return Err(format!(
                     "Mesh (id {}): {lost} mesh elements have been lost / left the domain. \nPlease use 'boundary m m m' or scale/translate/rotate the mesh or change its dynamics",
                     f.id
-                ));
+                ).into());
             }
         }
         Ok(())
@@ -2605,17 +2613,17 @@ impl Simulation {
 
     /// Write the current state as a restart file (`write_restart`): pair history taken from
     /// the current list, then positions wrapped and the box reset as LIGGGHTS does.
-    pub fn save_restart(&mut self, path: &str) -> Result<(), String> {
+    pub fn save_restart(&mut self, path: &str) -> Result<(), EngineError> {
         self.refuse_clump_restart()?;
         self.check_restart_size()?;
         let partners = self.contact_partners();
         self.pbc_and_box()?;
         let r = self.to_restart(&partners);
-        crate::io::restart::write(&r, path).map_err(|e| e.to_string())
+        crate::io::restart::write(&r, path).map_err(|e| EngineError::Invalid(e.to_string()))
     }
 
     /// The `restart` command's files, due at multiples of its interval (not at setup).
-    fn periodic_restart(&mut self) -> Result<(), String> {
+    fn periodic_restart(&mut self) -> Result<(), EngineError> {
         let mut paths = Vec::new();
         for out in self.restart_output.iter_mut().flatten() {
             if self.step % out.every != 0 || out.last == Some(self.step) {
@@ -2703,7 +2711,11 @@ impl Simulation {
             .position(|f| matches!(f.kind, FixKind::InsertStream(_)))
     }
 
-    fn thermo_line(&mut self, out: Sink<'_>, vars: &mut dyn VariableSource) -> Result<(), String> {
+    fn thermo_line(
+        &mut self,
+        out: Sink<'_>,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
         let values = self.thermo.values(self, vars)?;
         // a value that overflowed (an energy of huge, fast particles) ends the run rather
         // than printing inf or nan
@@ -2714,7 +2726,7 @@ impl Simulation {
                 self.step,
                 self.thermo.fields[k].keyword,
                 values[k]
-            ));
+            ).into());
         }
         let cpu = self.loop_clock.map_or(0.0, |t| t.elapsed().as_secs_f64());
         let thermo_file = &mut self.extras.thermo_file;
@@ -2727,7 +2739,7 @@ impl Simulation {
 
     /// Write one snapshot's text to dump `k`'s file (one file per step for `*` names,
     /// written whole through a temporary file).
-    fn write_dump_text(&mut self, k: usize, step: i64, text: &[u8]) -> Result<(), String> {
+    fn write_dump_text(&mut self, k: usize, step: i64, text: &[u8]) -> Result<(), EngineError> {
         use std::io::Write;
         let dump = &mut self.dumps[k];
         let multi = dump.file.contains('*');
@@ -2799,7 +2811,7 @@ impl Simulation {
         &mut self,
         setup: bool,
         vars: &mut dyn VariableSource,
-    ) -> Result<(), String> {
+    ) -> Result<(), EngineError> {
         let step = self.step;
         // a local compute is evaluated once per step, however many columns and dumps use it
         let mut local_rows: std::collections::HashMap<String, std::rc::Rc<(usize, Vec<f64>)>> =
@@ -2833,7 +2845,7 @@ impl Simulation {
                         return Err(format!(
                             "Dump local compute vector is accessed out-of-range: c_{cid}[{}] of a compute with {ncols} column(s)",
                             col + 1
-                        ));
+                        ).into());
                     }
                     data.push((evaluated, *col));
                 }

@@ -669,6 +669,18 @@ impl Default for ModelOptions {
     }
 }
 
+/// Why a contact model selection is refused.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum ModelError {
+    /// Invalid in LIGGGHTS too; the message is LIGGGHTS's.
+    #[error("{0}")]
+    Invalid(String),
+    /// Valid LIGGGHTS that regolith does not run: the model or setting as the deck names it
+    /// (`model luding`, `'heating_normal_hertz on'`).
+    #[error("{0} is not supported by regolith")]
+    Unsupported(String),
+}
+
 /// A parsed `model ... tangential ... cohesion ... rolling_friction ... surface ...`
 /// selection with its settings.
 #[derive(Debug, Clone, PartialEq)]
@@ -835,25 +847,27 @@ impl ModelSelection {
     }
 
     /// Apply `keyword on|off` settings (any order), with LIGGGHTS's messages for unknown
-    /// keywords and values; `on` for an energy/heating/bond option regolith lacks is an
-    /// error.
-    pub fn apply_settings(&mut self, args: &[&str]) -> Result<(), String> {
+    /// keywords and values; `on` for an energy/heating/bond option regolith lacks is
+    /// [`ModelError::Unsupported`] (the other settings still apply).
+    pub fn apply_settings(&mut self, args: &[&str]) -> Result<(), ModelError> {
         let known = self.settings();
         let mut unsupported: Option<&str> = None;
         let mut k = 0;
         while k < args.len() {
             let kw = args[k];
             let Some(&(_, supported)) = known.iter().find(|(n, _)| *n == kw) else {
-                return Err(format!("Unknown argument or wrong keyword order: '{kw}'"));
+                return Err(ModelError::Invalid(format!(
+                    "Unknown argument or wrong keyword order: '{kw}'"
+                )));
             };
             let val = args.get(k + 1).copied().unwrap_or("");
             let on = match val {
                 "on" => true,
                 "off" => false,
                 _ => {
-                    return Err(format!(
+                    return Err(ModelError::Invalid(format!(
                     "while parsing '{kw}' argument: unknown option or wrong keyword order: '{val}'"
-                ))
+                )))
                 }
             };
             if on && !supported {
@@ -876,15 +890,15 @@ impl ModelSelection {
             k += 2;
         }
         match unsupported {
-            Some(kw) => Err(format!("'{kw} on' is not supported by regolith")),
+            Some(kw) => Err(ModelError::Unsupported(format!("'{kw} on'"))),
             None => Ok(()),
         }
     }
 
     /// Parse a whole `pair_style gran` argument list (after `gran`): model keywords, then
     /// settings.
-    pub fn parse(args: &[&str]) -> Result<ModelSelection, String> {
-        let (mut sel, k) = ModelSelection::select(args)?;
+    pub fn parse(args: &[&str]) -> Result<ModelSelection, ModelError> {
+        let (mut sel, k) = ModelSelection::select(args).map_err(ModelError::Invalid)?;
         sel.apply_settings(&args[k..])?;
         Ok(sel)
     }
@@ -892,10 +906,10 @@ impl ModelSelection {
     /// The run-time sub-models of this selection.
     pub fn sub_models(
         &self,
-    ) -> Result<(AnyNormal, AnyTangential, AnyCohesion, AnyRolling), String> {
+    ) -> Result<(AnyNormal, AnyTangential, AnyCohesion, AnyRolling), ModelError> {
         let o = self.options;
         let unsupported =
-            |kind: &str, name: &str| format!("{kind} {name} is not supported by regolith");
+            |kind: &str, name: &str| ModelError::Unsupported(format!("{kind} {name}"));
         let normal = match self.normal.as_str() {
             "hertz" => AnyNormal::Hertz(Hertz {
                 tangential_damping: o.tangential_damping,
@@ -1060,7 +1074,7 @@ any_contact_model! {
 
 impl AnyContactModel {
     /// Build the model for a parsed selection (error for names regolith lacks).
-    pub fn new(sel: &ModelSelection) -> Result<Self, String> {
+    pub fn new(sel: &ModelSelection) -> Result<Self, ModelError> {
         let (n, t, c, r) = sel.sub_models()?;
         Ok(AnyContactModel::from_sub_models(n, t, c, r))
     }
@@ -1436,19 +1450,27 @@ mod tests {
         assert_eq!(any.history_len(), 3);
         // LIGGGHTS's messages
         assert_eq!(
-            ModelSelection::parse(&["model", "hertzz"]).unwrap_err(),
+            ModelSelection::parse(&["model", "hertzz"])
+                .unwrap_err()
+                .to_string(),
             "Invalid model specified (check for typos and enable at least one model)"
         );
         assert_eq!(
-            ModelSelection::parse(&["tangential", "off"]).unwrap_err(),
+            ModelSelection::parse(&["tangential", "off"])
+                .unwrap_err()
+                .to_string(),
             "Invalid model specified (check for typos and enable at least one model)"
         );
         assert_eq!(
-            ModelSelection::parse(&["model", "hertz", "tangential_reduce", "on"]).unwrap_err(),
+            ModelSelection::parse(&["model", "hertz", "tangential_reduce", "on"])
+                .unwrap_err()
+                .to_string(),
             "Unknown argument or wrong keyword order: 'tangential_reduce'"
         );
         assert_eq!(
-            ModelSelection::parse(&["model", "hertz", "limitForce", "yes"]).unwrap_err(),
+            ModelSelection::parse(&["model", "hertz", "limitForce", "yes"])
+                .unwrap_err()
+                .to_string(),
             "while parsing 'limitForce' argument: unknown option or wrong keyword order: 'yes'"
         );
         // keywords after the settings are not model keywords

@@ -872,8 +872,8 @@ pub(crate) fn model_and_material(
     sel: &Selection,
     input: &MaterialInput,
 ) -> Result<(AnyContactModel, Material), String> {
-    let model = AnyContactModel::new(sel)?;
-    let material = Material::new(input, &model.properties())?;
+    let model = AnyContactModel::new(sel).map_err(|e| e.to_string())?;
+    let material = Material::new(input, &model.properties()).map_err(|e| e.to_string())?;
     Ok((model, material))
 }
 

@@ -15,5 +15,6 @@ pub mod io;
 pub mod progress;
 pub mod script;
 pub mod session;
+pub mod state;
 pub mod sweep;
 pub mod util;

@@ -1,15 +1,10 @@
 //! `write_data` then `read_data` then `write_data` gives the same file (every per-atom value
 //! survives exactly: 17 significant digits), and a bad data file is refused with its line.
 
-use std::process::Command;
+mod common;
 
 fn run(dir: &std::path::Path, deck: &str) -> std::process::Output {
-    std::fs::write(dir.join("in.deck"), deck).unwrap();
-    Command::new(env!("CARGO_BIN_EXE_regolith"))
-        .args(["-in", "in.deck", "-log", "none"])
-        .current_dir(dir)
-        .output()
-        .unwrap()
+    common::run_deck(dir, "in.deck", deck, &[])
 }
 
 const HEAD: &str = "units si\natom_style granular\natom_modify map array\nboundary p p f\n\
@@ -17,9 +12,7 @@ newton off\ncommunicate single vel yes\n";
 
 #[test]
 fn data_files_round_trip_exactly() {
-    let dir = std::env::temp_dir().join(format!("regolith-data-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch_dir("data");
     let make = format!(
         "{HEAD}region reg block 0 0.1 0 0.1 0 0.1 units box\ncreate_box 2 reg\n\
          create_atoms 1 random 40 10007 NULL\nset group all diameter 0.004 density 2500\n\

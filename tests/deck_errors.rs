@@ -2,24 +2,17 @@
 //! the file and line, and what to write instead: `compute wall/gran/local` rules and the
 //! LIGGGHTS 2.x syntax of the contactModels tutorial's `in.oldModels`.
 
+mod common;
+
 use std::path::PathBuf;
-use std::process::Command;
 
 /// Run `deck` in a fresh directory (with `left.stl` beside it); (exit status, stderr).
 fn run(name: &str, deck: &str) -> (Option<i32>, String) {
-    let dir: PathBuf =
-        std::env::temp_dir().join(format!("regolith-deckerr-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch_dir(&format!("deckerr-{name}"));
     let stl = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("compat/engine/wall_gran_local.inputs/left.stl");
     std::fs::copy(stl, dir.join("left.stl")).unwrap();
-    std::fs::write(dir.join("in.t"), deck).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
-        .args(["-in", "in.t", "-log", "none"])
-        .current_dir(&dir)
-        .output()
-        .unwrap();
+    let out = common::run_deck(&dir, "in.t", deck, &[]);
     (
         out.status.code(),
         String::from_utf8_lossy(&out.stderr).into_owned(),

@@ -3,7 +3,7 @@
 //! (memory order; a partner already removed does not count), recomputed here by brute force.
 //! Debian's LIGGGHTS 3.8.0 itself removes the wrong atoms (see README, deviations).
 
-use std::process::Command;
+mod common;
 
 const CUT: f64 = 0.0029;
 
@@ -27,15 +27,8 @@ fn deck(stage: &str) -> String {
 
 /// Run a deck; return the (id, x, y, z) rows of its dump and its screen output.
 fn run(name: &str, deck: &str) -> (Vec<[f64; 4]>, String) {
-    let dir = std::env::temp_dir().join(format!("regolith-overlap-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("in.deck"), deck).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
-        .args(["-in", "in.deck", "-log", "none"])
-        .current_dir(&dir)
-        .output()
-        .unwrap();
+    let dir = common::scratch_dir(&format!("overlap-{name}"));
+    let out = common::run_deck(&dir, "in.deck", deck, &[]);
     assert!(
         out.status.success(),
         "{}",

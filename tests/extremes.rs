@@ -5,8 +5,9 @@
 //! them writes holds NaN or infinity. Each deck's result line is also LIGGGHTS's
 //! (Debian's liggghts 3.8.0 printed the same line for the same deck and variables).
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 /// Two spheres (radii R1 >= R2) meet head-on at v each from a gap of 0.05 R2 and part;
 /// the run ends two Hertz contact times after the touch. `drift` is the kinetic energy
@@ -71,23 +72,14 @@ print "RESULT drift ${drift} dp ${dp} steps ${nsteps}"
 "#;
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("regolith-extremes-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    common::scratch_dir(&format!("extremes-{name}"))
 }
 
 /// Run `deck` (text) in a fresh folder with `vars`; (exit code, stdout, stderr, folder).
 fn run(name: &str, deck: &str, vars: &[(&str, &str)]) -> (Option<i32>, String, String, PathBuf) {
     let dir = scratch(name);
-    std::fs::write(dir.join("in.deck"), deck).unwrap();
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_regolith"));
-    cmd.args(["-in", "in.deck", "-log", "none"])
-        .current_dir(&dir);
-    for (k, v) in vars {
-        cmd.args(["-var", k, v]);
-    }
-    let out = cmd.output().unwrap();
+    let args: Vec<&str> = vars.iter().flat_map(|&(k, v)| ["-var", k, v]).collect();
+    let out = common::run_deck(&dir, "in.deck", deck, &args);
     (
         out.status.code(),
         String::from_utf8_lossy(&out.stdout).into_owned(),

@@ -2,21 +2,15 @@
 //! clump in free fall keeps its shape exactly and its centre of mass follows g; two clumps
 //! colliding without walls or gravity keep their total momentum.
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 /// Runs `deck` in a fresh directory; returns the directory and stdout.
 fn run(name: &str, deck: &str, flags: &[&str]) -> (PathBuf, String) {
-    let dir = std::env::temp_dir().join(format!("regolith-ms-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let dir = common::scratch_dir(&format!("ms-{name}"));
     std::fs::create_dir_all(dir.join("post")).unwrap();
-    std::fs::write(dir.join("in.deck"), deck).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
-        .args(["-in", "in.deck", "-log", "none"])
-        .args(flags)
-        .current_dir(&dir)
-        .output()
-        .unwrap();
+    let out = common::run_deck(&dir, "in.deck", deck, flags);
     let stdout = String::from_utf8_lossy(&out.stdout).to_string();
     assert!(
         out.status.success(),
@@ -173,15 +167,8 @@ fn two_clumps_colliding_keep_their_momentum() {
 
 /// Runs `deck` and returns its exit code with stdout and stderr together.
 fn failing(name: &str, deck: &str) -> (Option<i32>, String) {
-    let dir = std::env::temp_dir().join(format!("regolith-ms-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("in.deck"), deck).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
-        .args(["-in", "in.deck", "-log", "none"])
-        .current_dir(&dir)
-        .output()
-        .unwrap();
+    let dir = common::scratch_dir(&format!("ms-{name}"));
+    let out = common::run_deck(&dir, "in.deck", deck, &[]);
     let _ = std::fs::remove_dir_all(dir);
     (
         out.status.code(),

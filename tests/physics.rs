@@ -1,20 +1,14 @@
 //! Physics checks that hold independently of LIGGGHTS: energy conservation of an elastic
 //! collision and the 5/7 rule of a sphere that stops sliding and rolls.
 
+mod common;
+
 use std::path::PathBuf;
-use std::process::Command;
 
 /// Run `deck` in a fresh directory and return the numbers printed on lines starting `tag`.
 fn printed(name: &str, deck: &str, tag: &str) -> Vec<Vec<f64>> {
-    let dir = std::env::temp_dir().join(format!("regolith-physics-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("in.deck"), deck).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
-        .args(["-in", "in.deck", "-log", "none"])
-        .current_dir(&dir)
-        .output()
-        .unwrap();
+    let dir = common::scratch_dir(&format!("physics-{name}"));
+    let out = common::run_deck(&dir, "in.deck", deck, &[]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
         out.status.success(),

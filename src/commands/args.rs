@@ -3,6 +3,7 @@
 use crate::commands::error::{At, CommandError};
 use crate::commands::suggest::did_you_mean;
 use crate::commands::CommandLine;
+use crate::engine::error::EngineError;
 use crate::util::numbers::{inumeric, numeric};
 
 /// A command's arguments (after the command name).
@@ -43,6 +44,15 @@ impl<'a> Args<'a> {
     /// A "not supported yet" report pointing at argument `i`.
     pub fn unsupported(&self, i: usize, what: &str) -> CommandError {
         CommandError::unsupported(what, At::Arg(i))
+    }
+
+    /// The engine's refusal pointing at argument `i`: invalid input as [`Args::error`], a
+    /// feature regolith does not run yet as [`Args::unsupported`].
+    pub fn engine_error(&self, i: usize, e: EngineError) -> CommandError {
+        match e {
+            EngineError::Invalid(m) => self.error(i, m),
+            EngineError::Unsupported(what) => self.unsupported(i, &what),
+        }
     }
 
     /// An unknown keyword at `i`, with the nearest of `known`.

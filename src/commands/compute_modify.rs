@@ -1,55 +1,8 @@
-//! `compute_modify ID extra N | dynamic yes|no | thermo yes|no` and the temperature computes
-//! it mostly serves: `compute ID GROUP temp` and LIGGGHTS's default `thermo_temp` (and
-//! `thermo_kin_eng`, a `ke` compute), which exist in every deck as in LIGGGHTS 3.8.0.
+//! `compute_modify ID extra N | dynamic yes|no | thermo yes|no`: the settings of the
+//! temperature computes (see [`crate::engine::temperature`]).
 
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
-use crate::engine::computes::{Compute, ComputeKind};
-use crate::engine::contact::UnitStyle;
-use crate::engine::sim::Simulation;
-
-/// What `compute_modify` sets on one compute.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ComputeSettings {
-    /// Degrees of freedom subtracted from 3N (`extra`; default 3, the dimension).
-    pub extra: i64,
-    /// Count the group's atoms at every evaluation instead of at each run's setup.
-    pub dynamic: bool,
-    /// `thermo yes|no` (fix energies in compute pe; granular fixes add none).
-    pub thermo: Option<bool>,
-    /// Atoms of the group at the last run's setup (the count of a static compute).
-    pub setup_count: f64,
-}
-
-impl Default for ComputeSettings {
-    fn default() -> Self {
-        ComputeSettings {
-            extra: 3,
-            dynamic: false,
-            thermo: None,
-            setup_count: 0.0,
-        }
-    }
-}
-
-/// The computes LIGGGHTS defines before any command: `thermo_temp` (temp of all) and
-/// `thermo_kin_eng` (ke of all).
-pub fn default_computes() -> Vec<Compute> {
-    vec![
-        Compute {
-            id: "thermo_temp".into(),
-            style: "temp".into(),
-            group: 1,
-            kind: ComputeKind::Temp,
-        },
-        Compute {
-            id: "thermo_kin_eng".into(),
-            style: "ke".into(),
-            group: 1,
-            kind: ComputeKind::Ke,
-        },
-    ]
-}
 
 /// `compute_modify ID keyword value ...`.
 pub fn compute_modify(a: &Args, ctx: &mut Ctx) -> Result<(), CommandError> {
@@ -102,53 +55,4 @@ pub fn compute_modify(a: &Args, ctx: &mut Ctx) -> Result<(), CommandError> {
     }
     ctx.sim.extras.compute_settings.insert(id.to_string(), s);
     Ok(())
-}
-
-/// At a run's setup: temperature computes that are not dynamic count their group's atoms.
-pub fn setup_counts(sim: &mut Simulation) {
-    for c in &sim.computes {
-        if matches!(c.kind, ComputeKind::Temp) {
-            let n = sim
-                .particles
-                .mask
-                .iter()
-                .filter(|&&m| m & c.group != 0)
-                .count() as f64;
-            let entry = sim.extras.compute_settings.entry(c.id.clone()).or_default();
-            entry.setup_count = n;
-        }
-    }
-}
-
-/// LIGGGHTS's temperature of a compute temp (temperature): sum of m v^2 over the group,
-/// times mvv2e / (dof kB) with dof = 3N - extra (0 when dof is not positive).
-pub fn temperature(sim: &Simulation, c: &Compute) -> f64 {
-    let p = &sim.particles;
-    let mut t = 0.0;
-    let mut n = 0usize;
-    for i in 0..p.len() {
-        if p.mask[i] & c.group != 0 {
-            let v = p.v[i];
-            t += (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * p.mass[i];
-            n += 1;
-        }
-    }
-    let s = sim
-        .extras
-        .compute_settings
-        .get(&c.id)
-        .copied()
-        .unwrap_or_default();
-    let natoms = if s.dynamic { n as f64 } else { s.setup_count };
-    let mut dof = 3.0 * natoms;
-    dof -= s.extra as f64;
-    // LIGGGHTS's Boltzmann constants (energy per temperature) of its si and cgs units
-    let boltz = match sim.units {
-        UnitStyle::Si => 1.3806504e-23,
-        UnitStyle::Cgs => 1.3806504e-16,
-        // lj (the only other style a box can be made in): kB = 1
-        UnitStyle::Other => 1.0,
-    };
-    let tfactor = if dof > 0.0 { 1.0 / (dof * boltz) } else { 0.0 };
-    t * tfactor
 }

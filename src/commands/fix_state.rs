@@ -153,14 +153,14 @@ pub fn restore_fix_state(
                 }
             }
             FixKind::InsertStream(sf) => {
-                let r = InsertRestart::parse(&bytes).map_err(|m| bad(&m))?;
+                let r = InsertRestart::parse(&bytes).map_err(|e| bad(&e.to_string()))?;
                 if r.next != 0 {
                     sf.start = r.next;
                 }
                 sf.restored = Some(r);
             }
             FixKind::InsertPack(ins) => {
-                let r = InsertRestart::parse(&bytes).map_err(|m| bad(&m))?;
+                let r = InsertRestart::parse(&bytes).map_err(|e| bad(&e.to_string()))?;
                 ins.rng.reset(r.rng_state).map_err(|m| a.error(2, &m))?;
                 ins.inserted = r.inserted;
                 ins.inserted_mass = r.mass;

@@ -24,6 +24,7 @@ pub mod suggest;
 pub mod velocity_vars;
 pub mod write_dump;
 
+use crate::engine::error::EngineError;
 use crate::engine::sim::Simulation;
 use crate::error::{Diagnostic, Location};
 use crate::script::interp::Output;
@@ -59,11 +60,13 @@ impl Ctx<'_> {
         let result = {
             let mut scope = crate::script::scope::Scope::new(self.vars, self.sys, self.sim);
             regions.reshape(step, &mut |name| {
-                scope.equal_variable(name).map_err(String::from)
+                scope
+                    .equal_variable(name)
+                    .map_err(|e| EngineError::Invalid(e.to_string()))
             })
         };
         self.sim.regions = regions;
-        result
+        result.map_err(|e| e.to_string())
     }
 
     /// Print an informational line to screen and log (not in check mode).
@@ -132,7 +135,7 @@ impl Engine {
     pub fn new() -> Engine {
         let mut sim = Simulation::default();
         // LIGGGHTS's computes of every deck (its Output constructor makes them)
-        sim.computes = compute_modify::default_computes();
+        sim.computes = crate::engine::temperature::default_computes();
         Engine {
             sim,
             diverged: false,

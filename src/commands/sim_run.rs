@@ -9,6 +9,10 @@ use crate::engine::sim::Dump;
 use crate::io::dump::Layout;
 use crate::script::system::Mode;
 
+mod compute;
+
+use compute::*;
+
 type Result = std::result::Result<(), CommandError>;
 
 /// The commands that drive and observe the run, and their handlers.
@@ -601,11 +605,11 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.error(0, "Run command stop value is before end of run"));
     }
     super::material_check::validate(a, ctx)?;
-    super::compute_modify::setup_counts(ctx.sim);
+    crate::engine::temperature::setup_counts(ctx.sim);
     if ctx.sys.mode == Mode::Check {
         // a dry run validates the deck but never steps: it makes LIGGGHTS's init checks, keeps
         // the restart files the run would write, and moves the step count to the run's end
-        ctx.sim.check_run().map_err(|m| a.error(0, &m))?;
+        ctx.sim.check_run().map_err(|e| a.engine_error(0, e))?;
         ctx.sim.init_heat().map_err(|m| a.error(0, &m))?;
         if let Some(m) = ctx.sim.new_margin() {
             ctx.sim.margin_notes.push(m);
@@ -629,7 +633,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     };
     ctx.sim
         .run_with_setup(nsteps, pre, &mut sink, &mut vars)
-        .map_err(|m| a.error(0, &m))
+        .map_err(|e| a.engine_error(0, e))
 }
 
 /// Check mode: the files `restart N ...` would write during a run of `nsteps` from the current
@@ -698,6 +702,7 @@ pub(super) fn gran_models(
     ),
     CommandError,
 > {
+    use crate::engine::contact::ModelError;
     use crate::engine::granular::Selection;
     let words: Vec<&str> = (start..a.len())
         .map(|i| a.word(i))
@@ -737,10 +742,10 @@ pub(super) fn gran_models(
         })
         .collect();
     let mut pending = None;
-    if let Err(m) = sel.apply_settings(&settings) {
-        match m.strip_suffix(" is not supported by regolith") {
+    if let Err(e) = sel.apply_settings(&settings) {
+        match e {
             // a valid LIGGGHTS setting regolith cannot run: the rest of the style stands
-            Some(setting) => {
+            ModelError::Unsupported(setting) => {
                 let at = (start + used..start + end)
                     .find(|&i| setting.starts_with(&format!("'{} ", a.word(i).unwrap_or(""))))
                     .unwrap_or(start + used);
@@ -749,16 +754,18 @@ pub(super) fn gran_models(
                     &format!("{what} setting {}", setting.trim_matches('\'')),
                 ));
             }
-            None => {
+            ModelError::Invalid(m) => {
                 return Err(a.error(start + used, &m).with_help(format!(
                     "{what}: model keywords go in the order model, tangential, cohesion, rolling_friction, surface, then on/off settings"
                 )))
             }
         }
     }
-    crate::engine::contact::AnyContactModel::new(&sel).map_err(|m| {
-        let m = m.trim_end_matches(" is not supported by regolith");
-        a.unsupported(start, &format!("{what} {m}"))
+    // every model name the engine lacks is valid LIGGGHTS
+    crate::engine::contact::AnyContactModel::new(&sel).map_err(|e| match e {
+        ModelError::Unsupported(m) | ModelError::Invalid(m) => {
+            a.unsupported(start, &format!("{what} {m}"))
+        }
     })?;
     Ok((sel, start + end, pending))
 }
@@ -815,228 +822,6 @@ fn soft_hard(name: &str, a: &Args, ctx: &mut Ctx) -> Result {
         ctx.sim.soft_hard.1 = on;
     }
     Ok(())
-}
-
-fn compute(a: &Args, ctx: &mut Ctx) -> Result {
-    use crate::engine::computes::{Compute, ComputeKind};
-    a.count(3..=usize::MAX, "compute ID GROUP STYLE ...")?;
-    let (id, group, style) = (a.word(0)?, a.word(1)?, a.word(2)?);
-    if !ctx.sim.domain.exists {
-        return Err(a.error(0, "Compute command before simulation box is defined"));
-    }
-    let bit = ctx
-        .sim
-        .group_bit(group)
-        .ok_or_else(|| a.error(1, "Could not find compute group ID"))?;
-    if ctx.sim.computes.iter().any(|c| c.id == id) {
-        return Err(a.error(0, "Reuse of compute ID"));
-    }
-    let no_keywords = |kind: ComputeKind| {
-        if a.len() > 3 {
-            Err(a.error(3, format!("Illegal compute {style} command")))
-        } else {
-            Ok(kind)
-        }
-    };
-    registry::require_style(a, "compute")?;
-    let kind = match style {
-        "erotate/sphere" => no_keywords(ComputeKind::ErotateSphere)?,
-        // LIGGGHTS's `erotate` sums erotate/sphere (and multisphere) of its group
-        "erotate" => {
-            if ctx.sim.computes.iter().any(|c| c.style == "erotate") {
-                // each adds an internal compute `erotate_sphere_`
-                return Err(a.error(0, "Reuse of compute ID").with_help(
-                    "LIGGGHTS 3.8.0's compute erotate defines an internal compute \
-                     erotate_sphere_, so a deck can have only one; use compute erotate/sphere",
-                ));
-            }
-            no_keywords(ComputeKind::ErotateSphere)?
-        }
-        "pe" => super::computes_extra::pe(a, ctx)?,
-        "ke" => no_keywords(ComputeKind::Ke)?,
-        "temp" => no_keywords(ComputeKind::Temp)?,
-        "ke/atom" => no_keywords(ComputeKind::KeAtom)?,
-        "contact/atom" => {
-            let mut skin = 0.0;
-            if a.len() > 3 {
-                if a.len() != 5 {
-                    return Err(a.error(3, "Illegal compute contact/atom command"));
-                }
-                if a.word(3)? != "skin" {
-                    return Err(a.error(
-                        3,
-                        "Illegal compute contact/atom command, expecting keyword 'skin'",
-                    ));
-                }
-                skin = a.real(4)?;
-            }
-            ComputeKind::ContactAtom { skin }
-        }
-        "com" => no_keywords(ComputeKind::Com)?,
-        "nparticles/tracer/region" => super::computes_extra::nparticles_tracer_region(a, ctx)?,
-        "stress/atom" => {
-            let (mut ke, mut pair) = (a.len() == 3, a.len() == 3);
-            for i in 3..a.len() {
-                match a.word(i)? {
-                    "ke" => ke = true,
-                    "pair" | "virial" => pair = true,
-                    // no bonds, angles, kspace or virial-contributing fixes exist in a
-                    // granular run: these parts are zero
-                    "bond" | "angle" | "dihedral" | "improper" | "kspace" | "fix" => {}
-                    _ => return Err(a.error(i, "Illegal compute stress/atom command")),
-                }
-            }
-            ComputeKind::StressAtom { ke, pair }
-        }
-        "property/atom" => {
-            if a.len() < 4 {
-                return Err(a.error(2, "Illegal compute property/atom command"));
-            }
-            let mut cols = Vec::new();
-            for i in 3..a.len() {
-                let w = a.word(i)?;
-                let col = match crate::io::dump::Column::parse(w) {
-                    Ok(crate::io::dump::Column::Reference(_)) | Err(_) => {
-                        return Err(a.unsupported(i, &format!("compute property/atom {w}")))
-                    }
-                    Ok(c) => c,
-                };
-                cols.push(col);
-            }
-            ComputeKind::PropertyAtom(cols)
-        }
-        "reduce" => compute_reduce(a, ctx)?,
-        "pair/gran/local" => {
-            use crate::engine::computes::LocalField;
-            if ctx.sim.step > 0 && !ctx.sim.restart_in_progress {
-                return Err(a.error(
-                    2,
-                    "Compute pair/gran/local: Need to define this compute before first run",
-                ));
-            }
-            let mut fields = Vec::new();
-            for i in 3..a.len() {
-                let w = a.word(i)?;
-                match LocalField::parse(w) {
-                    Some(LocalField::HeatFlux) => {
-                        return Err(a.unsupported(i, "compute pair/gran/local heatFlux"))
-                    }
-                    Some(f) => fields.push(f),
-                    None if w == "verbose" => {}
-                    None if matches!(w, "heatFlux" | "ms_id") => {
-                        return Err(a.unsupported(i, &format!("compute pair/gran/local {w}")))
-                    }
-                    None => {
-                        return Err(
-                            a.error(i, "Compute pair/gran/local: illegal/unrecognized keyword")
-                        )
-                    }
-                }
-            }
-            if a.len() == 3 {
-                fields = LocalField::defaults();
-            }
-            if ctx
-                .sim
-                .computes
-                .iter()
-                .any(|c| matches!(c.kind, ComputeKind::PairGranLocal(_)))
-            {
-                return Err(a.error(2, "Pair gran allows only one compute of type pair/local"));
-            }
-            fields.sort();
-            fields.dedup();
-            ComputeKind::PairGranLocal(fields)
-        }
-        "wall/gran/local" => crate::commands::fix_state::wall_gran_local(a, ctx, id)?,
-        other => return Err(a.unsupported(2, &format!("compute {other}"))),
-    };
-    ctx.sim.computes.push(Compute {
-        id: id.into(),
-        style: style.into(),
-        group: bit,
-        kind,
-    });
-    Ok(())
-}
-
-/// `compute ID GROUP reduce MODE input1 input2 ...` (inputs: atom attributes or per-atom
-/// computes `c_ID`, `c_ID[N]`).
-fn compute_reduce(
-    a: &Args,
-    ctx: &Ctx,
-) -> std::result::Result<crate::engine::computes::ComputeKind, CommandError> {
-    use crate::engine::computes::{column_of, ComputeKind, Input, ReduceMode};
-    if a.len() < 5 {
-        return Err(a.error(2, "Illegal compute reduce command"));
-    }
-    let mode = match a.word(3)? {
-        "sum" => ReduceMode::Sum,
-        "min" => ReduceMode::Min,
-        "max" => ReduceMode::Max,
-        "ave" => ReduceMode::Ave,
-        "region" => return Err(a.unsupported(3, "compute reduce/region")),
-        _ => return Err(a.error(3, "Illegal compute reduce command")),
-    };
-    let mut inputs = Vec::new();
-    for i in 4..a.len() {
-        let w = a.word(i)?;
-        if w == "replace" {
-            return Err(a.unsupported(i, "compute reduce replace"));
-        }
-        if let Some(body) = w.strip_prefix("c_") {
-            let (id, index) = match body.split_once('[') {
-                Some((id, rest)) => {
-                    let k = rest
-                        .strip_suffix(']')
-                        .and_then(|k| k.parse::<usize>().ok())
-                        .ok_or_else(|| a.error(i, "Illegal compute reduce command"))?;
-                    (id, Some(k))
-                }
-                None => (body, None),
-            };
-            let c = ctx
-                .sim
-                .computes
-                .iter()
-                .find(|c| c.id == id)
-                .ok_or_else(|| a.error(i, "Compute ID for compute reduce does not exist"))?;
-            column_of(c, index).map_err(|m| a.error(i, &m))?;
-            inputs.push(Input::Compute(id.to_string(), index));
-            continue;
-        }
-        if let Some(name) = w.strip_prefix("v_") {
-            match ctx.vars.get(name).map(|v| v.style) {
-                Some(crate::script::variables::Style::Atom) => {}
-                Some(_) => {
-                    return Err(a.error(i, "Compute reduce variable is not atom-style variable"))
-                }
-                None => return Err(a.error(i, "Variable name for compute reduce does not exist")),
-            }
-            inputs.push(Input::Variable(name.to_string()));
-            continue;
-        }
-        if w.starts_with("f_") {
-            return Err(a.unsupported(i, "compute reduce of fixes"));
-        }
-        match crate::io::dump::Column::parse(w) {
-            Ok(crate::io::dump::Column::Reference(_)) | Err(_) => {
-                return Err(a.error(i, "Illegal compute reduce command"))
-            }
-            Ok(c) => inputs.push(Input::Atom(c)),
-        }
-    }
-    Ok(ComputeKind::Reduce { mode, inputs })
-}
-
-fn uncompute(a: &Args, ctx: &mut Ctx) -> Result {
-    a.count(1..=1, "uncompute ID")?;
-    remove_by_id(
-        &mut ctx.sim.computes,
-        |c| &c.id,
-        a,
-        "Could not find uncompute ID",
-    )
 }
 
 /// Remove the item whose ID is the command's first argument, or fail with `missing`.

@@ -1,6 +1,7 @@
 //! `fix buoyancy`: the weight of the displaced liquid below a level plane, as LIGGGHTS 3.8.0
 //! adds it in `post_force` (partly immersed spheres displace their immersed cap).
 
+use crate::engine::error::EngineError;
 use crate::engine::fixes::FixKind;
 use crate::engine::particles::Particles;
 
@@ -63,7 +64,7 @@ impl Buoyancy {
 
 /// LIGGGHTS's checks at a run's setup: exactly one `fix gravity`, along each buoyancy fix's
 /// `dim`.
-pub fn check(fixes: &[crate::engine::fixes::Fix]) -> Result<(), String> {
+pub fn check(fixes: &[crate::engine::fixes::Fix]) -> Result<(), EngineError> {
     let gravities: Vec<[f64; 3]> = fixes
         .iter()
         .filter_map(|f| match &f.kind {
@@ -75,7 +76,7 @@ pub fn check(fixes: &[crate::engine::fixes::Fix]) -> Result<(), String> {
         let FixKind::Buoyancy(b) = &f.kind else {
             continue;
         };
-        let fail = |m: &str| format!("Fix buoyancy (id {}): {m}", f.id);
+        let fail = |m: &str| EngineError::from(format!("Fix buoyancy (id {}): {m}", f.id));
         if gravities.len() != 1 {
             return Err(fail("need exactly one fix gravity"));
         }

@@ -8,12 +8,12 @@
 //! (`set_v`). The operations follow LIGGGHTS's order so that the arithmetic agrees to the bit.
 
 use crate::engine::domain::Domain;
+use crate::engine::error::EngineError;
 use crate::engine::multisphere::ClumpTemplate;
 use crate::engine::particles::Particles;
 use crate::engine::rigid_body::{Body, Vec3};
+pub use crate::state::bodies::{body_array, body_tags, is_member, BODY_ARRAY};
 
-/// Name of the per-particle array holding the body tag (-1: not in a body).
-pub const BODY_ARRAY: &str = "multisphere_body";
 /// Name of the per-particle array holding the body-frame offset (length).
 pub const DISPLACE_ARRAY: &str = "multisphere_displace";
 
@@ -28,22 +28,6 @@ pub struct Clumps {
     pub r_bound: Vec<f64>,
     /// Largest body tag ever given (tags are never reused).
     pub max_tag: i64,
-}
-
-/// Index of the body-tag array in `p.extra`, if any particle array exists for it.
-pub fn body_array(p: &Particles) -> Option<usize> {
-    p.extra.iter().position(|e| e.name == BODY_ARRAY)
-}
-
-/// The body tags of the particles (None when no clump was ever created).
-pub fn body_tags(p: &Particles) -> Option<&[f64]> {
-    body_array(p).map(|k| &p.extra[k].data[..])
-}
-
-/// True if particle `i` belongs to a body (`tags` from [`body_tags`]).
-#[inline]
-pub fn is_member(tags: Option<&[f64]>, i: usize) -> bool {
-    tags.is_some_and(|t| t[i] >= 0.0)
 }
 
 /// The two per-particle arrays (body tag, offset), created on first use: particles that
@@ -326,7 +310,7 @@ impl crate::engine::sim::Simulation {
         v: Vec3,
         omega: Vec3,
         group: u32,
-    ) -> Result<(), String> {
+    ) -> Result<(), EngineError> {
         let Some(ms) = clumps_in(&mut self.fixes) else {
             return Err(
                 "Multi-sphere particle inserted: You have to use exactly one fix multisphere."
@@ -368,7 +352,7 @@ impl crate::engine::sim::Simulation {
     }
 
     /// Restart files do not hold the bodies yet.
-    pub(crate) fn refuse_clump_restart(&self) -> Result<(), String> {
+    pub(crate) fn refuse_clump_restart(&self) -> Result<(), EngineError> {
         match self.clumps() {
             Some(ms) if !ms.bodies.is_empty() => Err(
                 "write_restart with multisphere bodies is not supported yet (the bodies' state is not written)"

@@ -2,10 +2,12 @@
 //! output, formulas and dumps, with LIGGGHTS's arithmetic.
 
 use crate::engine::domain::Domain;
+use crate::engine::error::EngineError;
 use crate::engine::integrate::SPHERE_INERTIA;
 use crate::engine::particles::Particles;
 use crate::engine::sim::{Simulation, VariableSource};
 use crate::io::dump::Column;
+pub use crate::state::local_field::LocalField;
 
 /// What a compute calculates.
 #[derive(Debug, Clone, PartialEq)]
@@ -56,78 +58,6 @@ pub enum ComputeKind {
         /// ID of the mesh wall fix.
         wall: String,
     },
-}
-
-/// The per-contact fields of `compute pair/gran/local`, in LIGGGHTS's column order.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub enum LocalField {
-    /// `pos`: x_i, x_j (6 columns, length).
-    Pos,
-    /// `vel`: v_i, v_j (6 columns, velocity).
-    Vel,
-    /// `id`: ID of i, ID of j, 1 if the contact crosses a periodic face (3 columns).
-    Id,
-    /// `force`: force on i (3 columns, force).
-    Force,
-    /// `force_normal`: its component along x_j - x_i (3 columns).
-    ForceNormal,
-    /// `force_tangential`: the rest (3 columns).
-    ForceTangential,
-    /// `torque`: torque on i (3 columns, force length).
-    Torque,
-    /// `torque_normal` (3 columns).
-    TorqueNormal,
-    /// `torque_tangential` (3 columns).
-    TorqueTangential,
-    /// `history`: the contact history values.
-    History,
-    /// `contactArea`: the circular lens area (area).
-    ContactArea,
-    /// `delta`: overlap (length).
-    Delta,
-    /// `heatFlux`: conductive heat flux (power); 0 without heat transfer.
-    HeatFlux,
-    /// `contactPoint`: (x_i r_j + x_j r_i)/(r_i + r_j) (3 columns, length).
-    ContactPoint,
-}
-
-impl LocalField {
-    /// Parse a keyword of `compute pair/gran/local`.
-    pub fn parse(word: &str) -> Option<LocalField> {
-        Some(match word {
-            "pos" => LocalField::Pos,
-            "vel" => LocalField::Vel,
-            "id" => LocalField::Id,
-            "force" => LocalField::Force,
-            "force_normal" => LocalField::ForceNormal,
-            "force_tangential" => LocalField::ForceTangential,
-            "torque" => LocalField::Torque,
-            "torque_normal" => LocalField::TorqueNormal,
-            "torque_tangential" => LocalField::TorqueTangential,
-            "history" => LocalField::History,
-            "contactArea" => LocalField::ContactArea,
-            "delta" => LocalField::Delta,
-            "heatFlux" => LocalField::HeatFlux,
-            "contactPoint" => LocalField::ContactPoint,
-            _ => return None,
-        })
-    }
-
-    /// LIGGGHTS's selection without keywords: pos vel id force torque history contactArea.
-    pub fn defaults() -> Vec<LocalField> {
-        use LocalField::*;
-        vec![Pos, Vel, Id, Force, Torque, History, ContactArea]
-    }
-
-    /// Columns this field adds (`history` adds the model's history length).
-    pub fn width(self, history: usize) -> usize {
-        match self {
-            LocalField::Pos | LocalField::Vel => 6,
-            LocalField::History => history,
-            LocalField::ContactArea | LocalField::Delta | LocalField::HeatFlux => 1,
-            _ => 3,
-        }
-    }
 }
 
 /// The reductions of `compute reduce`.
@@ -253,7 +183,11 @@ impl Compute {
     }
 
     /// The compute's global scalar.
-    pub fn scalar(&self, sim: &Simulation, vars: &mut dyn VariableSource) -> Result<f64, String> {
+    pub fn scalar(
+        &self,
+        sim: &Simulation,
+        vars: &mut dyn VariableSource,
+    ) -> Result<f64, EngineError> {
         let p = &sim.particles;
         Ok(match &self.kind {
             ComputeKind::ErotateSphere => {
@@ -273,7 +207,7 @@ impl Compute {
             ComputeKind::Ke => {
                 kinetic_energy(p, self.group) + sim.clumps().map_or(0.0, |c| c.kinetic_energy())
             }
-            ComputeKind::Temp => crate::commands::compute_modify::temperature(sim, self),
+            ComputeKind::Temp => crate::engine::temperature::temperature(sim, self),
             ComputeKind::PotentialEnergy => 0.0,
             ComputeKind::Reduce { mode, inputs } if inputs.len() == 1 => {
                 self.reduce(sim, *mode, &inputs[0], vars)?
@@ -282,7 +216,8 @@ impl Compute {
                 return Err(format!(
                     "Compute {} ({}) does not calculate a scalar",
                     self.id, self.style
-                ))
+                )
+                .into())
             }
         })
     }
@@ -293,12 +228,13 @@ impl Compute {
         index: usize,
         sim: &Simulation,
         vars: &mut dyn VariableSource,
-    ) -> Result<f64, String> {
+    ) -> Result<f64, EngineError> {
         if index == 0 || index > self.vector_len() {
             return Err(format!(
                 "Compute {} ({}) has no global vector element {index}",
                 self.id, self.style
-            ));
+            )
+            .into());
         }
         match &self.kind {
             ComputeKind::Com => {
@@ -321,7 +257,7 @@ impl Compute {
         mode: ReduceMode,
         input: &Input,
         vars: &mut dyn VariableSource,
-    ) -> Result<f64, String> {
+    ) -> Result<f64, EngineError> {
         let p = &sim.particles;
         let values: Box<dyn Fn(usize) -> f64> = match input {
             Input::Atom(col) => {
@@ -366,7 +302,7 @@ impl Compute {
     }
 
     /// Rows of a local compute: (columns per row, values row-major).
-    pub fn local(&self, sim: &Simulation) -> Result<(usize, Vec<f64>), String> {
+    pub fn local(&self, sim: &Simulation) -> Result<(usize, Vec<f64>), EngineError> {
         if let ComputeKind::WallGranLocal { fields, wall } = &self.kind {
             return self.wall_local(sim, fields, wall);
         }
@@ -374,7 +310,8 @@ impl Compute {
             return Err(format!(
                 "Compute {} ({}) does not calculate local values",
                 self.id, self.style
-            ));
+            )
+            .into());
         };
         let Some(pair) = sim.pair.as_ref() else {
             return Err("compute pair/gran/local needs a granular pair style".into());
@@ -510,7 +447,7 @@ impl Compute {
         sim: &Simulation,
         fields: &[LocalField],
         wall: &str,
-    ) -> Result<(usize, Vec<f64>), String> {
+    ) -> Result<(usize, Vec<f64>), EngineError> {
         let k = sim
             .fixes
             .iter()
@@ -592,7 +529,7 @@ impl Compute {
         &self,
         sim: &Simulation,
         vars: &mut dyn VariableSource,
-    ) -> Result<PerAtom, String> {
+    ) -> Result<PerAtom, EngineError> {
         let _ = vars; // no per-atom compute of regolith reads variables yet
         let p = &sim.particles;
         let n = p.len();
@@ -681,7 +618,8 @@ impl Compute {
                 return Err(format!(
                     "Compute {} ({}) does not calculate per-atom values",
                     self.id, self.style
-                ))
+                )
+                .into())
             }
         }
         Ok(PerAtom { columns, values })
@@ -689,22 +627,23 @@ impl Compute {
 }
 
 /// The 0-based column of `c_ID` / `c_ID[N]` of a per-atom compute, with LIGGGHTS's checks.
-pub fn column_of(c: &Compute, index: Option<usize>) -> Result<usize, String> {
+pub fn column_of(c: &Compute, index: Option<usize>) -> Result<usize, EngineError> {
     let cols = c.per_atom_columns();
     match index {
         _ if cols == 0 => Err(format!(
             "Compute {} ({}) does not calculate per-atom values",
             c.id, c.style
-        )),
+        )
+        .into()),
         None if cols == 1 => Ok(0),
         None => Err(format!(
             "Compute {} ({}) calculates a per-atom array: give a column, c_{}[N]",
             c.id, c.style, c.id
-        )),
-        Some(k) if cols == 1 || k == 0 || k > cols => Err(format!(
-            "Compute {} ({}) has no per-atom column {k}",
-            c.id, c.style
-        )),
+        )
+        .into()),
+        Some(k) if cols == 1 || k == 0 || k > cols => {
+            Err(format!("Compute {} ({}) has no per-atom column {k}", c.id, c.style).into())
+        }
         Some(k) => Ok(k - 1),
     }
 }

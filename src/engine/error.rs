@@ -26,6 +26,12 @@ impl From<crate::util::numbers::NumberError> for EngineError {
     }
 }
 
+impl From<crate::util::random::SeedError> for EngineError {
+    fn from(e: crate::util::random::SeedError) -> EngineError {
+        EngineError::Invalid(e.to_string())
+    }
+}
+
 impl From<&str> for EngineError {
     fn from(message: &str) -> EngineError {
         EngineError::Invalid(message.to_string())

@@ -30,7 +30,7 @@ pub struct Extras {
     /// the round-off of its contact sums, on the exact path.
     pub neigh_binsize: f64,
     /// `compute_modify` settings (and setup atom counts of temperature computes) by ID.
-    pub compute_settings: HashMap<String, crate::commands::compute_modify::ComputeSettings>,
+    pub compute_settings: HashMap<String, crate::engine::temperature::ComputeSettings>,
     /// Fixes with per-atom state in the last restart file read (LIGGGHTS then refuses
     /// `change_box` without `force`).
     pub restart_peratom_fixes: usize,
@@ -51,7 +51,7 @@ impl crate::engine::sim::Simulation {
         &mut self,
         k: usize,
         vars: &mut dyn crate::engine::sim::VariableSource,
-    ) -> Result<(), String> {
+    ) -> Result<(), crate::engine::error::EngineError> {
         let mut others = std::mem::take(&mut self.dumps);
         self.dumps.push(others.remove(k));
         let result = self.write_dumps(false, vars);

@@ -6,6 +6,7 @@
 //! (the temperature, K, as a per-atom vector).
 
 use crate::engine::computes::PerAtom;
+use crate::engine::error::EngineError;
 use crate::engine::fixes::FixKind;
 use crate::engine::sim::Simulation;
 
@@ -22,7 +23,7 @@ fn width(kind: &FixKind) -> (usize, bool) {
 
 /// The 0-based column of a dump custom column `f_ID` / `f_ID[N]`, or LIGGGHTS's error for it
 /// (it checks them when the dump is defined).
-pub fn column(sim: &Simulation, id: &str, index: Option<usize>) -> Result<usize, String> {
+pub fn column(sim: &Simulation, id: &str, index: Option<usize>) -> Result<usize, EngineError> {
     let fix = sim
         .fixes
         .iter()
@@ -57,7 +58,7 @@ pub fn per_atom(
     sim: &Simulation,
     id: &str,
     index: Option<usize>,
-) -> Result<(PerAtom, usize), String> {
+) -> Result<(PerAtom, usize), EngineError> {
     let col = column(sim, id, index)?;
     let p = &sim.particles;
     match sim.fixes.iter().find(|f| f.id == id).map(|f| &f.kind) {

@@ -9,6 +9,7 @@
 //! `T += (heatFlux + heatSource) dt / (m c)`. Its global value is the thermal energy
 //! `sum c m T` (J) of all particles.
 
+use crate::engine::error::EngineError;
 use crate::engine::neighbor::Pair;
 use crate::engine::particles::Particles;
 
@@ -271,7 +272,7 @@ pub fn property_values(p: &Particles, id: &str, width: usize) -> Vec<f64> {
 impl crate::engine::sim::Simulation {
     /// At each run's start (LIGGGHTS's `init`): the heat fixes read the conductivities and
     /// capacities per type, and new property/atom fixes are no longer fresh.
-    pub(crate) fn init_heat(&mut self) -> Result<(), String> {
+    pub(crate) fn init_heat(&mut self) -> Result<(), EngineError> {
         use crate::engine::fixes::FixKind;
         let ntypes = self.ntypes as usize;
         let mut heat_styles: Vec<&str> = Vec::new();
@@ -284,16 +285,18 @@ impl crate::engine::sim::Simulation {
                 return Err(format!(
                     "Fix {} (id {}): cannot have more than one fix of this style",
                     f.style, f.id
-                ));
+                )
+                .into());
             }
             heat_styles.push(&f.style);
             if self.pair.is_none() && self.pair_selection.is_none() {
                 return Err(format!(
                     "Fix {} (id {}): needs a granular pair style to be used",
                     f.style, f.id
-                ));
+                )
+                .into());
             }
-            let per_type = |name: &str| -> Result<Vec<f64>, String> {
+            let per_type = |name: &str| -> Result<Vec<f64>, EngineError> {
                 let missing = || {
                     format!(
                         "Could not locate a fix/property storing value(s) for {name} as requested by {}.",
@@ -302,16 +305,15 @@ impl crate::engine::sim::Simulation {
                 };
                 let (style, _, values) = self.property(name).ok_or_else(missing)?;
                 if style != "peratomtype" || values.len() < ntypes {
-                    return Err(missing());
+                    return Err(missing().into());
                 }
                 Ok(values[..ntypes].to_vec())
             };
             let conductivity = per_type("thermalConductivity")?;
             if conductivity.iter().any(|&k| k < 0.0) {
-                return Err(format!(
-                    "Fix {}: Thermal conductivity must not be < 0",
-                    f.style
-                ));
+                return Err(
+                    format!("Fix {}: Thermal conductivity must not be < 0", f.style).into(),
+                );
             }
             let capacity = per_type("thermalCapacity")?;
             let FixKind::HeatGran(h) = &f.kind else {
@@ -345,8 +347,8 @@ impl crate::engine::sim::Simulation {
     fn overlap_ratios(
         &self,
         style: &str,
-        per_type: &dyn Fn(&str) -> Result<Vec<f64>, String>,
-    ) -> Result<Vec<f64>, String> {
+        per_type: &dyn Fn(&str) -> Result<Vec<f64>, EngineError>,
+    ) -> Result<Vec<f64>, EngineError> {
         let normal = self
             .pair_selection
             .as_ref()
@@ -359,7 +361,8 @@ impl crate::engine::sim::Simulation {
         } else {
             return Err(format!(
                 "Fix {style}: area_correction with normal model {normal}: not supported yet"
-            ));
+            )
+            .into());
         };
         let expo = 1.0 / exponent;
         let y = per_type("youngsModulus")?;
@@ -390,7 +393,11 @@ impl crate::engine::sim::Simulation {
     /// The global values of the heat fixes: `f_ID` of a heat fix is the thermal energy (J);
     /// a property/atom fix has no global value LIGGGHTS's thermo reads (its error). None for
     /// other fixes.
-    pub(crate) fn heat_value(&self, id: &str, index: Option<usize>) -> Option<Result<f64, String>> {
+    pub(crate) fn heat_value(
+        &self,
+        id: &str,
+        index: Option<usize>,
+    ) -> Option<Result<f64, EngineError>> {
         use crate::engine::fixes::FixKind;
         let f = self.fixes.iter().find(|f| f.id == id)?;
         match (&f.kind, index) {

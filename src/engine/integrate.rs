@@ -4,6 +4,7 @@
 
 use rayon::prelude::*;
 
+use crate::engine::error::EngineError;
 use crate::engine::particles::Particles;
 
 /// Below this many particles the per-particle stages stay on one thread (the fork-join cost
@@ -136,7 +137,7 @@ pub struct Gravity {
 
 impl Gravity {
     /// Gravity of `magnitude` along the direction (dx, dy, dz), normalised as LIGGGHTS does.
-    pub fn along(magnitude: f64, dir: [f64; 3], group: u32) -> Result<Gravity, String> {
+    pub fn along(magnitude: f64, dir: [f64; 3], group: u32) -> Result<Gravity, EngineError> {
         let length = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
         if length == 0.0 {
             return Err("Gravity direction vector = 0".into());

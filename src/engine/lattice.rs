@@ -3,6 +3,8 @@
 //! (x_box = scale * (a1 i + a2 j + a3 k) + spacing * origin, no reorientation), its
 //! spacings the extent of the unit cell's eight corners in x, y and z.
 
+use crate::engine::error::EngineError;
+
 /// A custom lattice's geometry.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cell {
@@ -29,7 +31,7 @@ fn cross(x: [f64; 3], y: [f64; 3]) -> [f64; 3] {
 impl Cell {
     /// The lattice of constant `scale` (length) and primitive vectors `a`; errors for
     /// collinear or degenerate vectors.
-    pub fn new(scale: f64, a: [[f64; 3]; 3], origin: [f64; 3]) -> Result<Cell, String> {
+    pub fn new(scale: f64, a: [[f64; 3]; 3], origin: [f64; 3]) -> Result<Cell, EngineError> {
         let dot = |v: [f64; 3]| v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
         if dot(cross(a[0], a[1])) == 0.0
             || dot(cross(a[1], a[2])) == 0.0

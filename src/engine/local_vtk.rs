@@ -2,6 +2,7 @@
 //! written as a VTK contact network.
 
 use crate::engine::computes::{ComputeKind, LocalField};
+use crate::engine::error::EngineError;
 use crate::engine::sim::Simulation;
 use crate::io::local_vtk::{write_contacts, ContactLayout};
 
@@ -14,7 +15,7 @@ pub fn local_fields(kind: &ComputeKind) -> Option<&[LocalField]> {
 }
 
 /// The VTK text of compute `cid`'s contacts at the current step.
-pub fn snapshot(sim: &Simulation, cid: &str) -> Result<Vec<u8>, String> {
+pub fn snapshot(sim: &Simulation, cid: &str) -> Result<Vec<u8>, EngineError> {
     let c = sim
         .computes
         .iter()
@@ -22,7 +23,7 @@ pub fn snapshot(sim: &Simulation, cid: &str) -> Result<Vec<u8>, String> {
         .ok_or_else(|| format!("Could not find dump local/gran/vtk compute ID {cid}"))?;
     let fields = local_fields(&c.kind)
         .ok_or_else(|| format!("compute {cid} is not a compute pair/gran/local"))?;
-    let (ncols, rows) = c.local(sim)?;
+    let (ncols, rows) = c.local(sim).map_err(|e| e.to_string())?;
     // the history columns are what the other fields leave of a row
     let fixed: usize = fields.iter().map(|f| f.width(0)).sum();
     let layout = ContactLayout::new(fields, ncols.saturating_sub(fixed))

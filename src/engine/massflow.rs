@@ -11,6 +11,7 @@
 use std::io::Write;
 use std::sync::Mutex;
 
+use crate::engine::error::EngineError;
 use crate::engine::mesh::TriMesh;
 use crate::engine::particles::Particles;
 
@@ -91,7 +92,12 @@ const SIDE_IN_PLANE: &str = "need to change 'vec_side', it is currently in or to
 impl Massflow {
     /// A fix measuring through `mesh` (its current triangles), or LIGGGHTS's error when
     /// `vec_side` lies (nearly) in the plane of the first triangle.
-    pub fn new(id: &str, mesh_id: &str, mesh: &TriMesh, side: Side) -> Result<Massflow, String> {
+    pub fn new(
+        id: &str,
+        mesh_id: &str,
+        mesh: &TriMesh,
+        side: Side,
+    ) -> Result<Massflow, EngineError> {
         let mut m = Massflow {
             mesh: mesh_id.to_string(),
             side,
@@ -123,7 +129,7 @@ impl Massflow {
     }
 
     /// The reference point and the outward normal from the first triangle.
-    fn set_reference(&mut self, mesh: &TriMesh) -> Result<(), String> {
+    fn set_reference(&mut self, mesh: &TriMesh) -> Result<(), EngineError> {
         let (Some(nodes), Some(&n)) = (mesh.nodes.first(), mesh.normal.first()) else {
             return Err("fix massflow/mesh: the mesh has no triangles".into());
         };
@@ -233,7 +239,7 @@ impl Massflow {
         dt: f64,
         time: f64,
         out: &mut dyn FnMut(&str),
-    ) -> Result<(), String> {
+    ) -> Result<(), EngineError> {
         if moving {
             self.set_reference(mesh)?;
         }
@@ -328,7 +334,7 @@ impl Massflow {
         i: usize,
         time: f64,
         out: &mut dyn FnMut(&str),
-    ) -> Result<(), String> {
+    ) -> Result<(), EngineError> {
         if !self.screen && self.file.is_none() {
             return Ok(());
         }
@@ -430,7 +436,7 @@ impl crate::engine::sim::Simulation {
 
     /// Rebuild the triangle lists of every `fix massflow/mesh` (after each pair-list build
     /// and at each run's setup, where a `vec_side` face must also be planar).
-    pub(crate) fn massflow_lists(&mut self, setup: bool) -> Result<(), String> {
+    pub(crate) fn massflow_lists(&mut self, setup: bool) -> Result<(), EngineError> {
         use crate::engine::fixes::FixKind;
         if !self
             .fixes
@@ -450,7 +456,7 @@ impl crate::engine::sim::Simulation {
                 continue;
             }
             let mut kind = std::mem::replace(&mut self.fixes[k].kind, FixKind::Settings);
-            let mut result = Ok(());
+            let mut result: Result<(), EngineError> = Ok(());
             if let FixKind::Massflow(mf) = &mut kind {
                 let moving = self
                     .fixes
@@ -470,7 +476,7 @@ impl crate::engine::sim::Simulation {
                         result = Err(format!(
                             "Fix massflow/mesh (id {}): requires a planar face mass flow measurement or using 'point_at_outlet'",
                             self.fixes[k].id
-                        ));
+                        ).into());
                     }
                     let p = &self.particles;
                     mf.rebuild(p, mesh, skin, &|i| order.bin(p.x[i]));
@@ -484,7 +490,7 @@ impl crate::engine::sim::Simulation {
 
     /// Every `fix massflow/mesh` in definition order after the first half-step (LIGGGHTS's
     /// `post_integrate`).
-    pub(crate) fn massflow_phase(&mut self, out: &mut dyn FnMut(&str)) -> Result<(), String> {
+    pub(crate) fn massflow_phase(&mut self, out: &mut dyn FnMut(&str)) -> Result<(), EngineError> {
         use crate::engine::fixes::FixKind;
         let (dt, time) = (self.dt, self.dt * self.step as f64);
         for k in 0..self.fixes.len() {

@@ -8,6 +8,7 @@
 //! unless two edges through it are colinear or none of its edges is active. Arithmetic is
 //! written in LIGGGHTS's order so contact forces agree to the last bit.
 
+use crate::engine::error::EngineError;
 use crate::io::stl::Triangle;
 
 type V3 = [f64; 3];
@@ -330,7 +331,12 @@ impl TriMesh {
     /// Build neighbours and edge and corner activity (LIGGGHTS's buildNeighbours), and run
     /// its quality checks; `box_lo`/`box_hi` is the simulation box (corners of nodes outside
     /// it stay active on every triangle). `name` names the mesh in errors.
-    pub fn build_topology(&mut self, box_lo: V3, box_hi: V3, name: &str) -> Result<(), String> {
+    pub fn build_topology(
+        &mut self,
+        box_lo: V3,
+        box_hi: V3,
+        name: &str,
+    ) -> Result<(), EngineError> {
         let n = self.len();
         self.edge_active = vec![[true; 3]; n];
         self.corner_active = vec![[true; 3]; n];
@@ -358,7 +364,7 @@ impl TriMesh {
                 return Err(format!(
                     "Mesh {name}: element {t} has {} neighbours sharing an edge, at most 5 are allowed (a non-manifold mesh)",
                     self.neighbors[t].len()
-                ));
+                ).into());
             }
         }
         for t in 0..n {
@@ -462,7 +468,7 @@ impl TriMesh {
     }
 
     /// LIGGGHTS's mesh quality checks (angles, duplicates).
-    fn quality_check(&self, name: &str) -> Result<(), String> {
+    fn quality_check(&self, name: &str) -> Result<(), EngineError> {
         let hard = (0.0573_f64 * std::f64::consts::PI / 180.).cos();
         let hard = hard.max(0.9999995);
         for t in 0..self.len() {
@@ -472,13 +478,14 @@ impl TriMesh {
                 if c >= hard {
                     return Err(format!(
                         "Mesh {name}: element {t} has an angle below 0.0573 degrees; fix the mesh"
-                    ));
+                    )
+                    .into());
                 }
                 if c > self.settings.curvature && !self.settings.curvature_tolerant {
                     return Err(format!(
                         "Mesh {name}: element {t} has an angle smaller than the curvature angle ({:.6} degrees); use 'curvature_tolerant yes' or a smaller 'curvature'",
                         self.settings.curvature.acos() * 180. / std::f64::consts::PI
-                    ));
+                    ).into());
                 }
             }
         }
@@ -489,7 +496,7 @@ impl TriMesh {
             if shared == 3 {
                 return Err(format!(
                     "Mesh {name}: elements {j} and {i} are duplicates; use 'heal auto_remove_duplicates' or fix the mesh"
-                ));
+                ).into());
             }
         }
         Ok(())

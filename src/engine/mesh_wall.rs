@@ -13,6 +13,7 @@ use crate::engine::contact::{
     CohesionModel, ContactKernel, ContactModel, Material, MaterialInput, NormalModel, RollingModel,
     TangentialModel, WallInput,
 };
+use crate::engine::error::EngineError;
 use crate::engine::granular::Selection;
 use crate::engine::mesh::TriMesh;
 use crate::engine::mesh_stress::StressContact;
@@ -541,12 +542,12 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
 pub fn build(
     sel: &Selection,
     input: &MaterialInput,
-) -> Result<Box<dyn MeshWallInteraction>, String> {
-    let model = crate::engine::contact::AnyContactModel::new(sel)?;
+) -> Result<Box<dyn MeshWallInteraction>, EngineError> {
+    let model = crate::engine::contact::AnyContactModel::new(sel).map_err(|e| e.to_string())?;
     if model.history_len() > MAX_HISTORY {
         return Err(format!(
             "fix wall/gran mesh: contact models with more than {MAX_HISTORY} history values are not supported"
-        ));
+        ).into());
     }
     let material = Material::new(input, &model.properties())?;
     struct Make(Material);

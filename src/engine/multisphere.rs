@@ -5,6 +5,7 @@
 //! template's Monte Carlo generator is a Park–Miller stream seeded with the fix's seed, and
 //! the draws are made in LIGGGHTS's order, so the numbers agree with LIGGGHTS's to the bit.
 
+use crate::engine::error::EngineError;
 use crate::util::random::RanPark;
 
 /// Randomised passes of the bounding-sphere construction (the smallest result is kept).
@@ -94,7 +95,7 @@ pub struct ClumpTemplate {
 
 /// Reads a clump file: lines `x y z r` (more words are ignored, `#` starts a comment, blank
 /// lines are skipped). Returns the spheres, unscaled (length).
-pub fn read_clump_file(text: &str, expected: usize) -> Result<Vec<[f64; 4]>, String> {
+pub fn read_clump_file(text: &str, expected: usize) -> Result<Vec<[f64; 4]>, EngineError> {
     let mut spheres = Vec::new();
     for (n, raw) in text.lines().enumerate() {
         let line = raw.split('#').next().unwrap_or("");
@@ -109,7 +110,7 @@ pub fn read_clump_file(text: &str, expected: usize) -> Result<Vec<[f64; 4]>, Str
             return Err(format!(
                 "Not enough arguments in line {} of clump file, need to specify [xcoo ycoo zcoo radius] in each line",
                 n + 1
-            ));
+            ).into());
         }
         let mut s = [0.0; 4];
         for (k, w) in words[..4].iter().enumerate() {
@@ -254,7 +255,7 @@ impl ClumpTemplate {
     /// Builds the template: bounding sphere, then (unless mass and inertia are given with
     /// `use_density`) centre of mass and volume by sampling, then the inertia tensor by
     /// sampling (unless given), then its principal axes. Errors carry LIGGGHTS's messages.
-    pub fn build(spec: ClumpSpec) -> Result<ClumpTemplate, String> {
+    pub fn build(spec: ClumpSpec) -> Result<ClumpTemplate, EngineError> {
         let centres0: Vec<[f64; 3]> = spec.spheres.iter().map(|s| [s[0], s[1], s[2]]).collect();
         let radii: Vec<f64> = spec.spheres.iter().map(|s| s[3]).collect();
         let mut lo = [1e8; 3];
@@ -377,7 +378,7 @@ fn bounding_sphere(
     centres: &[[f64; 3]],
     radii: &[f64],
     rng: &mut RanPark,
-) -> Result<(f64, [f64; 3]), String> {
+) -> Result<(f64, [f64; 3]), EngineError> {
     let n = centres.len();
     let mut best = (1e8, [0.0; 3]);
     let mut visited = vec![false; n];
@@ -514,7 +515,7 @@ fn sample_inertia(
     radii: &[f64],
     ntry: i32,
     density: f64,
-) -> Result<[[f64; 3]; 3], String> {
+) -> Result<[[f64; 3]; 3], EngineError> {
     let mut m = [[0.0; 3]; 3];
     for _ in 0..ntry {
         let p = s.point();
@@ -554,7 +555,7 @@ fn sample_inertia(
 }
 
 /// Principal moments (tiny ones set to zero) and right-handed principal axes.
-fn principal_axes(tensor: &[[f64; 3]; 3]) -> Result<([f64; 3], [[f64; 3]; 3]), String> {
+fn principal_axes(tensor: &[[f64; 3]; 3]) -> Result<([f64; 3], [[f64; 3]; 3]), EngineError> {
     let mut work = *tensor;
     let (mut moments, vectors) =
         jacobi(&mut work).ok_or("Insufficient Jacobi rotations for rigid body")?;

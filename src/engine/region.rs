@@ -94,12 +94,12 @@ pub struct Regions {
     pub list: Vec<Region>,
 }
 
-fn axis_of(word: &str) -> Result<usize, String> {
+fn axis_of(word: &str) -> Result<usize, EngineError> {
     match word {
         "x" => Ok(0),
         "y" => Ok(1),
         "z" => Ok(2),
-        _ => Err(format!("expected an axis x, y or z, got '{word}'")),
+        _ => Err(format!("expected an axis x, y or z, got '{word}'").into()),
     }
 }
 
@@ -182,7 +182,7 @@ impl Regions {
         if motion.is_some() && matches!(style, "union" | "intersect") {
             return Err("Region union or intersect cannot be dynamic".into());
         }
-        let coord = |w: &str, d: usize, lo_side: bool| -> Result<f64, String> {
+        let coord = |w: &str, d: usize, lo_side: bool| -> Result<f64, EngineError> {
             if w == "INF" || w == "EDGE" {
                 let (lo, hi) = ctx
                     .bounds
@@ -197,7 +197,7 @@ impl Regions {
             Ok(scale[d] * numeric(w)?)
         };
         let mut radius_variable = None;
-        let mut plain = |w: &str, scale: f64| -> Result<f64, String> {
+        let mut plain = |w: &str, scale: f64| -> Result<f64, EngineError> {
             if let Some(name) = w.strip_prefix("v_") {
                 radius_variable = Some((name.to_string(), scale));
                 return Ok(0.0);
@@ -350,8 +350,8 @@ impl Regions {
     pub fn reshape(
         &mut self,
         step: Option<i64>,
-        equal: &mut dyn FnMut(&str) -> Result<f64, String>,
-    ) -> Result<(), String> {
+        equal: &mut dyn FnMut(&str) -> Result<f64, EngineError>,
+    ) -> Result<(), EngineError> {
         for r in &mut self.list {
             if !r.is_dynamic() || (step.is_some() && r.shaped_at == step) {
                 continue;

@@ -4,6 +4,7 @@
 //! the variables are evaluated at most once per step, and a point is tested by undoing the
 //! displacement first and the rotation (around the original point) second.
 
+use crate::engine::error::EngineError;
 use crate::util::numbers::numeric;
 
 /// A region's motion and its values at the last evaluation.
@@ -28,7 +29,7 @@ impl Motion {
         motion: &mut Option<Motion>,
         words: &[&str],
         scale: [f64; 3],
-    ) -> Result<usize, String> {
+    ) -> Result<usize, EngineError> {
         let m = motion.get_or_insert_with(|| Motion {
             shift: [None, None, None],
             moving: false,
@@ -36,10 +37,10 @@ impl Motion {
             dx: [0.0; 3],
             theta: 0.0,
         });
-        let variable = |w: &str| -> Result<String, String> {
+        let variable = |w: &str| -> Result<String, EngineError> {
             w.strip_prefix("v_")
                 .map(str::to_string)
-                .ok_or_else(|| "Illegal region command".to_string())
+                .ok_or_else(|| "Illegal region command".into())
         };
         if words[0] == "move" {
             if words.len() < 4 {
@@ -93,8 +94,8 @@ impl Motion {
     /// Evaluate the displacement and angle now.
     pub fn update(
         &mut self,
-        equal: &mut dyn FnMut(&str) -> Result<f64, String>,
-    ) -> Result<(), String> {
+        equal: &mut dyn FnMut(&str) -> Result<f64, EngineError>,
+    ) -> Result<(), EngineError> {
         for d in 0..3 {
             if let Some(n) = &self.shift[d] {
                 self.dx[d] = equal(n)?;

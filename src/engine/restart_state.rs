@@ -7,8 +7,10 @@
 use std::collections::HashMap;
 
 use crate::engine::contact::UnitStyle;
+use crate::engine::error::EngineError;
 use crate::engine::sim::Simulation;
 use crate::io::restart::{self, GlobalFix, PeratomFix, Restart, Value};
+pub use crate::io::restart_values::check_restart_values;
 
 /// Pair contact history read from a restart, waiting for the first neighbour build.
 #[derive(Debug, Clone, Default)]
@@ -81,13 +83,14 @@ pub fn model_words(hash: i64) -> Option<String> {
 }
 
 /// The pair style stored in a restart (its `pair_style` arguments), if any.
-pub fn stored_pair_style(r: &Restart) -> Result<Option<String>, String> {
+pub fn stored_pair_style(r: &Restart) -> Result<Option<String>, EngineError> {
     match &r.pair {
         None => Ok(None),
         Some((_, raw)) => {
             let hash = i64::from_le_bytes(raw[..8].try_into().expect("8 bytes"));
             model_words(hash).map(Some).ok_or_else(|| {
                 format!("the restart's pair style (model hash {hash}) is not one regolith has")
+                    .into()
             })
         }
     }
@@ -96,7 +99,7 @@ pub fn stored_pair_style(r: &Restart) -> Result<Option<String>, String> {
 /// The partner lists of a contact history fix's per-atom blocks (block `k` of every atom):
 /// the history width stored in the fix's global state, and per atom ID its (partner,
 /// values) pairs; partners are atom IDs (pairs) or triangle ids (meshes).
-fn partner_lists(r: &Restart, k: usize, id: &str) -> Result<(usize, PartnerLists), String> {
+fn partner_lists(r: &Restart, k: usize, id: &str) -> Result<(usize, PartnerLists), EngineError> {
     let width = r
         .global_fixes
         .iter()
@@ -117,7 +120,7 @@ fn partner_lists(r: &Restart, k: usize, id: &str) -> Result<(usize, PartnerLists
                 "restart: atom {}: contact history block of {} values for {n} partners of {width} values",
                 a.id,
                 b.len()
-            ));
+            ).into());
         }
         let list = (0..n)
             .map(|c| {
@@ -130,84 +133,18 @@ fn partner_lists(r: &Restart, k: usize, id: &str) -> Result<(usize, PartnerLists
     Ok((width, out))
 }
 
-/// Values of a restart file no simulation can start from: a box that is not a box, a type
-/// count or type out of range, a particle without a finite non-negative radius or a positive
-/// mass. A position, velocity or spin that is not finite is refused only when `motion` says
-/// so (a conversion cannot write it); a run loses such an atom as LIGGGHTS does, or stops at
-/// the blow-up guard.
-pub fn check_restart_values(r: &Restart, motion: bool) -> Result<(), String> {
-    let (lo, hi) = r.bounds();
-    for d in 0..3 {
-        if !(lo[d] < hi[d] && (hi[d] - lo[d]).is_finite()) {
-            return Err(format!(
-                "restart: box bounds {} {} along {} are not a box",
-                lo[d],
-                hi[d],
-                ["x", "y", "z"][d]
-            ));
-        }
-    }
-    let ntypes = r.int(crate::io::restart::flag::NTYPES).unwrap_or(0);
-    if ntypes < 1 {
-        return Err(format!("restart: {ntypes} atom types"));
-    }
-    crate::engine::checks::check_ntypes(ntypes).map_err(|m| format!("restart: {m}"))?;
-    for a in &r.atoms {
-        if a.kind < 1 || a.kind > ntypes {
-            return Err(format!(
-                "restart: atom {} has type {} (the file has types 1 to {ntypes})",
-                a.id, a.kind
-            ));
-        }
-        if !(a.radius >= 0.0 && a.radius.is_finite()) {
-            return Err(format!(
-                "restart: atom {} has radius {} (a radius must be finite and at least 0)",
-                a.id, a.radius
-            ));
-        }
-        if !(a.mass > 0.0 && a.mass.is_finite()) {
-            return Err(format!(
-                "restart: atom {} has mass {} (a mass must be finite and positive)",
-                a.id, a.mass
-            ));
-        }
-        if a.radius > 0.0 && !(a.density > 0.0 && a.density.is_finite()) {
-            return Err(format!(
-                "restart: atom {} has density {} (a density must be finite and positive)",
-                a.id, a.density
-            ));
-        }
-        if motion
-            && !a
-                .x
-                .iter()
-                .chain(&a.v)
-                .chain(&a.omega)
-                .all(|c| c.is_finite())
-        {
-            return Err(format!(
-                "restart: atom {} has a position, velocity or angular velocity that is not finite (x = {:?}, v = {:?}, omega = {:?})",
-                a.id, a.x, a.v, a.omega
-            ));
-        }
-    }
-    Ok(())
-}
-
 /// Per atom ID, its contact partners and their history values.
 pub type PartnerLists = HashMap<i64, Vec<(i64, Vec<f64>)>>;
 
 impl Simulation {
     /// Load a restart's state into an empty simulation (no box yet). Returns the pair
     /// style it names, for the caller to set up.
-    pub fn load_restart(&mut self, r: &Restart) -> Result<Option<String>, String> {
+    pub fn load_restart(&mut self, r: &Restart) -> Result<Option<String>, EngineError> {
         match r.units() {
             "si" => self.units = UnitStyle::Si,
             "cgs" => self.units = UnitStyle::Cgs,
             other => {
-                return Err(format!(
-                    "units {other} in the restart file: not supported yet"
-                ))
+                return Err(format!("units {other} in the restart file: not supported yet").into())
             }
         }
         check_restart_values(r, false)?;
@@ -249,7 +186,8 @@ impl Simulation {
                             return Err(format!(
                                 "restart: fix {} has blocks of different sizes",
                                 fix.id
-                            ));
+                            )
+                            .into());
                         }
                         p.extra[e].data[i * width..(i + 1) * width].copy_from_slice(vals);
                     }
@@ -358,7 +296,7 @@ impl Simulation {
 
     /// Whether a restart file of this simulation fits in memory (the file is built whole,
     /// then encoded): LIGGGHTS's "Failed to allocate" if it does not.
-    pub fn check_restart_size(&self) -> Result<(), String> {
+    pub fn check_restart_size(&self) -> Result<(), EngineError> {
         let n = self.ntypes as f64;
         let pair = if self.pair_selection.is_some() {
             8.0 + 4.0 * n * (n + 1.0) / 2.0
@@ -368,7 +306,11 @@ impl Simulation {
         let extra: usize = self.particles.extra.iter().map(|e| e.width + 1).sum();
         let atoms = self.particles.len() as f64 * 8.0 * (24 + extra) as f64;
         // the file's parts, its atom records and the encoded bytes
-        crate::engine::checks::allocation(3.0 * (pair + atoms), 1, "restart file")
+        Ok(crate::engine::checks::allocation(
+            3.0 * (pair + atoms),
+            1,
+            "restart file",
+        )?)
     }
 
     /// This simulation as a restart file LIGGGHTS 3.8.0 reads, with pair history from

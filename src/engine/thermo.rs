@@ -228,6 +228,7 @@ impl Thermo {
                         .strip_prefix("f_")
                         .and_then(crate::util::numbers::split_reference)
                         .and_then(|(id, index)| sim.fix_value(id, index).err())
+                        .map(|e| e.to_string())
                         .unwrap_or_else(|| format!("Thermo keyword {}: no value", f.keyword))
                 }),
             })

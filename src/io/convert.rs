@@ -3,10 +3,10 @@
 //! written as a data file, a dump (text or gzip) or VTK; a dump converts snapshot by snapshot
 //! to VTK. Formats come from the file names or `--from`/`--to`.
 
-use crate::engine::domain::{parse_boundary, Domain};
-use crate::engine::particles::Particles;
 use crate::io::dump::Layout;
 pub use crate::io::error::ConvertError;
+use crate::state::domain::{parse_boundary, Domain};
+use crate::state::particles::Particles;
 
 /// File formats `convert` knows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -7,10 +7,10 @@
 
 use std::fmt::Write as _;
 
-use crate::engine::domain::Domain;
-use crate::engine::particles::Particles;
 pub use crate::io::error::DataError;
 use crate::io::error::Line;
+use crate::state::domain::Domain;
+use crate::state::particles::Particles;
 
 /// One atom of a data file.
 #[derive(Debug, Clone, PartialEq)]
@@ -207,16 +207,12 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, DataError> {
                         return Err(DataError::BadSize { at });
                     }
                     if atom.diameter > 0.0 {
-                        crate::engine::checks::check_sphere(
-                            atom.diameter,
-                            atom.density,
-                            "diameter",
-                        )
-                        .map_err(|reason| DataError::Sphere {
-                            at: at.clone(),
-                            id: atom.id,
-                            reason,
-                        })?;
+                        crate::state::limits::check_sphere(atom.diameter, atom.density, "diameter")
+                            .map_err(|reason| DataError::Sphere {
+                                at: at.clone(),
+                                id: atom.id,
+                                reason,
+                            })?;
                     }
                     if index.insert(atom.id, data.atoms.len()).is_some() {
                         return Err(DataError::DuplicateId { at, id: atom.id });

@@ -5,9 +5,9 @@
 
 use std::io::Write;
 
-use crate::engine::domain::Domain;
-use crate::engine::particles::Particles;
 pub use crate::io::error::ColumnError;
+use crate::state::domain::Domain;
+use crate::state::particles::Particles;
 use crate::util::format::{self, CFormat, Conversion, Piece};
 
 /// A per-atom quantity a dump column shows.
@@ -89,7 +89,7 @@ impl Column {
         match self {
             Column::Id => p.id[i] as f64,
             Column::Type => p.kind[i] as f64,
-            Column::Mol => crate::engine::clumps::body_tags(p).map_or(-1.0, |t| t[i]),
+            Column::Mol => crate::state::bodies::body_tags(p).map_or(-1.0, |t| t[i]),
             Column::X(d) => p.x[i][*d],
             Column::Scaled(d) => (p.x[i][*d] - domain.lo[*d]) / domain.length(*d),
             Column::Unwrapped(d) => p.x[i][*d] + p.image[i][*d] as f64 * domain.length(*d),
@@ -302,7 +302,7 @@ pub fn write_local(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::domain::parse_boundary;
+    use crate::state::domain::parse_boundary;
 
     #[test]
     fn liggghts_layout() {

@@ -7,8 +7,8 @@
 
 use std::io::Write;
 
-use crate::engine::computes::LocalField;
 use crate::io::vtk::write_array;
+use crate::state::local_field::LocalField;
 use crate::util::format::{g, g_precision};
 
 /// Where the written quantities sit in a compute's row.

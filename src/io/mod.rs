@@ -10,6 +10,7 @@ pub mod local_vtk;
 pub mod mesh_vtk;
 pub mod restart;
 pub mod restart_error;
+pub mod restart_values;
 pub mod stl;
 pub mod vtk;
 

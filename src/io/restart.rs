@@ -21,9 +21,9 @@
 //! A `%` in the name means a base file (`%` replaced by `base`) with sections 1-5 and one
 //! file per processor (`%` replaced by its number) with `int` n and n doubles.
 
-use crate::engine::domain::{Boundary, Domain};
-use crate::engine::particles::Particles;
 pub use crate::io::restart_error::RestartError;
+use crate::state::domain::{Boundary, Domain};
+use crate::state::particles::Particles;
 
 /// Header flags, in LIGGGHTS's numbering.
 pub mod flag {
@@ -715,7 +715,7 @@ pub fn write(restart: &Restart, path: &str) -> Result<(), RestartError> {
 /// The particles and box of a restart file.
 pub fn read_bed(path: &str) -> Result<crate::io::convert::Bed, RestartError> {
     let r = read(path)?;
-    crate::engine::restart_state::check_restart_values(&r, true).map_err(|reason| {
+    crate::io::restart_values::check_restart_values(&r, true).map_err(|reason| {
         RestartError::Values {
             path: path.to_string(),
             reason,

@@ -7,7 +7,7 @@
 
 use std::io::Write;
 
-use crate::engine::domain::Domain;
+use crate::state::domain::Domain;
 use crate::util::format::{g, g_precision};
 
 /// One point-data field: its name, whether it is integer, and the dump columns (indices

@@ -63,6 +63,19 @@ impl From<String> for VariableError {
     }
 }
 
+/// The engine's refusal where a formula reads a value: the sentinel of a value known only
+/// when the deck runs stays [`VariableError::KnownWhenRun`].
+impl From<crate::engine::error::EngineError> for VariableError {
+    fn from(e: crate::engine::error::EngineError) -> VariableError {
+        match e {
+            crate::engine::error::EngineError::Invalid(m) => VariableError::from(m),
+            crate::engine::error::EngineError::Unsupported(what) => {
+                VariableError::Unsupported(what)
+            }
+        }
+    }
+}
+
 impl From<&str> for VariableError {
     fn from(message: &str) -> VariableError {
         VariableError::from(message.to_string())

@@ -2,7 +2,27 @@
 // each test crate that includes this module uses only some of it
 #![allow(dead_code)]
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// A fresh, empty directory `regolith-TAG-PID` in the system's temporary folder.
+pub fn scratch_dir(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("regolith-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Run regolith in `dir` on `deck`, written there as `file`, with `-log none` and `args`.
+pub fn run_deck(dir: &Path, file: &str, deck: &str, args: &[&str]) -> Output {
+    std::fs::write(dir.join(file), deck).unwrap();
+    Command::new(env!("CARGO_BIN_EXE_regolith"))
+        .args(["-in", file, "-log", "none"])
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
 
 /// Run blocks as compat/regenerate.sh cuts them from LIGGGHTS's screen output: from each
 /// header line starting with `Step` up to (not including) `Loop time`, so lines that fixes

@@ -162,7 +162,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         Some(point) => Side::Outlet { point, inside_out },
         None => Side::Vector(side),
     };
-    let mut m = Massflow::new(id, &mesh_id, &trimesh, side).map_err(|e| fail(2, &e))?;
+    let mut m = Massflow::new(id, &mesh_id, &trimesh, side).map_err(|e| fail(2, &e.to_string()))?;
     m.once = once;
     m.screen = screen;
     m.write_time = write_time;

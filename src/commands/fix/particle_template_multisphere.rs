@@ -280,7 +280,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         fflag,
         tflag,
     })
-    .map_err(|m| fail(2, &m))?;
+    .map_err(|e| fail(2, &e.to_string()))?;
     if ctx.sys.mode == Mode::Run {
         ctx.out.log(&template.report());
     }

@@ -12,6 +12,7 @@
 //! ratio takes its limit `betaeff = -1` (critical damping) and `log(e) = -inf`, which the
 //! Hooke model maps onto its limit `gamman = sqrt(4 meff kn)`; for `e > 0` nothing changes.
 
+use crate::engine::error::EngineError;
 use std::f64::consts::PI;
 
 /// Unit style of the run: LIGGGHTS's limits on Young's modulus and on the characteristic
@@ -315,20 +316,30 @@ fn missing(name: &str, caller: &str) -> String {
 
 impl MaterialInput {
     /// A per-type vector, checked for presence and length.
-    fn per_type(&self, v: &Option<Vec<f64>>, base: Base, caller: &str) -> Result<Vec<f64>, String> {
+    fn per_type(
+        &self,
+        v: &Option<Vec<f64>>,
+        base: Base,
+        caller: &str,
+    ) -> Result<Vec<f64>, EngineError> {
         let v = v.as_ref().ok_or_else(|| missing(base.name(), caller))?;
         if v.len() != self.ntypes {
             return Err(format!(
                 "Fix property/global: Length not correct for variable {}, length should be equal to {} (= number of atom types)",
                 base.name(),
                 self.ntypes
-            ));
+            ).into());
         }
         Ok(v.clone())
     }
 
     /// A per-type-pair table, checked for presence and length.
-    fn per_pair(&self, v: &Option<Vec<f64>>, base: Base, caller: &str) -> Result<Vec<f64>, String> {
+    fn per_pair(
+        &self,
+        v: &Option<Vec<f64>>,
+        base: Base,
+        caller: &str,
+    ) -> Result<Vec<f64>, EngineError> {
         let v = v.as_ref().ok_or_else(|| missing(base.name(), caller))?;
         let nn = self.ntypes * self.ntypes;
         if v.len() != nn {
@@ -336,7 +347,7 @@ impl MaterialInput {
                 "Fix property/global: Length not correct for variable {}, length should be equal to {} ( = number of atom types * number of atom types)",
                 base.name(),
                 nn
-            ));
+            ).into());
         }
         Ok(v.clone())
     }
@@ -370,7 +381,7 @@ struct Bases {
 
 impl Bases {
     /// Create one base value with LIGGGHTS's checks, unless it exists already.
-    fn create(&mut self, inp: &MaterialInput, base: Base, caller: &str) -> Result<(), String> {
+    fn create(&mut self, inp: &MaterialInput, base: Base, caller: &str) -> Result<(), EngineError> {
         let si = inp.units == UnitStyle::Si;
         let cgs = inp.units == UnitStyle::Cgs;
         match base {
@@ -526,7 +537,10 @@ impl Material {
     /// Mix the raw values into per-type-pair coefficients for the quantities `requests`
     /// names, in request order, with LIGGGHTS's checks and messages; `requests` comes from
     /// [`crate::engine::contact::ContactModel::properties`].
-    pub fn new(input: &MaterialInput, requests: &[(Property, &str)]) -> Result<Material, String> {
+    pub fn new(
+        input: &MaterialInput,
+        requests: &[(Property, &str)],
+    ) -> Result<Material, EngineError> {
         let n = input.ntypes;
         let mut b = Bases::default();
         for &(prop, caller) in requests {
@@ -656,34 +670,34 @@ mod tests {
         let mut i = input();
         i.youngs_modulus = Some(vec![1e6, 1e7]);
         assert_eq!(
-            Material::new(&i, HERTZ).unwrap_err(),
+            Material::new(&i, HERTZ).unwrap_err().to_string(),
             "youngsModulus >= 5e6 required for SI units (use command 'soft_particles yes' to override)"
         );
         i.soft_particles = true;
         assert!(Material::new(&i, HERTZ).is_ok());
         i.youngs_modulus = Some(vec![5e6, 2e9]);
         assert_eq!(
-            Material::new(&i, HERTZ).unwrap_err(),
+            Material::new(&i, HERTZ).unwrap_err().to_string(),
             "youngsModulus <= 1e9 required for SI units (use command 'hard_particles yes' to override)"
         );
         i.hard_particles = true;
         assert!(Material::new(&i, HERTZ).is_ok());
         i.coefficient_restitution = Some(vec![0.05, 0.6, 0.6, 0.7]);
         assert_eq!(
-            Material::new(&i, HERTZ).unwrap_err(),
+            Material::new(&i, HERTZ).unwrap_err().to_string(),
             "0.05 < coefficientRestitution <= 1 required (regolith: run with -zero_restitution to allow values down to 0)"
         );
         i.coefficient_restitution = Some(vec![1.01, 0.6, 0.6, 0.7]);
         assert!(Material::new(&i, HERTZ).is_err());
         i.poissons_ratio = Some(vec![0.6, 0.3]);
         assert_eq!(
-            Material::new(&i, HERTZ).unwrap_err(),
+            Material::new(&i, HERTZ).unwrap_err().to_string(),
             "0 <= poissonsRatio <= 0.5 required"
         );
         let mut i = input();
         i.coefficient_friction = None;
         assert_eq!(
-            Material::new(&i, HERTZ).unwrap_err(),
+            Material::new(&i, HERTZ).unwrap_err().to_string(),
             "Could not locate a fix/property storing value(s) for coefficientFriction as requested by tangential_model history."
         );
         // a property nobody asks for is never checked
@@ -694,6 +708,7 @@ mod tests {
         i.youngs_modulus = Some(vec![5e6]);
         assert!(Material::new(&i, HERTZ)
             .unwrap_err()
+            .to_string()
             .contains("length should be equal to 2"));
     }
 
@@ -719,12 +734,16 @@ mod tests {
         let mut i = input();
         i.characteristic_velocity = Some(1e-3);
         assert_eq!(
-            Material::new(&i, &[(Property::CharVel, "model hooke")]).unwrap_err(),
+            Material::new(&i, &[(Property::CharVel, "model hooke")])
+                .unwrap_err()
+                .to_string(),
             "characteristicVelocity >= 1e-2 required for SI units"
         );
         i.rolling_stiffness = Some(0.5);
         assert_eq!(
-            Material::new(&i, &[(Property::RollingStiffness, "rolling_model epsd3")]).unwrap_err(),
+            Material::new(&i, &[(Property::RollingStiffness, "rolling_model epsd3")])
+                .unwrap_err()
+                .to_string(),
             "rollingStiffness >= 1 required for SI units"
         );
     }

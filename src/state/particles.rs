@@ -108,10 +108,9 @@ impl Particles {
         let extra: usize = self.extra.iter().map(|e| e.width * 8).sum();
         let per_atom = Self::BYTES_PER_ATOM + extra;
         let what = "atoms";
-        crate::engine::checks::allocation(additional as f64, per_atom, what)?;
-        let fail = |_| {
-            crate::engine::checks::failed_to_allocate(additional as f64 * per_atom as f64, what)
-        };
+        crate::state::limits::allocation(additional as f64, per_atom, what)?;
+        let fail =
+            |_| crate::state::limits::failed_to_allocate(additional as f64 * per_atom as f64, what);
         self.id.try_reserve(additional).map_err(fail)?;
         self.kind.try_reserve(additional).map_err(fail)?;
         self.mask.try_reserve(additional).map_err(fail)?;

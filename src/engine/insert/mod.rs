@@ -1,0 +1,631 @@
+//! Particle insertion as LIGGGHTS 3.8.0 does it (docs/notes/insertion.md): sphere templates,
+//! discrete distributions and `fix insert/pack`, with LIGGGHTS's three Park-Miller streams
+//! (region: positions and the Monte Carlo region volume; fix: targets and velocities;
+//! distribution: leftover particles), its draw order, placement order, overlap rule and
+//! messages, so that inserted atoms agree with LIGGGHTS's bit for bit.
+
+use crate::engine::error::EngineError;
+use crate::engine::region::{Regions, Shape};
+use crate::util::random::RanPark;
+
+mod stream;
+mod surface;
+
+pub use stream::{
+    Face, InsertRestart, InsertStream, Release, TriangleEdges, Within, RELEASE_NAME, RELEASE_WIDTH,
+};
+use surface::*;
+pub use surface::{surface_contacts, surface_exterior, surface_interior};
+
+/// `fix particletemplate/sphere`: one particle kind.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Template {
+    /// Fix ID.
+    pub id: String,
+    /// Atom type of inserted particles.
+    pub atom_type: u32,
+    /// Radius (length).
+    pub radius: f64,
+    /// Density (mass/length^3).
+    pub density: f64,
+    /// Volume, r^3 4 pi / 3 (length^3).
+    pub volume: f64,
+    /// Mass (mass).
+    pub mass: f64,
+    /// State of the template's insertion generator and its Monte Carlo seed (constant
+    /// templates never draw; both are kept for restart files).
+    pub rng_state: (i32, i32),
+    /// A multisphere template: its clump (`radius` is then the bounding-sphere radius).
+    pub clump: Option<Box<crate::engine::multisphere::ClumpTemplate>>,
+}
+
+impl Template {
+    /// A template with LIGGGHTS's volume and mass arithmetic.
+    pub fn new(id: &str, atom_type: u32, radius: f64, density: f64) -> Template {
+        let volume = radius * radius * radius * 4.0 * std::f64::consts::PI / 3.0;
+        Template {
+            id: id.to_string(),
+            atom_type,
+            radius,
+            density,
+            volume,
+            mass: density * volume,
+            rng_state: (0, 0),
+            clump: None,
+        }
+    }
+
+    /// A multisphere template: bounding radius, sampled volume and mass of the clump.
+    pub fn clump(t: &crate::engine::multisphere::ClumpTemplate) -> Template {
+        Template {
+            id: t.spec.id.clone(),
+            atom_type: t.spec.atom_type,
+            radius: t.r_bound,
+            density: t.density,
+            volume: t.volume,
+            mass: t.mass,
+            rng_state: (0, 0),
+            clump: Some(Box::new(t.clone())),
+        }
+    }
+
+    /// Member sphere centres (length) and radii of this template placed at `p` (a clump's
+    /// centre of mass, unrotated; a sphere's centre).
+    pub fn spheres_at(&self, p: [f64; 3]) -> Vec<([f64; 3], f64)> {
+        match &self.clump {
+            None => vec![(p, self.radius)],
+            Some(c) => {
+                let (ex, ey, ez) = (&c.axes[0], &c.axes[1], &c.axes[2]);
+                c.displace
+                    .iter()
+                    .zip(&c.radii)
+                    .map(|(d, &r)| {
+                        let g = [
+                            d[0] * ex[0] + d[1] * ey[0] + d[2] * ez[0],
+                            d[0] * ex[1] + d[1] * ey[1] + d[2] * ez[1],
+                            d[0] * ex[2] + d[1] * ey[2] + d[2] * ez[2],
+                        ];
+                        ([p[0] + g[0], p[1] + g[1], p[2] + g[2]], r)
+                    })
+                    .collect()
+            }
+        }
+    }
+}
+
+/// `fix particledistribution/discrete[/numberbased|/massbased]`.
+#[derive(Debug, Clone)]
+pub struct Distribution {
+    /// Its generator (leftover particles).
+    pub rng: RanPark,
+    /// The templates.
+    pub templates: Vec<Template>,
+    /// Number fractions.
+    pub weights: Vec<f64>,
+    /// Templates by decreasing volume (insertion order).
+    pub order: Vec<usize>,
+    /// Expected volume per particle (length^3).
+    pub volume_expect: f64,
+    /// Expected mass per particle (mass).
+    pub mass_expect: f64,
+    /// Largest radius (length).
+    pub max_radius: f64,
+}
+
+impl Distribution {
+    /// From templates and weights (mass fractions unless `number_based`).
+    pub fn new(
+        seed: i32,
+        templates: Vec<Template>,
+        weights: &[f64],
+        number_based: bool,
+    ) -> Result<Distribution, EngineError> {
+        let rng = RanPark::new(seed)?;
+        let mut s = 0.0;
+        for x in weights {
+            s += x;
+        }
+        let mut w: Vec<f64> = weights.iter().map(|x| x / s).collect();
+        if !number_based {
+            w = w.iter().zip(&templates).map(|(x, t)| x / t.mass).collect();
+            let mut s = 0.0;
+            for x in &w {
+                s += x;
+            }
+            w = w.iter().map(|x| x / s).collect();
+        }
+        let (mut volume_expect, mut mass_expect) = (0.0, 0.0);
+        for (t, x) in templates.iter().zip(&w) {
+            volume_expect += t.volume * x;
+            mass_expect += t.mass * x;
+        }
+        // bubble sort by decreasing volume, as LIGGGHTS orders its templates
+        let nt = templates.len();
+        let mut order: Vec<usize> = (0..nt).collect();
+        let mut n = nt;
+        loop {
+            let mut swapped = false;
+            for i in 0..nt.saturating_sub(1) {
+                if templates[order[i]].volume < templates[order[i + 1]].volume {
+                    order.swap(i, i + 1);
+                    swapped = true;
+                }
+            }
+            n = n.saturating_sub(1);
+            if !(swapped && n > 0) {
+                break;
+            }
+        }
+        let max_radius = templates.iter().map(|t| t.radius).fold(0.0, f64::max);
+        Ok(Distribution {
+            rng,
+            templates,
+            weights: w,
+            order,
+            volume_expect,
+            mass_expect,
+            max_radius,
+        })
+    }
+
+    /// The templates of `n` particles, largest first (`random_distribute exact`); LIGGGHTS's
+    /// "Failed to allocate" when the list and the particles placed from it cannot fit in
+    /// memory.
+    pub fn list(&mut self, n: i64) -> Result<Vec<usize>, EngineError> {
+        // a template index now, a placed particle (template, position, velocity) later
+        crate::engine::checks::allocation(n as f64, 8 + 56, "insertion list")?;
+        let nt = self.templates.len();
+        let mut count: Vec<i64> = self.weights.iter().map(|w| (n as f64 * w) as i64).collect();
+        let rem: Vec<f64> = (0..nt)
+            .map(|i| n as f64 * self.weights[i] - count[i] as f64)
+            .collect();
+        let gap = n - count.iter().sum::<i64>();
+        for _ in 0..gap {
+            let r = self.rng.uniform() * gap as f64;
+            let (mut j, mut rsum) = (0, rem[0]);
+            while rsum < r && j < nt - 1 {
+                j += 1;
+                rsum += rem[j];
+            }
+            count[j] += 1;
+        }
+        let mut out = Vec::new();
+        for &i in &self.order {
+            out.extend(std::iter::repeat_n(i, count[i].max(0) as usize));
+        }
+        Ok(out)
+    }
+}
+
+/// How much `insert/pack` keeps in its region.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Target {
+    /// `particles_in_region N`.
+    Count(i64),
+    /// `volumefraction_region f`.
+    VolumeFraction(f64),
+    /// `mass_in_region m` (mass).
+    Mass(f64),
+}
+
+/// Velocities of inserted particles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Velocity {
+    /// `vel constant vx vy vz`.
+    Constant([f64; 3]),
+    /// `vel uniform vx vy vz dvx dvy dvz`.
+    Uniform([f64; 3], [f64; 3]),
+    /// `vel gaussian vx vy vz sx sy sz`.
+    Gaussian([f64; 3], [f64; 3]),
+}
+
+/// `fix insert/pack`.
+#[derive(Debug, Clone)]
+pub struct InsertPack {
+    /// Fix ID (for messages).
+    pub id: String,
+    /// The distribution fix's ID.
+    pub distribution: String,
+    /// The region's index.
+    pub region: usize,
+    /// The region's ID (for messages).
+    pub region_id: String,
+    /// The target.
+    pub target: Target,
+    /// Steps between insertions (0: once).
+    pub every: i64,
+    /// The next insertion step (None: no more).
+    pub next: Option<i64>,
+    /// `overlapcheck`.
+    pub overlapcheck: bool,
+    /// `all_in`.
+    pub all_in: bool,
+    /// `maxattempt`.
+    pub maxattempt: i64,
+    /// `ntry_mc`.
+    pub ntry_mc: i64,
+    /// `check_dist_from_subdomain_border`.
+    pub check_dist: bool,
+    /// `verbose`.
+    pub verbose: bool,
+    /// Velocity of new particles.
+    pub velocity: Velocity,
+    /// Angular velocity of new particles (1/time).
+    pub omega: [f64; 3],
+    /// The fix generator.
+    pub rng: RanPark,
+    /// The seed (`getSeed`).
+    pub seed: i32,
+    /// The region generator.
+    pub region_rng: RanPark,
+    /// Monte Carlo region volume (length^3).
+    pub region_volume: f64,
+    /// Setup done (first run).
+    pub set_up: bool,
+    /// Particles inserted so far.
+    pub inserted: i64,
+    /// Their mass (mass).
+    pub inserted_mass: f64,
+    /// `insert/rate/region`: (nparticles, particlerate in 1/time).
+    pub rate: Option<(i64, f64)>,
+    /// `insert/rate/region ... massrate M`: the mass rate as given (mass/time), which
+    /// LIGGGHTS prints instead of particle rate x expected mass.
+    pub mass_rate: Option<f64>,
+    /// `insert/rate/region`: particles per insertion (mean), from the rate at setup.
+    pub per_insertion: f64,
+}
+
+/// A new particle: template index, position and velocity.
+pub type NewParticle = (usize, [f64; 3], [f64; 3]);
+
+/// What an insertion needs to know about the particles and the box.
+pub struct World<'a> {
+    /// Positions (length).
+    pub x: &'a [[f64; 3]],
+    /// Radii (length).
+    pub radius: &'a [f64],
+    /// Masses (mass).
+    pub mass: &'a [f64],
+    /// Box bounds (length).
+    pub lo: [f64; 3],
+    /// Box bounds (length).
+    pub hi: [f64; 3],
+    /// Periodic directions.
+    pub periodic: [bool; 3],
+    /// The box can change (a shrink-wrapped face).
+    pub box_changes: bool,
+}
+
+/// LIGGGHTS's warning when the (sub-)domain is narrower than 2.2 bounding radii of the
+/// largest particle to insert, given at every insertion that inserts something.
+fn narrow_box_warning(w: &World, maxrad: f64) -> Option<String> {
+    let d = [0, 1, 2].map(|k| w.hi[k] - w.lo[k]);
+    let dim = if d[0] < d[1] && d[0] < d[2] {
+        0
+    } else if d[1] < d[2] {
+        1
+    } else {
+        2
+    };
+    (d[dim] < 2.2 * maxrad).then(|| {
+        format!(
+            "WARNING: Particle insertion on proc 0: sub-domain is smaller than the bounding radius of insert particles to insert: \nMax. bounding sphere diameter is {:.6}, sub-domain extent in {} direction is only {:.6}  (./src/fix_insert.cpp:730)",
+            2.0 * maxrad,
+            ["x", "y", "z"][dim],
+            d[dim]
+        )
+    })
+}
+
+impl InsertPack {
+    fn shape<'r>(&self, regions: &'r Regions) -> &'r Shape {
+        &regions.list[self.region].shape
+    }
+
+    /// The Monte Carlo region volume with the region generator (3 draws per sample).
+    fn volume_mc(&mut self, regions: &Regions, w: &World, max_radius: f64) {
+        let (elo, ehi) = regions.extent(self.region).unwrap_or(([0.0; 3], [0.0; 3]));
+        let mut hits = 0i64;
+        for _ in 0..self.ntry_mc {
+            let mut p = [0.0; 3];
+            for d in 0..3 {
+                p[d] = elo[d] + self.region_rng.uniform() * (ehi[d] - elo[d]);
+            }
+            if !(0..3).all(|d| p[d] >= w.lo[d] && p[d] <= w.hi[d]) {
+                continue;
+            }
+            if regions.matches(self.region, p) {
+                hits += 1;
+            }
+        }
+        let _ = max_radius;
+        let vbox = (ehi[0] - elo[0]) * (ehi[1] - elo[1]) * (ehi[2] - elo[2]);
+        self.region_volume = hits as f64 / self.ntry_mc as f64 * vbox;
+    }
+
+    /// First run's setup: reseed the region generator and measure the region. Returns the
+    /// lines LIGGGHTS prints.
+    pub fn setup(
+        &mut self,
+        regions: &Regions,
+        dist: &Distribution,
+        w: &World,
+        dt: f64,
+    ) -> Result<Vec<String>, EngineError> {
+        if self.set_up {
+            return Ok(Vec::new());
+        }
+        self.set_up = true;
+        // C int arithmetic, as LIGGGHTS adds it (a seed near the top wraps and is refused)
+        self.region_rng.reset(self.seed.wrapping_add(12))?;
+        self.volume_mc(regions, w, dist.max_radius);
+        if self.region_volume <= 0.0 {
+            return Err("Fix insert: Region volume calculation with MC failed".into());
+        }
+        let mut lines = vec![format!(
+            "INFO: Resetting random generator for region {}",
+            self.region_id
+        )];
+        match self.rate {
+            None => lines.push(format!(
+                "INFO: Particle insertion {}: inserting every {} steps",
+                self.id, self.every
+            )),
+            Some((total, rate)) => {
+                self.per_insertion = rate * (self.every as f64 * dt);
+                let f = |spec: &str, v: f64| {
+                    crate::util::format::with_spec(spec, v).unwrap_or_default()
+                };
+                let within = if total as f64 <= self.per_insertion {
+                    0
+                } else {
+                    ((total as f64 / self.per_insertion) as i64).saturating_mul(self.every)
+                };
+                lines.push(format!(
+                    "INFO: Particle insertion {}: {} particles every {} steps - particle rate {}  (mass rate {})\n      {} particles (mass {}) within {} steps",
+                    self.id,
+                    f("%f", self.per_insertion),
+                    self.every,
+                    f("%f", rate),
+                    f("%e", self.mass_rate.unwrap_or(rate * dist.mass_expect)),
+                    total,
+                    f("%e", total as f64 * dist.mass_expect),
+                    within
+                ));
+            }
+        }
+        Ok(lines)
+    }
+
+    /// One insertion at `step` (due when `self.next == Some(step)`): the new particles in
+    /// placement order, and the lines LIGGGHTS prints.
+    pub fn insert(
+        &mut self,
+        step: i64,
+        regions: &Regions,
+        dist: &mut Distribution,
+        w: &World,
+    ) -> Result<(Vec<NewParticle>, Vec<String>), EngineError> {
+        let mut lines = Vec::new();
+        let shape = self.shape(regions).clone();
+        self.next = if self.every > 0 {
+            Some(step + self.every)
+        } else {
+            None
+        };
+        // how many: the region's content now
+        let (mut np, mut vol, mut mass) = (0i64, 0.0, 0.0);
+        for i in 0..w.x.len() {
+            if regions.matches(self.region, w.x[i]) {
+                np += 1;
+                let r = w.radius[i];
+                vol += 4.0 * std::f64::consts::PI / 3.0 * r * r * r;
+                mass += w.mass[i];
+            }
+        }
+        let (mut n, mut ratio) = match (self.rate, self.target) {
+            (Some((total, _)), _) => {
+                let mut n = (self.per_insertion + self.rng.uniform()) as i64;
+                if self.inserted + n > total {
+                    n = total - self.inserted;
+                }
+                (n, f64::NAN)
+            }
+            (None, target) => match target {
+                Target::VolumeFraction(f) => (
+                    ((f * self.region_volume - vol) / dist.volume_expect + self.rng.uniform())
+                        as i64,
+                    vol / (f * self.region_volume),
+                ),
+                Target::Count(c) => (c - np, np as f64 / c as f64),
+                Target::Mass(m) => (
+                    ((m - mass) / dist.mass_expect + self.rng.uniform()) as i64,
+                    mass / m,
+                ),
+            },
+        };
+        n = n.max(0);
+        if !ratio.is_nan() {
+            ratio = ratio.clamp(0.0, 1.0);
+        }
+        if w.box_changes {
+            self.volume_mc(regions, w, dist.max_radius);
+        }
+        let list = dist.list(n)?;
+        if list.is_empty() {
+            return Ok((Vec::new(), lines));
+        }
+        let nlist = list.len() as i64;
+        let maxrad = dist.max_radius;
+        lines.extend(narrow_box_warning(w, maxrad));
+        // existing atoms near the region (periodic images too), then placed ones
+        let (elo, ehi) = regions.extent(self.region).unwrap_or(([0.0; 3], [0.0; 3]));
+        let exact_near = matches!(shape, Shape::Block { .. } | Shape::Cylinder { .. });
+        // a clump's members reach up to two bounding radii from its centre of mass
+        let reach = if dist.templates.iter().any(|t| t.clump.is_some()) {
+            2.0 * maxrad
+        } else {
+            maxrad
+        };
+        let bblo = [0, 1, 2].map(|d| elo[d].max(w.lo[d]) - 2.0 * reach);
+        let bbhi = [0, 1, 2].map(|d| ehi[d].min(w.hi[d]) + 2.0 * reach);
+        let mut near: Vec<([f64; 3], f64)> = Vec::new();
+        if self.overlapcheck {
+            let len = [0, 1, 2].map(|d| w.hi[d] - w.lo[d]);
+            let shifts = |d: usize| {
+                if w.periodic[d] {
+                    vec![0.0, -len[d], len[d]]
+                } else {
+                    vec![0.0]
+                }
+            };
+            for i in 0..w.x.len() {
+                let cut = if self.all_in {
+                    reach
+                } else {
+                    w.radius[i] + reach
+                };
+                for sx in shifts(0) {
+                    for sy in shifts(1) {
+                        for sz in shifts(2) {
+                            let x = [w.x[i][0] + sx, w.x[i][1] + sy, w.x[i][2] + sz];
+                            // an atom farther than cut outside the region cannot touch a
+                            // new particle, so intersections keep a superset
+                            if exact_near
+                                && !(inside(&shape, x) || surface_exterior(&shape, x, cut))
+                            {
+                                continue;
+                            }
+                            if !(0..3).all(|d| x[d] >= bblo[d] && x[d] <= bbhi[d]) {
+                                continue;
+                            }
+                            near.push((x, w.radius[i]));
+                        }
+                    }
+                }
+            }
+        }
+        let maxtry = if ratio.is_nan() || ratio >= 1.0 {
+            nlist.saturating_mul(self.maxattempt)
+        } else {
+            (nlist.saturating_mul(self.maxattempt) as f64 / (1.0 - ratio)) as i64
+        };
+        let lo = [0, 1, 2].map(|d| elo[d].max(w.lo[d]));
+        let hi = [0, 1, 2].map(|d| ehi[d].min(w.hi[d]));
+        let diff = [0, 1, 2].map(|d| hi[d] - lo[d]);
+        let all_in = self.all_in;
+        let region = self.region;
+        let gen = |rng: &mut RanPark, rb: f64| loop {
+            let p = [
+                lo[0] + rng.uniform() * diff[0],
+                lo[1] + rng.uniform() * diff[1],
+                lo[2] + rng.uniform() * diff[2],
+            ];
+            if all_in {
+                if regions.matches(region, p) && surface_contacts(regions, region, p, rb).is_empty()
+                {
+                    return p;
+                }
+            } else if regions.matches(region, p) {
+                return p;
+            }
+        };
+        let dist_sub = |p: [f64; 3]| {
+            let dlo = (0..3)
+                .map(|d| (w.lo[d] - p[d]).abs())
+                .fold(f64::INFINITY, f64::min);
+            let dhi = (0..3)
+                .map(|d| (w.hi[d] - p[d]).abs())
+                .fold(f64::INFINITY, f64::min);
+            if dlo < dhi {
+                dlo
+            } else {
+                dhi
+            }
+        };
+        let velocity = |rng: &mut RanPark| match self.velocity {
+            Velocity::Constant(v) => v,
+            Velocity::Uniform(v, dv) => {
+                [0, 1, 2].map(|d| v[d] + dv[d] * 2.0 * (rng.uniform() - 0.50))
+            }
+            Velocity::Gaussian(v, s) => [0, 1, 2].map(|d| v[d] + s[d] * rng.gaussian()),
+        };
+        let mut placed: Vec<NewParticle> = Vec::new();
+        let mut ntry = 0i64;
+        let nl = nlist as usize;
+        if self.overlapcheck {
+            while ntry < maxtry && placed.len() < nl {
+                let t = list[placed.len()];
+                let rb = dist.templates[t].radius;
+                if self.verbose && nl >= 10 && placed.len().is_multiple_of(nl / 10) {
+                    lines.push(format!(
+                        "insertion: proc 0 at {} %",
+                        10 * placed.len() / (nl / 10)
+                    ));
+                }
+                let mut done = false;
+                while !done && ntry < maxtry {
+                    let mut p;
+                    loop {
+                        p = gen(&mut self.region_rng, rb);
+                        ntry += 1;
+                        if !(self.check_dist && ntry < maxtry && dist_sub(p) < rb) {
+                            break;
+                        }
+                    }
+                    if ntry == maxtry {
+                        break;
+                    }
+                    let v = velocity(&mut self.rng);
+                    // every sphere of the template (a clump's members) against the near
+                    // ones; a NaN distance counts as clear, as in LIGGGHTS
+                    let spheres = dist.templates[t].spheres_at(p);
+                    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+                    let clear = spheres.iter().all(|&(s, rs_new)| {
+                        near.iter().all(|(q, rq)| {
+                            let d = [s[0] - q[0], s[1] - q[1], s[2] - q[2]];
+                            let rs = rs_new + rq;
+                            !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= rs * rs)
+                        })
+                    });
+                    if clear {
+                        near.extend(spheres);
+                        placed.push((t, p, v));
+                        done = true;
+                    }
+                }
+            }
+        } else {
+            for (k, &t) in list.iter().enumerate() {
+                if self.verbose && nl >= 10 && k % (nl / 10) == 0 {
+                    lines.push(format!("insertion: proc 0 at {} %", 10 * k / (nl / 10)));
+                }
+                let p = gen(&mut self.region_rng, dist.templates[t].radius);
+                let v = velocity(&mut self.rng);
+                placed.push((t, p, v));
+            }
+        }
+        let m: f64 = placed.iter().map(|(t, _, _)| dist.templates[*t].mass).sum();
+        self.inserted += placed.len() as i64;
+        self.inserted_mass += m;
+        if let Some((total, _)) = self.rate {
+            if self.inserted >= total {
+                self.next = None;
+            }
+        }
+        if self.verbose {
+            lines.push(format!(
+                "INFO: Particle insertion {}: inserted {} particle templates (mass {}) at step {step}\n - a total of {} particle templates (mass {}) inserted so far.",
+                self.id,
+                placed.len(),
+                crate::util::format::with_spec("%e", m).unwrap_or_default(),
+                self.inserted,
+                crate::util::format::with_spec("%e", self.inserted_mass).unwrap_or_default()
+            ));
+        }
+        if (placed.len() as i64) < nlist {
+            lines.push("WARNING: Particle insertion: Less insertions than requested (./src/fix_insert.cpp:814)".into());
+        }
+        Ok((placed, lines))
+    }
+}

@@ -1,0 +1,629 @@
+//! `fix insert/stream`: the insertion face, the volume particles are placed in, their
+//! release onto the integrator, and the restart state of the stream.
+
+use super::*;
+
+/// A triangle mesh as an insertion face: LIGGGHTS's area-weighted triangle choice and
+/// barycentric sampling, with the mesh's own generator (seed 179424799, never reset).
+#[derive(Debug, Clone)]
+pub struct Face {
+    /// The triangles (length).
+    pub triangles: Vec<crate::io::stl::Triangle>,
+    /// Cumulative areas.
+    pub acc: Vec<f64>,
+    /// Total area (length^2).
+    pub total: f64,
+    /// The mesh generator.
+    pub rng: RanPark,
+    /// Edge lists for `all_in yes` (planar faces only).
+    pub within: Option<Within>,
+}
+
+/// LIGGGHTS's TriMeshPlanar edge lists for `all_in yes`: for each triangle, up to six
+/// (triangle, active edge) pairs to test a sampled point against, and the smallest of their
+/// recorded distances. LIGGGHTS fills the six slots with every pairing of an active edge
+/// with this triangle's edges and, once full, overwrites the slot with the largest
+/// distance unconditionally; the lists are therefore not the six nearest edges, and a
+/// point can land closer than its radius to an active edge missing from its list. This
+/// is reproduced as it is.
+#[derive(Debug, Clone)]
+pub struct Within {
+    /// Per triangle, the (triangle, edge) pairs, `None` past the filled slots.
+    pub nearest: Vec<[Option<(usize, usize)>; 6]>,
+    /// Per triangle, the smallest recorded distance (length; 1e8 while slots are empty).
+    pub min_dist: Vec<f64>,
+    /// Per triangle: nodes, unit edge vectors, edge lengths and in-plane edge normals.
+    pub edges: Vec<TriangleEdges>,
+}
+
+/// One triangle's nodes, unit edge vectors, edge lengths (length) and in-plane edge normals.
+pub type TriangleEdges = ([[f64; 3]; 3], [[f64; 3]; 3], [f64; 3], [[f64; 3]; 3]);
+
+/// Most samples `all_in yes` draws for one point before it warns and keeps the last.
+pub(super) const MAXTRY_WITHIN: usize = 500;
+
+impl Within {
+    /// From a mesh with its topology built.
+    pub fn new(mesh: &crate::engine::mesh::TriMesh) -> Within {
+        let n = mesh.len();
+        let edges: Vec<_> = (0..n)
+            .map(|t| {
+                (
+                    mesh.nodes[t],
+                    mesh.edge_vec[t],
+                    mesh.edge_len[t],
+                    mesh.edge_norm[t],
+                )
+            })
+            .collect();
+        let mut nearest = Vec::with_capacity(n);
+        let mut min_dist = Vec::with_capacity(n);
+        for edges_i in &edges {
+            let mut slots = [None; 6];
+            let mut dists = [1e8; 6];
+            let mut filled = 0;
+            for j in 0..n {
+                if !mesh.edge_active[j].iter().any(|&a| a) {
+                    continue;
+                }
+                for ie in 0..3 {
+                    for je in 0..3 {
+                        if !mesh.edge_active[j][je] {
+                            continue;
+                        }
+                        // LIGGGHTS measures node je of j against edge ie of i
+                        let d = edge_point_dist(edges_i, ie, mesh.nodes[j][je]);
+                        let k = if filled < 6 {
+                            filled += 1;
+                            filled - 1
+                        } else {
+                            first_extreme(&dists, |a, b| a > b)
+                        };
+                        slots[k] = Some((j, je));
+                        dists[k] = d;
+                    }
+                }
+            }
+            nearest.push(slots);
+            min_dist.push(dists[first_extreme(&dists, |a, b| a < b)]);
+        }
+        Within {
+            nearest,
+            min_dist,
+            edges,
+        }
+    }
+
+    /// `p` (sampled on triangle `t`) is at least `delta` from the listed edges.
+    fn far_enough(&self, t: usize, p: [f64; 3], delta: f64) -> bool {
+        // a NaN distance is far enough, as in LIGGGHTS
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
+        if !(self.min_dist[t] < delta) {
+            return true;
+        }
+        for &(j, e) in self.nearest[t].iter().map_while(|s| s.as_ref()) {
+            let d = edge_point_dist(&self.edges[j], e, p);
+            if d.min(2.0 * delta) < delta {
+                return false;
+            }
+        }
+        true
+    }
+}
+
+/// Index of the first extreme value (`better(a, b)`: a replaces b).
+pub(super) fn first_extreme(v: &[f64; 6], better: impl Fn(f64, f64) -> bool) -> usize {
+    let mut k = 0;
+    for i in 1..6 {
+        if better(v[i], v[k]) {
+            k = i;
+        }
+    }
+    k
+}
+
+/// LIGGGHTS's edge–point distance: to the start node before the edge, to the end node past
+/// it, else along the in-plane edge normal (length).
+#[allow(clippy::type_complexity)]
+pub(super) fn edge_point_dist(e: &TriangleEdges, i: usize, p: [f64; 3]) -> f64 {
+    let (nodes, vec, len, norm) = e;
+    let a = nodes[i];
+    let d = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
+    let along = vec[i][0] * d[0] + vec[i][1] * d[1] + vec[i][2] * d[2];
+    let mag = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if along < 0.0 {
+        mag(d)
+    } else if along > len[i] {
+        let b = nodes[(i + 1) % 3];
+        mag([p[0] - b[0], p[1] - b[1], p[2] - b[2]])
+    } else {
+        (norm[i][0] * d[0] + norm[i][1] * d[1] + norm[i][2] * d[2]).abs()
+    }
+}
+
+impl Face {
+    /// From a mesh's triangles.
+    pub fn new(triangles: Vec<crate::io::stl::Triangle>) -> Face {
+        let mut acc = Vec::with_capacity(triangles.len());
+        let mut total = 0.0;
+        for t in &triangles {
+            let mut ev = [[0.0; 3]; 3];
+            let mut len = [0.0; 3];
+            for j in 0..3 {
+                let d = [0, 1, 2].map(|k| t[(j + 1) % 3][k] - t[j][k]);
+                len[j] = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                let inv = 1.0 / len[j];
+                ev[j] = d.map(|c| inv * c);
+            }
+            let c = [
+                ev[0][1] * ev[1][2] - ev[0][2] * ev[1][1],
+                ev[0][2] * ev[1][0] - ev[0][0] * ev[1][2],
+                ev[0][0] * ev[1][1] - ev[0][1] * ev[1][0],
+            ];
+            let a = 0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt() * len[0] * len[1];
+            acc.push(match acc.last() {
+                Some(l) => l + a,
+                None => a,
+            });
+            total += a;
+        }
+        Face {
+            triangles,
+            acc,
+            total: total + 0.0,
+            rng: RanPark::new(179424799).expect("positive seed"),
+            within: None,
+        }
+    }
+
+    fn search(&self, a: f64, lo: usize, hi: usize) -> usize {
+        let acc = &self.acc;
+        if (lo < 1 || a > acc[lo - 1]) && a <= acc[lo] {
+            return lo;
+        }
+        if (hi < 1 || a > acc[hi - 1]) && a <= acc[hi] {
+            return hi;
+        }
+        let mid = (lo + hi) / 2;
+        if a > acc[mid] {
+            self.search(a, mid, hi)
+        } else {
+            self.search(a, lo, mid)
+        }
+    }
+
+    /// A random point on the face.
+    pub fn random_point(&mut self) -> [f64; 3] {
+        self.random_point_on().0
+    }
+
+    /// A random point at least `delta` from the face's active edges (`all_in yes`), as
+    /// LIGGGHTS's generateRandomOwnedGhostWithin; `false` when it gave up after 500 samples.
+    pub fn random_point_within(&mut self, delta: f64) -> ([f64; 3], bool) {
+        let mut ntry = 0;
+        loop {
+            ntry += 1;
+            let (p, t) = self.random_point_on();
+            let far = match &self.within {
+                Some(w) => w.far_enough(t, p, delta),
+                None => true,
+            };
+            if far || ntry >= MAXTRY_WITHIN {
+                return (p, ntry != MAXTRY_WITHIN);
+            }
+        }
+    }
+
+    /// A random point on the face and its triangle.
+    fn random_point_on(&mut self) -> ([f64; 3], usize) {
+        let r = self.rng.uniform() * self.total;
+        let c = self.search(r, 0, self.triangles.len() - 1);
+        let (u, v) = loop {
+            let u = self.rng.uniform();
+            let v = self.rng.uniform();
+            // LIGGGHTS's test, NaN included
+            #[allow(clippy::neg_cmp_op_on_partial_ord)]
+            if !(u + v > 1.0) {
+                break (u, v);
+            }
+        };
+        let (b0, b1, b2) = (1.0 - u - v, v, u);
+        let n = &self.triangles[c];
+        (
+            [0, 1, 2].map(|k| b0 * n[0][k] + b1 * n[1][k] + b2 * n[2][k]),
+            c,
+        )
+    }
+
+    /// Whether `x`'s projection lies on the face (barycentric test, tolerance 1e-8).
+    pub fn covers(&self, x: [f64; 3]) -> bool {
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        self.triangles.iter().any(|t| {
+            let v0 = [0, 1, 2].map(|k| t[2][k] - t[0][k]);
+            let v1 = [0, 1, 2].map(|k| t[1][k] - t[0][k]);
+            let v2 = [0, 1, 2].map(|k| x[k] - t[0][k]);
+            let (d00, d01, d02, d11, d12) = (
+                dot(v0, v0),
+                dot(v0, v1),
+                dot(v0, v2),
+                dot(v1, v1),
+                dot(v1, v2),
+            );
+            let inv = 1.0 / (d00 * d11 - d01 * d01);
+            let u = (d11 * d02 - d01 * d12) * inv;
+            let v = (d00 * d12 - d01 * d02) * inv;
+            u > -1e-8 && v > -1e-8 && u + v < 1.0 + 1e-8
+        })
+    }
+}
+
+/// One particle on its way from an insertion face: moved at `v_normal` until released.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Release {
+    /// Atom ID.
+    pub id: i64,
+    /// Where it was inserted (length).
+    pub x: [f64; 3],
+    /// The insertion step.
+    pub inserted: i64,
+    /// The release step.
+    pub release: i64,
+    /// Velocity while moving to the release point (length/time).
+    pub v_int: [f64; 3],
+    /// Velocity after release (length/time).
+    pub v_final: [f64; 3],
+    /// Angular velocity after release (1/time).
+    pub omega: [f64; 3],
+}
+
+/// Width of LIGGGHTS's per-atom release data (`release_fix_insert_stream`).
+pub const RELEASE_WIDTH: usize = 14;
+
+/// Name of the per-atom release data, as LIGGGHTS's insert/stream names its property/atom.
+pub const RELEASE_NAME: &str = "release_fix_insert_stream";
+
+/// LIGGGHTS's tolerance when it turns stored steps back into integers.
+pub(super) const STEP_TINY: f64 = 1e-14;
+
+impl Release {
+    /// The 14 values LIGGGHTS keeps per atom: insertion position, insertion step, release
+    /// step, integration velocity, release velocity, release angular velocity.
+    pub fn row(&self) -> [f64; RELEASE_WIDTH] {
+        let mut r = [0.0; RELEASE_WIDTH];
+        r[..3].copy_from_slice(&self.x);
+        r[3] = self.inserted as f64;
+        r[4] = self.release as f64;
+        r[5..8].copy_from_slice(&self.v_int);
+        r[8..11].copy_from_slice(&self.v_final);
+        r[11..14].copy_from_slice(&self.omega);
+        r
+    }
+
+    /// A particle still on its way at `step`, from its stored row (None: not a stream
+    /// particle, or already released), read as LIGGGHTS's end_of_step reads it.
+    pub fn from_row(id: i64, r: &[f64], step: i64) -> Option<Release> {
+        if r[3].abs() <= 1e-13 {
+            return None;
+        }
+        let release = (r[4] + STEP_TINY) as i32 as i64;
+        if step > release {
+            return None;
+        }
+        Some(Release {
+            id,
+            x: [r[0], r[1], r[2]],
+            inserted: (r[3] + STEP_TINY) as i32 as i64,
+            release,
+            v_int: [r[5], r[6], r[7]],
+            v_final: [r[8], r[9], r[10]],
+            omega: [r[11], r[12], r[13]],
+        })
+    }
+}
+
+/// What a restart file stored for an insertion fix (LIGGGHTS's FixInsert::write_restart).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InsertRestart {
+    /// State of the fix generator.
+    pub rng_state: i32,
+    /// Particles inserted so far.
+    pub inserted: i64,
+    /// First insertion step.
+    pub first_step: i64,
+    /// Next insertion step (0: insertion had finished).
+    pub next: i64,
+    /// Mass inserted so far (mass).
+    pub mass: f64,
+}
+
+impl InsertRestart {
+    /// Parse the 5 doubles of the stored state.
+    pub fn parse(bytes: &[u8]) -> Result<InsertRestart, EngineError> {
+        if bytes.len() < 40 {
+            return Err(format!(
+                "stored insertion state has {} bytes, expected 40",
+                bytes.len()
+            )
+            .into());
+        }
+        let d = |k: usize| f64::from_le_bytes(bytes[8 * k..8 * k + 8].try_into().expect("8"));
+        Ok(InsertRestart {
+            rng_state: d(0) as i32,
+            inserted: d(1) as i32 as i64,
+            first_step: d(2) as i32 as i64,
+            next: d(3) as i64,
+            mass: d(4),
+        })
+    }
+
+    /// The 5 doubles LIGGGHTS stores.
+    pub fn bytes(&self) -> Vec<u8> {
+        [
+            self.rng_state as f64,
+            self.inserted as f64,
+            self.first_step as f64,
+            self.next as f64,
+            self.mass,
+        ]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect()
+    }
+}
+
+/// `fix insert/stream`.
+#[derive(Debug, Clone)]
+pub struct InsertStream {
+    /// Fix ID.
+    pub id: String,
+    /// The distribution fix's ID.
+    pub distribution: String,
+    /// The insertion face.
+    pub face: Face,
+    /// Unit face normal, pointing along the insertion velocity.
+    pub normal: [f64; 3],
+    /// Velocity component along the normal (length/time).
+    pub v_normal: [f64; 3],
+    /// First node of the first triangle.
+    pub p_ref: [f64; 3],
+    /// Extrusion length (length).
+    pub extrude: f64,
+    /// Steps between insertions.
+    pub every: i64,
+    /// Particles per insertion (mean).
+    pub per_insertion: f64,
+    /// Particle rate (1/time) and mass rate (mass/time), as LIGGGHTS prints them.
+    pub rates: (f64, f64),
+    /// Total to insert.
+    pub total: i64,
+    /// `vel` of the released particles.
+    pub velocity: Velocity,
+    /// Angular velocity after release (1/time).
+    pub omega: [f64; 3],
+    /// `overlapcheck`.
+    pub overlapcheck: bool,
+    /// `maxattempt`.
+    pub maxattempt: i64,
+    /// `ntry_mc`.
+    pub ntry_mc: i64,
+    /// `verbose`.
+    pub verbose: bool,
+    /// The fix generator.
+    pub rng: RanPark,
+    /// The next insertion step.
+    pub next: Option<i64>,
+    /// First insertion done (the face measurement runs at the first and, if the box can
+    /// change, every insertion).
+    pub measured: bool,
+    /// Particles inserted so far.
+    pub inserted: i64,
+    /// Their mass (mass).
+    pub inserted_mass: f64,
+    /// Particles not yet released.
+    pub moving: Vec<Release>,
+    /// First insertion step (kept for restart files).
+    pub first_step: i64,
+}
+
+impl InsertStream {
+    /// The setup line LIGGGHTS prints.
+    pub fn setup_lines(&self, dist: &Distribution) -> Vec<String> {
+        let (rate, mass_rate) = self.rates;
+        let f = |spec: &str, v: f64| crate::util::format::with_spec(spec, v).unwrap_or_default();
+        vec![format!(
+            "INFO: Particle insertion {}: {} particles every {} steps - particle rate {}  (mass rate {})\n      {} particles (mass {}) within {} steps",
+            self.id,
+            f("%f", self.per_insertion),
+            self.every,
+            f("%f", rate),
+            f("%e", mass_rate),
+            self.total,
+            f("%e", self.total as f64 * dist.mass_expect),
+            ((self.total as f64 / self.per_insertion).ceil() as i64)
+                .saturating_sub(1)
+                .max(0)
+                .saturating_mul(self.every)
+        )]
+    }
+
+    /// One insertion at `step`: new particles (template, position, velocity = v_normal) and
+    /// the lines LIGGGHTS prints; the release data of the new atoms is recorded by
+    /// [`InsertStream::record`] once they have IDs.
+    pub fn insert(
+        &mut self,
+        step: i64,
+        dist: &mut Distribution,
+        w: &World,
+        box_changes: bool,
+    ) -> Result<(Vec<NewParticle>, Vec<String>), EngineError> {
+        let mut lines = Vec::new();
+        let mut n = (self.per_insertion + self.rng.uniform()) as i64;
+        if self.inserted + n > self.total {
+            n = self.total - self.inserted;
+        }
+        if self.inserted + n >= self.total {
+            n = (self.total - self.inserted).max(0);
+        }
+        if !self.measured || box_changes {
+            for _ in 0..self.ntry_mc {
+                self.face.random_point();
+                self.rng.uniform();
+            }
+            self.measured = true;
+        }
+        let list = dist.list(n)?;
+        let maxrad = dist.max_radius;
+        if !list.is_empty() {
+            lines.extend(narrow_box_warning(w, maxrad));
+        }
+        let nrm = self.normal;
+        let mut near: Vec<([f64; 3], f64)> = Vec::new();
+        if self.overlapcheck {
+            for i in 0..w.x.len() {
+                let x = w.x[i];
+                let dn = (x[0] - self.p_ref[0]) * nrm[0]
+                    + (x[1] - self.p_ref[1]) * nrm[1]
+                    + (x[2] - self.p_ref[2]) * nrm[2];
+                if dn > maxrad || dn < -(self.extrude + 3.0 * maxrad) {
+                    continue;
+                }
+                if self
+                    .face
+                    .covers([x[0] + nrm[0] * dn, x[1] + nrm[1] * dn, x[2] + nrm[2] * dn])
+                {
+                    near.push((x, w.radius[i]));
+                }
+            }
+        }
+        let in_sub = |p: [f64; 3]| (0..3).all(|d| p[d] >= w.lo[d] && p[d] < w.hi[d]);
+        let dist_sub = |p: [f64; 3]| {
+            let dlo = (0..3)
+                .map(|d| (w.lo[d] - p[d]).abs())
+                .fold(f64::INFINITY, f64::min);
+            let dhi = (0..3)
+                .map(|d| (w.hi[d] - p[d]).abs())
+                .fold(f64::INFINITY, f64::min);
+            if dlo < dhi {
+                dlo
+            } else {
+                dhi
+            }
+        };
+        let maxtry = (list.len() as i64).saturating_mul(self.maxattempt);
+        let mut ntry = 0;
+        let mut placed: Vec<NewParticle> = Vec::new();
+        while ntry < maxtry && placed.len() < list.len() {
+            let t = list[placed.len()];
+            let rad = dist.templates[t].radius;
+            let mut done = false;
+            while !done && ntry < maxtry {
+                let mut p;
+                loop {
+                    p = if self.face.within.is_some() {
+                        let (q, ok) = self.face.random_point_within(rad);
+                        if !ok {
+                            lines.push(
+                                "WARNING: 'All_in yes' did not succeed (./src/tri_mesh_planar_I.h:95)"
+                                    .into(),
+                            );
+                        }
+                        q
+                    } else {
+                        self.face.random_point()
+                    };
+                    let r = if self.overlapcheck {
+                        -(self.rng.uniform() * self.extrude + rad + 0.0)
+                    } else {
+                        -(self.rng.uniform() * (self.extrude - 2.0 * rad) + rad + 0.0)
+                    };
+                    p = [p[0] + nrm[0] * r, p[1] + nrm[1] * r, p[2] + nrm[2] * r];
+                    ntry += 1;
+                    let bad = !in_sub(p) || (self.overlapcheck && dist_sub(p) < rad);
+                    if !(ntry < maxtry && bad) {
+                        break;
+                    }
+                }
+                if ntry < maxtry {
+                    // a NaN distance counts as clear, as in LIGGGHTS
+                    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+                    let clear = !self.overlapcheck
+                        || near.iter().all(|(q, rq)| {
+                            let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+                            let rs = rad + rq;
+                            !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= rs * rs)
+                        });
+                    if clear {
+                        near.push((p, rad));
+                        placed.push((t, p, self.v_normal));
+                        done = true;
+                    }
+                }
+            }
+        }
+        let m: f64 = placed.iter().map(|(t, _, _)| dist.templates[*t].mass).sum();
+        self.inserted += placed.len() as i64;
+        self.inserted_mass += m;
+        self.next = if self.inserted < self.total {
+            Some(step + self.every)
+        } else {
+            None
+        };
+        if self.verbose {
+            lines.push(format!(
+                "INFO: Particle insertion {}: inserted {} particle templates (mass {}) at step {step}\n - a total of {} particle templates (mass {}) inserted so far.",
+                self.id,
+                placed.len(),
+                crate::util::format::with_spec("%e", m).unwrap_or_default(),
+                self.inserted,
+                crate::util::format::with_spec("%e", self.inserted_mass).unwrap_or_default()
+            ));
+        }
+        if (placed.len() as i64) < n {
+            lines.push("WARNING: Particle insertion: Less insertions than requested (./src/fix_insert.cpp:814)".into());
+        }
+        Ok((placed, lines))
+    }
+
+    /// The state a restart file keeps (LIGGGHTS's FixInsert::write_restart).
+    pub fn restart_state(&self) -> InsertRestart {
+        InsertRestart {
+            rng_state: self.rng.state(),
+            inserted: self.inserted,
+            first_step: self.first_step,
+            next: self.next.unwrap_or(0),
+            mass: self.inserted_mass,
+        }
+    }
+
+    /// Release data of the atoms just inserted (ID, position), final velocities drawn now;
+    /// returns the new records.
+    pub fn record(&mut self, step: i64, dt: f64, atoms: &[(i64, [f64; 3])]) -> Vec<Release> {
+        let mut out = Vec::with_capacity(atoms.len());
+        let vn = {
+            let v = self.v_normal;
+            (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+        };
+        for &(id, x) in atoms {
+            let rel = [0, 1, 2].map(|k| self.p_ref[k] - x[k]);
+            let dn = rel[0] * self.normal[0] + rel[1] * self.normal[1] + rel[2] * self.normal[2];
+            let steps = ((dn + 1e-14) / (vn * dt)) as i64;
+            let v_final = match self.velocity {
+                Velocity::Constant(v) => v,
+                Velocity::Uniform(v, dv) => {
+                    [0, 1, 2].map(|d| v[d] + dv[d] * 2.0 * (self.rng.uniform() - 0.50))
+                }
+                Velocity::Gaussian(v, s) => [0, 1, 2].map(|d| v[d] + s[d] * self.rng.gaussian()),
+            };
+            out.push(Release {
+                id,
+                x,
+                inserted: step,
+                release: step + steps,
+                v_int: self.v_normal,
+                v_final,
+                omega: self.omega,
+            });
+        }
+        out
+    }
+}

@@ -1,0 +1,396 @@
+//! Atom sorting, periodic wrapping and shrink-wrapping, the neighbour list and the
+//! decision to rebuild it, and overlap searches.
+
+use super::*;
+
+/// LIGGGHTS's sort bins (`Atom::sort`): the bin of each position, bins of `binsize` fitted
+/// to the box `lo`..`hi`, x fastest; None when there is nothing to sort by (no bin size, or
+/// a single bin).
+pub(super) fn sort_bins(
+    x: &[[f64; 3]],
+    lo: [f64; 3],
+    hi: [f64; 3],
+    binsize: f64,
+) -> Option<Vec<u32>> {
+    if binsize <= 0.0 {
+        return None;
+    }
+    let bininv = 1.0 / binsize;
+    let mut nbin = [1usize; 3];
+    let mut inv = [0.0; 3];
+    for d in 0..3 {
+        nbin[d] = (((hi[d] - lo[d]) * bininv) as i64).max(1) as usize;
+        inv[d] = nbin[d] as f64 / (hi[d] - lo[d]);
+    }
+    // one bin: nothing to sort; more than an int counts: refused at the run's init
+    let total = nbin.iter().map(|&n| n as f64).product::<f64>();
+    if total <= 1.0 || total > i32::MAX as f64 {
+        return None;
+    }
+    let bin_of = |x: &[f64; 3]| {
+        let mut b = [0usize; 3];
+        for d in 0..3 {
+            let k = ((x[d] - lo[d]) * inv[d]) as i64;
+            b[d] = k.clamp(0, nbin[d] as i64 - 1) as usize;
+        }
+        ((b[2] * nbin[1] + b[1]) * nbin[0] + b[0]) as u32
+    };
+    Some(x.iter().map(bin_of).collect())
+}
+
+impl Simulation {
+    /// LIGGGHTS's spatial sort of the particle arrays (`Atom::sort`): bins of half the
+    /// neighbour cutoff over the box, x fastest, particles in their previous order inside
+    /// a bin. Without a pair style LIGGGHTS refuses to sort (bin size 0); regolith then
+    /// keeps the order.
+    pub(super) fn sort_particles(&mut self) {
+        self.next_sort = (self.step / self.sort_every) * self.sort_every + self.sort_every;
+        let binsize = if self.sort_binsize > 0.0 {
+            self.sort_binsize
+        } else {
+            0.5 * self.neighbor_cutoff()
+        };
+        let (lo, hi) = (self.domain.lo, self.domain.hi);
+        let bins = move |x: &[[f64; 3]]| sort_bins(x, lo, hi, binsize);
+        if self.accel.fast {
+            // the fast path keeps its own order and records the exact one
+            self.sort_order_record(bins);
+            return;
+        }
+        let Some(bins) = bins(&self.particles.x) else {
+            return;
+        };
+        let mut order: Vec<usize> = (0..self.particles.len()).collect();
+        order.sort_by_key(|&i| bins[i]);
+        if order.iter().enumerate().any(|(k, &i)| k != i) {
+            self.particles.permute(&order);
+        }
+    }
+
+    /// LIGGGHTS's largest neighbour cutoff: for each type pair the sum of the largest radii
+    /// (frozen particles only with moving ones), plus the skin; 0 without a pair style.
+    pub fn neighbor_cutoff(&self) -> f64 {
+        if self.pair_selection.is_none() {
+            return 0.0;
+        }
+        let n = self.ntypes as usize + 1;
+        let frozen = fixes::frozen_groups(&self.fixes);
+        let (mut dynamic, mut still) = (vec![0.0f64; n], vec![0.0f64; n]);
+        let p = &self.particles;
+        for i in 0..p.len() {
+            let t = (p.kind[i] as usize).min(n - 1);
+            if p.mask[i] & frozen != 0 {
+                still[t] = still[t].max(p.radius[i]);
+            } else {
+                dynamic[t] = dynamic[t].max(p.radius[i]);
+            }
+        }
+        let mut cut: f64 = 0.0;
+        for i in 1..n {
+            for j in 1..n {
+                let c = (dynamic[i] + dynamic[j])
+                    .max(still[i] + dynamic[j])
+                    .max(dynamic[i] + still[j]);
+                cut = cut.max(c);
+            }
+        }
+        cut + self.neighbor.skin
+    }
+
+    /// Wrap periodic coordinates, drop particles outside fixed faces, shrink-wrap the box.
+    /// Wrap periodic positions, shrink-wrap the box around the atoms, drop lost atoms (LIGGGHTS's
+    /// pbc, reset_box and exchange, as at a re-neighbouring or before writing a file).
+    pub fn pbc_and_box(&mut self) -> Result<(), EngineError> {
+        let p = &mut self.particles;
+        // a periodic coordinate that is not finite cannot be wrapped: the atom is lost
+        let mut unplaced = Vec::new();
+        for i in 0..p.len() {
+            if !self.domain.remap(&mut p.x[i], &mut p.image[i]) {
+                unplaced.push(i);
+            }
+        }
+        // as LIGGGHTS: the box shrink-wraps around every atom first (reset_box), then atoms
+        // outside a fixed face are lost (exchange)
+        // around every mesh node too (LIGGGHTS's FixMesh::box_extent)
+        let meshes = self.fixes.iter().filter_map(|f| match &f.kind {
+            FixKind::Mesh(m) => Some(m),
+            _ => None,
+        });
+        let nodes = meshes.flat_map(|m| m.triangles().iter().flatten());
+        if self.domain.shrinks() {
+            let mut lo = [f64::INFINITY; 3];
+            let mut hi = [f64::NEG_INFINITY; 3];
+            let mut any = false;
+            // an atom without a finite position is lost below; it does not stretch the box
+            let placed = p.x.iter().filter(|x| x.iter().all(|c| c.is_finite()));
+            for x in placed.chain(nodes) {
+                any = true;
+                for d in 0..3 {
+                    lo[d] = lo[d].min(x[d]);
+                    hi[d] = hi[d].max(x[d]);
+                }
+            }
+            if any {
+                self.domain.shrink_wrap(lo, hi)?;
+            }
+        }
+        let mut lost: Vec<bool> = p.x.iter().map(|x| !self.domain.contains(*x)).collect();
+        for i in unplaced {
+            lost[i] = true;
+        }
+        if lost.iter().any(|&l| l) {
+            if !self.lost_ignore {
+                let remaining = lost.iter().filter(|&&l| !l).count();
+                return Err(lost_atoms_message(p, &lost, remaining, self.step).into());
+            }
+            p.retain_by(&lost);
+        }
+        self.drop_broken_clumps();
+        Ok(())
+    }
+
+    pub(super) fn build_neighbors(&mut self) {
+        let old_pairs = std::mem::take(&mut self.list.pairs);
+        let width = self.pair.as_ref().map_or(0, |p| p.history_width());
+        if !(self.accel.fast && self.build_list_fast()) {
+            let order = crate::engine::neighbor::BinOrder::sized(
+                self.domain.lo,
+                self.domain.hi,
+                self.neighbor.cutneighmax,
+                self.extras.neigh_binsize,
+            );
+            // LIGGGHTS's stencil walk; the general search where particles have grown
+            // (pairs beyond the stencil are counted) or the box is too short
+            let walked = !self.radii_vary()
+                && std::env::var_os("REGOLITH_SORTED_LIST").is_none()
+                && self.list.build_stencil(
+                    &self.particles.x,
+                    &self.particles.radius,
+                    self.neighbor.skin,
+                    &self.domain,
+                    &order,
+                );
+            if !walked {
+                self.list.build(
+                    &self.particles.x,
+                    &self.particles.radius,
+                    self.neighbor.skin,
+                    &self.domain,
+                    Some(&order),
+                );
+            }
+        }
+        self.exclude_clump_pairs();
+        let n = &self.neighbor;
+        if !n.exclude_types.is_empty() || !n.exclude_groups.is_empty() {
+            let p = &self.particles;
+            self.list.pairs.retain(|pair| {
+                let (i, j) = (pair.i as usize, pair.j as usize);
+                let (ti, tj) = (p.kind[i], p.kind[j]);
+                let (mi, mj) = (p.mask[i], p.mask[j]);
+                !n.exclude_types
+                    .iter()
+                    .any(|&(a, b)| (ti == a && tj == b) || (ti == b && tj == a))
+                    && !n
+                        .exclude_groups
+                        .iter()
+                        .any(|&(a, b)| (mi & a != 0 && mj & b != 0) || (mi & b != 0 && mj & a != 0))
+            });
+        }
+        let flips = self.pair.as_ref().map_or(Vec::new(), |p| p.history_flips());
+        // a pair style redefined with another history layout starts its contacts afresh
+        // (LIGGGHTS replaces its contact-history fix with the pair style)
+        let old_width = if old_pairs.is_empty() {
+            0
+        } else {
+            self.history.len() / old_pairs.len()
+        };
+        if old_width != width {
+            self.history.clear();
+        }
+        let old_pairs = if old_width == width {
+            old_pairs
+        } else {
+            Vec::new()
+        };
+        self.history = self.accel.install(|| {
+            carry_history(
+                &old_pairs,
+                &self.history,
+                &self.list.pairs,
+                &self.particles.id,
+                &self.list_ids,
+                &flips,
+            )
+        });
+        if let Some(pending) = self.pending_history.take() {
+            self.apply_pending_history(pending, width);
+        }
+        // as LIGGGHTS's granular list build: a pair keeps its history only if it touches
+        // at the build (separated pairs keep stale values until then, and lose them now)
+        if width > 0 {
+            let p = &self.particles;
+            for (k, pair) in self.list.pairs.iter().enumerate() {
+                let (i, j) = (pair.i as usize, pair.j as usize);
+                let d = [0, 1, 2].map(|c| p.x[i][c] - p.x[j][c] - pair.shift[c]);
+                let radsum = p.radius[i] + p.radius[j];
+                // a NaN distance is no contact
+                #[allow(clippy::neg_cmp_op_on_partial_ord)]
+                if !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < radsum * radsum) {
+                    self.history[k * width..(k + 1) * width].fill(0.0);
+                }
+            }
+        }
+        self.list_ids = self.particles.id.clone();
+        self.ago = 0;
+        self.box_at_build = (self.domain.lo, self.domain.hi);
+        // the fast path sums by blocks of particles on any thread count; the exact path's
+        // parallel sums need each particle's entries; small lists stay sequential
+        use crate::engine::neighbor::{block_starts, Incidence, SumOrder};
+        let (pairs, n) = (&self.list.pairs, self.particles.len());
+        let threads = self.accel.thread_count() > 1;
+        self.sum_order = if self.accel.fast {
+            block_starts(pairs, n).map(SumOrder::Blocks)
+        } else if threads && pairs.len() >= crate::engine::granular::parallel_pairs() {
+            Incidence::new(pairs, n).map(SumOrder::Gathered)
+        } else {
+            None
+        }
+        .unwrap_or_default();
+    }
+
+    /// `delete_atoms overlap CUT G1 G2`: which atoms go. In memory order, an atom of G1 goes
+    /// when an atom of G2 that has not gone lies closer than `cut`; across a periodic
+    /// boundary only the lower ID of a pair counts as gone (LIGGGHTS's rule for ghosts).
+    pub fn overlapping(&self, cut: f64, g1: u32, g2: u32) -> Result<Vec<bool>, EngineError> {
+        let p = &self.particles;
+        let n = p.len();
+        let mut list = crate::engine::neighbor::NeighborList::default();
+        let reach = vec![0.5 * cut; n];
+        let mut x = p.x.clone();
+        for xi in &mut x {
+            let mut image = [0; 3];
+            self.domain.remap(xi, &mut image);
+        }
+        list.build(&x, &reach, 0.0, &self.domain, None);
+        // partners of each atom, both directions: (partner, across a periodic boundary)
+        let mut partners: Vec<Vec<(usize, bool)>> = vec![Vec::new(); n];
+        for pair in &list.pairs {
+            let (i, j) = (pair.i as usize, pair.j as usize);
+            let d = [0, 1, 2].map(|k| x[i][k] - (x[j][k] + pair.shift[k]));
+            if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= cut * cut || i == j {
+                continue;
+            }
+            let periodic = pair.shift != [0.0; 3];
+            partners[i].push((j, periodic));
+            partners[j].push((i, periodic));
+        }
+        let mut gone = vec![false; n];
+        for i in 0..n {
+            if p.mask[i] & g1 == 0 {
+                continue;
+            }
+            for &(j, periodic) in &partners[i] {
+                if p.mask[j] & g2 == 0 {
+                    continue;
+                }
+                if !periodic {
+                    if gone[j] {
+                        continue;
+                    }
+                } else if p.mask[i] & g2 != 0 && p.mask[j] & g1 != 0 && p.id[i] > p.id[j] {
+                    continue;
+                }
+                gone[i] = true;
+                break;
+            }
+        }
+        Ok(gone)
+    }
+
+    /// Values of a `fix property/global` by its variable name: (style, columns, values).
+    pub fn property(&self, name: &str) -> Option<(&str, usize, Vec<f64>)> {
+        let fix = self.fixes.iter().rev().find(|f| {
+            f.style == "property/global" && f.args.first().map(String::as_str) == Some(name)
+        })?;
+        let style = fix.args.get(1)?.as_str();
+        let (columns, start) = match style {
+            "peratomtypepair" | "atomtypepair" | "matrix" => (fix.args.get(2)?.parse().ok()?, 3),
+            _ => (1, 2),
+        };
+        let values = fix.args[start..]
+            .iter()
+            .map(|w| crate::util::numbers::numeric(w).unwrap_or(0.0))
+            .collect();
+        Some((style, columns, values))
+    }
+
+    /// LIGGGHTS's `Neighbor::decide`: rebuild now?
+    pub(super) fn decide(&mut self) -> bool {
+        // a rebuild a fix or a changed atom count forces is never dangerous
+        let forced = self.mesh_rebuild_at == Some(self.step)
+            || self.list.built_positions().len() != self.particles.len();
+        let rebuild = self.decide_by_rules();
+        // LIGGGHTS's dangerous build: a distance-triggered rebuild at the first step the
+        // delay and every settings allowed (the list may have been out of date already)
+        let n = &self.neighbor;
+        if rebuild && !forced && n.check && self.ago == n.every.max(n.delay) {
+            self.stats.dangerous += 1;
+        }
+        rebuild
+    }
+
+    /// The rebuild decision itself (see [`Self::decide`]).
+    pub(super) fn decide_by_rules(&mut self) -> bool {
+        self.ago += 1;
+        if self.mesh_rebuild_at == Some(self.step) {
+            return true;
+        }
+        if self.list.built_positions().len() != self.particles.len() {
+            return true;
+        }
+        let n = &self.neighbor;
+        if self.ago < n.delay || !self.ago.is_multiple_of(n.every) {
+            return false;
+        }
+        if !n.check {
+            return true;
+        }
+        let mut trigger = 0.5 * n.skin;
+        let periodic = (0..3).any(|d| self.domain.periodic(d));
+        if self.domain.shrinks() && periodic {
+            let dist = |a: [f64; 3], b: [f64; 3]| {
+                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+            };
+            let d1 = dist(self.domain.lo, self.box_at_build.0);
+            let d2 = dist(self.domain.hi, self.box_at_build.1);
+            trigger = 0.5 * (n.skin - (d1 + d2));
+        }
+        let limit = trigger * trigger;
+        if self.radii_vary() {
+            // LIGGGHTS's test when a fix changes radii: growth eats into the skin too
+            let delta = limit.sqrt();
+            let p = &self.particles;
+            return (0..p.len()).any(|i| {
+                let (a, b) = (p.x[i], self.list.built_positions()[i]);
+                let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+                let rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                let delr = p.radius[i] - self.list.built_reaches()[i];
+                let delrsq = delr * delr;
+                delrsq > limit || rsq > limit - 2. * delr * delta + delrsq
+            });
+        }
+        let (x, built) = (&self.particles.x, self.list_positions());
+        // blocks of particles tested without early exit (a loop the compiler vectorises)
+        const BLOCK: usize = 256;
+        let moved = |b: usize| {
+            let (lo, hi) = (b * BLOCK, ((b + 1) * BLOCK).min(x.len()));
+            let pairs = x[lo..hi].iter().zip(&built[lo..hi]);
+            pairs.fold(false, |hit, (a, b)| {
+                let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+                hit | (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > limit)
+            })
+        };
+        first_where_in(x.len().div_ceil(BLOCK), BLOCK, moved).is_some()
+    }
+}

@@ -1,0 +1,294 @@
+//! What a run prepares before its first step: the pair model and its materials, the
+//! neighbour cutoff's radii, growing radii and the fixes' resolved inputs.
+
+use super::*;
+
+impl Simulation {
+    /// Build the contact models (pair and walls) from the current material properties.
+    pub(super) fn init_pair(&mut self) -> Result<(), EngineError> {
+        use crate::engine::contact::material::mix_yeff;
+        use crate::engine::granular;
+        let input = self.material_input();
+        for k in 0..self.fixes.len() {
+            if let FixKind::CheckTimestep(_) = &self.fixes[k].kind {
+                if self.pair_selection.is_none() {
+                    return Err(
+                        "Fix check/timestep/gran can only be used together with: gran".into(),
+                    );
+                }
+                let missing = |name: &str| {
+                    format!("Could not locate a fix/property storing value(s) for {name} as requested by fix check/timestep/gran.")
+                };
+                let youngs = input
+                    .youngs_modulus
+                    .clone()
+                    .ok_or_else(|| missing("youngsModulus"))?;
+                let poisson = input
+                    .poissons_ratio
+                    .clone()
+                    .ok_or_else(|| missing("poissonsRatio"))?;
+                let n = self.ntypes as usize;
+                if youngs.len() < n || poisson.len() < n {
+                    return Err("fix check/timestep/gran: youngsModulus and poissonsRatio need one value per atom type".into());
+                }
+                let materials = (0..n)
+                    .map(|t| {
+                        let (y, nu) = (youngs[t], poisson[t]);
+                        (y, nu, mix_yeff(y, y, nu, nu))
+                    })
+                    .collect();
+                let every = self.thermo.every;
+                let prefix = format!("f_{}", self.fixes[k].id);
+                let in_thermo = self
+                    .thermo
+                    .fields
+                    .iter()
+                    .any(|f| f.keyword.starts_with(&prefix));
+                if let FixKind::CheckTimestep(c) = &mut self.fixes[k].kind {
+                    if in_thermo && every % c.every != 0 {
+                        return Err("Thermo and fix not computed at compatible times".into());
+                    }
+                    c.materials = materials;
+                }
+            }
+        }
+        let two_d = false; // `dimension 2` is rejected at parse time
+        for k in 0..self.fixes.len() {
+            if let FixKind::WallGran(wall) = &self.fixes[k].kind {
+                let mut sel = wall.selection.clone();
+                sel.options.two_d = two_d;
+                let model =
+                    granular::build_wall(&sel, &input, wall.wall_type, wall.plane, wall.shear)?;
+                if let FixKind::WallGran(wall) = &mut self.fixes[k].kind {
+                    wall.model = Some(model);
+                }
+            }
+        }
+        for k in 0..self.fixes.len() {
+            if let FixKind::MeshWall(wall) = &self.fixes[k].kind {
+                let mut sel = wall.selection.clone();
+                sel.options.two_d = two_d;
+                let model = crate::engine::mesh_wall::build(&sel, &input)?;
+                if let FixKind::MeshWall(wall) = &mut self.fixes[k].kind {
+                    wall.model = Some(model);
+                }
+            }
+        }
+        let Some(mut sel) = self.pair_selection.clone() else {
+            self.pair = None;
+            return Ok(());
+        };
+        if !self.pair_coeff_set {
+            return Err("All pair coeffs are not set".into());
+        }
+        if !self.comm_vel {
+            return Err("Pair granular requires ghost atoms store velocity".into());
+        }
+        sel.options.two_d = two_d;
+        let frozen = fixes::frozen_groups(&self.fixes);
+        self.pair = Some(granular::build(&sel, &input, frozen)?);
+        Ok(())
+    }
+
+    /// The material inputs from the `fix property/global` definitions (each present one,
+    /// whether or not a model will ask for it).
+    pub(crate) fn material_input(&self) -> crate::engine::contact::MaterialInput {
+        let table = |name: &str| self.property(name).map(|(_, _, v)| v);
+        let scalar = |name: &str| table(name).and_then(|v| v.first().copied());
+        crate::engine::contact::MaterialInput {
+            ntypes: self.ntypes as usize,
+            units: self.units,
+            soft_particles: self.soft_hard.0,
+            hard_particles: self.soft_hard.1,
+            allow_zero_restitution: self.zero_restitution,
+            youngs_modulus: table("youngsModulus"),
+            poissons_ratio: table("poissonsRatio"),
+            coefficient_restitution: table("coefficientRestitution"),
+            coefficient_friction: table("coefficientFriction"),
+            coefficient_rolling_friction: table("coefficientRollingFriction"),
+            coefficient_rolling_viscous_damping: table("coefficientRollingViscousDamping"),
+            cohesion_energy_density: table("cohesionEnergyDensity"),
+            characteristic_velocity: scalar("characteristicVelocity"),
+            rolling_stiffness: scalar("rollingStiffness"),
+            kn: table("kn"),
+            kt: table("kt"),
+            gamman: table("gamman"),
+            gammat: table("gammat"),
+            gamman_abs: table("gamman_abs"),
+            gammat_abs: table("gammat_abs"),
+            fluid_viscosity: table("FluidViscosity"),
+            maximum_restitution: table("MaximumRestitution"),
+            critical_stokes: table("CriticalStokes"),
+            max_elastic_stiffness: table("coefficientMaxElasticStiffness"),
+            adhesion_stiffness: table("coefficientAdhesionStiffness"),
+            plasticity_depth: table("coefficientPlasticityDepth"),
+        }
+    }
+
+    /// LIGGGHTS's `cutneighmax` at a run's init: twice the largest radius among the atoms
+    /// and the particle templates, plus the skin (length).
+    pub(crate) fn liggghts_cutneighmax(&self) -> f64 {
+        2.0 * self.largest_radius() + self.neighbor.skin
+    }
+
+    /// The largest radius among the atoms and the particle templates (length).
+    pub fn largest_radius(&self) -> f64 {
+        let atoms = self.particles.radius.iter().copied().fold(0.0, f64::max);
+        let templates = self
+            .fixes
+            .iter()
+            .filter_map(|f| match &f.kind {
+                FixKind::Template(t) => Some(t.radius),
+                _ => None,
+            })
+            .fold(0.0, f64::max);
+        atoms.max(templates)
+    }
+
+    /// A dry run's `run`: LIGGGHTS's init checks of particles and neighbour bins, no step.
+    pub fn check_run(&self) -> Result<(), EngineError> {
+        self.check_run_init()
+    }
+
+    /// A fix changes particle radii during runs (`fix adapt ... atom diameter`).
+    pub(super) fn radii_vary(&self) -> bool {
+        self.fixes
+            .iter()
+            .any(|f| matches!(f.kind, FixKind::Adapt(_)))
+    }
+
+    /// `fix adapt ... atom diameter v_name` (LIGGGHTS's pre_force, and setup_pre_force when
+    /// `setup`): every N steps set the diameters of the group's particles from the variable,
+    /// keeping each particle's density.
+    pub(super) fn adapt_radii(
+        &mut self,
+        setup: bool,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        use crate::engine::fixes::ForceValue;
+        use std::f64::consts::PI;
+        for k in 0..self.fixes.len() {
+            let FixKind::Adapt(ad) = &self.fixes[k].kind else {
+                continue;
+            };
+            if !setup && (ad.every == 0 || self.step % ad.every != 0) {
+                continue;
+            }
+            let (group, scale) = (self.fixes[k].group, ad.scale);
+            let values = match &ad.diameter {
+                ForceValue::Equal(name) => {
+                    let name = name.clone();
+                    vec![vars.equal(self, &name)?; self.particles.len()]
+                }
+                ForceValue::Atom(name) => {
+                    let name = name.clone();
+                    vars.atom(self, &name)?
+                }
+                ForceValue::Constant(c) => vec![*c; self.particles.len()],
+                ForceValue::Null => continue,
+            };
+            let p = &mut self.particles;
+            for (i, &value) in values.iter().enumerate().take(p.len()) {
+                if p.mask[i] & group == 0 {
+                    continue;
+                }
+                let r = p.radius[i];
+                let density = p.mass[i] / (4.0 * PI / 3.0 * r * r * r);
+                let mut value = value;
+                if scale {
+                    value *= r * 2.0;
+                }
+                let r = 0.5 * value;
+                p.radius[i] = r;
+                p.mass[i] = 4.0 * PI / 3.0 * r * r * r * density;
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn list_positions(&self) -> &[[f64; 3]] {
+        self.list.built_positions()
+    }
+
+    /// Evaluate the variables and regions of `fix setforce`/`addforce` for this step.
+    pub(super) fn resolve_force_fixes(
+        &mut self,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        use crate::engine::fixes::ForceValue;
+        if self.regions.list.iter().any(|r| r.is_dynamic()) {
+            let mut regions = std::mem::take(&mut self.regions);
+            let result = regions.reshape(Some(self.step), &mut |name| {
+                vars.equal(self, name).map_err(EngineError::from)
+            });
+            self.regions = regions;
+            result?;
+        }
+        for k in 0..self.fixes.len() {
+            let f = match &self.fixes[k].kind {
+                FixKind::SetForce(f) | FixKind::AddForce(f) if f.needs_resolving() => f,
+                _ => continue,
+            };
+            let n = self.particles.len();
+            let mut columns: Vec<Option<Vec<f64>>> = Vec::with_capacity(3);
+            for v in &f.values {
+                columns.push(match v {
+                    ForceValue::Null => None,
+                    ForceValue::Constant(c) => Some(vec![*c; n]),
+                    ForceValue::Equal(name) => Some(vec![vars.equal(self, name)?; n]),
+                    ForceValue::Atom(name) => Some(vars.atom(self, name)?),
+                });
+            }
+            let region = f.region;
+            let mut resolved = vec![[None; 3]; n];
+            for (i, r) in resolved.iter_mut().enumerate() {
+                if region.is_some_and(|g| !self.regions.matches(g, self.particles.x[i])) {
+                    continue;
+                }
+                for d in 0..3 {
+                    r[d] = columns[d].as_ref().map(|c| c[i]);
+                }
+            }
+            if let FixKind::SetForce(f) | FixKind::AddForce(f) = &mut self.fixes[k].kind {
+                f.resolved = resolved;
+            }
+        }
+        Ok(())
+    }
+
+    /// Evaluate the variables of `fix move variable` for this step (before the moves).
+    pub(super) fn resolve_move_fixes(
+        &mut self,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        use crate::engine::fixes::ForceValue;
+        for k in 0..self.fixes.len() {
+            let values: Vec<ForceValue> = match &self.fixes[k].kind {
+                FixKind::Move(m) => match &m.motion {
+                    fixes::Motion::Variable { displace, velocity } => {
+                        displace.iter().chain(velocity.iter()).cloned().collect()
+                    }
+                    _ => continue,
+                },
+                _ => continue,
+            };
+            let n = self.particles.len();
+            let mut columns: Vec<Option<Vec<f64>>> = Vec::with_capacity(6);
+            for v in &values {
+                columns.push(match v {
+                    ForceValue::Null => None,
+                    ForceValue::Constant(c) => Some(vec![*c; n]),
+                    ForceValue::Equal(name) => Some(vec![vars.equal(self, name)?; n]),
+                    ForceValue::Atom(name) => Some(vars.atom(self, name)?),
+                });
+            }
+            let resolved: Vec<[Option<f64>; 6]> = (0..n)
+                .map(|i| std::array::from_fn(|c| columns[c].as_ref().map(|col| col[i])))
+                .collect();
+            if let FixKind::Move(m) = &mut self.fixes[k].kind {
+                m.resolved = resolved;
+            }
+        }
+        Ok(())
+    }
+}

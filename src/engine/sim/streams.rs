@@ -1,0 +1,461 @@
+//! Particle insertion during a run: insertion streams (`fix insert/stream`), the other
+//! insertion fixes, and meshes that must stay inside the box.
+
+use super::*;
+
+impl Simulation {
+    pub(super) fn insert_world(&self) -> (Vec<[f64; 3]>, [bool; 3], bool) {
+        let periodic = [0, 1, 2].map(|d| self.domain.periodic(d));
+        (self.particles.x.clone(), periodic, self.domain.shrinks())
+    }
+
+    /// First run's setup of `fix insert/stream`: face normal, normal velocity, interval.
+    pub(super) fn setup_streams(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
+        use crate::engine::insert::{Face, InsertStream, Velocity};
+        let dt = self.dt;
+        for k in 0..self.fixes.len() {
+            let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
+                continue;
+            };
+            if sf.state.is_some() {
+                continue;
+            }
+            let dist = self
+                .fixes
+                .iter()
+                .find_map(|f| match &f.kind {
+                    FixKind::Distribution(d) if f.id == sf.distribution => Some(d.clone()),
+                    _ => None,
+                })
+                .ok_or_else(|| {
+                    format!(
+                        "Fix insert: could not find distribution {}",
+                        sf.distribution
+                    )
+                })?;
+            let t = sf.triangles[0];
+            let mut ev = [[0.0; 3]; 2];
+            for (j, e) in ev.iter_mut().enumerate() {
+                let d = [0, 1, 2].map(|c| t[j + 1][c] - t[j][c]);
+                let inv = 1.0 / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                *e = d.map(|c| inv * c);
+            }
+            let c = [
+                ev[0][1] * ev[1][2] - ev[0][2] * ev[1][1],
+                ev[0][2] * ev[1][0] - ev[0][0] * ev[1][2],
+                ev[0][0] * ev[1][1] - ev[0][1] * ev[1][0],
+            ];
+            let inv = 1.0 / (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+            let mut n = c.map(|x| inv * x);
+            let v = match sf.velocity {
+                Velocity::Constant(v) | Velocity::Uniform(v, _) | Velocity::Gaussian(v, _) => v,
+            };
+            if v[0] * n[0] + v[1] * n[1] + v[2] * n[2] < 0.0 {
+                n = n.map(|x| -x);
+            }
+            let dot = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+            let v_normal = n.map(|x| x * dot);
+            let vn =
+                (v_normal[0] * v_normal[0] + v_normal[1] * v_normal[1] + v_normal[2] * v_normal[2])
+                    .sqrt();
+            if vn < 1e-3 {
+                return Err(format!("Fix insert/stream (id {}): insertion velocity projected on face normal is < 1e-3", sf.id).into());
+            }
+            let rbound = dist.max_radius;
+            let (every, extrude) = match (sf.extrude, sf.every) {
+                (Some(l), _) => {
+                    if l < 3.0 * rbound && (sf.all_in || sf.overlapcheck) {
+                        return Err(format!(
+                            "Fix insert/stream (id {}): 'extrude_length' is too small",
+                            sf.id
+                        )
+                        .into());
+                    }
+                    let every = ((l + 1e-14) / (dt * vn)) as i32 as i64;
+                    if every == 0 {
+                        return Err(format!("Fix insert/stream (id {}): insertion velocity too high or extrude_length too low", sf.id).into());
+                    }
+                    (every, l)
+                }
+                (None, Some(e)) => {
+                    if e < 1 {
+                        return Err(format!(
+                            "Fix insert/stream (id {}): 'insert_every' must be > 0",
+                            sf.id
+                        )
+                        .into());
+                    }
+                    // particles travel `duration` steps (default: insert_every) in the zone
+                    let duration = sf.duration.unwrap_or(e);
+                    if duration > e {
+                        return Err(format!(
+                            "Fix insert/stream (id {}): 'duration' > 'insert_every' not allowed",
+                            sf.id
+                        )
+                        .into());
+                    }
+                    let l = duration as f64 * dt * vn;
+                    if l < 2.0 * rbound {
+                        return Err(format!("Fix insert/stream (id {}): 'insert_every' or 'vel' is too small, or (bounding) radius of inserted particles too large", sf.id).into());
+                    }
+                    (e, l)
+                }
+                _ => unreachable!("checked when the fix was defined"),
+            };
+            // nparticles from mass, and the other rate, from the expected particle mass
+            let me = dist.mass_expect;
+            let total = match sf.total {
+                Ok(n) => n,
+                Err(mass) => {
+                    if mass / me > 2.0e9 {
+                        return Err(format!("Fix insert/stream (id {}): you are attempting to insert more than 2e9 particles. Reduce the mass to be inserted or increase the particle diameter", sf.id).into());
+                    }
+                    ((mass + 1e-14) / me) as i64
+                }
+            };
+            let rates = match sf.rate {
+                Ok(n) => (n, n * me),
+                Err(m) => (m / me, m),
+            };
+            let mut face = Face::new(sf.triangles.clone());
+            let (all_in, face_id) = (sf.all_in, sf.face_id.clone());
+            if all_in {
+                let (lo, hi) = (self.domain.lo, self.domain.hi);
+                let mesh = self.fixes.iter_mut().find_map(|f| match &mut f.kind {
+                    FixKind::Mesh(m) if f.id == face_id => Some((m, f.id.clone())),
+                    _ => None,
+                });
+                if let Some((m, name)) = mesh {
+                    if !m.mesh.has_topology {
+                        m.mesh.build_topology(lo, hi, &name)?;
+                    }
+                    face.within = Some(crate::engine::insert::Within::new(&m.mesh));
+                }
+            }
+            let moving = if self.stream_integrator() == Some(k) {
+                self.releases_pending(self.fixes[k].group)
+            } else {
+                Vec::new()
+            };
+            let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
+                continue;
+            };
+            let restored = sf.restored;
+            let state = InsertStream {
+                id: sf.id.clone(),
+                distribution: sf.distribution.clone(),
+                face,
+                normal: n,
+                v_normal,
+                p_ref: t[0],
+                extrude,
+                every,
+                per_insertion: rates.0 * (every as f64 * dt),
+                rates,
+                total,
+                velocity: sf.velocity,
+                omega: sf.omega,
+                overlapcheck: sf.overlapcheck,
+                maxattempt: sf.maxattempt,
+                ntry_mc: sf.ntry_mc,
+                verbose: sf.verbose,
+                rng: crate::util::random::RanPark::new(restored.map_or(sf.seed, |r| r.rng_state))?,
+                next: Some(sf.start),
+                measured: false,
+                inserted: restored.map_or(0, |r| r.inserted),
+                inserted_mass: restored.map_or(0.0, |r| r.mass),
+                moving,
+                first_step: restored.map_or(sf.start, |r| r.first_step),
+            };
+            for l in state.setup_lines(&dist) {
+                out(&format!("{l}\n"));
+            }
+            if let FixKind::InsertStream(sf) = &mut self.fixes[k].kind {
+                sf.state = Some(state);
+            }
+        }
+        Ok(())
+    }
+
+    /// `fix insert/stream` insertions due at this step.
+    pub(super) fn insert_streams(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
+        let step = self.step;
+        for k in 0..self.fixes.len() {
+            let due = matches!(&self.fixes[k].kind, FixKind::InsertStream(sf) if sf.state.as_ref().is_some_and(|s| s.next == Some(step)));
+            if !due {
+                continue;
+            }
+            let group = self.fixes[k].group;
+            let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
+                unreachable!()
+            };
+            let dist_id = sf.distribution.clone();
+            let dk = self
+                .fixes
+                .iter()
+                .position(|f| f.id == dist_id)
+                .ok_or_else(|| format!("Fix insert: could not find distribution {dist_id}"))?;
+            let FixKind::Distribution(dist) = &self.fixes[dk].kind else {
+                return Err(format!("Fix insert: {dist_id} is not a particle distribution").into());
+            };
+            let mut dist = dist.clone();
+            let (x, periodic, box_changes) = self.insert_world();
+            let (placed, lines) = {
+                let world = crate::engine::insert::World {
+                    x: &x,
+                    radius: &self.particles.radius,
+                    mass: &self.particles.mass,
+                    lo: self.domain.lo,
+                    hi: self.domain.hi,
+                    periodic,
+                    box_changes,
+                };
+                match &mut self.fixes[k].kind {
+                    FixKind::InsertStream(sf) => sf.state.as_mut().expect("set up").insert(
+                        step,
+                        &mut dist,
+                        &world,
+                        box_changes,
+                    ),
+                    _ => unreachable!(),
+                }
+            }?;
+            if let FixKind::Distribution(d) = &mut self.fixes[dk].kind {
+                *d = dist.clone();
+            }
+            let mut tag = self.particles.max_id();
+            let mut new = Vec::new();
+            for (t, xp, v) in placed {
+                let tpl = &dist.templates[t];
+                tag += 1;
+                self.particles
+                    .push(tag, tpl.atom_type, xp, tpl.radius, tpl.density);
+                let i = self.particles.len() - 1;
+                self.particles.mass[i] = tpl.mass;
+                self.particles.v[i] = v;
+                self.particles.mask[i] |= group;
+                new.push((tag, xp));
+            }
+            let dt = self.dt;
+            let records = match &mut self.fixes[k].kind {
+                FixKind::InsertStream(sf) => {
+                    sf.state.as_mut().expect("set up").record(step, dt, &new)
+                }
+                _ => unreachable!(),
+            };
+            // the new atoms are the last ones, in the order of their records
+            let first = self.particles.len() - records.len();
+            self.store_releases(first, &records);
+            // the integrating stream moves them, if they are in its group
+            if let Some(ki) = self.stream_integrator() {
+                let g = self.fixes[ki].group;
+                let mask = &self.particles.mask[first..];
+                if let FixKind::InsertStream(sf) = &mut self.fixes[ki].kind {
+                    if let Some(state) = sf.state.as_mut() {
+                        state.moving.extend(
+                            records
+                                .into_iter()
+                                .zip(mask)
+                                .filter(|(_, &m)| m & g != 0)
+                                .map(|(r, _)| r),
+                        );
+                    }
+                }
+            }
+            for l in lines {
+                out(&format!("{l}\n"));
+            }
+        }
+        Ok(())
+    }
+
+    /// `fix insert/stream`'s end of step: particles not yet released move at the normal
+    /// velocity from where they were inserted, without forces; at the release step they
+    /// get their final velocity and spin.
+    pub(super) fn move_streams(&mut self) {
+        let (step, dt) = (self.step, self.dt);
+        let mut index: Option<std::collections::HashMap<i64, usize>> = None;
+        for k in 0..self.fixes.len() {
+            let FixKind::InsertStream(sf) = &mut self.fixes[k].kind else {
+                continue;
+            };
+            let Some(state) = sf.state.as_mut() else {
+                continue;
+            };
+            if state.moving.is_empty() {
+                continue;
+            }
+            let p = &mut self.particles;
+            let map = index
+                .get_or_insert_with(|| p.id.iter().enumerate().map(|(i, id)| (*id, i)).collect());
+            state.moving.retain(|r| {
+                let (vn, omega) = (r.v_int, r.omega);
+                let Some(&i) = map.get(&r.id) else {
+                    return false;
+                };
+                let s = step.min(r.release);
+                let te = (s - r.inserted) as f64 * dt;
+                p.x[i] = [0, 1, 2].map(|d| r.x[d] + vn[d] * te);
+                p.f[i] = [0.0; 3];
+                p.torque[i] = [0.0; 3];
+                if step >= r.release {
+                    p.v[i] = r.v_final;
+                    p.omega[i] = omega;
+                    return false;
+                }
+                p.v[i] = vn;
+                p.omega[i] = [0.0; 3];
+                true
+            });
+        }
+    }
+
+    /// First run's setup of `fix insert/pack`: region generator and volume.
+    pub(super) fn setup_insertions(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
+        self.setup_streams(out)?;
+        for k in 0..self.fixes.len() {
+            let FixKind::InsertPack(ins) = &self.fixes[k].kind else {
+                continue;
+            };
+            let dist_id = ins.distribution.clone();
+            let Some(dk) = self.fixes.iter().position(|f| f.id == dist_id) else {
+                return Err(format!("Fix insert: could not find distribution {dist_id}").into());
+            };
+            let FixKind::Distribution(dist) = &self.fixes[dk].kind else {
+                return Err(format!("Fix insert: {dist_id} is not a particle distribution").into());
+            };
+            let dist = dist.clone();
+            let (x, periodic, box_changes) = self.insert_world();
+            let world = crate::engine::insert::World {
+                x: &x,
+                radius: &self.particles.radius,
+                mass: &self.particles.mass,
+                lo: self.domain.lo,
+                hi: self.domain.hi,
+                periodic,
+                box_changes,
+            };
+            let regions = self.regions.clone();
+            let lines = match &mut self.fixes[k].kind {
+                FixKind::InsertPack(ins) => ins.setup(&regions, &dist, &world, self.dt)?,
+                _ => unreachable!(),
+            };
+            for l in lines {
+                out(&format!("{l}\n"));
+            }
+        }
+        Ok(())
+    }
+
+    /// `fix insert/pack` insertions due at this step.
+    pub(super) fn insert_particles(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
+        let step = self.step;
+        for k in 0..self.fixes.len() {
+            let due =
+                matches!(&self.fixes[k].kind, FixKind::InsertPack(ins) if ins.next == Some(step));
+            if !due {
+                continue;
+            }
+            let FixKind::InsertPack(ins) = &self.fixes[k].kind else {
+                unreachable!()
+            };
+            let dist_id = ins.distribution.clone();
+            let group = self.fixes[k].group;
+            let dk = self
+                .fixes
+                .iter()
+                .position(|f| f.id == dist_id)
+                .ok_or_else(|| format!("Fix insert: could not find distribution {dist_id}"))?;
+            let FixKind::Distribution(dist) = &self.fixes[dk].kind else {
+                return Err(format!("Fix insert: {dist_id} is not a particle distribution").into());
+            };
+            let mut dist = dist.clone();
+            let (x, periodic, box_changes) = self.insert_world();
+            let regions = self.regions.clone();
+            let (placed, lines) = {
+                let world = crate::engine::insert::World {
+                    x: &x,
+                    radius: &self.particles.radius,
+                    mass: &self.particles.mass,
+                    lo: self.domain.lo,
+                    hi: self.domain.hi,
+                    periodic,
+                    box_changes,
+                };
+                match &mut self.fixes[k].kind {
+                    FixKind::InsertPack(ins) => ins.insert(step, &regions, &mut dist, &world),
+                    _ => unreachable!(),
+                }
+            }?;
+            let omega = match &self.fixes[k].kind {
+                FixKind::InsertPack(ins) => ins.omega,
+                _ => [0.0; 3],
+            };
+            if let FixKind::Distribution(d) = &mut self.fixes[dk].kind {
+                *d = dist.clone();
+            }
+            let mut tag = self.particles.max_id();
+            for (t, xp, v) in placed {
+                let tpl = &dist.templates[t];
+                if let Some(c) = &tpl.clump {
+                    self.insert_clump(c, tag + 1, xp, v, omega, group)?;
+                    tag += c.displace.len() as i64;
+                    continue;
+                }
+                tag += 1;
+                self.particles
+                    .push(tag, tpl.atom_type, xp, tpl.radius, tpl.density);
+                let i = self.particles.len() - 1;
+                self.particles.mass[i] = tpl.mass;
+                self.particles.v[i] = v;
+                self.particles.omega[i] = omega;
+                self.particles.mask[i] |= group;
+            }
+            for l in lines {
+                out(&format!("{l}\n"));
+            }
+        }
+        Ok(())
+    }
+
+    /// LIGGGHTS's check at setup: mesh triangles whose centre lies outside the box (along
+    /// directions with fixed or periodic faces) are an error.
+    pub(super) fn check_meshes_in_box(&self) -> Result<(), EngineError> {
+        let d = &self.domain;
+        for f in &self.fixes {
+            let FixKind::Mesh(m) = &f.kind else { continue };
+            let lost = m
+                .triangles()
+                .iter()
+                .filter(|t| {
+                    (0..3).any(|k| {
+                        let c = (t[0][k] + t[1][k] + t[2][k]) / 3.0;
+                        let fixed = d.boundary[k].iter().all(|b| {
+                            matches!(
+                                b,
+                                crate::engine::domain::Boundary::Fixed
+                                    | crate::engine::domain::Boundary::Periodic
+                            )
+                        });
+                        fixed && !(c >= d.lo[k] && c < d.hi[k])
+                    })
+                })
+                .count();
+            if lost > 0 {
+                return Err(format!(
+                    "Mesh (id {}): {lost} mesh elements have been lost / left the domain. \nPlease use 'boundary m m m' or scale/translate/rotate the mesh or change its dynamics",
+                    f.id
+                ).into());
+            }
+        }
+        Ok(())
+    }
+
+    /// The fix moving every stream's particles until release: the first insert/stream
+    /// (LIGGGHTS's i_am_integrator).
+    pub(super) fn stream_integrator(&self) -> Option<usize> {
+        self.fixes
+            .iter()
+            .position(|f| matches!(f.kind, FixKind::InsertStream(_)))
+    }
+}

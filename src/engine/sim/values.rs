@@ -1,0 +1,172 @@
+//! End-of-step work and the values others read: averaging fixes, the global values of
+//! fixes and computes, group bits and the simulated time.
+
+use super::*;
+
+impl Simulation {
+    /// The `end_of_step` phase: fixes that check or report every N steps.
+    pub(super) fn end_of_step(
+        &mut self,
+        out: Sink<'_>,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        self.move_streams();
+        let (step, dt, skin) = (self.step, self.dt, self.neighbor.skin);
+        for k in 0..self.fixes.len() {
+            let fix = &mut self.fixes[k];
+            match &mut fix.kind {
+                FixKind::CheckTimestep(c) if step % c.every == 0 => {
+                    for m in c.evaluate(&self.particles, fix.group, dt, skin) {
+                        out(&format!("WARNING: {m}\n"));
+                    }
+                }
+                FixKind::Momentum(m) if step % m.every == 0 => {
+                    m.apply(&mut self.particles, fix.group, &self.domain);
+                }
+                FixKind::Tracer(t) if step % t.every == 0 => {
+                    t.end_of_step(&mut self.particles, fix.group, &self.regions, step);
+                }
+                FixKind::AveTime(at) if at.next == step => {
+                    let inputs = at.inputs.clone();
+                    let values = inputs
+                        .iter()
+                        .map(|input| self.ave_input(input, vars))
+                        .collect::<Result<Vec<f64>, EngineError>>()?;
+                    if let FixKind::AveTime(at) = &mut self.fixes[k].kind {
+                        at.sample(step, &values)?;
+                    }
+                }
+                FixKind::Print(pf) if step % pf.every == 0 => {
+                    let text = pf.text.clone();
+                    let line = vars.substitute(self, &text)?;
+                    if let FixKind::Print(pf) = &mut self.fixes[k].kind {
+                        pf.emit(&line, out)?;
+                    }
+                }
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// One input value of `fix ave/time`.
+    pub(super) fn ave_input(
+        &self,
+        input: &fixes::AveInput,
+        vars: &mut dyn VariableSource,
+    ) -> Result<f64, EngineError> {
+        match input {
+            fixes::AveInput::Compute(id, i) => self.compute_value(id, *i, vars),
+            fixes::AveInput::Fix(id, i) => self.fix_value(id, *i),
+            fixes::AveInput::Variable(name) => Ok(vars.equal(self, name)?),
+        }
+    }
+
+    /// `fix ave/time` samples due at setup (LIGGGHTS runs end_of_step there too).
+    pub(super) fn setup_averages(
+        &mut self,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        let step = self.step;
+        for k in 0..self.fixes.len() {
+            let inputs = match &self.fixes[k].kind {
+                FixKind::AveTime(at) if at.next == step => at.inputs.clone(),
+                _ => continue,
+            };
+            let values = inputs
+                .iter()
+                .map(|input| self.ave_input(input, vars))
+                .collect::<Result<Vec<f64>, EngineError>>()?;
+            if let FixKind::AveTime(at) = &mut self.fixes[k].kind {
+                at.sample(step, &values)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Value of `f_ID[i]` (1-based) for fixes with a global vector.
+    pub fn fix_value(&self, id: &str, index: Option<usize>) -> Result<f64, EngineError> {
+        let fix = self
+            .fixes
+            .iter()
+            .find(|f| f.id == id)
+            .ok_or_else(|| format!("Could not find fix ID {id}"))?;
+        if let Some(v) = self.heat_value(id, index) {
+            return v;
+        }
+        match (&fix.kind, index) {
+            (FixKind::CheckTimestep(c), Some(i @ 1..=3)) => Ok(c.values[i - 1]),
+            (FixKind::Mesh(m), Some(i)) if m.stress.as_ref().and_then(|s| s.value(i)).is_some() => {
+                Ok(m.stress.as_ref().and_then(|s| s.value(i)).unwrap_or(0.0))
+            }
+            (FixKind::AveTime(at), i) if at.value(i).is_some() => Ok(at.value(i).unwrap_or(0.0)),
+            (FixKind::Massflow(m), Some(i)) if m.value(i).is_some() => {
+                Ok(m.value(i).unwrap_or(0.0))
+            }
+            (FixKind::Buoyancy(b), Some(i @ 1..=3)) => Ok(b.total[i - 1]),
+            (FixKind::Tracer(t), None) => Ok(t.scalar()),
+            _ => Err(format!("fix {id} ({}) has no such value", fix.style).into()),
+        }
+    }
+
+    /// Value of `c_ID` (index None) or `c_ID[i]`.
+    pub fn compute_value(
+        &self,
+        id: &str,
+        index: Option<usize>,
+        vars: &mut dyn VariableSource,
+    ) -> Result<f64, EngineError> {
+        let c = self
+            .computes
+            .iter()
+            .find(|c| c.id == id)
+            .ok_or_else(|| format!("Could not find thermo/variable compute ID {id}"))?;
+        match index {
+            None => c.scalar(self, vars),
+            Some(i) => c.vector(i, self, vars),
+        }
+    }
+
+    /// The per-atom values behind a dump column `c_ID` / `c_ID[N]` / `v_name`, and its
+    /// column.
+    pub(super) fn dump_reference(
+        &self,
+        name: &str,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(crate::engine::computes::PerAtom, usize), EngineError> {
+        if let Some(var) = name.strip_prefix("v_") {
+            let values = vars.atom(self, var)?;
+            return Ok((crate::engine::computes::PerAtom { columns: 1, values }, 0));
+        }
+        if let Some(body) = name.strip_prefix("f_") {
+            let (id, index) = crate::util::numbers::split_reference(body)
+                .ok_or_else(|| format!("Invalid attribute {name} in dump custom command"))?;
+            return crate::engine::fix_columns::per_atom(self, id, index);
+        }
+        let body = name
+            .strip_prefix("c_")
+            .ok_or_else(|| format!("Invalid attribute {name} in dump custom command"))?;
+        let (id, index) = crate::util::numbers::split_reference(body)
+            .ok_or_else(|| format!("Invalid attribute {name} in dump custom command"))?;
+        let c = self
+            .computes
+            .iter()
+            .find(|c| c.id == id)
+            .ok_or_else(|| format!("Could not find dump custom compute ID {id}"))?;
+        let col = crate::engine::computes::column_of(c, index)?;
+        Ok((c.per_atom(self, vars)?, col))
+    }
+
+    /// Bit mask of group `name`.
+    pub fn group_bit(&self, name: &str) -> Option<u32> {
+        self.groups
+            .iter()
+            .position(|g| g == name)
+            .map(|i| 1u32 << i)
+    }
+
+    /// Simulated time at the current step (time units).
+    pub fn time(&self) -> f64 {
+        self.atime + (self.step - self.atime_step) as f64 * self.dt
+    }
+}

@@ -24,7 +24,7 @@ pub const COMMANDS: &[(&str, Handler)] = &[
     ("package", package),
     ("communicate", communicate),
     ("comm_modify", communicate),
-    ("processors", |a, _| processors(a)),
+    ("processors", super::processors::processors),
     ("region", region),
     ("create_box", create_box),
     ("change_box", super::change_box::change_box),
@@ -178,20 +178,6 @@ fn communicate(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
-fn processors(a: &Args) -> Result {
-    a.count(3..=usize::MAX, "processors Px Py Pz")?;
-    for i in 0..3 {
-        let w = a.word(i)?;
-        if w != "*" {
-            a.int(i)?;
-        }
-    }
-    if a.len() > 3 {
-        return Err(a.unsupported(3, "processors keywords"));
-    }
-    Ok(())
-}
-
 fn region(a: &Args, ctx: &mut Ctx) -> Result {
     let words: Vec<&str> = (0..a.len())
         .map(|i| a.word(i))
@@ -297,7 +283,7 @@ fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
     ctx.sim.domain.create(lo, hi);
     ctx.sim.ntypes = ntypes as u32;
     ctx.say(&format!(
-        "Created orthogonal box = ({} {} {}) to ({} {} {})\n  1 by 1 by 1 MPI processor grid\n",
+        "Created orthogonal box = ({} {} {}) to ({} {} {})\n",
         g(lo[0]),
         g(lo[1]),
         g(lo[2]),
@@ -305,6 +291,8 @@ fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
         g(hi[1]),
         g(hi[2])
     ));
+    let grid = super::processors::grid_lines(a, ctx, [0, 1, 2].map(|d| hi[d] - lo[d]), 1)?;
+    ctx.say(&grid);
     Ok(())
 }
 
@@ -1357,8 +1345,9 @@ fn read_data(a: &Args, ctx: &mut Ctx) -> Result {
         }
     }
     let (lo, hi) = (data.lo, data.hi);
+    let grid = super::processors::grid_lines(a, ctx, [0, 1, 2].map(|d| hi[d] - lo[d]), 0)?;
     ctx.say(&format!(
-        "Reading data file ...\n  orthogonal box = ({} {} {}) to ({} {} {})\n  1 by 1 by 1 MPI processor grid\n  {} atoms\n",
+        "Reading data file ...\n  orthogonal box = ({} {} {}) to ({} {} {})\n{grid}  {} atoms\n",
         g(lo[0]),
         g(lo[1]),
         g(lo[2]),
@@ -1447,9 +1436,11 @@ fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
         .iter()
         .map(|f| (f.id.clone(), f.style.clone()))
         .collect();
+    let (lo, hi) = (ctx.sim.domain.lo, ctx.sim.domain.hi);
+    let grid = super::processors::grid_lines(a, ctx, [0, 1, 2].map(|d| hi[d] - lo[d]), 0)?;
     let line = format!(
-        "{}  1 by 1 by 1 MPI processor grid\n  {} atoms\n",
-        super::change_box::orthogonal_box_line(ctx.sim.domain.lo, ctx.sim.domain.hi),
+        "{}{grid}  {} atoms\n",
+        super::change_box::orthogonal_box_line(lo, hi),
         ctx.sim.particles.len()
     );
     ctx.say(&line);

@@ -30,6 +30,7 @@ pub mod multisphere;
 pub mod neighbor;
 pub mod nve_noforce;
 pub mod particles;
+pub mod procmap;
 pub mod region;
 pub mod region_motion;
 pub mod restart_fixes;

@@ -245,9 +245,8 @@ fn main() -> ExitCode {
         }
     };
     let _ = RANKS.set(launch.ranks);
-    let code = dispatch();
-    drop(launch);
-    code
+    // `launch` lives until `dispatch` has returned
+    dispatch()
 }
 
 fn dispatch() -> ExitCode {

@@ -67,7 +67,7 @@ pub fn check_deck_in(source: Source, opts: &DeckOptions, cwd: Option<&Path>) -> 
 struct Checked {
     diagnostics: Vec<Diagnostic>,
     margins: Vec<String>,
-    /// With more than one rank: the processor grid lines LIGGGHTS would print.
+    /// The processor grid lines LIGGGHTS would print at each box-creating command.
     grid: Vec<String>,
 }
 

@@ -820,6 +820,7 @@ fn a_check_on_many_ranks_reports_the_grid_and_refuses() {
 }
 
 /// Run the regolith binary in `dir` with `env` set.
+#[cfg(not(feature = "mpi"))]
 fn regolith(dir: &std::path::Path, args: &[&str], env: &[(&str, &str)]) -> std::process::Output {
     let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_regolith"));
     c.args(args).current_dir(dir);

@@ -30,6 +30,8 @@ pub struct DeckOptions {
     pub threads: Option<usize>,
     /// `-help`.
     pub help: bool,
+    /// The MPI ranks this process is one of (set at start, not a flag).
+    pub ranks: crate::util::comm::Ranks,
 }
 
 /// A command-line problem (exit status 2).

@@ -6,6 +6,7 @@ use clap::{Parser, Subcommand};
 use regolith::cli::{parse_deck_flags, DeckOptions};
 use regolith::error::ExitStatus;
 use regolith::session;
+use regolith::util::comm::Ranks;
 use std::path::PathBuf;
 
 #[derive(Parser)]
@@ -162,12 +163,24 @@ fn exit(status: ExitStatus) -> ExitCode {
     ExitCode::from(status as u8)
 }
 
+/// Refuse `what` on more than one MPI rank (rank 0 says so; every rank fails).
+fn many_ranks(what: &str) -> ExitCode {
+    if ranks().rank == 0 {
+        eprintln!(
+            "ERROR (regolith): {what} {}: not supported yet (start regolith without mpirun)",
+            regolith::util::comm::MANY_RANKS
+        );
+    }
+    exit(ExitStatus::Unsupported)
+}
+
 fn deck_flags(deck: Option<String>, flags: &[String]) -> Result<DeckOptions, ExitCode> {
     match parse_deck_flags(flags) {
         Ok(mut o) => {
             if deck.is_some() {
                 o.input = deck;
             }
+            o.ranks = ranks();
             Ok(o)
         }
         Err(e) => {
@@ -185,6 +198,9 @@ fn run_with(opts: DeckOptions) -> ExitCode {
         use clap::CommandFactory;
         let _ = Cli::command().print_long_help();
         return exit(ExitStatus::Success);
+    }
+    if opts.ranks.size > 1 && opts.restart_to_data.is_some() {
+        return many_ranks("-restart");
     }
     if let Some((restart, data)) = &opts.restart_to_data {
         // `liggghts -r RESTART DATAFILE`: convert and exit
@@ -208,7 +224,32 @@ fn run_with(opts: DeckOptions) -> ExitCode {
     exit(session::run_deck(&opts))
 }
 
+/// The MPI ranks this process is one of (set once at start).
+static RANKS: std::sync::OnceLock<Ranks> = std::sync::OnceLock::new();
+
+fn ranks() -> Ranks {
+    RANKS.get().copied().unwrap_or_default()
+}
+
 fn main() -> ExitCode {
+    // under mpirun: a build without MPI stops here; with MPI, the ranks are learnt (and MPI
+    // ends when `launch` is dropped, after everything else)
+    let launch = match regolith::launch::start() {
+        Ok(l) => l,
+        Err(m) => {
+            let rank = regolith::util::comm::launcher_rank(|k| std::env::var(k).ok());
+            if rank == 0 {
+                eprintln!("ERROR: {m}");
+            }
+            return exit(ExitStatus::Unsupported);
+        }
+    };
+    let _ = RANKS.set(launch.ranks);
+    // `launch` lives until `dispatch` has returned
+    dispatch()
+}
+
+fn dispatch() -> ExitCode {
     let args: Vec<String> = std::env::args().collect();
     let legacy = match args.get(1).map(String::as_str) {
         None => true,
@@ -221,6 +262,9 @@ fn main() -> ExitCode {
         };
     }
     let cli = Cli::parse();
+    if ranks().size > 1 && !matches!(cli.command, Command::Run { .. } | Command::Check { .. }) {
+        return many_ranks("this command");
+    }
     match cli.command {
         Command::Run { deck, flags } => match deck_flags(Some(deck), &flags) {
             Ok(o) => run_with(o),
@@ -268,11 +312,14 @@ fn main() -> ExitCode {
                     }
                 };
                 let (diagnostics, margins) = session::check_deck_with_margins(source, &opts);
-                for d in &diagnostics {
-                    println!("{}", d.one_line());
-                }
-                for m in &margins {
-                    print!("{m}");
+                // with more than one MPI rank only rank 0 speaks
+                if opts.ranks.rank == 0 {
+                    for d in &diagnostics {
+                        println!("{}", d.one_line());
+                    }
+                    for m in &margins {
+                        print!("{m}");
+                    }
                 }
                 let status = session::status_of(&diagnostics);
                 if status == ExitStatus::DeckError || worst == ExitStatus::Success {

@@ -54,20 +54,27 @@ pub fn check_deck_with_margins(
     source: Source,
     opts: &DeckOptions,
 ) -> (Vec<Diagnostic>, Vec<String>) {
-    check_deck_full(source, opts, None)
+    let c = check_deck_full(source, opts, None);
+    (c.diagnostics, c.margins)
 }
 
 /// Check a deck as if run from folder `cwd` (default: the current directory).
 pub fn check_deck_in(source: Source, opts: &DeckOptions, cwd: Option<&Path>) -> Vec<Diagnostic> {
-    check_deck_full(source, opts, cwd).0
+    check_deck_full(source, opts, cwd).diagnostics
 }
 
-fn check_deck_full(
-    source: Source,
-    opts: &DeckOptions,
-    cwd: Option<&Path>,
-) -> (Vec<Diagnostic>, Vec<String>) {
+/// What a check found.
+struct Checked {
+    diagnostics: Vec<Diagnostic>,
+    margins: Vec<String>,
+    /// The processor grid lines LIGGGHTS would print at each box-creating command.
+    grid: Vec<String>,
+}
+
+fn check_deck_full(source: Source, opts: &DeckOptions, cwd: Option<&Path>) -> Checked {
     let mut interp = Interpreter::new(Mode::Check, Output::silent());
+    interp.engine.sim.procs.nprocs = opts.ranks.size as i64;
+    interp.engine.sim.procs.procs_per_node = opts.ranks.per_node as i64;
     interp.engine.sim.seed_tolerant = opts.seed_tolerant;
     interp.engine.sim.zero_restitution = opts.zero_restitution;
     interp.engine.sim.accel.fast = opts.fast;
@@ -82,7 +89,37 @@ fn check_deck_full(
     }
     let _ = interp.run_source(source);
     let margins = std::mem::take(&mut interp.engine.sim.margin_notes);
-    (interp.diagnostics, margins)
+    let mut diagnostics = interp.diagnostics;
+    let reported = std::mem::take(&mut interp.engine.sim.procs.reported);
+    if opts.ranks.size > 1 {
+        diagnostics.push(many_ranks(opts.ranks.size, &reported));
+    }
+    Checked {
+        diagnostics,
+        margins,
+        grid: reported.into_iter().map(|(lines, _)| lines).collect(),
+    }
+}
+
+/// The refusal of a run on more than one MPI rank, at the command that chose the grid.
+fn many_ranks(n: usize, reported: &[(String, Option<crate::error::Location>)]) -> Diagnostic {
+    let mut d = Diagnostic::unsupported(crate::util::comm::MANY_RANKS);
+    let grid = match reported.first() {
+        Some((lines, at)) => {
+            if let Some(at) = at {
+                d = d.at(at);
+            }
+            let said: Vec<&str> = lines.lines().map(str::trim).collect();
+            format!(
+                "LIGGGHTS would split the box over the {n} ranks as a {}; ",
+                said.join(", ")
+            )
+        }
+        None => String::new(),
+    };
+    d.with_help(format!(
+        "{grid}regolith runs one process (with threads: -sf fast -pk fast N); start it without mpirun"
+    ))
 }
 
 /// The exit status a list of check diagnostics leads to.
@@ -111,8 +148,11 @@ fn open_output(name: &str) -> Result<Option<Box<dyn Write>>, Diagnostic> {
 
 /// Run a deck as `liggghts -in ...` would. Problems go to standard error.
 pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
+    // with more than one MPI rank only rank 0 speaks
     let report = |d: &Diagnostic| {
-        let _ = std::io::stderr().write_all(d.render().as_bytes());
+        if opts.ranks.rank == 0 {
+            let _ = std::io::stderr().write_all(d.render().as_bytes());
+        }
     };
     let source = match load_source(opts.input.as_deref()) {
         Ok(s) => s,
@@ -123,17 +163,30 @@ pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
     };
 
     // the whole deck is checked first: nothing unsupported or misspelled starts a run
-    let problems: Vec<Diagnostic> = check_deck(
+    let checked = check_deck_full(
         Source {
             name: source.name.clone(),
             lines: source.lines.clone(),
             from_stdin: source.from_stdin,
         },
         opts,
-    )
-    .into_iter()
-    .filter(|d| d.severity != Severity::Warning)
-    .collect();
+        None,
+    );
+    let problems: Vec<Diagnostic> = checked
+        .diagnostics
+        .into_iter()
+        .filter(|d| d.severity != Severity::Warning)
+        .collect();
+    if opts.ranks.size > 1 {
+        // on more than one rank: rank 0 reports the grid as LIGGGHTS would, then the refusal
+        if opts.ranks.rank == 0 {
+            print!("{}", checked.grid.concat());
+            for d in &problems {
+                report(d);
+            }
+        }
+        return status_of(&problems);
+    }
     if !problems.is_empty() {
         for d in &problems {
             report(d);

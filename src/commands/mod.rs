@@ -15,6 +15,7 @@ pub mod logs;
 pub mod material_check;
 pub mod names;
 pub mod out_of_scope;
+pub mod processors;
 pub mod registry;
 pub mod set;
 pub mod sim_run;
@@ -148,7 +149,13 @@ impl Engine {
         let (tolerant, zero_e) = (self.sim.seed_tolerant, self.sim.zero_restitution);
         let accel = self.sim.accel.clone();
         let observer = self.sim.observer.take();
+        // the ranks of the run survive it too (LIGGGHTS's new Comm keeps its world)
+        let (nprocs, per_node) = (self.sim.procs.nprocs, self.sim.procs.procs_per_node);
+        let reported = std::mem::take(&mut self.sim.procs.reported);
         *self = Engine::new();
+        self.sim.procs.nprocs = nprocs;
+        self.sim.procs.procs_per_node = per_node;
+        self.sim.procs.reported = reported;
         self.sim.seed_tolerant = tolerant;
         self.sim.zero_restitution = zero_e;
         self.sim.accel = accel;

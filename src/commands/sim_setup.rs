@@ -32,7 +32,7 @@ pub const COMMANDS: &[(&str, Handler)] = &[
     ("package", package),
     ("communicate", communicate),
     ("comm_modify", communicate),
-    ("processors", |a, _| processors(a)),
+    ("processors", super::processors::processors),
     ("region", region),
     ("create_box", create_box),
     ("change_box", super::change_box::change_box),
@@ -186,20 +186,6 @@ fn communicate(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
-fn processors(a: &Args) -> Result {
-    a.count(3..=usize::MAX, "processors Px Py Pz")?;
-    for i in 0..3 {
-        let w = a.word(i)?;
-        if w != "*" {
-            a.int(i)?;
-        }
-    }
-    if a.len() > 3 {
-        return Err(a.unsupported(3, "processors keywords"));
-    }
-    Ok(())
-}
-
 fn region(a: &Args, ctx: &mut Ctx) -> Result {
     let words: Vec<&str> = (0..a.len())
         .map(|i| a.word(i))
@@ -305,7 +291,7 @@ fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
     ctx.sim.domain.create(lo, hi);
     ctx.sim.ntypes = ntypes as u32;
     ctx.say(&format!(
-        "Created orthogonal box = ({} {} {}) to ({} {} {})\n  1 by 1 by 1 MPI processor grid\n",
+        "Created orthogonal box = ({} {} {}) to ({} {} {})\n",
         g(lo[0]),
         g(lo[1]),
         g(lo[2]),
@@ -313,6 +299,8 @@ fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
         g(hi[1]),
         g(hi[2])
     ));
+    let grid = super::processors::grid_lines(a, ctx, [0, 1, 2].map(|d| hi[d] - lo[d]), 1)?;
+    ctx.say(&grid);
     Ok(())
 }
 

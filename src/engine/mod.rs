@@ -28,6 +28,7 @@ pub mod momentum;
 pub mod multisphere;
 pub mod neighbor;
 pub mod nve_noforce;
+pub mod procmap;
 pub mod region;
 pub mod region_motion;
 pub mod restart_fixes;

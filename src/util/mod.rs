@@ -2,6 +2,9 @@
 //! prints them, LIGGGHTS's random-number streams, and numbers read from words as LIGGGHTS reads
 //! them. Nothing here knows about decks, commands or the engine.
 
+pub mod comm;
+#[cfg(feature = "mpi")]
+pub mod comm_mpi;
 pub mod format;
 pub mod numbers;
 pub mod random;

@@ -50,8 +50,10 @@ pub(super) fn read_data(a: &Args, ctx: &mut Ctx) -> Result {
         }
     }
     let (lo, hi) = (data.lo, data.hi);
+    let grid =
+        crate::commands::processors::grid_lines(a, ctx, [0, 1, 2].map(|d| hi[d] - lo[d]), 0)?;
     ctx.say(&format!(
-        "Reading data file ...\n  orthogonal box = ({} {} {}) to ({} {} {})\n  1 by 1 by 1 MPI processor grid\n  {} atoms\n",
+        "Reading data file ...\n  orthogonal box = ({} {} {}) to ({} {} {})\n{grid}  {} atoms\n",
         g(lo[0]),
         g(lo[1]),
         g(lo[2]),
@@ -140,9 +142,12 @@ pub(super) fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
         .iter()
         .map(|f| (f.id.clone(), f.style.clone()))
         .collect();
+    let (lo, hi) = (ctx.sim.domain.lo, ctx.sim.domain.hi);
+    let grid =
+        crate::commands::processors::grid_lines(a, ctx, [0, 1, 2].map(|d| hi[d] - lo[d]), 0)?;
     let line = format!(
-        "{}  1 by 1 by 1 MPI processor grid\n  {} atoms\n",
-        crate::commands::change_box::orthogonal_box_line(ctx.sim.domain.lo, ctx.sim.domain.hi),
+        "{}{grid}  {} atoms\n",
+        crate::commands::change_box::orthogonal_box_line(lo, hi),
         ctx.sim.particles.len()
     );
     ctx.say(&line);

@@ -238,6 +238,8 @@ enum StressPhase {
 pub struct Simulation {
     /// State of the commands added for researchers' decks (issue 15).
     pub extras: crate::engine::extras::Extras,
+    /// The `processors` settings and the MPI ranks of the run.
+    pub procs: crate::engine::procmap::Processors,
     /// An insertion fix has been defined (a check run cannot know the atoms it adds).
     pub inserts_atoms: bool,
     /// `restart N ROOT` and `restart N FILE1 FILE2` (both may be active).
@@ -378,6 +380,7 @@ impl Default for Simulation {
     fn default() -> Self {
         Simulation {
             extras: Default::default(),
+            procs: Default::default(),
             inserts_atoms: false,
             restart_output: [None, None],
             pending_history: None,

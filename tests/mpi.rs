@@ -1,0 +1,944 @@
+//! Running under MPI: the processor grid LIGGGHTS 3.8.0 chooses for N ranks (measured with
+//! Debian's liggghts under `mpirun -np N`), the `processors` command's errors, and the
+//! refusal of a run on more than one rank (with and without MPI in the build).
+
+use regolith::cli::DeckOptions;
+use regolith::error::{Diagnostic, Severity};
+use regolith::script::interp::{Interpreter, Output, Source};
+use regolith::script::system::Mode;
+use regolith::util::comm::Ranks;
+
+/// (ranks, box lengths, the deck's processors line, what LIGGGHTS printed: the grid lines
+/// joined with ", ", or its error), measured with
+/// `mpirun --allow-run-as-root --oversubscribe -np N liggghts -in deck`.
+type Row = (
+    i64,
+    [f64; 3],
+    &'static str,
+    Result<&'static str, &'static str>,
+);
+
+const MEASURED: &[Row] = &[
+    (1, [1.0, 1.0, 1.0], "", Ok("1 by 1 by 1 MPI processor grid")),
+    (2, [1.0, 1.0, 1.0], "", Ok("1 by 1 by 2 MPI processor grid")),
+    (3, [1.0, 1.0, 1.0], "", Ok("1 by 1 by 3 MPI processor grid")),
+    (4, [1.0, 1.0, 1.0], "", Ok("1 by 2 by 2 MPI processor grid")),
+    (5, [1.0, 1.0, 1.0], "", Ok("1 by 1 by 5 MPI processor grid")),
+    (6, [1.0, 1.0, 1.0], "", Ok("1 by 2 by 3 MPI processor grid")),
+    (7, [1.0, 1.0, 1.0], "", Ok("1 by 1 by 7 MPI processor grid")),
+    (8, [1.0, 1.0, 1.0], "", Ok("2 by 2 by 2 MPI processor grid")),
+    (
+        1,
+        [10.0, 1.0, 1.0],
+        "",
+        Ok("1 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        2,
+        [10.0, 1.0, 1.0],
+        "",
+        Ok("2 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        3,
+        [10.0, 1.0, 1.0],
+        "",
+        Ok("3 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        4,
+        [10.0, 1.0, 1.0],
+        "",
+        Ok("4 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        5,
+        [10.0, 1.0, 1.0],
+        "",
+        Ok("5 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        6,
+        [10.0, 1.0, 1.0],
+        "",
+        Ok("6 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        7,
+        [10.0, 1.0, 1.0],
+        "",
+        Ok("7 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        8,
+        [10.0, 1.0, 1.0],
+        "",
+        Ok("8 by 1 by 1 MPI processor grid"),
+    ),
+    (1, [1.0, 1.0, 0.1], "", Ok("1 by 1 by 1 MPI processor grid")),
+    (2, [1.0, 1.0, 0.1], "", Ok("1 by 2 by 1 MPI processor grid")),
+    (3, [1.0, 1.0, 0.1], "", Ok("1 by 3 by 1 MPI processor grid")),
+    (4, [1.0, 1.0, 0.1], "", Ok("2 by 2 by 1 MPI processor grid")),
+    (5, [1.0, 1.0, 0.1], "", Ok("5 by 1 by 1 MPI processor grid")),
+    (6, [1.0, 1.0, 0.1], "", Ok("2 by 3 by 1 MPI processor grid")),
+    (7, [1.0, 1.0, 0.1], "", Ok("1 by 7 by 1 MPI processor grid")),
+    (8, [1.0, 1.0, 0.1], "", Ok("2 by 4 by 1 MPI processor grid")),
+    (1, [0.5, 4.0, 1.0], "", Ok("1 by 1 by 1 MPI processor grid")),
+    (2, [0.5, 4.0, 1.0], "", Ok("1 by 2 by 1 MPI processor grid")),
+    (3, [0.5, 4.0, 1.0], "", Ok("1 by 3 by 1 MPI processor grid")),
+    (4, [0.5, 4.0, 1.0], "", Ok("1 by 4 by 1 MPI processor grid")),
+    (5, [0.5, 4.0, 1.0], "", Ok("1 by 5 by 1 MPI processor grid")),
+    (6, [0.5, 4.0, 1.0], "", Ok("1 by 6 by 1 MPI processor grid")),
+    (7, [0.5, 4.0, 1.0], "", Ok("1 by 7 by 1 MPI processor grid")),
+    (8, [0.5, 4.0, 1.0], "", Ok("1 by 4 by 2 MPI processor grid")),
+    (1, [1.0, 1.0, 8.0], "", Ok("1 by 1 by 1 MPI processor grid")),
+    (2, [1.0, 1.0, 8.0], "", Ok("1 by 1 by 2 MPI processor grid")),
+    (3, [1.0, 1.0, 8.0], "", Ok("1 by 1 by 3 MPI processor grid")),
+    (4, [1.0, 1.0, 8.0], "", Ok("1 by 1 by 4 MPI processor grid")),
+    (5, [1.0, 1.0, 8.0], "", Ok("1 by 1 by 5 MPI processor grid")),
+    (6, [1.0, 1.0, 8.0], "", Ok("1 by 1 by 6 MPI processor grid")),
+    (7, [1.0, 1.0, 8.0], "", Ok("1 by 1 by 7 MPI processor grid")),
+    (8, [1.0, 1.0, 8.0], "", Ok("1 by 1 by 8 MPI processor grid")),
+    (1, [3.0, 2.0, 1.0], "", Ok("1 by 1 by 1 MPI processor grid")),
+    (2, [3.0, 2.0, 1.0], "", Ok("2 by 1 by 1 MPI processor grid")),
+    (3, [3.0, 2.0, 1.0], "", Ok("3 by 1 by 1 MPI processor grid")),
+    (4, [3.0, 2.0, 1.0], "", Ok("2 by 2 by 1 MPI processor grid")),
+    (5, [3.0, 2.0, 1.0], "", Ok("5 by 1 by 1 MPI processor grid")),
+    (6, [3.0, 2.0, 1.0], "", Ok("3 by 2 by 1 MPI processor grid")),
+    (7, [3.0, 2.0, 1.0], "", Ok("7 by 1 by 1 MPI processor grid")),
+    (8, [3.0, 2.0, 1.0], "", Ok("4 by 2 by 1 MPI processor grid")),
+    (
+        1,
+        [10.0, 1.0, 1.0],
+        "processors * 1 *",
+        Ok("1 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        1,
+        [1.0, 1.0, 0.1],
+        "processors * 1 *",
+        Ok("1 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        2,
+        [10.0, 1.0, 1.0],
+        "processors * 1 *",
+        Ok("2 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        2,
+        [1.0, 1.0, 0.1],
+        "processors * 1 *",
+        Ok("2 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        4,
+        [10.0, 1.0, 1.0],
+        "processors * 1 *",
+        Ok("4 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        4,
+        [1.0, 1.0, 0.1],
+        "processors * 1 *",
+        Ok("4 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        6,
+        [10.0, 1.0, 1.0],
+        "processors * 1 *",
+        Ok("6 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        6,
+        [1.0, 1.0, 0.1],
+        "processors * 1 *",
+        Ok("6 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        8,
+        [10.0, 1.0, 1.0],
+        "processors * 1 *",
+        Ok("8 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        8,
+        [1.0, 1.0, 0.1],
+        "processors * 1 *",
+        Ok("8 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        1,
+        [10.0, 1.0, 1.0],
+        "processors 2 * *",
+        Err("Could not create 3d grid of processors"),
+    ),
+    (
+        1,
+        [1.0, 1.0, 0.1],
+        "processors 2 * *",
+        Err("Could not create 3d grid of processors"),
+    ),
+    (
+        2,
+        [10.0, 1.0, 1.0],
+        "processors 2 * *",
+        Ok("2 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        2,
+        [1.0, 1.0, 0.1],
+        "processors 2 * *",
+        Ok("2 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        4,
+        [10.0, 1.0, 1.0],
+        "processors 2 * *",
+        Ok("2 by 2 by 1 MPI processor grid"),
+    ),
+    (
+        4,
+        [1.0, 1.0, 0.1],
+        "processors 2 * *",
+        Ok("2 by 2 by 1 MPI processor grid"),
+    ),
+    (
+        6,
+        [10.0, 1.0, 1.0],
+        "processors 2 * *",
+        Ok("2 by 3 by 1 MPI processor grid"),
+    ),
+    (
+        6,
+        [1.0, 1.0, 0.1],
+        "processors 2 * *",
+        Ok("2 by 3 by 1 MPI processor grid"),
+    ),
+    (
+        8,
+        [10.0, 1.0, 1.0],
+        "processors 2 * *",
+        Ok("2 by 2 by 2 MPI processor grid"),
+    ),
+    (
+        8,
+        [1.0, 1.0, 0.1],
+        "processors 2 * *",
+        Ok("2 by 4 by 1 MPI processor grid"),
+    ),
+    (
+        1,
+        [10.0, 1.0, 1.0],
+        "processors * * 1",
+        Ok("1 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        1,
+        [1.0, 1.0, 0.1],
+        "processors * * 1",
+        Ok("1 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        2,
+        [10.0, 1.0, 1.0],
+        "processors * * 1",
+        Ok("2 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        2,
+        [1.0, 1.0, 0.1],
+        "processors * * 1",
+        Ok("2 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        4,
+        [10.0, 1.0, 1.0],
+        "processors * * 1",
+        Ok("4 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        4,
+        [1.0, 1.0, 0.1],
+        "processors * * 1",
+        Ok("2 by 2 by 1 MPI processor grid"),
+    ),
+    (
+        6,
+        [10.0, 1.0, 1.0],
+        "processors * * 1",
+        Ok("6 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        6,
+        [1.0, 1.0, 0.1],
+        "processors * * 1",
+        Ok("3 by 2 by 1 MPI processor grid"),
+    ),
+    (
+        8,
+        [10.0, 1.0, 1.0],
+        "processors * * 1",
+        Ok("8 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        8,
+        [1.0, 1.0, 0.1],
+        "processors * * 1",
+        Ok("2 by 4 by 1 MPI processor grid"),
+    ),
+    (
+        1,
+        [10.0, 1.0, 1.0],
+        "processors * 2 1",
+        Err("Could not create 3d grid of processors"),
+    ),
+    (
+        1,
+        [1.0, 1.0, 0.1],
+        "processors * 2 1",
+        Err("Could not create 3d grid of processors"),
+    ),
+    (
+        2,
+        [10.0, 1.0, 1.0],
+        "processors * 2 1",
+        Ok("1 by 2 by 1 MPI processor grid"),
+    ),
+    (
+        2,
+        [1.0, 1.0, 0.1],
+        "processors * 2 1",
+        Ok("1 by 2 by 1 MPI processor grid"),
+    ),
+    (
+        4,
+        [10.0, 1.0, 1.0],
+        "processors * 2 1",
+        Ok("2 by 2 by 1 MPI processor grid"),
+    ),
+    (
+        4,
+        [1.0, 1.0, 0.1],
+        "processors * 2 1",
+        Ok("2 by 2 by 1 MPI processor grid"),
+    ),
+    (
+        6,
+        [10.0, 1.0, 1.0],
+        "processors * 2 1",
+        Ok("3 by 2 by 1 MPI processor grid"),
+    ),
+    (
+        6,
+        [1.0, 1.0, 0.1],
+        "processors * 2 1",
+        Ok("3 by 2 by 1 MPI processor grid"),
+    ),
+    (
+        8,
+        [10.0, 1.0, 1.0],
+        "processors * 2 1",
+        Ok("4 by 2 by 1 MPI processor grid"),
+    ),
+    (
+        8,
+        [1.0, 1.0, 0.1],
+        "processors * 2 1",
+        Ok("4 by 2 by 1 MPI processor grid"),
+    ),
+    (
+        1,
+        [10.0, 1.0, 1.0],
+        "processors 1 1 *",
+        Ok("1 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        1,
+        [1.0, 1.0, 0.1],
+        "processors 1 1 *",
+        Ok("1 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        2,
+        [10.0, 1.0, 1.0],
+        "processors 1 1 *",
+        Ok("1 by 1 by 2 MPI processor grid"),
+    ),
+    (
+        2,
+        [1.0, 1.0, 0.1],
+        "processors 1 1 *",
+        Ok("1 by 1 by 2 MPI processor grid"),
+    ),
+    (
+        4,
+        [10.0, 1.0, 1.0],
+        "processors 1 1 *",
+        Ok("1 by 1 by 4 MPI processor grid"),
+    ),
+    (
+        4,
+        [1.0, 1.0, 0.1],
+        "processors 1 1 *",
+        Ok("1 by 1 by 4 MPI processor grid"),
+    ),
+    (
+        6,
+        [10.0, 1.0, 1.0],
+        "processors 1 1 *",
+        Ok("1 by 1 by 6 MPI processor grid"),
+    ),
+    (
+        6,
+        [1.0, 1.0, 0.1],
+        "processors 1 1 *",
+        Ok("1 by 1 by 6 MPI processor grid"),
+    ),
+    (
+        8,
+        [10.0, 1.0, 1.0],
+        "processors 1 1 *",
+        Ok("1 by 1 by 8 MPI processor grid"),
+    ),
+    (
+        8,
+        [1.0, 1.0, 0.1],
+        "processors 1 1 *",
+        Ok("1 by 1 by 8 MPI processor grid"),
+    ),
+    (
+        1,
+        [10.0, 1.0, 1.0],
+        "processors * * * map xyz",
+        Ok("1 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        1,
+        [1.0, 1.0, 0.1],
+        "processors * * * map xyz",
+        Ok("1 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        2,
+        [10.0, 1.0, 1.0],
+        "processors * * * map xyz",
+        Ok("2 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        2,
+        [1.0, 1.0, 0.1],
+        "processors * * * map xyz",
+        Ok("1 by 2 by 1 MPI processor grid"),
+    ),
+    (
+        4,
+        [10.0, 1.0, 1.0],
+        "processors * * * map xyz",
+        Ok("4 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        4,
+        [1.0, 1.0, 0.1],
+        "processors * * * map xyz",
+        Ok("2 by 2 by 1 MPI processor grid"),
+    ),
+    (
+        6,
+        [10.0, 1.0, 1.0],
+        "processors * * * map xyz",
+        Ok("6 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        6,
+        [1.0, 1.0, 0.1],
+        "processors * * * map xyz",
+        Ok("2 by 3 by 1 MPI processor grid"),
+    ),
+    (
+        8,
+        [10.0, 1.0, 1.0],
+        "processors * * * map xyz",
+        Ok("8 by 1 by 1 MPI processor grid"),
+    ),
+    (
+        8,
+        [1.0, 1.0, 0.1],
+        "processors * * * map xyz",
+        Ok("2 by 4 by 1 MPI processor grid"),
+    ),
+    (
+        1,
+        [10.0, 1.0, 1.0],
+        "processors * * * grid numa",
+        Ok("1 by 1 by 1 MPI processor grid, 1 by 1 by 1 core grid within node"),
+    ),
+    (
+        1,
+        [1.0, 1.0, 0.1],
+        "processors * * * grid numa",
+        Ok("1 by 1 by 1 MPI processor grid, 1 by 1 by 1 core grid within node"),
+    ),
+    (
+        2,
+        [10.0, 1.0, 1.0],
+        "processors * * * grid numa",
+        Ok("2 by 1 by 1 MPI processor grid, 2 by 1 by 1 core grid within node"),
+    ),
+    (
+        2,
+        [1.0, 1.0, 0.1],
+        "processors * * * grid numa",
+        Ok("1 by 2 by 1 MPI processor grid, 1 by 2 by 1 core grid within node"),
+    ),
+    (
+        4,
+        [10.0, 1.0, 1.0],
+        "processors * * * grid numa",
+        Ok("4 by 1 by 1 MPI processor grid, 4 by 1 by 1 core grid within node"),
+    ),
+    (
+        4,
+        [1.0, 1.0, 0.1],
+        "processors * * * grid numa",
+        Ok("2 by 2 by 1 MPI processor grid, 2 by 2 by 1 core grid within node"),
+    ),
+    (
+        6,
+        [10.0, 1.0, 1.0],
+        "processors * * * grid numa",
+        Ok("6 by 1 by 1 MPI processor grid, 6 by 1 by 1 core grid within node"),
+    ),
+    (
+        6,
+        [1.0, 1.0, 0.1],
+        "processors * * * grid numa",
+        Ok("2 by 3 by 1 MPI processor grid, 2 by 3 by 1 core grid within node"),
+    ),
+    (
+        8,
+        [10.0, 1.0, 1.0],
+        "processors * * * grid numa",
+        Ok("8 by 1 by 1 MPI processor grid, 8 by 1 by 1 core grid within node"),
+    ),
+    (
+        8,
+        [1.0, 1.0, 0.1],
+        "processors * * * grid numa",
+        Ok("2 by 4 by 1 MPI processor grid, 2 by 4 by 1 core grid within node"),
+    ),
+    (
+        1,
+        [10.0, 1.0, 1.0],
+        "processors * * * grid twolevel 2 * * *",
+        Err("Processors twogrid requires proc count be a multiple of core count"),
+    ),
+    (
+        1,
+        [1.0, 1.0, 0.1],
+        "processors * * * grid twolevel 2 * * *",
+        Err("Processors twogrid requires proc count be a multiple of core count"),
+    ),
+    (
+        2,
+        [10.0, 1.0, 1.0],
+        "processors * * * grid twolevel 2 * * *",
+        Ok("2 by 1 by 1 MPI processor grid, 2 by 1 by 1 core grid within node"),
+    ),
+    (
+        2,
+        [1.0, 1.0, 0.1],
+        "processors * * * grid twolevel 2 * * *",
+        Ok("1 by 2 by 1 MPI processor grid, 1 by 2 by 1 core grid within node"),
+    ),
+    (
+        4,
+        [10.0, 1.0, 1.0],
+        "processors * * * grid twolevel 2 * * *",
+        Ok("4 by 1 by 1 MPI processor grid, 2 by 1 by 1 core grid within node"),
+    ),
+    (
+        4,
+        [1.0, 1.0, 0.1],
+        "processors * * * grid twolevel 2 * * *",
+        Ok("2 by 2 by 1 MPI processor grid, 2 by 1 by 1 core grid within node"),
+    ),
+    (
+        6,
+        [10.0, 1.0, 1.0],
+        "processors * * * grid twolevel 2 * * *",
+        Ok("6 by 1 by 1 MPI processor grid, 2 by 1 by 1 core grid within node"),
+    ),
+    (
+        6,
+        [1.0, 1.0, 0.1],
+        "processors * * * grid twolevel 2 * * *",
+        Ok("2 by 3 by 1 MPI processor grid, 2 by 1 by 1 core grid within node"),
+    ),
+    (
+        8,
+        [10.0, 1.0, 1.0],
+        "processors * * * grid twolevel 2 * * *",
+        Ok("8 by 1 by 1 MPI processor grid, 2 by 1 by 1 core grid within node"),
+    ),
+    (
+        8,
+        [1.0, 1.0, 0.1],
+        "processors * * * grid twolevel 2 * * *",
+        Ok("2 by 4 by 1 MPI processor grid, 2 by 1 by 1 core grid within node"),
+    ),
+    (
+        1,
+        [10.0, 1.0, 1.0],
+        "processors * * * grid twolevel 4 2 * *",
+        Err("Processors twogrid requires proc count be a multiple of core count"),
+    ),
+    (
+        1,
+        [1.0, 1.0, 0.1],
+        "processors * * * grid twolevel 4 2 * *",
+        Err("Processors twogrid requires proc count be a multiple of core count"),
+    ),
+    (
+        2,
+        [10.0, 1.0, 1.0],
+        "processors * * * grid twolevel 4 2 * *",
+        Err("Processors twogrid requires proc count be a multiple of core count"),
+    ),
+    (
+        2,
+        [1.0, 1.0, 0.1],
+        "processors * * * grid twolevel 4 2 * *",
+        Err("Processors twogrid requires proc count be a multiple of core count"),
+    ),
+    (
+        4,
+        [10.0, 1.0, 1.0],
+        "processors * * * grid twolevel 4 2 * *",
+        Ok("2 by 2 by 1 MPI processor grid, 2 by 2 by 1 core grid within node"),
+    ),
+    (
+        4,
+        [1.0, 1.0, 0.1],
+        "processors * * * grid twolevel 4 2 * *",
+        Ok("2 by 2 by 1 MPI processor grid, 2 by 2 by 1 core grid within node"),
+    ),
+    (
+        6,
+        [10.0, 1.0, 1.0],
+        "processors * * * grid twolevel 4 2 * *",
+        Err("Processors twogrid requires proc count be a multiple of core count"),
+    ),
+    (
+        6,
+        [1.0, 1.0, 0.1],
+        "processors * * * grid twolevel 4 2 * *",
+        Err("Processors twogrid requires proc count be a multiple of core count"),
+    ),
+    (
+        8,
+        [10.0, 1.0, 1.0],
+        "processors * * * grid twolevel 4 2 * *",
+        Ok("4 by 2 by 1 MPI processor grid, 2 by 2 by 1 core grid within node"),
+    ),
+    (
+        8,
+        [1.0, 1.0, 0.1],
+        "processors * * * grid twolevel 4 2 * *",
+        Ok("2 by 4 by 1 MPI processor grid, 2 by 2 by 1 core grid within node"),
+    ),
+];
+
+fn deck(lengths: [f64; 3], procs: &str) -> String {
+    format!(
+        "atom_style granular\natom_modify map array\nboundary p p p\nnewton off\n\
+         communicate single vel yes\nunits si\n{procs}\n\
+         region reg block 0 {} 0 {} 0 {} units box\ncreate_box 1 reg\n",
+        lengths[0], lengths[1], lengths[2]
+    )
+}
+
+/// Check `text` as on `nprocs` ranks: the grid lines said, and the problems found.
+fn check_on(nprocs: i64, text: &str) -> (Vec<String>, Vec<Diagnostic>) {
+    let mut interp = Interpreter::new(Mode::Check, Output::silent());
+    interp.engine.sim.procs.nprocs = nprocs;
+    interp.engine.sim.procs.procs_per_node = nprocs;
+    let _ = interp.run_source(Source::from_text("in.deck", text, false));
+    let lines = interp
+        .engine
+        .sim
+        .procs
+        .reported
+        .iter()
+        .map(|(l, _)| l.lines().map(str::trim).collect::<Vec<_>>().join(", "))
+        .collect();
+    (lines, interp.diagnostics)
+}
+
+#[test]
+fn the_grid_is_the_one_liggghts_chooses() {
+    let mut wrong = Vec::new();
+    for &(n, lengths, procs, want) in MEASURED {
+        let (lines, diags) = check_on(n, &deck(lengths, procs));
+        let errors: Vec<&str> = diags
+            .iter()
+            .filter(|d| d.severity == Severity::Error)
+            .map(|d| d.message.as_str())
+            .collect();
+        let got = match (lines.first(), errors.first()) {
+            (Some(l), None) => Ok(l.as_str()),
+            (None, Some(e)) => Err(*e),
+            _ => Err("neither one grid nor one error"),
+        };
+        if got != want {
+            wrong.push(format!(
+                "{n} ranks, box {lengths:?}, '{procs}': {got:?}, LIGGGHTS {want:?}"
+            ));
+        }
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
+
+/// The first problem of the deck on `n` ranks: (severity, message).
+fn first_problem(n: i64, procs: &str) -> Option<(Severity, String)> {
+    check_on(n, &deck([1.0, 1.0, 1.0], procs))
+        .1
+        .into_iter()
+        .next()
+        .map(|d| (d.severity, d.message.clone()))
+}
+
+#[test]
+fn processors_errors_are_liggghts_words() {
+    let err = |n, line: &str, m: &str| {
+        assert_eq!(
+            first_problem(n, line),
+            Some((Severity::Error, m.to_string())),
+            "{line} on {n} ranks"
+        );
+    };
+    let illegal = "Illegal processors command";
+    err(
+        1,
+        "processors 2 1 1",
+        "Specified processors != physical processors",
+    );
+    err(
+        4,
+        "processors 2 2 2",
+        "Specified processors != physical processors",
+    );
+    err(1, "processors * *", illegal);
+    err(1, "processors -1 * *", illegal);
+    err(1, "processors * * * grid", illegal);
+    err(1, "processors * * * grid custom map.txt", illegal);
+    err(1, "processors * * * grid twolevel 2 * *", illegal);
+    err(1, "processors * * * grid twolevel 0 * * *", illegal);
+    err(1, "processors * * * grid threelevel", illegal);
+    err(1, "processors * * * map abc", illegal);
+    err(1, "processors * * * map", illegal);
+    err(1, "processors * * * file", illegal);
+    err(1, "processors * * * part 1 2", illegal);
+    err(
+        1,
+        "processors * * * part 1 2 multiple",
+        "Cannot use processors part command without using partitions",
+    );
+    err(
+        1,
+        "processors * * * grid numa map xyz",
+        "Processors grid numa and map style are incompatible",
+    );
+    err(
+        2,
+        "processors 1 1 1",
+        "Specified processors != physical processors",
+    );
+    assert!(first_problem(1, "processors 1 1 x")
+        .is_some_and(|(s, m)| s == Severity::Error && m.contains("integer")));
+    let (s, m) = first_problem(1, "processors * * * mapp xyz").unwrap();
+    assert_eq!(s, Severity::Error);
+    assert!(m.starts_with(illegal), "{m}");
+    // the keywords LIGGGHTS accepts are accepted
+    for ok in [
+        "processors * * *",
+        "processors 1 1 1 map xyz",
+        "processors * 1 * map cart/reorder grid onelevel",
+        "processors * * * grid numa",
+        "processors * * * grid twolevel 1 * * *",
+    ] {
+        assert_eq!(first_problem(1, ok), None, "{ok}");
+    }
+    // after the box
+    let text = format!("{}processors * * *\n", deck([1.0; 3], ""));
+    let d = check_on(1, &text).1;
+    assert_eq!(
+        d.first().map(|d| d.message.as_str()),
+        Some("Processors command after simulation box is defined")
+    );
+}
+
+#[test]
+fn a_check_on_many_ranks_reports_the_grid_and_refuses() {
+    let opts = DeckOptions {
+        ranks: Ranks {
+            size: 4,
+            rank: 0,
+            per_node: 4,
+        },
+        ..DeckOptions::default()
+    };
+    let d = regolith::session::check_deck(
+        Source::from_text(
+            "in.deck",
+            &deck([10.0, 1.0, 1.0], "processors 2 * *"),
+            false,
+        ),
+        &opts,
+    );
+    assert_eq!(d.len(), 1, "{d:?}");
+    assert_eq!(d[0].severity, Severity::Unsupported);
+    let line = d[0].one_line();
+    assert!(
+        line.starts_with("in.deck:9: runs on more than one MPI rank: not supported yet"),
+        "{line}"
+    );
+    assert!(
+        line.contains("as a 2 by 2 by 1 MPI processor grid"),
+        "{line}"
+    );
+    // on one rank the same deck is LIGGGHTS's error
+    let d = regolith::session::check_deck(
+        Source::from_text(
+            "in.deck",
+            &deck([10.0, 1.0, 1.0], "processors 2 * *"),
+            false,
+        ),
+        &DeckOptions::default(),
+    );
+    assert_eq!(d[0].message, "Could not create 3d grid of processors");
+}
+
+/// Run the regolith binary in `dir` with `env` set.
+#[cfg(not(feature = "mpi"))]
+fn regolith(dir: &std::path::Path, args: &[&str], env: &[(&str, &str)]) -> std::process::Output {
+    let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_regolith"));
+    c.args(args).current_dir(dir);
+    for v in [
+        "OMPI_COMM_WORLD_SIZE",
+        "OMPI_COMM_WORLD_RANK",
+        "PMI_SIZE",
+        "PMI_RANK",
+        "PMIX_RANK",
+    ] {
+        c.env_remove(v);
+    }
+    for (k, v) in env {
+        c.env(k, v);
+    }
+    c.output().expect("regolith runs")
+}
+
+#[cfg(not(feature = "mpi"))]
+#[test]
+fn a_build_without_mpi_stops_under_mpirun() {
+    let dir = std::env::temp_dir().join(format!("regolith-nompi-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("in.deck"), deck([1.0; 3], "")).unwrap();
+    for (env, words) in [
+        (&[("OMPI_COMM_WORLD_SIZE", "2")][..], "one of 2 MPI ranks"),
+        (&[("PMI_SIZE", "3")][..], "one of 3 MPI ranks"),
+        (
+            &[("PMIX_RANK", "0"), ("OMPI_COMM_WORLD_SIZE", "4")][..],
+            "one of 4 MPI ranks",
+        ),
+    ] {
+        for args in [&["-in", "in.deck"][..], &["check", "in.deck"][..]] {
+            let out = regolith(&dir, args, env);
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(3), "{args:?} {env:?}: {err}");
+            assert!(
+                err.contains("built without MPI") && err.contains(words),
+                "{err}"
+            );
+            assert!(err.contains("--features mpi"), "{err}");
+            assert!(out.stdout.is_empty());
+        }
+    }
+    assert!(!dir.join("log.liggghts").exists(), "no run, no log");
+    // a rank other than 0 stops silently
+    let out = regolith(
+        &dir,
+        &["-in", "in.deck"],
+        &[("OMPI_COMM_WORLD_SIZE", "2"), ("OMPI_COMM_WORLD_RANK", "1")],
+    );
+    assert_eq!(out.status.code(), Some(3));
+    assert!(out.stderr.is_empty() && out.stdout.is_empty());
+    // one rank (mpirun -np 1) runs as usual, with the grid line of one process
+    let out = regolith(&dir, &["-in", "in.deck"], &[("OMPI_COMM_WORLD_SIZE", "1")]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("\n  1 by 1 by 1 MPI processor grid\n"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// With MPI built in: `mpirun -np 2` reports LIGGGHTS's grid on rank 0, then refuses on every
+/// rank (run and check alike), writing no log.
+#[cfg(feature = "mpi")]
+#[test]
+fn a_build_with_mpi_reports_the_grid_then_refuses() {
+    if std::process::Command::new("mpirun")
+        .arg("--version")
+        .output()
+        .is_err()
+    {
+        eprintln!("no mpirun: skipped");
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("regolith-mpi-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("in.deck"),
+        deck([10.0, 1.0, 1.0], "processors 2 * *"),
+    )
+    .unwrap();
+    let bin = env!("CARGO_BIN_EXE_regolith");
+    let mpirun = |np: &str, args: &[&str]| {
+        std::process::Command::new("mpirun")
+            .args(["--allow-run-as-root", "--oversubscribe", "-np", np, bin])
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .expect("mpirun runs")
+    };
+    let out = mpirun("4", &["-in", "in.deck"]);
+    let (so, se) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
+    assert_ne!(out.status.code(), Some(0));
+    assert_eq!(so, "  2 by 2 by 1 MPI processor grid\n");
+    assert_eq!(
+        se.matches("runs on more than one MPI rank: not supported yet")
+            .count(),
+        1,
+        "{se}"
+    );
+    assert!(!dir.join("log.liggghts").exists());
+    let out = mpirun("4", &["check", "in.deck"]);
+    let so = String::from_utf8_lossy(&out.stdout);
+    assert_ne!(out.status.code(), Some(0));
+    assert!(so.contains("as a 2 by 2 by 1 MPI processor grid"), "{so}");
+    // LIGGGHTS's error on 3 ranks
+    let out = mpirun("3", &["-in", "in.deck"]);
+    let se = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        se.contains("ERROR: Could not create 3d grid of processors"),
+        "{se}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

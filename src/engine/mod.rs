@@ -25,6 +25,7 @@ pub mod mesh;
 pub mod mesh_motion;
 pub mod mesh_stress;
 pub mod mesh_wall;
+pub mod mirror_history;
 pub mod momentum;
 pub mod multisphere;
 pub mod neighbor;

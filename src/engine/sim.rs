@@ -83,7 +83,9 @@ pub trait PairInteraction: Send {
     /// `update` is false in the setup evaluation: contact history is used but not advanced.
     /// With `virial`, each pair also adds half its virial del_a F_b to both particles
     /// (xx yy zz xy xz yz, force length).
-    /// `order` says in which order (and how parallel) contributions are added.
+    /// `order` says in which order (and how parallel) contributions are added; `mirrored`
+    /// (a list built with LIGGGHTS's periodic second sides) makes a pass in list order add a
+    /// pair across a periodic face to its first atom only and each mirror to its own.
     #[allow(clippy::too_many_arguments)]
     fn compute(
         &mut self,
@@ -94,6 +96,7 @@ pub trait PairInteraction: Send {
         update: bool,
         virial: Option<&mut [[f64; 6]]>,
         order: &crate::engine::neighbor::SumOrder,
+        mirrored: Option<crate::engine::neighbor::Mirrored<'_>>,
     );
 }
 
@@ -298,6 +301,8 @@ pub struct Simulation {
     pub list: NeighborList,
     /// Contact history of the listed pairs (`history_width` doubles per pair).
     pub history: Vec<f64>,
+    /// Contact history of the list's mirrors (`history_width` doubles per mirror).
+    pub mirror_history: Vec<f64>,
     pub(crate) list_ids: Vec<i64>,
     pub(crate) ago: u64,
     box_at_build: ([f64; 3], [f64; 3]),
@@ -393,6 +398,7 @@ impl Default for Simulation {
             neighbor: NeighborSettings::default(),
             list: NeighborList::default(),
             history: Vec::new(),
+            mirror_history: Vec::new(),
             list_ids: Vec::new(),
             ago: 0,
             box_at_build: ([0.0; 3], [0.0; 3]),
@@ -1152,6 +1158,9 @@ impl Simulation {
 
     fn build_neighbors(&mut self) {
         let old_pairs = std::mem::take(&mut self.list.pairs);
+        let old_mirrors = std::mem::take(&mut self.list.mirrors);
+        let old_mirrored = self.list.mirrored;
+        let old_mirror_history = std::mem::take(&mut self.mirror_history);
         let width = self.pair.as_ref().map_or(0, |p| p.history_width());
         if !(self.accel.fast && self.build_list_fast()) {
             let order = crate::engine::neighbor::BinOrder::sized(
@@ -1185,7 +1194,7 @@ impl Simulation {
         let n = &self.neighbor;
         if !n.exclude_types.is_empty() || !n.exclude_groups.is_empty() {
             let p = &self.particles;
-            self.list.pairs.retain(|pair| {
+            self.list.retain(|pair| {
                 let (i, j) = (pair.i as usize, pair.j as usize);
                 let (ti, tj) = (p.kind[i], p.kind[j]);
                 let (mi, mj) = (p.mask[i], p.mask[j]);
@@ -1214,16 +1223,41 @@ impl Simulation {
         } else {
             Vec::new()
         };
-        self.history = self.accel.install(|| {
-            carry_history(
-                &old_pairs,
-                &self.history,
+        if self.list.mirrored || old_mirrored {
+            let old = crate::engine::mirror_history::Sides {
+                pairs: &old_pairs,
+                mirrors: if old_pairs.is_empty() {
+                    &[]
+                } else {
+                    &old_mirrors
+                },
+                mirrored: old_mirrored,
+                history: &self.history,
+                mirror_history: &old_mirror_history,
+            };
+            let (h, m) = crate::engine::mirror_history::carry_mirrored(
+                &old,
                 &self.list.pairs,
+                &self.list.mirrors,
                 &self.particles.id,
                 &self.list_ids,
                 &flips,
-            )
-        });
+            );
+            self.history = h;
+            self.mirror_history = m;
+        } else {
+            self.history = self.accel.install(|| {
+                carry_history(
+                    &old_pairs,
+                    &self.history,
+                    &self.list.pairs,
+                    &self.particles.id,
+                    &self.list_ids,
+                    &flips,
+                )
+            });
+            self.mirror_history = vec![0.0; self.list.mirrors.len() * width];
+        }
         if let Some(pending) = self.pending_history.take() {
             self.apply_pending_history(pending, width);
         }
@@ -1241,6 +1275,15 @@ impl Simulation {
                     self.history[k * width..(k + 1) * width].fill(0.0);
                 }
             }
+            for (k, m) in self.list.mirrors.iter().enumerate() {
+                let (i, j) = (m.pair.i as usize, m.pair.j as usize);
+                let d = [0, 1, 2].map(|c| p.x[i][c] - (p.x[j][c] + m.pair.shift[c]));
+                let radsum = p.radius[i] + p.radius[j];
+                #[allow(clippy::neg_cmp_op_on_partial_ord)]
+                if !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < radsum * radsum) {
+                    self.mirror_history[k * width..(k + 1) * width].fill(0.0);
+                }
+            }
         }
         self.list_ids = self.particles.id.clone();
         self.ago = 0;
@@ -1252,7 +1295,10 @@ impl Simulation {
         let threads = self.accel.thread_count() > 1;
         self.sum_order = if self.accel.fast {
             block_starts(pairs, n).map(SumOrder::Blocks)
-        } else if threads && pairs.len() >= crate::engine::granular::parallel_pairs() {
+        } else if threads
+            && !self.list.mirrored
+            && pairs.len() >= crate::engine::granular::parallel_pairs()
+        {
             Incidence::new(pairs, n).map(SumOrder::Gathered)
         } else {
             None
@@ -1851,9 +1897,19 @@ impl Simulation {
             };
             let (pairs, history, dt) = (&self.list.pairs, &mut self.history, self.dt);
             let order = &self.sum_order;
+            let width = pair.history_width();
+            self.mirror_history
+                .resize(self.list.mirrors.len() * width, 0.0);
+            let mirrored = self
+                .list
+                .mirrored
+                .then_some(crate::engine::neighbor::Mirrored {
+                    mirrors: &self.list.mirrors,
+                    history: &mut self.mirror_history,
+                });
             let started = std::time::Instant::now();
             self.accel.install(|| {
-                pair.compute(p, pairs, history, dt, update, virial, order);
+                pair.compute(p, pairs, history, dt, update, virial, order, mirrored);
             });
             if self.loop_clock.is_some() {
                 self.stats.pair += started.elapsed().as_secs_f64();
@@ -2131,7 +2187,7 @@ impl Simulation {
             s.push_str(&format!("{name} time (%) = {} ({})\n", g(v), g(pct(v))));
         }
         let n = self.particles.len();
-        let neighs = self.list.pairs.len();
+        let neighs = self.list.pairs.len() + self.list.mirrors.len();
         let hist = "Histogram: 1 0 0 0 0 0 0 0 0 0\n";
         s.push_str(&format!("\nNlocal:    {n} ave {n} max {n} min\n{hist}"));
         s.push_str(&format!("Nghost:    0 ave 0 max 0 min\n{hist}"));

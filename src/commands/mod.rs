@@ -15,6 +15,7 @@ pub mod logs;
 pub mod material_check;
 pub mod names;
 pub mod out_of_scope;
+pub mod region_tet;
 pub mod registry;
 pub mod set;
 pub mod sim_run;

@@ -37,5 +37,6 @@ pub mod restart_fixes;
 pub mod restart_state;
 pub mod rigid_body;
 pub mod sim;
+pub mod tet_mesh;
 pub mod thermo;
 pub mod tracer;

@@ -931,6 +931,42 @@ mod tests {
     }
 
     #[test]
+    fn pairs_across_periodic_faces_get_a_mirror_among_their_second_atoms_entries() {
+        let mut domain = Domain::default();
+        domain.boundary = parse_boundary(&["p", "p", "f"]).unwrap();
+        let hi = [0.3, 0.25, 0.2];
+        domain.create([0.0; 3], hi);
+        let mut r = crate::util::random::RanPark::new(4321).unwrap();
+        let x: Vec<[f64; 3]> = (0..600)
+            .map(|_| std::array::from_fn(|d| hi[d] * r.uniform()))
+            .collect();
+        let reach = vec![0.015; x.len()];
+        let order = BinOrder::new(domain.lo, domain.hi, 2.0 * 0.015 + 0.005);
+        let mut list = NeighborList::default();
+        assert!(list.build_stencil(&x, &reach, 0.005, &domain, &order));
+        assert!(list.mirrored);
+        let across = list.pairs.iter().filter(|p| p.shift != [0.0; 3]).count();
+        assert!(across > 20);
+        assert_eq!(list.mirrors.len(), across);
+        let mut seen = vec![false; list.pairs.len()];
+        for (k, m) in list.mirrors.iter().enumerate() {
+            let e = list.pairs[m.entry as usize];
+            assert_eq!((m.pair.i, m.pair.j), (e.j, e.i));
+            assert_eq!(m.pair.shift, e.shift.map(|v| -v));
+            assert!(!std::mem::replace(&mut seen[m.entry as usize], true));
+            // placed within (or right after) its first atom's block, in order
+            let at = m.at as usize;
+            assert!(at == list.pairs.len() || list.pairs[at].i >= m.pair.i);
+            assert!(at == 0 || list.pairs[at - 1].i <= m.pair.i);
+            assert!(k == 0 || list.mirrors[k - 1].at <= m.at);
+        }
+        // the same list without periodic faces has no mirrors
+        domain.boundary = parse_boundary(&["f", "f", "f"]).unwrap();
+        assert!(list.build_stencil(&x, &reach, 0.005, &domain, &order));
+        assert!(!list.mirrored && list.mirrors.is_empty());
+    }
+
+    #[test]
     fn history_follows_atom_ids() {
         let old = vec![Pair {
             i: 0,

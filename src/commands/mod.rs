@@ -16,6 +16,7 @@ pub mod material_check;
 pub mod names;
 pub mod out_of_scope;
 pub mod processors;
+pub mod region_tet;
 pub mod registry;
 pub mod set;
 pub mod sim_run;

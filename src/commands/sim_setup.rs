@@ -191,6 +191,9 @@ fn region(a: &Args, ctx: &mut Ctx) -> Result {
         .map(|i| a.word(i))
         .collect::<std::result::Result<_, _>>()?;
     let d = &ctx.sim.domain;
+    if words.get(1) == Some(&"mesh/tet") {
+        return crate::commands::region_tet::define(a, ctx, &words);
+    }
     let rctx = RegionContext {
         bounds: d.exists.then_some((d.lo, d.hi)),
         lattice: ctx

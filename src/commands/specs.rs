@@ -288,6 +288,7 @@ pub const SPECS: &[Spec] = &[
     style("region", "cone", "region ID cone x|y|z C1 C2 RLO RHI LO HI", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "a truncated cone (length)"),
     style("region", "cylinder", "region ID cylinder x|y|z C1 C2 RADIUS LO HI", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "a cylinder (length; RADIUS may be v_NAME)"),
     style("region", "intersect", "region ID intersect N REGION ...", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "the intersection of regions"),
+    style("region", "mesh/tet", "region ID mesh/tet file FILE scale S move DX DY DZ rotate AX AY AZ units box", &[], "the tetrahedra of a legacy ASCII VTK file (moved, scaled, rotated in degrees; length)"),
     style("region", "plane", "region ID plane PX PY PZ NX NY NZ", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "the half-space behind a plane (point in length)"),
     style("region", "prism", "region ID prism XLO XHI YLO YHI ZLO ZHI XY XZ YZ", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "a parallelepiped (length)"),
     style("region", "sphere", "region ID sphere X Y Z RADIUS", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "a sphere (length; RADIUS may be v_NAME)"),

@@ -281,6 +281,7 @@ impl Simulation {
             pair.i = new_of_old[pair.i as usize];
             pair.j = new_of_old[pair.j as usize];
         }
+        self.list.renumber_mirrors(&new_of_old);
         self.list.permute(order);
         let permute3 = |v: &mut Vec<[f64; 3]>| {
             if v.len() == order.len() {

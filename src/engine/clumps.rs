@@ -336,7 +336,7 @@ impl crate::engine::sim::Simulation {
         let Some(tags) = body_tags(&self.particles) else {
             return;
         };
-        self.list.pairs.retain(|pair| {
+        self.list.retain(|pair| {
             let (ti, tj) = (tags[pair.i as usize], tags[pair.j as usize]);
             !(ti >= 0.0 && ti == tj)
         });

@@ -24,6 +24,7 @@ pub mod mesh;
 pub mod mesh_motion;
 pub mod mesh_stress;
 pub mod mesh_wall;
+pub mod mirror_history;
 pub mod momentum;
 pub mod multisphere;
 pub mod neighbor;
@@ -36,6 +37,7 @@ pub mod restart_state;
 pub mod rigid_body;
 pub mod sim;
 pub mod temperature;
+pub mod tet_mesh;
 pub mod thermo;
 pub mod tracer;
 

@@ -19,6 +19,29 @@ pub struct Pair {
     pub shift: [f64; 3],
 }
 
+/// The second side of a listed pair across a periodic face. LIGGGHTS (newton off) lists
+/// such a pair on both sides, each atom with the other's ghost image, and each side adds
+/// only its own atom's force and keeps its own contact history; the exact path does the
+/// same through these entries.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Mirror {
+    /// The pair seen from its second atom (`i` is the list entry's `j`, the shift negated).
+    pub pair: Pair,
+    /// The list entry it mirrors.
+    pub entry: u32,
+    /// Its place in LIGGGHTS's order: its force is added just before list entry `at`'s
+    /// (`pairs.len()`: after the last).
+    pub at: u32,
+}
+
+/// A mirrored list's second sides and their contact history, for the pair pass.
+pub struct Mirrored<'a> {
+    /// The mirrors, ordered by `at`.
+    pub mirrors: &'a [Mirror],
+    /// Their contact history (`history_width` doubles per mirror).
+    pub history: &'a mut [f64],
+}
+
 /// LIGGGHTS's neighbour bins (bin size about half `cutneighmax`, fitted to the box), used
 /// only to order each particle's partners as LIGGGHTS's stencil walk lists them: by bin
 /// (z, then y, then x) and by index within a bin. Forces on a particle are summed in its
@@ -134,6 +157,12 @@ pub struct NeighborList {
     built_reach: Vec<f64>,
     /// Number of builds so far.
     pub builds: u64,
+    /// The second sides of the pairs across periodic faces, in LIGGGHTS's order (only from
+    /// the stencil walk, empty otherwise).
+    pub mirrors: Vec<Mirror>,
+    /// Whether the list was built with [`Self::mirrors`]: then a pair across a periodic face
+    /// adds only its first atom's force, the mirror the second's.
+    pub mirrored: bool,
     /// Pairs within reach that LIGGGHTS's stencil misses (particles grown beyond the run's
     /// cutoff), left out as LIGGGHTS leaves them out; counted since the last reset.
     pub missed: u64,
@@ -159,11 +188,51 @@ impl NeighborList {
     /// reaches `reach`.
     pub fn assign(&mut self, pairs: Vec<Pair>, x: &[[f64; 3]], reach: &[f64]) {
         self.pairs = pairs;
+        self.mirrors.clear();
+        self.mirrored = false;
         self.built_at.clear();
         self.built_at.extend_from_slice(x);
         self.built_reach.clear();
         self.built_reach.extend_from_slice(reach);
         self.builds += 1;
+    }
+
+    /// Keep the listed pairs `keep` accepts (and the mirrors of the kept ones, in place).
+    pub fn retain(&mut self, mut keep: impl FnMut(&Pair) -> bool) {
+        if self.mirrors.is_empty() {
+            self.pairs.retain(keep);
+            return;
+        }
+        // new index of each old entry, and of the first kept entry at or after it
+        let mut new_at = Vec::with_capacity(self.pairs.len() + 1);
+        let mut kept = 0u32;
+        let mut alive = Vec::with_capacity(self.pairs.len());
+        for p in &self.pairs {
+            new_at.push(kept);
+            let k = keep(p);
+            alive.push(k);
+            kept += k as u32;
+        }
+        new_at.push(kept);
+        self.mirrors.retain_mut(|m| {
+            let live = alive[m.entry as usize] && keep(&m.pair);
+            m.entry = new_at[m.entry as usize];
+            m.at = new_at[m.at as usize];
+            live
+        });
+        let mut k = 0;
+        self.pairs.retain(|_| {
+            k += 1;
+            alive[k - 1]
+        });
+    }
+
+    /// Renumber the particles of the mirrors (`new_of_old`: old index -> new index).
+    pub fn renumber_mirrors(&mut self, new_of_old: &[u32]) {
+        for m in &mut self.mirrors {
+            m.pair.i = new_of_old[m.pair.i as usize];
+            m.pair.j = new_of_old[m.pair.j as usize];
+        }
     }
 
     /// Reorder the build positions and reaches with the particles (`order`: new index ->
@@ -327,32 +396,60 @@ impl NeighborList {
             }
         }
         self.pairs.clear();
+        self.mirrors.clear();
+        self.mirrored = (0..3).any(|d| domain.periodic(d));
         self.built_at.clear();
         self.built_at.extend_from_slice(x);
         self.built_reach.clear();
         self.built_reach.extend_from_slice(reach);
         self.builds += 1;
+        // where each particle's entries start (ghost images of lower particles are found
+        // in them as the entries they mirror)
+        let mut first = vec![0u32; n + 1];
         for (i, &xi) in x.iter().enumerate() {
+            first[i] = self.pairs.len() as u32;
             let home = flat(o.bin(xi)) as isize;
-            for &(first, last) in &stencil {
-                let (a, b) = ((home + first) as usize, (home + last) as usize);
+            for &(lo_bin, hi_bin) in &stencil {
+                let (a, b) = ((home + lo_bin) as usize, (home + hi_bin) as usize);
                 for e in &binned[start[a] as usize..start[b + 1] as usize] {
                     let ju = e.j as usize;
-                    if ju <= i {
+                    // LIGGGHTS lists every ghost image; a real particle only above i
+                    let image = e.shift != [0.0; 3];
+                    if ju == i || (ju < i && !image) {
                         continue;
                     }
                     let delta = [e.x[0] - xi[0], e.x[1] - xi[1], e.x[2] - xi[2]];
                     let cut = reach[i] + reach[ju] + skin;
                     let rsq = delta[0] * delta[0] + delta[1] * delta[1] + delta[2] * delta[2];
-                    if rsq < cut * cut {
-                        self.pairs.push(Pair {
-                            i: i as u32,
-                            j: e.j,
-                            shift: e.shift,
+                    let listed = rsq < cut * cut;
+                    if !listed {
+                        continue;
+                    }
+                    let pair = Pair {
+                        i: i as u32,
+                        j: e.j,
+                        shift: e.shift,
+                    };
+                    if ju > i {
+                        self.pairs.push(pair);
+                        continue;
+                    }
+                    // the second side of a pair listed from ju
+                    let back = e.shift.map(|v| -v);
+                    let block = first[ju] as usize..first[ju + 1] as usize;
+                    if let Some(k) = self.pairs[block.clone()]
+                        .iter()
+                        .position(|q| q.j as usize == i && q.shift == back)
+                    {
+                        self.mirrors.push(Mirror {
+                            pair,
+                            entry: (block.start + k) as u32,
+                            at: self.pairs.len() as u32,
                         });
                     }
                 }
             }
+            first[i + 1] = self.pairs.len() as u32;
         }
         true
     }
@@ -369,6 +466,8 @@ impl NeighborList {
         order: Option<&BinOrder>,
     ) {
         self.pairs.clear();
+        self.mirrors.clear();
+        self.mirrored = false;
         self.built_at.clear();
         self.built_at.extend_from_slice(x);
         self.built_reach.clear();
@@ -829,6 +928,42 @@ mod tests {
             assert!(sorted.pairs.len() > 1000);
             assert_eq!(sorted.pairs, walked.pairs, "{boundary:?}");
         }
+    }
+
+    #[test]
+    fn pairs_across_periodic_faces_get_a_mirror_among_their_second_atoms_entries() {
+        let mut domain = Domain::default();
+        domain.boundary = parse_boundary(&["p", "p", "f"]).unwrap();
+        let hi = [0.3, 0.25, 0.2];
+        domain.create([0.0; 3], hi);
+        let mut r = crate::util::random::RanPark::new(4321).unwrap();
+        let x: Vec<[f64; 3]> = (0..600)
+            .map(|_| std::array::from_fn(|d| hi[d] * r.uniform()))
+            .collect();
+        let reach = vec![0.015; x.len()];
+        let order = BinOrder::new(domain.lo, domain.hi, 2.0 * 0.015 + 0.005);
+        let mut list = NeighborList::default();
+        assert!(list.build_stencil(&x, &reach, 0.005, &domain, &order));
+        assert!(list.mirrored);
+        let across = list.pairs.iter().filter(|p| p.shift != [0.0; 3]).count();
+        assert!(across > 20);
+        assert_eq!(list.mirrors.len(), across);
+        let mut seen = vec![false; list.pairs.len()];
+        for (k, m) in list.mirrors.iter().enumerate() {
+            let e = list.pairs[m.entry as usize];
+            assert_eq!((m.pair.i, m.pair.j), (e.j, e.i));
+            assert_eq!(m.pair.shift, e.shift.map(|v| -v));
+            assert!(!std::mem::replace(&mut seen[m.entry as usize], true));
+            // placed within (or right after) its first atom's block, in order
+            let at = m.at as usize;
+            assert!(at == list.pairs.len() || list.pairs[at].i >= m.pair.i);
+            assert!(at == 0 || list.pairs[at - 1].i <= m.pair.i);
+            assert!(k == 0 || list.mirrors[k - 1].at <= m.at);
+        }
+        // the same list without periodic faces has no mirrors
+        domain.boundary = parse_boundary(&["f", "f", "f"]).unwrap();
+        assert!(list.build_stencil(&x, &reach, 0.005, &domain, &order));
+        assert!(!list.mirrored && list.mirrors.is_empty());
     }
 
     #[test]

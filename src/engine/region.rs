@@ -11,6 +11,7 @@ pub const STYLES: &[&str] = &[
     "cone",
     "cylinder",
     "intersect",
+    "mesh/tet",
     "plane",
     "prism",
     "sphere",
@@ -59,6 +60,8 @@ pub enum Shape {
     Intersect(Vec<usize>),
     /// Inside any of the listed regions.
     Union(Vec<usize>),
+    /// Strictly inside one of the tetrahedra of a `mesh/tet` file (the mesh lies in the box).
+    TetMesh(Box<crate::engine::tet_mesh::TetMesh>),
 }
 
 /// A named region.
@@ -443,6 +446,7 @@ impl Regions {
             }
             Shape::Intersect(members) => members.iter().all(|&m| self.matches(m, x)),
             Shape::Union(members) => members.iter().any(|&m| self.matches(m, x)),
+            Shape::TetMesh(mesh) => mesh.inside(x),
         }
     }
 
@@ -476,6 +480,7 @@ impl Regions {
                 hi,
             } => Some(axial_box(*axis, *c1, *c2, radlo.max(*radhi), *lo, *hi)),
             Shape::Prism { .. } | Shape::Plane { .. } => None,
+            Shape::TetMesh(mesh) => Some((mesh.lo, mesh.hi)),
             Shape::Intersect(m) => {
                 let boxes: Vec<_> = m.iter().filter_map(|&i| self.extent(i)).collect();
                 let first = *boxes.first()?;
@@ -498,6 +503,86 @@ impl Regions {
                 }))
             }
         }
+    }
+}
+
+impl Regions {
+    /// `region ID mesh/tet file F scale S move DX DY DZ rotate AX AY AZ [side in|out] units
+    /// box` (`args` excludes the command name): `read` gives the file's text, `in_box` tells
+    /// whether a placed node lies in the box (`box_bounds`). Returns what reading reported.
+    pub fn define_tet(
+        &mut self,
+        args: &[&str],
+        ctx: RegionContext,
+        read: &dyn Fn(&str) -> Result<String, String>,
+    ) -> Result<crate::engine::tet_mesh::ReadNotes, EngineError> {
+        use crate::engine::tet_mesh::Placement;
+        if args.len() < 14 {
+            return Err("Illegal region mesh/tet command".into());
+        }
+        let id = args[0];
+        if self.find(id).is_some() {
+            return Err("Reuse of region ID".into());
+        }
+        let words = args;
+        if let Some(opt) = words[14..]
+            .iter()
+            .step_by(2)
+            .find(|w| matches!(**w, "move" | "rotate"))
+        {
+            return Err(EngineError::Unsupported(format!(
+                "region mesh/tet option {opt}"
+            )));
+        }
+        // LIGGGHTS's default `units lattice` is refused for this style
+        let units_box = words[14..]
+            .windows(2)
+            .rfind(|w| w[0] == "units")
+            .is_some_and(|w| w[1] == "box");
+        if !units_box {
+            return Err(
+                "Lattice scaling not implemented for region mesh/tet, please use 'units box'"
+                    .into(),
+            );
+        }
+        let (interior, _, _) = options(&words[14..], ctx)?;
+        if !interior {
+            // LIGGGHTS 3.8.0 matches no point of such a region; what it means is unclear
+            return Err(EngineError::Unsupported("region mesh/tet side out".into()));
+        }
+        let expect = |k: usize, what: &str| -> Result<(), EngineError> {
+            if words[k] == what {
+                Ok(())
+            } else {
+                Err(format!("Illegal region mesh/tet command, expecting keyword '{what}'").into())
+            }
+        };
+        expect(2, "file")?;
+        expect(4, "scale")?;
+        expect(6, "move")?;
+        expect(10, "rotate")?;
+        let num = |k: usize| numeric(words[k]).map_err(EngineError::from);
+        let place = Placement {
+            scale: num(5)?,
+            offset: [num(7)?, num(8)?, num(9)?],
+            rotate: [num(11)?, num(12)?, num(13)?],
+        };
+        let (lo, hi) = ctx
+            .bounds
+            .ok_or("Cannot load mesh before simulation box is defined.")?;
+        let in_box = |x: [f64; 3]| (0..3).all(|d| x[d] >= lo[d] && x[d] <= hi[d]);
+        let text = read(words[3])?;
+        let (mesh, notes) = crate::engine::tet_mesh::read(&text, &place, &in_box)?;
+        self.list.push(Region {
+            id: id.to_string(),
+            style: "mesh/tet".to_string(),
+            shape: Shape::TetMesh(Box::new(mesh)),
+            interior,
+            radius_variable: None,
+            shaped_at: None,
+            motion: None,
+        });
+        Ok(notes)
     }
 }
 

@@ -234,7 +234,11 @@ impl Simulation {
             .as_ref()
             .map_or(vec![true; width], |p| p.history_flips());
         let ids = &self.particles.id;
-        for (k, pair) in self.list.pairs.iter().enumerate() {
+        self.mirror_history
+            .resize(self.list.mirrors.len() * width, 0.0);
+        let sides = self.list.pairs.iter().map(|p| (p, false));
+        let mirrors = self.list.mirrors.iter().map(|m| (&m.pair, true));
+        for (k, (pair, mirror)) in sides.chain(mirrors).enumerate() {
             let (ti, tj) = (ids[pair.i as usize], ids[pair.j as usize]);
             let found = pending
                 .partners
@@ -249,10 +253,12 @@ impl Simulation {
                         .map(|(_, v)| (v, -1.0))
                 });
             if let Some((v, sign)) = found {
-                for (d, x) in self.history[k * width..(k + 1) * width]
-                    .iter_mut()
-                    .enumerate()
-                {
+                let (history, k) = if mirror {
+                    (&mut self.mirror_history, k - self.list.pairs.len())
+                } else {
+                    (&mut self.history, k)
+                };
+                for (d, x) in history[k * width..(k + 1) * width].iter_mut().enumerate() {
                     *x = if flips[d] { sign * v[d] } else { v[d] };
                 }
             }
@@ -270,7 +276,20 @@ impl Simulation {
             return out;
         }
         let flips = self.pair.as_ref().map_or(Vec::new(), |p| p.history_flips());
+        let mirrors = &self.list.mirrors;
+        let mirrored = self.list.mirrored && self.mirror_history.len() == mirrors.len() * width;
+        let mut next_mirror = 0;
         for (k, pair) in self.list.pairs.iter().enumerate() {
+            // a mirror keeps its own side's values (LIGGGHTS's order: in its atom's entries)
+            while mirrored && next_mirror < mirrors.len() && mirrors[next_mirror].at as usize <= k {
+                let m = &mirrors[next_mirror];
+                let h = &self.mirror_history[next_mirror * width..(next_mirror + 1) * width];
+                let (i, j) = (m.pair.i as usize, m.pair.j as usize);
+                if i < p.len() && j < p.len() && h.iter().any(|v| *v != 0.0) {
+                    out.entry(p.id[i]).or_default().push((p.id[j], h.to_vec()));
+                }
+                next_mirror += 1;
+            }
             let (i, j) = (pair.i as usize, pair.j as usize);
             if i >= p.len() || j >= p.len() {
                 continue;
@@ -283,6 +302,9 @@ impl Simulation {
                 continue;
             }
             out.entry(p.id[i]).or_default().push((p.id[j], h.to_vec()));
+            if mirrored && pair.shift != [0.0; 3] {
+                continue;
+            }
             out.entry(p.id[j]).or_default().push((
                 p.id[i],
                 h.iter()
@@ -290,6 +312,16 @@ impl Simulation {
                     .map(|(v, &f)| if f { -v } else { *v })
                     .collect(),
             ));
+        }
+        for (k, m) in mirrors.iter().enumerate().skip(next_mirror) {
+            if !mirrored {
+                break;
+            }
+            let h = &self.mirror_history[k * width..(k + 1) * width];
+            let (i, j) = (m.pair.i as usize, m.pair.j as usize);
+            if i < p.len() && j < p.len() && h.iter().any(|v| *v != 0.0) {
+                out.entry(p.id[i]).or_default().push((p.id[j], h.to_vec()));
+            }
         }
         out
     }

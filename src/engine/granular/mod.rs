@@ -10,11 +10,12 @@ use crate::engine::contact::{
     AnyContactModel, CohesionModel, ContactKernel, ContactModel, F64x4, Material, MaterialInput,
     NormalModel, PairInput, PairLanesOutput, RollingModel, TangentialModel, WallInput, LANES,
 };
-use crate::engine::neighbor::{Incidence, Pair, SumOrder, BLOCK_PARTICLES};
+use crate::engine::neighbor::{Incidence, Mirrored, Pair, SumOrder, BLOCK_PARTICLES};
 use crate::engine::particles::Particles;
 use crate::engine::sim::PairInteraction;
 
 pub mod batch;
+mod mirrored;
 pub use batch::PairResult;
 mod wall;
 pub use wall::{build_wall, Primitive, WallGran, WallInteraction};
@@ -43,6 +44,8 @@ pub struct PairGran<N, T, C, R> {
     pub worst: Option<(f64, u32, u32)>,
     /// The fast path's contributions between blocks of particles, per block (reused).
     pub foreign: Vec<Owed>,
+    /// The mirrors' pairs, touching entries and results of the current step (reused).
+    pub mirror_scratch: mirrored::Scratch,
 }
 
 /// Below this many listed pairs the contact loop stays on one thread (the fork-join cost of
@@ -179,6 +182,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         update: bool,
         virial: Option<&mut [[f64; 6]]>,
         order: &SumOrder,
+        mirrored: Option<Mirrored<'_>>,
     ) {
         self.packed.fill(p, self.frozen);
         let threads = rayon::current_num_threads();
@@ -195,6 +199,10 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
                 return;
             }
             _ => {}
+        }
+        if let Some(m) = mirrored {
+            self.compute_mirrored(p, pairs, history, dt, update, virial, m);
+            return;
         }
         let kernel = batch::Kernel {
             model: &self.model,
@@ -922,6 +930,7 @@ pub fn build(
                 parts: Vec::new(),
                 worst: None,
                 foreign: Vec::new(),
+                mirror_scratch: Default::default(),
             })
         }
     }

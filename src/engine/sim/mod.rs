@@ -98,7 +98,9 @@ pub trait PairInteraction: Send {
     /// `update` is false in the setup evaluation: contact history is used but not advanced.
     /// With `virial`, each pair also adds half its virial del_a F_b to both particles
     /// (xx yy zz xy xz yz, force length).
-    /// `order` says in which order (and how parallel) contributions are added.
+    /// `order` says in which order (and how parallel) contributions are added; `mirrored`
+    /// (a list built with LIGGGHTS's periodic second sides) makes a pass in list order add a
+    /// pair across a periodic face to its first atom only and each mirror to its own.
     #[allow(clippy::too_many_arguments)]
     fn compute(
         &mut self,
@@ -109,6 +111,7 @@ pub trait PairInteraction: Send {
         update: bool,
         virial: Option<&mut [[f64; 6]]>,
         order: &crate::engine::neighbor::SumOrder,
+        mirrored: Option<crate::engine::neighbor::Mirrored<'_>>,
     );
 }
 
@@ -315,6 +318,8 @@ pub struct Simulation {
     pub list: NeighborList,
     /// Contact history of the listed pairs (`history_width` doubles per pair).
     pub history: Vec<f64>,
+    /// Contact history of the list's mirrors (`history_width` doubles per mirror).
+    pub mirror_history: Vec<f64>,
     pub(crate) list_ids: Vec<i64>,
     pub(crate) ago: u64,
     box_at_build: ([f64; 3], [f64; 3]),
@@ -411,6 +416,7 @@ impl Default for Simulation {
             neighbor: NeighborSettings::default(),
             list: NeighborList::default(),
             history: Vec::new(),
+            mirror_history: Vec::new(),
             list_ids: Vec::new(),
             ago: 0,
             box_at_build: ([0.0; 3], [0.0; 3]),
@@ -544,9 +550,19 @@ impl Simulation {
             };
             let (pairs, history, dt) = (&self.list.pairs, &mut self.history, self.dt);
             let order = &self.sum_order;
+            let width = pair.history_width();
+            self.mirror_history
+                .resize(self.list.mirrors.len() * width, 0.0);
+            let mirrored = self
+                .list
+                .mirrored
+                .then_some(crate::engine::neighbor::Mirrored {
+                    mirrors: &self.list.mirrors,
+                    history: &mut self.mirror_history,
+                });
             let started = std::time::Instant::now();
             self.accel.install(|| {
-                pair.compute(p, pairs, history, dt, update, virial, order);
+                pair.compute(p, pairs, history, dt, update, virial, order, mirrored);
             });
             if self.loop_clock.is_some() {
                 self.stats.pair += started.elapsed().as_secs_f64();
@@ -824,7 +840,7 @@ impl Simulation {
             s.push_str(&format!("{name} time (%) = {} ({})\n", g(v), g(pct(v))));
         }
         let n = self.particles.len();
-        let neighs = self.list.pairs.len();
+        let neighs = self.list.pairs.len() + self.list.mirrors.len();
         let hist = "Histogram: 1 0 0 0 0 0 0 0 0 0\n";
         s.push_str(&format!("\nNlocal:    {n} ave {n} max {n} min\n{hist}"));
         s.push_str(&format!("Nghost:    0 ave 0 max 0 min\n{hist}"));

@@ -151,6 +151,9 @@ impl Simulation {
 
     pub(super) fn build_neighbors(&mut self) {
         let old_pairs = std::mem::take(&mut self.list.pairs);
+        let old_mirrors = std::mem::take(&mut self.list.mirrors);
+        let old_mirrored = self.list.mirrored;
+        let old_mirror_history = std::mem::take(&mut self.mirror_history);
         let width = self.pair.as_ref().map_or(0, |p| p.history_width());
         if !(self.accel.fast && self.build_list_fast()) {
             let order = crate::engine::neighbor::BinOrder::sized(
@@ -184,7 +187,7 @@ impl Simulation {
         let n = &self.neighbor;
         if !n.exclude_types.is_empty() || !n.exclude_groups.is_empty() {
             let p = &self.particles;
-            self.list.pairs.retain(|pair| {
+            self.list.retain(|pair| {
                 let (i, j) = (pair.i as usize, pair.j as usize);
                 let (ti, tj) = (p.kind[i], p.kind[j]);
                 let (mi, mj) = (p.mask[i], p.mask[j]);
@@ -213,16 +216,41 @@ impl Simulation {
         } else {
             Vec::new()
         };
-        self.history = self.accel.install(|| {
-            carry_history(
-                &old_pairs,
-                &self.history,
+        if self.list.mirrored || old_mirrored {
+            let old = crate::engine::mirror_history::Sides {
+                pairs: &old_pairs,
+                mirrors: if old_pairs.is_empty() {
+                    &[]
+                } else {
+                    &old_mirrors
+                },
+                mirrored: old_mirrored,
+                history: &self.history,
+                mirror_history: &old_mirror_history,
+            };
+            let (h, m) = crate::engine::mirror_history::carry_mirrored(
+                &old,
                 &self.list.pairs,
+                &self.list.mirrors,
                 &self.particles.id,
                 &self.list_ids,
                 &flips,
-            )
-        });
+            );
+            self.history = h;
+            self.mirror_history = m;
+        } else {
+            self.history = self.accel.install(|| {
+                carry_history(
+                    &old_pairs,
+                    &self.history,
+                    &self.list.pairs,
+                    &self.particles.id,
+                    &self.list_ids,
+                    &flips,
+                )
+            });
+            self.mirror_history = vec![0.0; self.list.mirrors.len() * width];
+        }
         if let Some(pending) = self.pending_history.take() {
             self.apply_pending_history(pending, width);
         }
@@ -240,6 +268,15 @@ impl Simulation {
                     self.history[k * width..(k + 1) * width].fill(0.0);
                 }
             }
+            for (k, m) in self.list.mirrors.iter().enumerate() {
+                let (i, j) = (m.pair.i as usize, m.pair.j as usize);
+                let d = [0, 1, 2].map(|c| p.x[i][c] - (p.x[j][c] + m.pair.shift[c]));
+                let radsum = p.radius[i] + p.radius[j];
+                #[allow(clippy::neg_cmp_op_on_partial_ord)]
+                if !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < radsum * radsum) {
+                    self.mirror_history[k * width..(k + 1) * width].fill(0.0);
+                }
+            }
         }
         self.list_ids = self.particles.id.clone();
         self.ago = 0;
@@ -251,7 +288,10 @@ impl Simulation {
         let threads = self.accel.thread_count() > 1;
         self.sum_order = if self.accel.fast {
             block_starts(pairs, n).map(SumOrder::Blocks)
-        } else if threads && pairs.len() >= crate::engine::granular::parallel_pairs() {
+        } else if threads
+            && !self.list.mirrored
+            && pairs.len() >= crate::engine::granular::parallel_pairs()
+        {
             Incidence::new(pairs, n).map(SumOrder::Gathered)
         } else {
             None

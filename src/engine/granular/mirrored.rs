@@ -1,0 +1,139 @@
+//! The exact path's pair pass on a list with periodic mirrors: LIGGGHTS (newton off) computes
+//! a pair across a periodic face once from each side, each side with its own contact history,
+//! and adds each side's force to its own atom where that atom's list reaches the pair. The
+//! entries and the mirrors are computed as separate batches (each contact depends only on its
+//! own inputs), then added in LIGGGHTS's order.
+
+use super::{add6, batch, half_virial, Collect, PairGran, PairResult};
+use crate::engine::contact::{CohesionModel, NormalModel, RollingModel, TangentialModel};
+use crate::engine::neighbor::{Mirrored, Pair};
+use crate::engine::particles::Particles;
+
+/// Buffers of the mirrors' pass, reused between steps.
+#[derive(Debug, Clone, Default)]
+pub struct Scratch {
+    pairs: Vec<Pair>,
+    touching: Vec<u32>,
+    results: Vec<PairResult>,
+}
+
+/// Add one side of a contact (force N, torque N m) to atom `n`, and half the pair's virial
+/// (N m) when tallied.
+#[inline(always)]
+fn add_side(
+    p: &mut Particles,
+    n: usize,
+    f: &[f64; 3],
+    t: &[f64; 3],
+    virial: &mut Option<&mut [[f64; 6]]>,
+    w: &[f64; 6],
+) {
+    for d in 0..3 {
+        p.f[n][d] += f[d];
+        p.torque[n][d] += t[d];
+    }
+    if let Some(v) = virial.as_deref_mut() {
+        add6(&mut v[n], w);
+    }
+}
+
+impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> PairGran<N, T, C, R> {
+    /// The pass: entries inside the box add to both atoms, entries across a periodic face
+    /// to their first atom, each mirror to its own first atom, in list order with each
+    /// mirror just before the entry it is placed at.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn compute_mirrored(
+        &mut self,
+        p: &mut Particles,
+        pairs: &[Pair],
+        history: &mut [f64],
+        dt: f64,
+        update: bool,
+        mut virial: Option<&mut [[f64; 6]]>,
+        m: Mirrored<'_>,
+    ) {
+        let kernel = batch::Kernel {
+            model: &self.model,
+            material: &self.material,
+            ntypes: self.material.ntypes(),
+            dt,
+            update,
+        };
+        let packed = &self.packed;
+        // the list's touching entries
+        let mut touching = std::mem::take(&mut self.touching);
+        touching.clear();
+        batch::touching_entries(packed, pairs, 0, &mut touching);
+        let mut results = std::mem::take(&mut self.results);
+        results.resize(touching.len(), PairResult::default());
+        let mut main = Collect {
+            out: &mut results,
+            n: 0,
+            worst: None,
+        };
+        kernel.run(packed, &p.kind, pairs, &touching, history, &mut main);
+        let mut worst = main.worst;
+        // the mirrors' touching entries
+        let mut sc = std::mem::take(&mut self.mirror_scratch);
+        sc.pairs.clear();
+        sc.pairs.extend(m.mirrors.iter().map(|x| x.pair));
+        sc.touching.clear();
+        batch::touching_entries(packed, &sc.pairs, 0, &mut sc.touching);
+        sc.results.resize(sc.touching.len(), PairResult::default());
+        let mut side = Collect {
+            out: &mut sc.results,
+            n: 0,
+            worst: None,
+        };
+        kernel.run(
+            packed,
+            &p.kind,
+            &sc.pairs,
+            &sc.touching,
+            m.history,
+            &mut side,
+        );
+        if let Some(w) = side.worst {
+            if worst.is_none_or(|b| w.0 > b.0) {
+                worst = Some(w);
+            }
+        }
+        // add in LIGGGHTS's order
+        let (mut a, mut b, mut next) = (0usize, 0usize, 0usize);
+        for k in 0..=pairs.len() {
+            while next < m.mirrors.len() && m.mirrors[next].at as usize <= k {
+                if sc.touching.get(b).is_some_and(|&e| e as usize == next) {
+                    let (q, r) = (&sc.pairs[next], &sc.results[b]);
+                    let w = if virial.is_some() {
+                        half_virial(&p.x, q, r.fi)
+                    } else {
+                        [0.0; 6]
+                    };
+                    add_side(p, q.i as usize, &r.fi, &r.ti, &mut virial, &w);
+                    b += 1;
+                }
+                next += 1;
+            }
+            if k == pairs.len() {
+                break;
+            }
+            if touching.get(a).is_some_and(|&e| e as usize == k) {
+                let (q, r) = (&pairs[k], &results[a]);
+                let w = if virial.is_some() {
+                    half_virial(&p.x, q, r.fi)
+                } else {
+                    [0.0; 6]
+                };
+                add_side(p, q.i as usize, &r.fi, &r.ti, &mut virial, &w);
+                if q.shift == [0.0; 3] {
+                    add_side(p, q.j as usize, &r.fj, &r.tj, &mut virial, &w);
+                }
+                a += 1;
+            }
+        }
+        self.worst = worst;
+        self.results = results;
+        self.touching = touching;
+        self.mirror_scratch = sc;
+    }
+}

@@ -1,0 +1,317 @@
+//! `region ID mesh/tet file F scale S move DX DY DZ rotate AX AY AZ`: a region made of the
+//! tetrahedra of a legacy ASCII VTK unstructured grid, read as LIGGGHTS reads it (each point
+//! moved, then scaled, then rotated; only cells of type 10 kept) and tested as LIGGGHTS tests
+//! it (a point is inside when it lies strictly inside one of the tetrahedra).
+
+/// The tetrahedra of a `mesh/tet` region (lengths in box units).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TetMesh {
+    /// The four nodes of each tetrahedron, ordered to give a positive volume (length).
+    pub tets: Vec<[[f64; 3]; 4]>,
+    /// Lowest node coordinates (length).
+    pub lo: [f64; 3],
+    /// Highest node coordinates (length).
+    pub hi: [f64; 3],
+}
+
+/// What reading a mesh file reports besides the mesh: LIGGGHTS's notes and warnings.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ReadNotes {
+    /// Blank lines skipped (one note each).
+    pub empty_lines: usize,
+    /// Cells other than tetrahedra were dropped.
+    pub other_cells: bool,
+}
+
+/// Six times the signed volume of the tetrahedron (v0, v1, v2, v3), divided by six as
+/// LIGGGHTS computes it (length^3).
+fn volume(v0: [f64; 3], v1: [f64; 3], v2: [f64; 3], v3: [f64; 3]) -> f64 {
+    let a = [v3[0] - v1[0], v3[1] - v1[1], v3[2] - v1[2]];
+    let b = [v2[0] - v1[0], v2[1] - v1[1], v2[2] - v1[2]];
+    let c = [v0[0] - v1[0], v0[1] - v1[1], v0[2] - v1[2]];
+    let cp = [
+        a[1] * b[2] - a[2] * b[1],
+        -a[0] * b[2] + a[2] * b[0],
+        a[0] * b[1] - a[1] * b[0],
+    ];
+    (cp[0] * c[0] + cp[1] * c[1] + cp[2] * c[2]) / 6.0
+}
+
+/// Where the mesh goes: `move` offsets added before `scale`, then `rotate` angles (degrees)
+/// about x, y and z.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Placement {
+    /// Scale factor.
+    pub scale: f64,
+    /// Offset added to every point before scaling (length).
+    pub offset: [f64; 3],
+    /// Rotation angles about x, y, z (degrees).
+    pub rotate: [f64; 3],
+}
+
+impl Placement {
+    fn apply(&self, p: [f64; 3]) -> [f64; 3] {
+        let v: [f64; 3] = std::array::from_fn(|j| (p[j] + self.offset[j]) * self.scale);
+        let [px, py, pz] = self.rotate.map(|a| a * std::f64::consts::PI / 180.0);
+        let (cx, sx, cy, sy, cz, sz) = (px.cos(), px.sin(), py.cos(), py.sin(), pz.cos(), pz.sin());
+        [
+            v[0] * cy * cz + v[1] * (cz * sx * sy - cx * sz) + v[2] * (cx * cz * sy + sx * sz),
+            v[0] * cy * sz + v[2] * (-cz * sx + cx * sy * sz) + v[1] * (cx * cz + sx * sy * sz),
+            v[2] * cx * cy + v[1] * cy * sx - v[0] * sy,
+        ]
+    }
+}
+
+/// A leading integer as C's `atoi` reads it (0 when there is none).
+fn atoi(w: &str) -> i64 {
+    let t = w.trim_start();
+    let (sign, digits) = match t.as_bytes().first() {
+        Some(b'-') => (-1, &t[1..]),
+        Some(b'+') => (1, &t[1..]),
+        _ => (1, t),
+    };
+    let end = digits
+        .bytes()
+        .position(|b| !b.is_ascii_digit())
+        .unwrap_or(digits.len());
+    sign * digits[..end].parse::<i64>().unwrap_or(0)
+}
+
+/// Read a legacy ASCII VTK unstructured grid. `inside_box` tells whether a placed point lies
+/// in the simulation box (LIGGGHTS refuses meshes that stick out).
+pub fn read(
+    text: &str,
+    place: &Placement,
+    inside_box: &dyn Fn([f64; 3]) -> bool,
+) -> Result<(TetMesh, ReadNotes), String> {
+    let mut notes = ReadNotes::default();
+    let mut points: Vec<[f64; 3]> = Vec::new();
+    let mut npoints = 0usize;
+    let mut cells: Vec<Option<[usize; 4]>> = Vec::new();
+    let mut ncells = 0usize;
+    let mut ntets = 0usize;
+    let (mut points_done, mut cells_done) = (false, false);
+    let (mut last_point_line, mut last_cell_line) = (0usize, 0usize);
+    let mut types_seen = 0usize;
+    let mut outside = false;
+    let mut line_no = 0usize;
+    for raw in text.lines() {
+        // a `#` outside quotes starts a comment (the VTK header line is one)
+        let mut quote = None;
+        let cut = raw
+            .char_indices()
+            .find(|&(_, c)| {
+                match quote {
+                    Some(q) if c == q => quote = None,
+                    None if c == '"' || c == '\'' => quote = Some(c),
+                    None => return c == '#',
+                    _ => {}
+                }
+                false
+            })
+            .map_or(raw.len(), |(k, _)| k);
+        let words: Vec<&str> = raw[..cut].split_whitespace().collect();
+        if words.is_empty() {
+            notes.empty_lines += 1;
+            continue;
+        }
+        line_no += 1;
+        match line_no {
+            1 => continue,
+            2 if words[0] != "ASCII" => {
+                return Err("Expecting ASCII VTK mesh file, cannot continue".into())
+            }
+            3 if words[0] != "DATASET" || words.get(1) != Some(&"UNSTRUCTURED_GRID") => {
+                return Err(
+                    "Expecting ASCII VTK unstructured grid mesh file, cannot continue".into(),
+                )
+            }
+            2 | 3 => continue,
+            4 => {
+                if words[0] != "POINTS" {
+                    return Err(
+                        "Expecting 'POINTS' section in ASCII VTK mesh file, cannot continue".into(),
+                    );
+                }
+                npoints = words.get(1).map_or(0, |w| atoi(w)).max(0) as usize;
+                if npoints == 0 {
+                    points_done = true;
+                    last_point_line = line_no;
+                }
+                continue;
+            }
+            _ => {}
+        }
+        if !points_done {
+            if !words.len().is_multiple_of(3) {
+                return Err("Expecting 3 values for each point in 'POINTS' section of ASCII VTK mesh file, cannot continue".into());
+            }
+            for c in words.chunks(3) {
+                let mut p = [0.0; 3];
+                for (k, w) in c.iter().enumerate() {
+                    p[k] = crate::util::numbers::numeric(w).unwrap_or(0.0);
+                }
+                let q = place.apply(p);
+                if !inside_box(q) {
+                    outside = true;
+                }
+                points.push(q);
+            }
+            if points.len() >= npoints {
+                points_done = true;
+                last_point_line = line_no;
+            }
+            continue;
+        }
+        if line_no == last_point_line + 1 {
+            if words[0] != "CELLS" {
+                return Err(
+                    "Expecting 'CELLS' section in ASCII VTK mesh file, cannot continue".into(),
+                );
+            }
+            ncells = words.get(1).map_or(0, |w| atoi(w)).max(0) as usize;
+            if ncells == 0 {
+                cells_done = true;
+                last_cell_line = line_no;
+            }
+            continue;
+        }
+        if !cells_done {
+            cells.push(if words.len() == 5 {
+                let mut c = [0usize; 4];
+                for k in 0..4 {
+                    let n = atoi(words[1 + k]);
+                    if n < 0 || n as usize >= npoints.min(points.len()) {
+                        return Err(format!(
+                            "VTK mesh file: cell {} names point {n} of {npoints}",
+                            cells.len()
+                        ));
+                    }
+                    c[k] = n as usize;
+                }
+                Some(c)
+            } else {
+                None
+            });
+            if cells.len() == ncells {
+                cells_done = true;
+                last_cell_line = line_no;
+            }
+            continue;
+        }
+        if line_no == last_cell_line + 1 {
+            if words[0] != "CELL_TYPES" {
+                return Err(
+                    "Expecting 'CELL_TYPES' section in ASCII VTK mesh file, cannot continue".into(),
+                );
+            }
+            if words.get(1).map_or(0, |w| atoi(w)) != ncells as i64 {
+                return Err(
+                    "Inconsistency in 'CELL_TYPES' section in ASCII VTK mesh file, cannot continue"
+                        .into(),
+                );
+            }
+            continue;
+        }
+        if line_no <= last_cell_line + 1 + ncells && types_seen < cells.len() {
+            if words[0] != "10" {
+                cells[types_seen] = None;
+                notes.other_cells = true;
+            } else if cells[types_seen].is_some() {
+                ntets += 1;
+            }
+            types_seen += 1;
+        }
+    }
+    if outside {
+        return Err("VTK mesh file is incompatible with simulation box: One or more vertices outside simulation box".into());
+    }
+    // cells whose type was never read count as tetrahedra when they have four nodes
+    let _ = ntets;
+    let mut tets = Vec::new();
+    for c in cells.iter().flatten() {
+        let mut n = c.map(|k| points[k]);
+        if volume(n[0], n[1], n[2], n[3]) < 0.0 {
+            n.swap(0, 3);
+        }
+        if volume(n[0], n[1], n[2], n[3]) < 0.0 {
+            return Err("Fatal error: RegTetMesh::add_tet: vol < 0".into());
+        }
+        tets.push(n);
+    }
+    if ncells == 0 {
+        return Err("VTK mesh file containing no tet cell - cannnot continue".into());
+    }
+    let mut lo = [crate::engine::region::BIG; 3];
+    let mut hi = [-crate::engine::region::BIG; 3];
+    for t in &tets {
+        for n in t {
+            for d in 0..3 {
+                lo[d] = lo[d].min(n[d]);
+                hi[d] = hi[d].max(n[d]);
+            }
+        }
+    }
+    Ok((TetMesh { tets, lo, hi }, notes))
+}
+
+impl TetMesh {
+    /// Whether `x` lies strictly inside one of the tetrahedra (within the nodes' bounds).
+    pub fn inside(&self, x: [f64; 3]) -> bool {
+        if (0..3).any(|d| x[d] < self.lo[d] || x[d] > self.hi[d]) {
+            return false;
+        }
+        self.tets.iter().any(|n| {
+            volume(n[0], n[1], n[2], x) > 0.0
+                && volume(n[0], n[1], x, n[3]) > 0.0
+                && volume(n[0], x, n[2], n[3]) > 0.0
+                && volume(x, n[1], n[2], n[3]) > 0.0
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const CUBE_CORNER: &str = "# vtk DataFile Version 2.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n\
+        POINTS 5 double\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n5 5 5\n\nCELLS 2 8\n4 0 1 3 2\n2 0 4\n\
+        CELL_TYPES 2\n10\n3\n";
+
+    fn place() -> Placement {
+        Placement {
+            scale: 1.0,
+            offset: [0.0; 3],
+            rotate: [0.0; 3],
+        }
+    }
+
+    #[test]
+    fn reads_tetrahedra_and_tests_points_strictly_inside() {
+        let (m, notes) = read(CUBE_CORNER, &place(), &|_| true).unwrap();
+        assert_eq!(m.tets.len(), 1);
+        // the comment line and the blank line
+        assert_eq!(notes.empty_lines, 2);
+        assert!(notes.other_cells);
+        assert!(m.inside([0.1, 0.1, 0.1]));
+        assert!(!m.inside([0.5, 0.5, 0.5]));
+        // on a face: not inside (LIGGGHTS's strict test)
+        assert!(!m.inside([0.0, 0.2, 0.2]));
+    }
+
+    #[test]
+    fn moves_then_scales_and_refuses_points_outside_the_box() {
+        let p = Placement {
+            scale: 2.0,
+            offset: [1.0, 0.0, 0.0],
+            rotate: [0.0; 3],
+        };
+        let (m, _) = read(CUBE_CORNER, &p, &|_| true).unwrap();
+        assert_eq!(m.lo, [2.0, 0.0, 0.0]);
+        assert_eq!(m.hi, [4.0, 2.0, 2.0]);
+        let e = read(CUBE_CORNER, &p, &|x| x[0] < 3.0).unwrap_err();
+        assert!(e.contains("outside simulation box"), "{e}");
+        let e = read("x\nBINARY\n", &place(), &|_| true).unwrap_err();
+        assert!(e.contains("ASCII"), "{e}");
+    }
+}

@@ -270,6 +270,15 @@ impl ClumpTemplate {
                 }
             }
         }
+        // 2^31 - 1 sends the Park–Miller state to 0, where it stays: every deviate is 0 and
+        // the bounding-sphere walk below would never find a second sphere (LIGGGHTS hangs)
+        if spec.seed == i32::MAX {
+            return Err(EngineError::Invalid(format!(
+                "seed {} gives a Park-Miller stream of zeros (every sample the same point): \
+                 choose another prime seed",
+                spec.seed
+            )));
+        }
         let rng = RanPark::new(spec.seed).map_err(String::from)?;
         let mut sampler = Sampler { lo, hi, rng };
         let mut centres = centres0;
@@ -588,6 +597,16 @@ fn principal_axes(tensor: &[[f64; 3]; 3]) -> Result<([f64; 3], [[f64; 3]; 3]), E
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_seed_that_zeroes_the_generator_is_refused_not_hung_on() {
+        let spheres = vec![[0.0, 0.0, 0.0, 0.004], [0.005, 0.0, 0.0, 0.003]];
+        let err = ClumpTemplate::build(spec(i32::MAX, 2500.0, 1000, spheres.clone()))
+            .err()
+            .expect("refused");
+        assert!(err.to_string().contains("stream of zeros"), "{err}");
+        assert!(ClumpTemplate::build(spec(15485863, 2500.0, 1000, spheres)).is_ok());
+    }
 
     fn spec(seed: i32, density: f64, ntry: i32, spheres: Vec<[f64; 4]>) -> ClumpSpec {
         ClumpSpec {

@@ -380,6 +380,27 @@ unsafe fn transpose_avx(r: [&[f64; 12]; LANES]) -> [F64x4; 12] {
     out
 }
 
+impl<'a, N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
+    Kernel<'a, N, T, C, R>
+{
+    /// The kernel of `model` with `material`'s coefficients for a step of `dt` (s);
+    /// `update` advances and stores history.
+    pub fn new(
+        model: &'a ContactModel<N, T, C, R>,
+        material: &'a Material,
+        dt: f64,
+        update: bool,
+    ) -> Self {
+        Kernel {
+            model,
+            material,
+            ntypes: material.ntypes(),
+            dt,
+            update,
+        }
+    }
+}
+
 impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kernel<'_, N, T, C, R> {
     /// Compute the pairs `entries` (indices into `pairs`, all touching), four at a time,
     /// and hand each result to `sink` in the order of `entries`. `history` is the list's

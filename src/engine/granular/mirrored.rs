@@ -52,13 +52,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         mut virial: Option<&mut [[f64; 6]]>,
         m: Mirrored<'_>,
     ) {
-        let kernel = batch::Kernel {
-            model: &self.model,
-            material: &self.material,
-            ntypes: self.material.ntypes(),
-            dt,
-            update,
-        };
+        let kernel = batch::Kernel::new(&self.model, &self.material, dt, update);
         let packed = &self.packed;
         // the list's touching entries
         let mut touching = std::mem::take(&mut self.touching);

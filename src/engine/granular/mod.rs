@@ -204,13 +204,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             self.compute_mirrored(p, pairs, history, dt, update, virial, m);
             return;
         }
-        let kernel = batch::Kernel {
-            model: &self.model,
-            material: &self.material,
-            ntypes: self.material.ntypes(),
-            dt,
-            update,
-        };
+        let kernel = batch::Kernel::new(&self.model, &self.material, dt, update);
         let packed = &self.packed;
         let mut touching = std::mem::take(&mut self.touching);
         touching.clear();
@@ -244,13 +238,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         virial: Option<&mut [[f64; 6]]>,
         inc: &Incidence,
     ) {
-        let kernel = batch::Kernel {
-            model: &self.model,
-            material: &self.material,
-            ntypes: self.material.ntypes(),
-            dt,
-            update,
-        };
+        let kernel = batch::Kernel::new(&self.model, &self.material, dt, update);
         let packed = &self.packed;
         let threads = rayon::current_num_threads();
         let width = self.model.history_len();
@@ -593,13 +581,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         mut virial: Option<&mut [[f64; 6]]>,
         starts: &[u32],
     ) {
-        let kernel = batch::Kernel {
-            model: &self.model,
-            material: &self.material,
-            ntypes: self.material.ntypes(),
-            dt,
-            update,
-        };
+        let kernel = batch::Kernel::new(&self.model, &self.material, dt, update);
         let packed = &self.packed;
         let width = self.model.history_len();
         let blocks = starts.len() - 1;

@@ -4,8 +4,6 @@
 //! periodic face gives each atom the values of its own side (the list entry, the mirror).
 //! A new entry or mirror then takes what its first atom kept for its second.
 
-use std::collections::HashMap;
-
 use crate::engine::neighbor::{Mirror, Pair};
 
 /// One side of the old list: its pairs, mirrors, whether it was mirrored, and the histories
@@ -24,6 +22,40 @@ pub struct Sides<'a> {
     pub mirror_history: &'a [f64],
 }
 
+/// Indices of items grouped by an atom index below `n`, each group ascending (items naming
+/// an atom at or beyond `n`, gone since, are kept apart in a last group).
+struct ByFirst {
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl ByFirst {
+    fn new(n: usize, atoms: impl Iterator<Item = u32> + Clone) -> ByFirst {
+        let firsts = atoms.map(move |i| (i as usize).min(n) as u32);
+        let mut start = vec![0u32; n + 2];
+        for i in firsts.clone() {
+            start[i as usize + 1] += 1;
+        }
+        for k in 0..=n {
+            start[k + 1] += start[k];
+        }
+        let mut fill = start.clone();
+        let mut items = vec![0u32; start[n + 1] as usize];
+        for (k, i) in firsts.enumerate() {
+            items[fill[i as usize] as usize] = k as u32;
+            fill[i as usize] += 1;
+        }
+        ByFirst { start, items }
+    }
+
+    fn of(&self, i: usize) -> &[u32] {
+        &self.items[self.start[i] as usize..self.start[i + 1] as usize]
+    }
+}
+
+/// Where a new entry's history comes from: (from a mirror, index, negated).
+type Source = (bool, usize, bool);
+
 /// The histories of the new entries and mirrors (`ids`, `old_ids`: atom IDs by index now
 /// and at the old build; `flips`: which history values are vectors that flip sign).
 pub fn carry_mirrored(
@@ -34,31 +66,54 @@ pub fn carry_mirrored(
     old_ids: &[i64],
     flips: &[bool],
 ) -> (Vec<f64>, Vec<f64>) {
+    use rayon::prelude::*;
     let width = flips.len();
     let mut out = vec![0.0; new_pairs.len() * width];
     let mut out_m = vec![0.0; new_mirrors.len() * width];
-    if width == 0 {
+    if width == 0 || (old.pairs.is_empty() && old.mirrors.is_empty()) {
         return (out, out_m);
     }
-    // (atom ID, partner ID) -> (from a mirror, index, negated)
-    let mut kept: HashMap<(i64, i64), (bool, usize, bool)> = HashMap::new();
-    let id = |k: u32| old_ids.get(k as usize).copied();
-    for (k, p) in old.pairs.iter().enumerate() {
-        let (Some(a), Some(b)) = (id(p.i), id(p.j)) else {
-            continue;
-        };
-        kept.entry((a, b)).or_insert((false, k, false));
-        if p.shift == [0.0; 3] || !old.mirrored {
-            kept.entry((b, a)).or_insert((false, k, true));
+    let n_old = old_ids.len();
+    // old entries by their first and by their second atom, mirrors by their first
+    let entries = ByFirst::new(n_old, old.pairs.iter().map(|p| p.i));
+    let entries_by_j = ByFirst::new(n_old, old.pairs.iter().map(|p| p.j));
+    let mirrors = ByFirst::new(n_old, old.mirrors.iter().map(|m| m.pair.i));
+    let old_index = crate::engine::neighbor::IdIndex::new(old_ids);
+    // the first old entry joining a to b (as its first and second atom), or b to a where
+    // that side's values were the pair's (negated); else the first mirror from a to b
+    let source = |a: usize, b: usize| -> Option<Source> {
+        let direct = entries
+            .of(a)
+            .iter()
+            .find(|&&k| old.pairs[k as usize].j as usize == b)
+            .map(|&k| k as usize);
+        let reverse = entries_by_j
+            .of(a)
+            .iter()
+            .find(|&&k| {
+                let p = &old.pairs[k as usize];
+                p.i as usize == b && (p.shift == [0.0; 3] || !old.mirrored)
+            })
+            .map(|&k| k as usize);
+        match (direct, reverse) {
+            (Some(d), Some(r)) if r < d => Some((false, r, true)),
+            (Some(d), _) => Some((false, d, false)),
+            (None, Some(r)) => Some((false, r, true)),
+            (None, None) => mirrors
+                .of(a)
+                .iter()
+                .find(|&&k| old.mirrors[k as usize].pair.j as usize == b)
+                .map(|&k| (true, k as usize, false)),
         }
-    }
-    for (k, m) in old.mirrors.iter().enumerate() {
-        if let (Some(a), Some(b)) = (id(m.pair.i), id(m.pair.j)) {
-            kept.entry((a, b)).or_insert((true, k, false));
-        }
-    }
+    };
     let fill = |dst: &mut [f64], i: u32, j: u32| {
-        let Some(&(mirror, k, negated)) = kept.get(&(ids[i as usize], ids[j as usize])) else {
+        let (Some(a), Some(b)) = (
+            old_index.get(ids[i as usize]),
+            old_index.get(ids[j as usize]),
+        ) else {
+            return;
+        };
+        let Some((mirror, k, negated)) = source(a, b) else {
             return;
         };
         let src = if mirror {
@@ -70,9 +125,14 @@ pub fn carry_mirrored(
             *d = if negated && flip { -s } else { *s };
         }
     };
-    for (dst, p) in out.chunks_mut(width).zip(new_pairs) {
-        fill(dst, p.i, p.j);
-    }
+    let chunk = 4096;
+    out.par_chunks_mut(chunk * width)
+        .zip(new_pairs.par_chunks(chunk))
+        .for_each(|(out, new)| {
+            for (dst, p) in out.chunks_mut(width).zip(new) {
+                fill(dst, p.i, p.j);
+            }
+        });
     for (dst, m) in out_m.chunks_mut(width).zip(new_mirrors) {
         fill(dst, m.pair.i, m.pair.j);
     }

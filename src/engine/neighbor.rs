@@ -728,13 +728,14 @@ pub fn carry_history(
 }
 
 /// Atom ID to index: a table when IDs are dense, a hash map otherwise.
-enum IdIndex {
+pub(crate) enum IdIndex {
     Dense(Vec<u32>),
     Sparse(std::collections::HashMap<i64, u32>),
 }
 
 impl IdIndex {
-    fn new(ids: &[i64]) -> IdIndex {
+    /// The index of each ID in `ids`.
+    pub(crate) fn new(ids: &[i64]) -> IdIndex {
         let max = ids.iter().copied().max().unwrap_or(0);
         let min = ids.iter().copied().min().unwrap_or(0);
         if min >= 0 && (max as u64) < 4 * ids.len() as u64 + 1024 {
@@ -753,8 +754,9 @@ impl IdIndex {
         }
     }
 
+    /// The index of `id`, if listed.
     #[inline]
-    fn get(&self, id: i64) -> Option<usize> {
+    pub(crate) fn get(&self, id: i64) -> Option<usize> {
         match self {
             IdIndex::Dense(t) => {
                 let k = *t.get(usize::try_from(id).ok()?)?;

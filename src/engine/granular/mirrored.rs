@@ -37,6 +37,17 @@ fn add_side(
     }
 }
 
+/// Add a mirror's side of a contact to its own first atom.
+#[inline(always)]
+fn add_mirror(p: &mut Particles, q: &Pair, r: &PairResult, virial: &mut Option<&mut [[f64; 6]]>) {
+    let w = if virial.is_some() {
+        half_virial(&p.x, q, r.fi)
+    } else {
+        [0.0; 6]
+    };
+    add_side(p, q.i as usize, &r.fi, &r.ti, virial, &w);
+}
+
 impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> PairGran<N, T, C, R> {
     /// The pass: entries inside the box add to both atoms, entries across a periodic face
     /// to their first atom, each mirror to its own first atom, in list order with each
@@ -92,38 +103,37 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
                 worst = Some(w);
             }
         }
-        // add in LIGGGHTS's order
-        let (mut a, mut b, mut next) = (0usize, 0usize, 0usize);
-        for k in 0..=pairs.len() {
-            while next < m.mirrors.len() && m.mirrors[next].at as usize <= k {
-                if sc.touching.get(b).is_some_and(|&e| e as usize == next) {
-                    let (q, r) = (&sc.pairs[next], &sc.results[b]);
-                    let w = if virial.is_some() {
-                        half_virial(&p.x, q, r.fi)
-                    } else {
-                        [0.0; 6]
-                    };
-                    add_side(p, q.i as usize, &r.fi, &r.ti, &mut virial, &w);
-                    b += 1;
-                }
-                next += 1;
+        // add in LIGGGHTS's order: each touching mirror just before the entry it is placed at
+        let mut b = 0usize;
+        let mirror_at = |b: usize| m.mirrors[sc.touching[b] as usize].at;
+        for (a, &e) in touching.iter().enumerate() {
+            while b < sc.touching.len() && mirror_at(b) <= e {
+                add_mirror(
+                    p,
+                    &sc.pairs[sc.touching[b] as usize],
+                    &sc.results[b],
+                    &mut virial,
+                );
+                b += 1;
             }
-            if k == pairs.len() {
-                break;
+            let (q, r) = (&pairs[e as usize], &results[a]);
+            let w = if virial.is_some() {
+                half_virial(&p.x, q, r.fi)
+            } else {
+                [0.0; 6]
+            };
+            add_side(p, q.i as usize, &r.fi, &r.ti, &mut virial, &w);
+            if q.shift == [0.0; 3] {
+                add_side(p, q.j as usize, &r.fj, &r.tj, &mut virial, &w);
             }
-            if touching.get(a).is_some_and(|&e| e as usize == k) {
-                let (q, r) = (&pairs[k], &results[a]);
-                let w = if virial.is_some() {
-                    half_virial(&p.x, q, r.fi)
-                } else {
-                    [0.0; 6]
-                };
-                add_side(p, q.i as usize, &r.fi, &r.ti, &mut virial, &w);
-                if q.shift == [0.0; 3] {
-                    add_side(p, q.j as usize, &r.fj, &r.tj, &mut virial, &w);
-                }
-                a += 1;
-            }
+        }
+        for b in b..sc.touching.len() {
+            add_mirror(
+                p,
+                &sc.pairs[sc.touching[b] as usize],
+                &sc.results[b],
+                &mut virial,
+            );
         }
         self.worst = worst;
         self.results = results;

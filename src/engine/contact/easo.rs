@@ -15,6 +15,16 @@
 //!
 //! Per contact the model keeps one history value, the bridge flag (1 while a bridge
 //! exists, 0 otherwise).
+//!
+//! Not yet run by the engine (the selection is refused). Running it as LIGGGHTS 3.8.0 does
+//! needs: the neighbour list's contact distance scaled by [`Easo::contact_distance_factor`]
+//! (pairs listed up to `factor (Ri + Rj) + skin`, wall contacts up to a gap of
+//! `(factor - 1) R`); [`Easo::close`] (and the tangential model's history reset) for listed
+//! pairs with `(Ri + Rj)^2 <= rsq < factor^2 (Ri + Rj)^2`; the bridge flag stored after the
+//! normal model's history and before the tangential one; per-atom `surfaceLiquidContent`
+//! (default `surfaceLiquidContentInitial`, written to restart files) and `liquidFlux`, the
+//! flux cleared in `initial_integrate` and `content += flux dt` in `final_integrate`, as
+//! `fix transportequation/scalar` does (no capacity).
 
 use std::f64::consts::PI;
 
@@ -235,7 +245,9 @@ pub struct Gap {
     pub rsq: f64,
     /// Velocity of i (m/s).
     pub vi: Vec3,
-    /// Velocity of j or of the wall (m/s).
+    /// Velocity of j, or the wall's as LIGGGHTS 3.8.0 reads it: `atom->v[j]` with j the
+    /// triangle index at a mesh wall (the velocity of its local atom of that index) and an
+    /// out-of-range read, zero in practice, at a primitive wall (m/s).
     pub vj: Vec3,
     /// Angular velocity of i (rad/s).
     pub omegai: Vec3,

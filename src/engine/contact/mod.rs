@@ -33,6 +33,7 @@
 )]
 
 pub mod cohesion;
+pub mod easo;
 #[cfg(test)]
 mod golden;
 pub mod material;

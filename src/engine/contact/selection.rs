@@ -212,7 +212,10 @@ impl ModelSelection {
             ]),
             _ => {}
         }
-        if matches!(self.cohesion.as_str(), "sjkr" | "sjkr2") {
+        if matches!(
+            self.cohesion.as_str(),
+            "sjkr" | "sjkr2" | "easo/capillary/viscous"
+        ) {
             s.push(("tangential_reduce", true));
         }
         if matches!(self.rolling.as_str(), "cdt" | "epsd" | "epsd2" | "epsd3") {

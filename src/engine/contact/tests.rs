@@ -320,6 +320,22 @@ fn selection_parsing_and_messages() {
     ])
     .is_err());
     assert!(AnyContactModel::new(&ModelSelection::parse(&["model", "luding"]).unwrap()).is_err());
+    // easo/capillary/viscous takes tangential_reduce (as LIGGGHTS does) but is not run yet
+    let wet = ModelSelection::parse(&[
+        "model",
+        "hertz",
+        "tangential",
+        "history",
+        "cohesion",
+        "easo/capillary/viscous",
+        "tangential_reduce",
+        "on",
+    ])
+    .unwrap();
+    assert_eq!(
+        AnyContactModel::new(&wet).unwrap_err().to_string(),
+        "cohesion easo/capillary/viscous is not supported by regolith"
+    );
     assert!(ModelSelection::parse(&["model", "hertz", "heating_normal_hertz", "off"]).is_ok());
     assert!(ModelSelection::parse(&["model", "hertz", "heating_normal_hertz", "on"]).is_err());
 }

@@ -37,3 +37,9 @@ impl From<&str> for EngineError {
         EngineError::Invalid(message.to_string())
     }
 }
+
+impl From<crate::state::limits::LimitError> for EngineError {
+    fn from(e: crate::state::limits::LimitError) -> EngineError {
+        EngineError::Invalid(e.to_string())
+    }
+}

@@ -235,8 +235,8 @@ pub enum DataError {
         at: Line,
         /// The atom's ID.
         id: i64,
-        /// What is wrong, in the engine's words.
-        reason: String,
+        /// Which value is out of range and what is allowed.
+        reason: crate::state::limits::LimitError,
     },
     /// An atom ID given twice.
     #[error("{at}: atom ID {id} appears twice")]

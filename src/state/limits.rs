@@ -1,6 +1,51 @@
 //! Limits checked where state is set: the memory a process may allocate, atom type counts,
 //! and sphere sizes and densities whose mass stays finite.
 
+use thiserror::Error;
+
+/// A value beyond what this machine or LIGGGHTS's types can hold.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum LimitError {
+    /// LIGGGHTS's "Failed to allocate": `bytes` for the array `what`.
+    #[error("{}", failed_to_allocate(*bytes, what))]
+    Allocation {
+        /// Bytes asked for.
+        bytes: f64,
+        /// The array they were for.
+        what: String,
+    },
+    /// A sphere diameter (m) out of range for its density (kg/m^3): negative, not finite, or
+    /// making an infinite mass; `max` is the largest allowed, if any.
+    #[error("{}", diameter_range(*diameter, *density, *max))]
+    Diameter {
+        /// The diameter given (m).
+        diameter: f64,
+        /// The density it goes with (kg/m^3).
+        density: f64,
+        /// The largest diameter this density allows (m), when there is one.
+        max: Option<f64>,
+    },
+    /// A sphere density (kg/m^3) out of range for its diameter (m); `max` as for diameters.
+    #[error("{}", density_range(*density, *diameter, *max))]
+    Density {
+        /// The density given (kg/m^3).
+        density: f64,
+        /// The diameter it goes with (m).
+        diameter: f64,
+        /// The largest density this diameter allows (kg/m^3), when there is one.
+        max: Option<f64>,
+    },
+    /// More atom types than LIGGGHTS's int counts.
+    #[error("Too many atom types: {0} (LIGGGHTS counts them in an int, at most {max})", max = i32::MAX)]
+    TooManyTypes(i64),
+}
+
+impl From<LimitError> for String {
+    fn from(e: LimitError) -> String {
+        e.to_string()
+    }
+}
+
 /// The most bytes this process can hope to get: what its address-space limit (`ulimit -v`)
 /// leaves when one is set, and never more than the machine's physical memory.
 pub fn memory_limit() -> f64 {
@@ -27,10 +72,13 @@ pub fn memory_limit() -> f64 {
 
 /// LIGGGHTS's "Failed to allocate N bytes for array NAME" for `count` items of `size` bytes
 /// that this machine cannot hold (see [`memory_limit`]); Ok when they may fit.
-pub fn allocation(count: f64, size: usize, what: &str) -> Result<(), String> {
+pub fn allocation(count: f64, size: usize, what: &str) -> Result<(), LimitError> {
     let bytes = count * size as f64;
     if bytes.is_nan() || bytes > memory_limit() {
-        return Err(failed_to_allocate(bytes, what));
+        return Err(LimitError::Allocation {
+            bytes,
+            what: what.to_string(),
+        });
     }
     Ok(())
 }
@@ -56,7 +104,7 @@ pub fn sphere_mass(radius: f64, density: f64) -> f64 {
 /// Check a sphere's diameter and density where they are set: both finite, the diameter at
 /// least 0, the density positive, and the mass they make finite. The error names the
 /// offending `what` (`diameter` or `density`) and the range allowed for the other value.
-pub fn check_sphere(diameter: f64, density: f64, what: &str) -> Result<(), String> {
+pub fn check_sphere(diameter: f64, density: f64, what: &str) -> Result<(), LimitError> {
     let dmax = 2.0 * (f64::MAX / sphere_mass(1.0, density)).cbrt() * (1.0 - 1e-12);
     let rhomax = f64::MAX / sphere_mass(0.5 * diameter, 1.0) * (1.0 - 1e-12);
     let ok = diameter >= 0.0
@@ -68,32 +116,50 @@ pub fn check_sphere(diameter: f64, density: f64, what: &str) -> Result<(), Strin
         return Ok(());
     }
     Err(if what == "density" {
-        if diameter > 0.0 && rhomax.is_finite() {
-            format!(
-                "density {} is out of range (allowed: 0 < density <= {} for diameter {}, so that the mass stays finite)",
-                g(density),
-                g(rhomax),
-                g(diameter)
-            )
-        } else {
-            format!(
-                "density {} is out of range (allowed: a finite density > 0)",
-                g(density)
-            )
+        LimitError::Density {
+            density,
+            diameter,
+            max: (diameter > 0.0 && rhomax.is_finite()).then_some(rhomax),
         }
-    } else if density > 0.0 && dmax.is_finite() && dmax > 0.0 {
-        format!(
+    } else {
+        LimitError::Diameter {
+            diameter,
+            density,
+            max: (density > 0.0 && dmax.is_finite() && dmax > 0.0).then_some(dmax),
+        }
+    })
+}
+
+/// The message of a diameter out of range.
+fn diameter_range(diameter: f64, density: f64, max: Option<f64>) -> String {
+    match max {
+        Some(max) => format!(
             "diameter {} is out of range (allowed: 0 <= diameter <= {} for density {}, so that the mass stays finite)",
             g(diameter),
-            g(dmax),
+            g(max),
             g(density)
-        )
-    } else {
-        format!(
+        ),
+        None => format!(
             "diameter {} is out of range (allowed: a finite diameter >= 0)",
             g(diameter)
-        )
-    })
+        ),
+    }
+}
+
+/// The message of a density out of range.
+fn density_range(density: f64, diameter: f64, max: Option<f64>) -> String {
+    match max {
+        Some(max) => format!(
+            "density {} is out of range (allowed: 0 < density <= {} for diameter {}, so that the mass stays finite)",
+            g(density),
+            g(max),
+            g(diameter)
+        ),
+        None => format!(
+            "density {} is out of range (allowed: a finite density > 0)",
+            g(density)
+        ),
+    }
 }
 
 fn g(x: f64) -> String {
@@ -105,12 +171,9 @@ const BYTES_PER_TYPE: usize = 64;
 
 /// A number of atom types LIGGGHTS can count (an int) and this machine can hold per-type
 /// properties for.
-pub fn check_ntypes(ntypes: i64) -> std::result::Result<(), String> {
+pub fn check_ntypes(ntypes: i64) -> Result<(), LimitError> {
     if ntypes > i32::MAX as i64 {
-        return Err(format!(
-            "Too many atom types: {ntypes} (LIGGGHTS counts them in an int, at most {})",
-            i32::MAX
-        ));
+        return Err(LimitError::TooManyTypes(ntypes));
     }
     allocation(ntypes as f64, BYTES_PER_TYPE, "per-type properties")
 }
@@ -123,16 +186,23 @@ mod tests {
     fn sphere_ranges() {
         assert!(check_sphere(0.01, 2500.0, "diameter").is_ok());
         assert!(check_sphere(0.0, 2500.0, "diameter").is_ok());
-        let e = check_sphere(1e306, 2500.0, "diameter").unwrap_err();
+        let e = check_sphere(1e306, 2500.0, "diameter").unwrap_err().to_string();
         assert!(
             e.contains("diameter 1e+306") && e.contains("<= 5.159"),
             "{e}"
         );
-        let e = check_sphere(-1.0, 2500.0, "diameter").unwrap_err();
+        let e = check_sphere(-1.0, 2500.0, "diameter").unwrap_err().to_string();
         assert!(e.contains("0 <= diameter"), "{e}");
-        let e = check_sphere(10.0, 1e308, "density").unwrap_err();
+        let e = check_sphere(10.0, 1e308, "density").unwrap_err().to_string();
         assert!(e.contains("0 < density <= 3.43"), "{e}");
-        assert!(check_sphere(1.0, 0.0, "density").is_err());
+        assert!(matches!(
+            check_sphere(1.0, 0.0, "density"),
+            Err(LimitError::Density { max: Some(_), .. })
+        ));
+        assert_eq!(
+            check_ntypes(1 << 40).unwrap_err().to_string(),
+            "Too many atom types: 1099511627776 (LIGGGHTS counts them in an int, at most 2147483647)"
+        );
         assert!(check_sphere(f64::NAN, 1.0, "diameter").is_err());
         assert!(check_sphere(1.0, f64::NAN, "density").is_err());
     }

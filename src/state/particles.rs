@@ -1,5 +1,7 @@
 //! Per-particle state as a structure of arrays: one contiguous vector per quantity, so force
 //! loops stream through memory and vectorise. Vectors are `[f64; 3]` (x, y, z).
+use crate::state::limits::LimitError;
+
 
 /// All particles of the simulation (SI units unless the deck says otherwise).
 #[derive(Debug, Clone, Default)]
@@ -104,13 +106,15 @@ impl Particles {
 
     /// Make room for `additional` more particles, or say why there is none (LIGGGHTS's
     /// "Failed to allocate"); a request beyond the machine is refused before any allocation.
-    pub fn try_reserve(&mut self, additional: usize) -> Result<(), String> {
+    pub fn try_reserve(&mut self, additional: usize) -> Result<(), LimitError> {
         let extra: usize = self.extra.iter().map(|e| e.width * 8).sum();
         let per_atom = Self::BYTES_PER_ATOM + extra;
         let what = "atoms";
         crate::state::limits::allocation(additional as f64, per_atom, what)?;
-        let fail =
-            |_| crate::state::limits::failed_to_allocate(additional as f64 * per_atom as f64, what);
+        let fail = |_| LimitError::Allocation {
+            bytes: additional as f64 * per_atom as f64,
+            what: what.to_string(),
+        };
         self.id.try_reserve(additional).map_err(fail)?;
         self.kind.try_reserve(additional).map_err(fail)?;
         self.mask.try_reserve(additional).map_err(fail)?;

@@ -503,9 +503,10 @@ fn mesh_refs<'a>(fixes: &'a [Fix], w: &MeshWallFix) -> Vec<crate::engine::mesh_w
         .filter_map(|id| {
             fixes.iter().find_map(|f| match &f.kind {
                 FixKind::Mesh(m) if &f.id == id => {
-                    let moving = fixes
-                        .iter()
-                        .any(|g| matches!(&g.kind, FixKind::MoveMesh(mv) if &mv.mesh == id));
+                    let moving = m.servo.is_some()
+                        || fixes
+                            .iter()
+                            .any(|g| matches!(&g.kind, FixKind::MoveMesh(mv) if &mv.mesh == id));
                     Some(crate::engine::mesh_wall::MeshRef {
                         moving,
                         stress: m.stress.is_some(),
@@ -585,6 +586,18 @@ fn mesh_wall_force(
             let mut records = Vec::new();
             model.compute(p, &refs, &mut w.trackers, dt, update, &mut records);
             drop(refs);
+            // a servo mesh sums its force in LIGGGHTS's loop order (it feeds back on the motion)
+            for (k, &at) in mesh_fix.iter().enumerate() {
+                if let FixKind::Mesh(m) = &fixes[at].kind {
+                    if let Some(s) = m.servo.as_ref() {
+                        let mut own: Vec<_> =
+                            records.iter().filter(|r| r.0 == k).map(|r| r.1).collect();
+                        crate::engine::mesh_servo::order_contacts(&mut own, &s.bins);
+                        records.retain(|r| r.0 != k);
+                        records.extend(own.into_iter().map(|c| (k, c)));
+                    }
+                }
+            }
             for (mesh_index, c) in records {
                 let f = &mut fixes[mesh_fix[mesh_index]];
                 if p.mask[c.particle] & f.group == 0 {
@@ -891,6 +904,8 @@ pub struct MeshFix {
     pub nodes_at_refresh: Vec<[[f64; 3]; 3]>,
     /// `mesh/surface/stress`: triangle forces, stresses and wear.
     pub stress: Option<crate::engine::mesh_stress::MeshStress>,
+    /// `mesh/surface/stress/servo`: the controller that moves the mesh.
+    pub servo: Option<Box<crate::engine::mesh_servo::MeshServo>>,
 }
 
 impl MeshFix {

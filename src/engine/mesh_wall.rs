@@ -52,6 +52,12 @@ pub struct Tracker {
 }
 
 impl Tracker {
+    /// Entries in the candidate lists (LIGGGHTS's total number of contacts of a mesh
+    /// neighbour list: particle-triangle pairs within reach at the last build).
+    pub fn candidate_count(&self) -> usize {
+        self.cand.iter().map(Vec::len).sum()
+    }
+
     /// Contacts (triangle, history) of the particle with atom ID `id`, for restarts and
     /// reports.
     pub fn contacts_of(&self, index: usize) -> Vec<(i32, Vec<f64>)> {

@@ -22,6 +22,7 @@ pub mod margin;
 pub mod massflow;
 pub mod mesh;
 pub mod mesh_motion;
+pub mod mesh_servo;
 pub mod mesh_stress;
 pub mod mesh_wall;
 pub mod mirror_history;

@@ -329,6 +329,15 @@ impl Simulation {
     /// Whether a restart file of this simulation fits in memory (the file is built whole,
     /// then encoded): LIGGGHTS's "Failed to allocate" if it does not.
     pub fn check_restart_size(&self) -> Result<(), EngineError> {
+        // the servo module's state (centre, velocity, controller) is not written yet
+        if let Some(f) = self.fixes.iter().find(
+            |f| matches!(&f.kind, crate::engine::fixes::FixKind::Mesh(m) if m.servo.is_some()),
+        ) {
+            return Err(EngineError::Unsupported(format!(
+                "a restart file with fix mesh/surface/stress/servo (id {})",
+                f.id
+            )));
+        }
         let n = self.ntypes as f64;
         let pair = if self.pair_selection.is_some() {
             8.0 + 4.0 * n * (n + 1.0) / 2.0

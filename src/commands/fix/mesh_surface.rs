@@ -1,4 +1,4 @@
-//! `fix mesh/surface[/planar|/stress]`: a triangle mesh read from a file.
+//! `fix mesh/surface[/planar|/stress|/stress/servo]`: a triangle mesh read from a file.
 
 use crate::commands::fix::FixDef;
 use crate::commands::{Args, CommandError, Ctx};
@@ -27,10 +27,21 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     let (mut stress_on, mut wear_on, mut reference) = (true, false, [0.0; 3]);
     let mut module_from = None;
     let module_keyword = |w: &str| matches!(w, "stress" | "wear" | "reference_point");
+    let stress_style = style.starts_with("mesh/surface/stress");
+    let servo_style = style == "mesh/surface/stress/servo";
+    // the servo module's keywords (after the stress module's)
+    let mut servo = super::mesh_servo::ServoArgs::default();
+    let mut servo_from = None;
     let mut i = 5;
     while i < a.len() {
         let w = a.word(i)?;
-        if style == "mesh/surface/stress" && module_keyword(w) {
+        if servo_style && super::mesh_servo::KEYWORDS.contains(&w) {
+            module_from.get_or_insert(i);
+            servo_from.get_or_insert(i);
+            i += servo.parse(a, i)?;
+            continue;
+        }
+        if stress_style && module_keyword(w) && servo_from.is_none() {
             module_from.get_or_insert(i);
             match w {
                 "stress" => stress_on = a.word_in(i + 1, &["on", "off"])? == "on",
@@ -162,7 +173,10 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         }
         ctx.say(&format!("INFO: mesh file ({file}) is required, but data will be taken from restart file (./src/fix_mesh.cpp:417)\n"));
         // the stress module adds each triangle's wear (when on) and the reference point
-        let stress = style == "mesh/surface/stress";
+        if servo_style {
+            return Err(a.unsupported(2, "fix mesh/surface/stress/servo from a restart file"));
+        }
+        let stress = stress_style;
         let (element, global) = match (stress, wear_on) {
             (true, true) => (1, 3),
             (true, false) => (0, 3),
@@ -218,8 +232,9 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         planar: style == "mesh/surface/planar",
         nodes_at_refresh: Vec::new(),
         stress: None,
+        servo: None,
     };
-    if style == "mesh/surface/stress" {
+    if stress_style {
         let mut st = crate::engine::mesh_stress::MeshStress::new(
             fix.mesh.len(),
             stress_on,
@@ -233,6 +248,17 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
             st.reference = [extras.global[0], extras.global[1], extras.global[2]];
         }
         fix.stress = Some(st);
+    }
+    if servo_style {
+        let s = servo.build(a, 2)?;
+        if let Some(st) = fix.stress.as_mut() {
+            if !st.stress {
+                return Err(a.error(2, "stress = 'on' required"));
+            }
+            st.reference = s.xcm;
+        }
+        fix.node_v = Some(vec![[[0.0; 3]; 3]; fix.mesh.len()]);
+        fix.servo = Some(Box::new(s));
     }
     fix.set_surface_velocity();
     Ok(FixKind::Mesh(Box::new(fix)))

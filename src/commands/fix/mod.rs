@@ -13,6 +13,7 @@ mod heat_gran;
 mod insert_pack;
 mod insert_stream;
 mod massflow_mesh;
+mod mesh_servo;
 mod mesh_surface;
 mod momentum;
 mod move_atoms;
@@ -57,6 +58,7 @@ pub const STYLES: &[(&str, Build)] = &[
     ("mesh/surface", mesh_surface::build),
     ("mesh/surface/planar", mesh_surface::build),
     ("mesh/surface/stress", mesh_surface::build),
+    ("mesh/surface/stress/servo", mesh_surface::build),
     ("move/mesh", move_mesh::build),
     ("particletemplate/sphere", particle_template::build),
     (

@@ -85,7 +85,8 @@ impl Simulation {
     /// re-neighbouring at the next step once a node has moved more than half the skin.
     pub(super) fn refresh_moving_meshes(&mut self, rebuilt: bool) {
         let limit = 0.25 * self.neighbor.skin * self.neighbor.skin;
-        for (id, _) in self.moving_meshes() {
+        let movers = self.moving_meshes().into_iter().map(|(id, _)| id);
+        for id in movers.chain(self.servo_meshes()) {
             let Some(FixKind::Mesh(m)) = self
                 .fixes
                 .iter_mut()

@@ -17,6 +17,7 @@ mod meshes;
 mod neighbors;
 mod output;
 mod prepare;
+mod servo;
 mod streams;
 mod values;
 
@@ -664,6 +665,7 @@ impl Simulation {
                 self.sort_particles();
             }
             self.build_neighbors();
+            self.servo_bins();
             self.refresh_moving_meshes(true);
             self.zero_mesh_velocities(true);
             self.mesh_stress_phase(StressPhase::Setup)?;
@@ -676,6 +678,7 @@ impl Simulation {
             self.guard_forces()?;
         }
         self.has_run = true;
+        self.servo_setup()?;
         self.massflow_lists(true)?;
         self.apply_tracer_resets();
         if let Some(m) = self.new_margin() {
@@ -731,6 +734,7 @@ impl Simulation {
                 &self.domain,
             );
             fixes::move_meshes(&mut self.fixes, self.dt);
+            self.servo_initial_integrate();
             self.massflow_phase(out)?;
             self.apply_tracer_resets();
             // a runaway shows first in the half-kicked velocities, before atoms are wrapped or lost
@@ -755,6 +759,7 @@ impl Simulation {
                 self.stats.neigh = neigh;
                 self.stats.builds += 1;
                 self.massflow_lists(false)?;
+                self.servo_bins();
             }
             self.refresh_moving_meshes(rebuilt);
             self.mesh_stress_phase(StressPhase::PreForce)?;
@@ -764,6 +769,7 @@ impl Simulation {
             self.guard_forces()?;
             fixes::final_integrate(&mut self.fixes, &mut self.particles, self.dt, &self.domain);
             self.mesh_stress_phase(StressPhase::EndOfStep)?;
+            self.servo_final_integrate();
             self.end_of_step(out, vars)?;
             let started_output = std::time::Instant::now();
             if self.thermo.due(self.step, last) {

@@ -96,6 +96,9 @@ impl Simulation {
         }
         match (&fix.kind, index) {
             (FixKind::CheckTimestep(c), Some(i @ 1..=3)) => Ok(c.values[i - 1]),
+            (FixKind::Mesh(m), Some(i)) if m.servo.as_ref().and_then(|s| s.value(i)).is_some() => {
+                Ok(m.servo.as_ref().and_then(|s| s.value(i)).unwrap_or(0.0))
+            }
             (FixKind::Mesh(m), Some(i)) if m.stress.as_ref().and_then(|s| s.value(i)).is_some() => {
                 Ok(m.stress.as_ref().and_then(|s| s.value(i)).unwrap_or(0.0))
             }

@@ -1,0 +1,130 @@
+//! Servo meshes (`fix mesh/surface/stress/servo`) during a run: LIGGGHTS's checks and setup
+//! at a run's start, the motion at `initial_integrate` and the controller after the forces.
+
+use super::*;
+
+impl Simulation {
+    /// IDs of the meshes a servo drives.
+    pub(super) fn servo_meshes(&self) -> Vec<String> {
+        self.fixes
+            .iter()
+            .filter(|f| matches!(&f.kind, FixKind::Mesh(m) if m.servo.is_some()))
+            .map(|f| f.id.clone())
+            .collect()
+    }
+
+    /// A run's start: LIGGGHTS's checks (a granular wall uses the mesh, no `fix move/mesh`
+    /// moves it, `vel_max < skin / (2 dt)`), then the origin of the displacement and the
+    /// auto mode's slow speed from the smallest particle radius.
+    pub(super) fn servo_setup(&mut self) -> Result<(), EngineError> {
+        let r_min = self.particles.radius.iter().copied().reduce(f64::min);
+        let (skin, dt) = (self.neighbor.skin, self.dt);
+        for id in self.servo_meshes() {
+            let walled = self.fixes.iter().any(
+                |f| matches!(&f.kind, FixKind::MeshWall(w) if w.meshes.iter().any(|m| m == &id)),
+            );
+            if !walled {
+                return Err(format!("Fix mesh/surface/stress/servo (id {id}): The servo-wall requires a contact model. Therefore, it has to be used for a fix wall/gran too.").into());
+            }
+            if self
+                .fixes
+                .iter()
+                .any(|f| matches!(&f.kind, FixKind::MoveMesh(mv) if mv.mesh == id))
+            {
+                return Err(format!("Fix mesh/surface/stress/servo (id {id}): this fix does not allow superposition with moving mesh fixes").into());
+            }
+            let Some(FixKind::Mesh(m)) = self
+                .fixes
+                .iter_mut()
+                .find(|f| f.id == id)
+                .map(|f| &mut f.kind)
+            else {
+                continue;
+            };
+            let Some(s) = m.servo.as_mut() else { continue };
+            if s.vel_max >= skin / (2. * dt) {
+                return Err(format!(
+                    "Fix mesh/surface/stress/servo (id {id}): vel_max < skin/(2.*dt) required"
+                )
+                .into());
+            }
+            s.setup(&m.mesh, r_min, dt);
+        }
+        Ok(())
+    }
+
+    /// After a list build: each servo remembers the particles' neighbour bins, the order in
+    /// which LIGGGHTS lists them for its triangles.
+    pub(super) fn servo_bins(&mut self) {
+        if self.servo_meshes().is_empty() {
+            return;
+        }
+        let order = crate::engine::neighbor::BinOrder::sized(
+            self.domain.lo,
+            self.domain.hi,
+            self.neighbor.cutneighmax,
+            self.extras.neigh_binsize,
+        );
+        let bins: Vec<[i64; 3]> = self.particles.x.iter().map(|x| order.bin(*x)).collect();
+        for f in &mut self.fixes {
+            if let FixKind::Mesh(m) = &mut f.kind {
+                if let Some(s) = m.servo.as_mut() {
+                    s.bins.clone_from(&bins);
+                }
+            }
+        }
+    }
+
+    /// `initial_integrate`: each servo moves its mesh; the stress module's reference point
+    /// follows the centre of mass.
+    pub(super) fn servo_initial_integrate(&mut self) {
+        let dt = self.dt;
+        for f in &mut self.fixes {
+            let FixKind::Mesh(m) = &mut f.kind else {
+                continue;
+            };
+            let Some(s) = m.servo.as_mut() else { continue };
+            s.initial_integrate(&mut m.mesh, dt);
+            if let Some(st) = m.stress.as_mut() {
+                st.reference = s.xcm;
+            }
+        }
+    }
+
+    /// After the stress module's totals: each servo's controller sets the next step's
+    /// velocity of its mesh (every node moves with it).
+    pub(super) fn servo_final_integrate(&mut self) {
+        let dt = self.dt;
+        for id in self.servo_meshes() {
+            // entries in the mesh's contact lists (of the first wall that uses it)
+            let near = self
+                .fixes
+                .iter()
+                .find_map(|f| match &f.kind {
+                    FixKind::MeshWall(w) => {
+                        let k = w.meshes.iter().position(|m| m == &id)?;
+                        Some(w.trackers.get(k).map_or(0, |t| t.candidate_count()))
+                    }
+                    _ => None,
+                })
+                .unwrap_or(0);
+            let Some(FixKind::Mesh(m)) = self
+                .fixes
+                .iter_mut()
+                .find(|f| f.id == id)
+                .map(|f| &mut f.kind)
+            else {
+                continue;
+            };
+            let f_total = m.stress.as_ref().map_or([0.0; 3], |st| st.f_total);
+            let Some(s) = m.servo.as_mut() else { continue };
+            if !s.integrate {
+                continue;
+            }
+            s.final_integrate(f_total, near, dt);
+            let v = s.vcm;
+            let n = m.mesh.len();
+            m.node_v = Some(vec![[v; 3]; n]);
+        }
+    }
+}

@@ -243,7 +243,7 @@ fn reset_box(sim: &mut Simulation) -> std::result::Result<(), String> {
             hi[d] = hi[d].max(x[d]);
         }
     }
-    sim.domain.shrink_wrap(lo, hi)
+    Ok(sim.domain.shrink_wrap(lo, hi)?)
 }
 
 /// Wrap every atom into the periodic directions (LIGGGHTS's pbc and remap).
@@ -274,6 +274,7 @@ pub(crate) fn orthogonal_box_line(lo: [f64; 3], hi: [f64; 3]) -> String {
 
 fn apply(a: &Args, ctx: &mut Ctx, ops: &[Op], group: u32, scale: f64) -> Result {
     let at = |m: String| a.error(0, &m);
+    let at_box = |e: crate::engine::domain::BoxError| a.error(0, e.to_string());
     wrap_atoms(ctx.sim);
     reset_box(ctx.sim).map_err(at)?;
     let mut from = saved(ctx.sim);
@@ -298,7 +299,7 @@ fn apply(a: &Args, ctx: &mut Ctx, ops: &[Op], group: u32, scale: f64) -> Result 
                     Flavor::Scale(f) => stretch(&mut d.lo[dim], &mut d.hi[dim], f),
                 }
                 if let Some(first) = volume[0] {
-                    d.reset_initial().map_err(at)?;
+                    d.reset_initial().map_err(at_box)?;
                     let now = (d.hi[0] - d.lo[0]) * (d.hi[1] - d.lo[1]) * (d.hi[2] - d.lo[2]);
                     let ratio = before / now;
                     match volume[1] {
@@ -310,7 +311,7 @@ fn apply(a: &Args, ctx: &mut Ctx, ops: &[Op], group: u32, scale: f64) -> Result 
                         }
                     }
                 }
-                d.reset_initial().map_err(at)?;
+                d.reset_initial().map_err(at_box)?;
                 print_box(ctx);
             }
             Op::Tilt(i) => {
@@ -324,7 +325,7 @@ fn apply(a: &Args, ctx: &mut Ctx, ops: &[Op], group: u32, scale: f64) -> Result 
                 if let Op::Triclinic(i) = *op {
                     return Err(a.unsupported(i, "change_box triclinic"));
                 }
-                ctx.sim.domain.reset_initial().map_err(at)?;
+                ctx.sim.domain.reset_initial().map_err(at_box)?;
                 print_box(ctx);
             }
             Op::Set => from = saved(ctx.sim),

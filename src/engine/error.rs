@@ -43,3 +43,9 @@ impl From<crate::state::limits::LimitError> for EngineError {
         EngineError::Invalid(e.to_string())
     }
 }
+
+impl From<crate::state::domain::BoxError> for EngineError {
+    fn from(e: crate::state::domain::BoxError) -> EngineError {
+        EngineError::Invalid(e.to_string())
+    }
+}

@@ -501,7 +501,7 @@ pub enum ConvertError {
     },
     /// A `--boundary` that is not three boundary styles.
     #[error("--boundary: {0}")]
-    Boundary(String),
+    Boundary(crate::state::domain::BoxError),
     /// A restart file that cannot be read or written.
     #[error(transparent)]
     Restart(#[from] crate::io::restart_error::RestartError),

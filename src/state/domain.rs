@@ -60,10 +60,36 @@ impl Default for Domain {
     }
 }
 
+/// Why a box or its boundaries are refused (LIGGGHTS's messages).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum BoxError {
+    /// `boundary` without three words.
+    #[error("Illegal boundary command")]
+    BoundaryCount,
+    /// A boundary word other than p, f, s, m or two of them.
+    #[error("Illegal boundary command: '{0}' (expected p, f, s, m or two of them)")]
+    BoundaryWord(String),
+    /// One side periodic, the other not.
+    #[error("Both sides of boundary must be periodic")]
+    HalfPeriodic,
+    /// Shrink-wrapping turned the box inside out.
+    #[error("Illegal simulation box")]
+    InsideOut,
+    /// Box bounds that enclose no volume (or are not numbers).
+    #[error("Box bounds are invalid")]
+    InvalidBounds,
+}
+
+impl From<BoxError> for String {
+    fn from(e: BoxError) -> String {
+        e.to_string()
+    }
+}
+
 /// Parse the `boundary` command's three words (e.g. `p f fm`).
-pub fn parse_boundary(words: &[&str]) -> Result<[[Boundary; 2]; 3], String> {
+pub fn parse_boundary(words: &[&str]) -> Result<[[Boundary; 2]; 3], BoxError> {
     if words.len() != 3 {
-        return Err("Illegal boundary command".into());
+        return Err(BoxError::BoundaryCount);
     }
     let mut out = [[Boundary::Periodic; 2]; 3];
     for (d, w) in words.iter().enumerate() {
@@ -71,11 +97,7 @@ pub fn parse_boundary(words: &[&str]) -> Result<[[Boundary; 2]; 3], String> {
         let pair = match chars.as_slice() {
             [c] => [*c, *c],
             [a, b] => [*a, *b],
-            _ => {
-                return Err(format!(
-                    "Illegal boundary command: '{w}' (expected p, f, s, m or two of them)"
-                ))
-            }
+            _ => return Err(BoxError::BoundaryWord(w.to_string())),
         };
         for (side, c) in pair.iter().enumerate() {
             out[d][side] = match c {
@@ -83,15 +105,11 @@ pub fn parse_boundary(words: &[&str]) -> Result<[[Boundary; 2]; 3], String> {
                 'f' => Boundary::Fixed,
                 's' => Boundary::Shrink,
                 'm' => Boundary::ShrinkMin,
-                _ => {
-                    return Err(format!(
-                        "Illegal boundary command: '{w}' (expected p, f, s, m or two of them)"
-                    ))
-                }
+                _ => return Err(BoxError::BoundaryWord(w.to_string())),
             };
         }
         if (out[d][0] == Boundary::Periodic) != (out[d][1] == Boundary::Periodic) {
-            return Err("Both sides of boundary must be periodic".into());
+            return Err(BoxError::HalfPeriodic);
         }
     }
     Ok(out)
@@ -234,7 +252,11 @@ impl Domain {
 
     /// Shrink-wrap the `s`/`m` faces around `extent` (min and max of positions, and of
     /// anything else that bounds the box such as walls); errors if the box turns inside out.
-    pub fn shrink_wrap(&mut self, extent_lo: [f64; 3], extent_hi: [f64; 3]) -> Result<(), String> {
+    pub fn shrink_wrap(
+        &mut self,
+        extent_lo: [f64; 3],
+        extent_hi: [f64; 3],
+    ) -> Result<(), BoxError> {
         for d in 0..3 {
             if self.periodic(d) {
                 continue;
@@ -254,7 +276,7 @@ impl Domain {
                 _ => {}
             }
             if self.lo[d] > self.hi[d] {
-                return Err("Illegal simulation box".into());
+                return Err(BoxError::InsideOut);
             }
         }
         Ok(())
@@ -263,12 +285,12 @@ impl Domain {
     /// LIGGGHTS's `set_initial_box` after the box was changed in place (`change_box`): the
     /// bounds must enclose a volume, the shrink-wrap padding becomes 1e-4 of each current
     /// length, `s` faces move out by it and `m` faces take their current position as limit.
-    pub fn reset_initial(&mut self) -> Result<(), String> {
+    pub fn reset_initial(&mut self) -> Result<(), BoxError> {
         // a NaN bound fails the negated comparison too
         #[allow(clippy::neg_cmp_op_on_partial_ord)]
         let invalid = (0..3).any(|d| !(self.lo[d] < self.hi[d]));
         if invalid {
-            return Err("Box bounds are invalid".into());
+            return Err(BoxError::InvalidBounds);
         }
         for d in 0..3 {
             self.pad[d] = SHRINK_PAD * (self.hi[d] - self.lo[d]);

@@ -186,14 +186,20 @@ mod tests {
     fn sphere_ranges() {
         assert!(check_sphere(0.01, 2500.0, "diameter").is_ok());
         assert!(check_sphere(0.0, 2500.0, "diameter").is_ok());
-        let e = check_sphere(1e306, 2500.0, "diameter").unwrap_err().to_string();
+        let e = check_sphere(1e306, 2500.0, "diameter")
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("diameter 1e+306") && e.contains("<= 5.159"),
             "{e}"
         );
-        let e = check_sphere(-1.0, 2500.0, "diameter").unwrap_err().to_string();
+        let e = check_sphere(-1.0, 2500.0, "diameter")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("0 <= diameter"), "{e}");
-        let e = check_sphere(10.0, 1e308, "density").unwrap_err().to_string();
+        let e = check_sphere(10.0, 1e308, "density")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("0 < density <= 3.43"), "{e}");
         assert!(matches!(
             check_sphere(1.0, 0.0, "density"),

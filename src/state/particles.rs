@@ -2,7 +2,6 @@
 //! loops stream through memory and vectorise. Vectors are `[f64; 3]` (x, y, z).
 use crate::state::limits::LimitError;
 
-
 /// All particles of the simulation (SI units unless the deck says otherwise).
 #[derive(Debug, Clone, Default)]
 pub struct Particles {

@@ -47,9 +47,10 @@ pub fn validate(a: &Args, ctx: &Ctx) -> Result<(), CommandError> {
     }
     selections.extend(sim.pair_selection.as_ref());
     for sel in selections {
-        let Err(message) = crate::engine::granular::model_and_material(sel, &input) else {
+        let Err(error) = crate::engine::granular::model_and_material(sel, &input) else {
             continue;
         };
+        let message = error.to_string();
         let mut names: Vec<&String> = sim.extras.property_origins.keys().collect();
         names.sort_by_key(|n| std::cmp::Reverse(n.len()));
         let origin = names

@@ -124,7 +124,7 @@ impl ModelSelection {
     /// Consume the model keywords at the start of `args` in LIGGGHTS's fixed order
     /// (`model`, `tangential`, `cohesion`, `rolling_friction`, `surface`); returns the
     /// selection and the number of arguments consumed.
-    pub fn select(args: &[&str]) -> Result<(ModelSelection, usize), String> {
+    pub fn select(args: &[&str]) -> Result<(ModelSelection, usize), ModelError> {
         let mut sel = ModelSelection::default();
         let mut k = 0;
         let steps: [(&str, &[&str]); 5] = [
@@ -138,7 +138,7 @@ impl ModelSelection {
             if args.len() - k > 1 && args[k] == *kw {
                 let name = args[k + 1];
                 if !names.contains(&name) {
-                    return Err(INVALID_MODEL.into());
+                    return Err(ModelError::Invalid(INVALID_MODEL.into()));
                 }
                 let slot = match i {
                     0 => &mut sel.normal,
@@ -156,7 +156,7 @@ impl ModelSelection {
             && sel.cohesion == "off"
             && sel.rolling == "off"
         {
-            return Err(INVALID_MODEL.into());
+            return Err(ModelError::Invalid(INVALID_MODEL.into()));
         }
         Ok((sel, k))
     }
@@ -276,7 +276,7 @@ impl ModelSelection {
     /// Parse a whole `pair_style gran` argument list (after `gran`): model keywords, then
     /// settings.
     pub fn parse(args: &[&str]) -> Result<ModelSelection, ModelError> {
-        let (mut sel, k) = ModelSelection::select(args).map_err(ModelError::Invalid)?;
+        let (mut sel, k) = ModelSelection::select(args)?;
         sel.apply_settings(&args[k..])?;
         Ok(sel)
     }

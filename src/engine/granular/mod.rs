@@ -10,6 +10,7 @@ use crate::engine::contact::{
     AnyContactModel, CohesionModel, ContactKernel, ContactModel, F64x4, Material, MaterialInput,
     NormalModel, PairInput, PairLanesOutput, RollingModel, TangentialModel, WallInput, LANES,
 };
+use crate::engine::error::EngineError;
 use crate::engine::neighbor::{Incidence, Mirrored, Pair, SumOrder, BLOCK_PARTICLES};
 use crate::engine::particles::Particles;
 use crate::engine::sim::PairInteraction;
@@ -880,9 +881,9 @@ fn add_pair(
 pub(crate) fn model_and_material(
     sel: &Selection,
     input: &MaterialInput,
-) -> Result<(AnyContactModel, Material), String> {
-    let model = AnyContactModel::new(sel).map_err(|e| e.to_string())?;
-    let material = Material::new(input, &model.properties()).map_err(|e| e.to_string())?;
+) -> Result<(AnyContactModel, Material), EngineError> {
+    let model = AnyContactModel::new(sel).map_err(|e| EngineError::Invalid(e.to_string()))?;
+    let material = Material::new(input, &model.properties())?;
     Ok((model, material))
 }
 
@@ -892,7 +893,7 @@ pub fn build(
     sel: &Selection,
     input: &MaterialInput,
     frozen: u32,
-) -> Result<Box<dyn PairInteraction>, String> {
+) -> Result<Box<dyn PairInteraction>, EngineError> {
     let (model, material) = model_and_material(sel, input)?;
     struct Make(Material, u32);
     impl ContactKernel for Make {

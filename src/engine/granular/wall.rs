@@ -270,7 +270,7 @@ pub fn build_wall(
     wall_type: usize,
     shape: Primitive,
     shear: Option<(usize, f64)>,
-) -> Result<Box<dyn WallInteraction>, String> {
+) -> Result<Box<dyn WallInteraction>, crate::engine::error::EngineError> {
     let (model, material) = model_and_material(sel, input)?;
     struct Make(Material, usize, Primitive, Option<(usize, f64)>);
     impl ContactKernel for Make {

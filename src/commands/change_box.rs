@@ -243,7 +243,7 @@ fn reset_box(sim: &mut Simulation) -> std::result::Result<(), String> {
             hi[d] = hi[d].max(x[d]);
         }
     }
-    Ok(sim.domain.shrink_wrap(lo, hi)?)
+    sim.domain.shrink_wrap(lo, hi).map_err(|e| e.to_string())
 }
 
 /// Wrap every atom into the periodic directions (LIGGGHTS's pbc and remap).

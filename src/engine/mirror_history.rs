@@ -4,7 +4,7 @@
 //! periodic face gives each atom the values of its own side (the list entry, the mirror).
 //! A new entry or mirror then takes what its first atom kept for its second.
 
-use crate::engine::neighbor::{Mirror, Pair};
+use crate::engine::neighbor::{ByAtom, Mirror, Pair};
 
 /// One side of the old list: its pairs, mirrors, whether it was mirrored, and the histories
 /// of its entries and mirrors (`flips.len()` doubles each).
@@ -20,37 +20,6 @@ pub struct Sides<'a> {
     pub history: &'a [f64],
     /// History of the mirrors.
     pub mirror_history: &'a [f64],
-}
-
-/// Indices of items grouped by an atom index below `n`, each group ascending (items naming
-/// an atom at or beyond `n`, gone since, are kept apart in a last group).
-struct ByFirst {
-    start: Vec<u32>,
-    items: Vec<u32>,
-}
-
-impl ByFirst {
-    fn new(n: usize, atoms: impl Iterator<Item = u32> + Clone) -> ByFirst {
-        let firsts = atoms.map(move |i| (i as usize).min(n) as u32);
-        let mut start = vec![0u32; n + 2];
-        for i in firsts.clone() {
-            start[i as usize + 1] += 1;
-        }
-        for k in 0..=n {
-            start[k + 1] += start[k];
-        }
-        let mut fill = start.clone();
-        let mut items = vec![0u32; start[n + 1] as usize];
-        for (k, i) in firsts.enumerate() {
-            items[fill[i as usize] as usize] = k as u32;
-            fill[i as usize] += 1;
-        }
-        ByFirst { start, items }
-    }
-
-    fn of(&self, i: usize) -> &[u32] {
-        &self.items[self.start[i] as usize..self.start[i + 1] as usize]
-    }
 }
 
 /// Where a new entry's history comes from: (from a mirror, index, negated).
@@ -75,9 +44,9 @@ pub fn carry_mirrored(
     }
     let n_old = old_ids.len();
     // old entries by their first and by their second atom, mirrors by their first
-    let entries = ByFirst::new(n_old, old.pairs.iter().map(|p| p.i));
-    let entries_by_j = ByFirst::new(n_old, old.pairs.iter().map(|p| p.j));
-    let mirrors = ByFirst::new(n_old, old.mirrors.iter().map(|m| m.pair.i));
+    let entries = ByAtom::new(n_old, old.pairs.iter().map(|p| p.i));
+    let entries_by_j = ByAtom::new(n_old, old.pairs.iter().map(|p| p.j));
+    let mirrors = ByAtom::new(n_old, old.mirrors.iter().map(|m| m.pair.i));
     let old_index = crate::engine::neighbor::IdIndex::new(old_ids);
     // the first old entry joining a to b (as its first and second atom), or b to a where
     // that side's values were the pair's (negated); else the first mirror from a to b

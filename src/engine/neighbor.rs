@@ -653,20 +653,7 @@ pub fn carry_history(
         return out;
     }
     // old entries grouped by their first atom (old index)
-    let n_old = old_ids.len();
-    let mut first = vec![0u32; n_old + 1];
-    for p in old_pairs {
-        first[p.i as usize + 1] += 1;
-    }
-    for k in 0..n_old {
-        first[k + 1] += first[k];
-    }
-    let mut fill = first.clone();
-    let mut by_atom = vec![0u32; old_pairs.len()];
-    for (k, p) in old_pairs.iter().enumerate() {
-        by_atom[fill[p.i as usize] as usize] = k as u32;
-        fill[p.i as usize] += 1;
-    }
+    let by_first = ByAtom::new(old_ids.len(), old_pairs.iter().map(|p| p.i));
     let old_index = IdIndex::new(old_ids);
     // the periodic shift seen from the lower ID to the higher one
     let oriented = |p: &Pair, ids: &[i64]| {
@@ -691,7 +678,7 @@ pub fn carry_history(
                 };
                 found.clear();
                 for (from, to, swapped) in [(a, b, false), (b, a, true)] {
-                    for &e in &by_atom[first[from] as usize..first[from + 1] as usize] {
+                    for &e in by_first.of(from) {
                         if old_pairs[e as usize].j as usize == to {
                             found.push((e as usize, swapped));
                         }
@@ -725,6 +712,39 @@ pub fn carry_history(
             }
         });
     out
+}
+
+/// Indices of items grouped by an atom index below `n`, each group ascending (items naming
+/// an atom at or beyond `n`, gone since, are kept apart in a last group).
+pub(crate) struct ByAtom {
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl ByAtom {
+    /// Group the items (numbered in iteration order) by their atom index.
+    pub(crate) fn new(n: usize, atoms: impl Iterator<Item = u32> + Clone) -> ByAtom {
+        let firsts = atoms.map(move |i| (i as usize).min(n) as u32);
+        let mut start = vec![0u32; n + 2];
+        for i in firsts.clone() {
+            start[i as usize + 1] += 1;
+        }
+        for k in 0..=n {
+            start[k + 1] += start[k];
+        }
+        let mut fill = start.clone();
+        let mut items = vec![0u32; start[n + 1] as usize];
+        for (k, i) in firsts.enumerate() {
+            items[fill[i as usize] as usize] = k as u32;
+            fill[i as usize] += 1;
+        }
+        ByAtom { start, items }
+    }
+
+    /// The items of atom `i`, ascending.
+    pub(crate) fn of(&self, i: usize) -> &[u32] {
+        &self.items[self.start[i] as usize..self.start[i + 1] as usize]
+    }
 }
 
 /// Atom ID to index: a table when IDs are dense, a hash map otherwise.

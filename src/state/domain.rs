@@ -80,12 +80,6 @@ pub enum BoxError {
     InvalidBounds,
 }
 
-impl From<BoxError> for String {
-    fn from(e: BoxError) -> String {
-        e.to_string()
-    }
-}
-
 /// Parse the `boundary` command's three words (e.g. `p f fm`).
 pub fn parse_boundary(words: &[&str]) -> Result<[[Boundary; 2]; 3], BoxError> {
     if words.len() != 3 {

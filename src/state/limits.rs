@@ -40,12 +40,6 @@ pub enum LimitError {
     TooManyTypes(i64),
 }
 
-impl From<LimitError> for String {
-    fn from(e: LimitError) -> String {
-        e.to_string()
-    }
-}
-
 /// The most bytes this process can hope to get: what its address-space limit (`ulimit -v`)
 /// leaves when one is set, and never more than the machine's physical memory.
 pub fn memory_limit() -> f64 {

@@ -37,15 +37,25 @@ fn add_side(
     }
 }
 
-/// Add a mirror's side of a contact to its own first atom.
+/// Add a contact's side to its first atom, and to its second where the pair lies inside the
+/// box and `both` (a mirror adds only its own first atom's side).
 #[inline(always)]
-fn add_mirror(p: &mut Particles, q: &Pair, r: &PairResult, virial: &mut Option<&mut [[f64; 6]]>) {
+fn add_pair(
+    p: &mut Particles,
+    q: &Pair,
+    r: &PairResult,
+    virial: &mut Option<&mut [[f64; 6]]>,
+    both: bool,
+) {
     let w = if virial.is_some() {
         half_virial(&p.x, q, r.fi)
     } else {
         [0.0; 6]
     };
     add_side(p, q.i as usize, &r.fi, &r.ti, virial, &w);
+    if both && q.shift == [0.0; 3] {
+        add_side(p, q.j as usize, &r.fj, &r.tj, virial, &w);
+    }
 }
 
 impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> PairGran<N, T, C, R> {
@@ -108,32 +118,15 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         let mirror_at = |b: usize| m.mirrors[sc.touching[b] as usize].at;
         for (a, &e) in touching.iter().enumerate() {
             while b < sc.touching.len() && mirror_at(b) <= e {
-                add_mirror(
-                    p,
-                    &sc.pairs[sc.touching[b] as usize],
-                    &sc.results[b],
-                    &mut virial,
-                );
+                let q = &sc.pairs[sc.touching[b] as usize];
+                add_pair(p, q, &sc.results[b], &mut virial, false);
                 b += 1;
             }
-            let (q, r) = (&pairs[e as usize], &results[a]);
-            let w = if virial.is_some() {
-                half_virial(&p.x, q, r.fi)
-            } else {
-                [0.0; 6]
-            };
-            add_side(p, q.i as usize, &r.fi, &r.ti, &mut virial, &w);
-            if q.shift == [0.0; 3] {
-                add_side(p, q.j as usize, &r.fj, &r.tj, &mut virial, &w);
-            }
+            add_pair(p, &pairs[e as usize], &results[a], &mut virial, true);
         }
         for b in b..sc.touching.len() {
-            add_mirror(
-                p,
-                &sc.pairs[sc.touching[b] as usize],
-                &sc.results[b],
-                &mut virial,
-            );
+            let q = &sc.pairs[sc.touching[b] as usize];
+            add_pair(p, q, &sc.results[b], &mut virial, false);
         }
         self.worst = worst;
         self.results = results;

@@ -161,6 +161,15 @@ impl M4 {
     pub fn from_bools(b: [bool; LANES]) -> M4 {
         M4(b.map(|t| (t as u64).wrapping_neg()))
     }
+
+    /// The lanes that hold as bits (lane k is bit k).
+    #[inline(always)]
+    pub fn bits(self) -> u32 {
+        #[cfg(target_arch = "x86_64")]
+        return avx::bits(self);
+        #[cfg(not(target_arch = "x86_64"))]
+        (0..LANES).fold(0, |b, k| b | (((self.0[k] >> 63) as u32) << k))
+    }
 }
 
 /// The 256-bit AVX operations behind [`F64x4`] and [`M4`] on x86-64.
@@ -261,6 +270,12 @@ mod avx {
     #[inline(always)]
     pub fn not(a: M4) -> M4 {
         put_mask(unsafe { _mm256_xor_pd(get_mask(a), _mm256_castsi256_pd(_mm256_set1_epi64x(-1))) })
+    }
+
+    /// The set lanes as bits.
+    #[inline(always)]
+    pub fn bits(a: M4) -> u32 {
+        unsafe { _mm256_movemask_pd(get_mask(a)) as u32 }
     }
 
     /// True if any lane is set.

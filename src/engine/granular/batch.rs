@@ -8,7 +8,7 @@
 //! processors with AVX2 the loops are compiled a second time with 256-bit vectors and chosen
 //! at run time; the arithmetic (no fused multiply-add) is the same either way.
 
-use crate::engine::contact::real::M4;
+use crate::engine::contact::real::{Real, M4};
 use crate::engine::contact::{
     CoeffLanes, Coeffs, CohesionModel, ContactModel, F64x4, Material, NormalModel, PairCoeffs,
     PairLanes, PairLanesOutput, RollingModel, TangentialModel, LANES,
@@ -250,11 +250,13 @@ trait CoeffSource {
     type Lanes<'b>: Coeffs<F64x4>
     where
         Self: 'b;
+    /// The coefficients of the pairs (i\[k\], j\[k\]); `kinds` are the particles' atom types.
     fn lanes<'b>(
         &'b self,
         material: &'b Material,
-        itype: [usize; LANES],
-        jtype: [usize; LANES],
+        kinds: &[u32],
+        i: [usize; LANES],
+        j: [usize; LANES],
     ) -> Self::Lanes<'b>;
 }
 
@@ -270,6 +272,7 @@ impl CoeffSource for OneType<'_> {
     fn lanes<'b>(
         &'b self,
         _: &'b Material,
+        _: &[u32],
         _: [usize; LANES],
         _: [usize; LANES],
     ) -> CoeffSplat<'b> {
@@ -286,10 +289,13 @@ impl CoeffSource for ByType {
     fn lanes<'b>(
         &'b self,
         material: &'b Material,
-        itype: [usize; LANES],
-        jtype: [usize; LANES],
+        kinds: &[u32],
+        i: [usize; LANES],
+        j: [usize; LANES],
     ) -> CoeffLanes<'b> {
-        CoeffLanes(std::array::from_fn(|k| material.pair(itype[k], jtype[k])))
+        CoeffLanes(std::array::from_fn(|k| {
+            material.pair(kinds[i[k]] as usize, kinds[j[k]] as usize)
+        }))
     }
 }
 
@@ -337,10 +343,29 @@ pub trait Sink {
     }
 }
 
-/// Four records' 12 fields as lanes.
+/// The periodic shifts of four pairs as x, y, z lanes, or `None` when all are zero (the
+/// usual case: nothing to add, so positions stay exactly the particles').
 #[inline(always)]
-fn transpose(rec: &[Record], idx: [usize; LANES]) -> [F64x4; 12] {
-    let r: [&[f64; 12]; LANES] = idx.map(|n| &rec[n].0);
+fn shifts(pr: &[&Pair; LANES]) -> Option<[F64x4; 3]> {
+    // any component other than +-0 (the sign bit shifted out)
+    let bits = pr.iter().fold(0u64, |acc, q| {
+        acc | q.shift[0].to_bits() | q.shift[1].to_bits() | q.shift[2].to_bits()
+    });
+    if bits << 1 == 0 {
+        return None;
+    }
+    Some(std::array::from_fn(|d| F64x4(pr.map(|q| q.shift[d]))))
+}
+
+/// Four records' 12 fields as lanes.
+///
+/// # Safety
+/// Every index must be below `rec.len()`.
+#[inline(always)]
+unsafe fn transpose(rec: &[Record], idx: [usize; LANES]) -> [F64x4; 12] {
+    debug_assert!(idx.iter().all(|&n| n < rec.len()));
+    // SAFETY: the caller's indices are inside the records
+    let r: [&[f64; 12]; LANES] = idx.map(|n| unsafe { &rec.get_unchecked(n).0 });
     #[cfg(target_arch = "x86_64")]
     {
         // SAFETY: lanes code runs only where the processor has AVX (see F64x4)
@@ -531,22 +556,31 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
         let width = self.model.history_len();
         let rec = &packed.records;
         assert!(width <= MAX_HISTORY);
+        if entries.is_empty() {
+            return;
+        }
+        // particle indices are clamped to the records (a conditional move each, no branch),
+        // so the unchecked loads below stay inside them
+        assert!(!rec.is_empty());
+        let last = rec.len() - 1;
         let mut hist = [F64x4::default(); MAX_HISTORY];
         for batch in entries.chunks(LANES) {
             // pad a short last batch with copies of its first pair (results dropped)
             let e: [usize; LANES] = std::array::from_fn(|k| batch[k.min(batch.len() - 1)] as usize);
-            let pr: [&Pair; LANES] = e.map(|k| &pairs[k]);
-            // the batch's history lies inside `history` (one check for the four entries)
+            // the batch's pairs and history lie inside `pairs` and `history` (one check
+            // for the four entries)
             let top = e.iter().copied().max().unwrap_or(0);
-            assert!((top + 1) * width <= history.len());
-            let i: [usize; LANES] = pr.map(|q| q.i as usize);
-            let j: [usize; LANES] = pr.map(|q| q.j as usize);
-            let a = transpose(rec, i);
-            let b = transpose(rec, j);
+            assert!(top < pairs.len() && (top + 1) * width <= history.len());
+            // SAFETY: e[k] <= top < pairs.len()
+            let pr: [&Pair; LANES] = e.map(|k| unsafe { pairs.get_unchecked(k) });
+            let i: [usize; LANES] = pr.map(|q| (q.i as usize).min(last));
+            let j: [usize; LANES] = pr.map(|q| (q.j as usize).min(last));
+            // SAFETY: i[k], j[k] <= last < rec.len()
+            let (a, b) = unsafe { (transpose(rec, i), transpose(rec, j)) };
             let mut xj = [b[0], b[1], b[2]];
-            if pr.iter().any(|q| q.shift != [0.0; 3]) {
-                for (d, x) in xj.iter_mut().enumerate() {
-                    *x += F64x4(pr.map(|q| q.shift[d]));
+            if let Some(shift) = shifts(&pr) {
+                for (x, s) in xj.iter_mut().zip(shift) {
+                    *x += s;
                 }
             }
             let lanes = PairLanes {
@@ -565,11 +599,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
                 dt: self.dt,
                 update_history: self.update,
             };
-            let c = coeffs.lanes(
-                self.material,
-                i.map(|n| kinds[n] as usize),
-                j.map(|n| kinds[n] as usize),
-            );
+            let c = coeffs.lanes(self.material, kinds, i, j);
             for (h, slot) in hist.iter_mut().enumerate().take(width) {
                 // SAFETY: e[k] <= top and h < width (checked above)
                 *slot = F64x4(e.map(|k| unsafe { *history.get_unchecked(k * width + h) }));
@@ -581,7 +611,8 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
                     unsafe { *history.get_unchecked_mut(entry as usize * width + h) = slot.0[k] };
                 }
             }
-            let smaller = F64x4(std::array::from_fn(|k| a[3].0[k].min(b[3].0[k])));
+            // radii are finite and positive: the lane-wise smaller one, as f64::min gives it
+            let smaller = F64x4::select(a[3].lt(b[3]), a[3], b[3]);
             sink.take_batch(batch, &pr, &out, &(out.deltan / smaller));
         }
     }

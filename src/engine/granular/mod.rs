@@ -548,11 +548,8 @@ impl batch::Sink for BlockSums<'_> {
                 self.add(i, pick(&out.fi), pick(&out.ti), &w);
                 self.add(j, pick(&out.fj), pick(&out.tj), &w);
             }
-            let r = ratio.0[k];
-            if self.worst.is_none_or(|w| r > w.0) {
-                self.worst = Some((r, pair.i, pair.j));
-            }
         }
+        self.worst = worst_of_batch(self.worst, batch.len(), pairs, ratio);
     }
 
     #[inline(always)]
@@ -752,6 +749,32 @@ fn half_virial(x: &[[f64; 3]], pair: &Pair, fi: [f64; 3]) -> [f64; 6] {
     v.map(|c| 0.5 * c)
 }
 
+/// The largest overlap ratio so far, first in order among equals, after a batch whose first
+/// `valid` lanes are real pairs: lanes are looked at one by one only when one beats `worst`.
+#[inline(always)]
+fn worst_of_batch(
+    mut worst: Option<(f64, u32, u32)>,
+    valid: usize,
+    pairs: &[&Pair; LANES],
+    ratio: &F64x4,
+) -> Option<(f64, u32, u32)> {
+    use crate::engine::contact::real::Real;
+    let lanes = (1u32 << valid.min(LANES)) - 1;
+    let beaten = match worst {
+        None => lanes,
+        Some((w, _, _)) => ratio.gt(F64x4::splat(w)).bits() & lanes,
+    };
+    if beaten != 0 {
+        for (k, pair) in pairs.iter().enumerate().take(valid) {
+            let r = ratio.0[k];
+            if worst.is_none_or(|w| r > w.0) {
+                worst = Some((r, pair.i, pair.j));
+            }
+        }
+    }
+    worst
+}
+
 /// Add lane `k` of a batch's forces and torques to particles `a` (the i side) and `b` (the
 /// j side), i's first.
 ///
@@ -807,11 +830,8 @@ impl batch::Sink for Accumulate<'_, '_> {
             }
             // SAFETY: i, j < n (checked above)
             unsafe { add_lane(self.f, self.torque, (i, j), out, k) };
-            let r = ratio.0[k];
-            if self.worst.is_none_or(|w| r > w.0) {
-                self.worst = Some((r, pair.i, pair.j));
-            }
         }
+        self.worst = worst_of_batch(self.worst, batch.len(), pairs, ratio);
     }
 
     #[inline(always)]

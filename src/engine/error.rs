@@ -49,3 +49,15 @@ impl From<crate::state::domain::BoxError> for EngineError {
         EngineError::Invalid(e.to_string())
     }
 }
+
+impl From<crate::io::restart_values::RestartValueError> for EngineError {
+    fn from(e: crate::io::restart_values::RestartValueError) -> EngineError {
+        EngineError::Invalid(e.to_string())
+    }
+}
+
+impl From<crate::engine::tet_mesh::TetMeshError> for EngineError {
+    fn from(e: crate::engine::tet_mesh::TetMeshError) -> EngineError {
+        EngineError::Invalid(e.to_string())
+    }
+}

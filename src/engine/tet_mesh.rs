@@ -62,6 +62,45 @@ impl Placement {
     }
 }
 
+/// Why a tetrahedral mesh file cannot be read (LIGGGHTS's messages).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum TetMeshError {
+    /// The second line is not `ASCII`.
+    #[error("Expecting ASCII VTK mesh file, cannot continue")]
+    NotAscii,
+    /// The dataset is not an unstructured grid.
+    #[error("Expecting ASCII VTK unstructured grid mesh file, cannot continue")]
+    NotUnstructuredGrid,
+    /// A section (`POINTS`, `CELLS`, `CELL_TYPES`) missing where it belongs.
+    #[error("Expecting '{0}' section in ASCII VTK mesh file, cannot continue")]
+    Section(&'static str),
+    /// A `POINTS` line whose values are not whole points.
+    #[error("Expecting 3 values for each point in 'POINTS' section of ASCII VTK mesh file, cannot continue")]
+    PointValues,
+    /// A cell naming a point the file does not have.
+    #[error("VTK mesh file: cell {cell} names point {point} of {points}")]
+    CellPoint {
+        /// The cell (from 0).
+        cell: usize,
+        /// The point it names.
+        point: i64,
+        /// Points in the file.
+        points: usize,
+    },
+    /// `CELL_TYPES` counts other cells than `CELLS`.
+    #[error("Inconsistency in 'CELL_TYPES' section in ASCII VTK mesh file, cannot continue")]
+    CellTypes,
+    /// A placed node outside the simulation box.
+    #[error("VTK mesh file is incompatible with simulation box: One or more vertices outside simulation box")]
+    OutsideBox,
+    /// A tetrahedron with negative volume in both node orders.
+    #[error("Fatal error: RegTetMesh::add_tet: vol < 0")]
+    NegativeVolume,
+    /// No cells at all.
+    #[error("VTK mesh file containing no tet cell - cannnot continue")]
+    NoCells,
+}
+
 /// A leading integer as C's `atoi` reads it (0 when there is none).
 fn atoi(w: &str) -> i64 {
     let t = w.trim_start();
@@ -83,7 +122,7 @@ pub fn read(
     text: &str,
     place: &Placement,
     inside_box: &dyn Fn([f64; 3]) -> bool,
-) -> Result<(TetMesh, ReadNotes), String> {
+) -> Result<(TetMesh, ReadNotes), TetMeshError> {
     let mut notes = ReadNotes::default();
     let mut points: Vec<[f64; 3]> = Vec::new();
     let mut npoints = 0usize;
@@ -118,20 +157,14 @@ pub fn read(
         line_no += 1;
         match line_no {
             1 => continue,
-            2 if words[0] != "ASCII" => {
-                return Err("Expecting ASCII VTK mesh file, cannot continue".into())
-            }
+            2 if words[0] != "ASCII" => return Err(TetMeshError::NotAscii),
             3 if words[0] != "DATASET" || words.get(1) != Some(&"UNSTRUCTURED_GRID") => {
-                return Err(
-                    "Expecting ASCII VTK unstructured grid mesh file, cannot continue".into(),
-                )
+                return Err(TetMeshError::NotUnstructuredGrid)
             }
             2 | 3 => continue,
             4 => {
                 if words[0] != "POINTS" {
-                    return Err(
-                        "Expecting 'POINTS' section in ASCII VTK mesh file, cannot continue".into(),
-                    );
+                    return Err(TetMeshError::Section("POINTS"));
                 }
                 npoints = words.get(1).map_or(0, |w| atoi(w)).max(0) as usize;
                 if npoints == 0 {
@@ -144,7 +177,7 @@ pub fn read(
         }
         if !points_done {
             if !words.len().is_multiple_of(3) {
-                return Err("Expecting 3 values for each point in 'POINTS' section of ASCII VTK mesh file, cannot continue".into());
+                return Err(TetMeshError::PointValues);
             }
             for c in words.chunks(3) {
                 let mut p = [0.0; 3];
@@ -165,9 +198,7 @@ pub fn read(
         }
         if line_no == last_point_line + 1 {
             if words[0] != "CELLS" {
-                return Err(
-                    "Expecting 'CELLS' section in ASCII VTK mesh file, cannot continue".into(),
-                );
+                return Err(TetMeshError::Section("CELLS"));
             }
             ncells = words.get(1).map_or(0, |w| atoi(w)).max(0) as usize;
             if ncells == 0 {
@@ -182,10 +213,11 @@ pub fn read(
                 for k in 0..4 {
                     let n = atoi(words[1 + k]);
                     if n < 0 || n as usize >= npoints.min(points.len()) {
-                        return Err(format!(
-                            "VTK mesh file: cell {} names point {n} of {npoints}",
-                            cells.len()
-                        ));
+                        return Err(TetMeshError::CellPoint {
+                            cell: cells.len(),
+                            point: n,
+                            points: npoints,
+                        });
                     }
                     c[k] = n as usize;
                 }
@@ -201,15 +233,10 @@ pub fn read(
         }
         if line_no == last_cell_line + 1 {
             if words[0] != "CELL_TYPES" {
-                return Err(
-                    "Expecting 'CELL_TYPES' section in ASCII VTK mesh file, cannot continue".into(),
-                );
+                return Err(TetMeshError::Section("CELL_TYPES"));
             }
             if words.get(1).map_or(0, |w| atoi(w)) != ncells as i64 {
-                return Err(
-                    "Inconsistency in 'CELL_TYPES' section in ASCII VTK mesh file, cannot continue"
-                        .into(),
-                );
+                return Err(TetMeshError::CellTypes);
             }
             continue;
         }
@@ -224,7 +251,7 @@ pub fn read(
         }
     }
     if outside {
-        return Err("VTK mesh file is incompatible with simulation box: One or more vertices outside simulation box".into());
+        return Err(TetMeshError::OutsideBox);
     }
     // cells whose type was never read count as tetrahedra when they have four nodes
     let _ = ntets;
@@ -235,12 +262,12 @@ pub fn read(
             n.swap(0, 3);
         }
         if volume(n[0], n[1], n[2], n[3]) < 0.0 {
-            return Err("Fatal error: RegTetMesh::add_tet: vol < 0".into());
+            return Err(TetMeshError::NegativeVolume);
         }
         tets.push(n);
     }
     if ncells == 0 {
-        return Err("VTK mesh file containing no tet cell - cannnot continue".into());
+        return Err(TetMeshError::NoCells);
     }
     let mut lo = [crate::engine::region::BIG; 3];
     let mut hi = [-crate::engine::region::BIG; 3];
@@ -310,8 +337,13 @@ mod tests {
         assert_eq!(m.lo, [2.0, 0.0, 0.0]);
         assert_eq!(m.hi, [4.0, 2.0, 2.0]);
         let e = read(CUBE_CORNER, &p, &|x| x[0] < 3.0).unwrap_err();
-        assert!(e.contains("outside simulation box"), "{e}");
+        assert_eq!(e, TetMeshError::OutsideBox);
+        assert!(e.to_string().contains("outside simulation box"), "{e}");
         let e = read("x\nBINARY\n", &place(), &|_| true).unwrap_err();
-        assert!(e.contains("ASCII"), "{e}");
+        assert_eq!(e, TetMeshError::NotAscii);
+        assert_eq!(
+            e.to_string(),
+            "Expecting ASCII VTK mesh file, cannot continue"
+        );
     }
 }

@@ -201,8 +201,8 @@ pub enum RestartError {
     Values {
         /// The file.
         path: String,
-        /// What is wrong, in the engine's words.
-        reason: String,
+        /// What is wrong.
+        reason: crate::io::restart_values::RestartValueError,
     },
 }
 

@@ -189,6 +189,8 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         let threads = rayon::current_num_threads();
         match order {
             SumOrder::Gathered(inc) if threads > 1 && inc.first.len() == p.len() + 1 => {
+                p.f.iter_mut().for_each(|f| *f = [0.0; 3]);
+                p.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
                 self.compute_gather(p, pairs, history, dt, update, virial, inc);
                 return;
             }
@@ -196,11 +198,14 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
                 if starts.len() == p.len().div_ceil(BLOCK_PARTICLES).max(1) + 1
                     && starts.last() == Some(&(pairs.len() as u32)) =>
             {
+                // each block clears its own particles' sums
                 self.compute_blocks(p, pairs, history, dt, update, virial, starts);
                 return;
             }
             _ => {}
         }
+        p.f.iter_mut().for_each(|f| *f = [0.0; 3]);
+        p.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
         if let Some(m) = mirrored {
             self.compute_mirrored(p, pairs, history, dt, update, virial, m);
             return;
@@ -629,6 +634,8 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             BlockSums,
         )| {
             let part = &pairs[range];
+            sums.f.fill([0.0; 3]);
+            sums.torque.fill([0.0; 3]);
             touch.clear();
             sums.foreign.made.clear();
             sums.foreign.made_virial.clear();

@@ -95,7 +95,8 @@ pub trait PairInteraction: Send {
         dt: f64,
         ghost: (&[[f64; 3]], &[[f64; 3]]),
     ) -> Vec<PairContact>;
-    /// Add pair forces and torques to `p.f`/`p.torque` for the listed pairs.
+    /// Set `p.f`/`p.torque` to the pair forces and torques of the listed pairs (what they
+    /// held before is overwritten).
     /// `update` is false in the setup evaluation: contact history is used but not advanced.
     /// With `virial`, each pair also adds half its virial del_a F_b to both particles
     /// (xx yy zz xy xz yz, force length).
@@ -529,8 +530,11 @@ impl Simulation {
     ) -> Result<(), EngineError> {
         self.reset_clump_forces();
         let p = &mut self.particles;
-        p.f.iter_mut().for_each(|f| *f = [0.0; 3]);
-        p.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
+        if self.pair.is_none() {
+            // a pair style sets the forces itself (on the fast path, block by block)
+            p.f.iter_mut().for_each(|f| *f = [0.0; 3]);
+            p.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
+        }
         let tally = want_virial
             && self.computes.iter().any(|c| {
                 matches!(

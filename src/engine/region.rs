@@ -545,11 +545,9 @@ impl Regions {
                     .into(),
             );
         }
+        // `side out`: every point not inside a tetrahedron (LIGGGHTS 3.8.0's create_atoms and
+        // group take the complement of `side in`)
         let (interior, _, _) = options(&words[14..], ctx)?;
-        if !interior {
-            // LIGGGHTS 3.8.0 matches no point of such a region; what it means is unclear
-            return Err(EngineError::Unsupported("region mesh/tet side out".into()));
-        }
         let expect = |k: usize, what: &str| -> Result<(), EngineError> {
             if words[k] == what {
                 Ok(())

@@ -60,12 +60,6 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 {
                     return Err(a.error(i + 1, "Fix insert: distributiontemplate must be a fix particledistribution/discrete"));
                 }
-                if ctx.sim.fixes.iter().any(|f| {
-                    matches!(&f.kind, FixKind::Distribution(dd)
-                        if f.id == d && dd.templates.iter().any(|t| t.clump.is_some()))
-                }) {
-                    return Err(a.unsupported(i + 1, "fix insert/stream of multisphere clumps"));
-                }
                 dist = Some(d.to_string());
                 i += 2;
             }

@@ -168,6 +168,18 @@ impl Distribution {
         })
     }
 
+    /// The largest sphere radius of the templates (length): a clump's largest member, not
+    /// its bounding radius (LIGGGHTS's `max_rad`).
+    pub fn max_sphere_radius(&self) -> f64 {
+        self.templates
+            .iter()
+            .map(|t| match &t.clump {
+                Some(c) => c.radii.iter().copied().fold(0.0, f64::max),
+                None => t.radius,
+            })
+            .fold(0.0, f64::max)
+    }
+
     /// The templates of `n` particles, largest first (`random_distribute exact`); LIGGGHTS's
     /// "Failed to allocate" when the list and the particles placed from it cannot fit in
     /// memory.
@@ -294,6 +306,11 @@ pub struct World<'a> {
     pub periodic: [bool; 3],
     /// The box can change (a shrink-wrapped face).
     pub box_changes: bool,
+    /// Body tags of the atoms (-1 outside a clump; None without clumps): an insertion
+    /// region counts a clump once, by its body, not by its members.
+    pub members: Option<&'a [f64]>,
+    /// The clumps: bounding-sphere centre (length), mass (mass), density (mass/length^3).
+    pub bodies: &'a [([f64; 3], f64, f64)],
 }
 
 /// LIGGGHTS's warning when the (sub-)domain is narrower than 2.2 bounding radii of the
@@ -416,11 +433,22 @@ impl InsertPack {
         // how many: the region's content now
         let (mut np, mut vol, mut mass) = (0i64, 0.0, 0.0);
         for i in 0..w.x.len() {
+            if w.members.is_some_and(|t| t[i] >= 0.0) {
+                continue;
+            }
             if regions.matches(self.region, w.x[i]) {
                 np += 1;
                 let r = w.radius[i];
                 vol += 4.0 * std::f64::consts::PI / 3.0 * r * r * r;
                 mass += w.mass[i];
+            }
+        }
+        // a clump counts where its bounding sphere's centre is
+        for &(xb, m, rho) in w.bodies {
+            if regions.matches(self.region, xb) {
+                np += 1;
+                vol += m / rho;
+                mass += m;
             }
         }
         let (mut n, mut ratio) = match (self.rate, self.target) {
@@ -461,14 +489,16 @@ impl InsertPack {
         // existing atoms near the region (periodic images too), then placed ones
         let (elo, ehi) = regions.extent(self.region).unwrap_or(([0.0; 3], [0.0; 3]));
         let exact_near = matches!(shape, Shape::Block { .. } | Shape::Cylinder { .. });
-        // a clump's members reach up to two bounding radii from its centre of mass
-        let reach = if dist.templates.iter().any(|t| t.clump.is_some()) {
-            2.0 * maxrad
+        // LIGGGHTS's reach: the largest sphere (a clump's largest member, not its bounding
+        // sphere); with clumps the box around the region grows by two bounding radii
+        let reach = dist.max_sphere_radius();
+        let grow = if dist.templates.iter().any(|t| t.clump.is_some()) {
+            2.0 * reach + 2.0 * maxrad
         } else {
-            maxrad
+            2.0 * reach
         };
-        let bblo = [0, 1, 2].map(|d| elo[d].max(w.lo[d]) - 2.0 * reach);
-        let bbhi = [0, 1, 2].map(|d| ehi[d].min(w.hi[d]) + 2.0 * reach);
+        let bblo = [0, 1, 2].map(|d| elo[d].max(w.lo[d]) - grow);
+        let bbhi = [0, 1, 2].map(|d| ehi[d].min(w.hi[d]) + grow);
         let mut near: Vec<([f64; 3], f64)> = Vec::new();
         if self.overlapcheck {
             let len = [0, 1, 2].map(|d| w.hi[d] - w.lo[d]);

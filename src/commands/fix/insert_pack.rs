@@ -284,14 +284,8 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         matches!(&f.kind, FixKind::Distribution(d)
             if f.id == distribution && d.templates.iter().any(|t| t.clump.is_some()))
     });
-    if clumps && (rate.is_some() || every != 0) {
-        return Err(a.unsupported(
-            2,
-            &format!(
-                "fix {} of multisphere clumps other than insert_every once",
-                fix.style
-            ),
-        ));
+    if clumps && rate.is_some() {
+        return Err(a.unsupported(2, &format!("fix {} of multisphere clumps", fix.style)));
     }
     Ok(FixKind::InsertPack(Box::new(InsertPack {
         id: id.to_string(),

@@ -73,8 +73,9 @@ impl Clumps {
         0.5 * ke
     }
 
-    /// Inserts one clump of template `t` with its centre of mass at `xcm`, velocity `v`
-    /// (length/time) and angular velocity `omega` (1/time), identity orientation: one
+    /// Inserts one clump of template `t` with its centre of mass at `xcm`, principal axes
+    /// `axes` (the template's if None), velocity `v` (length/time) and angular velocity
+    /// `omega` (1/time): one
     /// particle per sphere with IDs from `first_id`, type and density of the template and
     /// the body's mass, in group `group` (bits, besides `all`). The members are placed from
     /// the body as LIGGGHTS's `add_body_finalize` does.
@@ -83,6 +84,7 @@ impl Clumps {
         &mut self,
         p: &mut Particles,
         t: &ClumpTemplate,
+        axes: Option<[Vec3; 3]>,
         first_id: i64,
         xcm: Vec3,
         v: Vec3,
@@ -101,7 +103,7 @@ impl Clumps {
             xcm,
             v,
             omega,
-            t.axes,
+            axes.unwrap_or(t.axes),
             t.spec.fflag,
             t.spec.tflag,
         );
@@ -387,10 +389,13 @@ impl crate::engine::sim::Simulation {
         }
     }
 
-    /// Inserts one clump (its members get IDs from `first_id`).
+    /// Inserts one clump (its members get IDs from `first_id`; `axes`: its drawn
+    /// orientation, the template's if None).
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn insert_clump(
         &mut self,
         t: &ClumpTemplate,
+        axes: Option<[Vec3; 3]>,
         first_id: i64,
         xcm: Vec3,
         v: Vec3,
@@ -406,6 +411,7 @@ impl crate::engine::sim::Simulation {
         ms.insert(
             &mut self.particles,
             t,
+            axes,
             first_id,
             xcm,
             v,

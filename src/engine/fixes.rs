@@ -981,4 +981,6 @@ pub struct StreamFix {
     pub state: Option<crate::engine::insert::InsertStream>,
     /// State restored from a restart file, taken over at setup.
     pub restored: Option<crate::engine::insert::InsertRestart>,
+    /// `orientation random`.
+    pub random_orientation: bool,
 }

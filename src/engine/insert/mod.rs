@@ -8,8 +8,11 @@ use crate::engine::error::EngineError;
 use crate::engine::region::{Regions, Shape};
 use crate::util::random::RanPark;
 
+mod orient;
 mod stream;
 mod surface;
+
+pub use orient::{random_unit_quat, rotate_axes, Axes};
 
 pub use stream::{
     Face, InsertRestart, InsertStream, Release, TriangleEdges, Within, RELEASE_NAME, RELEASE_WIDTH,
@@ -70,12 +73,14 @@ impl Template {
     }
 
     /// Member sphere centres (length) and radii of this template placed at `p` (a clump's
-    /// centre of mass, unrotated; a sphere's centre).
-    pub fn spheres_at(&self, p: [f64; 3]) -> Vec<([f64; 3], f64)> {
+    /// centre of mass, with its principal axes `axes`, the template's if None; a sphere's
+    /// centre).
+    pub fn spheres_at(&self, p: [f64; 3], axes: Option<&Axes>) -> Vec<([f64; 3], f64)> {
         match &self.clump {
             None => vec![(p, self.radius)],
             Some(c) => {
-                let (ex, ey, ez) = (&c.axes[0], &c.axes[1], &c.axes[2]);
+                let a = axes.unwrap_or(&c.axes);
+                let (ex, ey, ez) = (&a[0], &a[1], &a[2]);
                 c.displace
                     .iter()
                     .zip(&c.radii)
@@ -285,10 +290,20 @@ pub struct InsertPack {
     pub mass_rate: Option<f64>,
     /// `insert/rate/region`: particles per insertion (mean), from the rate at setup.
     pub per_insertion: f64,
+    /// `orientation random`.
+    pub random_orientation: bool,
 }
 
-/// A new particle: template index, position and velocity.
-pub type NewParticle = (usize, [f64; 3], [f64; 3]);
+/// A new particle: template index, position, velocity and a clump's principal axes when
+/// its orientation was drawn (None: the template's).
+pub type NewParticle = (usize, [f64; 3], [f64; 3], Option<Axes>);
+
+/// `orientation random`: a random unit quaternion from the fix generator and, for a
+/// clump template, its axes rotated by it (spheres draw too, and keep no orientation).
+pub fn random_orientation(rng: &mut RanPark, t: &Template) -> Option<Axes> {
+    let q = random_unit_quat(rng);
+    t.clump.as_ref().map(|c| rotate_axes(&c.axes, &q))
+}
 
 /// What an insertion needs to know about the particles and the box.
 pub struct World<'a> {
@@ -607,9 +622,14 @@ impl InsertPack {
                         break;
                     }
                     let v = velocity(&mut self.rng);
+                    let axes = if self.random_orientation {
+                        random_orientation(&mut self.rng, &dist.templates[t])
+                    } else {
+                        None
+                    };
                     // every sphere of the template (a clump's members) against the near
                     // ones; a NaN distance counts as clear, as in LIGGGHTS
-                    let spheres = dist.templates[t].spheres_at(p);
+                    let spheres = dist.templates[t].spheres_at(p, axes.as_ref());
                     #[allow(clippy::neg_cmp_op_on_partial_ord)]
                     let clear = spheres.iter().all(|&(s, rs_new)| {
                         near.iter().all(|(q, rq)| {
@@ -620,7 +640,7 @@ impl InsertPack {
                     });
                     if clear {
                         near.extend(spheres);
-                        placed.push((t, p, v));
+                        placed.push((t, p, v, axes));
                         done = true;
                     }
                 }
@@ -632,10 +652,15 @@ impl InsertPack {
                 }
                 let p = gen(&mut self.region_rng, dist.templates[t].radius);
                 let v = velocity(&mut self.rng);
-                placed.push((t, p, v));
+                let axes = if self.random_orientation {
+                    random_orientation(&mut self.rng, &dist.templates[t])
+                } else {
+                    None
+                };
+                placed.push((t, p, v, axes));
             }
         }
-        let m: f64 = placed.iter().map(|(t, _, _)| dist.templates[*t].mass).sum();
+        let m: f64 = placed.iter().map(|(t, ..)| dist.templates[*t].mass).sum();
         self.inserted += placed.len() as i64;
         self.inserted_mass += m;
         if let Some((total, _)) = self.rate {

@@ -423,6 +423,8 @@ pub struct InsertStream {
     pub moving: Vec<Release>,
     /// First insertion step (kept for restart files).
     pub first_step: i64,
+    /// `orientation random`.
+    pub random_orientation: bool,
 }
 
 impl InsertStream {
@@ -548,9 +550,14 @@ impl InsertStream {
                     }
                 }
                 if ntry < maxtry {
+                    let axes = if self.random_orientation {
+                        random_orientation(&mut self.rng, &dist.templates[t])
+                    } else {
+                        None
+                    };
                     // every sphere of the template (a clump's members) against the near
                     // ones; a NaN distance counts as clear, as in LIGGGHTS
-                    let spheres = dist.templates[t].spheres_at(p);
+                    let spheres = dist.templates[t].spheres_at(p, axes.as_ref());
                     #[allow(clippy::neg_cmp_op_on_partial_ord)]
                     let clear = !self.overlapcheck
                         || spheres.iter().all(|&(s, rs_new)| {
@@ -562,13 +569,13 @@ impl InsertStream {
                         });
                     if clear {
                         near.extend(spheres);
-                        placed.push((t, p, self.v_normal));
+                        placed.push((t, p, self.v_normal, axes));
                         done = true;
                     }
                 }
             }
         }
-        let m: f64 = placed.iter().map(|(t, _, _)| dist.templates[*t].mass).sum();
+        let m: f64 = placed.iter().map(|(t, ..)| dist.templates[*t].mass).sum();
         self.inserted += placed.len() as i64;
         self.inserted_mass += m;
         self.next = if self.inserted < self.total {

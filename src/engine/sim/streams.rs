@@ -9,19 +9,20 @@ impl Simulation {
         (self.particles.x.clone(), periodic, self.domain.shrinks())
     }
 
-    /// First run's setup of `fix insert/stream`: face normal, normal velocity, interval.
-    pub(super) fn setup_streams(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
+    /// First run's setup of the `fix insert/stream` at `k`: face normal, normal velocity,
+    /// interval.
+    pub(super) fn setup_stream(&mut self, k: usize, out: Sink<'_>) -> Result<(), EngineError> {
         use crate::engine::insert::{Face, InsertStream, Velocity};
         let dt = self.dt;
-        for k in 0..self.fixes.len() {
+        {
             let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
-                continue;
+                return Ok(());
             };
             if self.clumps().is_some() && !matches!(sf.velocity, Velocity::Constant(_)) {
                 return Err(format!("Fix insert/stream (id {}): Currently only fix insert/stream with multisphere particles only supports constant velocity", sf.id).into());
             }
             if sf.state.is_some() {
-                continue;
+                return Ok(());
             }
             let dist = self
                 .fixes
@@ -141,7 +142,7 @@ impl Simulation {
                 Vec::new()
             };
             let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
-                continue;
+                return Ok(());
             };
             let restored = sf.restored;
             let state = InsertStream {
@@ -169,6 +170,7 @@ impl Simulation {
                 inserted_mass: restored.map_or(0.0, |r| r.mass),
                 moving,
                 first_step: restored.map_or(sf.start, |r| r.first_step),
+                random_orientation: sf.random_orientation,
             };
             for l in state.setup_lines(&dist) {
                 out(&format!("{l}\n"));
@@ -231,10 +233,10 @@ impl Simulation {
             }
             let mut tag = self.particles.max_id();
             let first_new = self.particles.len();
-            for (t, xp, v) in placed {
+            for (t, xp, v, axes) in placed {
                 let tpl = &dist.templates[t];
                 if let Some(c) = &tpl.clump {
-                    self.insert_clump(c, tag + 1, xp, v, [0.0; 3], group)?;
+                    self.insert_clump(c, axes, tag + 1, xp, v, [0.0; 3], group)?;
                     tag += c.displace.len() as i64;
                     continue;
                 }
@@ -358,8 +360,12 @@ impl Simulation {
 
     /// First run's setup of `fix insert/pack`: region generator and volume.
     pub(super) fn setup_insertions(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
-        self.setup_streams(out)?;
+        // in the order of the fixes, as LIGGGHTS sets them up
         for k in 0..self.fixes.len() {
+            if matches!(self.fixes[k].kind, FixKind::InsertStream(_)) {
+                self.setup_stream(k, out)?;
+                continue;
+            }
             let FixKind::InsertPack(ins) = &self.fixes[k].kind else {
                 continue;
             };
@@ -447,10 +453,10 @@ impl Simulation {
                 *d = dist.clone();
             }
             let mut tag = self.particles.max_id();
-            for (t, xp, v) in placed {
+            for (t, xp, v, axes) in placed {
                 let tpl = &dist.templates[t];
                 if let Some(c) = &tpl.clump {
-                    self.insert_clump(c, tag + 1, xp, v, omega, group)?;
+                    self.insert_clump(c, axes, tag + 1, xp, v, omega, group)?;
                     tag += c.displace.len() as i64;
                     continue;
                 }

@@ -153,7 +153,10 @@ const INSERT_KEYWORDS: &[Keyword] = &[
     ),
     kw(
         "orientation",
-        &[arg("random|template", Value::OneOf(&["random", "template"]))],
+        &[arg(
+            "random|template",
+            Value::OneOf(&["random", "template"]),
+        )],
         "random or template orientation of clumps (constant: not supported yet)",
     ),
     kw(

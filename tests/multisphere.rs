@@ -209,11 +209,48 @@ fn clump_decks_regolith_cannot_run_yet_are_refused_and_misuse_is_an_error() {
         text.contains("Dumping an atom property that isn't allocated"),
         "{text}"
     );
-    // repeated insertion of clumps, and keywords of fix multisphere, are not supported yet
-    let every = insert.replace("insert_every once", "insert_every 100");
-    let (code, text) = failing("every", &format!("{HEADER}{CROSS}{every}"));
+    // clumps by insert/rate/region, a constant orientation, and keywords of fix
+    // multisphere are not supported yet
+    let rate = "region r block -0.02 0.02 -0.02 0.02 0.3 0.32 units box\n\
+         fix ins all insert/rate/region seed 32452843 distributiontemplate d nparticles 5 \
+         particlerate 1000 insert_every 100 overlapcheck yes region r vel constant 0 0 0\n";
+    let (code, text) = failing("rate", &format!("{HEADER}{CROSS}{rate}"));
     assert_eq!(code, Some(3), "{text}");
-    assert!(text.contains("not supported yet"), "{text}");
+    assert!(
+        text.contains("fix insert/rate/region of multisphere clumps: not supported yet"),
+        "{text}"
+    );
+    let constant = insert.replace(
+        "insert_every once",
+        "orientation constant 1 0 0 0 insert_every once",
+    );
+    let (code, text) = failing("constant", &format!("{HEADER}{CROSS}{constant}"));
+    assert_eq!(code, Some(3), "{text}");
+    assert!(
+        text.contains("insertion orientation constant: not supported yet"),
+        "{text}"
+    );
+    // LIGGGHTS streams clumps at a constant velocity only
+    let dir = common::scratch_dir("ms-stream-vel");
+    std::fs::write(
+        dir.join("face.stl"),
+        "solid f\nfacet normal 0 0 -1\nouter loop\nvertex 0.02 0.02 0.3\nvertex 0.02 -0.02 0.3\n\
+         vertex -0.02 0.02 0.3\nendloop\nendfacet\nendsolid f\n",
+    )
+    .unwrap();
+    let stream = "fix face all mesh/surface file face.stl type 1\n\
+         fix ins all insert/stream seed 32452843 distributiontemplate d nparticles 5 \
+         particlerate 1000 overlapcheck yes vel uniform 0 0 -1 0.1 0.1 0.1 insert_every 1000 \
+         insertion_face face\nfix ms all multisphere\nrun 1\n";
+    let out = common::run_deck(&dir, "in.deck", &format!("{HEADER}{CROSS}{stream}"), &[]);
+    let _ = std::fs::remove_dir_all(dir);
+    let text =
+        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{text}");
+    assert!(
+        text.contains("Fix insert/stream (id ins): Currently only fix insert/stream with multisphere particles only supports constant velocity"),
+        "{text}"
+    );
     let (code, text) = failing(
         "keyword",
         &format!("{HEADER}fix ms all multisphere allow_heatsource yes\n"),

@@ -152,6 +152,14 @@ const INSERT_KEYWORDS: &[Keyword] = &[
         "keep whole particles inside the region",
     ),
     kw(
+        "orientation",
+        &[arg(
+            "random|template",
+            Value::OneOf(&["random", "template"]),
+        )],
+        "random or template orientation of clumps (constant: not supported yet)",
+    ),
+    kw(
         "vel",
         &[arg("constant VX VY VZ", VELOCITY)],
         "initial velocity",

@@ -26,8 +26,14 @@ pub struct Clumps {
     pub nrigid: Vec<usize>,
     /// Bounding-sphere radius per body (length).
     pub r_bound: Vec<f64>,
+    /// Centre of the bounding sphere per body, from the centre of mass in body coordinates
+    /// (length).
+    pub xb_body: Vec<Vec3>,
     /// Largest body tag ever given (tags are never reused).
     pub max_tag: i64,
+    /// The step being integrated and whether the deck has a `fix insert/stream` (set in
+    /// `initial_integrate`, used in `final_integrate`).
+    pub stepping: (i64, bool),
 }
 
 /// The two per-particle arrays (body tag, offset), created on first use: particles that
@@ -67,8 +73,9 @@ impl Clumps {
         0.5 * ke
     }
 
-    /// Inserts one clump of template `t` with its centre of mass at `xcm`, velocity `v`
-    /// (length/time) and angular velocity `omega` (1/time), identity orientation: one
+    /// Inserts one clump of template `t` with its centre of mass at `xcm`, principal axes
+    /// `axes` (the template's if None), velocity `v` (length/time) and angular velocity
+    /// `omega` (1/time): one
     /// particle per sphere with IDs from `first_id`, type and density of the template and
     /// the body's mass, in group `group` (bits, besides `all`). The members are placed from
     /// the body as LIGGGHTS's `add_body_finalize` does.
@@ -77,6 +84,7 @@ impl Clumps {
         &mut self,
         p: &mut Particles,
         t: &ClumpTemplate,
+        axes: Option<[Vec3; 3]>,
         first_id: i64,
         xcm: Vec3,
         v: Vec3,
@@ -95,7 +103,7 @@ impl Clumps {
             xcm,
             v,
             omega,
-            t.axes,
+            axes.unwrap_or(t.axes),
             t.spec.fflag,
             t.spec.tflag,
         );
@@ -112,6 +120,7 @@ impl Clumps {
         self.bodies.push(body);
         self.nrigid.push(t.displace.len());
         self.r_bound.push(t.r_bound);
+        self.xb_body.push(t.x_bound_body);
         let start = p.len() - t.displace.len();
         self.set_xv(p, domain, start);
     }
@@ -163,9 +172,23 @@ impl Clumps {
     }
 
     /// `initial_integrate`: kick, drift and rotate every body, then place its members.
-    pub fn initial_integrate(&mut self, p: &mut Particles, dt: f64, domain: &Domain) {
+    /// Bodies still on their way from an insertion face (before their release step, with
+    /// a `fix insert/stream` in the deck) only move at the stream velocity.
+    pub fn initial_integrate(
+        &mut self,
+        p: &mut Particles,
+        dt: f64,
+        domain: &Domain,
+        step: i64,
+        has_stream: bool,
+    ) {
+        self.stepping = (step, has_stream);
         for b in &mut self.bodies {
-            b.initial_integrate(dt);
+            if b.streaming(step, has_stream) {
+                b.stream_step(dt);
+            } else {
+                b.initial_integrate(dt);
+            }
         }
         self.set_xv(p, domain, 0);
     }
@@ -205,10 +228,57 @@ impl Clumps {
     /// `final_integrate` after `calc_force`: kick every body, then set its members'
     /// velocities.
     pub fn final_integrate(&mut self, p: &mut Particles, dt: f64) {
+        let (step, has_stream) = self.stepping;
         for b in &mut self.bodies {
-            b.final_integrate(dt);
+            if !b.streaming(step, has_stream) {
+                b.final_integrate(dt);
+            }
         }
         self.set_v(p);
+    }
+
+    /// LIGGGHTS's `calc_n_steps` for a member of body `tag` inserted by `fix insert/stream`
+    /// at `step`: the steps until the body's centre of mass crosses the face (reference
+    /// point `p_ref`, unit normal `normal`, velocity `v_normal` in length/time, time step
+    /// `dt`), fixed at the first member asked; None outside a body.
+    pub fn stream_steps(
+        &mut self,
+        tag: f64,
+        step: i64,
+        dt: f64,
+        p_ref: Vec3,
+        normal: Vec3,
+        v_normal: Vec3,
+    ) -> Option<i64> {
+        let k = self.index(tag)?;
+        let b = &mut self.bodies[k];
+        if b.start_step >= 0 {
+            return Some(b.start_step - step);
+        }
+        let rel = [0, 1, 2].map(|k| p_ref[k] - b.xcm[k]);
+        let dist = rel[0] * normal[0] + rel[1] * normal[1] + rel[2] * normal[2];
+        let vn =
+            (v_normal[0] * v_normal[0] + v_normal[1] * v_normal[1] + v_normal[2] * v_normal[2])
+                .sqrt();
+        let n = (dist / (vn * dt)) as i32 as i64;
+        b.start_step = n + step;
+        b.v_integrate = v_normal;
+        Some(n)
+    }
+
+    /// LIGGGHTS's `release` at a member's release step: the body gets the insertion
+    /// velocity (length/time) and angular velocity (1/time; its angular momentum is kept,
+    /// so the next step recomputes the angular velocity from it) and is integrated from now.
+    pub fn release(&mut self, tag: f64, step: i64, v: Vec3, omega: Vec3) {
+        let Some(k) = self.index(tag) else {
+            return;
+        };
+        let b = &mut self.bodies[k];
+        if b.start_step >= 0 && step >= b.start_step {
+            b.vcm = v;
+            b.omega = omega;
+            b.start_step = -1;
+        }
     }
 
     /// Bodies that lost a member (an atom left the box): the body is deleted with all its
@@ -245,7 +315,25 @@ impl Clumps {
             k += 1;
             !gone[k - 1]
         });
+        let mut k = 0;
+        self.xb_body.retain(|_| {
+            k += 1;
+            !gone[k - 1]
+        });
         Some(remove)
+    }
+
+    /// Per body: the bounding sphere's centre (length; LIGGGHTS's `x_bound`), mass (mass)
+    /// and density (mass/length^3).
+    pub fn bounds(&self) -> Vec<([f64; 3], f64, f64)> {
+        self.bodies
+            .iter()
+            .zip(&self.xb_body)
+            .map(|(b, xb)| {
+                let off = b.offset(xb);
+                ([0, 1, 2].map(|k| b.xcm[k] + off[k]), b.mass, b.density)
+            })
+            .collect()
     }
 
     /// Largest bounding-sphere radius of the bodies (length; 0 without bodies).
@@ -272,7 +360,7 @@ impl crate::engine::sim::Simulation {
         })
     }
 
-    fn clumps_mut(&mut self) -> Option<&mut Clumps> {
+    pub(crate) fn clumps_mut(&mut self) -> Option<&mut Clumps> {
         clumps_in(&mut self.fixes)
     }
 
@@ -301,10 +389,13 @@ impl crate::engine::sim::Simulation {
         }
     }
 
-    /// Inserts one clump (its members get IDs from `first_id`).
+    /// Inserts one clump (its members get IDs from `first_id`; `axes`: its drawn
+    /// orientation, the template's if None).
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn insert_clump(
         &mut self,
         t: &ClumpTemplate,
+        axes: Option<[Vec3; 3]>,
         first_id: i64,
         xcm: Vec3,
         v: Vec3,
@@ -320,6 +411,7 @@ impl crate::engine::sim::Simulation {
         ms.insert(
             &mut self.particles,
             t,
+            axes,
             first_id,
             xcm,
             v,

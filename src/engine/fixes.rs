@@ -676,10 +676,14 @@ pub fn initial_integrate(
     dt: f64,
     domain: &Domain,
 ) {
+    // clumps from an insertion face move at its velocity until released
+    let has_stream = fixes
+        .iter()
+        .any(|f| matches!(f.kind, FixKind::InsertStream(_)));
     for fix in fixes {
         match &mut fix.kind {
             FixKind::NveSphere => integrate::initial_integrate(p, fix.group, dt),
-            FixKind::Multisphere(ms) => ms.initial_integrate(p, dt, domain),
+            FixKind::Multisphere(ms) => ms.initial_integrate(p, dt, domain, step, has_stream),
             FixKind::NveNoforce => crate::engine::nve_noforce::initial_integrate(p, fix.group, dt),
             FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt, domain),
             FixKind::HeatGran(h) => h.initial_integrate(p),
@@ -977,4 +981,6 @@ pub struct StreamFix {
     pub state: Option<crate::engine::insert::InsertStream>,
     /// State restored from a restart file, taken over at setup.
     pub restored: Option<crate::engine::insert::InsertRestart>,
+    /// `orientation random`.
+    pub random_orientation: bool,
 }

@@ -209,6 +209,11 @@ pub struct Body {
     pub fflag: [bool; 3],
     /// Rotations that are integrated.
     pub tflag: [bool; 3],
+    /// Step from which the body is integrated (`fix insert/stream`: it moves at
+    /// `v_integrate` before; -1: no such step).
+    pub start_step: i64,
+    /// Velocity while moving to the release point (length/time).
+    pub v_integrate: Vec3,
 }
 
 impl Body {
@@ -241,6 +246,22 @@ impl Body {
             torque: [0.0; 3],
             fflag,
             tflag,
+            start_step: -1,
+            v_integrate: [0.0; 3],
+        }
+    }
+
+    /// Whether the body is still on its way from an insertion face at `step` (only with a
+    /// `fix insert/stream` in the deck, as LIGGGHTS checks).
+    pub fn streaming(&self, step: i64, has_stream: bool) -> bool {
+        has_stream && step < self.start_step
+    }
+
+    /// A full step at the stream velocity, without forces or rotation (time `dt`).
+    pub fn stream_step(&mut self, dt: f64) {
+        self.vcm = self.v_integrate;
+        for k in 0..3 {
+            self.xcm[k] += dt * self.vcm[k];
         }
     }
 

@@ -25,6 +25,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         (true, false, 50i64, 100000i64, true, true);
     let mut velocity = Velocity::Constant([0.0; 3]);
     let mut omega = [0.0; 3];
+    let mut random_orientation = false;
     let mut i = 3;
     let yes = |a: &Args, k: usize| a.word_in(k, &["yes", "no"]).map(|w| w == "yes");
     while i < a.len() {
@@ -192,10 +193,12 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 massrate = Some(a.real(i + 1)?);
                 i += 2;
             }
-            w @ ("orientation" | "set_property" | "compress_tags" | "nparticles" | "mass"
-            | "massrate" | "particlerate") => {
-                return Err(a.unsupported(i, &format!("fix {style} {w}")))
+            "orientation" => {
+                random_orientation = super::orientation_arg(a, i)?;
+                i += 2;
             }
+            w @ ("set_property" | "compress_tags" | "nparticles" | "mass" | "massrate"
+            | "particlerate") => return Err(a.unsupported(i, &format!("fix {style} {w}"))),
             _ => {
                 return Err(a.keyword_error(
                     i,
@@ -217,6 +220,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                         "check_dist_from_subdomain_border",
                         "verbose",
                         "warn_region",
+                        "orientation",
                     ],
                 ))
             }
@@ -284,14 +288,8 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         matches!(&f.kind, FixKind::Distribution(d)
             if f.id == distribution && d.templates.iter().any(|t| t.clump.is_some()))
     });
-    if clumps && (rate.is_some() || every != 0) {
-        return Err(a.unsupported(
-            2,
-            &format!(
-                "fix {} of multisphere clumps other than insert_every once",
-                fix.style
-            ),
-        ));
+    if clumps && rate.is_some() {
+        return Err(a.unsupported(2, &format!("fix {} of multisphere clumps", fix.style)));
     }
     Ok(FixKind::InsertPack(Box::new(InsertPack {
         id: id.to_string(),
@@ -319,5 +317,6 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         rate,
         mass_rate,
         per_insertion: 0.0,
+        random_orientation,
     })))
 }

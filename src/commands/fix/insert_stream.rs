@@ -18,6 +18,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     let (mut overlap, mut maxattempt, mut ntry_mc, mut verbose) = (true, 50i64, 100000i64, true);
     let mut velocity = Velocity::Constant([0.0; 3]);
     let mut omega = [0.0; 3];
+    let mut random_orientation = false;
     let mut start = ctx.sim.step + 1;
     let (mut all_in, mut all_in_at, mut face_id) = (false, 0, String::new());
     let mut i = 3;
@@ -59,12 +60,6 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                     .any(|f| f.id == d && matches!(f.kind, FixKind::Distribution(_)))
                 {
                     return Err(a.error(i + 1, "Fix insert: distributiontemplate must be a fix particledistribution/discrete"));
-                }
-                if ctx.sim.fixes.iter().any(|f| {
-                    matches!(&f.kind, FixKind::Distribution(dd)
-                        if f.id == d && dd.templates.iter().any(|t| t.clump.is_some()))
-                }) {
-                    return Err(a.unsupported(i + 1, "fix insert/stream of multisphere clumps"));
                 }
                 dist = Some(d.to_string());
                 i += 2;
@@ -182,8 +177,11 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 all_in_at = i;
                 i += 2;
             }
-            w @ ("parallel" | "orientation" | "set_property" | "compress_tags"
-            | "random_distribute") => {
+            "orientation" => {
+                random_orientation = super::orientation_arg(a, i)?;
+                i += 2;
+            }
+            w @ ("parallel" | "set_property" | "compress_tags" | "random_distribute") => {
                 return Err(a.unsupported(i, &format!("fix insert/stream {w}")))
             }
             _ => {
@@ -210,6 +208,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                         "verbose",
                         "start",
                         "all_in",
+                        "orientation",
                     ],
                 ))
             }
@@ -271,6 +270,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
             start,
             state: None,
             restored: None,
+            random_orientation,
         },
     )))
 }

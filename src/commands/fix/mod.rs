@@ -202,6 +202,20 @@ fn insertion_velocity(
     )
 }
 
+/// `orientation random|template` of an insertion fix at `i`: true for random (`constant`
+/// is not supported yet).
+fn orientation_arg(a: &Args, i: usize) -> Result<bool, CommandError> {
+    match a.word(i + 1)? {
+        "random" => Ok(true),
+        "template" => Ok(false),
+        "constant" => Err(a.unsupported(i + 1, "insertion orientation constant")),
+        _ => Err(a.error(
+            i + 1,
+            "expecting 'random', template' or 'constant' after keyword 'quat'",
+        )),
+    }
+}
+
 #[cfg(test)]
 mod toy;
 

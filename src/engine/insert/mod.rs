@@ -8,8 +8,11 @@ use crate::engine::error::EngineError;
 use crate::engine::region::{Regions, Shape};
 use crate::util::random::RanPark;
 
+mod orient;
 mod stream;
 mod surface;
+
+pub use orient::{random_unit_quat, rotate_axes, Axes};
 
 pub use stream::{
     Face, InsertRestart, InsertStream, Release, TriangleEdges, Within, RELEASE_NAME, RELEASE_WIDTH,
@@ -70,12 +73,14 @@ impl Template {
     }
 
     /// Member sphere centres (length) and radii of this template placed at `p` (a clump's
-    /// centre of mass, unrotated; a sphere's centre).
-    pub fn spheres_at(&self, p: [f64; 3]) -> Vec<([f64; 3], f64)> {
+    /// centre of mass, with its principal axes `axes`, the template's if None; a sphere's
+    /// centre).
+    pub fn spheres_at(&self, p: [f64; 3], axes: Option<&Axes>) -> Vec<([f64; 3], f64)> {
         match &self.clump {
             None => vec![(p, self.radius)],
             Some(c) => {
-                let (ex, ey, ez) = (&c.axes[0], &c.axes[1], &c.axes[2]);
+                let a = axes.unwrap_or(&c.axes);
+                let (ex, ey, ez) = (&a[0], &a[1], &a[2]);
                 c.displace
                     .iter()
                     .zip(&c.radii)
@@ -166,6 +171,18 @@ impl Distribution {
             mass_expect,
             max_radius,
         })
+    }
+
+    /// The largest sphere radius of the templates (length): a clump's largest member, not
+    /// its bounding radius (LIGGGHTS's `max_rad`).
+    pub fn max_sphere_radius(&self) -> f64 {
+        self.templates
+            .iter()
+            .map(|t| match &t.clump {
+                Some(c) => c.radii.iter().copied().fold(0.0, f64::max),
+                None => t.radius,
+            })
+            .fold(0.0, f64::max)
     }
 
     /// The templates of `n` particles, largest first (`random_distribute exact`); LIGGGHTS's
@@ -273,10 +290,20 @@ pub struct InsertPack {
     pub mass_rate: Option<f64>,
     /// `insert/rate/region`: particles per insertion (mean), from the rate at setup.
     pub per_insertion: f64,
+    /// `orientation random`.
+    pub random_orientation: bool,
 }
 
-/// A new particle: template index, position and velocity.
-pub type NewParticle = (usize, [f64; 3], [f64; 3]);
+/// A new particle: template index, position, velocity and a clump's principal axes when
+/// its orientation was drawn (None: the template's).
+pub type NewParticle = (usize, [f64; 3], [f64; 3], Option<Axes>);
+
+/// `orientation random`: a random unit quaternion from the fix generator and, for a
+/// clump template, its axes rotated by it (spheres draw too, and keep no orientation).
+pub fn random_orientation(rng: &mut RanPark, t: &Template) -> Option<Axes> {
+    let q = random_unit_quat(rng);
+    t.clump.as_ref().map(|c| rotate_axes(&c.axes, &q))
+}
 
 /// What an insertion needs to know about the particles and the box.
 pub struct World<'a> {
@@ -294,6 +321,11 @@ pub struct World<'a> {
     pub periodic: [bool; 3],
     /// The box can change (a shrink-wrapped face).
     pub box_changes: bool,
+    /// Body tags of the atoms (-1 outside a clump; None without clumps): an insertion
+    /// region counts a clump once, by its body, not by its members.
+    pub members: Option<&'a [f64]>,
+    /// The clumps: bounding-sphere centre (length), mass (mass), density (mass/length^3).
+    pub bodies: &'a [([f64; 3], f64, f64)],
 }
 
 /// LIGGGHTS's warning when the (sub-)domain is narrower than 2.2 bounding radii of the
@@ -416,11 +448,22 @@ impl InsertPack {
         // how many: the region's content now
         let (mut np, mut vol, mut mass) = (0i64, 0.0, 0.0);
         for i in 0..w.x.len() {
+            if w.members.is_some_and(|t| t[i] >= 0.0) {
+                continue;
+            }
             if regions.matches(self.region, w.x[i]) {
                 np += 1;
                 let r = w.radius[i];
                 vol += 4.0 * std::f64::consts::PI / 3.0 * r * r * r;
                 mass += w.mass[i];
+            }
+        }
+        // a clump counts where its bounding sphere's centre is
+        for &(xb, m, rho) in w.bodies {
+            if regions.matches(self.region, xb) {
+                np += 1;
+                vol += m / rho;
+                mass += m;
             }
         }
         let (mut n, mut ratio) = match (self.rate, self.target) {
@@ -461,14 +504,16 @@ impl InsertPack {
         // existing atoms near the region (periodic images too), then placed ones
         let (elo, ehi) = regions.extent(self.region).unwrap_or(([0.0; 3], [0.0; 3]));
         let exact_near = matches!(shape, Shape::Block { .. } | Shape::Cylinder { .. });
-        // a clump's members reach up to two bounding radii from its centre of mass
-        let reach = if dist.templates.iter().any(|t| t.clump.is_some()) {
-            2.0 * maxrad
+        // LIGGGHTS's reach: the largest sphere (a clump's largest member, not its bounding
+        // sphere); with clumps the box around the region grows by two bounding radii
+        let reach = dist.max_sphere_radius();
+        let grow = if dist.templates.iter().any(|t| t.clump.is_some()) {
+            2.0 * reach + 2.0 * maxrad
         } else {
-            maxrad
+            2.0 * reach
         };
-        let bblo = [0, 1, 2].map(|d| elo[d].max(w.lo[d]) - 2.0 * reach);
-        let bbhi = [0, 1, 2].map(|d| ehi[d].min(w.hi[d]) + 2.0 * reach);
+        let bblo = [0, 1, 2].map(|d| elo[d].max(w.lo[d]) - grow);
+        let bbhi = [0, 1, 2].map(|d| ehi[d].min(w.hi[d]) + grow);
         let mut near: Vec<([f64; 3], f64)> = Vec::new();
         if self.overlapcheck {
             let len = [0, 1, 2].map(|d| w.hi[d] - w.lo[d]);
@@ -577,9 +622,14 @@ impl InsertPack {
                         break;
                     }
                     let v = velocity(&mut self.rng);
+                    let axes = if self.random_orientation {
+                        random_orientation(&mut self.rng, &dist.templates[t])
+                    } else {
+                        None
+                    };
                     // every sphere of the template (a clump's members) against the near
                     // ones; a NaN distance counts as clear, as in LIGGGHTS
-                    let spheres = dist.templates[t].spheres_at(p);
+                    let spheres = dist.templates[t].spheres_at(p, axes.as_ref());
                     #[allow(clippy::neg_cmp_op_on_partial_ord)]
                     let clear = spheres.iter().all(|&(s, rs_new)| {
                         near.iter().all(|(q, rq)| {
@@ -590,7 +640,7 @@ impl InsertPack {
                     });
                     if clear {
                         near.extend(spheres);
-                        placed.push((t, p, v));
+                        placed.push((t, p, v, axes));
                         done = true;
                     }
                 }
@@ -602,10 +652,15 @@ impl InsertPack {
                 }
                 let p = gen(&mut self.region_rng, dist.templates[t].radius);
                 let v = velocity(&mut self.rng);
-                placed.push((t, p, v));
+                let axes = if self.random_orientation {
+                    random_orientation(&mut self.rng, &dist.templates[t])
+                } else {
+                    None
+                };
+                placed.push((t, p, v, axes));
             }
         }
-        let m: f64 = placed.iter().map(|(t, _, _)| dist.templates[*t].mass).sum();
+        let m: f64 = placed.iter().map(|(t, ..)| dist.templates[*t].mass).sum();
         self.inserted += placed.len() as i64;
         self.inserted_mass += m;
         if let Some((total, _)) = self.rate {

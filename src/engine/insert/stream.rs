@@ -423,6 +423,8 @@ pub struct InsertStream {
     pub moving: Vec<Release>,
     /// First insertion step (kept for restart files).
     pub first_step: i64,
+    /// `orientation random`.
+    pub random_orientation: bool,
 }
 
 impl InsertStream {
@@ -439,10 +441,12 @@ impl InsertStream {
             f("%e", mass_rate),
             self.total,
             f("%e", self.total as f64 * dist.mass_expect),
-            ((self.total as f64 / self.per_insertion).ceil() as i64)
-                .saturating_sub(1)
-                .max(0)
-                .saturating_mul(self.every)
+            // LIGGGHTS's final insertion step minus the first
+            if self.total as f64 <= self.per_insertion {
+                0
+            } else {
+                ((self.total as f64 / self.per_insertion) as i32 as f64 * self.every as f64) as i32
+            }
         )]
     }
 
@@ -477,6 +481,8 @@ impl InsertStream {
             lines.extend(narrow_box_warning(w, maxrad));
         }
         let nrm = self.normal;
+        // LIGGGHTS's nearby test uses the largest sphere radius (a clump's largest member)
+        let rmax = dist.max_sphere_radius();
         let mut near: Vec<([f64; 3], f64)> = Vec::new();
         if self.overlapcheck {
             for i in 0..w.x.len() {
@@ -484,7 +490,7 @@ impl InsertStream {
                 let dn = (x[0] - self.p_ref[0]) * nrm[0]
                     + (x[1] - self.p_ref[1]) * nrm[1]
                     + (x[2] - self.p_ref[2]) * nrm[2];
-                if dn > maxrad || dn < -(self.extrude + 3.0 * maxrad) {
+                if dn > rmax || dn < -(self.extrude + 3.0 * rmax) {
                     continue;
                 }
                 if self
@@ -544,23 +550,32 @@ impl InsertStream {
                     }
                 }
                 if ntry < maxtry {
-                    // a NaN distance counts as clear, as in LIGGGHTS
+                    let axes = if self.random_orientation {
+                        random_orientation(&mut self.rng, &dist.templates[t])
+                    } else {
+                        None
+                    };
+                    // every sphere of the template (a clump's members) against the near
+                    // ones; a NaN distance counts as clear, as in LIGGGHTS
+                    let spheres = dist.templates[t].spheres_at(p, axes.as_ref());
                     #[allow(clippy::neg_cmp_op_on_partial_ord)]
                     let clear = !self.overlapcheck
-                        || near.iter().all(|(q, rq)| {
-                            let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
-                            let rs = rad + rq;
-                            !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= rs * rs)
+                        || spheres.iter().all(|&(s, rs_new)| {
+                            near.iter().all(|(q, rq)| {
+                                let d = [s[0] - q[0], s[1] - q[1], s[2] - q[2]];
+                                let rs = rs_new + rq;
+                                !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= rs * rs)
+                            })
                         });
                     if clear {
-                        near.push((p, rad));
-                        placed.push((t, p, self.v_normal));
+                        near.extend(spheres);
+                        placed.push((t, p, self.v_normal, axes));
                         done = true;
                     }
                 }
             }
         }
-        let m: f64 = placed.iter().map(|(t, _, _)| dist.templates[*t].mass).sum();
+        let m: f64 = placed.iter().map(|(t, ..)| dist.templates[*t].mass).sum();
         self.inserted += placed.len() as i64;
         self.inserted_mass += m;
         self.next = if self.inserted < self.total {
@@ -595,18 +610,24 @@ impl InsertStream {
         }
     }
 
-    /// Release data of the atoms just inserted (ID, position), final velocities drawn now;
-    /// returns the new records.
-    pub fn record(&mut self, step: i64, dt: f64, atoms: &[(i64, [f64; 3])]) -> Vec<Release> {
+    /// Release data of the atoms just inserted (ID, position, and the steps to release of
+    /// a clump's member, else from the atom's own distance to the face), final velocities
+    /// drawn now; returns the new records.
+    pub fn record(
+        &mut self,
+        step: i64,
+        dt: f64,
+        atoms: &[(i64, [f64; 3], Option<i64>)],
+    ) -> Vec<Release> {
         let mut out = Vec::with_capacity(atoms.len());
         let vn = {
             let v = self.v_normal;
             (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
         };
-        for &(id, x) in atoms {
+        for &(id, x, member_steps) in atoms {
             let rel = [0, 1, 2].map(|k| self.p_ref[k] - x[k]);
             let dn = rel[0] * self.normal[0] + rel[1] * self.normal[1] + rel[2] * self.normal[2];
-            let steps = ((dn + 1e-14) / (vn * dt)) as i64;
+            let steps = member_steps.unwrap_or(((dn + 1e-14) / (vn * dt)) as i64);
             let v_final = match self.velocity {
                 Velocity::Constant(v) => v,
                 Velocity::Uniform(v, dv) => {

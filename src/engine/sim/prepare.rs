@@ -139,6 +139,8 @@ impl Simulation {
             .iter()
             .filter_map(|f| match &f.kind {
                 FixKind::Template(t) => Some(t.radius),
+                // a clump template's largest sphere (LIGGGHTS's max_rad), not its bounding radius
+                FixKind::ClumpTemplate(t) => Some(t.radii.iter().copied().fold(0.0, f64::max)),
                 _ => None,
             })
             .fold(0.0, f64::max);

@@ -9,16 +9,20 @@ impl Simulation {
         (self.particles.x.clone(), periodic, self.domain.shrinks())
     }
 
-    /// First run's setup of `fix insert/stream`: face normal, normal velocity, interval.
-    pub(super) fn setup_streams(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
+    /// First run's setup of the `fix insert/stream` at `k`: face normal, normal velocity,
+    /// interval.
+    pub(super) fn setup_stream(&mut self, k: usize, out: Sink<'_>) -> Result<(), EngineError> {
         use crate::engine::insert::{Face, InsertStream, Velocity};
         let dt = self.dt;
-        for k in 0..self.fixes.len() {
+        {
             let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
-                continue;
+                return Ok(());
             };
+            if self.clumps().is_some() && !matches!(sf.velocity, Velocity::Constant(_)) {
+                return Err(format!("Fix insert/stream (id {}): Currently only fix insert/stream with multisphere particles only supports constant velocity", sf.id).into());
+            }
             if sf.state.is_some() {
-                continue;
+                return Ok(());
             }
             let dist = self
                 .fixes
@@ -138,7 +142,7 @@ impl Simulation {
                 Vec::new()
             };
             let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
-                continue;
+                return Ok(());
             };
             let restored = sf.restored;
             let state = InsertStream {
@@ -166,6 +170,7 @@ impl Simulation {
                 inserted_mass: restored.map_or(0.0, |r| r.mass),
                 moving,
                 first_step: restored.map_or(sf.start, |r| r.first_step),
+                random_orientation: sf.random_orientation,
             };
             for l in state.setup_lines(&dist) {
                 out(&format!("{l}\n"));
@@ -200,6 +205,7 @@ impl Simulation {
             };
             let mut dist = dist.clone();
             let (x, periodic, box_changes) = self.insert_world();
+            let bodies = self.clumps().map(|c| c.bounds()).unwrap_or_default();
             let (placed, lines) = {
                 let world = crate::engine::insert::World {
                     x: &x,
@@ -209,6 +215,8 @@ impl Simulation {
                     hi: self.domain.hi,
                     periodic,
                     box_changes,
+                    members: crate::engine::clumps::body_tags(&self.particles),
+                    bodies: &bodies,
                 };
                 match &mut self.fixes[k].kind {
                     FixKind::InsertStream(sf) => sf.state.as_mut().expect("set up").insert(
@@ -224,9 +232,14 @@ impl Simulation {
                 *d = dist.clone();
             }
             let mut tag = self.particles.max_id();
-            let mut new = Vec::new();
-            for (t, xp, v) in placed {
+            let first_new = self.particles.len();
+            for (t, xp, v, axes) in placed {
                 let tpl = &dist.templates[t];
+                if let Some(c) = &tpl.clump {
+                    self.insert_clump(c, axes, tag + 1, xp, v, [0.0; 3], group)?;
+                    tag += c.displace.len() as i64;
+                    continue;
+                }
                 tag += 1;
                 self.particles
                     .push(tag, tpl.atom_type, xp, tpl.radius, tpl.density);
@@ -234,9 +247,28 @@ impl Simulation {
                 self.particles.mass[i] = tpl.mass;
                 self.particles.v[i] = v;
                 self.particles.mask[i] |= group;
-                new.push((tag, xp));
             }
+            // the release step: a clump's from its centre of mass (LIGGGHTS's calc_n_steps)
             let dt = self.dt;
+            let (p_ref, normal, v_normal) = match &self.fixes[k].kind {
+                FixKind::InsertStream(sf) => {
+                    let st = sf.state.as_ref().expect("set up");
+                    (st.p_ref, st.normal, st.v_normal)
+                }
+                _ => unreachable!(),
+            };
+            let ba = crate::engine::clumps::body_array(&self.particles);
+            let mut new = Vec::with_capacity(self.particles.len() - first_new);
+            for i in first_new..self.particles.len() {
+                let body = ba.map_or(-1.0, |b| self.particles.extra[b].data[i]);
+                let steps = match self.clumps_mut() {
+                    Some(ms) if body >= 0.0 => {
+                        ms.stream_steps(body, step, dt, p_ref, normal, v_normal)
+                    }
+                    _ => None,
+                };
+                new.push((self.particles.id[i], self.particles.x[i], steps));
+            }
             let records = match &mut self.fixes[k].kind {
                 FixKind::InsertStream(sf) => {
                     sf.state.as_mut().expect("set up").record(step, dt, &new)
@@ -275,6 +307,9 @@ impl Simulation {
     pub(super) fn move_streams(&mut self) {
         let (step, dt) = (self.step, self.dt);
         let mut index: Option<std::collections::HashMap<i64, usize>> = None;
+        // members of clumps are released through their body
+        let ba = crate::engine::clumps::body_array(&self.particles);
+        let mut releases: Vec<(f64, [f64; 3], [f64; 3])> = Vec::new();
         for k in 0..self.fixes.len() {
             let FixKind::InsertStream(sf) = &mut self.fixes[k].kind else {
                 continue;
@@ -293,6 +328,12 @@ impl Simulation {
                 let Some(&i) = map.get(&r.id) else {
                     return false;
                 };
+                if step >= r.release {
+                    if let Some(tag) = ba.map(|b| p.extra[b].data[i]).filter(|&t| t >= 0.0) {
+                        releases.push((tag, r.v_final, omega));
+                        return false;
+                    }
+                }
                 let s = step.min(r.release);
                 let te = (s - r.inserted) as f64 * dt;
                 p.x[i] = [0, 1, 2].map(|d| r.x[d] + vn[d] * te);
@@ -308,12 +349,23 @@ impl Simulation {
                 true
             });
         }
+        if !releases.is_empty() {
+            if let Some(ms) = self.clumps_mut() {
+                for (tag, v, omega) in releases {
+                    ms.release(tag, step, v, omega);
+                }
+            }
+        }
     }
 
     /// First run's setup of `fix insert/pack`: region generator and volume.
     pub(super) fn setup_insertions(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
-        self.setup_streams(out)?;
+        // in the order of the fixes, as LIGGGHTS sets them up
         for k in 0..self.fixes.len() {
+            if matches!(self.fixes[k].kind, FixKind::InsertStream(_)) {
+                self.setup_stream(k, out)?;
+                continue;
+            }
             let FixKind::InsertPack(ins) = &self.fixes[k].kind else {
                 continue;
             };
@@ -326,6 +378,7 @@ impl Simulation {
             };
             let dist = dist.clone();
             let (x, periodic, box_changes) = self.insert_world();
+            let bodies = self.clumps().map(|c| c.bounds()).unwrap_or_default();
             let world = crate::engine::insert::World {
                 x: &x,
                 radius: &self.particles.radius,
@@ -334,6 +387,8 @@ impl Simulation {
                 hi: self.domain.hi,
                 periodic,
                 box_changes,
+                members: crate::engine::clumps::body_tags(&self.particles),
+                bodies: &bodies,
             };
             let regions = self.regions.clone();
             let lines = match &mut self.fixes[k].kind {
@@ -371,6 +426,7 @@ impl Simulation {
             };
             let mut dist = dist.clone();
             let (x, periodic, box_changes) = self.insert_world();
+            let bodies = self.clumps().map(|c| c.bounds()).unwrap_or_default();
             let regions = self.regions.clone();
             let (placed, lines) = {
                 let world = crate::engine::insert::World {
@@ -381,6 +437,8 @@ impl Simulation {
                     hi: self.domain.hi,
                     periodic,
                     box_changes,
+                    members: crate::engine::clumps::body_tags(&self.particles),
+                    bodies: &bodies,
                 };
                 match &mut self.fixes[k].kind {
                     FixKind::InsertPack(ins) => ins.insert(step, &regions, &mut dist, &world),
@@ -395,10 +453,10 @@ impl Simulation {
                 *d = dist.clone();
             }
             let mut tag = self.particles.max_id();
-            for (t, xp, v) in placed {
+            for (t, xp, v, axes) in placed {
                 let tpl = &dist.templates[t];
                 if let Some(c) = &tpl.clump {
-                    self.insert_clump(c, tag + 1, xp, v, omega, group)?;
+                    self.insert_clump(c, axes, tag + 1, xp, v, omega, group)?;
                     tag += c.displace.len() as i64;
                     continue;
                 }

@@ -49,7 +49,10 @@ pub fn validate(a: &Args, ctx: &Ctx) -> Result<(), CommandError> {
     let pair = sim.pair_selection.as_ref().map(crate::engine::wet::dry);
     selections.extend(pair.as_ref());
     if sim.pair_is_wet() {
-        sim.wet_input().map_err(|e| a.error(0, &e.to_string()))?;
+        if (0..3).any(|d| sim.domain.periodic(d)) {
+            return Err(a.unsupported(0, crate::engine::wet::PERIODIC));
+        }
+        sim.wet_input().map_err(|e| a.error(0, e.to_string()))?;
     }
     for sel in selections {
         let Err(error) = crate::engine::granular::model_and_material(sel, &input) else {

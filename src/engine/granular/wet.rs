@@ -11,6 +11,9 @@
 //! pair is done, as LIGGGHTS's pair loop adds them, so sums are the same for any thread
 //! count and on either engine path.
 
+// Component loops index several arrays the way LIGGGHTS writes them out per component.
+#![allow(clippy::needless_range_loop)]
+
 use crate::engine::contact::easo::{Close, Easo, Gap, Motion, WetPair};
 use crate::engine::contact::{
     CohesionModel, Contact, ContactKernel, ContactModel, DefaultSurface, Material, NormalModel,
@@ -176,6 +179,8 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             let ratio = c.deltan / radi.min(radj);
             return Outcome::Force([c.fi, c.fj, c.ti, c.tj], Some(ratio));
         }
+        // a NaN distance is no contact
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
         if !(rsq < factor * factor * radsum * radsum) {
             return Outcome::None;
         }
@@ -204,16 +209,15 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         }
     }
 
-    /// Every listed pair in list order (`sink` takes each pair's forces).
+    /// Every listed pair in list order, each one's contributions added to `sums` as it is
+    /// done.
     fn pass(
         &mut self,
         p: &Particles,
         pairs: &[Pair],
         history: &mut [f64],
-        dt: f64,
-        update: bool,
-        flux: &mut [f64],
-        sink: &mut dyn FnMut(usize, &Pair, &[[f64; 3]; 4]),
+        (dt, update): (f64, bool),
+        sums: &mut Sums<'_>,
     ) {
         let width = self.history_width();
         let content = array(p, LIQUID_CONTENT).map(|k| &p.extra[k].data);
@@ -232,18 +236,49 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
                             worst = Some((r, pair.i, pair.j));
                         }
                     }
-                    sink(k, pair, &f);
+                    sums.add(&p.x, pair, &f);
                 }
                 Outcome::Flux(a, b) => {
-                    if !flux.is_empty() {
-                        flux[i] += a;
-                        flux[j] += b;
+                    if !sums.flux.is_empty() {
+                        sums.flux[i] += a;
+                        sums.flux[j] += b;
                     }
                 }
             }
         }
         self.touching = touching;
         self.worst = worst;
+    }
+}
+
+/// Where a pass adds its contributions: forces (N), torques (N m), virials (N m, on steps
+/// that tally them) and liquid fluxes (1/s; empty without the array).
+struct Sums<'a> {
+    f: &'a mut [[f64; 3]],
+    torque: &'a mut [[f64; 3]],
+    virial: Option<&'a mut [[f64; 6]]>,
+    flux: &'a mut [f64],
+}
+
+impl Sums<'_> {
+    /// Add one pair's forces and torques `r` (on i, on j, torque on i, torque on j) as
+    /// LIGGGHTS does: i, then j.
+    #[inline]
+    fn add(&mut self, x: &[[f64; 3]], pair: &Pair, r: &[[f64; 3]; 4]) {
+        let (i, j) = (pair.i as usize, pair.j as usize);
+        if let Some(w) = self.virial.as_deref_mut() {
+            let half = half_virial(x, pair, r[0]);
+            add6(&mut w[i], &half);
+            add6(&mut w[j], &half);
+        }
+        for d in 0..3 {
+            self.f[i][d] += r[0][d];
+            self.torque[i][d] += r[2][d];
+        }
+        for d in 0..3 {
+            self.f[j][d] += r[1][d];
+            self.torque[j][d] += r[3][d];
+        }
     }
 }
 
@@ -311,27 +346,13 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         let mut flux = kf.map_or_else(Vec::new, |k| std::mem::take(&mut p.extra[k].data));
         let mut f = std::mem::take(&mut p.f);
         let mut torque = std::mem::take(&mut p.torque);
-        let mut virial = virial;
-        {
-            let x = &p.x;
-            let mut sink = |_: usize, pair: &Pair, r: &[[f64; 3]; 4]| {
-                let (i, j) = (pair.i as usize, pair.j as usize);
-                if let Some(w) = virial.as_deref_mut() {
-                    let half = half_virial(x, pair, r[0]);
-                    add6(&mut w[i], &half);
-                    add6(&mut w[j], &half);
-                }
-                for d in 0..3 {
-                    f[i][d] += r[0][d];
-                    torque[i][d] += r[2][d];
-                }
-                for d in 0..3 {
-                    f[j][d] += r[1][d];
-                    torque[j][d] += r[3][d];
-                }
-            };
-            self.pass(p, pairs, history, dt, update, &mut flux, &mut sink);
-        }
+        let mut sums = Sums {
+            f: &mut f,
+            torque: &mut torque,
+            virial,
+            flux: &mut flux,
+        };
+        self.pass(p, pairs, history, (dt, update), &mut sums);
         p.f = f;
         p.torque = torque;
         if let Some(k) = kf {
@@ -382,4 +403,110 @@ pub fn build_wet(
         }
     }
     Ok(model.dispatch(Make(material, frozen, easo, angle, n)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::contact::MaterialInput;
+    use crate::engine::heat::add_property;
+
+    /// Two wet spheres (radii 1 mm and 0.8 mm, content 0.05) on the x axis, `gap` apart.
+    fn setup(gap: f64) -> (Box<dyn PairInteraction>, Particles, Vec<Pair>) {
+        let sel = Selection::parse(&[
+            "model",
+            "hertz",
+            "tangential",
+            "history",
+            "cohesion",
+            "easo/capillary/viscous",
+        ])
+        .unwrap();
+        let input = MaterialInput {
+            ntypes: 1,
+            youngs_modulus: Some(vec![5e6]),
+            poissons_ratio: Some(vec![0.3]),
+            coefficient_restitution: Some(vec![0.5]),
+            coefficient_friction: Some(vec![0.5]),
+            ..MaterialInput::default()
+        };
+        let wet = WetInput {
+            easo: Easo {
+                surface_tension: 0.072,
+                fluid_viscosity: 0.01,
+                min_separation: 1.01,
+                max_separation: 1.1,
+                tangential_reduce: false,
+            },
+            contact_angle: vec![20.0],
+        };
+        let model = build_wet(&sel, &input, 0, &wet).unwrap();
+        let mut p = Particles::default();
+        p.push(1, 1, [0.0; 3], 0.001, 2500.0);
+        p.push(2, 1, [0.0018 + gap, 0.0, 0.0], 0.0008, 2500.0);
+        add_property(&mut p, LIQUID_CONTENT, &[0.05]);
+        add_property(&mut p, LIQUID_FLUX, &[0.0]);
+        let pairs = vec![Pair {
+            i: 0,
+            j: 1,
+            shift: [0.0; 3],
+        }];
+        (model, p, pairs)
+    }
+
+    fn step(
+        model: &mut Box<dyn PairInteraction>,
+        p: &mut Particles,
+        pairs: &[Pair],
+        h: &mut [f64],
+    ) {
+        p.f = vec![[0.0; 3]; 2];
+        p.torque = vec![[0.0; 3]; 2];
+        model.compute(p, pairs, h, 1e-6, true, None, &SumOrder::default(), None);
+    }
+
+    #[test]
+    fn a_bridge_forms_at_contact_holds_across_a_gap_and_breaks_past_its_limit() {
+        // hertz keeps no history: [flag, shear x3]
+        let (mut model, mut p, pairs) = setup(-1e-6);
+        assert_eq!(model.history_width(), 4);
+        assert!(model.contact_distance_factor() > 1.2);
+        let mut h = vec![0.0; 4];
+        step(&mut model, &mut p, &pairs, &mut h);
+        assert_eq!(h[0], 1.0, "the bridge forms on contact");
+        // apart by 0.1 mm (below the 0.18 mm limit): it holds and pulls the two together
+        p.x[1][0] = 0.0018 + 1e-4;
+        h[1] = 1e-9;
+        step(&mut model, &mut p, &pairs, &mut h);
+        assert_eq!(h[0], 1.0);
+        assert_eq!(h[1], 0.0, "the tangential history is reset apart");
+        assert!(p.f[0][0] > 0.0 && p.f[1][0] < 0.0, "{:?}", p.f);
+        assert_eq!(p.f[0][0], -p.f[1][0]);
+        let k = p.extra.iter().position(|e| e.name == LIQUID_FLUX).unwrap();
+        assert_eq!(p.extra[k].data, vec![0.0, 0.0]);
+        // beyond (maxSeparationDistanceRatio - 1)(Ri + Rj): it breaks, no force, the liquid
+        // moves to the larger sphere by volume
+        p.x[1][0] = 0.0018 + 2e-4;
+        step(&mut model, &mut p, &pairs, &mut h);
+        assert_eq!(h[0], 0.0);
+        assert_eq!(p.f, vec![[0.0; 3]; 2]);
+        let flux = &p.extra[k].data;
+        assert!(flux[0] > 0.0 && flux[1] < 0.0, "{flux:?}");
+        // the liquid is conserved: film volumes scale as R^3
+        let (v0, v1) = (flux[0] * 1e-9, flux[1] * 0.512e-9);
+        assert!((v0 + v1).abs() < 1e-12 * v0.abs(), "{v0} {v1}");
+        // broken: no force when it comes back within reach without touching
+        p.x[1][0] = 0.0018 + 1e-4;
+        step(&mut model, &mut p, &pairs, &mut h);
+        assert_eq!(p.f, vec![[0.0; 3]; 2]);
+    }
+
+    #[test]
+    fn dry_spheres_apart_feel_no_bridge() {
+        let (mut model, mut p, pairs) = setup(1e-4);
+        let mut h = vec![0.0; 4];
+        step(&mut model, &mut p, &pairs, &mut h);
+        assert_eq!(h[0], 0.0);
+        assert_eq!(p.f, vec![[0.0; 3]; 2]);
+    }
 }

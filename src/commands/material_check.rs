@@ -52,6 +52,15 @@ pub fn validate(a: &Args, ctx: &Ctx) -> Result<(), CommandError> {
         if (0..3).any(|d| sim.domain.periodic(d)) {
             return Err(a.unsupported(0, crate::engine::wet::PERIODIC));
         }
+        // LIGGGHTS reports bridges apart as contacts too; regolith's compute does not yet
+        if sim.computes.iter().any(|c| {
+            matches!(
+                c.kind,
+                crate::engine::computes::ComputeKind::PairGranLocal(_)
+            )
+        }) {
+            return Err(a.unsupported(0, crate::engine::wet::LOCAL));
+        }
         sim.wet_input().map_err(|e| a.error(0, e.to_string()))?;
     }
     for sel in selections {

@@ -45,7 +45,24 @@ pub fn validate(a: &Args, ctx: &Ctx) -> Result<(), CommandError> {
             _ => {}
         }
     }
-    selections.extend(sim.pair_selection.as_ref());
+    // the pair loop's liquid bridges around its dry model
+    let pair = sim.pair_selection.as_ref().map(crate::engine::wet::dry);
+    selections.extend(pair.as_ref());
+    if sim.pair_is_wet() {
+        if (0..3).any(|d| sim.domain.periodic(d)) {
+            return Err(a.unsupported(0, crate::engine::wet::PERIODIC));
+        }
+        // LIGGGHTS reports bridges apart as contacts too; regolith's compute does not yet
+        if sim.computes.iter().any(|c| {
+            matches!(
+                c.kind,
+                crate::engine::computes::ComputeKind::PairGranLocal(_)
+            )
+        }) {
+            return Err(a.unsupported(0, crate::engine::wet::LOCAL));
+        }
+        sim.wet_input().map_err(|e| a.error(0, e.to_string()))?;
+    }
     for sel in selections {
         let Err(error) = crate::engine::granular::model_and_material(sel, &input) else {
             continue;

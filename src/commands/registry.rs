@@ -277,21 +277,31 @@ pub fn is_supported(cmd: &CommandLine) -> bool {
         return false;
     }
     match (name, style) {
-        ("pair_style", "gran") => contact_models_run(cmd, 1, "no_history"),
-        ("fix", "wall/gran") => contact_models_run(cmd, 3, "history"),
+        ("pair_style", "gran") => contact_models_run(cmd, 1, "no_history", true),
+        ("fix", "wall/gran") => contact_models_run(cmd, 3, "history", false),
         _ => true,
     }
 }
 
 /// Whether the contact model named from argument `start` on is one regolith builds (the
 /// engine's own constructor decides); a malformed selection is an error, not unsupported.
-fn contact_models_run(cmd: &CommandLine, start: usize, default_tangential: &str) -> bool {
+/// With `wet`, cohesion easo/capillary/viscous runs (the pair loop's liquid bridges) when
+/// the rest of the selection does.
+fn contact_models_run(
+    cmd: &CommandLine,
+    start: usize,
+    default_tangential: &str,
+    wet: bool,
+) -> bool {
     let words: Vec<&str> = (start..cmd.nargs()).filter_map(|i| cmd.arg(i)).collect();
     let Ok((mut selection, used)) = ModelSelection::select(&words) else {
         return true;
     };
     if !words[..used].contains(&"tangential") {
         selection.tangential = default_tangential.into();
+    }
+    if wet {
+        selection = crate::engine::wet::dry(&selection);
     }
     // `model off` is an error the handler reports, not a missing model
     selection.normal == "off" || AnyContactModel::new(&selection).is_ok()
@@ -464,6 +474,7 @@ mod tests {
             "dump d all xyz 100 out.xyz",
             "dump d all custom/vtk 100 out.vtk id x y z",
             "pair_style gran model hooke/hysteresis tangential history",
+            "pair_style gran model hertz tangential history cohesion easo/capillary/viscous",
             "read_restart restart.file",
             "write_data out.data",
         ] {
@@ -473,5 +484,9 @@ mod tests {
             "fix m all multisphere/nointegration"
         )));
         assert!(!is_supported(&command("compute c all rigid")));
+        // LIGGGHTS 3.8.0 runs liquid bridges in pair gran only (its primitive walls crash)
+        assert!(!is_supported(&command(
+            "fix w all wall/gran model hertz tangential history cohesion easo/capillary/viscous primitive type 1 zplane 0"
+        )));
     }
 }

@@ -611,6 +611,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         // the restart files the run would write, and moves the step count to the run's end
         ctx.sim.check_run().map_err(|e| a.engine_error(0, e))?;
         ctx.sim.init_heat().map_err(|m| a.error(0, &m))?;
+        ctx.sim.init_liquid().map_err(|m| a.error(0, &m))?;
         if let Some(m) = ctx.sim.new_margin() {
             ctx.sim.margin_notes.push(m);
         }
@@ -761,8 +762,14 @@ pub(super) fn gran_models(
             }
         }
     }
-    // every model name the engine lacks is valid LIGGGHTS
-    crate::engine::contact::AnyContactModel::new(&sel).map_err(|e| match e {
+    // every model name the engine lacks is valid LIGGGHTS; the pair loop runs liquid
+    // bridges around any dry model it runs
+    let dry = if what == "pair_style gran" {
+        crate::engine::wet::dry(&sel)
+    } else {
+        sel.clone()
+    };
+    crate::engine::contact::AnyContactModel::new(&dry).map_err(|e| match e {
         ModelError::Unsupported(m) | ModelError::Invalid(m) => {
             a.unsupported(start, &format!("{what} {m}"))
         }

@@ -328,6 +328,9 @@ impl Simulation {
         if self.accel.general_list {
             parts.push("the neighbour search (a periodic box shorter than three cutoffs)");
         }
+        if self.pair_is_wet() {
+            parts.push("liquid bridges (cohesion easo/capillary/viscous)");
+        }
         let new: Vec<&str> = parts
             .into_iter()
             .filter(|p| !self.accel.said.iter().any(|s| s == p))

@@ -41,5 +41,6 @@ pub mod temperature;
 pub mod tet_mesh;
 pub mod thermo;
 pub mod tracer;
+pub mod wet;
 
 pub use crate::state::{domain, particles};

@@ -16,15 +16,16 @@
 //! Per contact the model keeps one history value, the bridge flag (1 while a bridge
 //! exists, 0 otherwise).
 //!
-//! Not yet run by the engine (the selection is refused). Running it as LIGGGHTS 3.8.0 does
-//! needs: the neighbour list's contact distance scaled by [`Easo::contact_distance_factor`]
-//! (pairs listed up to `factor (Ri + Rj) + skin`, wall contacts up to a gap of
-//! `(factor - 1) R`); [`Easo::close`] (and the tangential model's history reset) for listed
-//! pairs with `(Ri + Rj)^2 <= rsq < factor^2 (Ri + Rj)^2`; the bridge flag stored after the
-//! normal model's history and before the tangential one; per-atom `surfaceLiquidContent`
-//! (default `surfaceLiquidContentInitial`, written to restart files) and `liquidFlux`, the
-//! flux cleared in `initial_integrate` and `content += flux dt` in `final_integrate`, as
-//! `fix transportequation/scalar` does (no capacity).
+//! The engine runs it in `pair_style gran` ([`crate::engine::granular::wet`]): the
+//! neighbour list's contact distance scaled by [`Easo::contact_distance_factor`] (pairs
+//! listed up to `factor (Ri + Rj) + skin`); [`Easo::close`] (and the dry models' history
+//! reset) for listed pairs with `(Ri + Rj)^2 <= rsq < factor^2 (Ri + Rj)^2`; the bridge flag
+//! stored after the normal model's history and before the tangential one; per-atom
+//! `surfaceLiquidContent` (default `surfaceLiquidContentInitial`, written to restart files)
+//! and `liquidFlux` ([`crate::engine::wet`]), the flux cleared in `initial_integrate` and
+//! `content += flux dt` in `final_integrate`, as `fix transportequation/scalar` does (no
+//! capacity). Walls are refused: LIGGGHTS 3.8.0's manual allows the model in `pair gran`
+//! only, and its primitive walls crash once a wall bridge is apart.
 
 use std::f64::consts::PI;
 

@@ -320,7 +320,8 @@ fn selection_parsing_and_messages() {
     ])
     .is_err());
     assert!(AnyContactModel::new(&ModelSelection::parse(&["model", "luding"]).unwrap()).is_err());
-    // easo/capillary/viscous takes tangential_reduce (as LIGGGHTS does) but is not run yet
+    // easo/capillary/viscous takes tangential_reduce (as LIGGGHTS does); no composed model
+    // holds it: the pair loop runs it around the dry model (granular::wet)
     let wet = ModelSelection::parse(&[
         "model",
         "hertz",

@@ -19,7 +19,9 @@ pub mod batch;
 mod mirrored;
 pub use batch::PairResult;
 mod wall;
+pub mod wet;
 pub use wall::{build_wall, Primitive, WallGran, WallInteraction};
+pub use wet::{build_wet, WetInput};
 
 pub use crate::engine::contact::ModelSelection as Selection;
 

@@ -81,6 +81,12 @@ pub trait PairInteraction: Send {
     fn worst_overlap(&self) -> Option<(f64, u32, u32)> {
         None
     }
+    /// The contact distance factor the model asks the neighbour list for: pairs apart by
+    /// less than `factor (Ri + Rj)` are visited (LIGGGHTS's `contactDistanceFactor`; 1 for
+    /// dry models).
+    fn contact_distance_factor(&self) -> f64 {
+        1.0
+    }
     /// The touching listed pairs re-evaluated in the current state without advancing
     /// history (what `compute pair/gran/local` reports): (pair index, force on i, torque
     /// on i, force on j, torque on j).
@@ -641,6 +647,7 @@ impl Simulation {
             return Err("Run command before simulation box is defined".into());
         }
         self.init_pair()?;
+        self.init_liquid()?;
         self.init_heat()?;
         self.check_meshes_in_box()?;
         let first = self.step;
@@ -737,6 +744,7 @@ impl Simulation {
                 self.dt,
                 &self.domain,
             );
+            self.liquid_initial_integrate();
             fixes::move_meshes(&mut self.fixes, self.dt);
             self.servo_initial_integrate();
             self.massflow_phase(out)?;
@@ -772,6 +780,7 @@ impl Simulation {
             self.compute_forces(true, tally, vars)?;
             self.guard_forces()?;
             fixes::final_integrate(&mut self.fixes, &mut self.particles, self.dt, &self.domain);
+            self.liquid_final_integrate();
             self.mesh_stress_phase(StressPhase::EndOfStep)?;
             self.servo_final_integrate();
             self.end_of_step(out, vars)?;

@@ -68,7 +68,8 @@ impl Simulation {
     }
 
     /// LIGGGHTS's largest neighbour cutoff: for each type pair the sum of the largest radii
-    /// (frozen particles only with moving ones), plus the skin; 0 without a pair style.
+    /// (frozen particles only with moving ones), times the contact distance factor, plus the
+    /// skin; 0 without a pair style.
     pub fn neighbor_cutoff(&self) -> f64 {
         if self.pair_selection.is_none() {
             return 0.0;
@@ -94,7 +95,8 @@ impl Simulation {
                 cut = cut.max(c);
             }
         }
-        cut + self.neighbor.skin
+        // a wet pair style's contact distance widens it (LIGGGHTS's `init_one`)
+        cut * self.contact_factor() + self.neighbor.skin
     }
 
     /// Wrap periodic coordinates, drop particles outside fixed faces, shrink-wrap the box.
@@ -155,7 +157,17 @@ impl Simulation {
         let old_mirrored = self.list.mirrored;
         let old_mirror_history = std::mem::take(&mut self.mirror_history);
         let width = self.pair.as_ref().map_or(0, |p| p.history_width());
-        if !(self.accel.fast && self.build_list_fast()) {
+        // a wet model lists pairs up to its contact distance (LIGGGHTS scales the radii)
+        let factor = self.contact_factor();
+        // the fast path's cell list knows no contact distance: wet runs use the exact list
+        if !(self.accel.fast && factor == 1.0 && self.build_list_fast()) {
+            let scaled: Vec<f64>;
+            let reach = if factor == 1.0 {
+                &self.particles.radius
+            } else {
+                scaled = self.particles.radius.iter().map(|r| r * factor).collect();
+                &scaled
+            };
             let order = crate::engine::neighbor::BinOrder::sized(
                 self.domain.lo,
                 self.domain.hi,
@@ -168,7 +180,7 @@ impl Simulation {
                 && std::env::var_os("REGOLITH_SORTED_LIST").is_none()
                 && self.list.build_stencil(
                     &self.particles.x,
-                    &self.particles.radius,
+                    reach,
                     self.neighbor.skin,
                     &self.domain,
                     &order,
@@ -176,7 +188,7 @@ impl Simulation {
             if !walked {
                 self.list.build(
                     &self.particles.x,
-                    &self.particles.radius,
+                    reach,
                     self.neighbor.skin,
                     &self.domain,
                     Some(&order),
@@ -261,7 +273,7 @@ impl Simulation {
             for (k, pair) in self.list.pairs.iter().enumerate() {
                 let (i, j) = (pair.i as usize, pair.j as usize);
                 let d = [0, 1, 2].map(|c| p.x[i][c] - p.x[j][c] - pair.shift[c]);
-                let radsum = p.radius[i] + p.radius[j];
+                let radsum = (p.radius[i] + p.radius[j]) * factor;
                 // a NaN distance is no contact
                 #[allow(clippy::neg_cmp_op_on_partial_ord)]
                 if !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < radsum * radsum) {
@@ -271,7 +283,7 @@ impl Simulation {
             for (k, m) in self.list.mirrors.iter().enumerate() {
                 let (i, j) = (m.pair.i as usize, m.pair.j as usize);
                 let d = [0, 1, 2].map(|c| p.x[i][c] - (p.x[j][c] + m.pair.shift[c]));
-                let radsum = p.radius[i] + p.radius[j];
+                let radsum = (p.radius[i] + p.radius[j]) * factor;
                 #[allow(clippy::neg_cmp_op_on_partial_ord)]
                 if !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < radsum * radsum) {
                     self.mirror_history[k * width..(k + 1) * width].fill(0.0);

@@ -86,7 +86,11 @@ impl Simulation {
         }
         sel.options.two_d = two_d;
         let frozen = fixes::frozen_groups(&self.fixes);
-        self.pair = Some(granular::build(&sel, &input, frozen)?);
+        self.pair = Some(if sel.cohesion == crate::engine::wet::EASO {
+            granular::build_wet(&sel, &input, frozen, &self.wet_input()?)?
+        } else {
+            granular::build(&sel, &input, frozen)?
+        });
         Ok(())
     }
 
@@ -126,9 +130,10 @@ impl Simulation {
     }
 
     /// LIGGGHTS's `cutneighmax` at a run's init: twice the largest radius among the atoms
-    /// and the particle templates, plus the skin (length).
+    /// and the particle templates, times the pair style's contact distance factor, plus the
+    /// skin (length).
     pub(crate) fn liggghts_cutneighmax(&self) -> f64 {
-        2.0 * self.largest_radius() + self.neighbor.skin
+        2.0 * self.largest_radius() * self.contact_factor() + self.neighbor.skin
     }
 
     /// The largest radius among the atoms and the particle templates (length).

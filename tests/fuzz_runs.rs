@@ -29,6 +29,11 @@ const MEMORY_LIMIT_KB: u64 = 2_000_000;
 /// Steps a mutated deck's `run` may take.
 const MAX_RUN_STEPS: i64 = 40;
 
+/// Monte Carlo samples a mutated deck may ask for (`ntry` of a multisphere template, `ntry_mc`
+/// of an insertion): a valid request for billions of samples is work LIGGGHTS does too, not a
+/// hang, so it is capped like a run's length.
+const MAX_SAMPLES: i64 = 1_000_000;
+
 /// The cases' seed and count: fixed, unless `REGOLITH_FUZZ_SEED` (a number mixed into every
 /// seed) and `REGOLITH_FUZZ_SCALE` (a factor on every count) ask for a longer search.
 fn plan(seed: u64, cases: usize) -> (u64, usize) {
@@ -134,19 +139,24 @@ fn join(lines: &[Vec<String>]) -> String {
 }
 
 /// Every `run N` capped to [`MAX_RUN_STEPS`] (after `run` and `every`), also inside the quoted
-/// commands of an `if`.
+/// commands of an `if`, and every sample count (`ntry`, `ntry_mc`) to [`MAX_SAMPLES`].
 fn cap_runs(lines: &mut [Vec<String>]) {
     for l in lines.iter_mut() {
         for k in 1..l.len() {
             let prev = l[k - 1].trim_start_matches(['"', '\'']);
-            if prev != "run" && !(prev == "every" && l.iter().any(|w| w.ends_with("run"))) {
+            let cap = if prev == "run" || (prev == "every" && l.iter().any(|w| w.ends_with("run")))
+            {
+                MAX_RUN_STEPS
+            } else if prev == "ntry" || prev == "ntry_mc" {
+                MAX_SAMPLES
+            } else {
                 continue;
-            }
+            };
             let digits = l[k].trim_end_matches(['"', '\'']);
             let quotes = &l[k][digits.len()..];
             if let Ok(n) = digits.parse::<i64>() {
-                if n > MAX_RUN_STEPS {
-                    l[k] = format!("{MAX_RUN_STEPS}{quotes}");
+                if n > cap {
+                    l[k] = format!("{cap}{quotes}");
                 }
             }
         }

@@ -5,7 +5,8 @@ use std::process::Command;
 
 #[test]
 fn bench_reports_loop_times() {
-    let dir = std::env::temp_dir().join(format!("regolith-bench-test-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-bench-test-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let deck =

@@ -23,7 +23,8 @@ fn diff(dir: &std::path::Path, args: &[&str]) -> (i32, String, String) {
 
 #[test]
 fn exit_statuses_and_formats() {
-    let dir = std::env::temp_dir().join(format!("regolith-cli-diff-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-cli-diff-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("a.dump"), DUMP).unwrap();
@@ -75,7 +76,8 @@ fn exit_statuses_and_formats() {
 
 #[test]
 fn dump_local_entries_meet_in_key_order() {
-    let dir = std::env::temp_dir().join(format!("regolith-cli-diff-local-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-cli-diff-local-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let head = "ITEM: TIMESTEP\n500\nITEM: NUMBER OF ENTRIES\n3\nITEM: BOX BOUNDS ff ff ff\n-0.05 0.05\n-0.03 0.03\n-0.02 0.04\nITEM: ENTRIES c_w[1] c_w[2] c_w[3] c_w[4] \n";
@@ -103,7 +105,8 @@ fn dump_local_entries_meet_in_key_order() {
 fn scale_relative_mode_from_the_command_line() {
     // the case: a stress column of scale ~1e-9 whose near-zero value differs by
     // 1e-17 (2e-4 relative to itself, 1e-8 of the column's scale)
-    let dir = std::env::temp_dir().join(format!("regolith-cli-diff-scale-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-cli-diff-scale-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let a = "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n3\nITEM: BOX BOUNDS ff ff ff\n0 1\n0 1\n0 1\nITEM: ATOMS id c_stress[6] \n1 1.2e-9 \n2 5e-14 \n3 -8e-10 \n";

@@ -72,7 +72,8 @@ fn copy_tree(from: &Path, to: &Path) {
 
 fn check_deck(name: &str) -> Vec<String> {
     let dir = engine_dir();
-    let work = std::env::temp_dir().join(format!("regolith-engine-{}-{name}", std::process::id()));
+    let work = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-engine-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&work);
     std::fs::create_dir_all(&work).unwrap();
     let deck = format!("in.{name}");
@@ -281,7 +282,7 @@ fn engine_decks_match_liggghts() {
 /// (exit success, stdout, the folder).
 fn run_in_copy(name: &str, deck_text: &str, flags: &[&str], tag: &str) -> (bool, String, PathBuf) {
     let dir = engine_dir();
-    let work = std::env::temp_dir().join(format!(
+    let work = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
         "regolith-engine-{}-{name}-{tag}",
         std::process::id()
     ));

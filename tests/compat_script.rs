@@ -204,7 +204,7 @@ fn check_deck(name: &str) -> Vec<String> {
         .parse()
         .expect("status file holds an integer");
 
-    let base = std::env::temp_dir().join(format!(
+    let base = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
         "regolith-compat-script-{}-{name}",
         std::process::id()
     ));

@@ -29,7 +29,8 @@ fn body(text: &str) -> &str {
 
 #[test]
 fn restart_conversions() {
-    let dir = std::env::temp_dir().join(format!("regolith-convert-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-convert-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let src = convert_dir();
@@ -92,7 +93,8 @@ fn restart_conversions() {
 
 #[test]
 fn broken_restart_files_are_refused_without_output() {
-    let dir = std::env::temp_dir().join(format!("regolith-broken-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-broken-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let good = std::fs::read(convert_dir().join("bed.restart")).unwrap();
@@ -130,7 +132,8 @@ fn broken_restart_files_are_refused_without_output() {
 fn regolith_writes_the_restart_liggghts_was_given() {
     // compat/engine/in.liggghts_reads has LIGGGHTS continue from this file; it must stay
     // exactly what regolith writes for compat/convert/in.make_bed
-    let dir = std::env::temp_dir().join(format!("regolith-writes-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-writes-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::copy(convert_dir().join("in.make_bed"), dir.join("in.make_bed")).unwrap();
@@ -147,7 +150,8 @@ fn regolith_writes_the_restart_liggghts_was_given() {
 
 #[test]
 fn dash_r_converts_like_liggghts() {
-    let dir = std::env::temp_dir().join(format!("regolith-dash-r-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-dash-r-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let restart = convert_dir().join("bed.restart");

@@ -43,8 +43,8 @@ fn run(threads: usize, tag: &str) -> Vec<u8> {
 }
 
 fn run_with(threads: usize, tag: &str, flags: &[&str], deck: &str) -> Vec<u8> {
-    let dir =
-        std::env::temp_dir().join(format!("regolith-determinism-{}-{tag}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-determinism-{}-{tag}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("in.deck"), deck).unwrap();

@@ -31,7 +31,8 @@ fn gunzip(bytes: &[u8]) -> String {
 
 #[test]
 fn gzip_and_atom_dumps_hold_the_text_dump() {
-    let dir = std::env::temp_dir().join(format!("regolith-dumps-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-dumps-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("in.deck"), DECK).unwrap();

@@ -22,8 +22,8 @@ fn copy_tree(from: &Path, to: &Path) {
 #[test]
 fn every_inputs_deck_runs_a_few_steps() {
     let inputs = Path::new(env!("CARGO_MANIFEST_DIR")).join("inputs");
-    let scratch: PathBuf =
-        std::env::temp_dir().join(format!("regolith-inputs-{}", std::process::id()));
+    let scratch: PathBuf = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-inputs-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&scratch);
     let list = std::fs::read_to_string(inputs.join("smoke.txt")).unwrap();
     let mut runs = 0;

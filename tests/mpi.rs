@@ -842,7 +842,8 @@ fn regolith(dir: &std::path::Path, args: &[&str], env: &[(&str, &str)]) -> std::
 #[cfg(not(feature = "mpi"))]
 #[test]
 fn a_build_without_mpi_stops_under_mpirun() {
-    let dir = std::env::temp_dir().join(format!("regolith-nompi-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-nompi-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("in.deck"), deck([1.0; 3], "")).unwrap();
     for (env, words) in [
@@ -899,7 +900,8 @@ fn a_build_with_mpi_reports_the_grid_then_refuses() {
         eprintln!("no mpirun: skipped");
         return;
     }
-    let dir = std::env::temp_dir().join(format!("regolith-mpi-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-mpi-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
         dir.join("in.deck"),

@@ -37,7 +37,8 @@ fn run(dir: &Path, name: &str, deck: &str) {
 
 #[test]
 fn split_runs_continue_and_restart_files_rotate() {
-    let dir = std::env::temp_dir().join(format!("regolith-restarts-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-restarts-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let create = "region reg block 0 0.02 0 0.02 0 0.04 units box\ncreate_box 1 reg\n\
@@ -94,7 +95,8 @@ fn split_runs_continue_and_restart_files_rotate() {
 
 #[test]
 fn a_deck_that_writes_then_reads_a_restart_checks_and_runs() {
-    let dir = std::env::temp_dir().join(format!("regolith-restart-check-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-restart-check-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let deck = format!(

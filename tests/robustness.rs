@@ -60,7 +60,8 @@ impl Drop for Scratch {
 
 /// A fresh folder holding the decks of tests/robustness.
 fn scratch(name: &str) -> Scratch {
-    let dir = std::env::temp_dir().join(format!("regolith-robust-{}-{name}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-robust-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let decks = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/robustness");

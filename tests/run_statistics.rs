@@ -39,7 +39,8 @@ run 5
 ";
 
 fn statistics(flags: &[&str], tag: &str) -> Vec<(u64, u64)> {
-    let work = std::env::temp_dir().join(format!("regolith-stats-{}-{tag}", std::process::id()));
+    let work = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-stats-{}-{tag}", std::process::id()));
     let _ = std::fs::remove_dir_all(&work);
     std::fs::create_dir_all(&work).unwrap();
     std::fs::write(work.join("in.stats"), DECK).unwrap();

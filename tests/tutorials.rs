@@ -238,7 +238,7 @@ fn counts_agree(want: usize, got: usize) -> bool {
 }
 
 fn run_job(root: &Path, job: &[Case], flags: &[&str], agreement: Agreement) -> Vec<Outcome> {
-    let work = std::env::temp_dir().join(format!(
+    let work = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
         "regolith-tutorial-{}-{}{}",
         std::process::id(),
         job[0].name,

@@ -26,38 +26,27 @@ impl From<crate::util::numbers::NumberError> for EngineError {
     }
 }
 
-impl From<crate::util::random::SeedError> for EngineError {
-    fn from(e: crate::util::random::SeedError) -> EngineError {
-        EngineError::Invalid(e.to_string())
-    }
-}
-
 impl From<&str> for EngineError {
     fn from(message: &str) -> EngineError {
         EngineError::Invalid(message.to_string())
     }
 }
 
-impl From<crate::state::limits::LimitError> for EngineError {
-    fn from(e: crate::state::limits::LimitError) -> EngineError {
-        EngineError::Invalid(e.to_string())
-    }
+/// Lower layers' typed refusals reach the command layer as invalid input with their message.
+macro_rules! invalid_from {
+    ($($t:ty),+ $(,)?) => {$(
+        impl From<$t> for EngineError {
+            fn from(e: $t) -> EngineError {
+                EngineError::Invalid(e.to_string())
+            }
+        }
+    )+};
 }
 
-impl From<crate::state::domain::BoxError> for EngineError {
-    fn from(e: crate::state::domain::BoxError) -> EngineError {
-        EngineError::Invalid(e.to_string())
-    }
-}
-
-impl From<crate::io::restart_values::RestartValueError> for EngineError {
-    fn from(e: crate::io::restart_values::RestartValueError) -> EngineError {
-        EngineError::Invalid(e.to_string())
-    }
-}
-
-impl From<crate::engine::tet_mesh::TetMeshError> for EngineError {
-    fn from(e: crate::engine::tet_mesh::TetMeshError) -> EngineError {
-        EngineError::Invalid(e.to_string())
-    }
-}
+invalid_from!(
+    crate::util::random::SeedError,
+    crate::state::limits::LimitError,
+    crate::state::domain::BoxError,
+    crate::io::restart_values::RestartValueError,
+    crate::engine::tet_mesh::TetMeshError,
+);

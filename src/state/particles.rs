@@ -79,6 +79,12 @@ impl Particles {
         self.id.is_empty()
     }
 
+    /// Set every force (force units) and torque (force*length) to zero.
+    pub fn clear_forces(&mut self) {
+        self.f.fill([0.0; 3]);
+        self.torque.fill([0.0; 3]);
+    }
+
     /// Append a particle at rest with the given id, type, position, radius (length) and
     /// density (mass/length^3); its mass is that of a sphere.
     pub fn push(&mut self, id: i64, kind: u32, x: [f64; 3], radius: f64, density: f64) {

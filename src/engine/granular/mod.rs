@@ -191,8 +191,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         let threads = rayon::current_num_threads();
         match order {
             SumOrder::Gathered(inc) if threads > 1 && inc.first.len() == p.len() + 1 => {
-                p.f.iter_mut().for_each(|f| *f = [0.0; 3]);
-                p.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
+                p.clear_forces();
                 self.compute_gather(p, pairs, history, dt, update, virial, inc);
                 return;
             }
@@ -206,8 +205,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             }
             _ => {}
         }
-        p.f.iter_mut().for_each(|f| *f = [0.0; 3]);
-        p.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
+        p.clear_forces();
         if let Some(m) = mirrored {
             self.compute_mirrored(p, pairs, history, dt, update, virial, m);
             return;

@@ -343,8 +343,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         _mirrored: Option<Mirrored<'_>>,
     ) {
         // the pair style sets the sums (see PairInteraction::compute)
-        p.f.iter_mut().for_each(|f| *f = [0.0; 3]);
-        p.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
+        p.clear_forces();
         let kf = array(p, LIQUID_FLUX);
         let mut flux = kf.map_or_else(Vec::new, |k| std::mem::take(&mut p.extra[k].data));
         let mut f = std::mem::take(&mut p.f);

@@ -538,8 +538,7 @@ impl Simulation {
         let p = &mut self.particles;
         if self.pair.is_none() {
             // a pair style sets the forces itself (on the fast path, block by block)
-            p.f.iter_mut().for_each(|f| *f = [0.0; 3]);
-            p.torque.iter_mut().for_each(|t| *t = [0.0; 3]);
+            p.clear_forces();
         }
         let tally = want_virial
             && self.computes.iter().any(|c| {

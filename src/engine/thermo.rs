@@ -217,7 +217,7 @@ impl Thermo {
         &self,
         sim: &Simulation,
         vars: &mut dyn VariableSource,
-    ) -> Result<Vec<f64>, String> {
+    ) -> Result<Vec<f64>, EngineError> {
         self.fields
             .iter()
             .map(|f| match f.keyword.strip_prefix("v_") {
@@ -228,8 +228,10 @@ impl Thermo {
                         .strip_prefix("f_")
                         .and_then(crate::util::numbers::split_reference)
                         .and_then(|(id, index)| sim.fix_value(id, index).err())
-                        .map(|e| e.to_string())
-                        .unwrap_or_else(|| format!("Thermo keyword {}: no value", f.keyword))
+                        .map(|e| EngineError::Invalid(e.to_string()))
+                        .unwrap_or_else(|| {
+                            EngineError::Invalid(format!("Thermo keyword {}: no value", f.keyword))
+                        })
                 }),
             })
             .collect()

@@ -82,6 +82,19 @@ impl From<&str> for VariableError {
     }
 }
 
+/// A variable's failure where the engine reads it: "not supported yet" stays a variant;
+/// everything else is invalid input with its message.
+impl From<VariableError> for crate::engine::error::EngineError {
+    fn from(e: VariableError) -> crate::engine::error::EngineError {
+        match e {
+            VariableError::Unsupported(what) => {
+                crate::engine::error::EngineError::Unsupported(what)
+            }
+            other => crate::engine::error::EngineError::Invalid(other.to_string()),
+        }
+    }
+}
+
 impl From<VariableError> for String {
     /// The message, for layers that still pass errors as text.
     fn from(e: VariableError) -> String {

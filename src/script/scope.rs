@@ -4,6 +4,7 @@
 use std::collections::HashMap;
 use std::rc::Rc;
 
+use crate::engine::error::EngineError;
 use crate::engine::sim::{Simulation, VariableSource};
 use crate::script::error::VariableError;
 use crate::script::expr::{self, Expr, ExprContext, RefKind};
@@ -402,11 +403,11 @@ impl ExprContext for Scope<'_> {
 }
 
 impl VariableSource for Scope<'_> {
-    fn equal(&mut self, _sim: &Simulation, name: &str) -> Result<f64, String> {
+    fn equal(&mut self, _sim: &Simulation, name: &str) -> Result<f64, EngineError> {
         Ok(self.equal_variable(name)?)
     }
 
-    fn atom(&mut self, _sim: &Simulation, name: &str) -> Result<Vec<f64>, String> {
+    fn atom(&mut self, _sim: &Simulation, name: &str) -> Result<Vec<f64>, EngineError> {
         Ok(self.atom_variable(name)?.as_ref().clone())
     }
 }
@@ -422,7 +423,7 @@ pub struct RunVariables<'a> {
 }
 
 impl VariableSource for RunVariables<'_> {
-    fn substitute(&mut self, sim: &Simulation, text: &str) -> Result<String, String> {
+    fn substitute(&mut self, sim: &Simulation, text: &str) -> Result<String, EngineError> {
         let vars = &mut *self.vars;
         let sys = &mut *self.sys;
         crate::script::line::substitute(
@@ -447,14 +448,14 @@ impl VariableSource for RunVariables<'_> {
             },
             |_| {},
         )
-        .map_err(|e| format!("{e:?}"))
+        .map_err(|e| EngineError::Invalid(format!("{e:?}")))
     }
 
-    fn equal(&mut self, sim: &Simulation, name: &str) -> Result<f64, String> {
+    fn equal(&mut self, sim: &Simulation, name: &str) -> Result<f64, EngineError> {
         Ok(Scope::new(self.vars, self.sys, sim).equal_variable(name)?)
     }
 
-    fn atom(&mut self, sim: &Simulation, name: &str) -> Result<Vec<f64>, String> {
+    fn atom(&mut self, sim: &Simulation, name: &str) -> Result<Vec<f64>, EngineError> {
         let mut scope = Scope::new(self.vars, self.sys, sim);
         let v = scope.atom_variable(name)?;
         Ok(v.as_ref().clone())

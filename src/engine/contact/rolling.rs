@@ -9,7 +9,7 @@
 
 use super::material::{Coeffs, Property};
 use super::normal::reff;
-use super::real::Real;
+use super::real::{Mask, Real};
 use super::Contact;
 
 /// A rolling model adds a rolling-resistance torque after the tangential model ran.
@@ -151,9 +151,12 @@ fn epsd_torque<S: Real>(
     let max = c.normal_force.abs() * reff * rmu;
     // fully mobilised: the spring is scaled back to the cap and there is no dashpot
     let capped = mag.gt(max);
-    let factor = max / mag;
-    for x in rt.iter_mut() {
-        *x = S::select(capped, *x * factor, *x);
+    // the division only where a lane is capped (the results are the same either way)
+    if capped.any() {
+        let factor = max / mag;
+        for x in rt.iter_mut() {
+            *x = S::select(capped, *x * factor, *x);
+        }
     }
     if c.update_history {
         history[..3].copy_from_slice(&rt);

@@ -159,17 +159,23 @@ impl TangentialModel for History {
         // gives no force
         let capped = ft_shear.gt(ft_friction);
         let sliding = capped.and(shrmag.ne(S::default()));
-        let ratio = ft_friction / ft_shear;
         let gammat = c.gammat;
         let mut ft = [S::default(); 3];
         for d in 0..3 {
-            let scaled = spring[d] * ratio;
-            let damped = spring[d] - gammat * c.vtr[d];
-            ft[d] = S::select(capped, S::select(sliding, scaled, S::default()), damped);
+            ft[d] = spring[d] - gammat * c.vtr[d];
         }
-        if update {
+        // the divisions only where a lane slides (rare in a bed at rest; the results are
+        // the same either way)
+        if capped.any() {
+            let ratio = ft_friction / ft_shear;
             for d in 0..3 {
-                shear[d] = S::select(sliding, -ft[d] / kt, shear[d]);
+                let scaled = spring[d] * ratio;
+                ft[d] = S::select(capped, S::select(sliding, scaled, S::default()), ft[d]);
+            }
+            if update && sliding.any() {
+                for d in 0..3 {
+                    shear[d] = S::select(sliding, -ft[d] / kt, shear[d]);
+                }
             }
         }
         add_force_and_torques(c, ft);
@@ -215,14 +221,17 @@ impl TangentialModel for HistoryTotalCap {
         let ftmag = (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]).sqrt();
         let ft_friction = m.get(|k| k.coeff_frict) * c.normal_force.abs();
         let capped = ftmag.gt(ft_friction);
-        let ratio = ft_friction / ftmag;
-        for f in ft.iter_mut() {
-            *f = S::select(capped, *f * ratio, *f);
-        }
-        if update {
+        // the divisions only where a lane is capped (the results are the same either way)
+        if capped.any() {
+            let ratio = ft_friction / ftmag;
+            for f in ft.iter_mut() {
+                *f = S::select(capped, *f * ratio, *f);
+            }
             let reset = capped.and(kt.gt(S::default()));
-            for d in 0..3 {
-                shear[d] = S::select(reset, -(ft[d] + damp[d]) / kt, shear[d]);
+            if update && reset.any() {
+                for d in 0..3 {
+                    shear[d] = S::select(reset, -(ft[d] + damp[d]) / kt, shear[d]);
+                }
             }
         }
         add_force_and_torques(c, ft);

@@ -313,13 +313,53 @@ pub struct Kernel<'a, N, T, C, R> {
     pub update: bool,
 }
 
+/// A batch's overlaps (m) and smaller radii (m): the overlap ratios the blow-up guard
+/// watches, divided out only where they are needed.
+#[derive(Debug, Clone, Copy)]
+pub struct Overlaps {
+    /// Overlap of each lane (m).
+    pub deltan: F64x4,
+    /// The smaller radius of each lane's pair (m).
+    pub smaller: F64x4,
+}
+
+impl Overlaps {
+    /// The overlap ratio of lane `k` (overlap over the smaller radius).
+    #[inline(always)]
+    pub fn ratio(&self, k: usize) -> f64 {
+        self.deltan.0[k] / self.smaller.0[k]
+    }
+
+    /// The overlap ratios of the four lanes.
+    #[inline(always)]
+    pub fn ratios(&self) -> F64x4 {
+        self.deltan / self.smaller
+    }
+
+    /// Bits of the lanes whose ratio may exceed `w`: every lane whose ratio does, and
+    /// perhaps a few within round-off of it (a multiplication instead of a division).
+    #[inline(always)]
+    pub fn may_exceed(&self, w: f64) -> u32 {
+        if w.is_nan() {
+            // nothing compares greater than NaN
+            return 0;
+        }
+        if w <= 0.0 {
+            return 0b1111;
+        }
+        // a margin far above the few roundings on either side
+        let below = w * (1.0 - 1e-12);
+        self.deltan.gt(self.smaller * F64x4::splat(below)).bits()
+    }
+}
+
 /// Where the results of a batch go.
 pub trait Sink {
     /// Take the result of list entry `entry` (called in the order of the entries).
     fn take(&mut self, entry: usize, pair: &Pair, result: &PairResult);
 
-    /// Take a batch's results: lane k is entry `batch[k]` (`pairs[k]`), `ratio` the
-    /// overlaps as fractions of the smaller radius. By default, lane by lane through
+    /// Take a batch's results: lane k is entry `batch[k]` (`pairs[k]`), `overlaps` its
+    /// overlaps and smaller radii. By default, lane by lane through
     /// [`Sink::take`].
     #[inline(always)]
     fn take_batch(
@@ -327,8 +367,9 @@ pub trait Sink {
         batch: &[u32],
         pairs: &[&Pair; LANES],
         out: &PairLanesOutput,
-        ratio: &F64x4,
+        overlaps: &Overlaps,
     ) {
+        let ratio = overlaps.ratios();
         for (k, &entry) in batch.iter().enumerate() {
             let pick = |v: &[F64x4; 3]| [v[0].0[k], v[1].0[k], v[2].0[k]];
             let result = PairResult {
@@ -613,7 +654,11 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
             }
             // radii are finite and positive: the lane-wise smaller one, as f64::min gives it
             let smaller = F64x4::select(a[3].lt(b[3]), a[3], b[3]);
-            sink.take_batch(batch, &pr, &out, &(out.deltan / smaller));
+            let overlaps = Overlaps {
+                deltan: out.deltan,
+                smaller,
+            };
+            sink.take_batch(batch, &pr, &out, &overlaps);
         }
     }
 }

@@ -520,7 +520,7 @@ impl batch::Sink for BlockSums<'_> {
         batch: &[u32],
         pairs: &[&Pair; LANES],
         out: &PairLanesOutput,
-        ratio: &F64x4,
+        overlaps: &batch::Overlaps,
     ) {
         let len = self.f.len().min(self.torque.len());
         for (k, pair) in pairs.iter().enumerate().take(batch.len()) {
@@ -554,7 +554,7 @@ impl batch::Sink for BlockSums<'_> {
                 self.add(j, pick(&out.fj), pick(&out.tj), &w);
             }
         }
-        self.worst = worst_of_batch(self.worst, batch.len(), pairs, ratio);
+        self.worst = worst_of_batch(self.worst, batch.len(), pairs, overlaps);
     }
 
     #[inline(always)]
@@ -763,17 +763,16 @@ fn worst_of_batch(
     mut worst: Option<(f64, u32, u32)>,
     valid: usize,
     pairs: &[&Pair; LANES],
-    ratio: &F64x4,
+    overlaps: &batch::Overlaps,
 ) -> Option<(f64, u32, u32)> {
-    use crate::engine::contact::real::Real;
     let lanes = (1u32 << valid.min(LANES)) - 1;
     let beaten = match worst {
         None => lanes,
-        Some((w, _, _)) => ratio.gt(F64x4::splat(w)).bits() & lanes,
+        Some((w, _, _)) => overlaps.may_exceed(w) & lanes,
     };
     if beaten != 0 {
         for (k, pair) in pairs.iter().enumerate().take(valid) {
-            let r = ratio.0[k];
+            let r = overlaps.ratio(k);
             if worst.is_none_or(|w| r > w.0) {
                 worst = Some((r, pair.i, pair.j));
             }
@@ -821,7 +820,7 @@ impl batch::Sink for Accumulate<'_, '_> {
         batch: &[u32],
         pairs: &[&Pair; LANES],
         out: &PairLanesOutput,
-        ratio: &F64x4,
+        overlaps: &batch::Overlaps,
     ) {
         let n = self.f.len().min(self.torque.len());
         assert!(pairs
@@ -838,7 +837,7 @@ impl batch::Sink for Accumulate<'_, '_> {
             // SAFETY: i, j < n (checked above)
             unsafe { add_lane(self.f, self.torque, (i, j), out, k) };
         }
-        self.worst = worst_of_batch(self.worst, batch.len(), pairs, ratio);
+        self.worst = worst_of_batch(self.worst, batch.len(), pairs, overlaps);
     }
 
     #[inline(always)]

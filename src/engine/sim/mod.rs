@@ -126,14 +126,16 @@ pub trait PairInteraction: Send {
 /// The deck's variables as the running simulation reads them.
 pub trait VariableSource {
     /// The value of equal-style variable `name`.
-    fn equal(&mut self, sim: &Simulation, name: &str) -> Result<f64, String>;
+    fn equal(&mut self, sim: &Simulation, name: &str) -> Result<f64, EngineError>;
     /// The values of atom-style variable `name`, one per particle in particle order.
-    fn atom(&mut self, sim: &Simulation, name: &str) -> Result<Vec<f64>, String>;
+    fn atom(&mut self, sim: &Simulation, name: &str) -> Result<Vec<f64>, EngineError>;
     /// `text` with its `$x`, `${name}` and `$(formula)` references replaced.
-    fn substitute(&mut self, sim: &Simulation, text: &str) -> Result<String, String> {
+    fn substitute(&mut self, sim: &Simulation, text: &str) -> Result<String, EngineError> {
         let _ = sim;
         if text.contains('$') {
-            Err(format!("cannot substitute variables in '{text}' here"))
+            Err(EngineError::Invalid(format!(
+                "cannot substitute variables in '{text}' here"
+            )))
         } else {
             Ok(text.to_string())
         }
@@ -144,11 +146,15 @@ pub trait VariableSource {
 pub struct NoVariables;
 
 impl VariableSource for NoVariables {
-    fn equal(&mut self, _: &Simulation, name: &str) -> Result<f64, String> {
-        Err(format!("Variable name {name} does not exist"))
+    fn equal(&mut self, _: &Simulation, name: &str) -> Result<f64, EngineError> {
+        Err(EngineError::Invalid(format!(
+            "Variable name {name} does not exist"
+        )))
     }
-    fn atom(&mut self, _: &Simulation, name: &str) -> Result<Vec<f64>, String> {
-        Err(format!("Variable name {name} does not exist"))
+    fn atom(&mut self, _: &Simulation, name: &str) -> Result<Vec<f64>, EngineError> {
+        Err(EngineError::Invalid(format!(
+            "Variable name {name} does not exist"
+        )))
     }
 }
 

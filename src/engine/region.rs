@@ -571,6 +571,18 @@ impl Regions {
         let in_box = |x: [f64; 3]| (0..3).all(|d| x[d] >= lo[d] && x[d] <= hi[d]);
         let text = read(words[3])?;
         let (mesh, notes) = crate::engine::tet_mesh::read(&text, &place, &in_box)?;
+        // LIGGGHTS builds the surface of a `side in` region, whose checks refuse flat faces in
+        // words regolith does not reproduce
+        if interior
+            && mesh
+                .tets
+                .iter()
+                .any(|n| crate::engine::tet_mesh::signed_volume(n[0], n[1], n[2], n[3]) == 0.0)
+        {
+            return Err(EngineError::Unsupported(
+                "region mesh/tet with a flat tetrahedron (side in)".into(),
+            ));
+        }
         self.list.push(Region {
             id: id.to_string(),
             style: "mesh/tet".to_string(),

@@ -37,6 +37,11 @@ fn volume(v0: [f64; 3], v1: [f64; 3], v2: [f64; 3], v3: [f64; 3]) -> f64 {
     (cp[0] * c[0] + cp[1] * c[1] + cp[2] * c[2]) / 6.0
 }
 
+/// The signed volume of the tetrahedron (v0, v1, v2, v3) as LIGGGHTS computes it (length^3).
+pub fn signed_volume(v0: [f64; 3], v1: [f64; 3], v2: [f64; 3], v3: [f64; 3]) -> f64 {
+    volume(v0, v1, v2, v3)
+}
+
 /// Where the mesh goes: `move` offsets added before `scale`, then `rotate` angles (degrees)
 /// about x, y and z.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -63,15 +63,20 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                                 | crate::engine::region::Shape::Cylinder { .. }
                         )
                 };
-                let ok = reg.interior
-                    && match &reg.shape {
-                        crate::engine::region::Shape::Intersect(m) => m.iter().all(|&k| simple(k)),
-                        _ => simple(k),
-                    };
+                // a tet region (either side: LIGGGHTS refuses `side out` when it draws)
+                let tet = matches!(reg.shape, crate::engine::region::Shape::TetMesh(_));
+                let ok = tet
+                    || reg.interior
+                        && match &reg.shape {
+                            crate::engine::region::Shape::Intersect(m) => {
+                                m.iter().all(|&k| simple(k))
+                            }
+                            _ => simple(k),
+                        };
                 if !ok {
                     return Err(a.unsupported(
                         i + 1,
-                        "fix insert/pack into regions other than blocks, cylinders and their intersections (side in)",
+                        "fix insert/pack into regions other than blocks, cylinders and their intersections (side in) and mesh/tet",
                     ));
                 }
                 region = Some((k, r.to_string()));
@@ -231,6 +236,14 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         dist.ok_or_else(|| a.error(2, "Fix insert: have to define a 'distributiontemplate'"))?;
     let (region, region_id) =
         region.ok_or_else(|| a.error(2, "Fix insert/pack: must define an insertion region"))?;
+    if all_in
+        && matches!(
+            ctx.sim.regions.list[region].shape,
+            crate::engine::region::Shape::TetMesh(_)
+        )
+    {
+        return Err(a.unsupported(2, &format!("fix {style} all_in yes in a mesh/tet region")));
+    }
     let mut mass_rate = None;
     let rate = if rate_style {
         if target.is_some() {

@@ -11,6 +11,7 @@ use crate::util::random::RanPark;
 mod orient;
 mod stream;
 mod surface;
+mod tet;
 
 pub use orient::{random_unit_quat, rotate_axes, Axes};
 
@@ -350,12 +351,45 @@ fn narrow_box_warning(w: &World, maxrad: f64) -> Option<String> {
 }
 
 impl InsertPack {
+    /// LIGGGHTS's refusals before it places particles in a tet region: the overlap check
+    /// asks for the surface distance of every particle the region does not hold (its
+    /// periodic images too, which regolith cannot list as LIGGGHTS does), and a `side out`
+    /// region has no points to draw.
+    fn tet_checks(&self, regions: &Regions, w: &World) -> Result<(), EngineError> {
+        if self.overlapcheck && !w.x.is_empty() {
+            if w.x.iter().any(|&x| !regions.matches(self.region, x)) {
+                return Err(tet::NO_SURFACE.into());
+            }
+            if w.periodic.iter().any(|&p| p) {
+                return Err(EngineError::Unsupported(
+                    "fix insert/pack overlap checks in a mesh/tet region of a periodic box".into(),
+                ));
+            }
+        }
+        if !regions.list[self.region].interior {
+            return Err(tet::SIDE_OUT.into());
+        }
+        Ok(())
+    }
+
     fn shape<'r>(&self, regions: &'r Regions) -> &'r Shape {
         &regions.list[self.region].shape
     }
 
-    /// The Monte Carlo region volume with the region generator (3 draws per sample).
-    fn volume_mc(&mut self, regions: &Regions, w: &World, max_radius: f64) {
+    /// The Monte Carlo region volume with the region generator (3 draws per sample); a tet
+    /// region's is its tetrahedra's, without draws. Returns this process's share.
+    fn volume_mc(
+        &mut self,
+        regions: &Regions,
+        w: &World,
+        max_radius: f64,
+    ) -> Result<f64, EngineError> {
+        if let Shape::TetMesh(mesh) = self.shape(regions) {
+            let vols = tet::TetVolumes::of(mesh);
+            let (whole, local) = tet::region_volume(mesh, &vols, w.lo, w.hi)?;
+            self.region_volume = whole;
+            return Ok(local);
+        }
         let (elo, ehi) = regions.extent(self.region).unwrap_or(([0.0; 3], [0.0; 3]));
         let mut hits = 0i64;
         for _ in 0..self.ntry_mc {
@@ -373,6 +407,7 @@ impl InsertPack {
         let _ = max_radius;
         let vbox = (ehi[0] - elo[0]) * (ehi[1] - elo[1]) * (ehi[2] - elo[2]);
         self.region_volume = hits as f64 / self.ntry_mc as f64 * vbox;
+        Ok(self.region_volume)
     }
 
     /// First run's setup: reseed the region generator and measure the region. Returns the
@@ -390,8 +425,15 @@ impl InsertPack {
         self.set_up = true;
         // C int arithmetic, as LIGGGHTS adds it (a seed near the top wraps and is refused)
         self.region_rng.reset(self.seed.wrapping_add(12))?;
-        self.volume_mc(regions, w, dist.max_radius);
-        if self.region_volume <= 0.0 {
+        let local = self.volume_mc(regions, w, dist.max_radius)?;
+        let whole = self.region_volume;
+        // insert/pack allows a share 0.1 % above the whole, insert/rate/region none
+        let over = if self.rate.is_some() {
+            local > whole + f64::EPSILON
+        } else {
+            (local - whole) / whole > 1e-3
+        };
+        if whole <= 0.0 || local < 0.0 || over {
             return Err("Fix insert: Region volume calculation with MC failed".into());
         }
         let mut lines = vec![format!(
@@ -492,7 +534,7 @@ impl InsertPack {
             ratio = ratio.clamp(0.0, 1.0);
         }
         if w.box_changes {
-            self.volume_mc(regions, w, dist.max_radius);
+            self.volume_mc(regions, w, dist.max_radius)?;
         }
         let list = dist.list(n)?;
         if list.is_empty() {
@@ -504,6 +546,13 @@ impl InsertPack {
         // existing atoms near the region (periodic images too), then placed ones
         let (elo, ehi) = regions.extent(self.region).unwrap_or(([0.0; 3], [0.0; 3]));
         let exact_near = matches!(shape, Shape::Block { .. } | Shape::Cylinder { .. });
+        let tet_mesh = match &shape {
+            Shape::TetMesh(m) => Some((m.as_ref(), tet::TetVolumes::of(m))),
+            _ => None,
+        };
+        if tet_mesh.is_some() {
+            self.tet_checks(regions, w)?;
+        }
         // LIGGGHTS's reach: the largest sphere (a clump's largest member, not its bounding
         // sphere); with clumps the box around the region grows by two bounding radii
         let reach = dist.max_sphere_radius();
@@ -560,7 +609,7 @@ impl InsertPack {
         let diff = [0, 1, 2].map(|d| hi[d] - lo[d]);
         let all_in = self.all_in;
         let region = self.region;
-        let gen = |rng: &mut RanPark, rb: f64| loop {
+        let gen_box = |rng: &mut RanPark, rb: f64| loop {
             let p = [
                 lo[0] + rng.uniform() * diff[0],
                 lo[1] + rng.uniform() * diff[1],
@@ -574,6 +623,13 @@ impl InsertPack {
             } else if regions.matches(region, p) {
                 return p;
             }
+        };
+        // a tet region draws a tetrahedron, then a point in it
+        let gen = |rng: &mut RanPark, rb: f64| -> Result<[f64; 3], EngineError> {
+            if let Some((mesh, vols)) = &tet_mesh {
+                return tet::random_point(mesh, vols, rng, w.lo, w.hi);
+            }
+            Ok(gen_box(rng, rb))
         };
         let dist_sub = |p: [f64; 3]| {
             let dlo = (0..3)
@@ -612,7 +668,7 @@ impl InsertPack {
                 while !done && ntry < maxtry {
                     let mut p;
                     loop {
-                        p = gen(&mut self.region_rng, rb);
+                        p = gen(&mut self.region_rng, rb)?;
                         ntry += 1;
                         if !(self.check_dist && ntry < maxtry && dist_sub(p) < rb) {
                             break;
@@ -650,7 +706,7 @@ impl InsertPack {
                 if self.verbose && nl >= 10 && k % (nl / 10) == 0 {
                     lines.push(format!("insertion: proc 0 at {} %", 10 * k / (nl / 10)));
                 }
-                let p = gen(&mut self.region_rng, dist.templates[t].radius);
+                let p = gen(&mut self.region_rng, dist.templates[t].radius)?;
                 let v = velocity(&mut self.rng);
                 let axes = if self.random_orientation {
                     random_orientation(&mut self.rng, &dist.templates[t])

@@ -154,7 +154,13 @@ impl Simulation {
 
     /// A dry run's `run`: LIGGGHTS's init checks of particles and neighbour bins, no step.
     pub fn check_run(&self) -> Result<(), EngineError> {
-        self.check_run_init()
+        self.check_run_init()?;
+        for f in &self.fixes {
+            if let FixKind::InsertPack(ins) = &f.kind {
+                ins.check_tet_region(&self.regions, self.domain.lo, self.domain.hi)?;
+            }
+        }
+        Ok(())
     }
 
     /// A fix changes particle radii during runs (`fix adapt ... atom diameter`).

@@ -48,8 +48,8 @@ impl AveForce {
         let mut sum = [0.0; 4];
         for i in 0..p.len() {
             if p.mask[i] & group != 0 {
-                for k in 0..3 {
-                    sum[k] += p.f[i][k];
+                for (s, f) in sum.iter_mut().zip(p.f[i]) {
+                    *s += f;
                 }
                 sum[3] += 1.0;
             }
@@ -63,9 +63,9 @@ impl AveForce {
         let ave = [0, 1, 2].map(|k| sum[k] / n + self.add[k].unwrap_or(0.0));
         for i in 0..p.len() {
             if p.mask[i] & group != 0 {
-                for k in 0..3 {
-                    if self.add[k].is_some() {
-                        p.f[i][k] = ave[k];
+                for ((f, add), a) in p.f[i].iter_mut().zip(self.add).zip(ave) {
+                    if add.is_some() {
+                        *f = a;
                     }
                 }
             }

@@ -4,12 +4,15 @@
 
 pub mod args;
 pub mod change_box;
+pub mod compute_displace;
 pub mod compute_modify;
+pub mod compute_reduce_region;
 pub mod computes_extra;
 pub mod diverged;
 pub mod error;
 pub mod fix;
 pub mod fix_state;
+pub mod group_functions;
 pub mod group_variable;
 pub mod logs;
 pub mod material_check;
@@ -243,7 +246,10 @@ impl Simulation {
         let bit = sim
             .group_bit(args.first().map(String::as_str).unwrap_or(""))
             .ok_or("Group ID in variable formula does not exist")?;
-        let takes_dim = matches!(name, "xcm" | "vcm" | "fcm" | "bound");
+        let takes_dim = matches!(
+            name,
+            "xcm" | "vcm" | "fcm" | "bound" | "angmom" | "torque" | "inertia" | "omega"
+        );
         let region_arg = args.get(if takes_dim { 2 } else { 1 });
         if args.len() > if takes_dim { 3 } else { 2 } || (takes_dim && args.len() < 2) {
             return Err(invalid());
@@ -317,6 +323,9 @@ impl Simulation {
                     ke += p.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
                 }
                 0.5 * ke
+            }
+            "gyration" | "angmom" | "torque" | "inertia" | "omega" => {
+                crate::commands::group_functions::about_centre(sim, name, args, &members, mass)?
             }
             other => return Err(format!("group function {other}(): not supported yet")),
         })

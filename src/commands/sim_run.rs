@@ -11,6 +11,7 @@ use crate::script::system::Mode;
 
 mod compute;
 
+pub(crate) use compute::compute_reduce;
 use compute::*;
 
 type Result = std::result::Result<(), CommandError>;

@@ -43,6 +43,8 @@ pub enum ComputeKind {
         mode: ReduceMode,
         /// One value per input.
         inputs: Vec<Input>,
+        /// `reduce/region`: only atoms inside this region (index) count.
+        region: Option<usize>,
     },
     /// `com`: centre of mass of the group, unwrapped (length), a 3-vector.
     Com,
@@ -58,6 +60,12 @@ pub enum ComputeKind {
         /// ID of the mesh wall fix.
         wall: String,
     },
+    /// `msd [com yes|no]`: mean squared displacement along x, y, z and in total (area).
+    Msd(Box<crate::engine::displacement::Origins>),
+    /// `displace/atom`: dx, dy, dz and distance from the start position per atom (length).
+    DisplaceAtom(Box<crate::engine::displacement::Origins>),
+    /// `erotate/sphere/atom`: 0.5 I w^2 per atom (energy).
+    ErotateSphereAtom,
 }
 
 /// The reductions of `compute reduce`.
@@ -150,6 +158,10 @@ pub const STYLES: &[&str] = &[
     "pair/gran/local",
     "wall/gran/local",
     "contact/atom",
+    "displace/atom",
+    "erotate/sphere/atom",
+    "msd",
+    "reduce/region",
     "erotate",
     "erotate/sphere",
     "ke",
@@ -166,6 +178,8 @@ impl Compute {
     pub fn per_atom_columns(&self) -> usize {
         match &self.kind {
             ComputeKind::KeAtom | ComputeKind::ContactAtom { .. } => 1,
+            ComputeKind::ErotateSphereAtom => 1,
+            ComputeKind::DisplaceAtom(_) => 4,
             ComputeKind::StressAtom { .. } => 6,
             ComputeKind::PropertyAtom(c) => c.len(),
             _ => 0,
@@ -177,6 +191,7 @@ impl Compute {
         match &self.kind {
             ComputeKind::Com => 3,
             ComputeKind::TracerCount(_) => 4,
+            ComputeKind::Msd(_) => 4,
             ComputeKind::Reduce { inputs, .. } if inputs.len() > 1 => inputs.len(),
             _ => 0,
         }
@@ -209,9 +224,11 @@ impl Compute {
             }
             ComputeKind::Temp => crate::engine::temperature::temperature(sim, self),
             ComputeKind::PotentialEnergy => 0.0,
-            ComputeKind::Reduce { mode, inputs } if inputs.len() == 1 => {
-                self.reduce(sim, *mode, &inputs[0], vars)?
-            }
+            ComputeKind::Reduce {
+                mode,
+                inputs,
+                region,
+            } if inputs.len() == 1 => self.reduce(sim, (*mode, *region), &inputs[0], vars)?,
             _ => {
                 return Err(format!(
                     "Compute {} ({}) does not calculate a scalar",
@@ -243,18 +260,22 @@ impl Compute {
             ComputeKind::TracerCount(t) => {
                 Ok(t.values(&sim.particles, self.group, &sim.regions)[index - 1])
             }
-            ComputeKind::Reduce { mode, inputs } => {
-                self.reduce(sim, *mode, &inputs[index - 1], vars)
-            }
+            ComputeKind::Msd(o) => Ok(o.msd(&sim.particles, &sim.domain, self.group)[index - 1]),
+            ComputeKind::Reduce {
+                mode,
+                inputs,
+                region,
+            } => self.reduce(sim, (*mode, *region), &inputs[index - 1], vars),
             _ => unreachable!("vector_len is 0"),
         }
     }
 
-    /// LIGGGHTS's `compute reduce` of one input over the group (atom order).
+    /// LIGGGHTS's `compute reduce` of one input over the group (atom order), and of
+    /// `reduce/region` over the group's atoms inside the region.
     fn reduce(
         &self,
         sim: &Simulation,
-        mode: ReduceMode,
+        (mode, region): (ReduceMode, Option<usize>),
         input: &Input,
         vars: &mut dyn VariableSource,
     ) -> Result<f64, EngineError> {
@@ -285,6 +306,9 @@ impl Compute {
         };
         for i in 0..p.len() {
             if p.mask[i] & self.group == 0 {
+                continue;
+            }
+            if region.is_some_and(|r| !sim.regions.matches(r, p.x[i])) {
                 continue;
             }
             let v = values(i);
@@ -573,6 +597,20 @@ impl Compute {
                     }
                     for k in 0..6 {
                         values[i * 6 + k] = -s[k];
+                    }
+                }
+            }
+            ComputeKind::DisplaceAtom(o) => o.displace(p, &sim.domain, group, &mut values),
+            ComputeKind::ErotateSphereAtom => {
+                let tags = crate::engine::clumps::body_tags(p);
+                for (i, value) in values.iter_mut().enumerate() {
+                    if p.mask[i] & group != 0 && !crate::engine::clumps::is_member(tags, i) {
+                        let w = p.omega[i];
+                        *value = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
+                            * p.radius[i]
+                            * p.radius[i]
+                            * p.mass[i];
+                        *value *= 0.5 * 1.0 * SPHERE_INERTIA;
                     }
                 }
             }

@@ -290,6 +290,16 @@ pub enum FixKind {
     HeatGran(crate::engine::heat::HeatGran),
     /// `fix multisphere`: the rigid clumps and their integration.
     Multisphere(Box<crate::engine::clumps::Clumps>),
+    /// `fix nve`: positions and velocities (no rotation).
+    Nve,
+    /// `fix nve/limit`: `fix nve` with a speed cap.
+    NveLimit(crate::engine::nve_limit::NveLimit),
+    /// `fix lineforce`, `fix planeforce`: forces kept along a line or in a plane.
+    Project(crate::engine::force_project::Project),
+    /// `fix aveforce`: the group's forces replaced by their mean plus an extra force.
+    AveForce(crate::engine::force_project::AveForce),
+    /// `fix ave/atom`: per-particle time averages.
+    AveAtom(Box<crate::engine::ave_atom::AveAtom>),
 }
 
 impl FixKind {
@@ -317,7 +327,11 @@ impl FixKind {
             | FixKind::Tracer(_)
             | FixKind::Settings
             | FixKind::PropertyAtom(_)
-            | FixKind::HeatGran(_) => false,
+            | FixKind::HeatGran(_)
+            | FixKind::Nve
+            | FixKind::NveLimit(_)
+            | FixKind::Project(_)
+            | FixKind::AveForce(_) => false,
             FixKind::SetForce(f) | FixKind::AddForce(f) => f.values.iter().any(variable),
             FixKind::Move(m) => matches!(m.motion, Motion::Variable { .. }),
             _ => true,
@@ -687,6 +701,8 @@ pub fn initial_integrate(
             FixKind::NveNoforce => crate::engine::nve_noforce::initial_integrate(p, fix.group, dt),
             FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt, domain),
             FixKind::HeatGran(h) => h.initial_integrate(p),
+            FixKind::Nve => crate::engine::nve_limit::initial_integrate(p, fix.group, dt),
+            FixKind::NveLimit(n) => n.initial_integrate(p, fix.group, dt),
             _ => {}
         }
     }
@@ -852,6 +868,8 @@ pub fn post_force(
                     b.apply(p, g, gv);
                 }
             }
+            FixKind::Project(pr) => pr.apply(p, g),
+            FixKind::AveForce(av) => av.apply(p, g),
             _ => {}
         }
     }
@@ -873,6 +891,8 @@ pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, dt: f64, domain: &D
             }
             FixKind::Move(m) => m.final_integrate(p, fix.group, dt),
             FixKind::HeatGran(h) => h.final_integrate(p, fix.group, dt),
+            FixKind::Nve => crate::engine::nve_limit::final_integrate(p, fix.group, dt),
+            FixKind::NveLimit(n) => n.final_integrate(p, fix.group, dt),
             _ => {}
         }
     }

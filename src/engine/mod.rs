@@ -2,16 +2,19 @@
 //! computes and the integrator. Commands in [`crate::commands`] configure it.
 
 pub mod accel;
+pub mod ave_atom;
 pub mod buoyancy;
 pub mod cells;
 pub mod checks;
 pub mod clumps;
 pub mod computes;
 pub mod contact;
+pub mod displacement;
 pub mod error;
 pub mod extras;
 pub mod fix_columns;
 pub mod fixes;
+pub mod force_project;
 pub mod granular;
 pub mod heat;
 pub mod insert;
@@ -29,6 +32,7 @@ pub mod mirror_history;
 pub mod momentum;
 pub mod multisphere;
 pub mod neighbor;
+pub mod nve_limit;
 pub mod nve_noforce;
 pub mod procmap;
 pub mod region;

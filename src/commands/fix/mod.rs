@@ -2,7 +2,9 @@
 //! [`STYLES`]. Adding a fix style is writing its file and adding its row.
 
 mod adapt;
+mod ave_atom;
 mod ave_time;
+mod aveforce;
 mod buoyancy;
 mod check_timestep;
 mod distribution;
@@ -12,6 +14,7 @@ mod gravity;
 mod heat_gran;
 mod insert_pack;
 mod insert_stream;
+mod lineforce;
 mod massflow_mesh;
 mod mesh_servo;
 mod mesh_surface;
@@ -20,6 +23,7 @@ mod move_atoms;
 mod move_mesh;
 mod multisphere;
 mod nve;
+mod nve_limit;
 mod particle_template;
 mod particle_template_multisphere;
 mod print;
@@ -94,6 +98,12 @@ pub const STYLES: &[(&str, Build)] = &[
     ("heat/gran", heat_gran::build),
     ("heat/gran/conduction", heat_gran::build),
     ("multisphere", multisphere::build),
+    ("nve", nve::plain),
+    ("nve/limit", nve_limit::build),
+    ("lineforce", lineforce::build),
+    ("planeforce", lineforce::build),
+    ("aveforce", aveforce::build),
+    ("ave/atom", ave_atom::build),
 ];
 
 /// `fix ID GROUP STYLE ...` with the styles of `styles`: checks what every fix shares, has

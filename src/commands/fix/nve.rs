@@ -19,3 +19,11 @@ pub fn sphere(a: &Args, _ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, Comman
     }
     Ok(FixKind::NveSphere)
 }
+
+/// `fix ID GROUP nve`: positions and velocities (angular velocities left alone).
+pub fn plain(a: &Args, _ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandError> {
+    if a.len() != 3 {
+        return Err(a.error(3, "Illegal fix nve command"));
+    }
+    Ok(FixKind::Nve)
+}

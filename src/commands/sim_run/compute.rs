@@ -92,7 +92,10 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
             }
             ComputeKind::PropertyAtom(cols)
         }
-        "reduce" => compute_reduce(a, ctx)?,
+        "reduce" => compute_reduce(a, ctx, 3, None)?,
+        "reduce/region" => crate::commands::compute_reduce_region::build(a, ctx)?,
+        "msd" | "displace/atom" => crate::commands::compute_displace::build(a, ctx, bit)?,
+        "erotate/sphere/atom" => no_keywords(ComputeKind::ErotateSphereAtom)?,
         "pair/gran/local" => {
             use crate::engine::computes::LocalField;
             if ctx.sim.step > 0 && !ctx.sim.restart_in_progress {
@@ -148,25 +151,28 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
 }
 
 /// `compute ID GROUP reduce MODE input1 input2 ...` (inputs: atom attributes or per-atom
-/// computes `c_ID`, `c_ID[N]`).
-pub(super) fn compute_reduce(
+/// computes `c_ID`, `c_ID[N]`), the mode at word `at`; `region`: the region index of
+/// `reduce/region`.
+pub(crate) fn compute_reduce(
     a: &Args,
     ctx: &Ctx,
+    at: usize,
+    region: Option<usize>,
 ) -> std::result::Result<crate::engine::computes::ComputeKind, CommandError> {
     use crate::engine::computes::{column_of, ComputeKind, Input, ReduceMode};
-    if a.len() < 5 {
+    if a.len() < at + 2 {
         return Err(a.error(2, "Illegal compute reduce command"));
     }
-    let mode = match a.word(3)? {
+    let mode = match a.word(at)? {
         "sum" => ReduceMode::Sum,
         "min" => ReduceMode::Min,
         "max" => ReduceMode::Max,
         "ave" => ReduceMode::Ave,
-        "region" => return Err(a.unsupported(3, "compute reduce/region")),
-        _ => return Err(a.error(3, "Illegal compute reduce command")),
+        "region" => return Err(a.unsupported(at, "compute reduce/region")),
+        _ => return Err(a.error(at, "Illegal compute reduce command")),
     };
     let mut inputs = Vec::new();
-    for i in 4..a.len() {
+    for i in at + 1..a.len() {
         let w = a.word(i)?;
         if w == "replace" {
             return Err(a.unsupported(i, "compute reduce replace"));
@@ -213,7 +219,11 @@ pub(super) fn compute_reduce(
             Ok(c) => inputs.push(Input::Atom(c)),
         }
     }
-    Ok(ComputeKind::Reduce { mode, inputs })
+    Ok(ComputeKind::Reduce {
+        mode,
+        inputs,
+        region,
+    })
 }
 
 pub(super) fn uncompute(a: &Args, ctx: &mut Ctx) -> Result {

@@ -667,6 +667,8 @@ impl Simulation {
         self.check_run_init()?;
         crate::engine::buoyancy::check(&self.fixes)?;
         self.setup_momentum();
+        self.setup_nve_limit();
+        self.setup_displacements();
         self.accel.settle_threads();
         if self.accel.fast {
             self.start_order_record();
@@ -724,6 +726,7 @@ impl Simulation {
         self.restart_mesh_history.clear();
         self.say_clump_energy(out);
         self.setup_insertions(out)?;
+        self.setup_ave_atom(vars)?;
         self.setup_averages(vars)?;
         self.thermo.run_start = first;
         self.thermo.prepare_run(self.domain.shrinks());

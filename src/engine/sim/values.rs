@@ -36,6 +36,7 @@ impl Simulation {
                         at.sample(step, &values)?;
                     }
                 }
+                FixKind::AveAtom(_) => self.ave_atom_step(k, vars)?,
                 FixKind::Print(pf) if step % pf.every == 0 => {
                     let text = pf.text.clone();
                     let line = vars.substitute(self, &text)?;
@@ -108,6 +109,8 @@ impl Simulation {
             }
             (FixKind::Buoyancy(b), Some(i @ 1..=3)) => Ok(b.total[i - 1]),
             (FixKind::Tracer(t), None) => Ok(t.scalar()),
+            (FixKind::NveLimit(n), None) => Ok(n.count as f64),
+            (FixKind::AveForce(a), Some(i @ 1..=3)) => Ok(a.original[i - 1]),
             _ => Err(format!("fix {id} ({}) has no such value", fix.style).into()),
         }
     }

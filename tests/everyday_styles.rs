@@ -1,0 +1,131 @@
+//! Everyday styles of researchers' decks (fix nve, nve/limit, lineforce, planeforce,
+//! aveforce, ave/atom; compute msd, displace/atom, erotate/sphere/atom, reduce/region):
+//! bad arguments get LIGGGHTS's error at their line, and what stays unfinished is refused
+//! alike by `check` and `run`. Their results are compared with LIGGGHTS by the compat decks
+//! integrators_forces, displacement_computes, ave_atom and group_functions.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-everyday-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn regolith(dir: &PathBuf, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_regolith"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
+
+fn text(b: &[u8]) -> String {
+    String::from_utf8_lossy(b).into_owned()
+}
+
+const HEAD: &str = "atom_style granular
+atom_modify map array
+boundary p p f
+newton off
+communicate single vel yes
+units si
+region reg block 0 0.1 0 0.1 0 0.1 units box
+create_box 1 reg
+neighbor 0.002 bin
+neigh_modify delay 0
+";
+
+#[test]
+fn bad_arguments_get_liggghts_errors() {
+    let dir = scratch("errors");
+    for (body, needle) in [
+        ("fix f all nve extra", "Illegal fix nve command"),
+        (
+            "fix f all nve/limit relative 0.1",
+            "expecting keyword 'absolute' or 'radius_ratio'",
+        ),
+        (
+            "fix f all nve/limit absolute",
+            "Illegal fix nve/limit command",
+        ),
+        ("fix f all lineforce 0 0 0", "Illegal fix lineforce command"),
+        ("fix f all planeforce 0 1", "Illegal fix planeforce command"),
+        ("fix f all aveforce 0 0", "Illegal fix aveforce command"),
+        (
+            "fix f all aveforce 0 0 0 bogus",
+            "Illegal fix aveforce command",
+        ),
+        (
+            "fix f all ave/atom 10 5 100",
+            "Illegal fix ave/atom command",
+        ),
+        (
+            "fix f all ave/atom 10 20 100 vx",
+            "Illegal fix ave/atom command",
+        ),
+        (
+            "fix f all ave/atom 10 5 100 radius",
+            "Illegal fix ave/atom command",
+        ),
+        (
+            "fix f all ave/atom 10 5 100 c_none",
+            "Compute ID for fix ave/atom does not exist",
+        ),
+        (
+            "variable e equal 1\nfix f all ave/atom 10 5 100 v_e",
+            "Fix ave/atom variable is not atom-style variable",
+        ),
+        (
+            "compute r all reduce/region nowhere sum vx",
+            "Region ID for compute reduce/region does not exist",
+        ),
+        (
+            "compute r all reduce/region reg sum",
+            "Illegal compute reduce/region command",
+        ),
+        ("compute m all msd com maybe", "Illegal compute msd command"),
+        (
+            "compute d all displace/atom com yes",
+            "Illegal compute displace/atom command",
+        ),
+        (
+            "compute e all erotate/sphere/atom extra",
+            "Illegal compute erotate/sphere/atom command",
+        ),
+    ] {
+        std::fs::write(dir.join("in.t"), format!("{HEAD}{body}\n")).unwrap();
+        let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+        let err = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{body}: {err}");
+        assert!(err.contains(needle), "{body}: {err}");
+    }
+}
+
+#[test]
+fn unfinished_keywords_are_refused_by_check_and_run_alike() {
+    let dir = scratch("refused");
+    for (body, needle) in [
+        (
+            "variable f equal 1\nfix f all aveforce v_f 0 0",
+            "fix aveforce with variables: not supported yet",
+        ),
+        (
+            "fix f all aveforce 0 0 0 region reg",
+            "fix aveforce region: not supported yet",
+        ),
+    ] {
+        std::fs::write(dir.join("in.t"), format!("{HEAD}{body}\n")).unwrap();
+        let run = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+        let err = text(&run.stderr);
+        assert_ne!(run.status.code(), Some(0), "{body}: {err}");
+        assert!(err.contains(needle), "{body}: {err}");
+        let check = regolith(&dir, &["check", "in.t"]);
+        let said = text(&check.stdout);
+        assert_ne!(check.status.code(), Some(0), "{body}: {said}");
+        assert!(said.contains(needle), "{body}: {said}");
+    }
+}

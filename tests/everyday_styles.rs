@@ -1,5 +1,5 @@
 //! Everyday styles of researchers' decks (fix nve, nve/limit, lineforce, planeforce,
-//! aveforce, ave/atom; compute msd, displace/atom, erotate/sphere/atom, reduce/region):
+//! aveforce, ave/atom, viscous ... scale; compute msd, displace/atom, erotate/sphere/atom, reduce/region):
 //! bad arguments get LIGGGHTS's error at their line, and what stays unfinished is refused
 //! alike by `check` and `run`. Their results are compared with LIGGGHTS by the compat decks
 //! integrators_forces, displacement_computes, ave_atom and group_functions.
@@ -44,6 +44,20 @@ fn bad_arguments_get_liggghts_errors() {
     let dir = scratch("errors");
     for (body, needle) in [
         ("fix f all nve extra", "Illegal fix nve command"),
+        // one atom type here: type 2 is out of range
+        (
+            "fix f all viscous 0.1 scale 2 2.0",
+            "Illegal fix viscous command",
+        ),
+        (
+            "fix f all viscous 0.1 scale 1",
+            "Illegal fix viscous command",
+        ),
+        (
+            "fix f all viscous 0.1 scal 1 2",
+            "Illegal fix viscous command",
+        ),
+        ("fix f all viscous", "Illegal fix viscous command"),
         (
             "fix f all nve/limit relative 0.1",
             "expecting keyword 'absolute' or 'radius_ratio'",

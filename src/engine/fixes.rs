@@ -244,8 +244,8 @@ pub enum FixKind {
     SetForce(ForceFix),
     /// `fix addforce fx fy fz` (force units).
     AddForce(ForceFix),
-    /// `fix viscous gamma`: f -= gamma v (force/velocity units).
-    Viscous(f64),
+    /// `fix viscous gamma [scale type ratio]`: f -= gamma v, gamma per atom type (index 0 unused; force/velocity units).
+    Viscous(Vec<f64>),
     /// `fix freeze`: force and torque zero (and infinite mass in contacts).
     Freeze,
     /// `fix wall/gran ... primitive`: a granular plane wall.
@@ -850,10 +850,11 @@ pub fn post_force(
                     }
                 }
             }
-            FixKind::Viscous(gamma) => {
+            FixKind::Viscous(by_type) => {
                 for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
+                    let gamma = by_type.get(p.kind[i] as usize).copied().unwrap_or(0.0);
                     for d in 0..3 {
-                        p.f[i][d] -= *gamma * p.v[i][d];
+                        p.f[i][d] -= gamma * p.v[i][d];
                     }
                 }
             }

@@ -88,7 +88,7 @@ fn post_force_order_and_freeze() {
             region: None,
             resolved: Vec::new(),
         })),
-        mk(FixKind::Viscous(0.5)),
+        mk(FixKind::Viscous(vec![0.5; 2])),
         mk(FixKind::SetForce(ForceFix {
             values: [
                 ForceValue::Null,

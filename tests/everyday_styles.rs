@@ -44,6 +44,27 @@ fn bad_arguments_get_liggghts_errors() {
     let dir = scratch("errors");
     for (body, needle) in [
         ("fix f all nve extra", "Illegal fix nve command"),
+        (
+            "fix_modify nowhere energy no",
+            "Could not find fix_modify ID",
+        ),
+        (
+            "fix f all nve/sphere\nfix_modify f",
+            "Illegal fix_modify command",
+        ),
+        (
+            "fix f all nve/sphere\nfix_modify f energy maybe",
+            "Illegal fix_modify command",
+        ),
+        (
+            "fix f all nve/sphere\nfix_modify f temp t",
+            "Illegal fix_modify command",
+        ),
+        // a keyword LIGGGHTS refuses beats one regolith does not run yet
+        (
+            "fix g all gravity 9.81 vector 0 0 -1\nfix_modify g energy yes temp t",
+            "Illegal fix_modify command",
+        ),
         // one atom type here: type 2 is out of range
         (
             "fix f all viscous 0.1 scale 2 2.0",
@@ -131,6 +152,10 @@ fn unfinished_keywords_are_refused_by_check_and_run_alike() {
             "fix f all aveforce 0 0 0 region reg",
             "fix aveforce region: not supported yet",
         ),
+        (
+            "fix g all gravity 9.81 vector 0 0 -1\nfix_modify g energy yes",
+            "fix_modify energy yes on fix gravity (its energy in compute pe): not supported yet",
+        ),
     ] {
         std::fs::write(dir.join("in.t"), format!("{HEAD}{body}\n")).unwrap();
         let run = regolith(&dir, &["-in", "in.t", "-log", "none"]);
@@ -142,4 +167,29 @@ fn unfinished_keywords_are_refused_by_check_and_run_alike() {
         assert_ne!(check.status.code(), Some(0), "{body}: {said}");
         assert!(said.contains(needle), "{body}: {said}");
     }
+}
+
+#[test]
+fn fix_modify_energy_of_a_fix_without_energy_changes_nothing() {
+    // LIGGGHTS accepts it; a granular fix adds no energy, so the run is the same
+    let dir = scratch("fix_modify");
+    let body = "create_atoms 1 single 0.05 0.05 0.05 units box
+set type 1 diameter 0.01 density 2500
+velocity all set 0.1 0 0
+fix f all nve/sphere
+fix_modify f energy yes energy no
+thermo_style custom step ke
+run 10
+";
+    std::fs::write(dir.join("in.t"), format!("{HEAD}{body}")).unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    // ke = m v^2 / 2 of one 1 cm sphere of 2500 kg/m^3 at 0.1 m/s
+    let stdout = text(&out.stdout);
+    assert!(
+        stdout
+            .lines()
+            .any(|l| l.split_whitespace().eq(["10", "6.5449847e-06"])),
+        "{stdout}"
+    );
 }

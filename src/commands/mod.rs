@@ -11,6 +11,7 @@ pub mod computes_extra;
 pub mod diverged;
 pub mod error;
 pub mod fix;
+pub mod fix_modify;
 pub mod fix_state;
 pub mod group_functions;
 pub mod group_variable;

@@ -37,6 +37,7 @@ pub const COMMANDS: &[(&str, Handler)] = &[
     ("create_box", create_box),
     ("change_box", super::change_box::change_box),
     ("compute_modify", super::compute_modify::compute_modify),
+    ("fix_modify", super::fix_modify::fix_modify),
     ("create_atoms", create_atoms),
     ("lattice", lattice),
     ("displace_atoms", displace_atoms),

@@ -281,6 +281,9 @@ pub const SPECS: &[Spec] = &[
     style("fix", "setforce", "fix ID GROUP setforce FX FY FZ", &[kw("region", &[arg("R", Value::Id("region"))], "act only inside this region")], "set force components (force, NULL to leave one)"),
     style("fix", "viscous", "fix ID GROUP viscous GAMMA [scale TYPE RATIO ...]", &[], "drag force -GAMMA v (force per velocity), GAMMA scaled by RATIO for atoms of TYPE"),
     style("fix", "wall/gran", "fix ID GROUP wall/gran model M tangential T ... primitive type T xplane|yplane|zplane|xcylinder|ycylinder|zcylinder ARGS | mesh n_meshes N meshes MESH ...", &[kw("model", &[arg("M", Value::Word)], "normal contact model"), kw("tangential", &[arg("T", Value::Word)], "tangential contact model"), kw("cohesion", &[arg("C", Value::Word)], "cohesion model"), kw("rolling_friction", &[arg("R", Value::Word)], "rolling-friction model"), kw("primitive", &[arg("type T SHAPE ARGS", Value::Word)], "a plane or cylinder wall (positions in length)"), kw("mesh", &[arg("n_meshes N meshes MESH ...", Value::Id("fix"))], "walls made of meshes"), kw("shear", &[arg("x|y|z V", VELOCITY)], "the wall slides at velocity V"), kw("store_force", &[arg("yes|no", YES_NO)], "keep per-particle wall forces")], "granular walls: planes, cylinders or meshes"),
+    with(command("fix_modify ID KEYWORD VALUE ...", "change the settings every fix shares"), &[
+        kw("energy", &[arg("yes|no", YES_NO)], "the fix's energy in compute pe (granular fixes add none; yes on gravity or addforce: not supported yet)"),
+    ]),
     command("group ID region|type|id|subtract|union|intersect|variable|initialize|delete ...", "define a group of particles"),
     command("hard_particles yes|no", "refuse particles stiffer than LIGGGHTS's limit"),
     style("lattice", "bcc", "lattice bcc SCALE", &[kw("origin", &[arg("X Y Z", NUMBER)], "offset in lattice units")], "body-centred cubic lattice of spacing SCALE (length)"),

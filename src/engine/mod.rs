@@ -30,6 +30,7 @@ pub mod momentum;
 pub mod multisphere;
 pub mod neighbor;
 pub mod nve_noforce;
+pub mod planar;
 pub mod procmap;
 pub mod region;
 pub mod region_motion;

@@ -52,7 +52,8 @@ impl Simulation {
                 }
             }
         }
-        let two_d = false; // `dimension 2` is rejected at parse time
+        // the rolling-friction models use a disc's inertia factor in 2d
+        let two_d = self.dimension == 2;
         for k in 0..self.fixes.len() {
             if let FixKind::WallGran(wall) = &self.fixes[k].kind {
                 let mut sel = wall.selection.clone();

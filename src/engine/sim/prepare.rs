@@ -233,7 +233,7 @@ impl Simulation {
         if self.regions.list.iter().any(|r| r.is_dynamic()) {
             let mut regions = std::mem::take(&mut self.regions);
             let result = regions.reshape(Some(self.step), &mut |name| {
-                vars.equal(self, name).map_err(EngineError::from)
+                vars.equal(self, name)
             });
             self.regions = regions;
             result?;

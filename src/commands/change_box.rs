@@ -55,6 +55,9 @@ pub fn change_box(a: &Args, ctx: &mut Ctx) -> Result {
     if !ctx.sim.domain.exists {
         return Err(a.error(0, "Change_box command before simulation box is defined"));
     }
+    if ctx.sim.dimension == 2 {
+        return Err(a.unsupported(0, "change_box in a 2d simulation"));
+    }
     if a.len() < 2 {
         return Err(illegal(a, a.len().saturating_sub(1)).with_help(
             "change_box GROUP x|y|z final|delta|scale|volume ... boundary X Y Z | set | remap ... [units box|lattice]",

@@ -37,7 +37,7 @@ pub fn compute_modify(a: &Args, ctx: &mut Ctx) -> Result<(), CommandError> {
             return Err(a.error(i, "Illegal compute_modify command"));
         }
         match key {
-            "extra" => s.extra = a.int32(i + 1)?,
+            "extra" => s.extra = Some(a.int32(i + 1)?),
             _ => {
                 let yes = match a.word(i + 1)? {
                     "yes" => true,

@@ -273,6 +273,7 @@ fn type_fraction(
 /// Set `key` of every selected atom (LIGGGHTS's per-atom checks, made for variables' values).
 fn apply(a: &Args, ctx: &mut Ctx, i: usize, key: &str, v: &Value, atoms: &[usize]) -> Result {
     let ntypes = ctx.sim.ntypes as i64;
+    let planar = ctx.sim.dimension == 2;
     let p = &mut ctx.sim.particles;
     for &k in atoms {
         let value = match v {
@@ -290,7 +291,7 @@ fn apply(a: &Args, ctx: &mut Ctx, i: usize, key: &str, v: &Value, atoms: &[usize
                 p.radius[k] = 0.5 * value * 1.0;
                 if p.density[k] > 0.0 {
                     let r = p.radius[k];
-                    p.mass[k] = 4.0 * std::f64::consts::PI / 3.0 * r * r * r * p.density[k];
+                    p.mass[k] = crate::engine::planar::sphere_or_disc_mass(planar, r, p.density[k]);
                 }
             }
             "density" => {
@@ -302,7 +303,7 @@ fn apply(a: &Args, ctx: &mut Ctx, i: usize, key: &str, v: &Value, atoms: &[usize
                 p.density[k] = value;
                 if p.radius[k] > 0.0 {
                     let r = p.radius[k];
-                    p.mass[k] = 4.0 * std::f64::consts::PI / 3.0 * r * r * r * p.density[k];
+                    p.mass[k] = crate::engine::planar::sphere_or_disc_mass(planar, r, p.density[k]);
                 }
             }
             "mass" => {

@@ -26,7 +26,7 @@ pub const COMMANDS: &[(&str, Handler)] = &[
     ("atom_modify", atom_modify),
     ("boundary", boundary),
     ("units", units),
-    ("dimension", |a, _| dimension(a)),
+    ("dimension", dimension),
     ("newton", |a, _| one_of(a, "newton", &["on", "off"], 1..=2)),
     ("suffix", suffix),
     ("package", package),
@@ -128,11 +128,16 @@ fn units(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
-fn dimension(a: &Args) -> Result {
-    a.count(1..=1, "dimension 3")?;
+fn dimension(a: &Args, ctx: &mut Ctx) -> Result {
+    a.count(1..=1, "dimension 2|3")?;
+    if ctx.sim.domain.exists {
+        return Err(a.error(0, "Dimension command after simulation box is defined"));
+    }
     match a.int(0)? {
-        3 => Ok(()),
-        2 => Err(a.unsupported(0, "dimension 2")),
+        d @ (2 | 3) => {
+            ctx.sim.dimension = d as u32;
+            Ok(())
+        }
         _ => Err(a.error(0, "Illegal dimension command")),
     }
 }
@@ -261,6 +266,9 @@ fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
     if ctx.sim.domain.exists {
         return Err(a.error(0, "Cannot create_box after simulation box is defined"));
     }
+    if ctx.sim.dimension == 2 && !ctx.sim.domain.periodic(2) {
+        return Err(a.error(0, "Cannot run 2d simulation with nonperiodic Z dimension"));
+    }
     let ntypes = a.int(0)?;
     if ntypes < 1 {
         return Err(a.error(0, "Illegal create_box command"));
@@ -327,12 +335,21 @@ fn lattice(a: &Args, ctx: &mut Ctx) -> Result {
     if !registry::runs_style("lattice", style) && !LATTICE_STYLES.contains(&style) {
         return Err(a.keyword_error(0, LATTICE_STYLES));
     }
+    // LIGGGHTS checks the style against the dimension before anything else
+    let planar = matches!(style, "sq" | "sq2" | "hex");
+    let spatial = matches!(style, "sc" | "bcc" | "fcc" | "hcp" | "diamond");
+    if (ctx.sim.dimension == 2 && spatial) || (ctx.sim.dimension == 3 && planar) {
+        return Err(a
+            .error(0, "Lattice style incompatible with simulation dimension")
+            .with_help("sq, sq2 and hex are 2d lattices; sc, bcc, fcc, hcp and diamond 3d"));
+    }
     registry::require_style(a, "lattice")?;
     let mut basis: Vec<[f64; 3]> = match style {
         "none" | "custom" => Vec::new(),
-        "sc" => vec![[0.0; 3]],
+        "sc" | "sq" => vec![[0.0; 3]],
         "bcc" => vec![[0.0; 3], [0.5, 0.5, 0.5]],
         "fcc" => vec![[0.0; 3], [0.5, 0.5, 0.0], [0.5, 0.0, 0.5], [0.0, 0.5, 0.5]],
+        "sq2" | "hex" => vec![[0.0; 3], [0.5, 0.5, 0.0]],
         _ => return Err(a.unsupported(0, &format!("lattice {style}"))),
     };
     let mut origin = [0.0; 3];
@@ -377,9 +394,24 @@ fn lattice(a: &Args, ctx: &mut Ctx) -> Result {
             w => return Err(a.unsupported(i, &format!("lattice keyword {w}"))),
         }
     }
+    if ctx.sim.dimension == 2
+        && (origin[2] != 0.0
+            || primitive[0][2] != 0.0
+            || primitive[1][2] != 0.0
+            || primitive[2][0] != 0.0
+            || primitive[2][1] != 0.0)
+    {
+        return Err(a
+            .error(0, "Lattice settings are not compatible with 2d simulation")
+            .with_help("in 2d the origin's z and the a1, a2 z and a3 x, y components must be 0"));
+    }
+    if style == "hex" {
+        // the hexagonal cell is sqrt(3) times taller than wide
+        primitive[1][1] = 3f64.sqrt();
+    }
     let mut spacing = [scale; 3];
     ctx.sim.lattice_cell = None;
-    if style == "custom" {
+    if style == "custom" || style == "hex" {
         if basis.is_empty() {
             return Err(a
                 .error(0, "No basis atoms in lattice")

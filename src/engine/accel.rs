@@ -177,8 +177,8 @@ impl Simulation {
         }
         let skin = self.neighbor.skin;
         let max_reach = self.particles.radius.iter().copied().fold(0.0, f64::max);
-        let Some(grid) = CellGrid::new(&self.particles.x, 2.0 * max_reach + skin, &self.domain)
-        else {
+        let domain = self.list_domain();
+        let Some(grid) = CellGrid::new(&self.particles.x, 2.0 * max_reach + skin, &domain) else {
             self.accel.general_list = true;
             return false;
         };

@@ -95,7 +95,12 @@ impl Simulation {
     pub fn check_run_init(&self) -> Result<(), EngineError> {
         let p = &self.particles;
         for fix in &self.fixes {
-            if let FixKind::NveSphere = fix.kind {
+            if matches!(fix.kind, FixKind::Enforce2d) && self.dimension == 3 {
+                return Err("Cannot use fix enforce2d with 3d simulation"
+                    .to_string()
+                    .into());
+            }
+            if let FixKind::NveSphere | FixKind::NveDisc = fix.kind {
                 let point =
                     (0..p.len()).find(|&i| p.mask[i] & fix.group != 0 && p.radius[i] == 0.0);
                 if let Some(i) = point {
@@ -117,7 +122,9 @@ impl Simulation {
                 0.5 * self.neighbor_cutoff().max(self.liggghts_cutneighmax())
             };
             if size > 0.0 {
-                let bins: f64 = (0..3)
+                // a single layer of bins in 2d
+                let layers = if self.dimension == 2 { 2 } else { 3 };
+                let bins: f64 = (0..layers)
                     .map(|d| (self.domain.length(d) / size).trunc().max(1.0))
                     .product();
                 if bins.is_nan() || bins > i32::MAX as f64 {

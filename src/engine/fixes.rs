@@ -236,6 +236,10 @@ pub enum FixKind {
     NveSphere,
     /// `fix nve/noforce`.
     NveNoforce,
+    /// `fix nve/sphere` in 2d: discs (moment of inertia 0.5 m r^2).
+    NveDisc,
+    /// `fix enforce2d`: motion kept in the xy plane.
+    Enforce2d,
     /// `fix move`.
     Move(Move),
     /// `fix gravity`.
@@ -309,6 +313,8 @@ impl FixKind {
         let variable = |v: &ForceValue| matches!(v, ForceValue::Equal(_) | ForceValue::Atom(_));
         match self {
             FixKind::NveSphere
+            | FixKind::NveDisc
+            | FixKind::Enforce2d
             | FixKind::NveNoforce
             | FixKind::Gravity(_)
             | FixKind::Viscous(_)
@@ -697,6 +703,12 @@ pub fn initial_integrate(
     for fix in fixes {
         match &mut fix.kind {
             FixKind::NveSphere => integrate::initial_integrate(p, fix.group, dt),
+            FixKind::NveDisc => integrate::initial_integrate_with(
+                p,
+                fix.group,
+                dt,
+                crate::engine::planar::DISC_INERTIA,
+            ),
             FixKind::Multisphere(ms) => ms.initial_integrate(p, dt, domain, step, has_stream),
             FixKind::NveNoforce => crate::engine::nve_noforce::initial_integrate(p, fix.group, dt),
             FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt, domain),
@@ -864,6 +876,7 @@ pub fn post_force(
                     p.torque[i] = [0.0; 3];
                 }
             }
+            FixKind::Enforce2d => crate::engine::planar::enforce(p, g),
             FixKind::Buoyancy(b) => {
                 if let Some(gv) = buoyancy_g {
                     b.apply(p, g, gv);
@@ -886,6 +899,12 @@ pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, dt: f64, domain: &D
     for fix in fixes {
         match &mut fix.kind {
             FixKind::NveSphere => integrate::final_integrate(p, fix.group, dt),
+            FixKind::NveDisc => integrate::final_integrate_with(
+                p,
+                fix.group,
+                dt,
+                crate::engine::planar::DISC_INERTIA,
+            ),
             FixKind::Multisphere(ms) => {
                 ms.calc_force(p, domain, gravity);
                 ms.final_integrate(p, dt);

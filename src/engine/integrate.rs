@@ -26,8 +26,13 @@ pub const SPHERE_INERTIA: f64 = 0.4;
 /// First half of a velocity-Verlet step for particles whose `mask` has `group` bits:
 /// half-kick v and omega with the current force and torque, then drift x by a full `dt`.
 pub fn initial_integrate(p: &mut Particles, group: u32, dt: f64) {
+    initial_integrate_with(p, group, dt, SPHERE_INERTIA)
+}
+
+/// [`initial_integrate`] for bodies of moment of inertia `inertia` m r^2 (discs in 2d).
+pub fn initial_integrate_with(p: &mut Particles, group: u32, dt: f64, inertia: f64) {
     let dtf = 0.5 * dt;
-    let dtfrotate = dtf / SPHERE_INERTIA;
+    let dtfrotate = dtf / inertia;
     let Particles {
         x,
         v,
@@ -81,8 +86,13 @@ pub fn initial_integrate(p: &mut Particles, group: u32, dt: f64) {
 
 /// Second half of a velocity-Verlet step: half-kick v and omega with the new force/torque.
 pub fn final_integrate(p: &mut Particles, group: u32, dt: f64) {
+    final_integrate_with(p, group, dt, SPHERE_INERTIA)
+}
+
+/// [`final_integrate`] for bodies of moment of inertia `inertia` m r^2 (discs in 2d).
+pub fn final_integrate_with(p: &mut Particles, group: u32, dt: f64, inertia: f64) {
     let dtf = 0.5 * dt;
-    let dtfrotate = dtf / SPHERE_INERTIA;
+    let dtfrotate = dtf / inertia;
     let Particles {
         v,
         omega,

@@ -34,6 +34,7 @@ pub mod multisphere;
 pub mod neighbor;
 pub mod nve_limit;
 pub mod nve_noforce;
+pub mod planar;
 pub mod procmap;
 pub mod region;
 pub mod region_motion;

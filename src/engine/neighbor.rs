@@ -53,6 +53,8 @@ pub struct BinOrder {
     inv: [f64; 3],
     n: [i64; 3],
     cut: f64,
+    /// 2d: one layer of bins in z and a stencil that stays in it.
+    planar: bool,
 }
 
 impl BinOrder {
@@ -83,7 +85,16 @@ impl BinOrder {
             inv,
             n,
             cut: cutneighmax,
+            planar: false,
         }
+    }
+
+    /// These bins as LIGGGHTS makes them in 2d: a single bin across z, the stencil flat.
+    pub fn planar(mut self) -> BinOrder {
+        self.planar = true;
+        self.n[2] = 1;
+        self.inv[2] = 1.0 / (self.hi[2] - self.lo[2]);
+        self
     }
 
     /// Is bin `b` in LIGGGHTS's stencil around bin `a` (its bins' nearest faces closer than
@@ -125,6 +136,9 @@ impl BinOrder {
     /// LIGGGHTS's stencil reach in bins along each dimension (x, y, z).
     fn reach(&self) -> [i64; 3] {
         std::array::from_fn(|d| {
+            if d == 2 && self.planar {
+                return 0;
+            }
             let size = 1.0 / self.inv[d];
             let mut s = (self.cut * self.inv[d]) as i64;
             if (s as f64) * size < self.cut {

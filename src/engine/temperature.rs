@@ -9,8 +9,8 @@ use crate::engine::sim::Simulation;
 /// What `compute_modify` sets on one compute.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ComputeSettings {
-    /// Degrees of freedom subtracted from 3N (`extra`; default 3, the dimension).
-    pub extra: i64,
+    /// Degrees of freedom subtracted from dimension * N (`extra`; None: the dimension).
+    pub extra: Option<i64>,
     /// Count the group's atoms at every evaluation instead of at each run's setup.
     pub dynamic: bool,
     /// `thermo yes|no` (fix energies in compute pe; granular fixes add none).
@@ -22,7 +22,7 @@ pub struct ComputeSettings {
 impl Default for ComputeSettings {
     fn default() -> Self {
         ComputeSettings {
-            extra: 3,
+            extra: None,
             dynamic: false,
             thermo: None,
             setup_count: 0.0,
@@ -66,7 +66,7 @@ pub fn setup_counts(sim: &mut Simulation) {
 }
 
 /// LIGGGHTS's temperature of a compute temp (temperature): sum of m v^2 over the group,
-/// times mvv2e / (dof kB) with dof = 3N - extra (0 when dof is not positive).
+/// times mvv2e / (dof kB) with dof = dimension * N - extra (0 when dof is not positive).
 pub fn temperature(sim: &Simulation, c: &Compute) -> f64 {
     let p = &sim.particles;
     let mut t = 0.0;
@@ -85,8 +85,9 @@ pub fn temperature(sim: &Simulation, c: &Compute) -> f64 {
         .copied()
         .unwrap_or_default();
     let natoms = if s.dynamic { n as f64 } else { s.setup_count };
-    let mut dof = 3.0 * natoms;
-    dof -= s.extra as f64;
+    let dimension = sim.dimension as f64;
+    let mut dof = dimension * natoms;
+    dof -= s.extra.map_or(dimension, |e| e as f64);
     // LIGGGHTS's Boltzmann constants (energy per temperature) of its si and cgs units
     let boltz = match sim.units {
         UnitStyle::Si => 1.3806504e-23,

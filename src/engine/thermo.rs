@@ -303,6 +303,7 @@ pub fn keyword_value(
             crate::engine::computes::kinetic_energy(&sim.particles, 1)
                 + sim.clumps().map_or(0.0, |c| c.kinetic_energy()),
         ),
+        "vol" if sim.dimension == 2 => d.length(0) * d.length(1),
         "vol" => d.length(0) * d.length(1) * d.length(2),
         "lx" => d.length(0),
         "ly" => d.length(1),

@@ -8,6 +8,7 @@ mod aveforce;
 mod buoyancy;
 mod check_timestep;
 mod distribution;
+mod enforce2d;
 mod force;
 mod freeze;
 mod gravity;
@@ -56,6 +57,7 @@ pub type Build = fn(&Args, &mut Ctx, &FixDef) -> Result<FixKind, CommandError>;
 pub const STYLES: &[(&str, Build)] = &[
     ("nve/noforce", nve::noforce),
     ("nve/sphere", nve::sphere),
+    ("enforce2d", enforce2d::build),
     ("gravity", gravity::build),
     ("check/timestep/gran", check_timestep::build),
     ("property/global", property_global::build),
@@ -124,6 +126,9 @@ pub fn define(a: &Args, ctx: &mut Ctx, styles: &[(&str, Build)]) -> Result<(), C
     let Some(&(_, build)) = styles.iter().find(|(name, _)| *name == style) else {
         return Err(a.unsupported(2, &format!("fix {style}")));
     };
+    if ctx.sim.dimension == 2 && !crate::engine::planar::PLANAR_FIXES.contains(&style) {
+        return Err(a.unsupported(2, &format!("fix {style} in a 2d simulation")));
+    }
     let definition = FixDef {
         id,
         group,

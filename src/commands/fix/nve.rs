@@ -13,11 +13,16 @@ pub fn noforce(a: &Args, _ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, Comma
 }
 
 /// `fix ID GROUP nve/sphere`: positions, velocities and angular velocities of spheres.
-pub fn sphere(a: &Args, _ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn sphere(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandError> {
     if a.len() > 3 {
         return Err(a.unsupported(3, "fix nve/sphere keywords"));
     }
-    Ok(FixKind::NveSphere)
+    // LIGGGHTS integrates discs in 2d (moment of inertia 0.5 m r^2)
+    Ok(if ctx.sim.dimension == 2 {
+        FixKind::NveDisc
+    } else {
+        FixKind::NveSphere
+    })
 }
 
 /// `fix ID GROUP nve`: positions and velocities (angular velocities left alone).

@@ -47,6 +47,8 @@ pub(super) fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
         }
     }
     let d = ctx.sim.domain.clone();
+    let planar = ctx.sim.dimension == 2;
+    let zmid = d.lo[2] + 0.5 * (d.hi[2] - d.lo[2]);
     let before = ctx.sim.particles.len();
     let mut next_id = ctx.sim.particles.max_id() + 1;
     if style == "random" {
@@ -89,11 +91,15 @@ pub(super) fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
         for _ in 0..count {
             let mut tries = 0u64;
             let x = loop {
-                let x = [
+                let mut x = [
                     lo[0] + rng.uniform() * (hi[0] - lo[0]),
                     lo[1] + rng.uniform() * (hi[1] - lo[1]),
                     lo[2] + rng.uniform() * (hi[2] - lo[2]),
                 ];
+                if planar {
+                    // in 2d every atom sits at the box's mid-plane (its z was drawn all the same)
+                    x[2] = zmid;
+                }
                 if region.is_none_or(|r| ctx.sim.regions.matches(r, x)) {
                     break x;
                 }
@@ -212,6 +218,13 @@ pub(super) fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
                     }
                 }
             }
+        }
+    }
+    if planar {
+        // discs: LIGGGHTS gives 2d atoms the mass of their area
+        let p = &mut ctx.sim.particles;
+        for k in before..p.len() {
+            p.mass[k] = crate::engine::planar::disc_mass(p.radius[k], p.density[k]);
         }
     }
     ctx.say(&format!(

@@ -4,6 +4,9 @@ use super::*;
 
 /// `read_data FILE`: box, atom types, atoms and velocities of a granular data file.
 pub(super) fn read_data(a: &Args, ctx: &mut Ctx) -> Result {
+    if ctx.sim.dimension == 2 {
+        return Err(a.unsupported(0, "read_data in a 2d simulation"));
+    }
     a.count(1..=1, "read_data FILE")?;
     if ctx.sim.domain.exists {
         return Err(a.error(0, "Cannot read_data after simulation box is defined"));
@@ -94,6 +97,9 @@ pub(super) fn write_data(a: &Args, ctx: &mut Ctx) -> Result {
 
 /// `read_restart FILE` (a `*` picks the largest step, a `%` the multi-file form).
 pub(super) fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
+    if ctx.sim.dimension == 2 {
+        return Err(a.unsupported(0, "read_restart in a 2d simulation"));
+    }
     a.count(1..=1, "read_restart FILE")?;
     if ctx.sim.domain.exists {
         return Err(a.error(0, "Cannot read_restart after simulation box is defined"));

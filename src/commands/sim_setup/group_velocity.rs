@@ -227,6 +227,15 @@ pub(super) fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
     } else {
         1.0
     };
+    if style == "set" && ctx.sim.dimension == 2 {
+        let vz = a.word(4)?;
+        if vz.starts_with("v_") {
+            return Err(a.error(4, "Cannot set variable z velocity for 2d simulation"));
+        }
+        if vz != "NULL" && a.real(4)? != 0.0 {
+            return Err(a.error(4, "Cannot set non-zero z velocity for 2d simulation"));
+        }
+    }
     if style == "set" && (2..5).any(|d| a.word(d).is_ok_and(|w| w.starts_with("v_"))) {
         return crate::commands::velocity_vars::set(a, ctx, bit, sum, scale);
     }
@@ -267,6 +276,9 @@ pub(super) fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
                     .ok_or_else(|| a.error(k, "Illegal velocity command"))
             };
             let vdim = dim(2, &["vx", "vy", "vz"])?;
+            if vdim == 2 && sim.dimension == 2 {
+                return Err(a.error(2, "Velocity ramp in z for a 2d problem"));
+            }
             let (vlo, vhi) = (scale * a.real(3)?, scale * a.real(4)?);
             let cdim = dim(5, &["x", "y", "z"])?;
             let (clo, chi) = (scale * a.real(6)?, scale * a.real(7)?);

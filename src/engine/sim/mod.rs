@@ -375,6 +375,8 @@ pub struct Simulation {
     pub run_bounds: Option<(i64, i64)>,
     /// `run ... start N stop M`: override the bounds `ramp()` uses.
     pub ramp_bounds: (Option<i64>, Option<i64>),
+    /// `dimension 2|3`: 2 for LIGGGHTS's planar runs (discs in the xy plane).
+    pub dimension: u32,
     /// `atom_modify sort N binsize`: reorder particles spatially every N steps (0: never).
     pub sort_every: i64,
     /// Sort bin size (length; 0: half the neighbour cutoff).
@@ -455,6 +457,7 @@ impl Default for Simulation {
             lost_ignore: true,
             units: crate::engine::contact::UnitStyle::Si,
             sort_every: 1000,
+            dimension: 3,
             sort_binsize: 0.0,
             next_sort: 0,
             natoms_expected: 0,

@@ -11,6 +11,7 @@ pub(super) fn sort_bins(
     lo: [f64; 3],
     hi: [f64; 3],
     binsize: f64,
+    planar: bool,
 ) -> Option<Vec<u32>> {
     if binsize <= 0.0 {
         return None;
@@ -21,6 +22,11 @@ pub(super) fn sort_bins(
     for d in 0..3 {
         nbin[d] = (((hi[d] - lo[d]) * bininv) as i64).max(1) as usize;
         inv[d] = nbin[d] as f64 / (hi[d] - lo[d]);
+    }
+    if planar {
+        // LIGGGHTS sorts 2d runs in a single layer of bins
+        nbin[2] = 1;
+        inv[2] = 0.0;
     }
     // one bin: nothing to sort; more than an int counts: refused at the run's init
     let total = nbin.iter().map(|&n| n as f64).product::<f64>();
@@ -51,7 +57,8 @@ impl Simulation {
             0.5 * self.neighbor_cutoff()
         };
         let (lo, hi) = (self.domain.lo, self.domain.hi);
-        let bins = move |x: &[[f64; 3]]| sort_bins(x, lo, hi, binsize);
+        let planar = self.dimension == 2;
+        let bins = move |x: &[[f64; 3]]| sort_bins(x, lo, hi, binsize, planar);
         if self.accel.fast {
             // the fast path keeps its own order and records the exact one
             self.sort_order_record(bins);
@@ -151,6 +158,16 @@ impl Simulation {
         Ok(())
     }
 
+    /// The box as the neighbour search sees it: in 2d nothing meets across the z faces
+    /// (LIGGGHTS makes no ghost atoms along z there).
+    pub(crate) fn list_domain(&self) -> crate::engine::domain::Domain {
+        let mut d = self.domain.clone();
+        if self.dimension == 2 {
+            d.boundary[2] = [crate::engine::domain::Boundary::Fixed; 2];
+        }
+        d
+    }
+
     pub(super) fn build_neighbors(&mut self) {
         let old_pairs = std::mem::take(&mut self.list.pairs);
         let old_mirrors = std::mem::take(&mut self.list.mirrors);
@@ -168,12 +185,16 @@ impl Simulation {
                 scaled = self.particles.radius.iter().map(|r| r * factor).collect();
                 &scaled
             };
-            let order = crate::engine::neighbor::BinOrder::sized(
+            let mut order = crate::engine::neighbor::BinOrder::sized(
                 self.domain.lo,
                 self.domain.hi,
                 self.neighbor.cutneighmax,
                 self.extras.neigh_binsize,
             );
+            if self.dimension == 2 {
+                order = order.planar();
+            }
+            let domain = self.list_domain();
             // LIGGGHTS's stencil walk; the general search where particles have grown
             // (pairs beyond the stencil are counted) or the box is too short
             let walked = !self.radii_vary()
@@ -182,7 +203,7 @@ impl Simulation {
                     &self.particles.x,
                     reach,
                     self.neighbor.skin,
-                    &self.domain,
+                    &domain,
                     &order,
                 );
             if !walked {
@@ -190,7 +211,7 @@ impl Simulation {
                     &self.particles.x,
                     reach,
                     self.neighbor.skin,
-                    &self.domain,
+                    &domain,
                     Some(&order),
                 );
             }

@@ -52,7 +52,8 @@ impl Simulation {
                 }
             }
         }
-        let two_d = false; // `dimension 2` is rejected at parse time
+        // the rolling-friction models use a disc's inertia factor in 2d
+        let two_d = self.dimension == 2;
         for k in 0..self.fixes.len() {
             if let FixKind::WallGran(wall) = &self.fixes[k].kind {
                 let mut sel = wall.selection.clone();
@@ -232,7 +233,7 @@ impl Simulation {
         if self.regions.list.iter().any(|r| r.is_dynamic()) {
             let mut regions = std::mem::take(&mut self.regions);
             let result = regions.reshape(Some(self.step), &mut |name| {
-                vars.equal(self, name).map_err(EngineError::from)
+                vars.equal(self, name)
             });
             self.regions = regions;
             result?;

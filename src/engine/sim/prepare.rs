@@ -232,9 +232,7 @@ impl Simulation {
         use crate::engine::fixes::ForceValue;
         if self.regions.list.iter().any(|r| r.is_dynamic()) {
             let mut regions = std::mem::take(&mut self.regions);
-            let result = regions.reshape(Some(self.step), &mut |name| {
-                vars.equal(self, name)
-            });
+            let result = regions.reshape(Some(self.step), &mut |name| vars.equal(self, name));
             self.regions = regions;
             result?;
         }

@@ -45,17 +45,9 @@ pub fn about_centre(
     let inertia = || {
         let mut t = [[0.0; 3]; 3];
         for &i in members {
-            let ([dx, dy, dz], m) = (arm(i), p.mass[i]);
-            t[0][0] += m * (dy * dy + dz * dz);
-            t[1][1] += m * (dx * dx + dz * dz);
-            t[2][2] += m * (dx * dx + dy * dy);
-            t[0][1] -= m * dx * dy;
-            t[1][2] -= m * dy * dz;
-            t[0][2] -= m * dx * dz;
+            crate::engine::momentum::add_inertia(&mut t, arm(i), p.mass[i]);
         }
-        t[1][0] = t[0][1];
-        t[2][1] = t[1][2];
-        t[2][0] = t[0][2];
+        crate::engine::momentum::mirror_inertia(&mut t);
         t
     };
     let dim = || match args.get(1).map(String::as_str) {

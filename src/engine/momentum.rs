@@ -96,16 +96,9 @@ impl Momentum {
                 let u = unwrap(p, i, domain);
                 let (dx, dy, dz) = (u[0] - cm[0], u[1] - cm[1], u[2] - cm[2]);
                 let m = p.mass[i];
-                t[0][0] += m * (dy * dy + dz * dz);
-                t[1][1] += m * (dx * dx + dz * dz);
-                t[2][2] += m * (dx * dx + dy * dy);
-                t[0][1] -= m * dx * dy;
-                t[1][2] -= m * dy * dz;
-                t[0][2] -= m * dx * dz;
+                add_inertia(&mut t, [dx, dy, dz], m);
             }
-            t[1][0] = t[0][1];
-            t[2][1] = t[1][2];
-            t[2][0] = t[0][2];
+            mirror_inertia(&mut t);
             let w = omega(l, t);
             for i in 0..p.len() {
                 if !members(p, i) {
@@ -119,6 +112,26 @@ impl Momentum {
             }
         }
     }
+}
+
+/// Add a particle of mass `m` (mass) at arm `d` (length) from the centre of mass to the
+/// inertia tensor `t` (mass*length^2): its diagonal and upper triangle, in LIGGGHTS's order.
+#[inline]
+pub fn add_inertia(t: &mut [[f64; 3]; 3], [dx, dy, dz]: [f64; 3], m: f64) {
+    t[0][0] += m * (dy * dy + dz * dz);
+    t[1][1] += m * (dx * dx + dz * dz);
+    t[2][2] += m * (dx * dx + dy * dy);
+    t[0][1] -= m * dx * dy;
+    t[1][2] -= m * dy * dz;
+    t[0][2] -= m * dx * dz;
+}
+
+/// Copy the upper triangle of the inertia tensor `t` to its lower one (it is symmetric).
+#[inline]
+pub fn mirror_inertia(t: &mut [[f64; 3]; 3]) {
+    t[1][0] = t[0][1];
+    t[2][1] = t[1][2];
+    t[2][0] = t[0][2];
 }
 
 /// The angular velocity (1/time) of angular momentum `l` with inertia tensor `t`, through

@@ -375,16 +375,9 @@ pub(super) fn zero_rotation(sim: &mut crate::engine::sim::Simulation, members: &
         l[0] += m * (dy * v[2] - dz * v[1]);
         l[1] += m * (dz * v[0] - dx * v[2]);
         l[2] += m * (dx * v[1] - dy * v[0]);
-        t[0][0] += m * (dy * dy + dz * dz);
-        t[1][1] += m * (dx * dx + dz * dz);
-        t[2][2] += m * (dx * dx + dy * dy);
-        t[0][1] -= m * dx * dy;
-        t[1][2] -= m * dy * dz;
-        t[0][2] -= m * dx * dz;
+        crate::engine::momentum::add_inertia(&mut t, [dx, dy, dz], m);
     }
-    t[1][0] = t[0][1];
-    t[2][1] = t[1][2];
-    t[2][0] = t[0][2];
+    crate::engine::momentum::mirror_inertia(&mut t);
     let w = crate::engine::momentum::omega(l, t);
     for &k in members {
         let u = unwrap(p, k);

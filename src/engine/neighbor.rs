@@ -650,8 +650,9 @@ impl NeighborList {
 /// the atom IDs they join, as LIGGGHTS matches contact partners by tag: a pair keeps its
 /// history when one of its atoms is wrapped across a periodic face. Only if the same two
 /// atoms touch through two images (a box narrower than two diameters) does the periodic
-/// shift decide. Pairs not in the old list start at zero. Runs in parallel over the new
-/// pairs with the same result for any number of threads.
+/// shift decide. Pairs not in the old list start at zero, and so do those `keep` turns down
+/// (they are not looked up). Runs in parallel over the new pairs with the same result for
+/// any number of threads.
 pub fn carry_history(
     old_pairs: &[Pair],
     old_history: &[f64],
@@ -659,6 +660,7 @@ pub fn carry_history(
     ids: &[i64],
     old_ids: &[i64],
     flips: &[bool],
+    keep: impl Fn(&Pair) -> bool + Sync,
 ) -> Vec<f64> {
     use rayon::prelude::*;
     let width = flips.len();
@@ -684,6 +686,9 @@ pub fn carry_history(
         .for_each(|(out, new)| {
             let mut found: Vec<(usize, bool)> = Vec::new();
             for (k, p) in new.iter().enumerate() {
+                if !keep(p) {
+                    continue;
+                }
                 let (Some(a), Some(b)) = (
                     old_index.get(ids[p.i as usize]),
                     old_index.get(ids[p.j as usize]),
@@ -1016,10 +1021,13 @@ mod tests {
             j: 1,
             shift: [0.0; 3],
         }];
-        let carried = carry_history(&old, &hist, &new, &[9, 5], &[5, 9], &[true; 3]);
+        let carried = carry_history(&old, &hist, &new, &[9, 5], &[5, 9], &[true; 3], |_| true);
         assert_eq!(carried, vec![-1.0, -2.0, -3.0]);
-        let fresh = carry_history(&old, &hist, &new, &[9, 7], &[5, 9], &[true; 3]);
+        let fresh = carry_history(&old, &hist, &new, &[9, 7], &[5, 9], &[true; 3], |_| true);
         assert_eq!(fresh, vec![0.0; 3]);
+        // a pair turned down (not touching at the build) starts afresh
+        let dropped = carry_history(&old, &hist, &new, &[9, 5], &[5, 9], &[true; 3], |_| false);
+        assert_eq!(dropped, vec![0.0; 3]);
     }
 
     #[test]

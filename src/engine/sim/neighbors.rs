@@ -44,6 +44,16 @@ pub(super) fn sort_bins(
     Some(x.iter().map(bin_of).collect())
 }
 
+/// Does the listed `pair` touch now (centres closer than the radii times `factor` summed)?
+/// A NaN distance is no contact.
+#[inline]
+fn touches(p: &Particles, pair: &Pair, factor: f64) -> bool {
+    let (i, j) = (pair.i as usize, pair.j as usize);
+    let d = [0, 1, 2].map(|c| p.x[i][c] - p.x[j][c] - pair.shift[c]);
+    let radsum = (p.radius[i] + p.radius[j]) * factor;
+    d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < radsum * radsum
+}
+
 impl Simulation {
     /// LIGGGHTS's spatial sort of the particle arrays (`Atom::sort`): bins of half the
     /// neighbour cutoff over the box, x fastest, particles in their previous order inside
@@ -272,6 +282,9 @@ impl Simulation {
             self.history = h;
             self.mirror_history = m;
         } else {
+            // pairs not touching now lose their history below: they are not looked up
+            let p = &self.particles;
+            let touching = |pair: &Pair| touches(p, pair, factor);
             self.history = self.accel.install(|| {
                 carry_history(
                     &old_pairs,
@@ -280,25 +293,26 @@ impl Simulation {
                     &self.particles.id,
                     &self.list_ids,
                     &flips,
+                    touching,
                 )
             });
             self.mirror_history = vec![0.0; self.list.mirrors.len() * width];
         }
-        if let Some(pending) = self.pending_history.take() {
+        let pending = self.pending_history.take();
+        let zeroed = !(self.list.mirrored || old_mirrored) && pending.is_none();
+        if let Some(pending) = pending {
             self.apply_pending_history(pending, width);
         }
         // as LIGGGHTS's granular list build: a pair keeps its history only if it touches
-        // at the build (separated pairs keep stale values until then, and lose them now)
+        // at the build (separated pairs keep stale values until then, and lose them now);
+        // the plain carry above has left those at zero already
         if width > 0 {
             let p = &self.particles;
-            for (k, pair) in self.list.pairs.iter().enumerate() {
-                let (i, j) = (pair.i as usize, pair.j as usize);
-                let d = [0, 1, 2].map(|c| p.x[i][c] - p.x[j][c] - pair.shift[c]);
-                let radsum = (p.radius[i] + p.radius[j]) * factor;
-                // a NaN distance is no contact
-                #[allow(clippy::neg_cmp_op_on_partial_ord)]
-                if !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < radsum * radsum) {
-                    self.history[k * width..(k + 1) * width].fill(0.0);
+            if !zeroed {
+                for (k, pair) in self.list.pairs.iter().enumerate() {
+                    if !touches(p, pair, factor) {
+                        self.history[k * width..(k + 1) * width].fill(0.0);
+                    }
                 }
             }
             for (k, m) in self.list.mirrors.iter().enumerate() {

@@ -163,14 +163,16 @@ pub fn parse_deck_flags(args: &[String]) -> Result<DeckOptions, UsageError> {
             }
             "-suffix" | "-sf" => {
                 let v = value(1).ok_or_else(|| missing(flag, "an accelerator style (fast)"))?;
-                o.fast = parse_suffix(&v).map_err(|m| usage(m, Some(SUFFIX_HELP.into())))?;
+                o.fast =
+                    parse_suffix(&v).map_err(|m| usage(m.to_string(), Some(SUFFIX_HELP.into())))?;
                 i += 2;
             }
             "-package" | "-pk" => {
                 let style = value(1).ok_or_else(|| missing(flag, "fast and a thread count"))?;
                 let n = value(2).ok_or_else(|| missing(flag, "fast and a thread count"))?;
                 o.threads = Some(
-                    parse_package(&style, &n).map_err(|m| usage(m, Some(PACKAGE_HELP.into())))?,
+                    parse_package(&style, &n)
+                        .map_err(|m| usage(m.to_string(), Some(PACKAGE_HELP.into())))?,
                 );
                 i += 3;
             }
@@ -220,38 +222,7 @@ pub fn parse_deck_flags(args: &[String]) -> Result<DeckOptions, UsageError> {
     Ok(o)
 }
 
-/// What `-suffix`/`suffix` accept.
-pub const SUFFIX_HELP: &str = "regolith's accelerator is `fast` (its own order of summation, \
-    threads); `off` returns to the exact path, whose results are bit-identical to LIGGGHTS";
-
-/// What `-package`/`package` accept.
-pub const PACKAGE_HELP: &str = "write `fast N` with N >= 1 threads, e.g. -pk fast 2";
-
-/// `-suffix STYLE` / `suffix STYLE`: true for `fast`, false for `off`.
-pub fn parse_suffix(style: &str) -> Result<bool, String> {
-    match style {
-        "fast" | "on" => Ok(true),
-        "off" => Ok(false),
-        other => Err(format!(
-            "suffix {other}: not supported (LAMMPS's gpu/intel/kk/omp/opt accelerators are not part of regolith)"
-        )),
-    }
-}
-
-/// `-package fast N` / `package fast N`: the thread count.
-pub fn parse_package(style: &str, n: &str) -> Result<usize, String> {
-    if style != "fast" {
-        return Err(format!(
-            "package {style}: not supported (regolith's package is fast)"
-        ));
-    }
-    match n.parse::<usize>() {
-        Ok(k) if k >= 1 => Ok(k),
-        _ => Err(format!(
-            "package fast {n}: the thread count must be an integer >= 1"
-        )),
-    }
-}
+pub use crate::engine::accel::{parse_package, parse_suffix, PACKAGE_HELP, SUFFIX_HELP};
 
 #[cfg(test)]
 mod tests {

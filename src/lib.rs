@@ -18,4 +18,5 @@ pub mod script;
 pub mod session;
 pub mod state;
 pub mod sweep;
+pub mod tool_error;
 pub mod util;

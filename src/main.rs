@@ -473,11 +473,12 @@ fn dispatch() -> ExitCode {
                     csv: csv.clone(),
                 };
                 choice.programs().and_then(|programs| {
-                    let me = std::env::current_exe().map_err(|e| e.to_string())?;
+                    let me = std::env::current_exe()
+                        .map_err(|e| regolith::tool_error::ToolError::Run(e.to_string()))?;
                     let rows = regolith::bench::beds::suite(&opts, &programs, &me)?;
                     if let Some(path) = &csv {
                         std::fs::write(path, regolith::bench::csv(&rows))
-                            .map_err(|e| format!("{}: {e}", path.display()))?;
+                            .map_err(regolith::tool_error::ToolError::file(path))?;
                     }
                     if let Some(path) = &plot {
                         regolith::bench::plot(&rows, path)?;

@@ -6,6 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use super::measure::{median, run_once, Measure, Program};
+use crate::tool_error::ToolError;
 
 /// The deck that builds a bed.
 pub const MAKE_BED: &str = include_str!("../../benches/beds/in.make_bed");
@@ -64,20 +65,21 @@ pub fn bed_file(tag: &str, model: &str) -> String {
 }
 
 /// Build the bed `tag` in `dir` unless both its restart files are there.
-pub fn ensure_bed(dir: &Path, tag: &str, me: &Path) -> Result<(), String> {
+pub fn ensure_bed(dir: &Path, tag: &str, me: &Path) -> Result<(), ToolError> {
     let n = SIZES
         .iter()
         .find(|(t, _)| *t == tag)
         .map(|(_, n)| *n)
-        .ok_or_else(|| format!("unknown bed '{tag}' (beds: 10k, 50k, 200k)"))?;
+        .ok_or_else(|| ToolError::Usage(format!("unknown bed '{tag}' (beds: 10k, 50k, 200k)")))?;
     if ["hh", "epsd"]
         .iter()
         .all(|m| dir.join(bed_file(tag, m)).is_file())
     {
         return Ok(());
     }
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    std::fs::write(dir.join("in.make_bed"), MAKE_BED).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(dir).map_err(ToolError::file(dir))?;
+    let make = dir.join("in.make_bed");
+    std::fs::write(&make, MAKE_BED).map_err(ToolError::file(&make))?;
     eprintln!(
         "building the {tag} bed in {} (once; the 200k bed takes tens of minutes)",
         dir.display()
@@ -96,9 +98,11 @@ pub fn ensure_bed(dir: &Path, tag: &str, me: &Path) -> Result<(), String> {
         .args(["-var", "n", &n.to_string(), "-var", "tag", tag])
         .current_dir(dir)
         .status()
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| ToolError::Run(format!("cannot start {}: {e}", me.display())))?;
     if !status.success() {
-        return Err(format!("building the {tag} bed failed ({status})"));
+        return Err(ToolError::Run(format!(
+            "building the {tag} bed failed ({status})"
+        )));
     }
     Ok(())
 }
@@ -171,12 +175,13 @@ pub fn summarise(
 }
 
 /// Run the suite; the rows in case order, programs in the order given.
-pub fn suite(opts: &SuiteOptions, programs: &[Program], me: &Path) -> Result<Vec<Row>, String> {
+pub fn suite(opts: &SuiteOptions, programs: &[Program], me: &Path) -> Result<Vec<Row>, ToolError> {
     let dir = &opts.beds;
     for tag in &opts.sizes {
         ensure_bed(dir, tag, me)?;
     }
-    std::fs::write(dir.join("in.bench"), BENCH_DECK).map_err(|e| e.to_string())?;
+    let deck = dir.join("in.bench");
+    std::fs::write(&deck, BENCH_DECK).map_err(ToolError::file(&deck))?;
     let mut rows = Vec::new();
     for tag in &opts.sizes {
         let n = SIZES.iter().find(|(t, _)| t == tag).map_or(10_000, |s| s.1);
@@ -185,11 +190,15 @@ pub fn suite(opts: &SuiteOptions, programs: &[Program], me: &Path) -> Result<Vec
             .unwrap_or_else(|| (2.0e7 / n as f64).round().max(100.0) as u64);
         for model in &opts.models {
             if !MODELS.contains(&model.as_str()) {
-                return Err(format!("unknown model '{model}' (hh, sjkr, epsd)"));
+                return Err(ToolError::Usage(format!(
+                    "unknown model '{model}' (hh, sjkr, epsd)"
+                )));
             }
             for state in &opts.states {
                 if !STATES.contains(&state.as_str()) {
-                    return Err(format!("unknown state '{state}' (rest, shock)"));
+                    return Err(ToolError::Usage(format!(
+                        "unknown state '{state}' (rest, shock)"
+                    )));
                 }
                 let vars = vec![
                     ("bed".to_string(), bed_file(tag, model)),

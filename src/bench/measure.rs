@@ -7,6 +7,8 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
+use crate::tool_error::ToolError;
+
 /// A program to time: an executable with its fixed arguments and environment.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Program {
@@ -102,7 +104,7 @@ pub fn run_once(
     dir: &Path,
     deck: &str,
     vars: &[(String, String)],
-) -> Result<Measure, String> {
+) -> Result<Measure, ToolError> {
     let mut cmd = Command::new(&program.exe);
     cmd.args(&program.args)
         .args(["-in", deck, "-log", "none"])
@@ -118,28 +120,29 @@ pub fn run_once(
     }
     let mut child = cmd
         .spawn()
-        .map_err(|e| format!("cannot start {}: {e}", program.exe.display()))?;
+        .map_err(|e| ToolError::Run(format!("cannot start {}: {e}", program.exe.display())))?;
     let mut text = String::new();
     if let Some(mut out) = child.stdout.take() {
         let mut bytes = Vec::new();
-        out.read_to_end(&mut bytes).map_err(|e| e.to_string())?;
+        out.read_to_end(&mut bytes)
+            .map_err(|e| ToolError::Run(e.to_string()))?;
         text = String::from_utf8_lossy(&bytes).into_owned();
     }
     let (ok, peak) = wait_with_peak(child)?;
     if !ok {
         let tail: Vec<&str> = text.lines().rev().take(5).collect();
-        return Err(format!(
+        return Err(ToolError::Run(format!(
             "{} ({}) failed: {}",
             program.label,
             program.exe.display(),
             tail.into_iter().rev().collect::<Vec<_>>().join("\n")
-        ));
+        )));
     }
     let mut m = parse_output(&text).ok_or_else(|| {
-        format!(
+        ToolError::Content(format!(
             "{}: no 'Loop time' line in its output",
             program.exe.display()
-        )
+        ))
     })?;
     m.peak_bytes = peak;
     Ok(m)
@@ -147,7 +150,7 @@ pub fn run_once(
 
 /// Wait for the process; (exited successfully, peak resident bytes).
 #[cfg(target_os = "linux")]
-fn wait_with_peak(child: std::process::Child) -> Result<(bool, Option<u64>), String> {
+fn wait_with_peak(child: std::process::Child) -> Result<(bool, Option<u64>), ToolError> {
     let pid = child.id() as libc::pid_t;
     let mut status = 0;
     // SAFETY: rusage is plain data; wait4 reaps our own child, which `Child` never waits
@@ -156,15 +159,15 @@ fn wait_with_peak(child: std::process::Child) -> Result<(bool, Option<u64>), Str
     let r = unsafe { libc::wait4(pid, &mut status, 0, &mut usage) };
     drop(child);
     if r < 0 {
-        return Err(format!("waiting for process {pid} failed"));
+        return Err(ToolError::Run(format!("waiting for process {pid} failed")));
     }
     let ok = libc::WIFEXITED(status) && libc::WEXITSTATUS(status) == 0;
     Ok((ok, Some(usage.ru_maxrss as u64 * 1024)))
 }
 
 #[cfg(not(target_os = "linux"))]
-fn wait_with_peak(mut child: std::process::Child) -> Result<(bool, Option<u64>), String> {
-    let s = child.wait().map_err(|e| e.to_string())?;
+fn wait_with_peak(mut child: std::process::Child) -> Result<(bool, Option<u64>), ToolError> {
+    let s = child.wait().map_err(|e| ToolError::Run(e.to_string()))?;
     Ok((s.success(), None))
 }
 

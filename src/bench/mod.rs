@@ -11,6 +11,8 @@ pub mod measure;
 
 use std::path::{Path, PathBuf};
 
+use crate::tool_error::ToolError;
+
 pub use measure::{parse_output, Measure, Program};
 
 /// Built-in scenes: (name, deck text).
@@ -38,8 +40,8 @@ pub struct ProgramChoice {
 
 impl ProgramChoice {
     /// The programs, in the order they run in each round.
-    pub fn programs(&self) -> Result<Vec<Program>, String> {
-        let me = std::env::current_exe().map_err(|e| e.to_string())?;
+    pub fn programs(&self) -> Result<Vec<Program>, ToolError> {
+        let me = std::env::current_exe().map_err(|e| ToolError::Run(e.to_string()))?;
         let mut v = Vec::new();
         if self.liggghts {
             v.push(Program {
@@ -75,7 +77,9 @@ impl ProgramChoice {
             });
         }
         if v.is_empty() {
-            return Err("nothing to time: give --exact, --fast or --liggghts".into());
+            return Err(ToolError::usage(
+                "nothing to time: give --exact, --fast or --liggghts",
+            ));
         }
         Ok(v)
     }
@@ -95,27 +99,27 @@ pub struct BenchOptions {
 }
 
 /// Time one deck; returns the report text.
-pub fn bench(opts: &BenchOptions) -> Result<String, String> {
+pub fn bench(opts: &BenchOptions) -> Result<String, ToolError> {
     let dir = std::env::temp_dir().join(format!("regolith-bench-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(&dir).map_err(ToolError::file(&dir))?;
     let builtin = SCENES.iter().find(|(n, _)| *n == opts.scene);
     let (workdir, deck) = match builtin {
         Some((name, text)) => {
             let file = dir.join(format!("in.{name}"));
-            std::fs::write(&file, text).map_err(|e| e.to_string())?;
+            std::fs::write(&file, text).map_err(ToolError::file(&file))?;
             (dir.clone(), file)
         }
         None => {
             let p = PathBuf::from(&opts.scene);
             if !p.is_file() {
                 let names: Vec<&str> = SCENES.iter().map(|(n, _)| *n).collect();
-                return Err(format!(
+                return Err(ToolError::Usage(format!(
                     "{}: neither a deck file nor a built-in scene ({}, or `beds`)",
                     opts.scene,
                     names.join(", ")
-                ));
+                )));
             }
-            let deck = std::fs::canonicalize(&p).map_err(|e| e.to_string())?;
+            let deck = std::fs::canonicalize(&p).map_err(ToolError::file(&p))?;
             // decks with side files run from their own folder
             let folder = deck.parent().map_or_else(|| dir.clone(), Path::to_path_buf);
             (folder, deck)
@@ -252,7 +256,7 @@ pub fn speed_table(rows: &[beds::Row]) -> String {
 
 /// A PNG of particle-steps/s against thread count: the fast path of each case as a line,
 /// LIGGGHTS and the exact path (one core each) as markers at one thread.
-pub fn plot(rows: &[beds::Row], path: &Path) -> Result<(), String> {
+pub fn plot(rows: &[beds::Row], path: &Path) -> Result<(), ToolError> {
     use crate::analyze::plot::{save, Chart, Curve, Style};
     let mut cases: Vec<&(String, String, String)> = Vec::new();
     for r in rows {
@@ -305,7 +309,7 @@ pub fn plot(rows: &[beds::Row], path: &Path) -> Result<(), String> {
         log_y: false,
         curves,
     };
-    save(path, &[chart], 900, 560).map_err(|e| e.to_string())
+    Ok(save(path, &[chart], 900, 560)?)
 }
 
 /// The rows as CSV.

@@ -50,8 +50,8 @@ impl<'a> Args<'a> {
     /// feature regolith does not run yet as [`Args::unsupported`].
     pub fn engine_error(&self, i: usize, e: EngineError) -> CommandError {
         match e {
-            EngineError::Invalid(m) => self.error(i, m),
             EngineError::Unsupported(what) => self.unsupported(i, &what),
+            other => self.error(i, other.to_string()),
         }
     }
 

@@ -2,6 +2,7 @@
 //! `torque(g,dim)`, `inertia(g,xx|yy|zz|xy|yz|xz)` and `omega(g,dim)`, each with an optional
 //! region, summed over the members in particle order as LIGGGHTS 3.8.0's Group does.
 
+use crate::engine::error::EngineError;
 use crate::engine::sim::Simulation;
 
 /// The value of group function `name` over `members` (particle indices) of total `mass`;
@@ -12,8 +13,8 @@ pub fn about_centre(
     args: &[String],
     members: &[usize],
     mass: f64,
-) -> Result<f64, String> {
-    let invalid = || "Invalid group function in variable formula".to_string();
+) -> Result<f64, EngineError> {
+    let invalid = || EngineError::from("Invalid group function in variable formula");
     let p = &sim.particles;
     let unwrap = |i: usize| -> [f64; 3] {
         [0, 1, 2].map(|d| p.x[i][d] + p.image[i][d] as f64 * sim.domain.length(d))
@@ -96,6 +97,10 @@ pub fn about_centre(
             let d = dim()?;
             crate::engine::momentum::omega(angmom(), inertia())[d]
         }
-        other => return Err(format!("group function {other}(): not supported yet")),
+        other => {
+            return Err(EngineError::Unsupported(format!(
+                "group function {other}()"
+            )))
+        }
     })
 }

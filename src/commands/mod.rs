@@ -57,7 +57,7 @@ pub struct Ctx<'a> {
 impl Ctx<'_> {
     /// Evaluate variable region radii before regions are matched: at most once per step, or
     /// unconditionally (`definition`) when a region is defined.
-    pub fn reshape_regions(&mut self, definition: bool) -> std::result::Result<(), String> {
+    pub fn reshape_regions(&mut self, definition: bool) -> std::result::Result<(), EngineError> {
         if self.sys.mode != Mode::Run || self.sim.regions.list.iter().all(|r| !r.is_dynamic()) {
             return Ok(());
         }
@@ -72,7 +72,7 @@ impl Ctx<'_> {
             })
         };
         self.sim.regions = regions;
-        result.map_err(|e| e.to_string())
+        result
     }
 
     /// Print an informational line to screen and log (not in check mode).
@@ -230,7 +230,12 @@ impl Engine {
     }
 
     /// Group functions of formulas (see [`Simulation::group_function`]).
-    pub fn group_function(&self, name: &str, args: &[String], mode: Mode) -> Result<f64, String> {
+    pub fn group_function(
+        &self,
+        name: &str,
+        args: &[String],
+        mode: Mode,
+    ) -> Result<f64, EngineError> {
         self.sim.group_function(name, args, mode)
     }
 }
@@ -238,11 +243,16 @@ impl Engine {
 impl Simulation {
     /// Group functions of formulas: `count(g)`, `mass(g)`, `xcm(g,dim)`, `vcm(g,dim)`,
     /// `fcm(g,dim)`, `bound(g,xmin|xmax|...)`, `ke(g)`, each with an optional region.
-    pub fn group_function(&self, name: &str, args: &[String], mode: Mode) -> Result<f64, String> {
+    pub fn group_function(
+        &self,
+        name: &str,
+        args: &[String],
+        mode: Mode,
+    ) -> Result<f64, EngineError> {
         if mode == Mode::Check {
-            return Err(crate::script::scope::UNKNOWN_QUERY.to_string());
+            return Err(EngineError::KnownWhenRun);
         }
-        let invalid = || "Invalid group function in variable formula".to_string();
+        let invalid = || EngineError::from("Invalid group function in variable formula");
         let sim = self;
         let bit = sim
             .group_bit(args.first().map(String::as_str).unwrap_or(""))
@@ -328,7 +338,11 @@ impl Simulation {
             "gyration" | "angmom" | "torque" | "inertia" | "omega" => {
                 crate::commands::group_functions::about_centre(sim, name, args, &members, mass)?
             }
-            other => return Err(format!("group function {other}(): not supported yet")),
+            other => {
+                return Err(EngineError::Unsupported(format!(
+                    "group function {other}()"
+                )))
+            }
         })
     }
 
@@ -342,7 +356,7 @@ impl Simulation {
     }
 
     /// Per-atom keyword of the atom with ID `id` (`x[N]` in formulas).
-    pub fn atom_value_by_id(&self, name: &str, id: usize) -> Result<f64, String> {
+    pub fn atom_value_by_id(&self, name: &str, id: usize) -> Result<f64, EngineError> {
         let p = &self.particles;
         let i =
             p.id.iter()
@@ -357,7 +371,7 @@ pub fn atom_keyword(
     p: &crate::engine::particles::Particles,
     name: &str,
     i: usize,
-) -> Result<f64, String> {
+) -> Result<f64, EngineError> {
     let axis = |c: u8| (c - b'x') as usize;
     let b = name.as_bytes();
     Ok(match name {
@@ -371,6 +385,10 @@ pub fn atom_keyword(
         "fx" | "fy" | "fz" => p.f[i][axis(b[1])],
         "omegax" | "omegay" | "omegaz" => p.omega[i][axis(b[5])],
         "tqx" | "tqy" | "tqz" => p.torque[i][axis(b[2])],
-        other => return Err(format!("per-atom keyword {other}: not supported yet")),
+        other => {
+            return Err(EngineError::Unsupported(format!(
+                "per-atom keyword {other}"
+            )))
+        }
     })
 }

@@ -17,7 +17,7 @@ pub fn define(a: &Args, ctx: &mut Ctx, words: &[&str]) -> Result<(), CommandErro
     let sys = &*ctx.sys;
     let read = |name: &str| {
         sys.read(name)
-            .map_err(|e| format!("Cannot open mesh file {name}: {e}"))
+            .map_err(|e| EngineError::File(format!("Cannot open mesh file {name}: {e}")))
     };
     let notes = ctx
         .sim
@@ -25,8 +25,8 @@ pub fn define(a: &Args, ctx: &mut Ctx, words: &[&str]) -> Result<(), CommandErro
         .define_tet(words, rctx, &read)
         .map_err(|e| match e {
             EngineError::Unsupported(what) => a.unsupported(1, &what),
-            EngineError::Invalid(m) if m.starts_with("Cannot open") => a.file_error(3, m),
-            EngineError::Invalid(m) => a.error(1, m),
+            EngineError::File(m) => a.file_error(3, m),
+            other => a.error(1, other.to_string()),
         })?;
     for _ in 0..notes.empty_lines {
         ctx.say("Note: Skipping empty line in VTK mesh file\n");

@@ -90,7 +90,8 @@ fn value(
 
 /// `set`.
 pub fn set(a: &Args, ctx: &mut Ctx) -> Result {
-    ctx.reshape_regions(false).map_err(|m| a.error(0, &m))?;
+    ctx.reshape_regions(false)
+        .map_err(|e| a.engine_error(0, e))?;
     if !ctx.sim.domain.exists {
         return Err(a.error(0, "Set command before simulation box is defined"));
     }

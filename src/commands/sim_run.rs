@@ -130,7 +130,7 @@ fn thermo_style(a: &Args, ctx: &mut Ctx) -> Result {
             .map_or(0, |k| k + 1);
         match e {
             EngineError::Unsupported(what) => a.unsupported(at, &what),
-            EngineError::Invalid(m) => a.error(at, m),
+            other => a.error(at, other.to_string()),
         }
     })?;
     // LIGGGHTS: a new thermo_style resets thermo_modify settings

@@ -145,8 +145,10 @@ fn dimension(a: &Args, ctx: &mut Ctx) -> Result {
 /// `suffix fast|on|off` (LAMMPS's accelerator switch): the fast engine path.
 fn suffix(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(1..=1, "suffix fast|off")?;
-    let fast = crate::cli::parse_suffix(a.word(0)?)
-        .map_err(|m| a.error(0, &m).with_help(crate::cli::SUFFIX_HELP))?;
+    let fast = crate::engine::accel::parse_suffix(a.word(0)?).map_err(|m| {
+        a.error(0, m.to_string())
+            .with_help(crate::engine::accel::SUFFIX_HELP)
+    })?;
     ctx.sim.accel.fast = fast;
     Ok(())
 }
@@ -154,8 +156,10 @@ fn suffix(a: &Args, ctx: &mut Ctx) -> Result {
 /// `package fast N`: the engine's thread count.
 fn package(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(2..=2, "package fast N")?;
-    let n = crate::cli::parse_package(a.word(0)?, a.word(1)?)
-        .map_err(|m| a.error(0, &m).with_help(crate::cli::PACKAGE_HELP))?;
+    let n = crate::engine::accel::parse_package(a.word(0)?, a.word(1)?).map_err(|m| {
+        a.error(0, m.to_string())
+            .with_help(crate::engine::accel::PACKAGE_HELP)
+    })?;
     ctx.sim.accel.ask_threads(Some(n));
     Ok(())
 }
@@ -216,7 +220,7 @@ fn region(a: &Args, ctx: &mut Ctx) -> Result {
     };
     ctx.sim.regions.define(&words, rctx).map_err(|e| match e {
         EngineError::Unsupported(what) => CommandError::unsupported(what, At::Line),
-        EngineError::Invalid(m) => a.error(1, m),
+        other => a.error(1, other.to_string()),
     })?;
     let index = ctx.sim.regions.list.len() - 1;
     if let Some(name) = ctx.sim.regions.radius_variable(index) {
@@ -232,7 +236,8 @@ fn region(a: &Args, ctx: &mut Ctx) -> Result {
             return Err(a.error(at.unwrap_or(1), &m));
         }
         if ctx.sys.mode == Mode::Run {
-            ctx.reshape_regions(true).map_err(|m| a.error(1, &m))?;
+            ctx.reshape_regions(true)
+                .map_err(|e| a.engine_error(1, e))?;
         }
     }
     if let Some(m) = &ctx.sim.regions.list[index].motion {
@@ -255,7 +260,8 @@ fn region(a: &Args, ctx: &mut Ctx) -> Result {
             return Err(a.error(at, m));
         }
         if ctx.sys.mode == Mode::Run {
-            ctx.reshape_regions(true).map_err(|m| a.error(1, &m))?;
+            ctx.reshape_regions(true)
+                .map_err(|e| a.engine_error(1, e))?;
         }
     }
     Ok(())

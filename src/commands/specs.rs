@@ -434,7 +434,7 @@ pub fn render(spec: &Spec) -> String {
 
 /// `regolith help [COMMAND [STYLE]]`: every command, one command's styles, or one
 /// signature; a name not declared gets the nearest declared ones.
-pub fn help(words: &[&str]) -> Result<String, String> {
+pub fn help(words: &[&str]) -> Result<String, UnknownName> {
     match words {
         [] => Ok(overview()),
         [command] => {
@@ -460,14 +460,29 @@ pub fn help(words: &[&str]) -> Result<String, String> {
 }
 
 /// `word` if it is one of `names`, else an error with the nearest ones.
-fn known<'a>(word: &str, names: &[&'a str], what: &str) -> Result<&'a str, String> {
+fn known<'a>(word: &str, names: &[&'a str], what: &str) -> Result<&'a str, UnknownName> {
     if let Some(&name) = names.iter().find(|&&n| n == word) {
         return Ok(name);
     }
-    let hint = did_you_mean(word, names)
-        .map(|h| format!("; {h}"))
-        .unwrap_or_default();
-    Err(format!("regolith runs no {what} '{word}'{hint}"))
+    Err(UnknownName {
+        what: what.to_string(),
+        word: word.to_string(),
+        hint: did_you_mean(word, names)
+            .map(|h| format!("; {h}"))
+            .unwrap_or_default(),
+    })
+}
+
+/// A command or style `regolith help` was asked about that regolith does not declare.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("regolith runs no {what} '{word}'{hint}")]
+pub struct UnknownName {
+    /// What was looked for (`command`, `fix style`).
+    pub what: String,
+    /// The name given.
+    pub word: String,
+    /// The nearest declared names, as "; did you mean ...", or empty.
+    pub hint: String,
 }
 
 /// Every command regolith runs, with its styles.
@@ -522,10 +537,14 @@ mod tests {
     #[test]
     fn typos_get_the_nearest_names() {
         let e = help(&["fix", "wall/gren"]).unwrap_err();
-        assert!(e.contains("did you mean 'wall/gran'?"), "{e}");
-        let e = help(&["fix", "insert/strem"]).unwrap_err();
+        assert_eq!(
+            (e.what.as_str(), e.word.as_str()),
+            ("fix style", "wall/gren")
+        );
+        assert!(e.to_string().contains("did you mean 'wall/gran'?"), "{e}");
+        let e = help(&["fix", "insert/strem"]).unwrap_err().to_string();
         assert!(e.contains("'insert/stream'"), "{e}");
-        let e = help(&["neigh_modfy"]).unwrap_err();
+        let e = help(&["neigh_modfy"]).unwrap_err().to_string();
         assert!(e.contains("'neigh_modify'"), "{e}");
     }
 

@@ -38,6 +38,49 @@ impl<T> Handed<T> {
     }
 }
 
+/// What `-suffix`/`suffix` accept.
+pub const SUFFIX_HELP: &str = "regolith's accelerator is `fast` (its own order of summation, \
+    threads); `off` returns to the exact path, whose results are bit-identical to LIGGGHTS";
+
+/// What `-package`/`package` accept.
+pub const PACKAGE_HELP: &str = "write `fast N` with N >= 1 threads, e.g. -pk fast 2";
+
+/// `-suffix STYLE` / `suffix STYLE`: true for `fast`, false for `off`.
+pub fn parse_suffix(style: &str) -> Result<bool, AccelError> {
+    match style {
+        "fast" | "on" => Ok(true),
+        "off" => Ok(false),
+        other => Err(AccelError::Suffix(other.to_string())),
+    }
+}
+
+/// `-package fast N` / `package fast N`: the thread count.
+pub fn parse_package(style: &str, n: &str) -> Result<usize, AccelError> {
+    if style != "fast" {
+        return Err(AccelError::Package(style.to_string()));
+    }
+    match n.parse::<usize>() {
+        Ok(k) if k >= 1 => Ok(k),
+        _ => Err(AccelError::Threads(n.to_string())),
+    }
+}
+
+/// A refused accelerator switch (`-sf`/`suffix`, `-pk`/`package`).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum AccelError {
+    /// An accelerator style other than `fast`/`off`.
+    #[error(
+        "suffix {0}: not supported (LAMMPS's gpu/intel/kk/omp/opt accelerators are not part of regolith)"
+    )]
+    Suffix(String),
+    /// A package other than `fast`.
+    #[error("package {0}: not supported (regolith's package is fast)")]
+    Package(String),
+    /// A thread count that is not an integer >= 1.
+    #[error("package fast {0}: the thread count must be an integer >= 1")]
+    Threads(String),
+}
+
 /// Name of the per-particle array holding the fast path's record of the exact order.
 pub const ORDER_ARRAY: &str = "regolith:order";
 

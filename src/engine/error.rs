@@ -12,6 +12,12 @@ pub enum EngineError {
     /// Valid LIGGGHTS that regolith does not run yet; the feature as the deck names it.
     #[error("{0}: not supported yet")]
     Unsupported(String),
+    /// A file the command names that cannot be opened or read; the message is LIGGGHTS's.
+    #[error("{0}")]
+    File(String),
+    /// A value only a real run can know (`check` does not build the state).
+    #[error("value known only when the deck runs")]
+    KnownWhenRun,
 }
 
 impl From<String> for EngineError {

@@ -514,7 +514,7 @@ impl Regions {
         &mut self,
         args: &[&str],
         ctx: RegionContext,
-        read: &dyn Fn(&str) -> Result<String, String>,
+        read: &dyn Fn(&str) -> Result<String, EngineError>,
     ) -> Result<crate::engine::tet_mesh::ReadNotes, EngineError> {
         use crate::engine::tet_mesh::Placement;
         if args.len() < 14 {

@@ -5,16 +5,12 @@
 
 use thiserror::Error;
 
-/// The text a [`VariableError::KnownWhenRun`] travels as through layers that still pass
-/// errors as text (the engine's variable sources and group functions).
-pub const UNKNOWN_QUERY: &str = "\u{0}value known only when the deck runs";
-
 /// Why a value a formula asks for (a variable, compute, thermo keyword, group function, atom
 /// value) is not available.
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
 pub enum VariableError {
     /// Only a real run can know this value (check mode does not build the state).
-    #[error("{}", UNKNOWN_QUERY)]
+    #[error("value known only when the deck runs")]
     KnownWhenRun,
     /// Valid LIGGGHTS that regolith does not evaluate yet; the feature as the deck names it.
     #[error("{0}: not supported yet")]
@@ -52,26 +48,20 @@ impl VariableError {
 }
 
 impl From<String> for VariableError {
-    /// A message from a layer that passes errors as text; the text of
-    /// [`VariableError::KnownWhenRun`] becomes that variant again.
+    /// A message from a layer that passes errors as text: invalid input.
     fn from(message: String) -> VariableError {
-        if message == UNKNOWN_QUERY {
-            VariableError::KnownWhenRun
-        } else {
-            VariableError::Invalid(message)
-        }
+        VariableError::Invalid(message)
     }
 }
 
-/// The engine's refusal where a formula reads a value: the sentinel of a value known only
-/// when the deck runs stays [`VariableError::KnownWhenRun`].
+/// The engine's refusal where a formula reads a value, variant for variant.
 impl From<crate::engine::error::EngineError> for VariableError {
     fn from(e: crate::engine::error::EngineError) -> VariableError {
+        use crate::engine::error::EngineError;
         match e {
-            crate::engine::error::EngineError::Invalid(m) => VariableError::from(m),
-            crate::engine::error::EngineError::Unsupported(what) => {
-                VariableError::Unsupported(what)
-            }
+            EngineError::Invalid(m) | EngineError::File(m) => VariableError::Invalid(m),
+            EngineError::Unsupported(what) => VariableError::Unsupported(what),
+            EngineError::KnownWhenRun => VariableError::KnownWhenRun,
         }
     }
 }
@@ -86,11 +76,11 @@ impl From<&str> for VariableError {
 /// everything else is invalid input with its message.
 impl From<VariableError> for crate::engine::error::EngineError {
     fn from(e: VariableError) -> crate::engine::error::EngineError {
+        use crate::engine::error::EngineError;
         match e {
-            VariableError::Unsupported(what) => {
-                crate::engine::error::EngineError::Unsupported(what)
-            }
-            other => crate::engine::error::EngineError::Invalid(other.to_string()),
+            VariableError::Unsupported(what) => EngineError::Unsupported(what),
+            VariableError::KnownWhenRun => EngineError::KnownWhenRun,
+            other => EngineError::Invalid(other.to_string()),
         }
     }
 }

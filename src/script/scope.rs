@@ -14,8 +14,6 @@ use crate::util::format::g_precision;
 use crate::util::numbers::c_atof;
 use crate::util::random::{check_seed, RanMars};
 
-pub use crate::script::error::UNKNOWN_QUERY;
-
 /// An evaluation context borrowing the interpreter's parts.
 pub struct Scope<'a> {
     /// The deck's variables (and the formula random-number generators).

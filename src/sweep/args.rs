@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 
 use super::{observe, parse_axis, parse_reference, Plan};
+use crate::tool_error::ToolError;
 
 /// `regolith sweep DECK --var NAME V1,V2,... --observe NAME=EXPR ...`, or
 /// `regolith sweep --merge DIR... --out DIR`.
@@ -65,20 +66,25 @@ fn pairs(v: &[String]) -> Vec<(String, String)> {
 }
 
 /// The plan the arguments describe.
-pub fn plan(a: &SweepArgs) -> Result<Plan, String> {
-    let deck = a.deck.clone().ok_or("no deck")?;
+pub fn plan(a: &SweepArgs) -> Result<Plan, ToolError> {
+    let deck = a.deck.clone().ok_or(ToolError::usage("no deck"))?;
     if !deck.is_file() {
-        return Err(format!("{}: no such deck", deck.display()));
+        return Err(ToolError::Usage(format!(
+            "{}: no such deck",
+            deck.display()
+        )));
     }
     let mut axes = Vec::new();
     for (n, v) in pairs(&a.vars) {
         if axes.iter().any(|x: &super::Axis| x.name == n) {
-            return Err(format!("--var {n} is given twice"));
+            return Err(ToolError::Usage(format!("--var {n} is given twice")));
         }
         axes.push(parse_axis(&n, &v)?);
     }
     if axes.is_empty() {
-        return Err("nothing to sweep: give --var NAME V1,V2,...".into());
+        return Err(ToolError::usage(
+            "nothing to sweep: give --var NAME V1,V2,...",
+        ));
     }
     let mut observables = Vec::new();
     for o in &a.observe {
@@ -87,25 +93,30 @@ pub fn plan(a: &SweepArgs) -> Result<Plan, String> {
             .iter()
             .any(|x: &observe::Observable| x.name == o.name)
         {
-            return Err(format!("--observe {}: the name is used twice", o.name));
+            return Err(ToolError::Usage(format!(
+                "--observe {}: the name is used twice",
+                o.name
+            )));
         }
         observables.push(o);
     }
     if observables.is_empty() {
-        return Err("nothing to measure: give --observe NAME=EXPR".into());
+        return Err(ToolError::usage(
+            "nothing to measure: give --observe NAME=EXPR",
+        ));
     }
     for e in &a.expect {
         let (n, v) = e
             .split_once('=')
-            .ok_or_else(|| format!("--expect {e}: expected NAME=VALUE"))?;
+            .ok_or_else(|| ToolError::Usage(format!("--expect {e}: expected NAME=VALUE")))?;
         let value: f64 = v
             .trim()
             .parse()
-            .map_err(|_| format!("--expect {e}: '{v}' is not a number"))?;
+            .map_err(|_| ToolError::Usage(format!("--expect {e}: '{v}' is not a number")))?;
         let o = observables
             .iter_mut()
             .find(|o| o.name == n.trim())
-            .ok_or_else(|| format!("--expect {e}: no observable named {n}"))?;
+            .ok_or_else(|| ToolError::Usage(format!("--expect {e}: no observable named {n}")))?;
         o.expect = Some(value);
     }
     let reference = parse_reference(a.reference.as_deref(), &axes)?;
@@ -137,7 +148,7 @@ pub fn plan(a: &SweepArgs) -> Result<Plan, String> {
 }
 
 /// Run the command; the text to print.
-pub fn run(a: &SweepArgs) -> Result<String, String> {
+pub fn run(a: &SweepArgs) -> Result<String, ToolError> {
     if !a.merge.is_empty() {
         let out = a.out.clone().unwrap_or_else(|| PathBuf::from("."));
         let md = super::report::merge(&a.merge, &out, &a.title, a.cost)?;

@@ -18,6 +18,8 @@ use std::path::PathBuf;
 pub use args::SweepArgs;
 use observe::Observable;
 
+use crate::tool_error::ToolError;
+
 /// One swept quantity: a deck variable (`-var NAME VALUE`), or one of the command-line
 /// switches `sf` (the engine path: `off`/`exact` or `fast`) and `pk` (threads of the fast
 /// path).
@@ -58,11 +60,11 @@ pub fn settings(axes: &[Axis]) -> Vec<Setting> {
 }
 
 /// Parse `--var NAME V1,V2,...`.
-pub fn parse_axis(name: &str, values: &str) -> Result<Axis, String> {
+pub fn parse_axis(name: &str, values: &str) -> Result<Axis, ToolError> {
     if name.is_empty() || !name.chars().all(|c| c.is_alphanumeric() || c == '_') {
-        return Err(format!(
+        return Err(ToolError::Usage(format!(
             "--var {name}: a variable name is letters, digits and underscores"
-        ));
+        )));
     }
     let values: Vec<String> = values
         .split(',')
@@ -70,19 +72,21 @@ pub fn parse_axis(name: &str, values: &str) -> Result<Axis, String> {
         .filter(|v| !v.is_empty())
         .collect();
     if values.is_empty() {
-        return Err(format!("--var {name}: no values (give V1,V2,...)"));
+        return Err(ToolError::Usage(format!(
+            "--var {name}: no values (give V1,V2,...)"
+        )));
     }
     for v in &values {
         match name {
             "sf" if !matches!(v.as_str(), "off" | "exact" | "fast") => {
-                return Err(format!(
+                return Err(ToolError::Usage(format!(
                     "--var sf {v}: the engine path is off (exact) or fast"
-                ))
+                )))
             }
             "pk" if v.parse::<usize>().map_or(true, |n| n == 0) => {
-                return Err(format!(
+                return Err(ToolError::Usage(format!(
                     "--var pk {v}: threads of the fast path, an integer >= 1"
-                ))
+                )))
             }
             _ => {}
         }
@@ -96,7 +100,7 @@ pub fn parse_axis(name: &str, values: &str) -> Result<Axis, String> {
 /// Parse `--reference NAME=VALUE[,NAME=VALUE...]` against the axes: names not given take their
 /// axis's first value; a value need not be one of the swept ones (the reference is then run
 /// in addition).
-pub fn parse_reference(text: Option<&str>, axes: &[Axis]) -> Result<Setting, String> {
+pub fn parse_reference(text: Option<&str>, axes: &[Axis]) -> Result<Setting, ToolError> {
     let mut s: Setting = axes
         .iter()
         .map(|a| (a.name.clone(), a.values[0].clone()))
@@ -106,18 +110,20 @@ pub fn parse_reference(text: Option<&str>, axes: &[Axis]) -> Result<Setting, Str
     };
     for part in text.split([',', ' ']).filter(|p| !p.is_empty()) {
         let (n, v) = part.split_once('=').ok_or_else(|| {
-            format!("--reference {text}: expected NAME=VALUE[,NAME=VALUE...], got '{part}'")
+            ToolError::Usage(format!(
+                "--reference {text}: expected NAME=VALUE[,NAME=VALUE...], got '{part}'"
+            ))
         })?;
         match s.iter_mut().find(|(name, _)| name == n) {
             Some(slot) => slot.1 = v.to_string(),
             None => {
-                return Err(format!(
+                return Err(ToolError::Usage(format!(
                     "--reference {text}: {n} is not a swept variable (swept: {})",
                     axes.iter()
                         .map(|a| a.name.as_str())
                         .collect::<Vec<_>>()
                         .join(", ")
-                ))
+                )))
             }
         }
     }
@@ -147,9 +153,11 @@ pub struct Plan {
 }
 
 /// Run a whole sweep and write its report; returns the printed text.
-pub fn sweep(plan: &Plan) -> Result<String, String> {
+pub fn sweep(plan: &Plan) -> Result<String, ToolError> {
     if plan.liggghts && plan.axes.iter().any(|a| a.name == "sf" || a.name == "pk") {
-        return Err("--liggghts: LIGGGHTS has no fast path, so sf and pk cannot be swept".into());
+        return Err(ToolError::usage(
+            "--liggghts: LIGGGHTS has no fast path, so sf and pk cannot be swept",
+        ));
     }
     let mut list = settings(&plan.axes);
     let reference_index = match list.iter().position(|s| *s == plan.reference) {
@@ -159,7 +167,7 @@ pub fn sweep(plan: &Plan) -> Result<String, String> {
             list.len() - 1
         }
     };
-    std::fs::create_dir_all(&plan.out).map_err(|e| format!("{}: {e}", plan.out.display()))?;
+    std::fs::create_dir_all(&plan.out).map_err(ToolError::file(&plan.out))?;
     let runs = runner::run_all(plan, &list)?;
     let result = report::SweepResult::new(plan, runs, reference_index);
     let text = result.write(&plan.out)?;

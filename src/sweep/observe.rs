@@ -12,6 +12,7 @@
 use std::path::Path;
 
 use crate::analyze::series::Series;
+use crate::tool_error::ToolError;
 
 /// Where an observable's value comes from.
 #[derive(Debug, Clone, PartialEq)]
@@ -57,23 +58,23 @@ const ANALYSES: &[(&str, &[&str], &str)] = &[
 ];
 
 /// Parse `NAME=EXPR`.
-pub fn parse(text: &str) -> Result<Observable, String> {
+pub fn parse(text: &str) -> Result<Observable, ToolError> {
     let (name, expr) = text
         .split_once('=')
-        .ok_or_else(|| format!("--observe {text}: expected NAME=EXPR"))?;
+        .ok_or_else(|| ToolError::Usage(format!("--observe {text}: expected NAME=EXPR")))?;
     let name = name.trim();
     if name.is_empty()
         || !name
             .chars()
             .all(|c| c.is_alphanumeric() || c == '_' || c == '-')
     {
-        return Err(format!(
+        return Err(ToolError::Usage(format!(
             "--observe {text}: a name is letters, digits, '_' and '-'"
-        ));
+        )));
     }
     let expr = expr.trim();
     if expr.is_empty() {
-        return Err(format!("--observe {text}: no expression"));
+        return Err(ToolError::Usage(format!("--observe {text}: no expression")));
     }
     let source = if let Some(col) = expr.strip_prefix("thermo:") {
         Source::Thermo(col.to_string())
@@ -82,15 +83,15 @@ pub fn parse(text: &str) -> Result<Observable, String> {
         let kind = parts.next().unwrap_or("");
         let quantity = parts.next().unwrap_or("");
         let Some((_, quantities, default)) = ANALYSES.iter().find(|a| a.0 == kind) else {
-            return Err(format!(
+            return Err(ToolError::Usage(format!(
                 "--observe {text}: analyses are chain, channel and ring"
-            ));
+            )));
         };
         if !quantities.contains(&quantity) {
-            return Err(format!(
+            return Err(ToolError::Usage(format!(
                 "--observe {text}: analyze:{kind} gives {}",
                 quantities.join(", ")
-            ));
+            )));
         }
         Source::Analyze {
             kind: kind.to_string(),
@@ -99,9 +100,9 @@ pub fn parse(text: &str) -> Result<Observable, String> {
         }
     } else {
         if expr.contains('"') {
-            return Err(format!(
+            return Err(ToolError::Usage(format!(
                 "--observe {text}: an expression cannot hold double quotes"
-            ));
+            )));
         }
         Source::Expr(expr.to_string())
     };
@@ -135,30 +136,32 @@ pub fn appendix(observables: &[Observable]) -> String {
 }
 
 /// The value of observable `k` from a finished run: its folder and log text.
-pub fn read(o: &Observable, k: usize, dir: &Path, log: &str) -> Result<f64, String> {
+pub fn read(o: &Observable, k: usize, dir: &Path, log: &str) -> Result<f64, ToolError> {
     match &o.source {
         Source::Expr(_) => {
             let prefix = format!("{MARK} {k} ");
-            let line = log
-                .lines()
-                .rev()
-                .find(|l| l.starts_with(&prefix))
-                .ok_or("not printed: the deck did not reach its end (an error or quit?)")?;
+            let line =
+                log.lines()
+                    .rev()
+                    .find(|l| l.starts_with(&prefix))
+                    .ok_or(ToolError::content(
+                        "not printed: the deck did not reach its end (an error or quit?)",
+                    ))?;
             let w = line[prefix.len()..].trim();
             w.parse::<f64>()
-                .map_err(|_| format!("printed '{w}', not a number"))
+                .map_err(|_| ToolError::Content(format!("printed '{w}', not a number")))
         }
         Source::Thermo(col) => {
             let rows = crate::io::diff::parse_thermo(log);
             let (_, last) = rows
                 .iter()
                 .next_back()
-                .ok_or("no thermo output in the log")?;
+                .ok_or(ToolError::content("no thermo output in the log"))?;
             last.get(col).copied().ok_or_else(|| {
-                format!(
+                ToolError::Content(format!(
                     "no thermo column {col} (the last thermo lines have: {})",
                     last.keys().cloned().collect::<Vec<_>>().join(" ")
-                )
+                ))
             })
         }
         Source::Analyze {
@@ -166,11 +169,14 @@ pub fn read(o: &Observable, k: usize, dir: &Path, log: &str) -> Result<f64, Stri
             quantity,
             dumps,
         } => {
-            let dt = crate::analyze::dt_from_log(log)
-                .ok_or("no echoed `timestep` in the log, so no time step for the analysis")?;
+            let dt = crate::analyze::dt_from_log(log).ok_or(ToolError::content(
+                "no echoed `timestep` in the log, so no time step for the analysis",
+            ))?;
             let pattern = dir.join(dumps).display().to_string();
-            let series = Series::open(&pattern, dt).map_err(|e| e.to_string())?;
-            analysis(kind, quantity, &series).map_err(|e| format!("analyze {kind}: {e}"))
+            let series =
+                Series::open(&pattern, dt).map_err(|e| ToolError::Content(e.to_string()))?;
+            analysis(kind, quantity, &series)
+                .map_err(|e| ToolError::Content(format!("analyze {kind}: {e}")))
         }
     }
 }
@@ -261,6 +267,9 @@ mod tests {
         assert_eq!(read(&obs[1], 1, dir, log), Ok(1.5));
         assert!(read(&obs[0], 0, dir, "").is_err());
         let bad = parse("x=thermo:nope").unwrap();
-        assert!(read(&bad, 1, dir, log).unwrap_err().contains("c_ke"));
+        assert!(read(&bad, 1, dir, log)
+            .unwrap_err()
+            .to_string()
+            .contains("c_ke"));
     }
 }

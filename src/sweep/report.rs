@@ -7,6 +7,7 @@ use crate::analyze::plot::{self, Chart, Curve, Style};
 
 use super::runner::{Run, Status};
 use super::{setting_label, Plan};
+use crate::tool_error::ToolError;
 
 /// A finished sweep.
 #[derive(Debug, Clone)]
@@ -326,15 +327,13 @@ impl SweepResult {
     }
 
     /// Write `sweep.csv`, `sweep.png` and `summary.txt` into `out`; the table is returned.
-    pub fn write(&self, out: &Path) -> Result<String, String> {
+    pub fn write(&self, out: &Path) -> Result<String, ToolError> {
         let table = self.table();
-        let w = |p: PathBuf, text: &str| {
-            std::fs::write(&p, text).map_err(|e| format!("{}: {e}", p.display()))
-        };
+        let w = |p: PathBuf, text: &str| std::fs::write(&p, text).map_err(ToolError::file(&p));
         w(out.join("sweep.csv"), &self.csv())?;
         w(out.join("summary.txt"), &table)?;
         let charts = self.charts();
-        plot::save(&out.join("sweep.png"), &charts, 1000, 560).map_err(|e| e.to_string())?;
+        plot::save(&out.join("sweep.png"), &charts, 1000, 560)?;
         Ok(format!(
             "{table}CSV, table and figure in {}\n",
             out.display()
@@ -452,14 +451,16 @@ fn split_csv(line: &str) -> Vec<String> {
 }
 
 /// Read a sweep's CSV.
-pub fn read_csv(label: &str, text: &str) -> Result<ReadSweep, String> {
+pub fn read_csv(label: &str, text: &str) -> Result<ReadSweep, ToolError> {
     let mut lines = text.lines();
-    let header = split_csv(lines.next().ok_or("empty file")?);
+    let header = split_csv(lines.next().ok_or(ToolError::content("empty file"))?);
     let at = |name: &str| header.iter().position(|h| h == name);
-    let reference = at("reference").ok_or("no reference column: not a sweep.csv")?;
+    let missing = |what: &str| ToolError::content(what);
+    let reference =
+        at("reference").ok_or_else(|| missing("no reference column: not a sweep.csv"))?;
     let (status, wall) = (
-        at("status").ok_or("no status column")?,
-        at("wall_s").ok_or("no wall_s column")?,
+        at("status").ok_or_else(|| missing("no status column"))?,
+        at("wall_s").ok_or_else(|| missing("no wall_s column"))?,
     );
     let steps = at("steps");
     let axes: Vec<String> = header[1..reference].to_vec();
@@ -478,7 +479,7 @@ pub fn read_csv(label: &str, text: &str) -> Result<ReadSweep, String> {
     for line in lines.filter(|l| !l.trim().is_empty()) {
         let w = split_csv(line);
         if w.len() < header.len() {
-            return Err(format!("short row: {line}"));
+            return Err(ToolError::Content(format!("short row: {line}")));
         }
         rows.push(ReadRow {
             values: w[1..reference].to_vec(),
@@ -500,16 +501,20 @@ pub fn read_csv(label: &str, text: &str) -> Result<ReadSweep, String> {
 /// `--merge`: the sweeps in `dirs` (each holding a `sweep.csv`) as one Markdown table (a row
 /// per sweep, observable and combination of the later axes; a column per value of the first
 /// axis) and one figure; written to `out` as `trade.md` and `trade.png`. Returns the table.
-pub fn merge(dirs: &[PathBuf], out: &Path, title: &str, cost: Cost) -> Result<String, String> {
+pub fn merge(dirs: &[PathBuf], out: &Path, title: &str, cost: Cost) -> Result<String, ToolError> {
     let mut sweeps = Vec::new();
     for d in dirs {
         let p = d.join("sweep.csv");
-        let text = std::fs::read_to_string(&p).map_err(|e| format!("{}: {e}", p.display()))?;
+        let text = std::fs::read_to_string(&p).map_err(ToolError::file(&p))?;
         let label = d
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default();
-        sweeps.push(read_csv(&label, &text).map_err(|m| format!("{}: {m}", p.display()))?);
+        let sweep = read_csv(&label, &text).map_err(|m| ToolError::File {
+            path: p.clone(),
+            why: m.to_string(),
+        })?;
+        sweeps.push(sweep);
     }
     let first_axis = sweeps
         .first()
@@ -675,11 +680,10 @@ pub fn merge(dirs: &[PathBuf], out: &Path, title: &str, cost: Cost) -> Result<St
             }
         }
     }
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    std::fs::create_dir_all(out).map_err(ToolError::file(out))?;
     let md_path = out.join("trade.md");
-    std::fs::write(&md_path, &md).map_err(|e| format!("{}: {e}", md_path.display()))?;
-    plot::save(&out.join("trade.png"), &[by_axis, by_cost], 1100, 700)
-        .map_err(|e| e.to_string())?;
+    std::fs::write(&md_path, &md).map_err(ToolError::file(&md_path))?;
+    plot::save(&out.join("trade.png"), &[by_axis, by_cost], 1100, 700)?;
     Ok(md)
 }
 

@@ -10,6 +10,7 @@ use std::time::Instant;
 
 use super::observe::{appendix, read};
 use super::{setting_label, Plan, Setting};
+use crate::tool_error::ToolError;
 
 /// How a run ended.
 #[derive(Debug, Clone, PartialEq)]
@@ -34,7 +35,7 @@ pub struct Run {
     /// Steps run (the sum of the log's `for N steps`).
     pub steps: u64,
     /// Each observable's value, or why there is none.
-    pub values: Vec<Result<f64, String>>,
+    pub values: Vec<Result<f64, ToolError>>,
     /// Its folder.
     pub dir: PathBuf,
 }
@@ -42,8 +43,8 @@ pub struct Run {
 /// Names in the deck's folder a run does not see: earlier output and sweeps.
 const SKIPPED: &[&str] = &["post", "study", "sweep", "log.liggghts"];
 
-fn prepare(plan: &Plan, dir: &Path, deck_text: &str) -> Result<PathBuf, String> {
-    let err = |p: &Path, e: std::io::Error| format!("{}: {e}", p.display());
+fn prepare(plan: &Plan, dir: &Path, deck_text: &str) -> Result<PathBuf, ToolError> {
+    let err = |p: &Path, e: std::io::Error| ToolError::file(p)(e);
     if dir.exists() {
         std::fs::remove_dir_all(dir).map_err(|e| err(dir, e))?;
     }
@@ -51,7 +52,7 @@ fn prepare(plan: &Plan, dir: &Path, deck_text: &str) -> Result<PathBuf, String> 
     let deck_name = plan
         .deck
         .file_name()
-        .ok_or_else(|| format!("{}: not a file", plan.deck.display()))?;
+        .ok_or_else(|| ToolError::Usage(format!("{}: not a file", plan.deck.display())))?;
     let folder = plan
         .deck
         .parent()
@@ -144,9 +145,9 @@ fn run_one(plan: &Plan, index: usize, setting: &Setting, deck_text: &str) -> Run
         values: Vec::new(),
         dir: dir.clone(),
     };
-    let fail_all = |run: &mut Run, m: String| {
-        run.values = plan.observables.iter().map(|_| Err(m.clone())).collect();
-        run.status = Status::Failed(m);
+    let fail_all = |run: &mut Run, e: ToolError| {
+        run.values = plan.observables.iter().map(|_| Err(e.clone())).collect();
+        run.status = Status::Failed(e.to_string());
     };
     let deck = match prepare(plan, &dir, deck_text) {
         Ok(d) => d,
@@ -161,7 +162,7 @@ fn run_one(plan: &Plan, index: usize, setting: &Setting, deck_text: &str) -> Run
         match std::env::current_exe() {
             Ok(p) => p,
             Err(e) => {
-                fail_all(&mut run, e.to_string());
+                fail_all(&mut run, ToolError::Run(e.to_string()));
                 return run;
             }
         }
@@ -192,7 +193,7 @@ fn run_one(plan: &Plan, index: usize, setting: &Setting, deck_text: &str) -> Run
     let (Ok(screen), Ok(stderr)) = files else {
         fail_all(
             &mut run,
-            format!("{}: cannot create output files", dir.display()),
+            ToolError::Run(format!("{}: cannot create output files", dir.display())),
         );
         return run;
     };
@@ -209,11 +210,12 @@ fn run_one(plan: &Plan, index: usize, setting: &Setting, deck_text: &str) -> Run
     (run.loop_time, run.steps) = loop_totals(&log);
     match status {
         Err(e) => {
-            fail_all(&mut run, format!("cannot start {}: {e}", program.display()));
+            let why = format!("cannot start {}: {e}", program.display());
+            fail_all(&mut run, ToolError::Run(why));
             return run;
         }
         Ok(s) if !s.success() => {
-            fail_all(&mut run, failure(&err_text, &log));
+            fail_all(&mut run, ToolError::Run(failure(&err_text, &log)));
             return run;
         }
         Ok(_) => {}
@@ -229,9 +231,8 @@ fn run_one(plan: &Plan, index: usize, setting: &Setting, deck_text: &str) -> Run
 
 /// Run every setting, `plan.jobs` at once; results in the order of `list`. Progress goes to
 /// standard error as runs finish.
-pub fn run_all(plan: &Plan, list: &[Setting]) -> Result<Vec<Run>, String> {
-    let deck_text =
-        std::fs::read_to_string(&plan.deck).map_err(|e| format!("{}: {e}", plan.deck.display()))?;
+pub fn run_all(plan: &Plan, list: &[Setting]) -> Result<Vec<Run>, ToolError> {
+    let deck_text = std::fs::read_to_string(&plan.deck).map_err(ToolError::file(&plan.deck))?;
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<Run>>> = Mutex::new(vec![None; list.len()]);
@@ -256,7 +257,9 @@ pub fn run_all(plan: &Plan, list: &[Setting]) -> Result<Vec<Run>, String> {
             });
         }
     });
-    let results = results.into_inner().map_err(|e| e.to_string())?;
+    let results = results
+        .into_inner()
+        .map_err(|e| ToolError::Run(e.to_string()))?;
     Ok(results.into_iter().flatten().collect())
 }
 

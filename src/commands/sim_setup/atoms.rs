@@ -3,7 +3,8 @@
 use super::*;
 
 pub(super) fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
-    ctx.reshape_regions(false).map_err(|m| a.error(0, &m))?;
+    ctx.reshape_regions(false)
+        .map_err(|e| a.engine_error(0, e))?;
     if !ctx.sim.domain.exists {
         return Err(a.error(0, "Create_atoms command before simulation box is defined"));
     }
@@ -319,7 +320,8 @@ pub(super) fn displace_atoms(a: &Args, ctx: &mut Ctx) -> Result {
 }
 
 pub(super) fn delete_atoms(a: &Args, ctx: &mut Ctx) -> Result {
-    ctx.reshape_regions(false).map_err(|m| a.error(0, &m))?;
+    ctx.reshape_regions(false)
+        .map_err(|e| a.engine_error(0, e))?;
     a.count(
         2..=usize::MAX,
         "delete_atoms group|region ID | overlap CUT G1 G2 [compress yes|no]",

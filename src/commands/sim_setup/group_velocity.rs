@@ -3,7 +3,8 @@
 use super::*;
 
 pub(super) fn group(a: &Args, ctx: &mut Ctx) -> Result {
-    ctx.reshape_regions(false).map_err(|m| a.error(0, &m))?;
+    ctx.reshape_regions(false)
+        .map_err(|e| a.engine_error(0, e))?;
     a.count(
         2..=usize::MAX,
         "group ID region|type|id|subtract|union|intersect|delete|clear ...",

@@ -870,10 +870,9 @@ fn errors_are_variants_with_positions() {
         VariableError::Formula(Box::new(ExprErrorKind::SqrtNegative))
     );
     assert_eq!(v.to_string(), "Sqrt of negative value in variable formula");
-    // the text of a value only a run knows, crossing a layer that passes text, comes
-    // back as the variant
-    let v = VariableError::from(String::from(VariableError::KnownWhenRun));
-    assert!(v.is_known_when_run());
+    // a value only a run knows, crossing the engine's error type, comes back as the variant
+    let e = crate::engine::error::EngineError::from(VariableError::KnownWhenRun);
+    assert!(VariableError::from(e).is_known_when_run());
 }
 
 #[test]

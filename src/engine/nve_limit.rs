@@ -67,24 +67,16 @@ impl NveLimit {
 
     /// Half-kick, cap, drift (`initial_integrate`).
     pub fn initial_integrate(&mut self, p: &mut Particles, group: u32, dt: f64) {
-        let dtf = 0.5 * dt;
-        let vlimitsq = (self.xlimit / dt) * (self.xlimit / dt);
-        for i in 0..p.len() {
-            if p.mask[i] & group != 0 {
-                let dtfm = dtf / p.mass[i];
-                for d in 0..3 {
-                    p.v[i][d] += dtfm * p.f[i][d];
-                }
-                self.limit(p, i, vlimitsq);
-                for d in 0..3 {
-                    p.x[i][d] += dt * p.v[i][d];
-                }
-            }
-        }
+        self.kick_and_cap(p, group, dt, true);
     }
 
     /// Half-kick and cap (`final_integrate`).
     pub fn final_integrate(&mut self, p: &mut Particles, group: u32, dt: f64) {
+        self.kick_and_cap(p, group, dt, false);
+    }
+
+    /// Half-kick v, cap the speed and, with `drift`, move x a full step `dt` (time).
+    fn kick_and_cap(&mut self, p: &mut Particles, group: u32, dt: f64, drift: bool) {
         let dtf = 0.5 * dt;
         let vlimitsq = (self.xlimit / dt) * (self.xlimit / dt);
         for i in 0..p.len() {
@@ -94,6 +86,11 @@ impl NveLimit {
                     p.v[i][d] += dtfm * p.f[i][d];
                 }
                 self.limit(p, i, vlimitsq);
+                if drift {
+                    for d in 0..3 {
+                        p.x[i][d] += dt * p.v[i][d];
+                    }
+                }
             }
         }
     }

@@ -1,0 +1,444 @@
+//! Domain decomposition on threads standing in for MPI ranks: migration, ghosts, forward
+//! and reverse communication compared with the serial answer, pair by pair and bit by bit.
+
+use proptest::prelude::*;
+use regolith::engine::decomp::{
+    borders, canonical_sum, forward, migrate, reverse, reverse_contributions, Contribution,
+    Decomposition, GhostPlan, Halo, PartnerHistory,
+};
+use regolith::engine::particles::Particles;
+use regolith::util::comm::Comm;
+use regolith::util::comm_threads::ThreadRanks;
+
+const LO: [f64; 3] = [-0.5, 0.0, 0.1];
+const HI: [f64; 3] = [0.7, 0.9, 0.6];
+
+/// A small deterministic generator (xorshift), the same on every rank.
+struct Rng(u64);
+
+impl Rng {
+    fn unit(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// One test set-up: grid, periodic flags, pair rule.
+#[derive(Debug, Clone, Copy)]
+struct Case {
+    procs: [usize; 3],
+    periodic: [bool; 3],
+    /// Some(cut): pairs closer than cut; None: granular (closer than ri + rj + SKIN).
+    cut: Option<f64>,
+    n: usize,
+    seed: u64,
+}
+
+const SKIN: f64 = 0.01;
+
+impl Case {
+    fn halo(&self) -> Halo {
+        match self.cut {
+            Some(c) => Halo::plain(c),
+            None => Halo::granular(2.0 * 0.05 + SKIN, SKIN),
+        }
+    }
+    fn reach(&self, ra: f64, rb: f64) -> f64 {
+        self.cut.unwrap_or(ra + rb + SKIN)
+    }
+}
+
+/// The particles of a case (ID, position, radius), before and after one displacement of
+/// less than half a sub-domain per axis (wrapped into periodic directions, kept in the box
+/// in the others).
+fn particles(case: &Case) -> (Vec<[f64; 3]>, Vec<[f64; 3]>, Vec<f64>) {
+    let mut rng = Rng(case.seed.wrapping_mul(2654435761).wrapping_add(88172645463325252));
+    let mut start = Vec::new();
+    let mut moved = Vec::new();
+    let mut radius = Vec::new();
+    for _ in 0..case.n {
+        let x: [f64; 3] = [0, 1, 2].map(|d| LO[d] + (HI[d] - LO[d]) * rng.unit());
+        let mut y = x;
+        for d in 0..3 {
+            let width = (HI[d] - LO[d]) / case.procs[d] as f64;
+            y[d] += (rng.unit() - 0.5) * 0.8 * width;
+            let len = HI[d] - LO[d];
+            if case.periodic[d] {
+                if y[d] < LO[d] {
+                    y[d] += len;
+                } else if y[d] >= HI[d] {
+                    y[d] -= len;
+                }
+            } else {
+                y[d] = y[d].clamp(LO[d], HI[d] - 1e-9);
+            }
+        }
+        start.push(x);
+        moved.push(y);
+        radius.push(0.02 + 0.03 * rng.unit());
+    }
+    (start, moved, radius)
+}
+
+/// Position of `b`'s image `k` (box lengths per axis), as a ghost's is computed.
+fn image(xb: [f64; 3], k: [i32; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|d| xb[d] + f64::from(k[d]) * (HI[d] - LO[d]))
+}
+
+/// A pair force on `a` from `b` at `xb` (a spring on the overlap), if they are in reach.
+fn pair_force(case: &Case, xa: [f64; 3], xb: [f64; 3], ra: f64, rb: f64) -> Option<[f64; 3]> {
+    let del = [0, 1, 2].map(|d| xa[d] - xb[d]);
+    let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+    let reach = case.reach(ra, rb);
+    if rsq >= reach * reach {
+        return None;
+    }
+    let r = rsq.sqrt();
+    let s = 1.0e3 * (reach - r) / r;
+    Some(del.map(|c| c * s))
+}
+
+/// Serial answer: every ordered pair (a, b) in reach, with b's nearest image, and its force.
+fn serial_pairs(case: &Case, x: &[[f64; 3]], radius: &[f64]) -> Vec<(i64, i64, [f64; 3])> {
+    let ks: Vec<[i32; 3]> = (0..27)
+        .map(|m| [m % 3 - 1, (m / 3) % 3 - 1, m / 9 - 1])
+        .filter(|k| (0..3).all(|d| case.periodic[d] || k[d] == 0))
+        .collect();
+    let mut out = Vec::new();
+    for a in 0..x.len() {
+        for b in 0..x.len() {
+            for k in &ks {
+                if a == b && *k == [0, 0, 0] {
+                    continue;
+                }
+                if let Some(f) = pair_force(case, x[a], image(x[b], *k), radius[a], radius[b]) {
+                    out.push((a as i64 + 1, b as i64 + 1, f));
+                }
+            }
+        }
+    }
+    out.sort_by_key(|p| (p.0, p.1));
+    out
+}
+
+/// What one rank found.
+struct RankResult {
+    owned: Vec<(i64, [f64; 3])>,
+    /// (ID, image) of owned particles and ghosts.
+    copies: Vec<(i64, [i32; 3])>,
+    /// Ordered pairs (owned a, any b) with the force on a.
+    pairs: Vec<(i64, i64, [f64; 3])>,
+    /// Canonical sums on owned particles: pairs on both sides (no reverse communication).
+    newton_off: Vec<(i64, [f64; 3])>,
+    /// Canonical sums on owned particles: each pair once, the other side sent back.
+    newton_on: Vec<(i64, [f64; 3])>,
+    /// Plain reverse-communicated sums on owned particles.
+    summed: Vec<(i64, [f64; 3])>,
+    /// Ghosts whose forward-communicated values differ from their owners'.
+    stale_ghosts: usize,
+    /// Owned particles whose fix state or contact history did not travel with them.
+    lost_state: usize,
+}
+
+fn history_of(id: i64) -> (Vec<i64>, Vec<f64>) {
+    let partners: Vec<i64> = (1..=(id % 3)).map(|k| id + k).collect();
+    let values = partners
+        .iter()
+        .flat_map(|&p| [id as f64 * 0.5, -(p as f64), 1.0 / p as f64])
+        .collect();
+    (partners, values)
+}
+
+fn run_rank(c: &impl Comm, case: &Case) -> RankResult {
+    let dec = Decomposition::cartesian(case.procs, c.rank(), LO, HI, case.periodic);
+    let (start, moved, radius) = particles(case);
+    let mut p = Particles::default();
+    let k = p.extra_index("fix_state", 2);
+    let mut hist = PartnerHistory::new(3, 0);
+    for (i, x) in start.iter().enumerate() {
+        if dec.owns(*x) {
+            let id = i as i64 + 1;
+            p.push(id, 1, *x, radius[i], 2500.0);
+            let n = p.len();
+            p.extra[k].data[2 * (n - 1)..2 * n].copy_from_slice(&[id as f64, -0.25 * id as f64]);
+            let (partners, values) = history_of(id);
+            hist.partners.push(partners);
+            hist.values.push(values);
+        }
+    }
+    for i in 0..p.len() {
+        p.x[i] = moved[p.id[i] as usize - 1];
+    }
+    migrate(c, &dec, &mut p, Some(&mut hist)).expect("migrate");
+    let nlocal = p.len();
+    let mut lost_state = 0;
+    for i in 0..nlocal {
+        let id = p.id[i];
+        let (partners, values) = history_of(id);
+        let fix_ok = p.extra[k].data[2 * i..2 * i + 2] == [id as f64, -0.25 * id as f64];
+        if !fix_ok || hist.partners[i] != partners || hist.values[i] != values {
+            lost_state += 1;
+        }
+    }
+    let plan = borders(c, &dec, &case.halo(), &mut p, nlocal).expect("borders");
+    let mut copies: Vec<(i64, [i32; 3])> = (0..nlocal).map(|i| (p.id[i], [0; 3])).collect();
+    copies.extend((0..plan.nghost()).map(|g| (p.id[nlocal + g], plan.ghost_image[g])));
+    let result = forces(c, case, &dec, &plan, &mut p);
+    let stale_ghosts = forward_check(c, &dec, &plan, &mut p);
+    RankResult {
+        owned: (0..nlocal).map(|i| (p.id[i], p.x[i])).collect(),
+        copies,
+        stale_ghosts,
+        lost_state,
+        ..result
+    }
+}
+
+/// Pairs and forces three ways on one rank.
+fn forces(
+    c: &impl Comm,
+    case: &Case,
+    dec: &Decomposition,
+    plan: &GhostPlan,
+    p: &mut Particles,
+) -> RankResult {
+    let nlocal = plan.nlocal;
+    let mut pairs = Vec::new();
+    let mut off: Vec<Vec<Contribution>> = vec![Vec::new(); nlocal];
+    let mut on: Vec<Vec<Contribution>> = vec![Vec::new(); p.len()];
+    p.clear_forces();
+    for a in 0..nlocal {
+        for b in 0..p.len() {
+            if a == b {
+                continue;
+            }
+            let Some(f) = pair_force(case, p.x[a], p.x[b], p.radius[a], p.radius[b]) else {
+                continue;
+            };
+            pairs.push((p.id[a], p.id[b], f));
+            let (ia, ib) = (p.id[a], p.id[b]);
+            off[a].push(Contribution {
+                partner: ib,
+                f,
+                torque: [0.0; 3],
+            });
+            // each pair once: on the rank owning its lower ID, from that particle's side
+            if ia < ib {
+                on[a].push(Contribution {
+                    partner: ib,
+                    f,
+                    torque: [0.0; 3],
+                });
+                let minus = f.map(|v| -v);
+                on[b].push(Contribution {
+                    partner: ia,
+                    f: minus,
+                    torque: [0.0; 3],
+                });
+                for d in 0..3 {
+                    p.f[a][d] += f[d];
+                    p.f[b][d] += minus[d];
+                }
+            }
+        }
+    }
+    reverse_contributions(c, dec, plan, &mut on).expect("reverse contributions");
+    reverse(c, dec, plan, p).expect("reverse");
+    let ids = &p.id;
+    RankResult {
+        owned: Vec::new(),
+        copies: Vec::new(),
+        pairs,
+        newton_off: off
+            .iter_mut()
+            .enumerate()
+            .map(|(i, l)| (ids[i], canonical_sum(l).0))
+            .collect(),
+        newton_on: on[..nlocal]
+            .iter_mut()
+            .enumerate()
+            .map(|(i, l)| (ids[i], canonical_sum(l).0))
+            .collect(),
+        summed: (0..nlocal).map(|i| (ids[i], p.f[i])).collect(),
+        stale_ghosts: 0,
+        lost_state: 0,
+    }
+}
+
+/// Move and spin the owned particles, forward them and count ghosts that do not match.
+fn forward_check(c: &impl Comm, dec: &Decomposition, plan: &GhostPlan, p: &mut Particles) -> usize {
+    let nlocal = plan.nlocal;
+    let state = |id: i64| {
+        let s = id as f64;
+        ([1e-3 * s, -2e-3, 0.5e-3], [s, 2.0 * s, -s], [0.1 / s, 0.0, 3.0], 0.01 + 1e-4 * s)
+    };
+    for i in 0..nlocal {
+        let (dx, v, w, r) = state(p.id[i]);
+        for d in 0..3 {
+            p.x[i][d] += dx[d];
+        }
+        (p.v[i], p.omega[i], p.radius[i]) = (v, w, r);
+    }
+    let owners: std::collections::HashMap<i64, [f64; 3]> =
+        (0..nlocal).map(|i| (p.id[i], p.x[i])).collect();
+    forward(c, dec, plan, p, true).expect("forward");
+    let all = c.gather_bytes(&bincode_positions(&owners));
+    let mut flat = Vec::new();
+    if let Some(all) = &all {
+        flat = all.concat();
+    }
+    c.broadcast_bytes(0, &mut flat);
+    let positions = read_positions(&flat);
+    (0..plan.nghost())
+        .filter(|&g| {
+            let i = nlocal + g;
+            let (_, v, w, r) = state(p.id[i]);
+            let want = image(positions[&p.id[i]], plan.ghost_image[g]);
+            p.x[i] != want || p.v[i] != v || p.omega[i] != w || p.radius[i] != r
+        })
+        .count()
+}
+
+fn bincode_positions(m: &std::collections::HashMap<i64, [f64; 3]>) -> Vec<u8> {
+    let mut out = Vec::new();
+    for (id, x) in m {
+        out.extend_from_slice(&id.to_le_bytes());
+        x.iter().for_each(|c| out.extend_from_slice(&c.to_le_bytes()));
+    }
+    out
+}
+
+fn read_positions(b: &[u8]) -> std::collections::HashMap<i64, [f64; 3]> {
+    let word = |k: usize| {
+        let mut w = [0u8; 8];
+        w.copy_from_slice(&b[k..k + 8]);
+        w
+    };
+    (0..b.len() / 32)
+        .map(|r| {
+            let o = 32 * r;
+            let id = i64::from_le_bytes(word(o));
+            (id, [1, 2, 3].map(|k| f64::from_le_bytes(word(o + 8 * k))))
+        })
+        .collect()
+}
+
+/// Run a case on its ranks and compare everything with the serial answer; returns the
+/// number of ordered pairs.
+fn check(case: Case) -> usize {
+    let n = case.procs.iter().product();
+    let results = ThreadRanks::run(n, |c| run_rank(c, &case));
+    let (_, moved, radius) = particles(&case);
+    // every particle owned once, where it is
+    let mut owned: Vec<i64> = results
+        .iter()
+        .flat_map(|r| r.owned.iter().map(|o| o.0))
+        .collect();
+    owned.sort_unstable();
+    assert_eq!(owned, (1..=case.n as i64).collect::<Vec<_>>(), "{case:?}");
+    for (rank, r) in results.iter().enumerate() {
+        let dec = Decomposition::cartesian(case.procs, rank, LO, HI, case.periodic);
+        for (id, _) in &r.owned {
+            assert!(dec.owns(moved[*id as usize - 1]), "{case:?}: {id} on {rank}");
+        }
+        let mut copies = r.copies.clone();
+        copies.sort_unstable();
+        copies.dedup();
+        assert_eq!(copies.len(), r.copies.len(), "{case:?}: a copy twice on {rank}");
+        assert_eq!(r.stale_ghosts, 0, "{case:?}: forward on {rank}");
+        assert_eq!(r.lost_state, 0, "{case:?}: migrated state on {rank}");
+    }
+    // the same ordered pairs with the same forces, bit for bit
+    let serial = serial_pairs(&case, &moved, &radius);
+    let mut pairs: Vec<_> = results.iter().flat_map(|r| r.pairs.clone()).collect();
+    pairs.sort_by_key(|p| (p.0, p.1));
+    assert_eq!(pairs.len(), serial.len(), "{case:?}");
+    assert_eq!(pairs, serial, "{case:?}");
+    // serial totals: contributions by partner ID, and each pair once from its lower ID
+    let mut per: Vec<Vec<Contribution>> = vec![Vec::new(); case.n];
+    let mut once: Vec<Vec<Contribution>> = vec![Vec::new(); case.n];
+    for &(a, b, f) in &serial {
+        let c = |partner, f| Contribution {
+            partner,
+            f,
+            torque: [0.0; 3],
+        };
+        per[a as usize - 1].push(c(b, f));
+        if a < b {
+            once[a as usize - 1].push(c(b, f));
+            once[b as usize - 1].push(c(a, f.map(|v| -v)));
+        }
+    }
+    let total: Vec<[f64; 3]> = per.iter_mut().map(|l| canonical_sum(l).0).collect();
+    let total_once: Vec<[f64; 3]> = once.iter_mut().map(|l| canonical_sum(l).0).collect();
+    for r in &results {
+        for (&(id, off), &(_, on)) in r.newton_off.iter().zip(&r.newton_on) {
+            assert_eq!(off, total[id as usize - 1], "{case:?}: {id}");
+            assert_eq!(on, total_once[id as usize - 1], "{case:?}: {id}");
+        }
+        for &(id, f) in &r.summed {
+            let want = total_once[id as usize - 1];
+            for d in 0..3 {
+                let tol = 1e-9 * (1.0 + want[d].abs());
+                assert!((f[d] - want[d]).abs() <= tol, "{case:?}: {id} {f:?} {want:?}");
+            }
+        }
+    }
+    serial.len()
+}
+
+fn case(procs: [usize; 3], periodic: [bool; 3], cut: Option<f64>) -> Case {
+    Case {
+        procs,
+        periodic,
+        cut,
+        n: 300,
+        seed: 7,
+    }
+}
+
+#[test]
+fn one_rank_periodic_makes_self_images() {
+    assert!(check(case([1, 1, 1], [true; 3], None)) > 100);
+    assert!(check(case([1, 1, 1], [true, false, true], Some(0.12))) > 100);
+}
+
+#[test]
+fn two_ranks_along_x() {
+    assert!(check(case([2, 1, 1], [true; 3], None)) > 100);
+    assert!(check(case([2, 1, 1], [false; 3], None)) > 100);
+    assert!(check(case([2, 1, 1], [false, true, false], Some(0.15))) > 100);
+}
+
+#[test]
+fn three_ranks_along_x() {
+    assert!(check(case([3, 1, 1], [true; 3], None)) > 100);
+    assert!(check(case([3, 1, 1], [false, true, true], Some(0.2))) > 100);
+}
+
+#[test]
+fn four_ranks_two_by_two_and_in_a_row() {
+    assert!(check(case([2, 2, 1], [true; 3], None)) > 100);
+    assert!(check(case([2, 2, 1], [true, false, false], Some(0.1))) > 100);
+    // ghosts from two ranks away: the cutoff is wider than a sub-domain (0.125 in z)
+    assert!(check(case([1, 1, 4], [true; 3], Some(0.2))) > 100);
+    assert!(check(case([1, 1, 4], [false; 3], Some(0.2))) > 100);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+
+    #[test]
+    fn any_grid_of_up_to_four_ranks_matches_serial(
+        grid in 0usize..6,
+        periodic in proptest::array::uniform3(any::<bool>()),
+        cut in proptest::option::of(0.05f64..0.24),
+        n in 1usize..120,
+        seed in any::<u64>(),
+    ) {
+        let procs = [[1, 1, 1], [2, 1, 1], [1, 3, 1], [2, 2, 1], [1, 2, 2], [4, 1, 1]][grid];
+        check(Case { procs, periodic, cut, n, seed: seed | 1 });
+    }
+}

@@ -115,7 +115,9 @@ impl Comm for ThreadComm {
                 w.copy_from_slice(&b[8 * k..8 * k + 8]);
                 f64::from_le_bytes(w)
             };
-            *v = all[1..].iter().fold(at(&all[0]), |acc, b| combine(acc, at(b), op));
+            *v = all[1..]
+                .iter()
+                .fold(at(&all[0]), |acc, b| combine(acc, at(b), op));
         }
     }
     fn all_reduce_i64(&self, value: i64, op: Reduce) -> i64 {

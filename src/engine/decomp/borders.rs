@@ -7,9 +7,7 @@
 //! are recorded in a [`GhostPlan`] that forward and reverse communication replay.
 
 use crate::engine::decomp::decomposition::Decomposition;
-use crate::engine::decomp::pack::{
-    pack_particle, unpack_particle, DecompError, Reader, Writer,
-};
+use crate::engine::decomp::pack::{pack_particle, unpack_particle, DecompError, Reader, Writer};
 use crate::engine::particles::Particles;
 use crate::util::comm::Comm;
 

@@ -89,7 +89,13 @@ impl Decomposition {
     ) -> Decomposition {
         let n = procs.iter().product::<usize>();
         let locations = (0..n)
-            .map(|r| [r / (procs[1] * procs[2]), (r / procs[2]) % procs[1], r % procs[2]])
+            .map(|r| {
+                [
+                    r / (procs[1] * procs[2]),
+                    (r / procs[2]) % procs[1],
+                    r % procs[2],
+                ]
+            })
             .collect();
         Decomposition::from_locations(procs, locations, me, lo, hi, periodic)
     }

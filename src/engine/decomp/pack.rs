@@ -83,14 +83,11 @@ impl<'a> Reader<'a> {
     }
     fn take<const N: usize>(&mut self) -> Result<[u8; N], DecompError> {
         let end = self.at + N;
-        let slice = self
-            .bytes
-            .get(self.at..end)
-            .ok_or(DecompError::Truncated {
-                need: N,
-                at: self.at,
-                len: self.bytes.len(),
-            })?;
+        let slice = self.bytes.get(self.at..end).ok_or(DecompError::Truncated {
+            need: N,
+            at: self.at,
+            len: self.bytes.len(),
+        })?;
         let mut w = [0u8; N];
         w.copy_from_slice(slice);
         self.at = end;
@@ -306,7 +303,10 @@ mod tests {
         q.extra_index("history_wall", 2);
         let mut g = PartnerHistory::new(3, 0);
         let mut r = Reader::new(&w.bytes);
-        assert_eq!(peek_position(&mut r).unwrap(), ([10.1, 0.2, 0.3], w.bytes.len()));
+        assert_eq!(
+            peek_position(&mut r).unwrap(),
+            ([10.1, 0.2, 0.3], w.bytes.len())
+        );
         unpack_particle(&mut r, &mut q, Some(&mut g)).unwrap();
         assert!(r.done());
         assert_eq!(q.x[0], [10.1, 0.2, 0.3]);

@@ -290,8 +290,8 @@ fn forward_check(c: &impl Comm, dec: &Decomposition, plan: &GhostPlan, p: &mut P
     };
     for i in 0..nlocal {
         let (dx, v, w, r) = state(p.id[i]);
-        for d in 0..3 {
-            p.x[i][d] += dx[d];
+        for (c, step) in p.x[i].iter_mut().zip(dx) {
+            *c += step;
         }
         (p.v[i], p.omega[i], p.radius[i]) = (v, w, r);
     }

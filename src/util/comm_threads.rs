@@ -28,11 +28,11 @@ impl ThreadRanks {
         let mut senders: Vec<Vec<Sender<Vec<u8>>>> = (0..n).map(|_| Vec::new()).collect();
         let mut receivers: Vec<Vec<Receiver<Vec<u8>>>> = (0..n).map(|_| Vec::new()).collect();
         // channel a -> b: its sender goes to rank a, its receiver to rank b
-        for b in 0..n {
+        for receiver in receivers.iter_mut() {
             for sender in senders.iter_mut() {
                 let (tx, rx) = channel();
                 sender.push(tx);
-                receivers[b].push(rx);
+                receiver.push(rx);
             }
         }
         let comms: Vec<ThreadComm> = senders

@@ -6,6 +6,7 @@ use regolith::engine::decomp::{
     borders, canonical_sum, forward, migrate, reverse, reverse_contributions, Contribution,
     Decomposition, GhostPlan, Halo, PartnerHistory,
 };
+use regolith::engine::neighbor::Pair;
 use regolith::engine::particles::Particles;
 use regolith::util::comm::Comm;
 use regolith::util::comm_threads::ThreadRanks;
@@ -149,15 +150,96 @@ struct RankResult {
     stale_ghosts: usize,
     /// Owned particles whose fix state or contact history did not travel with them.
     lost_state: usize,
+    /// Pairs whose history, taken back from the partner lists, is not the one they had.
+    wrong_history: usize,
+    /// Pairs that took back a history (in contact at the start).
+    carried_history: usize,
 }
 
-fn history_of(id: i64) -> (Vec<i64>, Vec<f64>) {
-    let partners: Vec<i64> = (1..=(id % 3)).map(|k| id + k).collect();
-    let values = partners
+/// Which history values are vectors (they change sign seen from the other particle).
+const FLIPS: [bool; 3] = [true, false, true];
+
+/// The contact history of two particles in contact at the start, seen from `a`.
+fn history_between(a: i64, b: i64) -> [f64; 3] {
+    let (lo, hi) = (a.min(b), a.max(b));
+    let seen_from_lo = [(lo * 1000 + hi) as f64, 0.5, -(hi as f64)];
+    let sign = if a == lo { 1.0 } else { -1.0 };
+    [
+        sign * seen_from_lo[0],
+        seen_from_lo[1],
+        sign * seen_from_lo[2],
+    ]
+}
+
+/// Every particle's partner list at the start: the serial pair list (each pair once, from
+/// its lower ID) and its history written into the particles.
+fn start_history(case: &Case, start: &[[f64; 3]], radius: &[f64]) -> PartnerHistory {
+    let serial = serial_pairs(case, start, radius);
+    let once: Vec<_> = serial.iter().filter(|p| p.0 < p.1).collect();
+    let pairs: Vec<Pair> = once
         .iter()
-        .flat_map(|&p| [id as f64 * 0.5, -(p as f64), 1.0 / p as f64])
+        .map(|p| Pair {
+            i: p.0 as u32 - 1,
+            j: p.1 as u32 - 1,
+            shift: [0.0; 3],
+        })
         .collect();
-    (partners, values)
+    let values: Vec<f64> = once
+        .iter()
+        .flat_map(|p| history_between(p.0, p.1))
+        .collect();
+    let ids: Vec<i64> = (1..=case.n as i64).collect();
+    PartnerHistory::from_pairs(&pairs, &values, &ids, case.n, &FLIPS)
+}
+
+/// Pairs in reach on a rank (owned first, or a ghost first for odd IDs) and how many took
+/// the wrong history back from the partner lists, and how many took a non-zero one.
+fn history_check(
+    case: &Case,
+    p: &Particles,
+    nlocal: usize,
+    hist: &PartnerHistory,
+    start: &PartnerHistory,
+) -> (usize, usize) {
+    let mut pairs = Vec::new();
+    for a in 0..nlocal {
+        for b in 0..p.len() {
+            let listed = b >= nlocal || a < b;
+            if a == b
+                || !listed
+                || pair_force(case, p.x[a], p.x[b], p.radius[a], p.radius[b]).is_none()
+            {
+                continue;
+            }
+            let (i, j) = if b >= nlocal && p.id[b] % 2 == 1 {
+                (b, a)
+            } else {
+                (a, b)
+            };
+            pairs.push(Pair {
+                i: i as u32,
+                j: j as u32,
+                shift: [0.0; 3],
+            });
+        }
+    }
+    let got = hist.to_pairs(&pairs, &p.id, nlocal, &FLIPS);
+    let mut wrong = 0;
+    let mut carried = 0;
+    for (k, q) in pairs.iter().enumerate() {
+        let (a, b) = (p.id[q.i as usize], p.id[q.j as usize]);
+        let touched = start.get(a as usize - 1, b).is_some();
+        let want = if touched {
+            history_between(a, b)
+        } else {
+            [0.0; 3]
+        };
+        if got[3 * k..3 * k + 3] != want {
+            wrong += 1;
+        }
+        carried += usize::from(touched);
+    }
+    (wrong, carried)
 }
 
 fn run_rank(c: &impl Comm, case: &Case) -> RankResult {
@@ -165,6 +247,7 @@ fn run_rank(c: &impl Comm, case: &Case) -> RankResult {
     let (start, moved, radius) = particles(case);
     let mut p = Particles::default();
     let k = p.extra_index("fix_state", 2);
+    let global = start_history(case, &start, &radius);
     let mut hist = PartnerHistory::new(3, 0);
     for (i, x) in start.iter().enumerate() {
         if dec.owns(*x) {
@@ -172,9 +255,8 @@ fn run_rank(c: &impl Comm, case: &Case) -> RankResult {
             p.push(id, 1, *x, radius[i], 2500.0);
             let n = p.len();
             p.extra[k].data[2 * (n - 1)..2 * n].copy_from_slice(&[id as f64, -0.25 * id as f64]);
-            let (partners, values) = history_of(id);
-            hist.partners.push(partners);
-            hist.values.push(values);
+            hist.partners.push(global.partners[i].clone());
+            hist.values.push(global.values[i].clone());
         }
     }
     for i in 0..p.len() {
@@ -185,15 +267,19 @@ fn run_rank(c: &impl Comm, case: &Case) -> RankResult {
     let mut lost_state = 0;
     for i in 0..nlocal {
         let id = p.id[i];
-        let (partners, values) = history_of(id);
+        let (partners, values) = (
+            &global.partners[id as usize - 1],
+            &global.values[id as usize - 1],
+        );
         let fix_ok = p.extra[k].data[2 * i..2 * i + 2] == [id as f64, -0.25 * id as f64];
-        if !fix_ok || hist.partners[i] != partners || hist.values[i] != values {
+        if !fix_ok || hist.partners[i] != *partners || hist.values[i] != *values {
             lost_state += 1;
         }
     }
     let plan = borders(c, &dec, &case.halo(), &mut p, nlocal).expect("borders");
     let mut copies: Vec<(i64, [i32; 3])> = (0..nlocal).map(|i| (p.id[i], [0; 3])).collect();
     copies.extend((0..plan.nghost()).map(|g| (p.id[nlocal + g], plan.ghost_image[g])));
+    let (wrong_history, carried_history) = history_check(case, &p, nlocal, &hist, &global);
     let result = forces(c, case, &dec, &plan, &mut p);
     let stale_ghosts = forward_check(c, &dec, &plan, &mut p);
     RankResult {
@@ -201,6 +287,8 @@ fn run_rank(c: &impl Comm, case: &Case) -> RankResult {
         copies,
         stale_ghosts,
         lost_state,
+        wrong_history,
+        carried_history,
         ..result
     }
 }
@@ -273,6 +361,8 @@ fn forces(
         summed: (0..nlocal).map(|i| (ids[i], p.f[i])).collect(),
         stale_ghosts: 0,
         lost_state: 0,
+        wrong_history: 0,
+        carried_history: 0,
     }
 }
 
@@ -342,6 +432,8 @@ fn read_positions(b: &[u8]) -> std::collections::HashMap<i64, [f64; 3]> {
 
 /// What a checked case gives back.
 struct Checked {
+    /// Pairs (ordered, over all ranks) that took back their contact history.
+    carried: usize,
     /// Number of ordered pairs in reach.
     pairs: usize,
     /// Per particle (by ID - 1): the force summed by reverse communication.
@@ -380,6 +472,7 @@ fn check(case: Case) -> Checked {
         );
         assert_eq!(r.stale_ghosts, 0, "{case:?}: forward on {rank}");
         assert_eq!(r.lost_state, 0, "{case:?}: migrated state on {rank}");
+        assert_eq!(r.wrong_history, 0, "{case:?}: contact history on {rank}");
     }
     // the same ordered pairs with the same forces, bit for bit
     let serial = serial_pairs(&case, &moved, &radius);
@@ -428,6 +521,7 @@ fn check(case: Case) -> Checked {
         }
     }
     Checked {
+        carried: results.iter().map(|r| r.carried_history).sum(),
         pairs: serial.len(),
         summed,
         canonical: total_once,
@@ -444,32 +538,43 @@ fn case(procs: [usize; 3], periodic: [bool; 3], cut: Option<f64>) -> Case {
     }
 }
 
+/// Check a case with enough pairs and carried contacts to mean something.
+fn checked(c: Case) {
+    let r = check(c);
+    assert!(
+        r.pairs > 100 && r.carried > 20,
+        "{c:?}: {} {}",
+        r.pairs,
+        r.carried
+    );
+}
+
 #[test]
 fn one_rank_periodic_makes_self_images() {
-    assert!(check(case([1, 1, 1], [true; 3], None)).pairs > 100);
-    assert!(check(case([1, 1, 1], [true, false, true], Some(0.12))).pairs > 100);
+    checked(case([1, 1, 1], [true; 3], None));
+    checked(case([1, 1, 1], [true, false, true], Some(0.12)));
 }
 
 #[test]
 fn two_ranks_along_x() {
-    assert!(check(case([2, 1, 1], [true; 3], None)).pairs > 100);
-    assert!(check(case([2, 1, 1], [false; 3], None)).pairs > 100);
-    assert!(check(case([2, 1, 1], [false, true, false], Some(0.15))).pairs > 100);
+    checked(case([2, 1, 1], [true; 3], None));
+    checked(case([2, 1, 1], [false; 3], None));
+    checked(case([2, 1, 1], [false, true, false], Some(0.15)));
 }
 
 #[test]
 fn three_ranks_along_x() {
-    assert!(check(case([3, 1, 1], [true; 3], None)).pairs > 100);
-    assert!(check(case([3, 1, 1], [false, true, true], Some(0.2))).pairs > 100);
+    checked(case([3, 1, 1], [true; 3], None));
+    checked(case([3, 1, 1], [false, true, true], Some(0.2)));
 }
 
 #[test]
 fn four_ranks_two_by_two_and_in_a_row() {
-    assert!(check(case([2, 2, 1], [true; 3], None)).pairs > 100);
-    assert!(check(case([2, 2, 1], [true, false, false], Some(0.1))).pairs > 100);
+    checked(case([2, 2, 1], [true; 3], None));
+    checked(case([2, 2, 1], [true, false, false], Some(0.1)));
     // ghosts from two ranks away: the cutoff is wider than a sub-domain (0.125 in z)
-    assert!(check(case([1, 1, 4], [true; 3], Some(0.2))).pairs > 100);
-    assert!(check(case([1, 1, 4], [false; 3], Some(0.2))).pairs > 100);
+    checked(case([1, 1, 4], [true; 3], Some(0.2)));
+    checked(case([1, 1, 4], [false; 3], Some(0.2)));
 }
 
 #[test]

@@ -4,10 +4,18 @@
 //! forces computed on ghosts back to their owners. Written over [`crate::util::comm::Comm`],
 //! so the same code runs on one process, under MPI, or on threads in tests. Not yet used by
 //! runs: a run on more than one rank is still refused.
+//!
+//! A step on several ranks: wrap positions into the periodic box, write the pair list's
+//! contact history into the particles' partner lists ([`PartnerHistory::from_pairs`]),
+//! [`migrate`], [`borders`], build the neighbour list over owned particles and ghosts,
+//! take the history back ([`PartnerHistory::to_pairs`]); then each step [`forward`],
+//! compute forces, and [`reverse`] (or [`reverse_contributions`] and [`canonical_sum`] for
+//! the same bits on any rank count).
 
 pub mod borders;
 pub mod decomposition;
 pub mod forward;
+pub mod history;
 pub mod migrate;
 pub mod pack;
 

@@ -3,6 +3,23 @@
 //! periodic flags. Lengths are in box units.
 
 use crate::engine::procmap::{self, ProcGrid, Processors};
+use crate::util::comm::{Comm, Reduce};
+
+/// The smallest and largest coordinates (length) of the particles of every rank, for
+/// shrink-wrapping the box (`+inf`/`-inf` when no rank has any): every rank gets the same.
+pub fn global_extent(comm: &impl Comm, x: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in x {
+        for d in 0..3 {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    }
+    comm.all_reduce_f64(&mut lo, Reduce::Min);
+    comm.all_reduce_f64(&mut hi, Reduce::Max);
+    (lo, hi)
+}
 
 /// The brick decomposition of a box as one rank sees it (every rank's bricks are known).
 #[derive(Debug, Clone, PartialEq)]
@@ -168,6 +185,27 @@ mod tests {
         assert_eq!(d.owner_of([0.5, 0.75, 0.1]), Some(1));
         assert_eq!(d.owner_of([2.0, 0.75, 0.1]), None);
         assert!(d.owns([1.0, 0.5, 0.0]) && !d.owns([1.0, 1.0, 0.0]));
+    }
+
+    #[test]
+    fn extent_over_ranks_and_bricks_that_follow_the_box() {
+        use crate::util::comm_threads::ThreadRanks;
+        let out = ThreadRanks::run(3, |c| {
+            let r = c.rank() as f64;
+            let mine = vec![[r, -r, 0.5], [0.25 * r, 2.0, -1.0 - r]];
+            let x = if c.rank() == 1 { Vec::new() } else { mine };
+            let (lo, hi) = global_extent(c, &x);
+            let mut d =
+                Decomposition::cartesian([3, 1, 1], c.rank(), [0.0; 3], [1.0; 3], [false; 3]);
+            d.set_box(lo, hi);
+            (lo, hi, d.sub_lo[0], d.sub_hi[0])
+        });
+        let (lo, hi) = ([0.0, -2.0, -3.0], [2.0, 2.0, 0.5]);
+        let splits = [0.0, 2.0 / 3.0, 4.0 / 3.0, 2.0];
+        for (r, o) in out.iter().enumerate() {
+            assert_eq!((o.0, o.1), (lo, hi));
+            assert_eq!((o.2, o.3), (splits[r], splits[r + 1]));
+        }
     }
 
     #[test]

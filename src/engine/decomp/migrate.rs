@@ -63,3 +63,56 @@ pub fn migrate(
     }
     Ok(received)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::util::comm::Reduce;
+    use crate::util::comm_threads::ThreadRanks;
+
+    #[test]
+    fn one_sub_domain_per_axis_or_lost_as_in_liggghts() {
+        // four bricks along x over 0..4; rank 0 holds three particles that move
+        let out = ThreadRanks::run(4, |c| {
+            let dec = Decomposition::cartesian(
+                [4, 1, 1],
+                c.rank(),
+                [0.0; 3],
+                [4.0, 1.0, 1.0],
+                [false; 3],
+            );
+            let mut p = Particles::default();
+            if c.rank() == 0 {
+                p.push(1, 1, [1.5, 0.5, 0.5], 0.1, 1.0); // next brick: arrives
+                p.push(2, 1, [2.5, 0.5, 0.5], 0.1, 1.0); // two bricks away: lost
+                p.push(3, 1, [-0.5, 0.5, 0.5], 0.1, 1.0); // out of the box: lost
+                p.push(4, 1, [0.5, 0.5, 0.5], 0.1, 1.0); // stays
+            }
+            let got = migrate(c, &dec, &mut p, None).expect("migrate");
+            let total = c.all_reduce_i64(p.len() as i64, Reduce::Sum);
+            (p.id.clone(), got, total)
+        });
+        assert_eq!(out[0].0, vec![4]);
+        assert_eq!((out[1].0.clone(), out[1].1), (vec![1], 1));
+        assert!(out[2].0.is_empty() && out[3].0.is_empty());
+        assert_eq!(out[0].2, 2);
+    }
+
+    #[test]
+    fn across_the_periodic_face_to_the_last_rank() {
+        let out = ThreadRanks::run(3, |c| {
+            let dec =
+                Decomposition::cartesian([3, 1, 1], c.rank(), [0.0; 3], [3.0, 1.0, 1.0], [true; 3]);
+            let mut p = Particles::default();
+            if c.rank() == 0 {
+                // wrapped from just below 0 to just below 3
+                p.push(7, 1, [2.99, 0.5, 0.5], 0.1, 1.0);
+                p.image[0] = [-1, 0, 0];
+            }
+            migrate(c, &dec, &mut p, None).expect("migrate");
+            (p.id.clone(), p.image.clone())
+        });
+        assert_eq!(out[2], (vec![7], vec![[-1, 0, 0]]));
+        assert!(out[0].0.is_empty() && out[1].0.is_empty());
+    }
+}

@@ -20,7 +20,7 @@ pub mod migrate;
 pub mod pack;
 
 pub use borders::{borders, GhostPlan, Halo, Swap};
-pub use decomposition::Decomposition;
+pub use decomposition::{global_extent, Decomposition};
 pub use forward::{canonical_sum, forward, reverse, reverse_contributions, Contribution};
 pub use migrate::migrate;
 pub use pack::{DecompError, PartnerHistory};

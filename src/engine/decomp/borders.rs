@@ -83,6 +83,9 @@ impl GhostPlan {
     }
 }
 
+/// The most swaps made each way along one axis.
+const MAX_NEED: usize = 1 << 16;
+
 /// How many swaps each way along each axis (LIGGGHTS's `maxneed`, uniform bricks) and how
 /// many of them this rank sends on (`sendneed`, low and high side).
 fn needs(dec: &Decomposition, halo: &Halo) -> ([usize; 3], [[usize; 2]; 3]) {
@@ -91,7 +94,9 @@ fn needs(dec: &Decomposition, halo: &Halo) -> ([usize; 3], [[usize; 2]; 3]) {
     let at = dec.at();
     for d in 0..3 {
         let p = dec.procs[d];
-        let mut need = (halo.cutghost * p as f64 / dec.length(d)) as usize + 1;
+        // a box of no length saturates (at most MAX_NEED swaps each way) rather than overflows
+        let reach = (halo.cutghost * p as f64 / dec.length(d)) as usize;
+        let mut need = reach.saturating_add(1).min(MAX_NEED);
         if !dec.periodic[d] {
             need = need.min(p - 1);
             let left = (at[d] + p - 1) % p;

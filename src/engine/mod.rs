@@ -9,6 +9,7 @@ pub mod checks;
 pub mod clumps;
 pub mod computes;
 pub mod contact;
+pub mod decomp;
 pub mod displacement;
 pub mod error;
 pub mod extras;

@@ -222,6 +222,25 @@ impl Particles {
         }
     }
 
+    /// Keep the first `n` particles (e.g. the owned ones, dropping the ghosts after them).
+    pub fn truncate(&mut self, n: usize) {
+        self.id.truncate(n);
+        self.kind.truncate(n);
+        self.mask.truncate(n);
+        self.x.truncate(n);
+        self.v.truncate(n);
+        self.f.truncate(n);
+        self.omega.truncate(n);
+        self.torque.truncate(n);
+        self.radius.truncate(n);
+        self.mass.truncate(n);
+        self.density.truncate(n);
+        self.image.truncate(n);
+        for e in &mut self.extra {
+            e.data.truncate(n * e.width);
+        }
+    }
+
     /// Reorder every array by `order` (new index -> old index), e.g. to sort by cell.
     pub fn permute(&mut self, order: &[usize]) {
         fn apply<T: Copy>(v: &mut Vec<T>, order: &[usize]) {

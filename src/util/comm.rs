@@ -29,6 +29,10 @@ pub trait Comm {
     fn broadcast_bytes(&self, root: usize, bytes: &mut Vec<u8>);
     /// Every rank's bytes, in rank order, on rank 0 (None on the others).
     fn gather_bytes(&self, bytes: &[u8]) -> Option<Vec<Vec<u8>>>;
+    /// One swap with neighbours: send `bytes` to rank `to` and return the bytes rank `from`
+    /// sent to this rank in the same swap (`to` and `from` may be this rank itself). Every
+    /// rank calls it in the same order, as MPI's sendrecv.
+    fn send_recv_bytes(&self, to: usize, from: usize, bytes: &[u8]) -> Vec<u8>;
 }
 
 /// One process: every collective is the identity.
@@ -50,6 +54,9 @@ impl Comm for Single {
     fn broadcast_bytes(&self, _root: usize, _bytes: &mut Vec<u8>) {}
     fn gather_bytes(&self, bytes: &[u8]) -> Option<Vec<Vec<u8>>> {
         Some(vec![bytes.to_vec()])
+    }
+    fn send_recv_bytes(&self, _to: usize, _from: usize, bytes: &[u8]) -> Vec<u8> {
+        bytes.to_vec()
     }
 }
 
@@ -141,6 +148,7 @@ mod tests {
         c.broadcast_bytes(0, &mut b);
         assert_eq!(b, b"abc");
         assert_eq!(c.gather_bytes(b"xy"), Some(vec![b"xy".to_vec()]));
+        assert_eq!(c.send_recv_bytes(0, 0, b"swap"), b"swap".to_vec());
     }
 
     #[test]

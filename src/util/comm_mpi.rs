@@ -67,4 +67,15 @@ impl Comm for MpiComm {
         }
         Some(all)
     }
+    fn send_recv_bytes(&self, to: usize, from: usize, bytes: &[u8]) -> Vec<u8> {
+        let dest = self.world.process_at_rank(to as i32);
+        let src = self.world.process_at_rank(from as i32);
+        // the length first, so the receiver can size its buffer
+        let len = bytes.len() as u64;
+        let mut n = 0u64;
+        mpi::point_to_point::send_receive_into(&len, &dest, &mut n, &src);
+        let mut out = vec![0u8; n as usize];
+        mpi::point_to_point::send_receive_into(bytes, &dest, &mut out[..], &src);
+        out
+    }
 }

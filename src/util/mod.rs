@@ -5,6 +5,7 @@
 pub mod comm;
 #[cfg(feature = "mpi")]
 pub mod comm_mpi;
+pub mod comm_threads;
 pub mod format;
 pub mod numbers;
 pub mod random;

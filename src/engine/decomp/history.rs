@@ -104,7 +104,7 @@ mod tests {
         ];
         // new list: one pair turned round, one gone, one new
         let new = [pair(1, 0), pair(1, 2), pair(3, 0), pair(2, 0)];
-        let serial = carry_history(&old, &hist, &new, &ids, &ids, &flips);
+        let serial = carry_history(&old, &hist, &new, &ids, &ids, &flips, |_| true);
         let lists = PartnerHistory::from_pairs(&old, &hist, &ids, 4, &flips);
         assert_eq!(lists.get(2, 10), Some(&[7.0, 8.0, -0.5][..]));
         assert_eq!(lists.get(3, 30), None);

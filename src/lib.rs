@@ -12,6 +12,7 @@ pub mod commands;
 pub mod engine;
 pub mod error;
 pub mod io;
+pub mod lang;
 pub mod launch;
 pub mod progress;
 pub mod script;

@@ -7,8 +7,8 @@ use std::path::Path;
 
 use crate::cli::DeckOptions;
 use crate::error::{Diagnostic, ExitStatus, Severity};
+use crate::lang::system::Mode;
 use crate::script::interp::{Interpreter, Output, Source};
-use crate::script::system::Mode;
 
 /// The first line regolith writes to screen and log (LIGGGHTS writes its version there).
 pub fn banner() -> String {

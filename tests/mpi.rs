@@ -4,8 +4,8 @@
 
 use regolith::cli::DeckOptions;
 use regolith::error::{Diagnostic, Severity};
+use regolith::lang::system::Mode;
 use regolith::script::interp::{Interpreter, Output, Source};
-use regolith::script::system::Mode;
 use regolith::util::comm::Ranks;
 
 /// (ranks, box lengths, the deck's processors line, what LIGGGHTS printed: the grid lines

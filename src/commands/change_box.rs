@@ -8,7 +8,7 @@ use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
 use crate::engine::domain::Boundary;
 use crate::engine::sim::{FixKind, Simulation};
-use crate::script::system::Mode;
+use crate::lang::system::Mode;
 use crate::util::format::g;
 
 type Result<T = ()> = std::result::Result<T, CommandError>;

@@ -4,8 +4,8 @@
 
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
-use crate::script::system::Mode;
-use crate::script::variables::Style;
+use crate::lang::system::Mode;
+use crate::lang::variables::Style;
 
 /// The atoms an atom-style variable selects (non-zero values, NaN included, as C compares);
 /// None in a dry run that cannot evaluate the variable.
@@ -24,7 +24,7 @@ pub fn selected(a: &Args, ctx: &mut Ctx) -> Result<Option<Vec<bool>>, CommandErr
         }
     }
     let check = ctx.sys.mode == Mode::Check;
-    let mut scope = crate::script::scope::Scope::new(ctx.vars, ctx.sys, ctx.sim);
+    let mut scope = crate::lang::scope::Scope::new(ctx.vars, ctx.sys, ctx.sim);
     match scope.atom_variable(name) {
         Ok(values) => Ok(Some(values.iter().map(|&v| v != 0.0).collect())),
         Err(e) if check || e.is_known_when_run() => Ok(None),

@@ -3,7 +3,7 @@
 
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
-use crate::script::system::Mode;
+use crate::lang::system::Mode;
 
 type Result = std::result::Result<(), CommandError>;
 

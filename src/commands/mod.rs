@@ -33,10 +33,10 @@ pub mod write_dump;
 use crate::engine::error::EngineError;
 use crate::engine::sim::Simulation;
 use crate::error::{Diagnostic, Location};
-use crate::script::interp::Output;
-use crate::script::line::Word;
-use crate::script::system::{Mode, System};
-use crate::script::variables::Variables;
+use crate::io::output::Output;
+use crate::lang::line::Word;
+use crate::lang::system::{Mode, System};
+use crate::lang::variables::Variables;
 
 pub use args::Args;
 pub use error::{At, CommandError};
@@ -64,7 +64,7 @@ impl Ctx<'_> {
         let step = (!definition).then_some(self.sim.step);
         let mut regions = std::mem::take(&mut self.sim.regions);
         let result = {
-            let mut scope = crate::script::scope::Scope::new(self.vars, self.sys, self.sim);
+            let mut scope = crate::lang::scope::Scope::new(self.vars, self.sys, self.sim);
             regions.reshape(step, &mut |name| {
                 scope
                     .equal_variable(name)
@@ -362,33 +362,6 @@ impl Simulation {
             p.id.iter()
                 .position(|&t| t == id as i64)
                 .ok_or("Variable atom ID is not currently defined")?;
-        atom_keyword(p, name, i)
+        crate::engine::computes::atom_keyword(p, name, i)
     }
-}
-
-/// A per-atom keyword of particle `i` (`x`, `vx`, `fx`, `mass`, `r`, ...).
-pub fn atom_keyword(
-    p: &crate::engine::particles::Particles,
-    name: &str,
-    i: usize,
-) -> Result<f64, EngineError> {
-    let axis = |c: u8| (c - b'x') as usize;
-    let b = name.as_bytes();
-    Ok(match name {
-        "id" => p.id[i] as f64,
-        "type" => p.kind[i] as f64,
-        "mass" => p.mass[i],
-        "r" => p.radius[i],
-        "density" => p.density[i],
-        "x" | "y" | "z" => p.x[i][axis(b[0])],
-        "vx" | "vy" | "vz" => p.v[i][axis(b[1])],
-        "fx" | "fy" | "fz" => p.f[i][axis(b[1])],
-        "omegax" | "omegay" | "omegaz" => p.omega[i][axis(b[5])],
-        "tqx" | "tqy" | "tqz" => p.torque[i][axis(b[2])],
-        other => {
-            return Err(EngineError::Unsupported(format!(
-                "per-atom keyword {other}"
-            )))
-        }
-    })
 }

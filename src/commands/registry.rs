@@ -120,7 +120,7 @@ pub fn validate_names(cmd: &CommandLine) -> Result<(), CommandError> {
             expected: format!("expected: {usage}"),
         });
     };
-    if crate::script::interp::UNKNOWN_VALUE == style {
+    if crate::lang::UNKNOWN_VALUE == style {
         return Ok(());
     }
     if kind == NameKind::FixStyle && style.starts_with("mesh/surface") {
@@ -179,7 +179,7 @@ fn validate_gran_models(cmd: &CommandLine, start: usize) -> Result<(), CommandEr
                 expected: format!("expected a {} after '{key}'", names::label(kind)),
             });
         };
-        if value != crate::script::interp::UNKNOWN_VALUE && !names::names(kind).contains(&value) {
+        if value != crate::lang::UNKNOWN_VALUE && !names::names(kind).contains(&value) {
             return Err(unknown(kind, value, i + 1));
         }
         i += 2;
@@ -336,7 +336,7 @@ mod tests {
 
     fn command(line: &str) -> CommandLine {
         CommandLine {
-            words: crate::script::line::split_words(line).expect("words"),
+            words: crate::lang::line::split_words(line).expect("words"),
             text: line.to_string(),
             location: Location {
                 file: "in.test".into(),
@@ -402,7 +402,7 @@ mod tests {
     fn lookup_agrees_with_the_handlers_on_every_command() {
         let styled = |name: &str| STYLES.iter().any(|row| row.command == name);
         for name in names::COMMANDS.iter().chain(EXTENSION_COMMANDS) {
-            if crate::script::interp::SCRIPT_COMMANDS.contains(name) || styled(name) {
+            if crate::lang::SCRIPT_COMMANDS.contains(name) || styled(name) {
                 continue;
             }
             // a command that names a style needs one to reach its handler

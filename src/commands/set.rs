@@ -4,7 +4,7 @@
 
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
-use crate::script::system::Mode;
+use crate::lang::system::Mode;
 
 type Result = std::result::Result<(), CommandError>;
 
@@ -73,14 +73,14 @@ fn value(
     };
     match ctx.vars.get(name).map(|v| v.style) {
         None => return Err(a.error(i, "Variable name for set command does not exist")),
-        Some(crate::script::variables::Style::Atom) => {}
+        Some(crate::lang::variables::Style::Atom) => {}
         Some(_) => {
             return Err(a
                 .error(i, "Variable for set command is invalid style")
                 .with_help("set takes atom-style variables"))
         }
     }
-    let mut scope = crate::script::scope::Scope::new(ctx.vars, ctx.sys, ctx.sim);
+    let mut scope = crate::lang::scope::Scope::new(ctx.vars, ctx.sys, ctx.sim);
     match scope.atom_variable(name) {
         Ok(v) => Ok(Value::PerAtom(v)),
         Err(e) if e.is_known_when_run() || ctx.sys.mode == Mode::Check => Ok(Value::Unknown),

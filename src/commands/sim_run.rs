@@ -7,7 +7,7 @@ use crate::engine::error::EngineError;
 use crate::engine::fixes::FixKind;
 use crate::engine::sim::Dump;
 use crate::io::dump::Layout;
-use crate::script::system::Mode;
+use crate::lang::system::Mode;
 
 mod compute;
 
@@ -306,7 +306,7 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
             for (k, n) in names.iter().enumerate() {
                 if let Some(var) = n.strip_prefix("v_") {
                     match ctx.vars.get(var).map(|v| v.style) {
-                        Some(crate::script::variables::Style::Atom) => {}
+                        Some(crate::lang::variables::Style::Atom) => {}
                         Some(_) => {
                             return Err(
                                 a.error(5 + k, "Dump custom variable is not atom-style variable")
@@ -629,7 +629,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     ctx.sim.ramp_bounds = (start, stop);
     let out = &mut *ctx.out;
     let mut sink = |s: &str| out.both(s);
-    let mut vars = crate::script::scope::RunVariables {
+    let mut vars = crate::lang::scope::RunVariables {
         vars: &mut *ctx.vars,
         sys: &mut *ctx.sys,
     };
@@ -641,7 +641,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
 /// Check mode: the files `restart N ...` would write during a run of `nsteps` from the current
 /// step, kept in memory (holding the dry run's state) for a later `read_restart`.
 fn keep_periodic_restarts(ctx: &mut Ctx, nsteps: i64) {
-    use crate::script::system::{KeptFile, KeptSeries};
+    use crate::lang::system::{KeptFile, KeptSeries};
     let (first, last) = (ctx.sim.step, ctx.sim.step + nsteps);
     let mut bytes: Option<std::rc::Rc<Vec<u8>>> = None;
     for k in 0..ctx.sim.restart_output.len() {

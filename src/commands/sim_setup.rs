@@ -7,7 +7,7 @@ use crate::commands::{At, CommandError};
 use crate::engine::domain::parse_boundary;
 use crate::engine::error::EngineError;
 use crate::engine::region::RegionContext;
-use crate::script::system::Mode;
+use crate::lang::system::Mode;
 use crate::util::numbers::inumeric;
 
 mod atoms;
@@ -228,7 +228,7 @@ fn region(a: &Args, ctx: &mut Ctx) -> Result {
         let at = (2..a.len()).find(|&i| a.word(i).is_ok_and(|w| w.starts_with("v_")));
         let problem = match ctx.vars.get(name).map(|v| v.style) {
             None => Some(format!("Variable name for region {style} does not exist")),
-            Some(crate::script::variables::Style::Equal) => None,
+            Some(crate::lang::variables::Style::Equal) => None,
             Some(_) => Some(format!("Variable for region {style} is invalid style")),
         };
         if let Some(m) = problem {
@@ -248,7 +248,7 @@ fn region(a: &Args, ctx: &mut Ctx) -> Result {
                 .unwrap_or(1);
             problem = match ctx.vars.get(name).map(|v| v.style) {
                 None => Some((at, "Variable name for region does not exist")),
-                Some(crate::script::variables::Style::Equal) => None,
+                Some(crate::lang::variables::Style::Equal) => None,
                 Some(_) => Some((at, wrong_style)),
             };
             if problem.is_some() {

@@ -5,8 +5,8 @@
 
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
-use crate::script::system::Mode;
-use crate::script::variables::Style;
+use crate::lang::system::Mode;
+use crate::lang::variables::Style;
 
 enum Component {
     Keep,
@@ -35,9 +35,9 @@ pub fn set(a: &Args, ctx: &mut Ctx, bit: u32, sum: bool, scale: f64) -> Result<(
     let mut components = Vec::new();
     for (d, kind) in kinds.iter().enumerate() {
         let w = a.word(2 + d)?;
-        let mut scope = crate::script::scope::Scope::new(ctx.vars, ctx.sys, ctx.sim);
+        let mut scope = crate::lang::scope::Scope::new(ctx.vars, ctx.sys, ctx.sim);
         // a dry run may not know what a variable needs
-        let unknown = |e: &crate::script::error::VariableError| check || e.is_known_when_run();
+        let unknown = |e: &crate::lang::error::VariableError| check || e.is_known_when_run();
         components.push(match kind {
             None if w == "NULL" => Component::Keep,
             None => Component::Constant(scale * a.real(2 + d)?),

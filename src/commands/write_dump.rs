@@ -4,7 +4,7 @@
 
 use crate::commands::CommandError;
 use crate::commands::{Args, CommandLine, Ctx};
-use crate::script::line::Word;
+use crate::lang::line::Word;
 
 type Result = std::result::Result<(), CommandError>;
 
@@ -88,7 +88,7 @@ fn write_now(a: &Args, ctx: &mut Ctx, modify: usize) -> Result {
         super::sim_run::dump_modify(&Args { cmd: &modify_line }, ctx)
             .map_err(|e| CommandError::Reported(e.into_diagnostic(&modify_line)))?;
     }
-    if ctx.sys.mode != crate::script::system::Mode::Run {
+    if ctx.sys.mode != crate::lang::system::Mode::Run {
         return Ok(());
     }
     let k = ctx
@@ -97,7 +97,7 @@ fn write_now(a: &Args, ctx: &mut Ctx, modify: usize) -> Result {
         .iter()
         .position(|d| d.id == ID)
         .expect("added above");
-    let mut vars = crate::script::scope::RunVariables {
+    let mut vars = crate::lang::scope::RunVariables {
         vars: &mut *ctx.vars,
         sys: &mut *ctx.sys,
     };

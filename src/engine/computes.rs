@@ -709,6 +709,33 @@ pub fn center_of_mass(p: &Particles, domain: &Domain, group: u32) -> [f64; 3] {
     cm
 }
 
+/// A per-atom keyword of particle `i` (`x`, `vx`, `fx`, `mass`, `r`, ...).
+pub fn atom_keyword(
+    p: &crate::engine::particles::Particles,
+    name: &str,
+    i: usize,
+) -> Result<f64, crate::engine::error::EngineError> {
+    let axis = |c: u8| (c - b'x') as usize;
+    let b = name.as_bytes();
+    Ok(match name {
+        "id" => p.id[i] as f64,
+        "type" => p.kind[i] as f64,
+        "mass" => p.mass[i],
+        "r" => p.radius[i],
+        "density" => p.density[i],
+        "x" | "y" | "z" => p.x[i][axis(b[0])],
+        "vx" | "vy" | "vz" => p.v[i][axis(b[1])],
+        "fx" | "fy" | "fz" => p.f[i][axis(b[1])],
+        "omegax" | "omegay" | "omegaz" => p.omega[i][axis(b[5])],
+        "tqx" | "tqy" | "tqz" => p.torque[i][axis(b[2])],
+        other => {
+            return Err(crate::engine::error::EngineError::Unsupported(format!(
+                "per-atom keyword {other}"
+            )))
+        }
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -8,6 +8,7 @@ pub mod dump_compare;
 pub mod error;
 pub mod local_vtk;
 pub mod mesh_vtk;
+pub mod output;
 pub mod restart;
 pub mod restart_error;
 pub mod restart_values;

@@ -9,29 +9,15 @@ use std::rc::Rc;
 
 use crate::commands::{CommandLine, Engine};
 use crate::error::{Diagnostic, Location, Severity};
-use crate::script::expr;
-use crate::script::line::{self, LexError, VarRef, Word};
-use crate::script::scope::Scope;
-use crate::script::system::{Mode, System};
-use crate::script::variables::{Value, Variables};
+use crate::lang::expr;
+use crate::lang::line::{self, LexError, VarRef, Word};
+use crate::lang::scope::Scope;
+use crate::lang::system::{Mode, System};
+use crate::lang::variables::{Value, Variables};
 use crate::util::format;
 
-/// Commands the interpreter executes itself (the script language).
-pub const SCRIPT_COMMANDS: &[&str] = &[
-    "clear",
-    "echo",
-    "if",
-    "include",
-    "jump",
-    "label",
-    "log",
-    "next",
-    "partition",
-    "print",
-    "quit",
-    "shell",
-    "variable",
-];
+pub use crate::io::output::Output;
+pub use crate::lang::{SCRIPT_COMMANDS, UNKNOWN_VALUE};
 
 /// How deeply `include` may nest input files.
 pub const MAX_INCLUDE_DEPTH: usize = 64;
@@ -39,9 +25,6 @@ pub const MAX_INCLUDE_DEPTH: usize = 64;
 /// Lines a dry run executes while following loops as a real run would; past this, each jump
 /// is followed once (every line still gets checked, every loop ends).
 pub const CHECK_LINE_BUDGET: u64 = 20_000;
-
-/// The text substituted in check mode for a value only a real run can know.
-pub const UNKNOWN_VALUE: &str = "?unknown?";
 
 /// A script's text split into physical lines.
 #[derive(Debug)]
@@ -62,90 +45,6 @@ impl Source {
             name: name.to_string(),
             lines,
             from_stdin,
-        }
-    }
-}
-
-/// Where screen and log text go, and which of them echo input lines.
-pub struct Output {
-    /// The screen (standard output, a file, or nothing for `-screen none`).
-    pub screen: Option<Box<dyn Write>>,
-    /// The log file (nothing for `-log none`).
-    pub log: Option<Box<dyn Write>>,
-    /// Echo input lines to the screen.
-    pub echo_screen: bool,
-    /// Echo input lines to the log.
-    pub echo_log: bool,
-    /// The first failed write to the screen and to the log (a full disk, a closed pipe):
-    /// reported once on standard error when it happens, and again at the end.
-    pub write_errors: [Option<String>; 2],
-}
-
-impl Output {
-    /// Output that goes nowhere (used by check mode).
-    pub fn silent() -> Output {
-        Output {
-            screen: None,
-            log: None,
-            echo_screen: false,
-            echo_log: false,
-            write_errors: [None, None],
-        }
-    }
-
-    /// Remember (and report once) a failed write to stream `k` (0 screen, 1 log).
-    fn failed(&mut self, k: usize, e: std::io::Error) {
-        if self.write_errors[k].is_none() {
-            let what = ["the screen output", "the log file"][k];
-            let _ = writeln!(
-                std::io::stderr(),
-                "WARNING: writing {what} failed: {e}; it is incomplete from here on"
-            );
-            self.write_errors[k] = Some(format!("writing {what} failed: {e}"));
-        }
-    }
-
-    /// Write `text` to the screen.
-    pub fn screen(&mut self, text: &str) {
-        if let Some(s) = self.screen.as_mut() {
-            if let Err(e) = s.write_all(text.as_bytes()) {
-                self.failed(0, e);
-            }
-        }
-    }
-
-    /// Write `text` to the log.
-    pub fn log(&mut self, text: &str) {
-        if let Some(l) = self.log.as_mut() {
-            if let Err(e) = l.write_all(text.as_bytes()) {
-                self.failed(1, e);
-            }
-        }
-    }
-
-    /// Write `text` to both screen and log.
-    pub fn both(&mut self, text: &str) {
-        self.screen(text);
-        self.log(text);
-    }
-
-    /// Echo an input line where `echo` says.
-    fn echo(&mut self, text: &str) {
-        if self.echo_screen {
-            self.screen(&format!("{text}\n"));
-        }
-        if self.echo_log {
-            self.log(&format!("{text}\n"));
-        }
-    }
-
-    /// Flush both streams.
-    pub fn flush(&mut self) {
-        if let Some(Err(e)) = self.screen.as_mut().map(|s| s.flush()) {
-            self.failed(0, e);
-        }
-        if let Some(Err(e)) = self.log.as_mut().map(|l| l.flush()) {
-            self.failed(1, e);
         }
     }
 }
@@ -548,15 +447,15 @@ impl Interpreter {
     }
 
     fn variable(&mut self, cmd: &CommandLine, args: &[String]) -> Result<(), Diagnostic> {
-        if args.len() >= 2 && !crate::script::variables::STYLE_NAMES.contains(&args[1].as_str()) {
+        if args.len() >= 2 && !crate::lang::variables::STYLE_NAMES.contains(&args[1].as_str()) {
             let help = crate::commands::suggest::did_you_mean(
                 &args[1],
-                crate::script::variables::STYLE_NAMES,
+                crate::lang::variables::STYLE_NAMES,
             )
             .unwrap_or_else(|| {
                 format!(
                     "a variable style: {}",
-                    crate::script::variables::STYLE_NAMES.join(", ")
+                    crate::lang::variables::STYLE_NAMES.join(", ")
                 )
             });
             return Err(

@@ -1,10 +1,5 @@
-//! The LIGGGHTS input language: lines, words, `$` substitution, variables, expressions and
-//! the control-flow commands (`next`, `jump`, `label`, `if`, `include`, `print`, ...).
+//! The LIGGGHTS input interpreter: reads a deck line by line (echo, comments, `$`
+//! substitution, words), runs the control-flow commands (`next`, `jump`, `label`, `if`,
+//! `include`, `print`, ...) and hands every other command to the command layer.
 
-pub mod error;
-pub mod expr;
 pub mod interp;
-pub mod line;
-pub mod scope;
-pub mod system;
-pub mod variables;

@@ -3,7 +3,7 @@
 use crate::commands::fix::FixDef;
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::fixes::FixKind;
-use crate::script::system::Mode;
+use crate::lang::system::Mode;
 
 /// `fix ID GROUP ave/time Nevery Nrepeat Nfreq value ... [keyword value ...]` (scalar mode).
 pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
@@ -62,7 +62,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
             _ => {
                 match ctx.vars.get(name).map(|v| v.style) {
                     None => return Err(a.error(i, "Variable name for fix ave/time does not exist")),
-                    Some(crate::script::variables::Style::Atom) => {
+                    Some(crate::lang::variables::Style::Atom) => {
                         return Err(a.error(i, "Fix ave/time variable is not equal-style variable"))
                     }
                     _ => {}

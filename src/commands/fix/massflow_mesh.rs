@@ -84,7 +84,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                     return Err(fail(i, "Illegal keyword entry"));
                 }
                 let name = a.word(i + 1)?;
-                if ctx.sys.mode == crate::script::system::Mode::Run {
+                if ctx.sys.mode == crate::lang::system::Mode::Run {
                     let f = std::fs::OpenOptions::new()
                         .create(true)
                         .write(true)

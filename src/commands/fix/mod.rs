@@ -170,7 +170,7 @@ fn variable_value(
     style: &str,
 ) -> Result<crate::engine::fixes::ForceValue, CommandError> {
     use crate::engine::fixes::ForceValue;
-    use crate::script::variables::Style;
+    use crate::lang::variables::Style;
     match ctx.vars.get(name).map(|v| v.style) {
         Some(Style::Equal) => Ok(ForceValue::Equal(name.into())),
         Some(Style::Atom) => Ok(ForceValue::Atom(name.into())),
@@ -239,9 +239,9 @@ mod tests {
     use super::*;
     use crate::commands::{CommandLine, Engine};
     use crate::error::Location;
-    use crate::script::interp::Output;
-    use crate::script::system::{Mode, System};
-    use crate::script::variables::Variables;
+    use crate::io::output::Output;
+    use crate::lang::system::{Mode, System};
+    use crate::lang::variables::Variables;
 
     #[test]
     fn every_declared_fix_style_has_a_row_and_every_row_a_declaration() {
@@ -254,7 +254,7 @@ mod tests {
 
     fn line(text: &str) -> CommandLine {
         CommandLine {
-            words: crate::script::line::split_words(text).expect("words"),
+            words: crate::lang::line::split_words(text).expect("words"),
             text: text.to_string(),
             location: Location {
                 file: "in.toy".into(),

@@ -47,7 +47,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     }
     // checking a deck does not run it, so its particles may not exist yet
     let p = &ctx.sim.particles;
-    let checking = ctx.sys.mode != crate::script::system::Mode::Run;
+    let checking = ctx.sys.mode != crate::lang::system::Mode::Run;
     if !checking && !(0..p.len()).any(|i| p.mask[i] & fix.bit != 0) {
         return Err(a.error(1, "Fix momentum group has no atoms"));
     }

@@ -5,7 +5,7 @@ use crate::commands::fix::FixDef;
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::fixes::FixKind;
 use crate::engine::multisphere::{ClumpSpec, ClumpTemplate, GivenMass};
-use crate::script::system::Mode;
+use crate::lang::system::Mode;
 
 const USAGE: &str = "fix ID GROUP particletemplate/multisphere SEED atom_type T density constant D nspheres N ntry N spheres file F scale S type MT";
 

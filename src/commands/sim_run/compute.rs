@@ -200,7 +200,7 @@ pub(crate) fn compute_reduce(
         }
         if let Some(name) = w.strip_prefix("v_") {
             match ctx.vars.get(name).map(|v| v.style) {
-                Some(crate::script::variables::Style::Atom) => {}
+                Some(crate::lang::variables::Style::Atom) => {}
                 Some(_) => {
                     return Err(a.error(i, "Compute reduce variable is not atom-style variable"))
                 }

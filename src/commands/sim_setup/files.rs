@@ -160,7 +160,7 @@ pub(super) fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
     // the pair style stored in the file, as LIGGGHTS recreates it (decks usually repeat it)
     if let Some(words) = pair {
         for text in [format!("pair_style {words}"), "pair_coeff * *".to_string()] {
-            let words = crate::script::line::split_words(&text)
+            let words = crate::lang::line::split_words(&text)
                 .map_err(|_| a.error(0, "restart: bad stored pair style"))?;
             let cmd = crate::commands::CommandLine {
                 words,

@@ -25,7 +25,7 @@
 use crate::util::numbers::c_atof;
 use crate::util::random::RanMars;
 
-pub use crate::script::error::{ExprErrorKind, VariableError};
+pub use crate::lang::error::{ExprErrorKind, VariableError};
 
 mod boolean;
 mod column;

@@ -6,10 +6,10 @@ use std::rc::Rc;
 
 use crate::engine::error::EngineError;
 use crate::engine::sim::{Simulation, VariableSource};
-use crate::script::error::VariableError;
-use crate::script::expr::{self, Expr, ExprContext, RefKind};
-use crate::script::system::{Mode, System};
-use crate::script::variables::{Style, Value, Variables};
+use crate::lang::error::VariableError;
+use crate::lang::expr::{self, Expr, ExprContext, RefKind};
+use crate::lang::system::{Mode, System};
+use crate::lang::variables::{Style, Value, Variables};
 use crate::util::format::g_precision;
 use crate::util::numbers::c_atof;
 use crate::util::random::{check_seed, RanMars};
@@ -262,7 +262,7 @@ impl ExprContext for Scope<'_> {
                 self.no_state("Variable evaluation before simulation box is defined".into())
             );
         }
-        Ok(crate::commands::atom_keyword(
+        Ok(crate::engine::computes::atom_keyword(
             &self.sim.particles,
             name,
             atom,
@@ -424,10 +424,10 @@ impl VariableSource for RunVariables<'_> {
     fn substitute(&mut self, sim: &Simulation, text: &str) -> Result<String, EngineError> {
         let vars = &mut *self.vars;
         let sys = &mut *self.sys;
-        crate::script::line::substitute(
+        crate::lang::line::substitute(
             text,
             |r| match r {
-                crate::script::line::VarRef::Named(name) => match vars.retrieve(name, sys) {
+                crate::lang::line::VarRef::Named(name) => match vars.retrieve(name, sys) {
                     None => Err("Substitution for illegal variable".to_string()),
                     Some(Value::Text(t)) => Ok(t),
                     Some(Value::Formula(f)) => {
@@ -437,7 +437,7 @@ impl VariableSource for RunVariables<'_> {
                             .map_err(|e| e.to_string())
                     }
                 },
-                crate::script::line::VarRef::Immediate(e) => {
+                crate::lang::line::VarRef::Immediate(e) => {
                     let mut scope = Scope::new(vars, sys, sim);
                     expr::evaluate(e, &mut scope)
                         .map(|x| g_precision(x, 20))

@@ -1,7 +1,7 @@
 //! The `variable` command's store: every style LIGGGHTS 3.8.0 has, `next`, and retrieval of
 //! a variable's text for `$` substitution.
 
-use crate::script::error::{SystemError, VariableCommandError};
+use crate::lang::error::{SystemError, VariableCommandError};
 use crate::util::random::RanMars;
 
 /// A variable's style, as named in the `variable` command.

@@ -6,8 +6,8 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
-use crate::script::error::SystemError;
-use crate::script::variables::VariableHost;
+use crate::lang::error::SystemError;
+use crate::lang::variables::VariableHost;
 
 /// Whether commands really act or are only checked.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

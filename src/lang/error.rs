@@ -92,7 +92,7 @@ impl From<VariableError> for String {
     }
 }
 
-/// What is wrong with a formula, without its position (see [`crate::script::expr::ExprError`]).
+/// What is wrong with a formula, without its position (see [`crate::lang::expr::ExprError`]).
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
 pub enum ExprErrorKind {
     /// Not a formula LIGGGHTS reads.

@@ -1,0 +1,88 @@
+//! The screen and the log a run writes to (LIGGGHTS's `screen` and `logfile`), each
+//! optional; a failed write is reported once and the run goes on.
+
+use std::io::Write;
+
+/// Where screen and log text go, and which of them echo input lines.
+pub struct Output {
+    /// The screen (standard output, a file, or nothing for `-screen none`).
+    pub screen: Option<Box<dyn Write>>,
+    /// The log file (nothing for `-log none`).
+    pub log: Option<Box<dyn Write>>,
+    /// Echo input lines to the screen.
+    pub echo_screen: bool,
+    /// Echo input lines to the log.
+    pub echo_log: bool,
+    /// The first failed write to the screen and to the log (a full disk, a closed pipe):
+    /// reported once on standard error when it happens, and again at the end.
+    pub write_errors: [Option<String>; 2],
+}
+
+impl Output {
+    /// Output that goes nowhere (used by check mode).
+    pub fn silent() -> Output {
+        Output {
+            screen: None,
+            log: None,
+            echo_screen: false,
+            echo_log: false,
+            write_errors: [None, None],
+        }
+    }
+
+    /// Remember (and report once) a failed write to stream `k` (0 screen, 1 log).
+    pub fn failed(&mut self, k: usize, e: std::io::Error) {
+        if self.write_errors[k].is_none() {
+            let what = ["the screen output", "the log file"][k];
+            let _ = writeln!(
+                std::io::stderr(),
+                "WARNING: writing {what} failed: {e}; it is incomplete from here on"
+            );
+            self.write_errors[k] = Some(format!("writing {what} failed: {e}"));
+        }
+    }
+
+    /// Write `text` to the screen.
+    pub fn screen(&mut self, text: &str) {
+        if let Some(s) = self.screen.as_mut() {
+            if let Err(e) = s.write_all(text.as_bytes()) {
+                self.failed(0, e);
+            }
+        }
+    }
+
+    /// Write `text` to the log.
+    pub fn log(&mut self, text: &str) {
+        if let Some(l) = self.log.as_mut() {
+            if let Err(e) = l.write_all(text.as_bytes()) {
+                self.failed(1, e);
+            }
+        }
+    }
+
+    /// Write `text` to both screen and log.
+    pub fn both(&mut self, text: &str) {
+        self.screen(text);
+        self.log(text);
+    }
+
+    /// Echo an input line where `echo` says.
+    pub fn echo(&mut self, text: &str) {
+        if self.echo_screen {
+            self.screen(&format!("{text}\n"));
+        }
+        if self.echo_log {
+            self.log(&format!("{text}\n"));
+        }
+    }
+
+    /// Flush both streams.
+    pub fn flush(&mut self) {
+        if let Some(Err(e)) = self.screen.as_mut().map(|s| s.flush()) {
+            self.failed(0, e);
+        }
+        if let Some(Err(e)) = self.log.as_mut().map(|l| l.flush()) {
+            self.failed(1, e);
+        }
+    }
+}

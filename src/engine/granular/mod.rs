@@ -43,6 +43,9 @@ pub struct PairGran<N, T, C, R> {
     pub slot: Vec<u32>,
     /// The parallel pass's touching entries, per part of the list (indices within the part).
     pub parts: Vec<Vec<u32>>,
+    /// Touching entries of the last fast-path (block) pass, which keeps no list of them
+    /// (None after any other pass: [`Self::touching`] holds them).
+    pub block_contacts: Option<usize>,
     /// The largest overlap of the last evaluation: (ratio to the smaller radius, i, j).
     pub worst: Option<(f64, u32, u32)>,
     /// The fast path's contributions between blocks of particles, per block (reused).
@@ -138,7 +141,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
     }
 
     fn contact_count(&self) -> usize {
-        self.touching.len()
+        self.block_contacts.unwrap_or(self.touching.len())
     }
 
     fn contacts(
@@ -188,6 +191,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         mirrored: Option<Mirrored<'_>>,
     ) {
         self.packed.fill(p, self.frozen);
+        self.block_contacts = None;
         let threads = rayon::current_num_threads();
         match order {
             SumOrder::Gathered(inc) if threads > 1 && inc.first.len() == p.len() + 1 => {
@@ -710,11 +714,9 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
                 worst
             }
         });
+        // only their number is read (the run's summary): no list of them is made
         self.touching.clear();
-        for (b, part) in parts.iter().enumerate() {
-            let base = starts[b];
-            self.touching.extend(part.iter().map(|&k| base + k));
-        }
+        self.block_contacts = Some(parts.iter().map(Vec::len).sum());
         self.parts = parts;
         self.foreign = foreign;
     }
@@ -937,6 +939,7 @@ pub fn build(
                 packed: batch::Packed::default(),
                 slot: Vec::new(),
                 parts: Vec::new(),
+                block_contacts: None,
                 worst: None,
                 foreign: Vec::new(),
                 mirror_scratch: Default::default(),

@@ -131,6 +131,15 @@ fn bad_arguments_get_liggghts_errors() {
             "compute e all erotate/sphere/atom extra",
             "Illegal compute erotate/sphere/atom command",
         ),
+        // thermo keywords in formulas
+        (
+            "thermo_style custom step\nvariable e equal erotate\nprint \"${e}\"",
+            "Thermo keyword in variable requires thermo to use/init erotate",
+        ),
+        (
+            "variable e equal elaplong\nprint \"${e}\"",
+            "This variable thermo keyword cannot be used between runs",
+        ),
     ] {
         std::fs::write(dir.join("in.t"), format!("{HEAD}{body}\n")).unwrap();
         let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);

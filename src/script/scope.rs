@@ -199,6 +199,25 @@ impl ExprContext for Scope<'_> {
             return Err(VariableError::KnownWhenRun);
         }
         let sim = self.sim;
+        // LIGGGHTS's rules for keywords that need thermo's computes or a run
+        if matches!(name, "ke" | "erotate") && !sim.thermo.fields.iter().any(|f| f.keyword == name)
+        {
+            return Err(
+                format!("Thermo keyword in variable requires thermo to use/init {name}").into(),
+            );
+        }
+        let timed = [
+            "elapsed",
+            "elaplong",
+            "cpu",
+            "cu",
+            "tpcpu",
+            "spcpu",
+            "cpuremain",
+        ];
+        if sim.run_bounds.is_none() && timed.contains(&name) {
+            return Err("This variable thermo keyword cannot be used between runs".into());
+        }
         sim.thermo_value(name, self).ok_or_else(|| {
             VariableError::Unsupported(format!("thermo keyword {name} in a formula"))
         })

@@ -732,6 +732,7 @@ impl Simulation {
         self.setup_ave_atom(vars)?;
         self.setup_averages(vars)?;
         self.thermo.run_start = first;
+        self.thermo.run_last = last;
         self.thermo.prepare_run(self.domain.shrinks());
         let thermo_file = &mut self.extras.thermo_file;
         self.thermo.header(&mut |s: &str| {

@@ -131,6 +131,28 @@ fn bad_arguments_get_liggghts_errors() {
             "compute e all erotate/sphere/atom extra",
             "Illegal compute erotate/sphere/atom command",
         ),
+        // compute coord/atom and contact/atom (messages printed by Debian's LIGGGHTS)
+        (
+            "compute c all coord/atom",
+            "Compute coord/atom (id c): Illegal # of arguments",
+        ),
+        ("compute c all coord/atom 0.003 2", "is out of bounds"),
+        (
+            "compute c all coord/atom 0.003 mix maybe",
+            "Compute coord/atom (id c): valid arguments for 'mix' are 'yes' or 'no'",
+        ),
+        (
+            "compute c all coord/atom abc",
+            "Expected floating point parameter",
+        ),
+        (
+            "compute c all contact/atom skan 1",
+            "Illegal compute contact/atom command, expecting keyword 'skin'",
+        ),
+        (
+            "compute c all coord/atom 0.003\nrun 0",
+            "Compute coord/atom requires a pair style be defined",
+        ),
         // thermo keywords in formulas
         (
             "thermo_style custom step\nvariable e equal erotate\nprint \"${e}\"",

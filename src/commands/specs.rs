@@ -196,6 +196,7 @@ pub const SPECS: &[Spec] = &[
     command("communicate single|multi [vel yes|no] [cutoff C]", "communication settings (accepted; one process)"),
     style("compute", "com", "compute ID GROUP com", &[], "centre of mass of the group"),
     style("compute", "contact/atom", "compute ID GROUP contact/atom", &[kw("skin", &[arg("S", LENGTH)], "count contacts within this gap")], "number of contacts per particle"),
+    style("compute", "coord/atom", "compute ID GROUP coord/atom CUTOFF [TYPES ...]", &[kw("mix", &[arg("yes|no", YES_NO)], "leave out partners of the particle's own type")], "partners within CUTOFF (length) per particle, one column per type range (N, *, N*, *N, M*N)"),
     style("compute", "erotate", "compute ID GROUP erotate", &[], "rotational kinetic energy of the group (through an erotate/sphere compute)"),
     style("compute", "displace/atom", "compute ID GROUP displace/atom", &[], "per-particle displacement dx dy dz and distance (length) since the compute was defined"),
     style("compute", "erotate/sphere/atom", "compute ID GROUP erotate/sphere/atom", &[], "rotational kinetic energy per particle (energy)"),

@@ -32,6 +32,7 @@ pub mod mirror_history;
 pub mod momentum;
 pub mod multisphere;
 pub mod neighbor;
+pub mod neighbour_counts;
 pub mod nve_limit;
 pub mod nve_noforce;
 pub mod planar;

@@ -57,6 +57,7 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
             }
             ComputeKind::ContactAtom { skin }
         }
+        "coord/atom" => crate::commands::compute_coord::build(a, ctx)?,
         "com" => no_keywords(ComputeKind::Com)?,
         "nparticles/tracer/region" => {
             crate::commands::computes_extra::nparticles_tracer_region(a, ctx)?

@@ -153,6 +153,52 @@ fn bad_arguments_get_liggghts_errors() {
             "compute c all coord/atom 0.003\nrun 0",
             "Compute coord/atom requires a pair style be defined",
         ),
+        // fix store/state
+        ("fix s all store/state 0", "Illegal fix store/state command"),
+        (
+            "fix s all store/state -1 x",
+            "Illegal fix store/state command",
+        ),
+        (
+            "fix s all store/state 0 x com maybe",
+            "Illegal fix store/state command",
+        ),
+        (
+            "fix s all store/state 0 x bogus",
+            "Illegal fix store/state command",
+        ),
+        (
+            "fix s all store/state 0 q",
+            "Fix store/state for atom property that isn't allocated",
+        ),
+        (
+            "fix s all store/state 0 c_none",
+            "Compute ID for fix store/state does not exist",
+        ),
+        (
+            "compute k all ke/atom\nfix s all store/state 0 c_k[1]",
+            "Fix store/state compute does not calculate a per-atom array",
+        ),
+        (
+            "compute d all displace/atom\nfix s all store/state 0 c_d",
+            "Fix store/state compute does not calculate a per-atom vector",
+        ),
+        (
+            "compute d all displace/atom\nfix s all store/state 0 c_d[5]",
+            "Fix store/state compute array is accessed out-of-range",
+        ),
+        (
+            "fix s all store/state 0 f_none",
+            "Fix ID for fix store/state does not exist",
+        ),
+        (
+            "variable e equal 1\nfix s all store/state 0 v_e",
+            "Fix store/state variable is not atom-style variable",
+        ),
+        (
+            "fix s all store/state 0 v_none",
+            "Variable name for fix store/state does not exist",
+        ),
         // thermo keywords in formulas
         (
             "thermo_style custom step\nvariable e equal erotate\nprint \"${e}\"",

@@ -92,6 +92,8 @@ pub enum Input {
     Compute(String, Option<usize>),
     /// An atom-style variable `v_name`.
     Variable(String),
+    /// A per-atom fix `f_ID` or column `f_ID[N]` (1-based).
+    Fix(String, Option<usize>),
 }
 
 /// Per-atom values of a compute: `columns` values per particle, row-major in particle
@@ -301,6 +303,10 @@ impl Compute {
             Input::Variable(name) => {
                 let data = vars.atom(sim, name)?;
                 Box::new(move |i| data[i])
+            }
+            Input::Fix(id, index) => {
+                let (data, col) = crate::engine::fix_columns::per_atom(sim, id, *index)?;
+                Box::new(move |i| data.get(i, col))
             }
         };
         let (mut acc, mut count) = match mode {

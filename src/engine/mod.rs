@@ -43,6 +43,7 @@ pub mod restart_fixes;
 pub mod restart_state;
 pub mod rigid_body;
 pub mod sim;
+pub mod store_state;
 pub mod temperature;
 pub mod tet_mesh;
 pub mod thermo;

@@ -256,12 +256,41 @@ impl ExprContext for Scope<'_> {
 
     fn fix(
         &mut self,
-        _: &str,
-        _: Option<usize>,
-        _: Option<usize>,
-        _: Option<usize>,
+        id: &str,
+        i: Option<usize>,
+        j: Option<usize>,
+        atom: Option<usize>,
     ) -> Result<f64, VariableError> {
-        Err(self.no_state("Invalid fix ID in variable formula".into()))
+        if self.sys.mode == Mode::Check {
+            return Err(VariableError::KnownWhenRun);
+        }
+        if !self.sim.fixes.iter().any(|f| f.id == id) {
+            return Err("Invalid fix ID in variable formula".into());
+        }
+        if j.is_some() {
+            return Err(VariableError::Unsupported(format!("f_{id}[i][j]")));
+        }
+        let per_atom = crate::engine::fix_columns::column(self.sim, id, i).is_ok();
+        match atom {
+            Some(a) if per_atom => {
+                let key = format!("f_{id}[{}]", i.unwrap_or(0));
+                let data = match self.per_atom.get(&key) {
+                    Some(v) => v.clone(),
+                    None => {
+                        let (data, col) = crate::engine::fix_columns::per_atom(self.sim, id, i)?;
+                        let column: Vec<f64> = (0..self.sim.particles.len())
+                            .map(|k| data.get(k, col))
+                            .collect();
+                        let column = Rc::new(column);
+                        self.per_atom.insert(key, column.clone());
+                        column
+                    }
+                };
+                Ok(data[a])
+            }
+            None if per_atom => Err("Per-atom fix in equal-style variable formula".into()),
+            _ => Ok(self.sim.fix_value(id, i)?),
+        }
     }
 
     fn group_function(&mut self, name: &str, args: &[String]) -> Result<f64, VariableError> {
@@ -403,7 +432,7 @@ impl ExprContext for Scope<'_> {
         &mut self,
         kind: RefKind,
         name: &str,
-        _i: Option<usize>,
+        i: Option<usize>,
         _j: Option<usize>,
     ) -> bool {
         match kind {
@@ -416,7 +445,7 @@ impl ExprContext for Scope<'_> {
                 .computes
                 .iter()
                 .any(|c| c.id == name && c.per_atom_columns() > 0),
-            RefKind::Fix => false,
+            RefKind::Fix => crate::engine::fix_columns::column(self.sim, name, i).is_ok(),
         }
     }
 }

@@ -30,6 +30,7 @@ mod particle_template_multisphere;
 mod print;
 mod property_atom;
 mod property_global;
+mod store_state;
 mod tracer;
 mod viscous;
 mod wall_gran;
@@ -106,6 +107,7 @@ pub const STYLES: &[(&str, Build)] = &[
     ("planeforce", lineforce::build),
     ("aveforce", aveforce::build),
     ("ave/atom", ave_atom::build),
+    ("store/state", store_state::build),
 ];
 
 /// `fix ID GROUP STYLE ...` with the styles of `styles`: checks what every fix shares, has

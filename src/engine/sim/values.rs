@@ -37,6 +37,10 @@ impl Simulation {
                     }
                 }
                 FixKind::AveAtom(_) => self.ave_atom_step(k, vars)?,
+                FixKind::StoreState(s) if s.every > 0 && step % s.every == 0 => {
+                    use crate::engine::store_state::Snapshot;
+                    self.store_state(k, Snapshot::All, vars)?
+                }
                 FixKind::Print(pf) if step % pf.every == 0 => {
                     let text = pf.text.clone();
                     let line = vars.substitute(self, &text)?;

@@ -199,6 +199,43 @@ fn bad_arguments_get_liggghts_errors() {
             "fix s all store/state 0 v_none",
             "Variable name for fix store/state does not exist",
         ),
+        // fix ave/spatial
+        (
+            "fix a all ave/spatial 10 5 100 q lower 0.005 vx",
+            "Illegal fix ave/spatial command",
+        ),
+        (
+            "fix a all ave/spatial 10 5 100 z lower 0.005 z lower 0.01 vx",
+            "Same dimension twice in fix ave/spatial",
+        ),
+        (
+            "fix a all ave/spatial 10 5 100 z lower 0.005 vx norm maybe",
+            "Illegal fix ave/spatial command",
+        ),
+        (
+            "fix a all ave/spatial 10 5 100 z lower 0.005 vx overwrite",
+            "Illegal fix ave/spatial command",
+        ),
+        (
+            "fix a all ave/spatial 10 5 100 z lower 0.005 c_none",
+            "Compute ID for fix ave/spatial does not exist",
+        ),
+        (
+            "fix a all ave/spatial 10 5 100 z lower 0.005 vx region nowhere",
+            "Region ID for fix ave/spatial does not exist",
+        ),
+        (
+            "fix a all ave/spatial 10 20 100 z lower 0.005 vx",
+            "Illegal fix ave/spatial command",
+        ),
+        (
+            "fix a all ave/spatial 10 5 100 z lower 0 vx",
+            "Illegal fix ave/spatial command",
+        ),
+        (
+            "fix a all ave/spatial 10 5 100 z lower 0.005 vx file nodir/a.txt",
+            "Cannot open fix ave/spatial file nodir/a.txt",
+        ),
         // thermo keywords in formulas
         (
             "thermo_style custom step\nvariable e equal erotate\nprint \"${e}\"",

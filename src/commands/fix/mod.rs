@@ -3,6 +3,7 @@
 
 mod adapt;
 mod ave_atom;
+mod ave_spatial;
 mod ave_time;
 mod aveforce;
 mod buoyancy;
@@ -108,6 +109,7 @@ pub const STYLES: &[(&str, Build)] = &[
     ("aveforce", aveforce::build),
     ("ave/atom", ave_atom::build),
     ("store/state", store_state::build),
+    ("ave/spatial", ave_spatial::build),
 ];
 
 /// `fix ID GROUP STYLE ...` with the styles of `styles`: checks what every fix shares, has

@@ -731,6 +731,7 @@ impl Simulation {
         self.setup_insertions(out)?;
         self.setup_store_state(vars)?;
         self.setup_ave_atom(vars)?;
+        self.setup_ave_spatial(vars)?;
         self.setup_averages(vars)?;
         self.thermo.run_start = first;
         self.thermo.run_last = last;

@@ -236,6 +236,31 @@ fn bad_arguments_get_liggghts_errors() {
             "fix a all ave/spatial 10 5 100 z lower 0.005 vx file nodir/a.txt",
             "Cannot open fix ave/spatial file nodir/a.txt",
         ),
+        // fix ave/histo
+        (
+            "fix h all ave/histo 10 5 100 0 1 4 vx",
+            "Fix ave/histo cannot input per-atom values in scalar mode",
+        ),
+        (
+            "fix h all ave/histo 10 5 100 1 0 4 vx mode vector",
+            "Illegal fix ave/histo command",
+        ),
+        (
+            "fix h all ave/histo 10 5 100 0 1 0 vx mode vector",
+            "Illegal fix ave/histo command",
+        ),
+        (
+            "fix h all ave/histo 10 5 100 0 1 4 vx mode vector beyond maybe",
+            "Illegal fix ave/histo command",
+        ),
+        (
+            "fix h all ave/histo 10 5 100 0 1 4 c_none mode vector",
+            "Compute ID for fix ave/histo does not exist",
+        ),
+        (
+            "fix h all ave/histo 10 5 100 0 1 4 vx mode vector overwrite",
+            "Illegal fix ave/histo command",
+        ),
         // thermo keywords in formulas
         (
             "thermo_style custom step\nvariable e equal erotate\nprint \"${e}\"",

@@ -3,6 +3,7 @@
 
 pub mod accel;
 pub mod ave_atom;
+pub mod ave_histo;
 pub mod ave_spatial;
 pub mod buoyancy;
 pub mod cells;

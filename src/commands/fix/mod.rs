@@ -3,6 +3,7 @@
 
 mod adapt;
 mod ave_atom;
+mod ave_histo;
 mod ave_spatial;
 mod ave_time;
 mod aveforce;
@@ -110,6 +111,7 @@ pub const STYLES: &[(&str, Build)] = &[
     ("ave/atom", ave_atom::build),
     ("store/state", store_state::build),
     ("ave/spatial", ave_spatial::build),
+    ("ave/histo", ave_histo::build),
 ];
 
 /// `fix ID GROUP STYLE ...` with the styles of `styles`: checks what every fix shares, has

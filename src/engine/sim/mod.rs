@@ -732,6 +732,7 @@ impl Simulation {
         self.setup_store_state(vars)?;
         self.setup_ave_atom(vars)?;
         self.setup_ave_spatial(vars)?;
+        self.setup_ave_histo(vars)?;
         self.setup_averages(vars)?;
         self.thermo.run_start = first;
         self.thermo.run_last = last;

@@ -131,6 +131,145 @@ fn bad_arguments_get_liggghts_errors() {
             "compute e all erotate/sphere/atom extra",
             "Illegal compute erotate/sphere/atom command",
         ),
+        // compute coord/atom and contact/atom (messages printed by Debian's LIGGGHTS)
+        (
+            "compute c all coord/atom",
+            "Compute coord/atom (id c): Illegal # of arguments",
+        ),
+        ("compute c all coord/atom 0.003 2", "is out of bounds"),
+        (
+            "compute c all coord/atom 0.003 mix maybe",
+            "Compute coord/atom (id c): valid arguments for 'mix' are 'yes' or 'no'",
+        ),
+        (
+            "compute c all coord/atom abc",
+            "Expected floating point parameter",
+        ),
+        (
+            "compute c all contact/atom skan 1",
+            "Illegal compute contact/atom command, expecting keyword 'skin'",
+        ),
+        (
+            "compute c all coord/atom 0.003\nrun 0",
+            "Compute coord/atom requires a pair style be defined",
+        ),
+        // fix store/state
+        ("fix s all store/state 0", "Illegal fix store/state command"),
+        (
+            "fix s all store/state -1 x",
+            "Illegal fix store/state command",
+        ),
+        (
+            "fix s all store/state 0 x com maybe",
+            "Illegal fix store/state command",
+        ),
+        (
+            "fix s all store/state 0 x bogus",
+            "Illegal fix store/state command",
+        ),
+        (
+            "fix s all store/state 0 q",
+            "Fix store/state for atom property that isn't allocated",
+        ),
+        (
+            "fix s all store/state 0 c_none",
+            "Compute ID for fix store/state does not exist",
+        ),
+        (
+            "compute k all ke/atom\nfix s all store/state 0 c_k[1]",
+            "Fix store/state compute does not calculate a per-atom array",
+        ),
+        (
+            "compute d all displace/atom\nfix s all store/state 0 c_d",
+            "Fix store/state compute does not calculate a per-atom vector",
+        ),
+        (
+            "compute d all displace/atom\nfix s all store/state 0 c_d[5]",
+            "Fix store/state compute array is accessed out-of-range",
+        ),
+        (
+            "fix s all store/state 0 f_none",
+            "Fix ID for fix store/state does not exist",
+        ),
+        (
+            "variable e equal 1\nfix s all store/state 0 v_e",
+            "Fix store/state variable is not atom-style variable",
+        ),
+        (
+            "fix s all store/state 0 v_none",
+            "Variable name for fix store/state does not exist",
+        ),
+        // fix ave/spatial
+        (
+            "fix a all ave/spatial 10 5 100 q lower 0.005 vx",
+            "Illegal fix ave/spatial command",
+        ),
+        (
+            "fix a all ave/spatial 10 5 100 z lower 0.005 z lower 0.01 vx",
+            "Same dimension twice in fix ave/spatial",
+        ),
+        (
+            "fix a all ave/spatial 10 5 100 z lower 0.005 vx norm maybe",
+            "Illegal fix ave/spatial command",
+        ),
+        (
+            "fix a all ave/spatial 10 5 100 z lower 0.005 vx overwrite",
+            "Illegal fix ave/spatial command",
+        ),
+        (
+            "fix a all ave/spatial 10 5 100 z lower 0.005 c_none",
+            "Compute ID for fix ave/spatial does not exist",
+        ),
+        (
+            "fix a all ave/spatial 10 5 100 z lower 0.005 vx region nowhere",
+            "Region ID for fix ave/spatial does not exist",
+        ),
+        (
+            "fix a all ave/spatial 10 20 100 z lower 0.005 vx",
+            "Illegal fix ave/spatial command",
+        ),
+        (
+            "fix a all ave/spatial 10 5 100 z lower 0 vx",
+            "Illegal fix ave/spatial command",
+        ),
+        (
+            "fix a all ave/spatial 10 5 100 z lower 0.005 vx file nodir/a.txt",
+            "Cannot open fix ave/spatial file nodir/a.txt",
+        ),
+        // fix ave/histo
+        (
+            "fix h all ave/histo 10 5 100 0 1 4 vx",
+            "Fix ave/histo cannot input per-atom values in scalar mode",
+        ),
+        (
+            "fix h all ave/histo 10 5 100 1 0 4 vx mode vector",
+            "Illegal fix ave/histo command",
+        ),
+        (
+            "fix h all ave/histo 10 5 100 0 1 0 vx mode vector",
+            "Illegal fix ave/histo command",
+        ),
+        (
+            "fix h all ave/histo 10 5 100 0 1 4 vx mode vector beyond maybe",
+            "Illegal fix ave/histo command",
+        ),
+        (
+            "fix h all ave/histo 10 5 100 0 1 4 c_none mode vector",
+            "Compute ID for fix ave/histo does not exist",
+        ),
+        (
+            "fix h all ave/histo 10 5 100 0 1 4 vx mode vector overwrite",
+            "Illegal fix ave/histo command",
+        ),
+        // thermo keywords in formulas
+        (
+            "thermo_style custom step\nvariable e equal erotate\nprint \"${e}\"",
+            "Thermo keyword in variable requires thermo to use/init erotate",
+        ),
+        (
+            "variable e equal elaplong\nprint \"${e}\"",
+            "This variable thermo keyword cannot be used between runs",
+        ),
     ] {
         std::fs::write(dir.join("in.t"), format!("{HEAD}{body}\n")).unwrap();
         let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);

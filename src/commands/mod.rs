@@ -4,6 +4,7 @@
 
 pub mod args;
 pub mod change_box;
+pub mod compute_coord;
 pub mod compute_displace;
 pub mod compute_modify;
 pub mod compute_reduce_region;

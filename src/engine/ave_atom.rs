@@ -58,7 +58,7 @@ impl AveAtom {
 
 impl Simulation {
     /// The per-atom values of one input (one per local particle).
-    fn ave_atom_input(
+    pub(crate) fn ave_atom_input(
         &self,
         input: &AtomInput,
         vars: &mut dyn VariableSource,

@@ -136,6 +136,7 @@ impl Simulation {
                 }
             }
         }
+        self.check_count_computes()?;
         if self.pair_selection.is_some() {
             let bbox = [0, 1, 2].map(|d| self.domain.length(d));
             // LIGGGHTS adds the skin only to a positive contact cutoff: without particle
@@ -147,6 +148,30 @@ impl Simulation {
                 0.0
             };
             neighbor_bins_sized(bbox, cut, self.extras.neigh_binsize)?;
+        }
+        Ok(())
+    }
+
+    /// LIGGGHTS's init checks of `compute contact/atom` and `coord/atom`: a pair style, and
+    /// a coord/atom cutoff within the neighbour cutoff.
+    fn check_count_computes(&self) -> Result<(), EngineError> {
+        use crate::engine::computes::ComputeKind;
+        for c in &self.computes {
+            let name = match &c.kind {
+                ComputeKind::ContactAtom { .. } => "contact/atom",
+                ComputeKind::CoordAtom(_) => "coord/atom",
+                _ => continue,
+            };
+            if self.pair_selection.is_none() {
+                return Err(format!("Compute {name} requires a pair style be defined").into());
+            }
+            if let ComputeKind::CoordAtom(co) = &c.kind {
+                if co.cutoff > self.liggghts_cutneighmax() {
+                    return Err("Compute coord/atom cutoff is longer than neigh cutoff"
+                        .to_string()
+                        .into());
+                }
+            }
         }
         Ok(())
     }

@@ -66,6 +66,8 @@ pub enum ComputeKind {
     DisplaceAtom(Box<crate::engine::displacement::Origins>),
     /// `erotate/sphere/atom`: 0.5 I w^2 per atom (energy).
     ErotateSphereAtom,
+    /// `coord/atom`: partners within a cutoff per atom, one column per type range.
+    CoordAtom(Box<crate::engine::neighbour_counts::CoordAtom>),
 }
 
 /// The reductions of `compute reduce`.
@@ -90,6 +92,8 @@ pub enum Input {
     Compute(String, Option<usize>),
     /// An atom-style variable `v_name`.
     Variable(String),
+    /// A per-atom fix `f_ID` or column `f_ID[N]` (1-based).
+    Fix(String, Option<usize>),
 }
 
 /// Per-atom values of a compute: `columns` values per particle, row-major in particle
@@ -158,6 +162,7 @@ pub const STYLES: &[&str] = &[
     "pair/gran/local",
     "wall/gran/local",
     "contact/atom",
+    "coord/atom",
     "displace/atom",
     "erotate/sphere/atom",
     "msd",
@@ -182,6 +187,7 @@ impl Compute {
             ComputeKind::DisplaceAtom(_) => 4,
             ComputeKind::StressAtom { .. } => 6,
             ComputeKind::PropertyAtom(c) => c.len(),
+            ComputeKind::CoordAtom(c) => c.columns(),
             _ => 0,
         }
     }
@@ -297,6 +303,10 @@ impl Compute {
             Input::Variable(name) => {
                 let data = vars.atom(sim, name)?;
                 Box::new(move |i| data[i])
+            }
+            Input::Fix(id, index) => {
+                let (data, col) = crate::engine::fix_columns::per_atom(sim, id, *index)?;
+                Box::new(move |i| data.get(i, col))
             }
         };
         let (mut acc, mut count) = match mode {
@@ -624,34 +634,9 @@ impl Compute {
                 }
             }
             ComputeKind::ContactAtom { skin } => {
-                // LIGGGHTS counts pairs of a fresh neighbour list closer than the radii plus
-                // `skin`, for both partners
-                let skin = *skin;
-                let mut list = crate::engine::neighbor::NeighborList::default();
-                list.build(
-                    &p.x,
-                    &p.radius,
-                    sim.neighbor.skin.max(skin),
-                    &sim.domain,
-                    None,
-                );
-                for pair in &list.pairs {
-                    let (i, j) = (pair.i as usize, pair.j as usize);
-                    if p.mask[i] & group == 0 && p.mask[j] & group == 0 {
-                        continue;
-                    }
-                    let mut rsq = 0.0;
-                    for d in 0..3 {
-                        let del = p.x[i][d] - (p.x[j][d] + pair.shift[d]);
-                        rsq += del * del;
-                    }
-                    let radsum = p.radius[i] + p.radius[j] + skin;
-                    if rsq <= radsum * radsum {
-                        values[i] += 1.0;
-                        values[j] += 1.0;
-                    }
-                }
+                crate::engine::neighbour_counts::contact_counts(sim, group, *skin, &mut values)
             }
+            ComputeKind::CoordAtom(c) => c.counts(sim, group, &mut values),
             _ => {
                 return Err(format!(
                     "Compute {} ({}) does not calculate per-atom values",

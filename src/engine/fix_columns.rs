@@ -18,6 +18,7 @@ fn width(kind: &FixKind) -> (usize, bool) {
         FixKind::PropertyAtom(pa) => (pa.defaults.len(), !pa.vector),
         FixKind::HeatGran(_) => (1, true),
         FixKind::AveAtom(a) => (a.inputs.len(), a.inputs.len() == 1),
+        FixKind::StoreState(s) => (s.inputs.len(), s.inputs.len() == 1),
         _ => (0, false),
     }
 }
@@ -82,6 +83,15 @@ pub fn per_atom(
                 .extra
                 .iter()
                 .find(|e| e.name == a.array && e.width == columns)
+                .map_or_else(|| vec![0.0; columns * p.len()], |e| e.data.clone());
+            return Ok((PerAtom { columns, values }, col));
+        }
+        Some(FixKind::StoreState(s)) => {
+            let columns = s.inputs.len();
+            let values = p
+                .extra
+                .iter()
+                .find(|e| e.name == s.array && e.width == columns)
                 .map_or_else(|| vec![0.0; columns * p.len()], |e| e.data.clone());
             return Ok((PerAtom { columns, values }, col));
         }

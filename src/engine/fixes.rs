@@ -304,6 +304,12 @@ pub enum FixKind {
     AveForce(crate::engine::force_project::AveForce),
     /// `fix ave/atom`: per-particle time averages.
     AveAtom(Box<crate::engine::ave_atom::AveAtom>),
+    /// `ave/histo`: histograms of per-atom values written to a file.
+    AveHisto(Box<crate::engine::ave_histo::AveHisto>),
+    /// `ave/spatial`: per-bin averages written to a file.
+    AveSpatial(Box<crate::engine::ave_spatial::AveSpatial>),
+    /// `store/state`: per-particle snapshots (f_ID, f_ID[N]).
+    StoreState(Box<crate::engine::store_state::StoreState>),
 }
 
 impl FixKind {

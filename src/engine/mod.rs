@@ -3,6 +3,8 @@
 
 pub mod accel;
 pub mod ave_atom;
+pub mod ave_histo;
+pub mod ave_spatial;
 pub mod buoyancy;
 pub mod cells;
 pub mod checks;
@@ -33,6 +35,7 @@ pub mod mirror_history;
 pub mod momentum;
 pub mod multisphere;
 pub mod neighbor;
+pub mod neighbour_counts;
 pub mod nve_limit;
 pub mod nve_noforce;
 pub mod planar;
@@ -43,6 +46,7 @@ pub mod restart_fixes;
 pub mod restart_state;
 pub mod rigid_body;
 pub mod sim;
+pub mod store_state;
 pub mod temperature;
 pub mod tet_mesh;
 pub mod thermo;

@@ -87,6 +87,28 @@ const KEYWORDS: &[(&str, &str, Kind)] = &[
     ("yhi", "Yhi", Kind::Real),
     ("zlo", "Zlo", Kind::Real),
     ("zhi", "Zhi", Kind::Real),
+    ("elaplong", "Elaplong", Kind::Int),
+    ("tpcpu", "T/CPU", Kind::Real),
+    ("spcpu", "S/CPU", Kind::Real),
+    ("cpuremain", "CPULeft", Kind::Real),
+    ("part", "Part", Kind::Int),
+    ("cu", "Cu", Kind::Real),
+    ("erotate", "RotEng", Kind::Real),
+    ("density", "Density", Kind::Real),
+    ("xy", "Xy", Kind::Real),
+    ("xz", "Xz", Kind::Real),
+    ("yz", "Yz", Kind::Real),
+    ("xlat", "Xlat", Kind::Real),
+    ("ylat", "Ylat", Kind::Real),
+    ("zlat", "Zlat", Kind::Real),
+    ("fmax", "Fmax", Kind::Real),
+    ("fnorm", "Fnorm", Kind::Real),
+    ("cella", "Cella", Kind::Real),
+    ("cellb", "Cellb", Kind::Real),
+    ("cellc", "Cellc", Kind::Real),
+    ("cellalpha", "CellAlpha", Kind::Real),
+    ("cellbeta", "CellBeta", Kind::Real),
+    ("cellgamma", "CellGamma", Kind::Real),
 ];
 
 /// Thermo settings and state.
@@ -112,6 +134,12 @@ pub struct Thermo {
     pub custom: bool,
     /// The last column is the Volume column added at run start.
     pub auto_volume: bool,
+    /// Last step of the current run (for `cpuremain`).
+    pub run_last: i64,
+    /// Simulated time and loop time (s) at the last `tpcpu` value.
+    pub tpcpu_mark: std::cell::Cell<(f64, f64)>,
+    /// Step and loop time (s) at the last `spcpu` or `cu` value.
+    pub spcpu_mark: std::cell::Cell<(i64, f64)>,
 }
 
 impl Default for Thermo {
@@ -127,6 +155,9 @@ impl Default for Thermo {
             column_formats: Vec::new(),
             custom: false,
             auto_volume: false,
+            run_last: 0,
+            tpcpu_mark: Default::default(),
+            spcpu_mark: Default::default(),
         };
         t.set_style(&["step", "atoms", "ke", "cpu"])
             .expect("default style is valid");
@@ -326,6 +357,99 @@ pub fn keyword_value(
                 sim.fix_value(id, index).ok()
             };
         }
+        other => return more_keywords(other, sim, thermo, vars),
+    })
+}
+
+/// The lattice spacings in x, y, z (length; LIGGGHTS's default lattice has 1).
+pub fn lattice_spacings(sim: &Simulation) -> [f64; 3] {
+    match (&sim.lattice_cell, &sim.lattice) {
+        (Some(cell), _) => cell.spacing,
+        (None, Some((scale, _))) => [*scale; 3],
+        (None, None) => [1.0; 3],
+    }
+}
+
+/// The keywords of LIGGGHTS's thermo that need more than a field of the box or the run.
+fn more_keywords(
+    keyword: &str,
+    sim: &Simulation,
+    thermo: &Thermo,
+    vars: &mut dyn VariableSource,
+) -> Option<f64> {
+    let d = &sim.domain;
+    let p = &sim.particles;
+    let n = p.len() as f64;
+    // the loop time, None at a run's setup (LIGGGHTS's firststep == 0)
+    let clock = sim.loop_clock.map(|t| t.elapsed().as_secs_f64());
+    let lattice = lattice_spacings(sim);
+    Some(match keyword {
+        "elaplong" => (sim.step - sim.run_bounds.map_or(thermo.run_start, |b| b.0)) as f64,
+        "part" => 0.0,
+        "tpcpu" => {
+            let now = sim.step as f64 * sim.dt;
+            let (t0, c0) = thermo.tpcpu_mark.get();
+            let cpu = clock.unwrap_or(0.0);
+            thermo.tpcpu_mark.set((now, cpu));
+            match clock {
+                Some(c) if now - t0 > 0.0 && c - c0 > 0.0 => (now - t0) / (c - c0),
+                _ => 0.0,
+            }
+        }
+        "spcpu" | "cu" => {
+            let (s0, c0) = thermo.spcpu_mark.get();
+            let cpu = clock.unwrap_or(0.0);
+            thermo.spcpu_mark.set((sim.step, cpu));
+            let per_step = match clock {
+                Some(c) if c - c0 > 0.0 => (sim.step - s0) as f64 / (c - c0),
+                _ => 0.0,
+            };
+            if keyword == "cu" {
+                per_step * n
+            } else {
+                per_step
+            }
+        }
+        "cpuremain" => clock.map_or(0.0, |c| {
+            c * (thermo.run_last - sim.step) as f64 / (sim.step - thermo.run_start) as f64
+        }),
+        "erotate" => {
+            let all = crate::engine::computes::Compute {
+                id: "thermo_erotate".into(),
+                style: "erotate".into(),
+                group: 1,
+                kind: crate::engine::computes::ComputeKind::ErotateSphere,
+            };
+            let e = all.scalar(sim, vars).ok()?;
+            if thermo.norm && n > 0.0 {
+                e / n
+            } else {
+                e
+            }
+        }
+        "density" => {
+            let vol = keyword_value("vol", sim, thermo, vars)?;
+            p.mass.iter().sum::<f64>() / vol
+        }
+        "xy" | "xz" | "yz" => 0.0,
+        "xlat" => lattice[0],
+        "ylat" => lattice[1],
+        "zlat" => lattice[2],
+        "fmax" => {
+            p.f.iter()
+                .flat_map(|f| f.iter())
+                .fold(0.0, |m: f64, c| m.max(c.abs()))
+        }
+        "fnorm" => {
+            p.f.iter()
+                .map(|f| f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
+                .sum::<f64>()
+                .sqrt()
+        }
+        "cella" => d.length(0),
+        "cellb" => d.length(1),
+        "cellc" => d.length(2),
+        "cellalpha" | "cellbeta" | "cellgamma" => 90.0,
         _ => return None,
     })
 }
@@ -352,10 +476,10 @@ mod tests {
             .unwrap_err()
             .to_string()
             .starts_with("Invalid keyword"));
-        assert_eq!(
-            t.set_style(&["fmax"]).unwrap_err(),
-            EngineError::Unsupported("thermo keyword fmax".into())
-        );
+        t.set_style(&["fmax", "fnorm", "elaplong", "cellalpha"])
+            .unwrap();
+        assert_eq!(t.fields[2].kind, Kind::Int);
+        assert_eq!(t.fields[3].label, "CellAlpha");
         t.set_style(&["v_x"]).unwrap();
         assert_eq!(t.fields[0].label, "x");
         // thermo_style multi, then user formats (layouts printed by Debian's LIGGGHTS)

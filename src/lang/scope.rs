@@ -197,6 +197,25 @@ impl ExprContext for Scope<'_> {
             return Err(VariableError::KnownWhenRun);
         }
         let sim = self.sim;
+        // LIGGGHTS's rules for keywords that need thermo's computes or a run
+        if matches!(name, "ke" | "erotate") && !sim.thermo.fields.iter().any(|f| f.keyword == name)
+        {
+            return Err(
+                format!("Thermo keyword in variable requires thermo to use/init {name}").into(),
+            );
+        }
+        let timed = [
+            "elapsed",
+            "elaplong",
+            "cpu",
+            "cu",
+            "tpcpu",
+            "spcpu",
+            "cpuremain",
+        ];
+        if sim.run_bounds.is_none() && timed.contains(&name) {
+            return Err("This variable thermo keyword cannot be used between runs".into());
+        }
         sim.thermo_value(name, self).ok_or_else(|| {
             VariableError::Unsupported(format!("thermo keyword {name} in a formula"))
         })
@@ -235,12 +254,41 @@ impl ExprContext for Scope<'_> {
 
     fn fix(
         &mut self,
-        _: &str,
-        _: Option<usize>,
-        _: Option<usize>,
-        _: Option<usize>,
+        id: &str,
+        i: Option<usize>,
+        j: Option<usize>,
+        atom: Option<usize>,
     ) -> Result<f64, VariableError> {
-        Err(self.no_state("Invalid fix ID in variable formula".into()))
+        if self.sys.mode == Mode::Check {
+            return Err(VariableError::KnownWhenRun);
+        }
+        if !self.sim.fixes.iter().any(|f| f.id == id) {
+            return Err("Invalid fix ID in variable formula".into());
+        }
+        if j.is_some() {
+            return Err(VariableError::Unsupported(format!("f_{id}[i][j]")));
+        }
+        let per_atom = crate::engine::fix_columns::column(self.sim, id, i).is_ok();
+        match atom {
+            Some(a) if per_atom => {
+                let key = format!("f_{id}[{}]", i.unwrap_or(0));
+                let data = match self.per_atom.get(&key) {
+                    Some(v) => v.clone(),
+                    None => {
+                        let (data, col) = crate::engine::fix_columns::per_atom(self.sim, id, i)?;
+                        let column: Vec<f64> = (0..self.sim.particles.len())
+                            .map(|k| data.get(k, col))
+                            .collect();
+                        let column = Rc::new(column);
+                        self.per_atom.insert(key, column.clone());
+                        column
+                    }
+                };
+                Ok(data[a])
+            }
+            None if per_atom => Err("Per-atom fix in equal-style variable formula".into()),
+            _ => Ok(self.sim.fix_value(id, i)?),
+        }
     }
 
     fn group_function(&mut self, name: &str, args: &[String]) -> Result<f64, VariableError> {
@@ -382,7 +430,7 @@ impl ExprContext for Scope<'_> {
         &mut self,
         kind: RefKind,
         name: &str,
-        _i: Option<usize>,
+        i: Option<usize>,
         _j: Option<usize>,
     ) -> bool {
         match kind {
@@ -395,7 +443,7 @@ impl ExprContext for Scope<'_> {
                 .computes
                 .iter()
                 .any(|c| c.id == name && c.per_atom_columns() > 0),
-            RefKind::Fix => false,
+            RefKind::Fix => crate::engine::fix_columns::column(self.sim, name, i).is_ok(),
         }
     }
 }

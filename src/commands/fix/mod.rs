@@ -3,6 +3,8 @@
 
 mod adapt;
 mod ave_atom;
+mod ave_histo;
+mod ave_spatial;
 mod ave_time;
 mod aveforce;
 mod buoyancy;
@@ -30,6 +32,7 @@ mod particle_template_multisphere;
 mod print;
 mod property_atom;
 mod property_global;
+mod store_state;
 mod tracer;
 mod viscous;
 mod wall_gran;
@@ -106,6 +109,9 @@ pub const STYLES: &[(&str, Build)] = &[
     ("planeforce", lineforce::build),
     ("aveforce", aveforce::build),
     ("ave/atom", ave_atom::build),
+    ("store/state", store_state::build),
+    ("ave/spatial", ave_spatial::build),
+    ("ave/histo", ave_histo::build),
 ];
 
 /// `fix ID GROUP STYLE ...` with the styles of `styles`: checks what every fix shares, has

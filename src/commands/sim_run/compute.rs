@@ -57,6 +57,7 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
             }
             ComputeKind::ContactAtom { skin }
         }
+        "coord/atom" => crate::commands::compute_coord::build(a, ctx)?,
         "com" => no_keywords(ComputeKind::Com)?,
         "nparticles/tracer/region" => {
             crate::commands::computes_extra::nparticles_tracer_region(a, ctx)?
@@ -209,8 +210,16 @@ pub(crate) fn compute_reduce(
             inputs.push(Input::Variable(name.to_string()));
             continue;
         }
-        if w.starts_with("f_") {
-            return Err(a.unsupported(i, "compute reduce of fixes"));
+        if let Some(body) = w.strip_prefix("f_") {
+            let (id, index) = crate::util::numbers::split_reference(body)
+                .ok_or_else(|| a.error(i, "Illegal compute reduce command"))?;
+            if !ctx.sim.fixes.iter().any(|f| f.id == id) {
+                return Err(a.error(i, "Fix ID for compute reduce does not exist"));
+            }
+            crate::engine::fix_columns::column(ctx.sim, id, index)
+                .map_err(|e| a.error(i, format!("Compute reduce: {e}")))?;
+            inputs.push(Input::Fix(id.to_string(), index));
+            continue;
         }
         match crate::io::dump::Column::parse(w) {
             Ok(crate::io::dump::Column::Reference(_)) | Err(_) => {

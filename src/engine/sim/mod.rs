@@ -729,9 +729,13 @@ impl Simulation {
         self.restart_mesh_history.clear();
         self.say_clump_energy(out);
         self.setup_insertions(out)?;
+        self.setup_store_state(vars)?;
         self.setup_ave_atom(vars)?;
+        self.setup_ave_spatial(vars)?;
+        self.setup_ave_histo(vars)?;
         self.setup_averages(vars)?;
         self.thermo.run_start = first;
+        self.thermo.run_last = last;
         self.thermo.prepare_run(self.domain.shrinks());
         let thermo_file = &mut self.extras.thermo_file;
         self.thermo.header(&mut |s: &str| {

@@ -37,6 +37,12 @@ impl Simulation {
                     }
                 }
                 FixKind::AveAtom(_) => self.ave_atom_step(k, vars)?,
+                FixKind::AveSpatial(_) => self.ave_spatial_step(k, vars)?,
+                FixKind::AveHisto(_) => self.ave_histo_step(k, vars)?,
+                FixKind::StoreState(s) if s.every > 0 && step % s.every == 0 => {
+                    use crate::engine::store_state::Snapshot;
+                    self.store_state(k, Snapshot::All, vars)?
+                }
                 FixKind::Print(pf) if step % pf.every == 0 => {
                     let text = pf.text.clone();
                     let line = vars.substitute(self, &text)?;

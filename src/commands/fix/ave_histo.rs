@@ -7,7 +7,7 @@ use crate::engine::ave_atom::AtomInput;
 use crate::engine::ave_histo::{AveHisto, Beyond};
 use crate::engine::fixes::{AveMode, FixKind};
 use crate::io::dump::Column;
-use crate::script::system::Mode;
+use crate::lang::system::Mode;
 
 const ILLEGAL: &str = "Illegal fix ave/histo command";
 
@@ -177,7 +177,7 @@ fn reference(a: &Args, ctx: &Ctx, i: usize) -> Result<AtomInput, CommandError> {
             Ok(AtomInput::Fix(id.to_string(), None))
         }
         _ => match ctx.vars.get(id).map(|v| v.style) {
-            Some(crate::script::variables::Style::Atom) => Ok(AtomInput::Variable(id.into())),
+            Some(crate::lang::variables::Style::Atom) => Ok(AtomInput::Variable(id.into())),
             Some(_) => Err(global()),
             None => Err(a.error(i, "Variable name for fix ave/histo does not exist")),
         },

@@ -4,7 +4,7 @@ use crate::commands::fix::FixDef;
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::ave_spatial::{AveSpatial, Origin, SpatialSettings, SpatialValue};
 use crate::engine::fixes::{AveMode, FixKind};
-use crate::script::system::Mode;
+use crate::lang::system::Mode;
 
 const ILLEGAL: &str = "Illegal fix ave/spatial command";
 
@@ -267,7 +267,7 @@ fn reference(a: &Args, ctx: &Ctx, i: usize) -> Result<SpatialValue, CommandError
             Ok(SpatialValue::Fix(id.to_string(), index))
         }
         _ => match ctx.vars.get(id).map(|v| v.style) {
-            Some(crate::script::variables::Style::Atom) => Ok(SpatialValue::Variable(id.into())),
+            Some(crate::lang::variables::Style::Atom) => Ok(SpatialValue::Variable(id.into())),
             Some(_) => Err(a.error(i, "Fix ave/spatial variable is not atom-style variable")),
             None => Err(a.error(i, "Variable name for fix ave/spatial does not exist")),
         },

@@ -133,7 +133,7 @@ fn reference(
             Ok(AtomInput::Fix(id.to_string(), index))
         }
         _ => match ctx.vars.get(id).map(|v| v.style) {
-            Some(crate::script::variables::Style::Atom) => Ok(AtomInput::Variable(id.to_string())),
+            Some(crate::lang::variables::Style::Atom) => Ok(AtomInput::Variable(id.to_string())),
             Some(_) => Err(a.error(i, "Fix store/state variable is not atom-style variable")),
             None => Err(a.error(i, "Variable name for fix store/state does not exist")),
         },

@@ -13,16 +13,27 @@ pub struct Launch {
     _comm: Option<crate::util::comm_mpi::MpiComm>,
 }
 
-/// Look at how this process was started: Err(message) if it cannot run as started.
-pub fn start() -> Result<Launch, String> {
+/// Why this process cannot run as it was started.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum LaunchError {
+    /// A build without MPI started by an MPI launcher on more than one rank (the ranks).
+    #[error("{}", comm::no_mpi_message(*.0))]
+    NoMpi(usize),
+    /// The MPI library did not start.
+    #[error("MPI could not be initialised")]
+    MpiInit,
+}
+
+/// Look at how this process was started.
+pub fn start() -> Result<Launch, LaunchError> {
     start_with(|k| std::env::var(k).ok())
 }
 
 /// As [`start`], the environment read through `var`.
 #[cfg(not(feature = "mpi"))]
-pub fn start_with(var: impl Fn(&str) -> Option<String>) -> Result<Launch, String> {
+pub fn start_with(var: impl Fn(&str) -> Option<String>) -> Result<Launch, LaunchError> {
     match comm::launcher_size(&var) {
-        Some(n) if n > 1 => Err(comm::no_mpi_message(n)),
+        Some(n) if n > 1 => Err(LaunchError::NoMpi(n)),
         _ => Ok(Launch {
             ranks: Ranks::default(),
         }),
@@ -31,7 +42,7 @@ pub fn start_with(var: impl Fn(&str) -> Option<String>) -> Result<Launch, String
 
 /// As [`start`], the environment read through `var`.
 #[cfg(feature = "mpi")]
-pub fn start_with(var: impl Fn(&str) -> Option<String>) -> Result<Launch, String> {
+pub fn start_with(var: impl Fn(&str) -> Option<String>) -> Result<Launch, LaunchError> {
     use crate::util::comm::Comm;
     if comm::launcher_size(&var).is_none() {
         return Ok(Launch {
@@ -39,8 +50,7 @@ pub fn start_with(var: impl Fn(&str) -> Option<String>) -> Result<Launch, String
             _comm: None,
         });
     }
-    let c = crate::util::comm_mpi::MpiComm::init()
-        .ok_or_else(|| "MPI could not be initialised".to_string())?;
+    let c = crate::util::comm_mpi::MpiComm::init().ok_or(LaunchError::MpiInit)?;
     // ranks per node as LIGGGHTS's numa grid counts them: those named as the first name
     let names = c.gather_bytes(comm::host_name().as_bytes());
     let mut per_node = names
@@ -61,4 +71,19 @@ pub fn start_with(var: impl Fn(&str) -> Option<String>) -> Result<Launch, String
         },
         _comm: Some(c),
     })
+}
+
+#[cfg(all(test, not(feature = "mpi")))]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_build_without_mpi_refuses_more_than_one_rank() {
+        let env =
+            |n: &'static str| move |k: &str| (k == "OMPI_COMM_WORLD_SIZE").then(|| n.to_string());
+        let e = start_with(env("3")).err().expect("refused");
+        assert_eq!(e, LaunchError::NoMpi(3));
+        assert!(e.to_string().contains("one of 3 MPI ranks"), "{e}");
+        assert_eq!(start_with(env("1")).map(|l| l.ranks.size).ok(), Some(1));
+    }
 }

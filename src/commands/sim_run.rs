@@ -461,14 +461,6 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
-/// `ID` or `ID[N]` of a `c_`/`f_` reference: the ID and the 1-based index.
-pub fn split_reference(body: &str) -> Option<(&str, Option<usize>)> {
-    match body.split_once('[') {
-        Some((id, rest)) => Some((id, Some(rest.strip_suffix(']')?.parse().ok()?))),
-        None => Some((body, None)),
-    }
-}
-
 pub(super) fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(3..=usize::MAX, "dump_modify ID keyword value ...")?;
     let id = a.word(0)?;

@@ -235,18 +235,29 @@ impl AveHisto {
                 g(fraction)
             ));
         }
-        let io = |e: std::io::Error| EngineError::Invalid(format!("fix ave/histo file: {e}"));
-        if self.overwrite {
-            file.seek(std::io::SeekFrom::Start(*header_end))
-                .map_err(io)?;
-        }
-        file.write_all(text.as_bytes()).map_err(io)?;
-        if self.overwrite {
-            let end = file.stream_position().map_err(io)?;
-            file.set_len(end).map_err(io)?;
-        }
-        Ok(())
+        write_block(file, *header_end, self.overwrite, &text)
+            .map_err(|e| EngineError::Invalid(format!("fix ave/histo file: {e}")))
     }
+}
+
+/// Append one output block to an averaging fix's `file`; with `overwrite` it replaces the
+/// previous block (everything after the header's `header_end` bytes), as LIGGGHTS's
+/// `overwrite` keyword does.
+pub(crate) fn write_block(
+    file: &mut std::fs::File,
+    header_end: u64,
+    overwrite: bool,
+    text: &str,
+) -> std::io::Result<()> {
+    if overwrite {
+        file.seek(std::io::SeekFrom::Start(header_end))?;
+    }
+    file.write_all(text.as_bytes())?;
+    if overwrite {
+        let end = file.stream_position()?;
+        file.set_len(end)?;
+    }
+    Ok(())
 }
 
 impl Simulation {

@@ -6,7 +6,6 @@
 use crate::engine::error::EngineError;
 use crate::engine::fixes::{AveMode, FixKind};
 use crate::engine::sim::{Simulation, VariableSource};
-use std::io::{Seek, Write};
 
 /// One binned value.
 #[derive(Debug, Clone, PartialEq)]
@@ -490,17 +489,8 @@ impl AveSpatial {
             }
             text.push('\n');
         }
-        let io = |e: std::io::Error| EngineError::Invalid(format!("fix ave/spatial file: {e}"));
-        if self.set.overwrite {
-            file.seek(std::io::SeekFrom::Start(*header_end))
-                .map_err(io)?;
-        }
-        file.write_all(text.as_bytes()).map_err(io)?;
-        if self.set.overwrite {
-            let end = file.stream_position().map_err(io)?;
-            file.set_len(end).map_err(io)?;
-        }
-        Ok(())
+        crate::engine::ave_histo::write_block(file, *header_end, self.set.overwrite, &text)
+            .map_err(|e| EngineError::Invalid(format!("fix ave/spatial file: {e}")))
     }
 }
 

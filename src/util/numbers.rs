@@ -145,9 +145,34 @@ pub fn split_reference(body: &str) -> Option<(&str, Option<usize>)> {
     }
 }
 
+/// As [`split_reference`], the index read as LIGGGHTS's `atoi` reads it: its leading digits,
+/// and a zero or non-number index is no index; None only for a `[` without its `]`.
+pub fn split_reference_atoi(body: &str) -> Option<(&str, Option<usize>)> {
+    match body.split_once('[') {
+        Some((id, rest)) => {
+            let inner = rest.strip_suffix(']')?;
+            let digits: String = inner.chars().take_while(|c| c.is_ascii_digit()).collect();
+            let k = digits.parse::<usize>().unwrap_or(0);
+            Some((id, (k != 0).then_some(k)))
+        }
+        None => Some((body, None)),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn references_split_as_liggghts_reads_them() {
+        assert_eq!(split_reference("c1[2]"), Some(("c1", Some(2))));
+        assert_eq!(split_reference("c1[x]"), None);
+        assert_eq!(split_reference_atoi("c1[2x]"), Some(("c1", Some(2))));
+        assert_eq!(split_reference_atoi("c1[x]"), Some(("c1", None)));
+        assert_eq!(split_reference_atoi("c1[0]"), Some(("c1", None)));
+        assert_eq!(split_reference_atoi("c1[2"), None);
+        assert_eq!(split_reference_atoi("c1"), Some(("c1", None)));
+    }
 
     #[test]
     fn liggghts_number_rules() {

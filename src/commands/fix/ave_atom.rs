@@ -28,16 +28,8 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 else {
                     return Err(a.error(i, "Illegal fix ave/atom command"));
                 };
-                let (id, index) = match body.split_once('[') {
-                    Some((id, rest)) => {
-                        let k = rest
-                            .strip_suffix(']')
-                            .and_then(|k| k.parse::<usize>().ok())
-                            .ok_or_else(|| a.error(i, "Illegal fix ave/atom command"))?;
-                        (id, Some(k))
-                    }
-                    None => (body, None),
-                };
+                let (id, index) = crate::util::numbers::split_reference(body)
+                    .ok_or_else(|| a.error(i, "Illegal fix ave/atom command"))?;
                 input(a, ctx, i, &w[..2], id, index)?
             }
         };
@@ -77,12 +69,7 @@ fn input(
 ) -> Result<AtomInput, CommandError> {
     match prefix {
         "c_" => {
-            let c = ctx
-                .sim
-                .computes
-                .iter()
-                .find(|c| c.id == id)
-                .ok_or_else(|| a.error(i, "Compute ID for fix ave/atom does not exist"))?;
+            let c = super::input_compute(a, ctx, i, id, "ave/atom")?;
             crate::engine::computes::column_of(c, index)
                 .map_err(|e| a.error(i, format!("fix ave/atom: {e}")))?;
             Ok(AtomInput::Compute(id.to_string(), index))
@@ -92,10 +79,9 @@ fn input(
                 .map_err(|e| a.error(i, format!("fix ave/atom: {e}")))?;
             Ok(AtomInput::Fix(id.to_string(), index))
         }
-        _ => match ctx.vars.get(id).map(|v| v.style) {
-            Some(crate::lang::variables::Style::Atom) => Ok(AtomInput::Variable(id.to_string())),
-            Some(_) => Err(a.error(i, "Fix ave/atom variable is not atom-style variable")),
-            None => Err(a.error(i, "Variable name for fix ave/atom does not exist")),
-        },
+        _ => {
+            super::input_atom_variable(a, ctx, i, id, "ave/atom")?;
+            Ok(AtomInput::Variable(id.to_string()))
+        }
     }
 }

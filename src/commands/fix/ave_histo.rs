@@ -145,12 +145,7 @@ fn reference(a: &Args, ctx: &Ctx, i: usize) -> Result<AtomInput, CommandError> {
     let global = || a.unsupported(i, &format!("fix ave/histo of global or local {w}"));
     match &w[..2] {
         "c_" => {
-            let c = ctx
-                .sim
-                .computes
-                .iter()
-                .find(|c| c.id == id)
-                .ok_or_else(|| a.error(i, "Compute ID for fix ave/histo does not exist"))?;
+            let c = super::input_compute(a, ctx, i, id, "ave/histo")?;
             let cols = c.per_atom_columns();
             if cols == 0 {
                 return Err(global());

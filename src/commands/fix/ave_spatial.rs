@@ -227,24 +227,11 @@ fn keywords(
 /// A `c_`, `f_` or `v_` value at word `i`, checked as LIGGGHTS checks it.
 fn reference(a: &Args, ctx: &Ctx, i: usize) -> Result<SpatialValue, CommandError> {
     let w = a.word(i)?;
-    let body = &w[2..];
-    let (id, index) = match body.split_once('[') {
-        Some((id, rest)) => {
-            let inner = rest.strip_suffix(']').ok_or_else(|| a.error(i, ILLEGAL))?;
-            let digits: String = inner.chars().take_while(|c| c.is_ascii_digit()).collect();
-            let k = digits.parse::<usize>().unwrap_or(0);
-            (id, (k != 0).then_some(k))
-        }
-        None => (body, None),
-    };
+    let (id, index) =
+        crate::util::numbers::split_reference_atoi(&w[2..]).ok_or_else(|| a.error(i, ILLEGAL))?;
     match &w[..2] {
         "c_" => {
-            let c = ctx
-                .sim
-                .computes
-                .iter()
-                .find(|c| c.id == id)
-                .ok_or_else(|| a.error(i, "Compute ID for fix ave/spatial does not exist"))?;
+            let c = super::input_compute(a, ctx, i, id, "ave/spatial")?;
             let cols = c.per_atom_columns();
             let problem = match index {
                 _ if cols == 0 => Some("does not calculate per-atom values"),
@@ -266,10 +253,9 @@ fn reference(a: &Args, ctx: &Ctx, i: usize) -> Result<SpatialValue, CommandError
                 .map_err(|e| a.error(i, format!("Fix ave/spatial: {e}")))?;
             Ok(SpatialValue::Fix(id.to_string(), index))
         }
-        _ => match ctx.vars.get(id).map(|v| v.style) {
-            Some(crate::lang::variables::Style::Atom) => Ok(SpatialValue::Variable(id.into())),
-            Some(_) => Err(a.error(i, "Fix ave/spatial variable is not atom-style variable")),
-            None => Err(a.error(i, "Variable name for fix ave/spatial does not exist")),
-        },
+        _ => {
+            super::input_atom_variable(a, ctx, i, id, "ave/spatial")?;
+            Ok(SpatialValue::Variable(id.into()))
+        }
     }
 }

@@ -167,6 +167,40 @@ pub fn define(a: &Args, ctx: &mut Ctx, styles: &[(&str, Build)]) -> Result<(), C
     Ok(())
 }
 
+/// The compute a `c_ID` input of fix `style` names (word `i`), or LIGGGHTS's error.
+pub(crate) fn input_compute<'c>(
+    a: &Args,
+    ctx: &'c Ctx,
+    i: usize,
+    id: &str,
+    style: &str,
+) -> Result<&'c crate::engine::computes::Compute, CommandError> {
+    ctx.sim
+        .computes
+        .iter()
+        .find(|c| c.id == id)
+        .ok_or_else(|| a.error(i, format!("Compute ID for fix {style} does not exist")))
+}
+
+/// Check that the `v_name` input of fix `style` (word `i`) is an atom-style variable, with
+/// LIGGGHTS's errors.
+pub(crate) fn input_atom_variable(
+    a: &Args,
+    ctx: &Ctx,
+    i: usize,
+    name: &str,
+    style: &str,
+) -> Result<(), CommandError> {
+    match ctx.vars.get(name).map(|v| v.style) {
+        Some(crate::lang::variables::Style::Atom) => Ok(()),
+        Some(_) => Err(a.error(
+            i,
+            format!("Fix {style} variable is not atom-style variable"),
+        )),
+        None => Err(a.error(i, format!("Variable name for fix {style} does not exist"))),
+    }
+}
+
 /// A `v_name` argument of a fix: equal- or atom-style, its style read as LIGGGHTS reads it.
 fn variable_value(
     a: &Args,

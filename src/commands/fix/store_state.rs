@@ -92,24 +92,11 @@ fn reference(
     every: i64,
 ) -> Result<AtomInput, CommandError> {
     let body = &a.word(i)?[2..];
-    let (id, index) = match body.split_once('[') {
-        Some((id, rest)) => {
-            let inner = rest.strip_suffix(']').ok_or_else(|| a.error(i, ILLEGAL))?;
-            // LIGGGHTS reads the index with atoi: a non-number is 0, no index
-            let digits: String = inner.chars().take_while(|c| c.is_ascii_digit()).collect();
-            let k = digits.parse::<usize>().unwrap_or(0);
-            (id, (k != 0).then_some(k))
-        }
-        None => (body, None),
-    };
+    let (id, index) =
+        crate::util::numbers::split_reference_atoi(body).ok_or_else(|| a.error(i, ILLEGAL))?;
     match prefix {
         "c_" => {
-            let c = ctx
-                .sim
-                .computes
-                .iter()
-                .find(|c| c.id == id)
-                .ok_or_else(|| a.error(i, "Compute ID for fix store/state does not exist"))?;
+            let c = super::input_compute(a, ctx, i, id, "store/state")?;
             let cols = c.per_atom_columns();
             check_width(a, i, cols, index)?;
             Ok(AtomInput::Compute(id.to_string(), index))
@@ -132,11 +119,10 @@ fn reference(
             }
             Ok(AtomInput::Fix(id.to_string(), index))
         }
-        _ => match ctx.vars.get(id).map(|v| v.style) {
-            Some(crate::lang::variables::Style::Atom) => Ok(AtomInput::Variable(id.to_string())),
-            Some(_) => Err(a.error(i, "Fix store/state variable is not atom-style variable")),
-            None => Err(a.error(i, "Variable name for fix store/state does not exist")),
-        },
+        _ => {
+            super::input_atom_variable(a, ctx, i, id, "store/state")?;
+            Ok(AtomInput::Variable(id.to_string()))
+        }
     }
 }
 

@@ -179,16 +179,8 @@ pub(crate) fn compute_reduce(
             return Err(a.unsupported(i, "compute reduce replace"));
         }
         if let Some(body) = w.strip_prefix("c_") {
-            let (id, index) = match body.split_once('[') {
-                Some((id, rest)) => {
-                    let k = rest
-                        .strip_suffix(']')
-                        .and_then(|k| k.parse::<usize>().ok())
-                        .ok_or_else(|| a.error(i, "Illegal compute reduce command"))?;
-                    (id, Some(k))
-                }
-                None => (body, None),
-            };
+            let (id, index) = crate::util::numbers::split_reference(body)
+                .ok_or_else(|| a.error(i, "Illegal compute reduce command"))?;
             let c = ctx
                 .sim
                 .computes

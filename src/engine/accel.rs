@@ -100,6 +100,9 @@ pub struct Accel {
     pub said: Vec<String>,
     /// The last list build fell back to the general search (the box is too short).
     pub general_list: bool,
+    /// The fast path's team for a run's per-step stages (made at the first run that has
+    /// more than one thread; its size follows the thread count).
+    team: Option<Arc<crate::util::team::Team>>,
 }
 
 impl std::fmt::Debug for Accel {
@@ -195,6 +198,18 @@ impl Accel {
             Some(p) => p.install(f),
             None => f(),
         }
+    }
+
+    /// The team a fast-path run's per-step stages use (None on the exact path or one thread).
+    pub fn team(&mut self) -> Option<Arc<crate::util::team::Team>> {
+        let n = self.thread_count();
+        if !self.fast || n < 2 {
+            return None;
+        }
+        if self.team.as_ref().is_none_or(|t| t.threads() != n) {
+            self.team = Some(Arc::new(crate::util::team::Team::new(n)));
+        }
+        self.team.clone()
     }
 
     /// Number of threads parallel stages use.

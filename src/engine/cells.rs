@@ -4,7 +4,7 @@
 //! in memory. The half list is then built from those ranges in parallel, each particle's
 //! partners found independently, and comes out the same for any number of threads.
 
-use rayon::prelude::*;
+use crate::util::team::{stage, stage_chunks, Shards};
 
 use crate::engine::domain::Domain;
 use crate::engine::neighbor::Pair;
@@ -137,10 +137,15 @@ impl CellGrid {
     /// index; stable inside a cell), and the first index of each cell (by rank) in that
     /// order (`len() + 1` entries).
     pub fn sort(&self, x: &[[f64; 3]]) -> (Vec<usize>, Vec<u32>) {
-        let cells: Vec<u32> = x
-            .par_iter()
-            .map(|p| self.ranked(self.coords(p)) as u32)
-            .collect();
+        let mut cells = vec![0u32; x.len()];
+        let shards = Shards::new(&mut cells);
+        stage_chunks(x.len(), 4096, true, |_, r| {
+            // SAFETY: the chunks of a stage are disjoint
+            let out = unsafe { shards.range(r.clone()) };
+            for (c, p) in out.iter_mut().zip(&x[r]) {
+                *c = self.ranked(self.coords(p)) as u32;
+            }
+        });
         let mut start = vec![0u32; self.len() + 1];
         for &c in &cells {
             start[c as usize + 1] += 1;
@@ -169,9 +174,13 @@ impl CellGrid {
         chunk: usize,
     ) -> Vec<Pair> {
         let n = x.len();
-        let parts: Vec<Vec<Pair>> = (0..n.div_ceil(chunk.max(1)))
-            .into_par_iter()
-            .map(|c| {
+        let tasks = n.div_ceil(chunk.max(1));
+        let mut parts: Vec<Vec<Pair>> = vec![Vec::new(); tasks];
+        let slots = Shards::new(&mut parts);
+        stage(tasks, true, |c| {
+            // SAFETY: each task fills its own slot
+            let slot = unsafe { slots.range(c..c + 1) };
+            slot[0] = {
                 let mut out = Vec::new();
                 // particles sorted by cell: neighbours share their cell's stencil
                 let mut stencil = Stencil::default();
@@ -183,8 +192,8 @@ impl CellGrid {
                     partners(i, x, reach, skin, &stencil, &mut out);
                 }
                 out
-            })
-            .collect();
+            };
+        });
         let mut pairs = Vec::with_capacity(parts.iter().map(Vec::len).sum());
         for p in parts {
             pairs.extend_from_slice(&p);

@@ -2,7 +2,7 @@
 //! rotation in LIGGGHTS's order of operations, plus uniform body forces (`fix gravity`).
 //! Every update is element-wise, so results do not depend on the thread count.
 
-use rayon::prelude::*;
+use crate::util::team::{stage_chunks, Shards};
 
 use crate::engine::error::EngineError;
 use crate::engine::particles::Particles;
@@ -74,11 +74,12 @@ pub fn initial_integrate_with(p: &mut Particles, group: u32, dt: f64, inertia: f
         }
     };
     if parallel(n) {
-        x.par_chunks_mut(CHUNK)
-            .zip(v.par_chunks_mut(CHUNK))
-            .zip(omega.par_chunks_mut(CHUNK))
-            .enumerate()
-            .for_each(|(c, ((x, v), w))| chunk(c * CHUNK, x, v, w));
+        let (x, v, w) = (Shards::new(x), Shards::new(v), Shards::new(omega));
+        stage_chunks(n, CHUNK, true, |_, r| {
+            // SAFETY: the chunks of a stage are disjoint
+            let (x, v, w) = unsafe { (x.range(r.clone()), v.range(r.clone()), w.range(r.clone())) };
+            chunk(r.start, x, v, w)
+        });
     } else {
         chunk(0, x, v, omega);
     }
@@ -127,10 +128,12 @@ pub fn final_integrate_with(p: &mut Particles, group: u32, dt: f64, inertia: f64
         }
     };
     if parallel(n) {
-        v.par_chunks_mut(CHUNK)
-            .zip(omega.par_chunks_mut(CHUNK))
-            .enumerate()
-            .for_each(|(c, (v, w))| chunk(c * CHUNK, v, w));
+        let (v, w) = (Shards::new(v), Shards::new(omega));
+        stage_chunks(n, CHUNK, true, |_, r| {
+            // SAFETY: the chunks of a stage are disjoint
+            let (v, w) = unsafe { (v.range(r.clone()), w.range(r.clone())) };
+            chunk(r.start, v, w)
+        });
     } else {
         chunk(0, v, omega);
     }
@@ -176,9 +179,12 @@ impl Gravity {
             }
         };
         if parallel(p.f.len()) {
-            p.f.par_chunks_mut(CHUNK).enumerate().for_each(|(c, f)| {
-                for (k, f) in f.iter_mut().enumerate() {
-                    add(c * CHUNK + k, f);
+            let n = p.f.len();
+            let f = Shards::new(&mut p.f);
+            stage_chunks(n, CHUNK, true, |_, r| {
+                // SAFETY: the chunks of a stage are disjoint
+                for (k, f) in unsafe { f.range(r.clone()) }.iter_mut().enumerate() {
+                    add(r.start + k, f);
                 }
             });
         } else {

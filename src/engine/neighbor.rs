@@ -662,7 +662,6 @@ pub fn carry_history(
     flips: &[bool],
     keep: impl Fn(&Pair) -> bool + Sync,
 ) -> Vec<f64> {
-    use rayon::prelude::*;
     let width = flips.len();
     let mut out = vec![0.0; new_pairs.len() * width];
     if width == 0 || old_pairs.is_empty() {
@@ -680,56 +679,57 @@ pub fn carry_history(
         };
         p.shift.map(|v| (v * sign + 0.0).to_bits())
     };
-    let chunk = 4096;
-    out.par_chunks_mut(chunk * width)
-        .zip(new_pairs.par_chunks(chunk))
-        .for_each(|(out, new)| {
-            let mut found: Vec<(usize, bool)> = Vec::new();
-            for (k, p) in new.iter().enumerate() {
-                if !keep(p) {
-                    continue;
-                }
-                let (Some(a), Some(b)) = (
-                    old_index.get(ids[p.i as usize]),
-                    old_index.get(ids[p.j as usize]),
-                ) else {
-                    continue;
-                };
-                found.clear();
-                for (from, to, swapped) in [(a, b, false), (b, a, true)] {
-                    for &e in by_first.of(from) {
-                        if old_pairs[e as usize].j as usize == to {
-                            found.push((e as usize, swapped));
-                        }
-                    }
-                }
-                let pick = match found.len() {
-                    0 => continue,
-                    1 => found[0],
-                    _ => {
-                        let want = oriented(p, ids);
-                        match found
-                            .iter()
-                            .find(|f| oriented(&old_pairs[f.0], old_ids) == want)
-                        {
-                            Some(f) => *f,
-                            None => continue,
-                        }
-                    }
-                };
-                let src = &old_history[pick.0 * width..(pick.0 + 1) * width];
-                let dst = &mut out[k * width..(k + 1) * width];
-                dst.copy_from_slice(src);
-                if pick.1 {
-                    // the pair is seen from the other particle now: vectors flip sign
-                    for (v, &flip) in dst.iter_mut().zip(flips) {
-                        if flip {
-                            *v = -*v;
-                        }
+    let shards = crate::util::team::Shards::new(&mut out);
+    crate::util::team::stage_chunks(new_pairs.len(), 4096, true, |_, r| {
+        // SAFETY: the chunks of a stage are disjoint
+        let out = unsafe { shards.range(r.start * width..r.end * width) };
+        let new = &new_pairs[r];
+        let mut found: Vec<(usize, bool)> = Vec::new();
+        for (k, p) in new.iter().enumerate() {
+            if !keep(p) {
+                continue;
+            }
+            let (Some(a), Some(b)) = (
+                old_index.get(ids[p.i as usize]),
+                old_index.get(ids[p.j as usize]),
+            ) else {
+                continue;
+            };
+            found.clear();
+            for (from, to, swapped) in [(a, b, false), (b, a, true)] {
+                for &e in by_first.of(from) {
+                    if old_pairs[e as usize].j as usize == to {
+                        found.push((e as usize, swapped));
                     }
                 }
             }
-        });
+            let pick = match found.len() {
+                0 => continue,
+                1 => found[0],
+                _ => {
+                    let want = oriented(p, ids);
+                    match found
+                        .iter()
+                        .find(|f| oriented(&old_pairs[f.0], old_ids) == want)
+                    {
+                        Some(f) => *f,
+                        None => continue,
+                    }
+                }
+            };
+            let src = &old_history[pick.0 * width..(pick.0 + 1) * width];
+            let dst = &mut out[k * width..(k + 1) * width];
+            dst.copy_from_slice(src);
+            if pick.1 {
+                // the pair is seen from the other particle now: vectors flip sign
+                for (v, &flip) in dst.iter_mut().zip(flips) {
+                    if flip {
+                        *v = -*v;
+                    }
+                }
+            }
+        }
+    });
     out
 }
 

@@ -9,3 +9,4 @@ pub mod comm_threads;
 pub mod format;
 pub mod numbers;
 pub mod random;
+pub mod team;

@@ -58,7 +58,6 @@ pub struct Packed {
 impl Packed {
     /// Pack the particles; `frozen` are the group bits of frozen particles.
     pub fn fill(&mut self, p: &Particles, frozen: u32) {
-        use rayon::prelude::*;
         let n = p.len();
         // every record is overwritten below: keep the old values rather than clear
         self.records.resize(n, Record::default());
@@ -84,11 +83,13 @@ impl Packed {
         };
         if crate::engine::integrate::parallel(n) {
             const PART: usize = 2048;
-            self.records
-                .par_chunks_mut(PART)
-                .zip(self.spheres.par_chunks_mut(PART))
-                .enumerate()
-                .for_each(|(c, out)| write(c * PART, out));
+            let records = crate::util::team::Shards::new(&mut self.records);
+            let spheres = crate::util::team::Shards::new(&mut self.spheres);
+            crate::util::team::stage_chunks(n, PART, true, |_, r| {
+                // SAFETY: the chunks of a stage are disjoint
+                let out = unsafe { (records.range(r.clone()), spheres.range(r.clone())) };
+                write(r.start, out)
+            });
         } else {
             write(0, (&mut self.records, &mut self.spheres));
         }

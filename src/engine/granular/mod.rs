@@ -14,6 +14,7 @@ use crate::engine::error::EngineError;
 use crate::engine::neighbor::{Incidence, Mirrored, Pair, SumOrder, BLOCK_PARTICLES};
 use crate::engine::particles::Particles;
 use crate::engine::sim::PairInteraction;
+use crate::util::team::Shards;
 
 pub mod batch;
 mod mirrored;
@@ -648,9 +649,19 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             sums.foreign.group(blocks);
             sums.worst
         };
-        let worst: Vec<Option<(f64, u32, u32)>> = if rayon::current_num_threads() > 1 && blocks > 1
-        {
-            jobs.into_par_iter().with_max_len(1).map(run).collect()
+        let parallel = rayon::current_num_threads() > 1 && blocks > 1;
+        let worst: Vec<Option<(f64, u32, u32)>> = if parallel {
+            let mut jobs: Vec<_> = jobs.into_iter().map(Some).collect();
+            let mut worst = vec![None; blocks];
+            let (js, ws) = (Shards::new(&mut jobs), Shards::new(&mut worst));
+            crate::util::team::stage(blocks, true, |b| {
+                // SAFETY: each task takes its own block's job and result slot
+                let (job, slot) = unsafe { (js.range(b..b + 1), ws.range(b..b + 1)) };
+                if let Some(job) = job[0].take() {
+                    slot[0] = run(job);
+                }
+            });
+            worst
         } else {
             jobs.into_iter().map(run).collect()
         };
@@ -674,29 +685,24 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
                 }
             };
             let (f, torque) = (&mut p.f, &mut p.torque);
-            let parallel = rayon::current_num_threads() > 1 && blocks > 1;
             match virial {
-                Some(w) if parallel => f
-                    .par_chunks_mut(BLOCK_PARTICLES)
-                    .zip(torque.par_chunks_mut(BLOCK_PARTICLES))
-                    .zip(w.par_chunks_mut(BLOCK_PARTICLES))
-                    .map(|((f, t), w)| (f, t, Some(w)))
-                    .enumerate()
-                    .with_max_len(1)
-                    .for_each(owed),
+                _ if parallel => {
+                    let n = f.len();
+                    let (fs, ts) = (Shards::new(f), Shards::new(torque));
+                    let ws = virial.map(Shards::new);
+                    crate::util::team::stage_chunks(n, BLOCK_PARTICLES, true, |t, r| {
+                        // SAFETY: each task takes its own block's particles
+                        let (f, torque) = unsafe { (fs.range(r.clone()), ts.range(r.clone())) };
+                        let w = ws.as_ref().map(|w| unsafe { w.range(r.clone()) });
+                        owed((t, (f, torque, w)));
+                    });
+                }
                 Some(w) => f
                     .chunks_mut(BLOCK_PARTICLES)
                     .zip(torque.chunks_mut(BLOCK_PARTICLES))
                     .zip(w.chunks_mut(BLOCK_PARTICLES))
                     .map(|((f, t), w)| (f, t, Some(w)))
                     .enumerate()
-                    .for_each(owed),
-                None if parallel => f
-                    .par_chunks_mut(BLOCK_PARTICLES)
-                    .zip(torque.par_chunks_mut(BLOCK_PARTICLES))
-                    .map(|(f, t)| (f, t, None))
-                    .enumerate()
-                    .with_max_len(1)
                     .for_each(owed),
                 None => f
                     .chunks_mut(BLOCK_PARTICLES)

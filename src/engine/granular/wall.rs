@@ -135,6 +135,8 @@ pub struct WallGran<N, T, C, R> {
     pub near: Vec<u32>,
     /// The pair-list build count `near` belongs to.
     pub near_build: Option<u64>,
+    /// Each near particle's force and torque this step (None: apart), kept between steps.
+    results: Vec<Option<([f64; 3], [f64; 3])>>,
 }
 
 impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> WallInteraction
@@ -178,6 +180,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Wall
         }
         // each particle near the wall is its own contact: computed on the engine's
         // threads when there are many, each writing only its own force and history
+        let mut results = std::mem::take(&mut self.results);
         let this = &*self;
         let (x, v, omega, radius, mass, kind) = (&p.x, &p.v, &p.omega, &p.radius, &p.mass, &p.kind);
         let contact = |i: usize, h: &mut [f64]| -> Option<([f64; 3], [f64; 3])> {
@@ -207,30 +210,31 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Wall
             let out = this.model.wall_force(&input, h);
             out.touching.then_some((out.f, out.t))
         };
-        let results: Vec<Option<([f64; 3], [f64; 3])>> =
-            if crate::engine::integrate::parallel(self.near.len()) {
-                let hist = SharedSlice(history.as_mut_ptr(), history.len());
-                self.near
-                    .par_iter()
-                    .with_min_len(512)
-                    .map(|&i| {
-                        let i = i as usize;
-                        // SAFETY: `near` holds distinct indices, so each call writes its
-                        // own disjoint w-wide piece of the history
-                        let h = unsafe { hist.piece(i * w, w) };
-                        contact(i, h)
-                    })
-                    .collect()
-            } else {
-                self.near
-                    .iter()
-                    .map(|&i| {
-                        let i = i as usize;
-                        contact(i, &mut history[i * w..(i + 1) * w])
-                    })
-                    .collect()
-            };
-        for (&i, r) in self.near.iter().zip(results) {
+        let near = &this.near;
+        results.clear();
+        results.resize(near.len(), None);
+        // a fast-path team splits even a few hundred contacts; rayon only many
+        let many = near.len() >= 256 && crate::util::team::is_active();
+        if many || crate::engine::integrate::parallel(near.len()) {
+            let hist = SharedSlice(history.as_mut_ptr(), history.len());
+            let out = crate::util::team::Shards::new(&mut results);
+            crate::util::team::stage_chunks(near.len(), 128, true, |_, r| {
+                // SAFETY: the chunks of a stage are disjoint
+                let out = unsafe { out.range(r.clone()) };
+                for (o, &i) in out.iter_mut().zip(&near[r]) {
+                    let i = i as usize;
+                    // SAFETY: `near` holds distinct indices, so each call writes its own
+                    // disjoint w-wide piece of the history
+                    *o = contact(i, unsafe { hist.piece(i * w, w) });
+                }
+            });
+        } else {
+            for (o, &i) in results.iter_mut().zip(near) {
+                let i = i as usize;
+                *o = contact(i, &mut history[i * w..(i + 1) * w]);
+            }
+        }
+        for (&i, r) in self.near.iter().zip(&results) {
             if let Some((f, t)) = r {
                 let i = i as usize;
                 for d in 0..3 {
@@ -239,6 +243,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Wall
                 }
             }
         }
+        self.results = results;
     }
 }
 
@@ -287,6 +292,7 @@ pub fn build_wall(
                 shear: self.3,
                 near: Vec::new(),
                 near_build: None,
+                results: Vec::new(),
             })
         }
     }

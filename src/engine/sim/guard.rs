@@ -130,7 +130,6 @@ impl Simulation {
     /// Kinetic energy and the fastest particle as (radii per step, index): one pass, on the
     /// engine's threads when there are enough particles.
     pub(super) fn motion_scan(&self) -> (f64, f64, usize) {
-        use rayon::prelude::*;
         let p = &self.particles;
         let dt = self.dt.abs();
         let one = |i: usize| {
@@ -151,15 +150,18 @@ impl Simulation {
             };
             (a.0 + b.0, fastest.0, fastest.1)
         };
-        if crate::engine::integrate::parallel(p.len()) {
-            (0..p.len())
-                .into_par_iter()
-                .with_min_len(1024)
-                .map(one)
-                .reduce(|| (0.0, 0.0, usize::MAX), join)
-        } else {
-            (0..p.len()).map(one).fold((0.0, 0.0, usize::MAX), join)
-        }
+        // partial results per chunk, joined in chunk order: the same sum for any thread count
+        const CHUNK: usize = 1024;
+        let n = p.len();
+        let mut parts = vec![(0.0, 0.0, usize::MAX); n.div_ceil(CHUNK)];
+        let slots = crate::util::team::Shards::new(&mut parts);
+        let parallel = crate::engine::integrate::parallel(n);
+        crate::util::team::stage_chunks(n, CHUNK, parallel, |k, r| {
+            // SAFETY: each task writes its own slot
+            let slot = unsafe { slots.range(k..k + 1) };
+            slot[0] = r.map(one).fold((0.0, 0.0, usize::MAX), join);
+        });
+        parts.into_iter().fold((0.0, 0.0, usize::MAX), join)
     }
 
     /// The blow-up guard on motion, run after each half-kick (before atoms are wrapped or

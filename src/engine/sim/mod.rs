@@ -498,15 +498,8 @@ fn first_where_in(
     per_block: usize,
     test: impl Fn(usize) -> bool + Sync,
 ) -> Option<usize> {
-    use rayon::prelude::*;
-    if crate::engine::integrate::parallel(n * per_block) {
-        (0..n)
-            .into_par_iter()
-            .with_min_len(1024usize.div_ceil(per_block))
-            .find_first(|&i| test(i))
-    } else {
-        (0..n).find(|&i| test(i))
-    }
+    let parallel = crate::engine::integrate::parallel(n * per_block);
+    crate::util::team::first_where(n, 1024usize.div_ceil(per_block), parallel, test)
 }
 
 /// Time `f`, adding the seconds to `acc`.
@@ -636,9 +629,12 @@ impl Simulation {
     ) -> Result<(), EngineError> {
         self.accel.settle_threads();
         let accel = self.accel.clone();
+        let team = self.accel.team();
         let mut job = crate::engine::accel::Handed((self, out, vars));
         accel.run_on_engine_thread(move || {
             let (sim, out, vars) = job.get();
+            // the per-step stages on the team's threads, which stay awake between them
+            let _team = crate::util::team::activate(team.as_deref());
             sim.run_here(nsteps, pre, &mut **out, &mut **vars)
         })
     }

@@ -231,7 +231,20 @@ fn ranks() -> Ranks {
     RANKS.get().copied().unwrap_or_default()
 }
 
+/// One malloc arena for every thread. glibc otherwise gives each thread a heap of its own
+/// that keeps what the thread freed: the neighbour lists built on a second thread held 12 MB
+/// more on a 10 000-sphere bed (a third more memory). The step loop does not allocate, so
+/// threads do not contend for the one arena.
+fn one_malloc_arena() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: a documented glibc setting, made before any other thread starts
+    unsafe {
+        libc::mallopt(libc::M_ARENA_MAX, 1);
+    }
+}
+
 fn main() -> ExitCode {
+    one_malloc_arena();
     // under mpirun: a build without MPI stops here; with MPI, the ranks are learnt (and MPI
     // ends when `launch` is dropped, after everything else)
     let launch = match regolith::launch::start() {

@@ -6,7 +6,7 @@
 //! and, within the step's error, the analytic decay exp(-GAMMA t / m).
 
 use regolith::commands::fix::{register, FixDef, FixRow};
-use regolith::commands::specs::{Spec, Value};
+use regolith::commands::specs::Spec;
 use regolith::commands::{Args, CommandError, Ctx};
 use regolith::engine::error::EngineError;
 use regolith::engine::fixes::{FixStep, FixStyle, PerAtomShape};

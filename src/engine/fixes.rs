@@ -288,8 +288,6 @@ pub enum FixKind {
     HeatGran(crate::engine::heat::HeatGran),
     /// `fix multisphere`: the rigid clumps and their integration.
     Multisphere(Box<crate::engine::clumps::Clumps>),
-    /// `fix nve/limit`: `fix nve` with a speed cap.
-    NveLimit(crate::engine::nve_limit::NveLimit),
     /// `fix ave/atom`: per-particle time averages.
     AveAtom(Box<crate::engine::ave_atom::AveAtom>),
     /// `ave/histo`: histograms of per-atom values written to a file.
@@ -325,8 +323,7 @@ impl FixKind {
             | FixKind::Tracer(_)
             | FixKind::Settings
             | FixKind::PropertyAtom(_)
-            | FixKind::HeatGran(_)
-            | FixKind::NveLimit(_) => false,
+            | FixKind::HeatGran(_) => false,
             FixKind::SetForce(f) | FixKind::AddForce(f) => f.values.iter().any(variable),
             FixKind::Move(m) => matches!(m.motion, Motion::Variable { .. }),
             FixKind::Style(s) => s.reads_computes(),
@@ -702,7 +699,6 @@ pub fn initial_integrate(
             FixKind::Multisphere(ms) => ms.initial_integrate(p, dt, domain, step, has_stream),
             FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt, domain),
             FixKind::HeatGran(h) => h.initial_integrate(p),
-            FixKind::NveLimit(n) => n.initial_integrate(p, fix.group, dt),
             FixKind::Style(s) => s.initial_integrate(
                 p,
                 &FixStep {
@@ -907,7 +903,6 @@ pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, step: i64, dt: f64,
             }
             FixKind::Move(m) => m.final_integrate(p, fix.group, dt),
             FixKind::HeatGran(h) => h.final_integrate(p, fix.group, dt),
-            FixKind::NveLimit(n) => n.final_integrate(p, fix.group, dt),
             FixKind::Style(s) => s.final_integrate(
                 p,
                 &FixStep {

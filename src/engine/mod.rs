@@ -35,7 +35,6 @@ pub mod momentum;
 pub mod multisphere;
 pub mod neighbor;
 pub mod neighbour_counts;
-pub mod nve_limit;
 pub mod planar;
 pub mod procmap;
 pub mod region;

@@ -100,7 +100,6 @@ pub const STYLES: &[(&str, Build)] = &[
     ("heat/gran", heat_gran::build),
     ("heat/gran/conduction", heat_gran::build),
     ("multisphere", multisphere::build),
-    ("nve/limit", nve_limit::build),
     ("ave/atom", ave_atom::build),
     ("store/state", store_state::build),
     ("ave/spatial", ave_spatial::build),
@@ -152,6 +151,11 @@ pub const MODULES: &[FixRow] = &[
         spec: nve::PLAIN,
         planar: false,
         build: nve::plain,
+    },
+    FixRow {
+        spec: nve_limit::SPEC,
+        planar: false,
+        build: nve_limit::build,
     },
     FixRow {
         spec: lineforce::LINE,

@@ -671,7 +671,6 @@ impl Simulation {
         self.check_run_init()?;
         crate::engine::buoyancy::check(&self.fixes)?;
         self.setup_fix_styles();
-        self.setup_nve_limit();
         self.setup_displacements();
         self.accel.settle_threads();
         if self.accel.fast {

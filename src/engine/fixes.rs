@@ -1,6 +1,7 @@
 //! Fixes that act on particles each step, in LIGGGHTS's phases: `initial_integrate`
-//! (nve/sphere, move), `post_force` (gravity, setforce, addforce, viscous, freeze) and
-//! `final_integrate`. Within a phase fixes act in the order they were defined.
+//! (nve/sphere, move), `post_force` (gravity, setforce, addforce, walls) and
+//! `final_integrate`. Within a phase fixes act in the order they were defined; the styles
+//! written as modules ([`FixStyle`], [`FixKind::Style`]) take their turn among the others.
 
 use std::collections::HashMap;
 
@@ -246,8 +247,6 @@ pub enum FixKind {
     SetForce(ForceFix),
     /// `fix addforce fx fy fz` (force units).
     AddForce(ForceFix),
-    /// `fix freeze`: force and torque zero (and infinite mass in contacts).
-    Freeze,
     /// `fix wall/gran ... primitive`: a granular plane wall.
     WallGran(WallFix),
     /// `fix check/timestep/gran`: time step as a fraction of Rayleigh and Hertz times.
@@ -309,7 +308,6 @@ impl FixKind {
             FixKind::NveSphere
             | FixKind::NveDisc
             | FixKind::Gravity(_)
-            | FixKind::Freeze
             | FixKind::WallGran(_)
             | FixKind::CheckTimestep(_)
             | FixKind::Mesh(_)
@@ -856,12 +854,6 @@ pub fn post_force(
                     }
                 }
             }
-            FixKind::Freeze => {
-                for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
-                    p.f[i] = [0.0; 3];
-                    p.torque[i] = [0.0; 3];
-                }
-            }
             FixKind::Buoyancy(b) => {
                 if let Some(gv) = buoyancy_g {
                     b.apply(p, g, gv);
@@ -921,7 +913,7 @@ pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, step: i64, dt: f64,
 pub fn frozen_groups(fixes: &[Fix]) -> u32 {
     fixes
         .iter()
-        .filter(|f| matches!(f.kind, FixKind::Freeze))
+        .filter(|f| matches!(&f.kind, FixKind::Style(s) if s.holds_still()))
         .fold(0, |m, f| m | f.group)
 }
 

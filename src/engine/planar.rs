@@ -14,7 +14,6 @@ pub const PLANAR_FIXES: &[&str] = &[
     "gravity",
     "property/global",
     "wall/gran",
-    "freeze",
     "setforce",
     "addforce",
     "print",

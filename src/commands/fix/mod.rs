@@ -86,7 +86,6 @@ pub const STYLES: &[(&str, Build)] = &[
     ("insert/rate/region", insert_pack::build),
     ("insert/stream", insert_stream::build),
     ("wall/gran", wall_gran::build),
-    ("freeze", freeze::build),
     ("setforce", force::build),
     ("addforce", force::build),
     ("adapt", adapt::build),
@@ -136,6 +135,11 @@ pub const MODULES: &[FixRow] = &[
         spec: viscous::SPEC,
         planar: true,
         build: viscous::build,
+    },
+    FixRow {
+        spec: freeze::SPEC,
+        planar: true,
+        build: freeze::build,
     },
     FixRow {
         spec: enforce2d::SPEC,

@@ -97,6 +97,12 @@ pub trait FixStyle: Send {
         )))
     }
 
+    /// Whether the style holds its group's particles still (`fix freeze`: contacts treat
+    /// them as infinitely heavy).
+    fn holds_still(&self) -> bool {
+        false
+    }
+
     /// Whether the style may evaluate variables or computes inside a step (so per-atom
     /// computes must be current on every step).
     fn reads_computes(&self) -> bool {

@@ -94,6 +94,26 @@ impl FixStyle for Drag {
     }
 }
 
+/// A module style in the test: force and torque zero, the particles held still.
+struct Hold;
+
+impl FixStyle for Hold {
+    fn name(&self) -> &str {
+        "hold"
+    }
+
+    fn post_force(&mut self, p: &mut Particles, at: &FixStep) {
+        for i in (0..p.len()).filter(|&i| p.mask[i] & at.group != 0) {
+            p.f[i] = [0.0; 3];
+            p.torque[i] = [0.0; 3];
+        }
+    }
+
+    fn holds_still(&self) -> bool {
+        true
+    }
+}
+
 #[test]
 fn post_force_order_and_freeze() {
     let mut p = Particles::default();
@@ -136,7 +156,7 @@ fn post_force_order_and_freeze() {
     );
     assert_eq!(p.f[0], [0.5, 7.0, 3.0]);
     post_force(
-        &mut [mk(FixKind::Freeze)],
+        &mut [mk(FixKind::Style(Box::new(Hold)))],
         &mut p,
         (0, &Domain::default()),
         0.1,
@@ -145,5 +165,6 @@ fn post_force_order_and_freeze() {
         false,
     );
     assert_eq!((p.f[0], p.torque[0]), ([0.0; 3], [0.0; 3]));
-    assert_eq!(frozen_groups(&[mk(FixKind::Freeze)]), 1);
+    assert_eq!(frozen_groups(&[mk(FixKind::Style(Box::new(Hold)))]), 1);
+    assert_eq!(frozen_groups(&[mk(FixKind::Style(Box::new(Drag(0.5))))]), 0);
 }

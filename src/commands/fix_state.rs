@@ -4,6 +4,7 @@
 
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
+use crate::engine::error::EngineError;
 use crate::engine::fixes::{Fix, FixKind};
 
 /// `compute ID group wall/gran/local [keywords]`: rows of the mesh wall's contacts
@@ -152,6 +153,12 @@ pub fn restore_fix_state(
                     }
                 }
             }
+            FixKind::Style(s) => s.restore_state(&bytes).map_err(|e| match e {
+                EngineError::Unsupported(what) => {
+                    a.unsupported(2, &format!("{what} (fix {} is stored there)", fix.id))
+                }
+                e => bad(&e.to_string()),
+            })?,
             FixKind::InsertStream(sf) => {
                 let r = InsertRestart::parse(&bytes).map_err(|e| bad(&e.to_string()))?;
                 if r.next != 0 {

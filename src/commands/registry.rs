@@ -127,6 +127,8 @@ pub fn validate_names(cmd: &CommandLine) -> Result<(), CommandError> {
         validate_mesh_modules(style, index)?;
     } else if kind == NameKind::DumpStyle && EXTENSION_DUMP_STYLES.contains(&style) {
         // accepted beyond LIGGGHTS
+    } else if kind == NameKind::FixStyle && crate::commands::fix::is_registered(style) {
+        // a module style added at run time
     } else if !names::names(kind).contains(&style) {
         return Err(unknown(kind, style, index));
     }

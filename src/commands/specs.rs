@@ -60,11 +60,11 @@ pub struct Spec {
     pub about: &'static str,
 }
 
-const fn arg(name: &'static str, value: Value) -> Arg {
+pub(crate) const fn arg(name: &'static str, value: Value) -> Arg {
     Arg { name, value }
 }
 
-const fn kw(name: &'static str, args: &'static [Arg], about: &'static str) -> Keyword {
+pub(crate) const fn kw(name: &'static str, args: &'static [Arg], about: &'static str) -> Keyword {
     Keyword { name, args, about }
 }
 
@@ -79,7 +79,8 @@ const fn command(usage: &'static str, about: &'static str) -> Spec {
     }
 }
 
-const fn style(
+/// The signature of a style of `command`.
+pub(crate) const fn style(
     command: &'static str,
     style: &'static str,
     usage: &'static str,
@@ -250,8 +251,6 @@ pub const SPECS: &[Spec] = &[
     style("fix", "ave/time", "fix ID GROUP ave/time NEVERY NREPEAT NFREQ VALUE ...", &[kw("mode", &[arg("scalar", Value::OneOf(&["scalar"]))], "average global scalars"), kw("ave", &[arg("one|running", Value::OneOf(&["one", "running"]))], "averaging window"), kw("start", &[arg("STEP", Value::Int)], "first step averaged"), kw("file", &[arg("F", Value::File)], "write averages to this file"), kw("off", &[arg("M", Value::Int)], "leave value M out")], "time averages of global values"),
     style("fix", "buoyancy", "fix ID GROUP buoyancy level L dim x|y|z density RHO", &[kw("level", &[arg("L", LENGTH)], "the liquid level along dim"), kw("dim", &[arg("x|y|z", Value::OneOf(&["x", "y", "z"]))], "the axis gravity acts along"), kw("density", &[arg("RHO", Value::Real("mass/length^3"))], "liquid density"), kw("region", &[arg("R", Value::Id("region"))], "act only inside this region")], "add the weight of the displaced liquid to immersed particles (f_ID[1..3]: total force)"),
     style("fix", "check/timestep/gran", "fix ID GROUP check/timestep/gran N RAYLEIGH_FRACTION HERTZ_FRACTION", &[kw("warn", &[arg("yes|no", YES_NO)], "warn when a limit is exceeded"), kw("vmax", &[arg("V", VELOCITY)], "largest expected relative velocity")], "compare the time step with Rayleigh and Hertz times"),
-    style("fix", "enforce2d", "fix ID GROUP enforce2d", &[], "keep particles in the xy plane (2d only): zero vz, fz, omega and torque about x and y"),
-    style("fix", "freeze", "fix ID GROUP freeze", &[], "hold particles still (zero force and torque)"),
     style("fix", "gravity", "fix ID GROUP gravity G vector X Y Z", &[], "gravitational acceleration G (acceleration) along a direction"),
     style("fix", "heat/gran", "fix ID GROUP heat/gran initial_temperature T0", &[kw("contact_area", &[arg("overlap|projection|constant A", Value::Word)], "conduction area: the spheres' intersection, the larger sphere's cross-section, or A (length^2)"), kw("area_correction", &[arg("yes|no", YES_NO)], "scale overlaps by the Young's moduli over youngsModulusOriginal before the area is taken"), kw("store_contact_data", &[arg("yes|no", YES_NO)], "per-particle mean contact area and contact count (contactAreaConduction, nContactsConduction)")], "heat conduction between touching particles: per-particle Temp (K), heatFlux and heatSource (W), thermalConductivity and thermalCapacity per type from fix property/global; f_ID is the thermal energy (J)"),
     style("fix", "heat/gran/conduction", "fix ID GROUP heat/gran/conduction initial_temperature T0", &[kw("contact_area", &[arg("overlap|projection|constant A", Value::Word)], "conduction area: the spheres' intersection, the larger sphere's cross-section, or A (length^2)"), kw("area_correction", &[arg("yes|no", YES_NO)], "scale overlaps by the Young's moduli over youngsModulusOriginal before the area is taken"), kw("store_contact_data", &[arg("yes|no", YES_NO)], "per-particle mean contact area and contact count (contactAreaConduction, nContactsConduction)")], "the same as heat/gran"),
@@ -263,15 +262,8 @@ pub const SPECS: &[Spec] = &[
     style("fix", "mesh/surface/planar", "fix ID GROUP mesh/surface/planar file FILE type T", &[], "a planar triangle mesh"),
     style("fix", "mesh/surface/stress", "fix ID GROUP mesh/surface/stress file FILE type T", &[kw("stress", &[arg("on|off", ON_OFF)], "sum forces and torques on the mesh"), kw("wear", &[arg("finnie|off", Value::OneOf(&["finnie", "off"]))], "Finnie wear of the mesh")], "a triangle mesh that sums the forces on it"),
     style("fix", "mesh/surface/stress/servo", "fix ID GROUP mesh/surface/stress/servo file FILE type T ... com X Y Z ctrlPV force axis X Y Z target_val F vel_max V", &[kw("com", &[arg("X Y Z", LENGTH)], "centre of mass of the wall"), kw("ctrlPV", &[arg("force", Value::OneOf(&["force", "torque"]))], "the controlled value (torque: not supported yet)"), kw("axis", &[arg("X Y Z", NUMBER)], "direction of the motion"), kw("target_val", &[arg("F", Value::Real("force"))], "target force (negative: towards -axis)"), kw("vel_max", &[arg("V", VELOCITY)], "largest wall speed"), kw("kp", &[arg("K", NUMBER)], "proportional gain"), kw("ki", &[arg("K", NUMBER)], "integral gain"), kw("kd", &[arg("K", NUMBER)], "derivative gain"), kw("mode", &[arg("auto", Value::OneOf(&["auto"]))], "gain-scheduled proportional controller"), kw("ratio", &[arg("R", NUMBER)], "auto mode speed near particles, in smallest radii per step")], "a mesh wall a servo drives to a target force"),
-    style("fix", "momentum", "fix ID GROUP momentum N", &[kw("linear", &[arg("XFLAG", Value::Int), arg("YFLAG", Value::Int), arg("ZFLAG", Value::Int)], "remove the centre-of-mass velocity along the flagged (1) axes"), kw("angular", &[], "remove the rigid rotation about the centre of mass")], "zero the group's linear and/or angular momentum every N steps"),
     style("fix", "move", "fix ID GROUP move linear|wiggle|rotate|variable ...", &[kw("units", &[arg("box|lattice", Value::OneOf(&["box", "lattice"]))], "lengths in box or lattice units")], "prescribed particle motion"),
     style("fix", "move/mesh", "fix ID GROUP move/mesh mesh MESH linear|wiggle|rotate|riggle|viblin|vibrot ...", &[], "prescribed mesh motion"),
-    style("fix", "nve", "fix ID GROUP nve", &[], "velocity-Verlet integration of positions and velocities (no rotation)"),
-    style("fix", "nve/limit", "fix ID GROUP nve/limit absolute|radius_ratio XLIMIT", &[], "fix nve with each step capped at XLIMIT (length, or times the radius); f_ID: speeds capped this run"),
-    style("fix", "lineforce", "fix ID GROUP lineforce X Y Z", &[], "keep only the force component along the direction (X Y Z)"),
-    style("fix", "planeforce", "fix ID GROUP planeforce X Y Z", &[], "remove the force component along the plane normal (X Y Z)"),
-    style("fix", "aveforce", "fix ID GROUP aveforce FX FY FZ", &[], "set every member's force to the group mean plus FX FY FZ (force; NULL: leave alone); f_ID[1..3]: the summed force before"),
-    style("fix", "nve/noforce", "fix ID GROUP nve/noforce", &[], "positions advance with the velocities; forces leave velocities unchanged"),
     style("fix", "nve/sphere", "fix ID GROUP nve/sphere", &[], "velocity-Verlet integration of positions and rotations"),
     style("fix", "multisphere", "fix ID GROUP multisphere", &[], "rigid-body integration of the multisphere clumps (centre of mass and orientation)"),
     style("fix", "particledistribution/discrete", "fix ID GROUP particledistribution/discrete SEED N TEMPLATE FRACTION ...", &[], "a mix of particle templates by mass fraction"),
@@ -284,7 +276,6 @@ pub const SPECS: &[Spec] = &[
     style("fix", "property/atom", "fix ID GROUP property/atom NAME scalar|vector RESTART COMM_GHOST COMM_REV VALUE ...", &[], "a user per-particle property (flags yes|no; one default value, or one per column); f_ID or f_ID[N] in dumps, set ... property/atom NAME VALUE ..."),
     style("fix", "property/global", "fix ID GROUP property/global NAME scalar|vector|peratomtype|peratomtypepair N VALUES ...", &[], "material properties (youngsModulus, poissonsRatio, coefficientRestitution, coefficientFriction ...)"),
     style("fix", "setforce", "fix ID GROUP setforce FX FY FZ", &[kw("region", &[arg("R", Value::Id("region"))], "act only inside this region")], "set force components (force, NULL to leave one)"),
-    style("fix", "viscous", "fix ID GROUP viscous GAMMA [scale TYPE RATIO ...]", &[], "drag force -GAMMA v (force per velocity), GAMMA scaled by RATIO for atoms of TYPE"),
     style("fix", "wall/gran", "fix ID GROUP wall/gran model M tangential T ... primitive type T xplane|yplane|zplane|xcylinder|ycylinder|zcylinder ARGS | mesh n_meshes N meshes MESH ...", &[kw("model", &[arg("M", Value::Word)], "normal contact model"), kw("tangential", &[arg("T", Value::Word)], "tangential contact model"), kw("cohesion", &[arg("C", Value::Word)], "cohesion model"), kw("rolling_friction", &[arg("R", Value::Word)], "rolling-friction model"), kw("primitive", &[arg("type T SHAPE ARGS", Value::Word)], "a plane or cylinder wall (positions in length)"), kw("mesh", &[arg("n_meshes N meshes MESH ...", Value::Id("fix"))], "walls made of meshes"), kw("shear", &[arg("x|y|z V", VELOCITY)], "the wall slides at velocity V"), kw("store_force", &[arg("yes|no", YES_NO)], "keep per-particle wall forces")], "granular walls: planes, cylinders or meshes"),
     with(command("fix_modify ID KEYWORD VALUE ...", "change the settings every fix shares"), &[
         kw("energy", &[arg("yes|no", YES_NO)], "the fix's energy in compute pe (granular fixes add none; yes on gravity or addforce: not supported yet)"),
@@ -357,24 +348,30 @@ pub const SPECS: &[Spec] = &[
     command("write_restart FILE", "write a LIGGGHTS restart file"),
 ];
 
+/// Every declared spec: [`SPECS`], with the module fix styles' rows
+/// ([`crate::commands::fix::MODULES`]) after the last fix style there.
+pub fn all() -> impl Iterator<Item = &'static Spec> {
+    let at = SPECS
+        .iter()
+        .rposition(|s| s.command == "fix")
+        .map_or(SPECS.len(), |k| k + 1);
+    let modules = crate::commands::fix::MODULES.iter().map(|row| &row.spec);
+    SPECS[..at].iter().chain(modules).chain(SPECS[at..].iter())
+}
+
 /// The spec of `command` (with `style`, for styled commands).
 pub fn find(command: &str, style: Option<&str>) -> Option<&'static Spec> {
-    SPECS
-        .iter()
-        .find(|spec| spec.command == command && spec.style == style)
+    all().find(|spec| spec.command == command && spec.style == style)
 }
 
 /// Whether any spec declares styles for `command`.
 pub fn is_styled(command: &str) -> bool {
-    SPECS
-        .iter()
-        .any(|spec| spec.command == command && spec.style.is_some())
+    all().any(|spec| spec.command == command && spec.style.is_some())
 }
 
 /// The styles declared for `command`, in table order.
 pub fn styles(command: &str) -> Vec<&'static str> {
-    SPECS
-        .iter()
+    all()
         .filter(|spec| spec.command == command)
         .filter_map(|spec| spec.style)
         .collect()
@@ -383,7 +380,7 @@ pub fn styles(command: &str) -> Vec<&'static str> {
 /// The commands declared, each once, in table order.
 pub fn commands() -> Vec<&'static str> {
     let mut names: Vec<&'static str> = Vec::new();
-    for spec in SPECS {
+    for spec in all() {
         if !names.contains(&spec.command) {
             names.push(spec.command);
         }
@@ -445,7 +442,7 @@ pub fn help(words: &[&str]) -> Result<String, UnknownName> {
             let command = known(command, &commands(), "command")?;
             if is_styled(command) {
                 let mut text = format!("{command} styles regolith runs:\n");
-                for spec in SPECS.iter().filter(|s| s.command == command) {
+                for spec in all().filter(|s| s.command == command) {
                     let name = spec.style.unwrap_or("");
                     text.push_str(&format!("  {name:<44} {}\n", spec.about));
                 }
@@ -507,7 +504,7 @@ fn overview() -> String {
 /// The table of commands and styles for `compat/SUPPORT.md` (Markdown).
 pub fn markdown() -> String {
     let mut text = String::from("| command | style | what it does |\n|---|---|---|\n");
-    for spec in SPECS {
+    for spec in all() {
         text.push_str(&format!(
             "| `{}` | {} | {} |\n",
             spec.command,
@@ -554,9 +551,10 @@ mod tests {
 
     #[test]
     fn every_spec_is_declared_once_and_reads_well() {
-        for (i, spec) in SPECS.iter().enumerate() {
+        let specs: Vec<&Spec> = all().collect();
+        for (i, spec) in specs.iter().enumerate() {
             assert!(
-                !SPECS[..i]
+                !specs[..i]
                     .iter()
                     .any(|s| s.command == spec.command && s.style == spec.style),
                 "{} {:?} declared twice",

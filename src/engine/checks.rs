@@ -90,15 +90,13 @@ fn g(x: f64) -> String {
 }
 
 impl Simulation {
-    /// At a run's init: LIGGGHTS's own checks of the integrated particles and of the
-    /// neighbour bins.
+    /// At a run's init: LIGGGHTS's own checks of the integrated particles (and the checks of
+    /// the module fix styles, in fix order) and of the neighbour bins.
     pub fn check_run_init(&self) -> Result<(), EngineError> {
         let p = &self.particles;
         for fix in &self.fixes {
-            if matches!(fix.kind, FixKind::Enforce2d) && self.dimension == 3 {
-                return Err("Cannot use fix enforce2d with 3d simulation"
-                    .to_string()
-                    .into());
+            if let FixKind::Style(s) = &fix.kind {
+                s.check(p, fix.group, self.dimension)?;
             }
             if let FixKind::NveSphere | FixKind::NveDisc = fix.kind {
                 let point =

@@ -7,7 +7,7 @@
 
 use crate::engine::computes::PerAtom;
 use crate::engine::error::EngineError;
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::{FixKind, PerAtomShape};
 use crate::engine::sim::Simulation;
 
 /// Per-atom columns of a fix kind (0: none) and whether they are a per-atom vector
@@ -19,7 +19,17 @@ fn width(kind: &FixKind) -> (usize, bool) {
         FixKind::HeatGran(_) => (1, true),
         FixKind::AveAtom(a) => (a.inputs.len(), a.inputs.len() == 1),
         FixKind::StoreState(s) => (s.inputs.len(), s.inputs.len() == 1),
+        FixKind::Style(s) => shape_width(s.per_atom_shape()),
         _ => (0, false),
+    }
+}
+
+/// [`width`] of a module fix style's per-atom shape.
+fn shape_width(shape: PerAtomShape) -> (usize, bool) {
+    match shape {
+        PerAtomShape::None => (0, false),
+        PerAtomShape::Vector => (1, true),
+        PerAtomShape::Array(n) => (n, false),
     }
 }
 
@@ -93,6 +103,11 @@ pub fn per_atom(
                 .iter()
                 .find(|e| e.name == s.array && e.width == columns)
                 .map_or_else(|| vec![0.0; columns * p.len()], |e| e.data.clone());
+            return Ok((PerAtom { columns, values }, col));
+        }
+        Some(FixKind::Style(s)) => {
+            let columns = shape_width(s.per_atom_shape()).0;
+            let values = s.per_atom(p);
             return Ok((PerAtom { columns, values }, col));
         }
         Some(FixKind::HeatGran(h)) => {

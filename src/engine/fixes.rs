@@ -1,6 +1,7 @@
 //! Fixes that act on particles each step, in LIGGGHTS's phases: `initial_integrate`
-//! (nve/sphere, move), `post_force` (gravity, setforce, addforce, viscous, freeze) and
-//! `final_integrate`. Within a phase fixes act in the order they were defined.
+//! (nve/sphere, move), `post_force` (gravity, setforce, addforce, walls) and
+//! `final_integrate`. Within a phase fixes act in the order they were defined; the styles
+//! written as modules ([`FixStyle`], [`FixKind::Style`]) take their turn among the others.
 
 use std::collections::HashMap;
 
@@ -10,8 +11,10 @@ use crate::engine::integrate::{self, Gravity};
 use crate::engine::particles::Particles;
 
 mod ave_time;
+mod style;
 
 pub use ave_time::{AveInput, AveMode, AveSchedule, AveTime};
+pub use style::{FixStep, FixStyle, PerAtomShape};
 
 /// Prescribed motion of `fix move` (length and time units).
 #[derive(Debug, Clone, PartialEq)]
@@ -234,12 +237,8 @@ impl Move {
 pub enum FixKind {
     /// `fix nve/sphere`.
     NveSphere,
-    /// `fix nve/noforce`.
-    NveNoforce,
     /// `fix nve/sphere` in 2d: discs (moment of inertia 0.5 m r^2).
     NveDisc,
-    /// `fix enforce2d`: motion kept in the xy plane.
-    Enforce2d,
     /// `fix move`.
     Move(Move),
     /// `fix gravity`.
@@ -248,10 +247,6 @@ pub enum FixKind {
     SetForce(ForceFix),
     /// `fix addforce fx fy fz` (force units).
     AddForce(ForceFix),
-    /// `fix viscous gamma [scale type ratio]`: f -= gamma v, gamma per atom type (index 0 unused; force/velocity units).
-    Viscous(Vec<f64>),
-    /// `fix freeze`: force and torque zero (and infinite mass in contacts).
-    Freeze,
     /// `fix wall/gran ... primitive`: a granular plane wall.
     WallGran(WallFix),
     /// `fix check/timestep/gran`: time step as a fraction of Rayleigh and Hertz times.
@@ -282,8 +277,6 @@ pub enum FixKind {
     Massflow(Box<crate::engine::massflow::Massflow>),
     /// `fix buoyancy`: the weight of displaced liquid below a level.
     Buoyancy(crate::engine::buoyancy::Buoyancy),
-    /// `fix momentum`: zero a group's momentum every N steps.
-    Momentum(crate::engine::momentum::Momentum),
     /// `fix property/atom/tracer`: particles marked in a region.
     Tracer(Box<crate::engine::tracer::Tracer>),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
@@ -294,14 +287,6 @@ pub enum FixKind {
     HeatGran(crate::engine::heat::HeatGran),
     /// `fix multisphere`: the rigid clumps and their integration.
     Multisphere(Box<crate::engine::clumps::Clumps>),
-    /// `fix nve`: positions and velocities (no rotation).
-    Nve,
-    /// `fix nve/limit`: `fix nve` with a speed cap.
-    NveLimit(crate::engine::nve_limit::NveLimit),
-    /// `fix lineforce`, `fix planeforce`: forces kept along a line or in a plane.
-    Project(crate::engine::force_project::Project),
-    /// `fix aveforce`: the group's forces replaced by their mean plus an extra force.
-    AveForce(crate::engine::force_project::AveForce),
     /// `fix ave/atom`: per-particle time averages.
     AveAtom(Box<crate::engine::ave_atom::AveAtom>),
     /// `ave/histo`: histograms of per-atom values written to a file.
@@ -310,6 +295,8 @@ pub enum FixKind {
     AveSpatial(Box<crate::engine::ave_spatial::AveSpatial>),
     /// `store/state`: per-particle snapshots (f_ID, f_ID[N]).
     StoreState(Box<crate::engine::store_state::StoreState>),
+    /// A style written as a module (see [`FixStyle`]): its hooks run in each phase.
+    Style(Box<dyn FixStyle>),
 }
 
 impl FixKind {
@@ -320,11 +307,7 @@ impl FixKind {
         match self {
             FixKind::NveSphere
             | FixKind::NveDisc
-            | FixKind::Enforce2d
-            | FixKind::NveNoforce
             | FixKind::Gravity(_)
-            | FixKind::Viscous(_)
-            | FixKind::Freeze
             | FixKind::WallGran(_)
             | FixKind::CheckTimestep(_)
             | FixKind::Mesh(_)
@@ -335,17 +318,13 @@ impl FixKind {
             | FixKind::InsertStream(_)
             | FixKind::MeshWall(_)
             | FixKind::Massflow(_)
-            | FixKind::Momentum(_)
             | FixKind::Tracer(_)
             | FixKind::Settings
             | FixKind::PropertyAtom(_)
-            | FixKind::HeatGran(_)
-            | FixKind::Nve
-            | FixKind::NveLimit(_)
-            | FixKind::Project(_)
-            | FixKind::AveForce(_) => false,
+            | FixKind::HeatGran(_) => false,
             FixKind::SetForce(f) | FixKind::AddForce(f) => f.values.iter().any(variable),
             FixKind::Move(m) => matches!(m.motion, Motion::Variable { .. }),
+            FixKind::Style(s) => s.reads_computes(),
             _ => true,
         }
     }
@@ -716,11 +695,17 @@ pub fn initial_integrate(
                 crate::engine::planar::DISC_INERTIA,
             ),
             FixKind::Multisphere(ms) => ms.initial_integrate(p, dt, domain, step, has_stream),
-            FixKind::NveNoforce => crate::engine::nve_noforce::initial_integrate(p, fix.group, dt),
             FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt, domain),
             FixKind::HeatGran(h) => h.initial_integrate(p),
-            FixKind::Nve => crate::engine::nve_limit::initial_integrate(p, fix.group, dt),
-            FixKind::NveLimit(n) => n.initial_integrate(p, fix.group, dt),
+            FixKind::Style(s) => s.initial_integrate(
+                p,
+                &FixStep {
+                    group: fix.group,
+                    step,
+                    dt,
+                    domain,
+                },
+            ),
             _ => {}
         }
     }
@@ -816,12 +801,13 @@ impl ForceFix {
     }
 }
 
-/// Run the `post_force` phase of all fixes. `list` is the pair list's build count and skin;
-/// `moving_skin` is whether mesh neighbour lists need the full skin (moving meshes or a
-/// changing box).
+/// Run the `post_force` phase of all fixes at step `at.0` in the box `at.1`. `list` is the
+/// pair list's build count and skin; `moving_skin` is whether mesh neighbour lists need the
+/// full skin (moving meshes or a changing box).
 pub fn post_force(
     fixes: &mut [Fix],
     p: &mut Particles,
+    at: (i64, &Domain),
     dt: f64,
     update: bool,
     list: (u64, f64),
@@ -868,35 +854,27 @@ pub fn post_force(
                     }
                 }
             }
-            FixKind::Viscous(by_type) => {
-                for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
-                    let gamma = by_type.get(p.kind[i] as usize).copied().unwrap_or(0.0);
-                    for d in 0..3 {
-                        p.f[i][d] -= gamma * p.v[i][d];
-                    }
-                }
-            }
-            FixKind::Freeze => {
-                for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
-                    p.f[i] = [0.0; 3];
-                    p.torque[i] = [0.0; 3];
-                }
-            }
-            FixKind::Enforce2d => crate::engine::planar::enforce(p, g),
             FixKind::Buoyancy(b) => {
                 if let Some(gv) = buoyancy_g {
                     b.apply(p, g, gv);
                 }
             }
-            FixKind::Project(pr) => pr.apply(p, g),
-            FixKind::AveForce(av) => av.apply(p, g),
+            FixKind::Style(s) => s.post_force(
+                p,
+                &FixStep {
+                    group: g,
+                    step: at.0,
+                    dt,
+                    domain: at.1,
+                },
+            ),
             _ => {}
         }
     }
 }
 
-/// Run the `final_integrate` phase of all fixes.
-pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, dt: f64, domain: &Domain) {
+/// Run the `final_integrate` phase of all fixes for `step`.
+pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, step: i64, dt: f64, domain: &Domain) {
     // the clumps' weight comes from the (single) gravity fix
     let gravity = fixes.iter().find_map(|f| match &f.kind {
         FixKind::Gravity(g) => Some(g.acc),
@@ -917,8 +895,15 @@ pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, dt: f64, domain: &D
             }
             FixKind::Move(m) => m.final_integrate(p, fix.group, dt),
             FixKind::HeatGran(h) => h.final_integrate(p, fix.group, dt),
-            FixKind::Nve => crate::engine::nve_limit::final_integrate(p, fix.group, dt),
-            FixKind::NveLimit(n) => n.final_integrate(p, fix.group, dt),
+            FixKind::Style(s) => s.final_integrate(
+                p,
+                &FixStep {
+                    group: fix.group,
+                    step,
+                    dt,
+                    domain,
+                },
+            ),
             _ => {}
         }
     }
@@ -928,7 +913,7 @@ pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, dt: f64, domain: &D
 pub fn frozen_groups(fixes: &[Fix]) -> u32 {
     fixes
         .iter()
-        .filter(|f| matches!(f.kind, FixKind::Freeze))
+        .filter(|f| matches!(&f.kind, FixKind::Style(s) if s.holds_still()))
         .fold(0, |m, f| m | f.group)
 }
 

@@ -7,17 +7,15 @@ use crate::engine::particles::Particles;
 /// Moment-of-inertia prefactor of a disc (I = 0.5 m r^2), as LIGGGHTS's nve/sphere uses it in 2d.
 pub const DISC_INERTIA: f64 = 0.5;
 
-/// The fix styles regolith runs in 2d (the others, insertion among them, are refused there).
+/// The fix styles regolith runs in 2d (the others, insertion among them, are refused there);
+/// a module fix style says so in its row instead.
 pub const PLANAR_FIXES: &[&str] = &[
     "nve/sphere",
-    "enforce2d",
     "gravity",
     "property/global",
     "wall/gran",
-    "freeze",
     "setforce",
     "addforce",
-    "viscous",
     "print",
     "ave/time",
     "check/timestep/gran",

@@ -290,6 +290,11 @@ impl Simulation {
                         ));
                     }
                 }
+                FixKind::Style(s) => {
+                    if let Some(state) = s.restart_state() {
+                        globals.push(entry(&f.id, &f.style, state));
+                    }
+                }
                 FixKind::MoveMesh(mv) => globals.push(entry(&f.id, &f.style, to_bytes(&[mv.time]))),
                 FixKind::Move(mv) => {
                     globals.push(entry(&f.id, &f.style, to_bytes(&[mv.start_step as f64])));

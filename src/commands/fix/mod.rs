@@ -37,8 +37,9 @@ mod tracer;
 mod viscous;
 mod wall_gran;
 
+use crate::commands::specs::Spec;
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::{Fix, FixKind};
+use crate::engine::fixes::{Fix, FixKind, FixStyle};
 
 /// What a style's builder is told about the fix being defined.
 #[derive(Debug, Clone, Copy)]
@@ -58,9 +59,7 @@ pub type Build = fn(&Args, &mut Ctx, &FixDef) -> Result<FixKind, CommandError>;
 
 /// The fix styles regolith runs: the style name and the builder in the style's file.
 pub const STYLES: &[(&str, Build)] = &[
-    ("nve/noforce", nve::noforce),
     ("nve/sphere", nve::sphere),
-    ("enforce2d", enforce2d::build),
     ("gravity", gravity::build),
     ("check/timestep/gran", check_timestep::build),
     ("property/global", property_global::build),
@@ -87,35 +86,158 @@ pub const STYLES: &[(&str, Build)] = &[
     ("insert/rate/region", insert_pack::build),
     ("insert/stream", insert_stream::build),
     ("wall/gran", wall_gran::build),
-    ("freeze", freeze::build),
     ("setforce", force::build),
     ("addforce", force::build),
     ("adapt", adapt::build),
     ("print", print::build),
     ("ave/time", ave_time::build),
-    ("viscous", viscous::build),
     ("move", move_atoms::build),
     ("massflow/mesh", massflow_mesh::build),
     ("buoyancy", buoyancy::build),
-    ("momentum", momentum::build),
     ("property/atom/tracer", tracer::build),
     ("property/atom", property_atom::build),
     ("heat/gran", heat_gran::build),
     ("heat/gran/conduction", heat_gran::build),
     ("multisphere", multisphere::build),
-    ("nve", nve::plain),
-    ("nve/limit", nve_limit::build),
-    ("lineforce", lineforce::build),
-    ("planeforce", lineforce::build),
-    ("aveforce", aveforce::build),
     ("ave/atom", ave_atom::build),
     ("store/state", store_state::build),
     ("ave/spatial", ave_spatial::build),
     ("ave/histo", ave_histo::build),
 ];
 
-/// `fix ID GROUP STYLE ...` with the styles of `styles`: checks what every fix shares, has
-/// the style's builder make its state, then adds the fix (or replaces the one with its ID).
+/// Builds a module fix style (see [`FixStyle`]) from the `fix` command's arguments.
+pub type BuildStyle = fn(&Args, &mut Ctx, &FixDef) -> Result<Box<dyn FixStyle>, CommandError>;
+
+/// One row of the module fix styles: the style's declared signature (its name is the
+/// spec's style; `check`, `regolith help` and `compat/SUPPORT.md` read it), whether 2d runs
+/// take it, and its builder.
+#[derive(Debug, Clone, Copy)]
+pub struct FixRow {
+    /// The declared signature.
+    pub spec: Spec,
+    /// The style runs in 2d (`dimension 2`) decks.
+    pub planar: bool,
+    /// Makes the fix's state from the command's arguments.
+    pub build: BuildStyle,
+}
+
+impl FixRow {
+    /// The style name the row defines.
+    pub fn name(&self) -> &'static str {
+        self.spec.style.unwrap_or("")
+    }
+}
+
+/// The fix styles written as modules: one file each in this folder, one row here. The
+/// `fix` command looks a style up here (and in [`register`]ed rows) before [`STYLES`].
+pub const MODULES: &[FixRow] = &[
+    FixRow {
+        spec: viscous::SPEC,
+        planar: true,
+        build: viscous::build,
+    },
+    FixRow {
+        spec: freeze::SPEC,
+        planar: true,
+        build: freeze::build,
+    },
+    FixRow {
+        spec: enforce2d::SPEC,
+        planar: true,
+        build: enforce2d::build,
+    },
+    FixRow {
+        spec: nve::NOFORCE,
+        planar: false,
+        build: nve::noforce,
+    },
+    FixRow {
+        spec: nve::PLAIN,
+        planar: false,
+        build: nve::plain,
+    },
+    FixRow {
+        spec: nve_limit::SPEC,
+        planar: false,
+        build: nve_limit::build,
+    },
+    FixRow {
+        spec: lineforce::LINE,
+        planar: false,
+        build: lineforce::build,
+    },
+    FixRow {
+        spec: lineforce::PLANE,
+        planar: false,
+        build: lineforce::build,
+    },
+    FixRow {
+        spec: aveforce::SPEC,
+        planar: false,
+        build: aveforce::build,
+    },
+    FixRow {
+        spec: momentum::SPEC,
+        planar: false,
+        build: momentum::build,
+    },
+];
+
+/// Rows added while the program runs (a style defined outside this folder).
+static REGISTERED: std::sync::RwLock<Vec<FixRow>> = std::sync::RwLock::new(Vec::new());
+
+/// Add a module fix style at run time: the `fix` command runs it from then on (a row of
+/// [`MODULES`] needs no registration). A row naming a style already registered replaces it.
+pub fn register(row: FixRow) {
+    let mut rows = REGISTERED.write().unwrap_or_else(|e| e.into_inner());
+    rows.retain(|r| r.name() != row.name());
+    rows.push(row);
+}
+
+/// The module row of `style`: a [`MODULES`] row, else a [`register`]ed one.
+pub fn module_row(style: &str) -> Option<FixRow> {
+    if let Some(row) = MODULES.iter().find(|r| r.name() == style) {
+        return Some(*row);
+    }
+    let rows = REGISTERED.read().unwrap_or_else(|e| e.into_inner());
+    rows.iter().find(|r| r.name() == style).copied()
+}
+
+/// Whether `style` was added with [`register`] (its name need not be one LIGGGHTS knows).
+pub fn is_registered(style: &str) -> bool {
+    let rows = REGISTERED.read().unwrap_or_else(|e| e.into_inner());
+    rows.iter().any(|r| r.name() == style)
+}
+
+/// The state of a fix of `style`: a module style's builder boxed as [`FixKind::Style`], else
+/// the builder of `styles`; None when neither runs the style.
+fn build_kind(
+    a: &Args,
+    ctx: &mut Ctx,
+    def: &FixDef,
+    styles: &[(&str, Build)],
+) -> Option<Result<FixKind, CommandError>> {
+    let style = def.style;
+    if let Some(row) = module_row(style) {
+        if ctx.sim.dimension == 2 && !row.planar {
+            return Some(Err(
+                a.unsupported(2, &format!("fix {style} in a 2d simulation"))
+            ));
+        }
+        return Some((row.build)(a, ctx, def).map(FixKind::Style));
+    }
+    let &(_, build) = styles.iter().find(|(name, _)| *name == style)?;
+    if ctx.sim.dimension == 2 && !crate::engine::planar::PLANAR_FIXES.contains(&style) {
+        return Some(Err(
+            a.unsupported(2, &format!("fix {style} in a 2d simulation"))
+        ));
+    }
+    Some(build(a, ctx, def))
+}
+
+/// `fix ID GROUP STYLE ...` with the module styles and those of `styles`: checks what every
+/// fix shares, has the style's builder make its state, then adds the fix (or replaces the
+/// one with its ID).
 pub fn define(a: &Args, ctx: &mut Ctx, styles: &[(&str, Build)]) -> Result<(), CommandError> {
     a.count(3..=usize::MAX, "fix ID GROUP STYLE ...")?;
     let (id, group, style) = (a.word(0)?, a.word(1)?, a.word(2)?);
@@ -129,19 +251,16 @@ pub fn define(a: &Args, ctx: &mut Ctx, styles: &[(&str, Build)]) -> Result<(), C
         .sim
         .group_bit(group)
         .ok_or_else(|| a.error(1, "Could not find fix group ID"))?;
-    let Some(&(_, build)) = styles.iter().find(|(name, _)| *name == style) else {
-        return Err(a.unsupported(2, &format!("fix {style}")));
-    };
-    if ctx.sim.dimension == 2 && !crate::engine::planar::PLANAR_FIXES.contains(&style) {
-        return Err(a.unsupported(2, &format!("fix {style} in a 2d simulation")));
-    }
     let definition = FixDef {
         id,
         group,
         bit,
         style,
     };
-    let kind = build(a, ctx, &definition)?;
+    let Some(kind) = build_kind(a, ctx, &definition, styles) else {
+        return Err(a.unsupported(2, &format!("fix {style}")));
+    };
+    let kind = kind?;
     let args: Vec<String> = (3..a.len())
         .map(|i| a.word(i).map(str::to_string))
         .collect::<std::result::Result<_, _>>()?;
@@ -286,6 +405,7 @@ mod tests {
     #[test]
     fn every_declared_fix_style_has_a_row_and_every_row_a_declaration() {
         let mut rows: Vec<&str> = STYLES.iter().map(|row| row.0).collect();
+        rows.extend(MODULES.iter().map(FixRow::name));
         rows.sort();
         let mut declared = crate::commands::specs::styles("fix");
         declared.sort();

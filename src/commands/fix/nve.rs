@@ -1,15 +1,95 @@
-//! Velocity-Verlet integration fixes: `nve/sphere` (translation and rotation) and `nve/noforce`.
+//! Velocity-Verlet integration fixes: `nve/sphere` (translation and rotation), and the
+//! module styles `nve` (translation alone) and `nve/noforce` (positions follow velocities).
 
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::{FixKind, FixStep, FixStyle};
+use crate::engine::particles::Particles;
+
+/// The declared signature of `nve/noforce`.
+pub const NOFORCE: Spec = style(
+    "fix",
+    "nve/noforce",
+    "fix ID GROUP nve/noforce",
+    &[],
+    "positions advance with the velocities; forces leave velocities unchanged",
+);
+
+/// The declared signature of `nve`.
+pub const PLAIN: Spec = style(
+    "fix",
+    "nve",
+    "fix ID GROUP nve",
+    &[],
+    "velocity-Verlet integration of positions and velocities (no rotation)",
+);
+
+/// `fix nve/noforce`: x += dt v in `initial_integrate` (LIGGGHTS's; there is no final step).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NveNoforce;
+
+impl FixStyle for NveNoforce {
+    fn name(&self) -> &str {
+        "nve/noforce"
+    }
+
+    fn initial_integrate(&mut self, p: &mut Particles, at: &FixStep) {
+        for i in 0..p.len() {
+            if p.mask[i] & at.group != 0 {
+                for d in 0..3 {
+                    p.x[i][d] += at.dt * p.v[i][d];
+                }
+            }
+        }
+    }
+}
+
+/// `fix nve`: half-kick and drift, then the second half-kick (angular velocities untouched).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Nve;
+
+impl FixStyle for Nve {
+    fn name(&self) -> &str {
+        "nve"
+    }
+
+    /// Half-kick v with the force, then drift x by a full step.
+    fn initial_integrate(&mut self, p: &mut Particles, at: &FixStep) {
+        let dtf = 0.5 * at.dt;
+        for i in 0..p.len() {
+            if p.mask[i] & at.group != 0 {
+                let dtfm = dtf / p.mass[i];
+                for d in 0..3 {
+                    p.v[i][d] += dtfm * p.f[i][d];
+                }
+                for d in 0..3 {
+                    p.x[i][d] += at.dt * p.v[i][d];
+                }
+            }
+        }
+    }
+
+    /// The second half-kick.
+    fn final_integrate(&mut self, p: &mut Particles, at: &FixStep) {
+        let dtf = 0.5 * at.dt;
+        for i in 0..p.len() {
+            if p.mask[i] & at.group != 0 {
+                let dtfm = dtf / p.mass[i];
+                for d in 0..3 {
+                    p.v[i][d] += dtfm * p.f[i][d];
+                }
+            }
+        }
+    }
+}
 
 /// `fix ID GROUP nve/noforce`: positions follow velocities, forces are ignored.
-pub fn noforce(a: &Args, _ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn noforce(a: &Args, _ctx: &mut Ctx, _fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     if a.len() != 3 {
         return Err(a.error(3, "Illegal fix nve/noforce command"));
     }
-    Ok(FixKind::NveNoforce)
+    Ok(Box::new(NveNoforce))
 }
 
 /// `fix ID GROUP nve/sphere`: positions, velocities and angular velocities of spheres.
@@ -26,9 +106,9 @@ pub fn sphere(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, Command
 }
 
 /// `fix ID GROUP nve`: positions and velocities (angular velocities left alone).
-pub fn plain(a: &Args, _ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn plain(a: &Args, _ctx: &mut Ctx, _fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     if a.len() != 3 {
         return Err(a.error(3, "Illegal fix nve command"));
     }
-    Ok(FixKind::Nve)
+    Ok(Box::new(Nve))
 }

@@ -29,8 +29,16 @@ fn wiggle_velocity_after_one_period_is_a_omega() {
     for step in 1..=200 {
         initial_integrate(&mut fixes, &mut p, step, dt, &domain);
         p.f[0] = [0.0; 3];
-        post_force(&mut fixes, &mut p, dt, true, (0, 0.0), false);
-        final_integrate(&mut fixes, &mut p, dt, &domain);
+        post_force(
+            &mut fixes,
+            &mut p,
+            (step, &domain),
+            dt,
+            true,
+            (0, 0.0),
+            false,
+        );
+        final_integrate(&mut fixes, &mut p, step, dt, &domain);
     }
     assert!((p.v[0][2] - a * omega).abs() < 1e-9);
     assert!((p.x[0][2] - 1.0).abs() < 1e-12);
@@ -69,6 +77,43 @@ fn a_moved_atom_stays_at_the_image_nearest_its_old_position() {
     assert!((p.x[0][2] - (0.5 + 1e-3 * (1e-2f64).sin())).abs() < 1e-15);
 }
 
+/// A module style in the test: f -= gamma v.
+struct Drag(f64);
+
+impl FixStyle for Drag {
+    fn name(&self) -> &str {
+        "drag"
+    }
+
+    fn post_force(&mut self, p: &mut Particles, at: &FixStep) {
+        for i in (0..p.len()).filter(|&i| p.mask[i] & at.group != 0) {
+            for d in 0..3 {
+                p.f[i][d] -= self.0 * p.v[i][d];
+            }
+        }
+    }
+}
+
+/// A module style in the test: force and torque zero, the particles held still.
+struct Hold;
+
+impl FixStyle for Hold {
+    fn name(&self) -> &str {
+        "hold"
+    }
+
+    fn post_force(&mut self, p: &mut Particles, at: &FixStep) {
+        for i in (0..p.len()).filter(|&i| p.mask[i] & at.group != 0) {
+            p.f[i] = [0.0; 3];
+            p.torque[i] = [0.0; 3];
+        }
+    }
+
+    fn holds_still(&self) -> bool {
+        true
+    }
+}
+
 #[test]
 fn post_force_order_and_freeze() {
     let mut p = Particles::default();
@@ -88,7 +133,7 @@ fn post_force_order_and_freeze() {
             region: None,
             resolved: Vec::new(),
         })),
-        mk(FixKind::Viscous(vec![0.5; 2])),
+        mk(FixKind::Style(Box::new(Drag(0.5)))),
         mk(FixKind::SetForce(ForceFix {
             values: [
                 ForceValue::Null,
@@ -100,16 +145,26 @@ fn post_force_order_and_freeze() {
         })),
     ];
     let mut fixes = fixes;
-    post_force(&mut fixes, &mut p, 0.1, true, (0, 0.0), false);
+    post_force(
+        &mut fixes,
+        &mut p,
+        (0, &Domain::default()),
+        0.1,
+        true,
+        (0, 0.0),
+        false,
+    );
     assert_eq!(p.f[0], [0.5, 7.0, 3.0]);
     post_force(
-        &mut [mk(FixKind::Freeze)],
+        &mut [mk(FixKind::Style(Box::new(Hold)))],
         &mut p,
+        (0, &Domain::default()),
         0.1,
         true,
         (0, 0.0),
         false,
     );
     assert_eq!((p.f[0], p.torque[0]), ([0.0; 3], [0.0; 3]));
-    assert_eq!(frozen_groups(&[mk(FixKind::Freeze)]), 1);
+    assert_eq!(frozen_groups(&[mk(FixKind::Style(Box::new(Hold)))]), 1);
+    assert_eq!(frozen_groups(&[mk(FixKind::Style(Box::new(Drag(0.5))))]), 0);
 }

@@ -597,6 +597,7 @@ impl Simulation {
         fixes::post_force(
             &mut self.fixes,
             &mut self.particles,
+            (self.step, &self.domain),
             self.dt,
             update,
             list,
@@ -665,8 +666,7 @@ impl Simulation {
         self.neighbor.cutneighmax = self.liggghts_cutneighmax();
         self.check_run_init()?;
         crate::engine::buoyancy::check(&self.fixes)?;
-        self.setup_momentum();
-        self.setup_nve_limit();
+        self.setup_fix_styles();
         self.setup_displacements();
         self.accel.settle_threads();
         if self.accel.fast {
@@ -790,7 +790,13 @@ impl Simulation {
             let tally = self.virial_wanted(last);
             self.compute_forces(true, tally, vars)?;
             self.guard_forces()?;
-            fixes::final_integrate(&mut self.fixes, &mut self.particles, self.dt, &self.domain);
+            fixes::final_integrate(
+                &mut self.fixes,
+                &mut self.particles,
+                self.step,
+                self.dt,
+                &self.domain,
+            );
             self.liquid_final_integrate();
             self.mesh_stress_phase(StressPhase::EndOfStep)?;
             self.servo_final_integrate();

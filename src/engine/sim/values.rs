@@ -20,9 +20,15 @@ impl Simulation {
                         out(&format!("WARNING: {m}\n"));
                     }
                 }
-                FixKind::Momentum(m) if step % m.every == 0 => {
-                    m.apply(&mut self.particles, fix.group, &self.domain);
-                }
+                FixKind::Style(s) => s.end_of_step(
+                    &mut self.particles,
+                    &fixes::FixStep {
+                        group: fix.group,
+                        step,
+                        dt,
+                        domain: &self.domain,
+                    },
+                ),
                 FixKind::Tracer(t) if step % t.every == 0 => {
                     t.end_of_step(&mut self.particles, fix.group, &self.regions, step);
                 }
@@ -115,8 +121,7 @@ impl Simulation {
             }
             (FixKind::Buoyancy(b), Some(i @ 1..=3)) => Ok(b.total[i - 1]),
             (FixKind::Tracer(t), None) => Ok(t.scalar()),
-            (FixKind::NveLimit(n), None) => Ok(n.count as f64),
-            (FixKind::AveForce(a), Some(i @ 1..=3)) => Ok(a.original[i - 1]),
+            (FixKind::Style(s), i) if s.value(i).is_some() => Ok(s.value(i).unwrap_or(0.0)),
             _ => Err(format!("fix {id} ({}) has no such value", fix.style).into()),
         }
     }

@@ -1,0 +1,134 @@
+//! Fix styles as modules: [`FixStyle`] is what a style may do in LIGGGHTS's phases of a run,
+//! each hook a no-op unless the style overrides it. The engine calls the hooks of every fix
+//! held as [`FixKind::Style`](super::FixKind::Style) where the phase runs, in the order the
+//! fixes were defined, interleaved with the other fixes of that phase exactly as LIGGGHTS
+//! orders a phase (Modify's lists are in fix order). A hook is called once per fix and
+//! phase, never per particle: a style loops over the particles itself.
+//!
+//! A style is one file under `commands/fix/` (its arguments, its state, this trait) and one
+//! row in that folder's table.
+
+use crate::engine::domain::Domain;
+use crate::engine::error::EngineError;
+use crate::engine::particles::Particles;
+use crate::engine::sim::Simulation;
+
+/// What a phase hook is told about the fix and the step.
+#[derive(Debug, Clone, Copy)]
+pub struct FixStep<'a> {
+    /// Group bits of the fix (particle `i` is in the group when `p.mask[i] & group != 0`).
+    pub group: u32,
+    /// The step being made (at `setup`: the step the run starts from).
+    pub step: i64,
+    /// The time step (time).
+    pub dt: f64,
+    /// The box (for unwrapping positions across periodic faces).
+    pub domain: &'a Domain,
+}
+
+/// The shape of a style's per-atom values (`f_ID` / `f_ID[N]` in dumps, atom-style
+/// variables and computes that read fixes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PerAtomShape {
+    /// No per-atom values.
+    None,
+    /// One value per atom, read as `f_ID` (LIGGGHTS's `size_peratom_cols` 0).
+    Vector,
+    /// This many columns per atom, read as `f_ID[1..N]`.
+    Array(usize),
+}
+
+/// A fix style: the phases it hooks and the values it offers. Every hook has a default that
+/// does nothing (or offers nothing), so a style writes only what it does.
+pub trait FixStyle: Send {
+    /// The style's name as decks write it (`viscous`).
+    fn name(&self) -> &str;
+
+    /// LIGGGHTS's `init` checks at the start of every run (and of a dry run's `run`): an
+    /// error stops the run with LIGGGHTS's message. `dimension` is 2 or 3.
+    fn check(&self, _p: &Particles, _group: u32, _dimension: u32) -> Result<(), EngineError> {
+        Ok(())
+    }
+
+    /// At the start of every run, before the setup force evaluation: state the style keeps
+    /// for the run (LIGGGHTS's `init`/`setup` bookkeeping).
+    fn setup(&mut self, _p: &Particles, _at: &FixStep) {}
+
+    /// `initial_integrate`: the first half of a velocity-Verlet step (before the forces).
+    fn initial_integrate(&mut self, _p: &mut Particles, _at: &FixStep) {}
+
+    /// `post_force`: after the pair and wall forces (also in the setup force evaluation, as
+    /// LIGGGHTS's `setup` of force fixes runs their `post_force`).
+    fn post_force(&mut self, _p: &mut Particles, _at: &FixStep) {}
+
+    /// `final_integrate`: the second half of the step (after the forces).
+    fn final_integrate(&mut self, _p: &mut Particles, _at: &FixStep) {}
+
+    /// `end_of_step`: after the step, before output (the style decides its own interval).
+    fn end_of_step(&mut self, _p: &mut Particles, _at: &FixStep) {}
+
+    /// The global value `f_ID` (index None) or `f_ID[i]` (1-based) for thermo, variables and
+    /// `fix ave/time`; None when the style has no such value.
+    fn value(&self, _index: Option<usize>) -> Option<f64> {
+        None
+    }
+
+    /// The shape of the per-atom values [`FixStyle::per_atom`] gives.
+    fn per_atom_shape(&self) -> PerAtomShape {
+        PerAtomShape::None
+    }
+
+    /// The per-atom values, row by row in particle order (one row of the shape's width per
+    /// particle).
+    fn per_atom(&self, _p: &Particles) -> Vec<f64> {
+        Vec::new()
+    }
+
+    /// The global state written to restart files (None: the style writes none).
+    fn restart_state(&self) -> Option<Vec<u8>> {
+        None
+    }
+
+    /// Take the state a restart file holds for this fix (its ID and style matched).
+    fn restore_state(&mut self, _state: &[u8]) -> Result<(), EngineError> {
+        Err(EngineError::Unsupported(format!(
+            "fix {} taking its state from a restart file",
+            self.name()
+        )))
+    }
+
+    /// Whether the style holds its group's particles still (`fix freeze`: contacts treat
+    /// them as infinitely heavy).
+    fn holds_still(&self) -> bool {
+        false
+    }
+
+    /// Whether the style may evaluate variables or computes inside a step (so per-atom
+    /// computes must be current on every step).
+    fn reads_computes(&self) -> bool {
+        false
+    }
+}
+
+impl Simulation {
+    /// The `setup` hook of every module fix style, in fix order, at the start of a run.
+    pub(crate) fn setup_fix_styles(&mut self) {
+        let at = FixStep {
+            group: 0,
+            step: self.step,
+            dt: self.dt,
+            domain: &self.domain,
+        };
+        for fix in &mut self.fixes {
+            if let super::FixKind::Style(s) = &mut fix.kind {
+                s.setup(
+                    &self.particles,
+                    &FixStep {
+                        group: fix.group,
+                        ..at
+                    },
+                );
+            }
+        }
+    }
+}

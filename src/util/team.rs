@@ -218,7 +218,8 @@ fn worker(s: &Shared, me: usize) {
         if spins.is_multiple_of(256) && idle_since.elapsed() > SPIN {
             s.parked[me].store(true, SeqCst);
             let now = s.state.load(SeqCst);
-            if !(now & 1 == 1 && now >> 1 != seen) && !s.stop.load(SeqCst) {
+            let waiting = now & 1 == 1 && now >> 1 != seen;
+            if !waiting && !s.stop.load(SeqCst) {
                 std::thread::park_timeout(Duration::from_millis(100));
             }
             s.parked[me].store(false, SeqCst);

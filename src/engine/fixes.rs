@@ -310,6 +310,8 @@ pub enum FixKind {
     AveSpatial(Box<crate::engine::ave_spatial::AveSpatial>),
     /// `store/state`: per-particle snapshots (f_ID, f_ID[N]).
     StoreState(Box<crate::engine::store_state::StoreState>),
+    /// `fix deform`: the box changes every N steps.
+    Deform(Box<crate::engine::deform::Deform>),
 }
 
 impl FixKind {

@@ -12,6 +12,7 @@ pub mod clumps;
 pub mod computes;
 pub mod contact;
 pub mod decomp;
+pub mod deform;
 pub mod displacement;
 pub mod error;
 pub mod extras;

@@ -324,6 +324,7 @@ pub const SPECS: &[Spec] = &[
     style("region", "prism", "region ID prism XLO XHI YLO YHI ZLO ZHI XY XZ YZ", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "a parallelepiped (length)"),
     style("region", "sphere", "region ID sphere X Y Z RADIUS", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "a sphere (length; RADIUS may be v_NAME)"),
     style("region", "union", "region ID union N REGION ...", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside")], "the union of regions"),
+    style("region", "wedge", "region ID wedge axis x|y|z center C1 C2 radius R bounds LO HI angle0 A0 angle DA", &[kw("side", &[arg("in|out", Value::OneOf(&["in", "out"]))], "inside or outside"), kw("units", &[arg("box|lattice", Value::OneOf(&["box", "lattice"]))], "lengths in box or lattice units")], "the part of a cylinder between two half-planes through its axis, from angle A0 over DA degrees (length; LO, HI may be INF or EDGE)"),
     command("reset_timestep N", "set the step counter"),
     command("restart 0 | restart N ROOT | restart N FILE1 FILE2", "write restart files every N steps"),
     with(command("run N", "run N time steps"), &[

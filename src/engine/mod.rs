@@ -43,6 +43,7 @@ pub mod planar;
 pub mod procmap;
 pub mod region;
 pub mod region_motion;
+pub mod region_wedge;
 pub mod restart_fixes;
 pub mod restart_state;
 pub mod rigid_body;

@@ -130,13 +130,10 @@ fn style_of(a: &Args, i: usize) -> Result<(Style, usize), CommandError> {
             };
             (Style::Variable(name(i + 2)?, name(i + 3)?), 4)
         }
-        _ => {
-            return Err(a.keyword_error(
+        other => {
+            return Err(a.error(
                 i + 1,
-                &[
-                    "final", "delta", "scale", "vel", "erate", "trate", "volume", "wiggle",
-                    "variable",
-                ],
+                format!("{ILLEGAL}: unknown style '{other}' (expected final, delta, scale, vel, erate, trate, volume, wiggle or variable)"),
             ))
         }
     };
@@ -173,7 +170,12 @@ fn options(a: &Args, mut i: usize) -> Result<(Remap, bool), CommandError> {
                     return Err(a.error(i + 1, ILLEGAL));
                 }
             }
-            _ => return Err(a.keyword_error(i, &["remap", "flip", "units"])),
+            other => {
+                return Err(a.error(
+                    i,
+                    format!("{ILLEGAL}: unknown keyword '{other}' (expected remap, flip or units)"),
+                ))
+            }
         }
         i += 2;
     }

@@ -350,10 +350,10 @@ impl Deform {
 /// Carry `x` from box `old` to box `new` through its fractional coordinates (LIGGGHTS's
 /// `x2lamda` in the old box, `lamda2x` in the new), every dimension.
 pub fn remap_position(x: &mut [f64; 3], old: BoxNow, new: BoxNow) {
-    for d in 0..3 {
+    for (d, xd) in x.iter_mut().enumerate() {
         let inv = 1.0 / (old.hi[d] - old.lo[d]);
-        let lamda = inv * (x[d] - old.lo[d]);
-        x[d] = (new.hi[d] - new.lo[d]) * lamda + new.lo[d];
+        let lamda = inv * (*xd - old.lo[d]);
+        *xd = (new.hi[d] - new.lo[d]) * lamda + new.lo[d];
     }
 }
 
@@ -364,72 +364,6 @@ pub fn rescale_shift(shift: &mut [f64; 3], old: [f64; 3], new: [f64; 3]) {
             let k = (shift[d] / old[d]).round();
             shift[d] = k * new[d];
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn unit() -> BoxNow {
-        BoxNow {
-            lo: [0.0; 3],
-            hi: [1.0, 2.0, 4.0],
-        }
-    }
-
-    #[test]
-    fn ramps_and_volume() {
-        let styles = [Style::Erate(-0.5), Style::Volume, Style::Final(0.0, 2.0)];
-        let mut f = Deform::new(1, styles, Remap::X, unit()).unwrap();
-        assert_eq!(f.dims[1].link, Some(Link::OneFromTwo(2, 0)));
-        f.init(unit(), false, 1.0).unwrap();
-        assert_eq!(f.dims[0].stop, (0.25, 0.75));
-        assert_eq!(f.h_rate[0], -0.5);
-        f.targets(unit(), 0.5, 0.5, &mut |_| unreachable!())
-            .unwrap();
-        assert_eq!(f.dims[0].target, (0.125, 0.875));
-        assert_eq!(f.dims[2].target, (0.0, 3.0));
-        // the volume (8) kept: y = 8 / (3 * 0.75)
-        let y = len(f.dims[1].target);
-        assert!((y - 8.0 / 2.25).abs() < 1e-15);
-    }
-
-    #[test]
-    fn invalid_volume_and_negative_erate() {
-        let styles = [Style::Volume, Style::None, Style::None];
-        assert!(Deform::new(1, styles, Remap::X, unit()).is_err());
-        let styles = [Style::Volume, Style::Volume, Style::Scale(2.0)];
-        let f = Deform::new(1, styles, Remap::X, unit()).unwrap();
-        assert_eq!(
-            f.dims[0].link,
-            Some(Link::TwoFromOne {
-                fixed: 1,
-                dynamic: 2
-            })
-        );
-        let mut f = Deform::new(
-            1,
-            [Style::Erate(-3.0), Style::None, Style::None],
-            Remap::X,
-            unit(),
-        )
-        .unwrap();
-        assert!(f.init(unit(), false, 1.0).is_err());
-    }
-
-    #[test]
-    fn shifts_follow_the_box() {
-        let mut s = [2.0, 0.0, -4.0];
-        rescale_shift(&mut s, [2.0, 1.0, 4.0], [1.5, 1.0, 3.0]);
-        assert_eq!(s, [1.5, 0.0, -3.0]);
-        let mut x = [0.5, 1.0, 2.0];
-        let new = BoxNow {
-            lo: [0.0; 3],
-            hi: [2.0, 2.0, 2.0],
-        };
-        remap_position(&mut x, unit(), new);
-        assert_eq!(x, [1.0, 1.0, 1.0]);
     }
 }
 
@@ -568,5 +502,71 @@ impl crate::engine::sim::Simulation {
             rescale_shift(&mut m.pair.shift, l_old, l_new);
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit() -> BoxNow {
+        BoxNow {
+            lo: [0.0; 3],
+            hi: [1.0, 2.0, 4.0],
+        }
+    }
+
+    #[test]
+    fn ramps_and_volume() {
+        let styles = [Style::Erate(-0.5), Style::Volume, Style::Final(0.0, 2.0)];
+        let mut f = Deform::new(1, styles, Remap::X, unit()).unwrap();
+        assert_eq!(f.dims[1].link, Some(Link::OneFromTwo(2, 0)));
+        f.init(unit(), false, 1.0).unwrap();
+        assert_eq!(f.dims[0].stop, (0.25, 0.75));
+        assert_eq!(f.h_rate[0], -0.5);
+        f.targets(unit(), 0.5, 0.5, &mut |_| unreachable!())
+            .unwrap();
+        assert_eq!(f.dims[0].target, (0.125, 0.875));
+        assert_eq!(f.dims[2].target, (0.0, 3.0));
+        // the volume (8) kept: y = 8 / (3 * 0.75)
+        let y = len(f.dims[1].target);
+        assert!((y - 8.0 / 2.25).abs() < 1e-15);
+    }
+
+    #[test]
+    fn invalid_volume_and_negative_erate() {
+        let styles = [Style::Volume, Style::None, Style::None];
+        assert!(Deform::new(1, styles, Remap::X, unit()).is_err());
+        let styles = [Style::Volume, Style::Volume, Style::Scale(2.0)];
+        let f = Deform::new(1, styles, Remap::X, unit()).unwrap();
+        assert_eq!(
+            f.dims[0].link,
+            Some(Link::TwoFromOne {
+                fixed: 1,
+                dynamic: 2
+            })
+        );
+        let mut f = Deform::new(
+            1,
+            [Style::Erate(-3.0), Style::None, Style::None],
+            Remap::X,
+            unit(),
+        )
+        .unwrap();
+        assert!(f.init(unit(), false, 1.0).is_err());
+    }
+
+    #[test]
+    fn shifts_follow_the_box() {
+        let mut s = [2.0, 0.0, -4.0];
+        rescale_shift(&mut s, [2.0, 1.0, 4.0], [1.5, 1.0, 3.0]);
+        assert_eq!(s, [1.5, 0.0, -3.0]);
+        let mut x = [0.5, 1.0, 2.0];
+        let new = BoxNow {
+            lo: [0.0; 3],
+            hi: [2.0, 2.0, 2.0],
+        };
+        remap_position(&mut x, unit(), new);
+        assert_eq!(x, [1.0, 1.0, 1.0]);
     }
 }

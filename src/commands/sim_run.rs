@@ -598,11 +598,15 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.error(0, "Run command stop value is before end of run"));
     }
     super::material_check::validate(a, ctx)?;
+    super::fix::check_deform_variables(ctx).map_err(|e| a.engine_error(0, e))?;
     crate::engine::temperature::setup_counts(ctx.sim);
     if ctx.sys.mode == Mode::Check {
         // a dry run validates the deck but never steps: it makes LIGGGHTS's init checks, keeps
         // the restart files the run would write, and moves the step count to the run's end
         ctx.sim.check_run().map_err(|e| a.engine_error(0, e))?;
+        let first = ctx.sim.step;
+        let bounds = (start.unwrap_or(first), stop.unwrap_or(first + nsteps));
+        (ctx.sim.deform_ramp(first, bounds)).map_err(|e| a.engine_error(0, e))?;
         ctx.sim.init_heat().map_err(|m| a.error(0, &m))?;
         ctx.sim.init_liquid().map_err(|m| a.error(0, &m))?;
         if let Some(m) = ctx.sim.new_margin() {

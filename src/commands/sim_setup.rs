@@ -294,6 +294,13 @@ fn create_box(a: &Args, ctx: &mut Ctx) -> Result {
         .regions
         .extent(index)
         .ok_or_else(|| a.error(1, "Create_box region does not support a bounding box"))?;
+    // LIGGGHTS's wedge-shaped domain (`-domain wedge`) is not in regolith's command line
+    if ctx.sim.regions.list[index].style == "wedge" {
+        return Err(a.error(
+            1,
+            "Create_box with wedge region requires you to start with the '-domain wedge' command line option",
+        ));
+    }
     // LIGGGHTS's check, and a length a double can hold
     if let Some(d) = (0..3).find(|&d| !(lo[d] < hi[d] && (hi[d] - lo[d]).is_finite())) {
         return Err(a.error(

@@ -297,6 +297,8 @@ pub enum FixKind {
     StoreState(Box<crate::engine::store_state::StoreState>),
     /// A style written as a module (see [`FixStyle`]): its hooks run in each phase.
     Style(Box<dyn FixStyle>),
+    /// `fix deform`: the box changes every N steps.
+    Deform(Box<crate::engine::deform::Deform>),
 }
 
 impl FixKind {

@@ -16,6 +16,7 @@ pub const STYLES: &[&str] = &[
     "prism",
     "sphere",
     "union",
+    "wedge",
 ];
 
 /// Stand-in for an infinite bound (`INF`), as LIGGGHTS uses.
@@ -62,6 +63,8 @@ pub enum Shape {
     Union(Vec<usize>),
     /// Strictly inside one of the tetrahedra of a `mesh/tet` file (the mesh lies in the box).
     TetMesh(Box<crate::engine::tet_mesh::TetMesh>),
+    /// A wedge of a cylinder (`region wedge`).
+    Wedge(Box<crate::engine::region_wedge::Wedge>),
 }
 
 /// A named region.
@@ -158,6 +161,9 @@ impl Regions {
         }
         if !STYLES.contains(&style) {
             return Err(EngineError::Unsupported(format!("region {style}")));
+        }
+        if style == "wedge" {
+            return self.define_wedge(args, ctx);
         }
         let nshape = match style {
             "block" => 6,
@@ -447,6 +453,7 @@ impl Regions {
             Shape::Intersect(members) => members.iter().all(|&m| self.matches(m, x)),
             Shape::Union(members) => members.iter().any(|&m| self.matches(m, x)),
             Shape::TetMesh(mesh) => mesh.inside(x),
+            Shape::Wedge(w) => w.inside(x),
         }
     }
 
@@ -481,6 +488,7 @@ impl Regions {
             } => Some(axial_box(*axis, *c1, *c2, radlo.max(*radhi), *lo, *hi)),
             Shape::Prism { .. } | Shape::Plane { .. } => None,
             Shape::TetMesh(mesh) => Some((mesh.lo, mesh.hi)),
+            Shape::Wedge(w) => w.bounds,
             Shape::Intersect(m) => {
                 let boxes: Vec<_> = m.iter().filter_map(|&i| self.extent(i)).collect();
                 let first = *boxes.first()?;
@@ -597,10 +605,10 @@ impl Regions {
 }
 
 /// A region's interior flag, lattice scale and motion.
-type Options = (bool, [f64; 3], Option<crate::engine::region_motion::Motion>);
+pub(crate) type Options = (bool, [f64; 3], Option<crate::engine::region_motion::Motion>);
 
 /// Trailing `units`, `side`, `seed`, `volume_limit`, `move`, `rotate` options.
-fn options(words: &[&str], ctx: RegionContext) -> Result<Options, EngineError> {
+pub(crate) fn options(words: &[&str], ctx: RegionContext) -> Result<Options, EngineError> {
     let mut interior = true;
     let mut lattice = false;
     // the motion keywords, parsed once the scale is known

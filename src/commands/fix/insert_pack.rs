@@ -61,6 +61,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                             r.shape,
                             crate::engine::region::Shape::Block { .. }
                                 | crate::engine::region::Shape::Cylinder { .. }
+                                | crate::engine::region::Shape::Wedge(_)
                         )
                 };
                 // a tet region (either side: LIGGGHTS refuses `side out` when it draws)
@@ -76,7 +77,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 if !ok {
                     return Err(a.unsupported(
                         i + 1,
-                        "fix insert/pack into regions other than blocks, cylinders and their intersections (side in) and mesh/tet",
+                        "fix insert/pack into regions other than blocks, cylinders, wedges and their intersections (side in) and mesh/tet",
                     ));
                 }
                 region = Some((k, r.to_string()));
@@ -243,6 +244,9 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         )
     {
         return Err(a.unsupported(2, &format!("fix {style} all_in yes in a mesh/tet region")));
+    }
+    if all_in && ctx.sim.regions.has_wedge(region) {
+        return Err(a.unsupported(2, &format!("fix {style} all_in yes in a wedge region")));
     }
     let mut mass_rate = None;
     let rate = if rate_style {

@@ -9,6 +9,7 @@ mod ave_time;
 mod aveforce;
 mod buoyancy;
 mod check_timestep;
+mod deform;
 mod distribution;
 mod enforce2d;
 mod force;
@@ -103,6 +104,7 @@ pub const STYLES: &[(&str, Build)] = &[
     ("store/state", store_state::build),
     ("ave/spatial", ave_spatial::build),
     ("ave/histo", ave_histo::build),
+    ("deform", deform::build),
 ];
 
 /// Builds a module fix style (see [`FixStyle`]) from the `fix` command's arguments.
@@ -285,6 +287,8 @@ pub fn define(a: &Args, ctx: &mut Ctx, styles: &[(&str, Build)]) -> Result<(), C
     }
     Ok(())
 }
+
+pub(crate) use deform::check_variables as check_deform_variables;
 
 /// The compute a `c_ID` input of fix `style` names (word `i`), or LIGGGHTS's error.
 pub(crate) fn input_compute<'c>(

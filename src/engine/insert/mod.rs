@@ -553,6 +553,9 @@ impl InsertPack {
         if tet_mesh.is_some() {
             self.tet_checks(regions, w)?;
         }
+        if self.overlapcheck {
+            regions.wedge_insert_check(self.region, w.x, w.periodic)?;
+        }
         // LIGGGHTS's reach: the largest sphere (a clump's largest member, not its bounding
         // sphere); with clumps the box around the region grows by two bounding radii
         let reach = dist.max_sphere_radius();

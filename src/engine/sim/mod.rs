@@ -593,7 +593,7 @@ impl Simulation {
         let list = (self.list.builds, self.neighbor.skin);
         // LIGGGHTS's mesh lists use the full skin when a mesh moves or the box can change
         // (a moving mesh's own lists use the full skin as well)
-        let moving_skin = self.domain.shrinks();
+        let moving_skin = self.box_changes();
         fixes::post_force(
             &mut self.fixes,
             &mut self.particles,
@@ -665,6 +665,7 @@ impl Simulation {
         let started = std::time::Instant::now();
         self.neighbor.cutneighmax = self.liggghts_cutneighmax();
         self.check_run_init()?;
+        self.setup_deform(first)?;
         crate::engine::buoyancy::check(&self.fixes)?;
         self.setup_fix_styles();
         self.setup_displacements();
@@ -732,7 +733,7 @@ impl Simulation {
         self.setup_averages(vars)?;
         self.thermo.run_start = first;
         self.thermo.run_last = last;
-        self.thermo.prepare_run(self.domain.shrinks());
+        self.thermo.prepare_run(self.box_changes());
         let thermo_file = &mut self.extras.thermo_file;
         self.thermo.header(&mut |s: &str| {
             out(s);

@@ -162,7 +162,20 @@ impl Simulation {
                 let remaining = lost.iter().filter(|&&l| !l).count();
                 return Err(lost_atoms_message(p, &lost, remaining, self.step).into());
             }
-            p.retain_by(&lost);
+            // as LIGGGHTS's exchange: dimension by dimension, each lost atom's slot taken by
+            // the last atom (the order decides which atom of a pair is LIGGGHTS's i)
+            for d in 0..3 {
+                let out: Vec<bool> = (0..p.len())
+                    .map(|i| {
+                        let x = p.x[i];
+                        let unplaced = !x.iter().all(|c| c.is_finite());
+                        let outside = !self.domain.periodic(d)
+                            && (x[d] < self.domain.lo[d] || x[d] >= self.domain.hi[d]);
+                        outside || (d == 0 && unplaced)
+                    })
+                    .collect();
+                p.remove_filling_from_last(&out);
+            }
         }
         self.drop_broken_clumps();
         Ok(())
@@ -445,7 +458,7 @@ impl Simulation {
         }
         let mut trigger = 0.5 * n.skin;
         let periodic = (0..3).any(|d| self.domain.periodic(d));
-        if self.domain.shrinks() && periodic {
+        if self.box_changes() && periodic {
             let dist = |a: [f64; 3], b: [f64; 3]| {
                 ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
             };

@@ -6,7 +6,7 @@ use super::*;
 impl Simulation {
     pub(super) fn insert_world(&self) -> (Vec<[f64; 3]>, [bool; 3], bool) {
         let periodic = [0, 1, 2].map(|d| self.domain.periodic(d));
-        (self.particles.x.clone(), periodic, self.domain.shrinks())
+        (self.particles.x.clone(), periodic, self.box_changes())
     }
 
     /// First run's setup of the `fix insert/stream` at `k`: face normal, normal velocity,

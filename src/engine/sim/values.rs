@@ -49,6 +49,7 @@ impl Simulation {
                     use crate::engine::store_state::Snapshot;
                     self.store_state(k, Snapshot::All, vars)?
                 }
+                FixKind::Deform(d) if step % d.every == 0 => self.deform_step(k, vars)?,
                 FixKind::Print(pf) if step % pf.every == 0 => {
                     let text = pf.text.clone();
                     let line = vars.substitute(self, &text)?;

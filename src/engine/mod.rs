@@ -2,6 +2,7 @@
 //! computes and the integrator. Commands in [`crate::commands`] configure it.
 
 pub mod accel;
+pub mod analysis_computes;
 pub mod ave_atom;
 pub mod ave_histo;
 pub mod ave_spatial;
@@ -18,6 +19,7 @@ pub mod extras;
 pub mod fix_columns;
 pub mod fixes;
 pub mod force_project;
+pub mod global_values;
 pub mod granular;
 pub mod heat;
 pub mod insert;
@@ -40,6 +42,7 @@ pub mod nve_limit;
 pub mod nve_noforce;
 pub mod planar;
 pub mod procmap;
+pub mod rdf;
 pub mod region;
 pub mod region_motion;
 pub mod restart_fixes;

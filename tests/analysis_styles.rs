@@ -1,7 +1,8 @@
 //! Analysis styles of researchers' decks (fix ave/time mode vector, compute rdf, gyration,
-//! pressure, pe/atom, slice, property/local): bad arguments get LIGGGHTS's error at their
-//! line, `check` and `run` agree, and what stays unfinished is refused alike by both.
-//! Their results are compared with LIGGGHTS by the compat decks rdf and analysis_computes.
+//! pressure, pe/atom, slice, property/local; fix spring/self): bad arguments get LIGGGHTS's
+//! error at their line, `check` and `run` agree, and what stays unfinished is refused alike
+//! by both. Their results are compared with LIGGGHTS by the compat decks rdf,
+//! analysis_computes and spring_self.
 
 use std::path::PathBuf;
 use std::process::{Command, Output};
@@ -92,6 +93,10 @@ const ERRORS: &[(&str, &str)] = &[
     ("compute q all property/local patom1 batom1", "Compute property/local cannot use these inputs together"),
     ("compute q all property/local btype", "Compute property/local for property that isn't allocated"),
     ("compute q all property/local foo", "Invalid keyword in compute property/local command"),
+    ("fix s all spring/self", "Illegal fix spring/self command"),
+    ("fix s all spring/self 0", "Illegal fix spring/self command"),
+    ("fix s all spring/self 1 q", "Illegal fix spring/self command"),
+    ("fix s all spring/self 1 xy z", "Illegal fix spring/self command"),
     // granular pair styles have no single(): LIGGGHTS refuses the pairs at the run's init
     (
         "compute q all property/local patom1 patom2 ptype1\ndump d all local 1 l.dump c_q[1] c_q[2]\nrun 1",
@@ -122,6 +127,10 @@ fn unfinished_parts_are_refused_by_check_and_run_alike() {
         (
             "compute q all slice 1 3 1 c_cm c_cm",
             "compute slice of several inputs (LIGGGHTS 3.8.0 fills only its first column): not supported yet",
+        ),
+        (
+            "fix s all spring/self 1 xz\nfix_modify s energy yes",
+            "fix_modify energy yes on fix spring/self (its energy in compute pe): not supported yet",
         ),
         (
             "compute q all rdf update_on_run_end yes 10",

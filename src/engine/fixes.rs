@@ -260,6 +260,8 @@ pub enum FixKind {
     Print(PrintFix),
     /// `fix ave/time` (scalar mode).
     AveTime(AveTime),
+    /// `fix spring/self`: particles tethered to their positions at definition.
+    SpringSelf(crate::engine::spring_self::SpringSelf),
     /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
     Mesh(Box<MeshFix>),
     /// `fix particletemplate/sphere`.
@@ -890,6 +892,7 @@ pub fn post_force(
             }
             FixKind::Project(pr) => pr.apply(p, g),
             FixKind::AveForce(av) => av.apply(p, g),
+            FixKind::SpringSelf(s) => s.apply(p, g),
             _ => {}
         }
     }

@@ -32,6 +32,7 @@ mod particle_template_multisphere;
 mod print;
 mod property_atom;
 mod property_global;
+mod spring_self;
 mod store_state;
 mod tracer;
 mod viscous;
@@ -108,6 +109,7 @@ pub const STYLES: &[(&str, Build)] = &[
     ("lineforce", lineforce::build),
     ("planeforce", lineforce::build),
     ("aveforce", aveforce::build),
+    ("spring/self", spring_self::build),
     ("ave/atom", ave_atom::build),
     ("store/state", store_state::build),
     ("ave/spatial", ave_spatial::build),

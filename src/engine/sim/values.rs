@@ -108,6 +108,7 @@ impl Simulation {
             (FixKind::Buoyancy(b), Some(i @ 1..=3)) => Ok(b.total[i - 1]),
             (FixKind::Tracer(t), None) => Ok(t.scalar()),
             (FixKind::NveLimit(n), None) => Ok(n.count as f64),
+            (FixKind::SpringSelf(s), None) => Ok(s.energy),
             (FixKind::AveForce(a), Some(i @ 1..=3)) => Ok(a.original[i - 1]),
             _ => Err(format!("fix {id} ({}) has no such value", fix.style).into()),
         }

@@ -36,5 +36,15 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         energy: 0.0,
     };
     spring.tether(&mut ctx.sim.particles, fix.bit);
+    // a restart file's tether points of this fix replace the current positions
+    if let Some(stored) = ctx.sim.restart_move_origins.get(&spring.slot) {
+        let p = &mut ctx.sim.particles;
+        let k = p.extra_index(&spring.slot, 3);
+        for i in 0..p.len() {
+            if let (true, Some(x)) = (p.mask[i] & fix.bit != 0, stored.get(&p.id[i])) {
+                p.extra[k].data[3 * i..3 * i + 3].copy_from_slice(x);
+            }
+        }
+    }
     Ok(FixKind::SpringSelf(spring))
 }

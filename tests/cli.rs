@@ -101,7 +101,7 @@ fn unsupported_feature_exits_3_and_check_lists_every_item() {
     let dir = scratch("unsupported");
     std::fs::write(
         dir.join("in.t"),
-        "atom_style granular\n# comment\nregion b block 0 1 0 1 0 1\ncreate_box 1 b\nfix ins all multisphere/break\npair_style gran model hertz tangential history cohesion washino/capillary/viscous\ncompute s all rdf 50\n",
+        "atom_style granular\n# comment\nregion b block 0 1 0 1 0 1\ncreate_box 1 b\nfix ins all multisphere/break\npair_style gran model hertz tangential history cohesion washino/capillary/viscous\ncompute s all centro/atom 12\n",
     )
     .unwrap();
     let out = regolith(&dir, &["-in", "in.t", "-log", "none"], None);
@@ -112,7 +112,7 @@ fn unsupported_feature_exits_3_and_check_lists_every_item() {
         text(&out.stdout),
         "in.t:5: fix multisphere/break: not supported yet\n\
          in.t:6: pair_style gran cohesion washino/capillary/viscous: not supported yet\n\
-         in.t:7: compute rdf: not supported yet\n"
+         in.t:7: compute centro/atom: not supported yet\n"
     );
 }
 
@@ -134,7 +134,7 @@ fn usage_errors_exit_2_with_suggestion() {
 #[test]
 fn check_follows_loops_once_and_includes() {
     let dir = scratch("loops");
-    std::fs::write(dir.join("in.inc"), "compute s all rdf 50\n").unwrap();
+    std::fs::write(dir.join("in.inc"), "compute s all centro/atom 12\n").unwrap();
     std::fs::write(
         dir.join("in.t"),
         "region b block 0 1 0 1 0 1\ncreate_box 1 b\nvariable a loop 1000\nlabel top\ninclude in.inc\nnext a\njump SELF top\nprint done\n",
@@ -143,7 +143,7 @@ fn check_follows_loops_once_and_includes() {
     let out = regolith(&dir, &["check", "in.t"], None);
     assert_eq!(
         text(&out.stdout),
-        "in.inc:1: compute rdf: not supported yet
+        "in.inc:1: compute centro/atom: not supported yet
 "
     );
     assert_eq!(out.status.code(), Some(3));
@@ -254,7 +254,7 @@ fn check_handles_lattice_regions_and_script_commands_in_unknown_branches() {
         "atom_style granular\nlattice sc 0.002\nregion b block 0 10 0 10 0 10 units lattice\n\
          create_box 1 b\nvariable s equal step\nlabel again\n\
          if \"${s} > 5\" then \"variable s delete\" \"jump SELF done\"\nlabel done\n\
-         compute r all rdf 50\n",
+         compute r all centro/atom 12\n",
     )
     .unwrap();
     let out = regolith(&dir, &["check", "in.t"], None);
@@ -262,7 +262,7 @@ fn check_handles_lattice_regions_and_script_commands_in_unknown_branches() {
     // commands inside the branch a dry run cannot decide are the interpreter's own
     assert_eq!(
         text(&out.stdout),
-        "in.t:9: compute rdf: not supported yet\n"
+        "in.t:9: compute centro/atom: not supported yet\n"
     );
     assert_eq!(out.status.code(), Some(3));
 }
@@ -423,7 +423,7 @@ fn check_without_a_deck_is_a_usage_error_and_check_reads_minus_in() {
     let dir = scratch("check_flags_first");
     std::fs::write(
         dir.join("in.t"),
-        "atom_style granular\nregion b block 0 1 0 1 0 1\ncreate_box 1 b\ncompute s all rdf 50\n",
+        "atom_style granular\nregion b block 0 1 0 1 0 1\ncreate_box 1 b\ncompute s all centro/atom 12\n",
     )
     .unwrap();
     // flags before the deck swallow it as -var values: nothing would be checked
@@ -435,6 +435,6 @@ fn check_without_a_deck_is_a_usage_error_and_check_reads_minus_in() {
     assert_eq!(out.status.code(), Some(3));
     assert_eq!(
         text(&out.stdout),
-        "in.t:4: compute rdf: not supported yet\n"
+        "in.t:4: compute centro/atom: not supported yet\n"
     );
 }

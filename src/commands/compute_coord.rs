@@ -27,15 +27,20 @@ pub fn build(a: &Args, ctx: &Ctx) -> Result<ComputeKind, CommandError> {
     } else if a.len() > 4 {
         coord.ranges.clear();
         for i in 4..a.len() {
-            coord.ranges.push(type_range(a, i, ntypes)?);
+            coord.ranges.push(type_range(a, i, ntypes, "coord/atom")?);
         }
     }
     Ok(ComputeKind::CoordAtom(Box::new(coord)))
 }
 
 /// A type range (`N`, `*`, `*N`, `N*`, `M*N`) at word `i`: out of 1..=ntypes is LIGGGHTS's
-/// bounds error, a reversed range the compute's own.
-fn type_range(a: &Args, i: usize, ntypes: u32) -> Result<(u32, u32), CommandError> {
+/// bounds error, a reversed range the compute's own (`compute STYLE`).
+pub(crate) fn type_range(
+    a: &Args,
+    i: usize,
+    ntypes: u32,
+    style: &str,
+) -> Result<(u32, u32), CommandError> {
     let w = a.word(i)?;
     match crate::util::numbers::bounds(w, ntypes as i64) {
         Ok((lo, hi)) => Ok((lo as u32, hi as u32)),
@@ -46,7 +51,7 @@ fn type_range(a: &Args, i: usize, ntypes: u32) -> Result<(u32, u32), CommandErro
                 ok(l) && ok(h)
             });
             Err(if reversed {
-                a.error(i, "Illegal compute coord/atom command")
+                a.error(i, format!("Illegal compute {style} command"))
             } else {
                 a.error(i, e)
             })

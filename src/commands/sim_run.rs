@@ -377,6 +377,8 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                     .ok_or_else(|| a.error(5 + k, "Could not find dump local compute ID"))?;
                 match c.kind {
                     crate::engine::computes::ComputeKind::PairGranLocal(_) => {}
+                    // refused at the run's init, as LIGGGHTS
+                    crate::engine::computes::ComputeKind::PropertyLocal => {}
                     // always a local array, even with one column
                     crate::engine::computes::ComputeKind::WallGranLocal { .. } => {
                         if index.is_none() {

@@ -158,6 +158,16 @@ impl Simulation {
             let name = match &c.kind {
                 ComputeKind::ContactAtom { .. } => "contact/atom",
                 ComputeKind::CoordAtom(_) => "coord/atom",
+                ComputeKind::Rdf(_) => "rdf",
+                ComputeKind::PropertyLocal => {
+                    return Err(if self.pair_selection.is_none() {
+                        "No pair style is defined for compute property/local"
+                    } else {
+                        "Pair style does not support compute property/local"
+                    }
+                    .to_string()
+                    .into())
+                }
                 _ => continue,
             };
             if self.pair_selection.is_none() {

@@ -68,6 +68,19 @@ pub enum ComputeKind {
     ErotateSphereAtom,
     /// `coord/atom`: partners within a cutoff per atom, one column per type range.
     CoordAtom(Box<crate::engine::neighbour_counts::CoordAtom>),
+    /// `rdf Nbin [itype jtype ...]`: g(r) and coord(r) per type pair, a global array.
+    Rdf(Box<crate::engine::rdf::Rdf>),
+    /// `gyration`: radius of gyration (length) and its tensor (area), unwrapped.
+    Gyration,
+    /// `pe/atom`: per-atom potential energy (energy); granular styles tally none, so 0.
+    PeAtom,
+    /// `slice`: every Nskip-th element of a global vector or array column.
+    Slice(Box<crate::engine::analysis_computes::Slice>),
+    /// `pressure`: kinetic and pair-virial pressure (pressure), scalar and tensor.
+    Pressure(Box<crate::engine::analysis_computes::Pressure>),
+    /// `property/local` of neighbour or pair inputs (patom1, ntype2, ...): LIGGGHTS 3.8.0's
+    /// granular pair styles have no `single()`, so a run refuses it at init.
+    PropertyLocal,
 }
 
 /// The reductions of `compute reduce`.
@@ -171,8 +184,14 @@ pub const STYLES: &[&str] = &[
     "erotate/sphere",
     "ke",
     "ke/atom",
+    "gyration",
     "pe",
+    "pe/atom",
+    "pressure",
+    "property/local",
+    "slice",
     "property/atom",
+    "rdf",
     "reduce",
     "stress/atom",
     "temp",
@@ -182,7 +201,7 @@ impl Compute {
     /// Number of per-atom values per particle (0 if the compute is not per-atom).
     pub fn per_atom_columns(&self) -> usize {
         match &self.kind {
-            ComputeKind::KeAtom | ComputeKind::ContactAtom { .. } => 1,
+            ComputeKind::KeAtom | ComputeKind::ContactAtom { .. } | ComputeKind::PeAtom => 1,
             ComputeKind::ErotateSphereAtom => 1,
             ComputeKind::DisplaceAtom(_) => 4,
             ComputeKind::StressAtom { .. } => 6,
@@ -199,7 +218,7 @@ impl Compute {
             ComputeKind::TracerCount(_) => 4,
             ComputeKind::Msd(_) => 4,
             ComputeKind::Reduce { inputs, .. } if inputs.len() > 1 => inputs.len(),
-            _ => 0,
+            kind => crate::engine::analysis_computes::vector_len(kind),
         }
     }
 
@@ -235,6 +254,9 @@ impl Compute {
                 inputs,
                 region,
             } if inputs.len() == 1 => self.reduce(sim, (*mode, *region), &inputs[0], vars)?,
+            ComputeKind::Gyration | ComputeKind::Pressure(_) => {
+                crate::engine::analysis_computes::scalar(self, sim, vars)?
+            }
             _ => {
                 return Err(format!(
                     "Compute {} ({}) does not calculate a scalar",
@@ -272,7 +294,7 @@ impl Compute {
                 inputs,
                 region,
             } => self.reduce(sim, (*mode, *region), &inputs[index - 1], vars),
-            _ => unreachable!("vector_len is 0"),
+            _ => crate::engine::analysis_computes::vector(self, index, sim, vars),
         }
     }
 
@@ -637,6 +659,7 @@ impl Compute {
                 crate::engine::neighbour_counts::contact_counts(sim, group, *skin, &mut values)
             }
             ComputeKind::CoordAtom(c) => c.counts(sim, group, &mut values),
+            ComputeKind::PeAtom => {} // no granular style tallies a potential energy
             _ => {
                 return Err(format!(
                     "Compute {} ({}) does not calculate per-atom values",

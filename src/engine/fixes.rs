@@ -255,6 +255,8 @@ pub enum FixKind {
     Print(PrintFix),
     /// `fix ave/time` (scalar mode).
     AveTime(AveTime),
+    /// `fix spring/self`: particles tethered to their positions at definition.
+    SpringSelf(crate::engine::spring_self::SpringSelf),
     /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
     Mesh(Box<MeshFix>),
     /// `fix particletemplate/sphere`.
@@ -870,6 +872,7 @@ pub fn post_force(
                     domain: at.1,
                 },
             ),
+            FixKind::SpringSelf(s) => s.apply(p, g),
             _ => {}
         }
     }

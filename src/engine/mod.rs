@@ -2,6 +2,7 @@
 //! computes and the integrator. Commands in [`crate::commands`] configure it.
 
 pub mod accel;
+pub mod analysis_computes;
 pub mod ave_atom;
 pub mod ave_histo;
 pub mod ave_spatial;
@@ -18,6 +19,7 @@ pub mod error;
 pub mod extras;
 pub mod fix_columns;
 pub mod fixes;
+pub mod global_values;
 pub mod granular;
 pub mod heat;
 pub mod insert;
@@ -38,6 +40,7 @@ pub mod neighbor;
 pub mod neighbour_counts;
 pub mod planar;
 pub mod procmap;
+pub mod rdf;
 pub mod region;
 pub mod region_motion;
 pub mod region_wedge;
@@ -45,6 +48,7 @@ pub mod restart_fixes;
 pub mod restart_state;
 pub mod rigid_body;
 pub mod sim;
+pub mod spring_self;
 pub mod store_state;
 pub mod temperature;
 pub mod tet_mesh;

@@ -51,3 +51,14 @@ pub fn omega(l: [f64; 3], t: [[f64; 3]; 3]) -> [f64; 3] {
     }
     [0, 1, 2].map(|r| inv[r][0] * l[0] + inv[r][1] * l[1] + inv[r][2] * l[2])
 }
+
+/// Total mass of the particles of `group` (kg), summed in particle order.
+pub fn group_mass(p: &crate::engine::particles::Particles, group: u32) -> f64 {
+    let mut m = 0.0;
+    for i in 0..p.len() {
+        if p.mask[i] & group != 0 {
+            m += p.mass[i];
+        }
+    }
+    m
+}

@@ -18,7 +18,7 @@ pub struct CoordAtom {
 }
 
 /// Whether `neigh_modify exclude` keeps particles `i` and `j` out of every list.
-fn excluded(sim: &Simulation, i: usize, j: usize) -> bool {
+pub(crate) fn excluded(sim: &Simulation, i: usize, j: usize) -> bool {
     let (p, n) = (&sim.particles, &sim.neighbor);
     let (ti, tj) = (p.kind[i], p.kind[j]);
     let (mi, mj) = (p.mask[i], p.mask[j]);
@@ -32,7 +32,7 @@ fn excluded(sim: &Simulation, i: usize, j: usize) -> bool {
 
 /// Pairs of a fresh list reaching `reach[i] + reach[j] + skin` (length), without the
 /// excluded ones.
-fn fresh_pairs(sim: &Simulation, reach: &[f64], skin: f64) -> NeighborList {
+pub(crate) fn fresh_pairs(sim: &Simulation, reach: &[f64], skin: f64) -> NeighborList {
     let mut list = NeighborList::default();
     list.build(&sim.particles.x, reach, skin, &sim.domain, None);
     list.retain(|pair| !excluded(sim, pair.i as usize, pair.j as usize));
@@ -40,7 +40,7 @@ fn fresh_pairs(sim: &Simulation, reach: &[f64], skin: f64) -> NeighborList {
 }
 
 /// Squared distance of a listed pair (its periodic image).
-fn distance_sq(sim: &Simulation, i: usize, j: usize, shift: [f64; 3]) -> f64 {
+pub(crate) fn distance_sq(sim: &Simulation, i: usize, j: usize, shift: [f64; 3]) -> f64 {
     let x = &sim.particles.x;
     let mut rsq = 0.0;
     for d in 0..3 {
@@ -85,7 +85,7 @@ impl CoordAtom {
 
     /// The largest radius of each atom type among the particles and the particle
     /// templates (length; index 0 unused), as LIGGGHTS's pair gran sizes its cutoffs.
-    fn type_radii(sim: &Simulation) -> Vec<f64> {
+    pub(crate) fn type_radii(sim: &Simulation) -> Vec<f64> {
         let mut radii = vec![0.0f64; sim.ntypes as usize + 1];
         let p = &sim.particles;
         for i in 0..p.len() {

@@ -312,6 +312,22 @@ impl Simulation {
                         rows,
                     ));
                 }
+                FixKind::SpringSelf(spring) => {
+                    // the tether points, as LIGGGHTS's per-atom `xoriginal`
+                    let p = &self.particles;
+                    let rows = match p.extra.iter().position(|e| e.name == spring.slot) {
+                        Some(k) => p.extra[k].data.chunks(3).map(<[f64]>::to_vec).collect(),
+                        None => vec![vec![0.0; 3]; p.len()],
+                    };
+                    peratom.push((
+                        PeratomFix {
+                            id: f.id.clone(),
+                            style: f.style.clone(),
+                            maxsize: 4,
+                        },
+                        rows,
+                    ));
+                }
                 FixKind::InsertPack(ins) => {
                     let state = crate::engine::insert::InsertRestart {
                         rng_state: ins.rng.state(),

@@ -207,14 +207,20 @@ impl Simulation {
                     self.restart_mesh_history
                         .insert(fix.id.clone(), (width, lists));
                 }
-                "move" => {
+                "move" | "spring/self" => {
+                    // unwrapped start positions: fix move's origins, fix spring/self's
+                    // tether points (keyed by style and ID)
                     let origins = r
                         .atoms
                         .iter()
                         .filter(|a| a.extra[k].len() >= 3)
                         .map(|a| (a.id, [a.extra[k][0], a.extra[k][1], a.extra[k][2]]))
                         .collect();
-                    self.restart_move_origins.insert(fix.id.clone(), origins);
+                    let key = match fix.style.as_str() {
+                        "move" => fix.id.clone(),
+                        style => format!("{style} {}", fix.id),
+                    };
+                    self.restart_move_origins.insert(key, origins);
                 }
                 _ => {} // state of fixes regolith does not have
             }

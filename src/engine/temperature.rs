@@ -68,6 +68,14 @@ pub fn setup_counts(sim: &mut Simulation) {
 /// LIGGGHTS's temperature of a compute temp (temperature): sum of m v^2 over the group,
 /// times mvv2e / (dof kB) with dof = dimension * N - extra (0 when dof is not positive).
 pub fn temperature(sim: &Simulation, c: &Compute) -> f64 {
+    let (t, dof, boltz) = temperature_parts(sim, c);
+    let tfactor = if dof > 0.0 { 1.0 / (dof * boltz) } else { 0.0 };
+    t * tfactor
+}
+
+/// The parts of a compute temp's temperature: sum of m v^2 over the group (energy), the
+/// degrees of freedom and LIGGGHTS's Boltzmann constant (energy per temperature).
+pub fn temperature_parts(sim: &Simulation, c: &Compute) -> (f64, f64, f64) {
     let p = &sim.particles;
     let mut t = 0.0;
     let mut n = 0usize;
@@ -95,6 +103,5 @@ pub fn temperature(sim: &Simulation, c: &Compute) -> f64 {
         // lj (the only other style a box can be made in): kB = 1
         UnitStyle::Other => 1.0,
     };
-    let tfactor = if dof > 0.0 { 1.0 / (dof * boltz) } else { 0.0 };
-    t * tfactor
+    (t, dof, boltz)
 }

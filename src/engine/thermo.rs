@@ -259,6 +259,11 @@ impl Thermo {
                         .strip_prefix("f_")
                         .and_then(crate::util::numbers::split_reference)
                         .and_then(|(id, index)| sim.fix_value(id, index).err())
+                        .or_else(|| {
+                            let body = f.keyword.strip_prefix("c_")?;
+                            let (id, index) = crate::util::numbers::split_reference(body)?;
+                            sim.compute_value(id, index, vars).err()
+                        })
                         .map(|e| EngineError::Invalid(e.to_string()))
                         .unwrap_or_else(|| {
                             EngineError::Invalid(format!("Thermo keyword {}: no value", f.keyword))

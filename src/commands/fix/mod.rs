@@ -33,6 +33,7 @@ mod particle_template_multisphere;
 mod print;
 mod property_atom;
 mod property_global;
+mod spring_self;
 mod store_state;
 mod tracer;
 mod viscous;
@@ -100,6 +101,7 @@ pub const STYLES: &[(&str, Build)] = &[
     ("heat/gran", heat_gran::build),
     ("heat/gran/conduction", heat_gran::build),
     ("multisphere", multisphere::build),
+    ("spring/self", spring_self::build),
     ("ave/atom", ave_atom::build),
     ("store/state", store_state::build),
     ("ave/spatial", ave_spatial::build),

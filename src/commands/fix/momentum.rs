@@ -58,13 +58,7 @@ fn unwrap(p: &Particles, i: usize, domain: &Domain) -> [f64; 3] {
 impl Momentum {
     /// The group's total mass (mass), summed in particle order.
     pub fn group_mass(p: &Particles, group: u32) -> f64 {
-        let mut m = 0.0;
-        for i in 0..p.len() {
-            if p.mask[i] & group != 0 {
-                m += p.mass[i];
-            }
-        }
-        m
+        crate::engine::momentum::group_mass(p, group)
     }
 
     /// Adjust the velocities of `group` (LIGGGHTS's `end_of_step`).

@@ -58,6 +58,12 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
             ComputeKind::ContactAtom { skin }
         }
         "coord/atom" => crate::commands::compute_coord::build(a, ctx)?,
+        "rdf" => crate::commands::compute_rdf::build(a, ctx)?,
+        "gyration" => crate::commands::compute_analysis::gyration(a)?,
+        "pe/atom" => crate::commands::compute_analysis::pe_atom(a)?,
+        "pressure" => crate::commands::compute_analysis::pressure(a, ctx)?,
+        "slice" => crate::commands::compute_analysis::slice(a, ctx)?,
+        "property/local" => crate::commands::compute_analysis::property_local(a)?,
         "com" => no_keywords(ComputeKind::Com)?,
         "nparticles/tracer/region" => {
             crate::commands::computes_extra::nparticles_tracer_region(a, ctx)?

@@ -41,6 +41,10 @@ pub struct AveTime {
     pub mode: AveMode,
     /// The output file.
     pub file: Option<std::io::BufWriter<std::fs::File>>,
+    /// `overwrite`: the file offset after the header, where each output starts again (bytes).
+    pub overwrite: Option<u64>,
+    /// `mode vector`: rows of every input (None in scalar mode).
+    pub rows: Option<usize>,
     /// The next step that samples.
     pub next: i64,
     samples: i64,
@@ -69,7 +73,7 @@ impl AveTime {
         schedule: AveSchedule,
         inputs: Vec<AveInput>,
         off: Vec<bool>,
-        mode: AveMode,
+        (mode, rows): (AveMode, Option<usize>),
         start: i64,
         step: i64,
     ) -> AveTime {
@@ -78,7 +82,7 @@ impl AveTime {
             repeat,
             freq,
         } = schedule;
-        let n = inputs.len();
+        let n = inputs.len() * rows.unwrap_or(1);
         // the first sampling step, as LIGGGHTS's nextvalid()
         let mut next = (step / freq) * freq + freq;
         while next < start {
@@ -104,6 +108,8 @@ impl AveTime {
             off,
             mode,
             file: None,
+            overwrite: None,
+            rows,
             next,
             samples: 0,
             sum: vec![0.0; n],
@@ -115,14 +121,20 @@ impl AveTime {
         }
     }
 
-    /// Take one sample of `values` at `step`; at the end of an Nfreq block, write the line.
+    /// Whether element `k` of the row-major value block belongs to an `off` input.
+    fn off_at(&self, k: usize) -> bool {
+        self.off[k % self.inputs.len()]
+    }
+
+    /// Take one sample of `values` at `step` (row-major: one value per input in scalar
+    /// mode, `rows` rows of one value per input in vector mode); at the end of an Nfreq
+    /// block, write the output.
     pub fn sample(&mut self, step: i64, values: &[f64]) -> Result<(), EngineError> {
-        use std::io::Write;
         if self.samples == 0 {
             self.sum.iter_mut().for_each(|s| *s = 0.0);
         }
         for (k, v) in values.iter().enumerate() {
-            if self.off[k] {
+            if self.off_at(k) {
                 self.sum[k] = *v;
             } else {
                 self.sum[k] += v;
@@ -136,9 +148,9 @@ impl AveTime {
         self.samples = 0;
         self.next = step + self.freq - (self.repeat - 1) * self.every;
         let repeat = self.repeat as f64;
-        for (k, s) in self.sum.iter_mut().enumerate() {
-            if !self.off[k] {
-                *s /= repeat;
+        for k in 0..self.sum.len() {
+            if !self.off_at(k) {
+                self.sum[k] /= repeat;
             }
         }
         match self.mode {
@@ -170,19 +182,52 @@ impl AveTime {
             }
         }
         for k in 0..self.sum.len() {
-            if self.off[k] {
+            if self.off_at(k) {
                 self.total[k] = self.norm as f64 * self.sum[k];
             }
         }
-        if let Some(f) = self.file.as_mut() {
-            let mut line = step.to_string();
-            for t in &self.total {
-                line.push(' ');
-                line.push_str(&crate::util::format::g(t / self.norm as f64));
+        self.write(step)
+    }
+
+    /// Write the averages of `step` to the file: one line in scalar mode, a `step rows`
+    /// line and one numbered line per row in vector mode.
+    fn write(&mut self, step: i64) -> Result<(), EngineError> {
+        use std::io::{Seek, Write};
+        let Some(f) = self.file.as_mut() else {
+            return Ok(());
+        };
+        let g = |t: f64| crate::util::format::g(t / self.norm as f64);
+        let mut text = step.to_string();
+        match self.rows {
+            None => {
+                for t in &self.total {
+                    text.push(' ');
+                    text.push_str(&g(*t));
+                }
             }
-            writeln!(f, "{line}")
-                .and_then(|_| f.flush())
-                .map_err(|e| format!("fix ave/time: {e}"))?;
+            Some(rows) => {
+                text.push_str(&format!(" {rows}"));
+                for (r, row) in self.total.chunks(self.inputs.len()).enumerate() {
+                    text.push_str(&format!("\n{}", r + 1));
+                    for t in row {
+                        text.push(' ');
+                        text.push_str(&g(*t));
+                    }
+                }
+            }
+        }
+        text.push('\n');
+        let io = |e: std::io::Error| format!("fix ave/time: {e}");
+        if let Some(at) = self.overwrite {
+            f.seek(std::io::SeekFrom::Start(at)).map_err(io)?;
+        }
+        f.write_all(text.as_bytes())
+            .and_then(|_| f.flush())
+            .map_err(io)?;
+        if let (Some(_), None) = (self.overwrite, self.rows) {
+            // LIGGGHTS truncates after a scalar-mode line only
+            let end = f.stream_position().map_err(io)?;
+            f.get_ref().set_len(end).map_err(io)?;
         }
         Ok(())
     }
@@ -190,6 +235,15 @@ impl AveTime {
     /// `f_ID` (index None, the first value) or `f_ID[i]` (1-based): the latest average, 0
     /// before the first.
     pub fn value(&self, index: Option<usize>) -> Option<f64> {
+        if let Some(rows) = self.rows {
+            // mode vector with one input: a global vector, which LIGGGHTS 3.8.0 returns
+            // as the running total, not divided by the number of outputs
+            let k = index?.checked_sub(1)?;
+            if self.inputs.len() > 1 || k >= rows {
+                return None;
+            }
+            return Some(if self.norm > 0 { self.total[k] } else { 0.0 });
+        }
         if index.is_none() && self.inputs.len() > 1 {
             return None; // LIGGGHTS: only a single-value fix ave/time has a scalar
         }
@@ -200,5 +254,38 @@ impl AveTime {
         } else {
             0.0
         })
+    }
+}
+
+impl AveTime {
+    /// Element (`row`, `col`) (1-based) of the global array of a vector-mode fix with
+    /// several inputs: the latest average, 0 before the first.
+    pub fn array(&self, row: usize, col: usize) -> Option<f64> {
+        let (rows, n) = (self.rows?, self.inputs.len());
+        if n < 2 || row == 0 || col == 0 || row > rows || col > n {
+            return None;
+        }
+        let t = self.total[(row - 1) * n + col - 1];
+        Some(if self.norm > 0 {
+            t / self.norm as f64
+        } else {
+            0.0
+        })
+    }
+
+    /// (rows, columns) of the fix's global array (vector mode, several inputs).
+    pub fn array_size(&self) -> Option<(usize, usize)> {
+        let (rows, n) = (self.rows?, self.inputs.len());
+        (n > 1).then_some((rows, n))
+    }
+
+    /// Length of the fix's global vector: its inputs in scalar mode (more than one), its
+    /// rows in vector mode (one input); 0 without one.
+    pub fn vector_len(&self) -> usize {
+        match self.rows {
+            Some(rows) if self.inputs.len() == 1 => rows,
+            None if self.inputs.len() > 1 => self.inputs.len(),
+            _ => 0,
+        }
     }
 }

@@ -547,7 +547,7 @@ impl Simulation {
                 matches!(
                     c.kind,
                     crate::engine::computes::ComputeKind::StressAtom { pair: true, .. }
-                )
+                ) || crate::engine::analysis_computes::reads_virial(c)
             });
         self.virial.clear();
         self.virial_step = tally.then_some(self.step);

@@ -33,11 +33,7 @@ impl Simulation {
                     t.end_of_step(&mut self.particles, fix.group, &self.regions, step);
                 }
                 FixKind::AveTime(at) if at.next == step => {
-                    let inputs = at.inputs.clone();
-                    let values = inputs
-                        .iter()
-                        .map(|input| self.ave_input(input, vars))
-                        .collect::<Result<Vec<f64>, EngineError>>()?;
+                    let values = self.ave_time_values(k, vars)?;
                     if let FixKind::AveTime(at) = &mut self.fixes[k].kind {
                         at.sample(step, &values)?;
                     }
@@ -64,7 +60,7 @@ impl Simulation {
     }
 
     /// One input value of `fix ave/time`.
-    pub(super) fn ave_input(
+    pub(crate) fn ave_input(
         &self,
         input: &fixes::AveInput,
         vars: &mut dyn VariableSource,
@@ -83,14 +79,10 @@ impl Simulation {
     ) -> Result<(), EngineError> {
         let step = self.step;
         for k in 0..self.fixes.len() {
-            let inputs = match &self.fixes[k].kind {
-                FixKind::AveTime(at) if at.next == step => at.inputs.clone(),
-                _ => continue,
-            };
-            let values = inputs
-                .iter()
-                .map(|input| self.ave_input(input, vars))
-                .collect::<Result<Vec<f64>, EngineError>>()?;
+            if !matches!(&self.fixes[k].kind, FixKind::AveTime(at) if at.next == step) {
+                continue;
+            }
+            let values = self.ave_time_values(k, vars)?;
             if let FixKind::AveTime(at) = &mut self.fixes[k].kind {
                 at.sample(step, &values)?;
             }
@@ -123,6 +115,7 @@ impl Simulation {
             (FixKind::Buoyancy(b), Some(i @ 1..=3)) => Ok(b.total[i - 1]),
             (FixKind::Tracer(t), None) => Ok(t.scalar()),
             (FixKind::Style(s), i) if s.value(i).is_some() => Ok(s.value(i).unwrap_or(0.0)),
+            (FixKind::SpringSelf(s), None) => Ok(s.energy),
             _ => Err(format!("fix {id} ({}) has no such value", fix.style).into()),
         }
     }

@@ -141,6 +141,30 @@ pub struct RegionContext {
     pub lattice: Option<[f64; 3]>,
 }
 
+impl RegionContext {
+    /// The bound a word `INF` or `EDGE` names along dimension `d` (the low side when
+    /// `lo_side`): ±[`BIG`] or the box face; None for any other word (a number).
+    pub fn inf_or_edge(
+        &self,
+        w: &str,
+        d: usize,
+        lo_side: bool,
+    ) -> Result<Option<f64>, EngineError> {
+        if w != "INF" && w != "EDGE" {
+            return Ok(None);
+        }
+        let (lo, hi) = self
+            .bounds
+            .ok_or("Cannot use region INF or EDGE when box does not exist")?;
+        Ok(Some(match (w, lo_side) {
+            ("INF", true) => -BIG,
+            ("INF", false) => BIG,
+            (_, true) => lo[d],
+            (_, false) => hi[d],
+        }))
+    }
+}
+
 impl Regions {
     /// Find a region by ID.
     pub fn find(&self, id: &str) -> Option<usize> {
@@ -192,16 +216,8 @@ impl Regions {
             return Err("Region union or intersect cannot be dynamic".into());
         }
         let coord = |w: &str, d: usize, lo_side: bool| -> Result<f64, EngineError> {
-            if w == "INF" || w == "EDGE" {
-                let (lo, hi) = ctx
-                    .bounds
-                    .ok_or("Cannot use region INF or EDGE when box does not exist")?;
-                return Ok(match (w, lo_side) {
-                    ("INF", true) => -BIG,
-                    ("INF", false) => BIG,
-                    (_, true) => lo[d],
-                    (_, false) => hi[d],
-                });
+            if let Some(b) = ctx.inf_or_edge(w, d, lo_side)? {
+                return Ok(b);
             }
             Ok(scale[d] * numeric(w)?)
         };

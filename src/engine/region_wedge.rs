@@ -3,7 +3,7 @@
 //! spanning DA degrees (LIGGGHTS 3.8.0's region style, its words, checks and inside test).
 
 use crate::engine::error::EngineError;
-use crate::engine::region::{Region, RegionContext, Regions, Shape, BIG};
+use crate::engine::region::{Region, RegionContext, Regions, Shape};
 use crate::util::numbers::c_atof;
 
 /// A wedge's geometry (lengths in box units, angles in radians).
@@ -178,16 +178,8 @@ impl Regions {
         let radius = s1 * c_atof(args[8]);
         expect(9, "bounds")?;
         let bound = |w: &str, lo_side: bool| -> Result<f64, EngineError> {
-            if w == "INF" || w == "EDGE" {
-                let (lo, hi) = ctx
-                    .bounds
-                    .ok_or("Cannot use region INF or EDGE when box does not exist")?;
-                return Ok(match (w, lo_side) {
-                    ("INF", true) => -BIG,
-                    ("INF", false) => BIG,
-                    (_, true) => lo[axis],
-                    (_, false) => hi[axis],
-                });
+            if let Some(b) = ctx.inf_or_edge(w, axis, lo_side)? {
+                return Ok(b);
             }
             Ok(scale[axis] * c_atof(w))
         };

@@ -14,6 +14,55 @@ pub const PARALLEL_PARTICLES: usize = 4096;
 /// Particles per parallel chunk.
 const CHUNK: usize = 1024;
 
+/// Particles whose kick factors are computed together (a stack buffer each).
+const SUB: usize = 64;
+
+/// The half-kick factors of up to [`SUB`] particles: `lin[k] = dtf / m` (s/kg) and
+/// `rot[k] = dtfrotate / (r^2 m)` (s/(kg m^2)), the divisions LIGGGHTS's nve/sphere makes,
+/// several per instruction where the processor allows.
+#[inline(always)]
+fn kick_factors(
+    m: &[f64],
+    r: &[f64],
+    (dtf, dtfrotate): (f64, f64),
+    lin: &mut [f64],
+    rot: &mut [f64],
+) {
+    #[cfg(target_arch = "x86_64")]
+    if crate::engine::contact::real::lanes_supported() {
+        // SAFETY: the processor has AVX2 (checked at run time)
+        unsafe { kick_factors_avx2(m, r, (dtf, dtfrotate), lin, rot) };
+        return;
+    }
+    kick_factors_plain(m, r, (dtf, dtfrotate), lin, rot);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn kick_factors_avx2(
+    m: &[f64],
+    r: &[f64],
+    dt: (f64, f64),
+    lin: &mut [f64],
+    rot: &mut [f64],
+) {
+    kick_factors_plain(m, r, dt, lin, rot);
+}
+
+#[inline(always)]
+fn kick_factors_plain(
+    m: &[f64],
+    r: &[f64],
+    (dtf, dtfrotate): (f64, f64),
+    lin: &mut [f64],
+    rot: &mut [f64],
+) {
+    for (((l, q), &m), &r) in lin.iter_mut().zip(rot.iter_mut()).zip(m).zip(r) {
+        *l = dtf / (m * 1.0);
+        *q = dtfrotate / (r * r * m);
+    }
+}
+
 /// Run per-particle work on the engine's threads when there are enough particles.
 #[inline]
 pub fn parallel(n: usize) -> bool {
@@ -46,31 +95,40 @@ pub fn initial_integrate_with(p: &mut Particles, group: u32, dt: f64, inertia: f
     } = p;
     let n = x.len();
     // one chunk of particles: zipped slices, so the loop carries no bounds checks
-    let chunk = |start: usize, x: &mut [[f64; 3]], v: &mut [[f64; 3]], w: &mut [[f64; 3]]| {
+    let sub = |start: usize, x: &mut [[f64; 3]], v: &mut [[f64; 3]], w: &mut [[f64; 3]]| {
         let end = start + x.len();
+        let (mut lin, mut rot) = ([0.0; SUB], [0.0; SUB]);
+        let (m, r) = (&mass[start..end], &radius[start..end]);
+        kick_factors(m, r, (dtf, dtfrotate), &mut lin, &mut rot);
         let cols = f[start..end]
             .iter()
             .zip(&torque[start..end])
-            .zip(&mass[start..end])
-            .zip(&radius[start..end])
+            .zip(lin.iter().zip(&rot))
             .zip(&mask[start..end]);
-        for ((((((f, t), &m), &r), &bits), x), (v, w)) in
+        for (((((f, t), (&dtfm, &dtirotate)), &bits), x), (v, w)) in
             cols.zip(x.iter_mut()).zip(v.iter_mut().zip(w.iter_mut()))
         {
             if bits & group == 0 {
                 continue;
             }
-            let dtfm = dtf / (m * 1.0);
             for d in 0..3 {
                 v[d] += dtfm * f[d];
             }
             for d in 0..3 {
                 x[d] += dt * v[d];
             }
-            let dtirotate = dtfrotate / (r * r * m);
             for d in 0..3 {
                 w[d] += dtirotate * t[d];
             }
+        }
+    };
+    let chunk = |start: usize, x: &mut [[f64; 3]], v: &mut [[f64; 3]], w: &mut [[f64; 3]]| {
+        let parts = x
+            .chunks_mut(SUB)
+            .zip(v.chunks_mut(SUB))
+            .zip(w.chunks_mut(SUB));
+        for (k, ((x, v), w)) in parts.enumerate() {
+            sub(start + k * SUB, x, v, w);
         }
     };
     if parallel(n) {
@@ -105,26 +163,33 @@ pub fn final_integrate_with(p: &mut Particles, group: u32, dt: f64, inertia: f64
         ..
     } = p;
     let n = v.len();
-    let chunk = |start: usize, v: &mut [[f64; 3]], w: &mut [[f64; 3]]| {
+    let sub = |start: usize, v: &mut [[f64; 3]], w: &mut [[f64; 3]]| {
         let end = start + v.len();
+        let (mut lin, mut rot) = ([0.0; SUB], [0.0; SUB]);
+        let (m, r) = (&mass[start..end], &radius[start..end]);
+        kick_factors(m, r, (dtf, dtfrotate), &mut lin, &mut rot);
         let cols = f[start..end]
             .iter()
             .zip(&torque[start..end])
-            .zip(&mass[start..end])
-            .zip(&radius[start..end])
+            .zip(lin.iter().zip(&rot))
             .zip(&mask[start..end]);
-        for (((((f, t), &m), &r), &bits), (v, w)) in cols.zip(v.iter_mut().zip(w.iter_mut())) {
+        for ((((f, t), (&dtfm, &dtirotate)), &bits), (v, w)) in
+            cols.zip(v.iter_mut().zip(w.iter_mut()))
+        {
             if bits & group == 0 {
                 continue;
             }
-            let dtfm = dtf / (m * 1.0);
             for d in 0..3 {
                 v[d] += dtfm * f[d];
             }
-            let dtirotate = dtfrotate / (r * r * m);
             for d in 0..3 {
                 w[d] += dtirotate * t[d];
             }
+        }
+    };
+    let chunk = |start: usize, v: &mut [[f64; 3]], w: &mut [[f64; 3]]| {
+        for (k, (v, w)) in v.chunks_mut(SUB).zip(w.chunks_mut(SUB)).enumerate() {
+            sub(start + k * SUB, v, w);
         }
     };
     if parallel(n) {

@@ -8,7 +8,7 @@
 //! processors with AVX2 the loops are compiled a second time with 256-bit vectors and chosen
 //! at run time; the arithmetic (no fused multiply-add) is the same either way.
 
-use crate::engine::contact::real::{Real, M4};
+use crate::engine::contact::real::Real;
 use crate::engine::contact::{
     CoeffLanes, Coeffs, CohesionModel, ContactModel, F64x4, Material, NormalModel, PairCoeffs,
     PairLanes, PairLanesOutput, RollingModel, TangentialModel, LANES,
@@ -389,14 +389,69 @@ pub trait Sink {
 /// usual case: nothing to add, so positions stay exactly the particles').
 #[inline(always)]
 fn shifts(pr: &[&Pair; LANES]) -> Option<[F64x4; 3]> {
-    // any component other than +-0 (the sign bit shifted out)
-    let bits = pr.iter().fold(0u64, |acc, q| {
-        acc | q.shift[0].to_bits() | q.shift[1].to_bits() | q.shift[2].to_bits()
-    });
-    if bits << 1 == 0 {
+    if !any_shift(pr) {
         return None;
     }
     Some(std::array::from_fn(|d| F64x4(pr.map(|q| q.shift[d]))))
+}
+
+/// Does any of four pairs carry a shift component other than +-0? On x86-64 one OR of
+/// the four 32-byte pairs and one test (the indices and the sign bits masked out).
+#[inline(always)]
+fn any_shift(pr: &[&Pair; LANES]) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::*;
+        const _: () = assert!(std::mem::size_of::<Pair>() == 32);
+        // SAFETY: a Pair is 32 bytes (i, j, then the three shift doubles); lanes code runs
+        // only where the processor has AVX2 (see F64x4)
+        unsafe {
+            let q = pr.map(|p| _mm256_loadu_si256(std::ptr::from_ref(p).cast()));
+            let all = _mm256_or_si256(_mm256_or_si256(q[0], q[1]), _mm256_or_si256(q[2], q[3]));
+            let bits = i64::MAX;
+            let mask = _mm256_set_epi64x(bits, bits, bits, 0);
+            _mm256_testz_si256(all, mask) == 0
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        let bits = pr.iter().fold(0u64, |acc, q| {
+            acc | q.shift[0].to_bits() | q.shift[1].to_bits() | q.shift[2].to_bits()
+        });
+        bits << 1 != 0
+    }
+}
+
+/// Three lanes of x, y and z components as four (x, y, z, 0) vectors, one per lane: lane
+/// k's force or torque, ready to add to a padded per-particle sum in one addition.
+#[inline(always)]
+pub fn per_lane(v: &[F64x4; 3]) -> [F64x4; LANES] {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::*;
+        // SAFETY: F64x4 is 32-byte aligned; lanes code runs only where the processor has AVX
+        unsafe {
+            let [x, y, z] = v.map(|c| _mm256_load_pd(c.0.as_ptr()));
+            let zero = _mm256_setzero_pd();
+            let t0 = _mm256_unpacklo_pd(x, y);
+            let t1 = _mm256_unpackhi_pd(x, y);
+            let t2 = _mm256_unpacklo_pd(z, zero);
+            let t3 = _mm256_unpackhi_pd(z, zero);
+            let cols = [
+                _mm256_permute2f128_pd::<0x20>(t0, t2),
+                _mm256_permute2f128_pd::<0x20>(t1, t3),
+                _mm256_permute2f128_pd::<0x31>(t0, t2),
+                _mm256_permute2f128_pd::<0x31>(t1, t3),
+            ];
+            cols.map(|c| {
+                let mut out = F64x4::default();
+                _mm256_store_pd(out.0.as_mut_ptr(), c);
+                out
+            })
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    std::array::from_fn(|k| F64x4([v[0].0[k], v[1].0[k], v[2].0[k], 0.0]))
 }
 
 /// Four records' 12 fields as lanes.
@@ -606,13 +661,16 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
         assert!(!rec.is_empty());
         let last = rec.len() - 1;
         let mut hist = [F64x4::default(); MAX_HISTORY];
+        // every entry's pair and history lie inside `pairs` and `history` (one check for
+        // all entries)
+        let top = entries.iter().copied().max().unwrap_or(0) as usize;
+        assert!(top < pairs.len() && (top + 1) * width <= history.len());
         for batch in entries.chunks(LANES) {
             // pad a short last batch with copies of its first pair (results dropped)
-            let e: [usize; LANES] = std::array::from_fn(|k| batch[k.min(batch.len() - 1)] as usize);
-            // the batch's pairs and history lie inside `pairs` and `history` (one check
-            // for the four entries)
-            let top = e.iter().copied().max().unwrap_or(0);
-            assert!(top < pairs.len() && (top + 1) * width <= history.len());
+            let e: [usize; LANES] = match <&[u32; LANES]>::try_from(batch) {
+                Ok(full) => full.map(|k| k as usize),
+                Err(_) => std::array::from_fn(|k| batch[k.min(batch.len() - 1)] as usize),
+            };
             // SAFETY: e[k] <= top < pairs.len()
             let pr: [&Pair; LANES] = e.map(|k| unsafe { pairs.get_unchecked(k) });
             let i: [usize; LANES] = pr.map(|q| (q.i as usize).min(last));
@@ -636,8 +694,8 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
                 mj: b[7],
                 omegai: [a[8], a[9], a[10]],
                 omegaj: [b[8], b[9], b[10]],
-                frozen_i: M4::from_bools(a[11].0.map(|f| f != 0.0)),
-                frozen_j: M4::from_bools(b[11].0.map(|f| f != 0.0)),
+                frozen_i: a[11].ne(F64x4::default()),
+                frozen_j: b[11].ne(F64x4::default()),
                 dt: self.dt,
                 update_history: self.update,
             };

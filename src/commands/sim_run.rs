@@ -411,6 +411,13 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
             });
             return Ok(());
         }
+        "euler/vtk" => {
+            if !file.contains('*') {
+                return Err(a.error(4, "You should use a filename like 'dump*.vtk' for the 'dump euler/vtk' command to produce one file per time-step"));
+            }
+            dump_style = crate::engine::sim::DumpStyle::EulerVtk;
+            Layout::new(&[]).expect("no columns")
+        }
         "local/gran/vtk" => {
             if a.len() < 6 {
                 return Err(a

@@ -233,6 +233,7 @@ pub const SPECS: &[Spec] = &[
     style("dump", "atom", "dump ID GROUP atom N FILE", &[], "positions, scaled, every N steps (LAMMPS layout)"),
     style("dump", "custom", "dump ID GROUP custom N FILE COLUMN ...", &[], "chosen per-particle columns every N steps"),
     style("dump", "custom/vtk", "dump ID GROUP custom/vtk N FILE.vtk|vtp|vtu COLUMN ...", &[], "chosen per-particle columns as VTK files"),
+    style("dump", "euler/vtk", "dump ID GROUP euler/vtk N FILE*.vtk", &[], "the cells of the first fix ave/euler as legacy VTK points (average velocity, volume fraction, radius, pressure)"),
     style("dump", "local/gran/vtk", "dump ID GROUP local/gran/vtk N FILE.vtk COMPUTE", &[], "the contacts of a compute pair/gran/local or wall/gran/local as VTK lines"),
     style("dump", "local", "dump ID GROUP local N FILE c_ID[N] ...", &[], "per-contact columns of local computes"),
     style("dump", "mesh/gran/VTK", "dump ID GROUP mesh/gran/VTK N FILE [MESH ...]", &[], "meshes as legacy VTK"),

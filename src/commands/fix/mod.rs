@@ -3,6 +3,7 @@
 
 mod adapt;
 mod ave_atom;
+mod ave_euler;
 mod ave_histo;
 mod ave_spatial;
 mod ave_time;
@@ -184,6 +185,16 @@ pub const MODULES: &[FixRow] = &[
         spec: momentum::SPEC,
         planar: false,
         build: momentum::build,
+    },
+    FixRow {
+        spec: ave_euler::SPEC,
+        planar: false,
+        build: ave_euler::build,
+    },
+    FixRow {
+        spec: ave_euler::STRESS,
+        planar: false,
+        build: ave_euler::build,
     },
 ];
 

@@ -34,6 +34,7 @@ mod particle_template_multisphere;
 mod print;
 mod property_atom;
 mod property_global;
+mod spring;
 mod spring_self;
 mod store_state;
 mod tracer;
@@ -195,6 +196,11 @@ pub const MODULES: &[FixRow] = &[
         spec: ave_euler::STRESS,
         planar: false,
         build: ave_euler::build,
+    },
+    FixRow {
+        spec: spring::SPEC,
+        planar: false,
+        build: spring::build,
     },
 ];
 

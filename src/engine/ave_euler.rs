@@ -193,8 +193,8 @@ impl EulerGrid {
             for &(i, ghost) in atoms {
                 let m = p.mass[i];
                 let v = vel(i, ghost);
-                for k in 0..3 {
-                    self.v_av[c][k] += m * v[k];
+                for (sum, vk) in self.v_av[c].iter_mut().zip(v) {
+                    *sum += m * vk;
                 }
                 let r = p.radius[i];
                 self.vol_fr[c] += r * r * r;

@@ -111,8 +111,8 @@ impl Spring {
                 for i in 0..p.len() {
                     if p.mask[i] & group != 0 {
                         let m = p.mass[i];
-                        for d in 0..3 {
-                            p.f[i][d] -= f[d] * m;
+                        for (fi, fd) in p.f[i].iter_mut().zip(f) {
+                            *fi -= fd * m;
                         }
                     }
                 }
@@ -126,13 +126,13 @@ impl Spring {
                 for i in 0..p.len() {
                     let m = p.mass[i];
                     if p.mask[i] & group != 0 {
-                        for d in 0..3 {
-                            p.f[i][d] += f[d] * m;
+                        for (fi, fd) in p.f[i].iter_mut().zip(f) {
+                            *fi += fd * m;
                         }
                     }
                     if p.mask[i] & group2 != 0 {
-                        for d in 0..3 {
-                            p.f[i][d] -= f2[d] * m;
+                        for (fi, fd) in p.f[i].iter_mut().zip(f2) {
+                            *fi -= fd * m;
                         }
                     }
                 }

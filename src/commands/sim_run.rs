@@ -626,6 +626,8 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         }
         keep_periodic_restarts(ctx, nsteps);
         ctx.sim.step += nsteps;
+        // what a run leaves behind (contact history) counts as there for later commands
+        ctx.sim.has_run = true;
         return Ok(());
     }
     if ctx.sim.pair_selection.is_some() && !ctx.sim.pair_coeff_set {

@@ -230,6 +230,7 @@ pub const SPECS: &[Spec] = &[
     command("delete_atoms group|region|overlap ...", "remove particles"),
     command("dimension 2|3", "the dimension (2: discs moving in the xy plane; z periodic)"),
     command("displace_atoms GROUP move|random ...", "move particles by a displacement or at random"),
+    command("replicate NX NY NZ offset OX OY OZ shift SX SY SZ", "copy the particles NX x NY x NZ times, each copy moved by multiples of the offset (length), the box grown from its corner moved by the shift"),
     style("dump", "atom", "dump ID GROUP atom N FILE", &[], "positions, scaled, every N steps (LAMMPS layout)"),
     style("dump", "custom", "dump ID GROUP custom N FILE COLUMN ...", &[], "chosen per-particle columns every N steps"),
     style("dump", "custom/vtk", "dump ID GROUP custom/vtk N FILE.vtk|vtp|vtu COLUMN ...", &[], "chosen per-particle columns as VTK files"),

@@ -104,7 +104,7 @@ impl FixStyle for AveEuler {
     fn array_value(&self, i: usize, j: usize, in_run: bool) -> Option<Result<f64, EngineError>> {
         if in_run {
             return Some(Err(EngineError::Unsupported(format!(
-                "fix {} values in a variable during a run (LIGGGHTS 3.8.0 divides by the \
+                "fix {} values during a run (LIGGGHTS 3.8.0 divides by the \
                  fix's zero output interval there and crashes); read them between runs",
                 self.style
             ))));

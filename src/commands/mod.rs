@@ -25,6 +25,7 @@ pub mod out_of_scope;
 pub mod processors;
 pub mod region_tet;
 pub mod registry;
+pub mod replicate;
 pub mod set;
 pub mod sim_run;
 pub mod sim_setup;

@@ -411,6 +411,13 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
             });
             return Ok(());
         }
+        "euler/vtk" => {
+            if !file.contains('*') {
+                return Err(a.error(4, "You should use a filename like 'dump*.vtk' for the 'dump euler/vtk' command to produce one file per time-step"));
+            }
+            dump_style = crate::engine::sim::DumpStyle::EulerVtk;
+            Layout::new(&[]).expect("no columns")
+        }
         "local/gran/vtk" => {
             if a.len() < 6 {
                 return Err(a
@@ -619,6 +626,8 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         }
         keep_periodic_restarts(ctx, nsteps);
         ctx.sim.step += nsteps;
+        // what a run leaves behind (contact history) counts as there for later commands
+        ctx.sim.has_run = true;
         return Ok(());
     }
     if ctx.sim.pair_selection.is_some() && !ctx.sim.pair_coeff_set {

@@ -4,6 +4,7 @@
 pub mod accel;
 pub mod analysis_computes;
 pub mod ave_atom;
+pub mod ave_euler;
 pub mod ave_histo;
 pub mod ave_spatial;
 pub mod buoyancy;

@@ -254,6 +254,9 @@ impl Thermo {
             .map(|f| match f.keyword.strip_prefix("v_") {
                 Some(name) => vars.equal(sim, name),
                 None => keyword_value(&f.keyword, sim, self, vars).ok_or_else(|| {
+                    if let Some(e) = fix_array_error(&f.keyword, sim) {
+                        return e;
+                    }
                     // a fix's own reason (LIGGGHTS's message) where it has one
                     f.keyword
                         .strip_prefix("f_")
@@ -364,6 +367,16 @@ pub fn keyword_value(
         }
         other => return more_keywords(other, sim, thermo, vars),
     })
+}
+
+/// The reason a `f_ID[i][j]` thermo keyword has no value (the fix's own, such as
+/// `fix ave/euler`'s during a run), None for other keywords.
+fn fix_array_error(keyword: &str, sim: &Simulation) -> Option<EngineError> {
+    let body = keyword.strip_prefix("f_")?;
+    let (id, rest) = body.split_once('[')?;
+    let (i, j) = rest.strip_suffix(']')?.split_once("][")?;
+    let (i, j) = (i.parse().ok()?, j.parse().ok()?);
+    sim.fix_array_value(id, i, j).err()
 }
 
 /// The lattice spacings in x, y, z (length; LIGGGHTS's default lattice has 1).

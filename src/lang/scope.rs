@@ -265,7 +265,10 @@ impl ExprContext for Scope<'_> {
         if !self.sim.fixes.iter().any(|f| f.id == id) {
             return Err("Invalid fix ID in variable formula".into());
         }
-        if j.is_some() {
+        if let (Some(i), Some(j)) = (i, j) {
+            if atom.is_none() {
+                return Ok(self.sim.fix_array_value(id, i, j)?);
+            }
             return Err(VariableError::Unsupported(format!("f_{id}[i][j]")));
         }
         let per_atom = crate::engine::fix_columns::column(self.sim, id, i).is_ok();

@@ -3,6 +3,7 @@
 
 mod adapt;
 mod ave_atom;
+mod ave_euler;
 mod ave_histo;
 mod ave_spatial;
 mod ave_time;
@@ -33,6 +34,7 @@ mod particle_template_multisphere;
 mod print;
 mod property_atom;
 mod property_global;
+mod spring;
 mod spring_self;
 mod store_state;
 mod tracer;
@@ -184,6 +186,21 @@ pub const MODULES: &[FixRow] = &[
         spec: momentum::SPEC,
         planar: false,
         build: momentum::build,
+    },
+    FixRow {
+        spec: ave_euler::SPEC,
+        planar: false,
+        build: ave_euler::build,
+    },
+    FixRow {
+        spec: ave_euler::STRESS,
+        planar: false,
+        build: ave_euler::build,
+    },
+    FixRow {
+        spec: spring::SPEC,
+        planar: false,
+        build: spring::build,
     },
 ];
 

@@ -139,6 +139,8 @@ mod tests {
             step: 1,
             dt: 1e-3,
             domain: &domain,
+            virial: &[],
+            contact: 0.0,
         };
         n.initial_integrate(&mut p, &at);
         // speed 5 capped at 1: direction kept

@@ -24,6 +24,12 @@ pub struct FixStep<'a> {
     pub dt: f64,
     /// The box (for unwrapping positions across periodic faces).
     pub domain: &'a Domain,
+    /// The per-atom pair virial of this step's force evaluation (xx yy zz xy xz yz; force
+    /// length), empty when it was not tallied (given at `end_of_step` and `setup_values`).
+    pub virial: &'a [[f64; 6]],
+    /// LIGGGHTS's largest contact distance, `cutneighmax - skin` (length; given at
+    /// `end_of_step` and `setup_values`, else 0).
+    pub contact: f64,
 }
 
 /// The shape of a style's per-atom values (`f_ID` / `f_ID[N]` in dumps, atom-style
@@ -108,6 +114,29 @@ pub trait FixStyle: Send {
     fn reads_computes(&self) -> bool {
         false
     }
+
+    /// Whether the style reads the per-atom pair virial at the end of `step` (it is then
+    /// tallied in that step's force evaluation).
+    fn wants_virial(&self, _step: i64) -> bool {
+        false
+    }
+
+    /// LIGGGHTS's `setup(vflag)` of a fix that evaluates there: after the setup force
+    /// evaluation, with the other fixes' setup output.
+    fn setup_values(&mut self, _p: &Particles, _at: &FixStep) {}
+
+    /// The global array value `f_ID[i][j]` (1-based) for variables, `in_run` while a run is
+    /// in progress; None when the style has no global array (Some(Err) carries LIGGGHTS's
+    /// error for this access).
+    fn array_value(&self, _i: usize, _j: usize, _in_run: bool) -> Option<Result<f64, EngineError>> {
+        None
+    }
+
+    /// The style's engine state for outputs that read it by type (`dump euler/vtk` reads
+    /// `fix ave/euler`'s [`EulerGrid`](crate::engine::ave_euler::EulerGrid)).
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        None
+    }
 }
 
 impl Simulation {
@@ -118,6 +147,8 @@ impl Simulation {
             step: self.step,
             dt: self.dt,
             domain: &self.domain,
+            virial: &[],
+            contact: 0.0,
         };
         for fix in &mut self.fixes {
             if let super::FixKind::Style(s) = &mut fix.kind {

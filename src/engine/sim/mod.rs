@@ -238,6 +238,8 @@ pub enum DumpStyle {
     MeshVtk(crate::io::mesh_vtk::MeshDumpSpec),
     /// `local/gran/vtk`: the contacts of this local compute (ID) as VTK lines.
     LocalGranVtk(String),
+    /// `euler/vtk`: the cells of the first `fix ave/euler` as VTK points.
+    EulerVtk,
 }
 
 /// When the stress module of `mesh/surface/stress` acts.
@@ -526,6 +528,10 @@ impl Simulation {
                 .iter()
                 .any(|d| d.every > 0 && step % d.every == 0)
             || self.fixes.iter().any(|f| f.kind.may_read_computes())
+            || self
+                .fixes
+                .iter()
+                .any(|f| matches!(&f.kind, FixKind::Style(s) if s.wants_virial(step)))
     }
 
     /// Zero forces and torques and evaluate the pair style, walls and forcing fixes;

@@ -117,7 +117,10 @@ impl Simulation {
         } else if multi
             || matches!(
                 dump.style,
-                DumpStyle::MeshStl(_) | DumpStyle::MeshVtk(_) | DumpStyle::LocalGranVtk(_)
+                DumpStyle::MeshStl(_)
+                    | DumpStyle::MeshVtk(_)
+                    | DumpStyle::LocalGranVtk(_)
+                    | DumpStyle::EulerVtk
             )
         {
             crate::io::write_atomically(&name, text)
@@ -142,6 +145,20 @@ impl Simulation {
                 .map_err(|e| format!("{name}: {e}"))?;
         }
         Ok(())
+    }
+
+    /// The text of a `dump euler/vtk` snapshot: the first `fix ave/euler`'s cells.
+    fn euler_vtk(&self) -> Result<String, EngineError> {
+        self.fixes
+            .iter()
+            .find_map(|f| match &f.kind {
+                FixKind::Style(s) if f.style == "ave/euler" => s
+                    .as_any()
+                    .and_then(|a| a.downcast_ref::<crate::engine::ave_euler::EulerGrid>())
+                    .map(|g| g.vtk()),
+                _ => None,
+            })
+            .ok_or_else(|| "Illegal dump euler/vtk command, need a fix ave/euler".into())
     }
 
     pub(crate) fn write_dumps(
@@ -199,6 +216,11 @@ impl Simulation {
                 )
                 .map_err(|e| e.to_string())?;
                 self.write_dump_text(k, step, &text)?;
+                continue;
+            }
+            if let DumpStyle::EulerVtk = &self.dumps[k].style {
+                let text = self.euler_vtk()?;
+                self.write_dump_text(k, step, text.as_bytes())?;
                 continue;
             }
             if let DumpStyle::LocalGranVtk(cid) = &self.dumps[k].style {
@@ -314,7 +336,7 @@ impl Simulation {
                         .map_err(|e| e.to_string())?;
                 }
                 // written before the per-atom columns are evaluated
-                DumpStyle::LocalGranVtk(_) => {}
+                DumpStyle::LocalGranVtk(_) | DumpStyle::EulerVtk => {}
                 DumpStyle::Vtk(fields) => {
                     let mut atoms: Vec<usize> = (0..p.len())
                         .filter(|&i| p.mask[i] & dump.group != 0)

@@ -12,6 +12,8 @@ impl Simulation {
     ) -> Result<(), EngineError> {
         self.move_streams();
         let (step, dt, skin) = (self.step, self.dt, self.neighbor.skin);
+        let contact = self.neighbor.cutneighmax - skin;
+        let tallied = self.virial_step == Some(step);
         for k in 0..self.fixes.len() {
             let fix = &mut self.fixes[k];
             match &mut fix.kind {
@@ -27,6 +29,8 @@ impl Simulation {
                         step,
                         dt,
                         domain: &self.domain,
+                        virial: if tallied { &self.virial } else { &[] },
+                        contact,
                     },
                 ),
                 FixKind::Tracer(t) if step % t.every == 0 => {
@@ -78,6 +82,7 @@ impl Simulation {
         vars: &mut dyn VariableSource,
     ) -> Result<(), EngineError> {
         let step = self.step;
+        self.setup_fix_values();
         for k in 0..self.fixes.len() {
             if !matches!(&self.fixes[k].kind, FixKind::AveTime(at) if at.next == step) {
                 continue;
@@ -88,6 +93,48 @@ impl Simulation {
             }
         }
         Ok(())
+    }
+
+    /// The `setup_values` hook of every module fix style, in fix order, after the setup
+    /// force evaluation.
+    fn setup_fix_values(&mut self) {
+        let step = self.step;
+        let tallied = self.virial_step == Some(step);
+        let contact = self.neighbor.cutneighmax - self.neighbor.skin;
+        for fix in &mut self.fixes {
+            if let FixKind::Style(s) = &mut fix.kind {
+                s.setup_values(
+                    &self.particles,
+                    &fixes::FixStep {
+                        group: fix.group,
+                        step,
+                        dt: self.dt,
+                        domain: &self.domain,
+                        virial: if tallied { &self.virial } else { &[] },
+                        contact,
+                    },
+                );
+            }
+        }
+    }
+
+    /// Value of `f_ID[i][j]` (1-based) for fixes with a global array.
+    pub fn fix_array_value(&self, id: &str, i: usize, j: usize) -> Result<f64, EngineError> {
+        let fix = self
+            .fixes
+            .iter()
+            .find(|f| f.id == id)
+            .ok_or_else(|| format!("Could not find fix ID {id}"))?;
+        match &fix.kind {
+            FixKind::Style(s) => match s.array_value(i, j, self.run_bounds.is_some()) {
+                Some(v) => v,
+                None => Err("Mismatched fix in variable formula".into()),
+            },
+            _ => Err(EngineError::Unsupported(format!(
+                "f_{id}[i][j] of fix {}",
+                fix.style
+            ))),
+        }
     }
 
     /// Value of `f_ID[i]` (1-based) for fixes with a global vector.

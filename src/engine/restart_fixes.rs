@@ -63,18 +63,20 @@ pub fn mesh_state(triangles: &[Triangle], extras: &MeshExtras) -> Vec<u8> {
     to_bytes(&d)
 }
 
+/// A mesh's restart state that does not fit the mesh as the deck defines it again.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("Incompatible mesh restart file - mesh has different properties in restarted simulation")]
+pub struct IncompatibleMeshState;
+
 /// The triangles (their current, transformed nodes) and module values a mesh's restart
 /// state holds; `element` and `global` are the module value counts the re-defined mesh has.
 pub fn mesh_from_state(
     bytes: &[u8],
     element: usize,
     global: usize,
-) -> Result<(Vec<Triangle>, MeshExtras), String> {
+) -> Result<(Vec<Triangle>, MeshExtras), IncompatibleMeshState> {
     let d = doubles(bytes);
-    let incompatible = || {
-        "Incompatible mesh restart file - mesh has different properties in restarted simulation"
-            .to_string()
-    };
+    let incompatible = || IncompatibleMeshState;
     let size = MESH_ELEMENT_SIZE + element;
     if d.len() < 3 || d[1] as usize != size || d[2] as usize != global {
         return Err(incompatible());
@@ -408,6 +410,7 @@ mod tests {
         assert_eq!(mesh_from_state(&bytes, 1, 3).unwrap(), (tris, worn));
         assert!(mesh_from_state(&bytes, 0, 3)
             .unwrap_err()
+            .to_string()
             .starts_with("Incompatible mesh restart file"));
     }
 

@@ -5,7 +5,7 @@
 
 use crate::engine::domain::Domain;
 use crate::engine::error::EngineError;
-use crate::engine::integrate::{self, Gravity};
+use crate::engine::integrate::Gravity;
 use crate::engine::particles::Particles;
 
 mod ave_time;
@@ -21,23 +21,15 @@ pub use check_timestep::CheckTimestep;
 pub use meshes::{move_meshes, MeshFix};
 pub use motion::{Motion, Move};
 pub use stream::StreamFix;
-pub use style::{FixStep, FixStyle, PerAtomShape};
+pub use style::{FixStep, FixStyle, PerAtomShape, StepInputs};
 pub use walls::{mesh_wall_contacts, MeshWallFix, WallFix};
 
 /// What a fix does.
 pub enum FixKind {
-    /// `fix nve/sphere`.
-    NveSphere,
-    /// `fix nve/sphere` in 2d: discs (moment of inertia 0.5 m r^2).
-    NveDisc,
     /// `fix move`.
     Move(Move),
     /// `fix gravity`.
     Gravity(Gravity),
-    /// `fix setforce fx fy fz` (None: leave that component).
-    SetForce(ForceFix),
-    /// `fix addforce fx fy fz` (force units).
-    AddForce(ForceFix),
     /// `fix wall/gran ... primitive`: a granular plane wall.
     WallGran(WallFix),
     /// `fix check/timestep/gran`: time step as a fraction of Rayleigh and Hertz times.
@@ -98,11 +90,8 @@ impl FixKind {
     /// Can the fix evaluate variables or computes inside a step (so per-atom computes must
     /// be current on every step)? Kinds not listed answer yes.
     pub fn may_read_computes(&self) -> bool {
-        let variable = |v: &ForceValue| matches!(v, ForceValue::Equal(_) | ForceValue::Atom(_));
         match self {
-            FixKind::NveSphere
-            | FixKind::NveDisc
-            | FixKind::Gravity(_)
+            FixKind::Gravity(_)
             | FixKind::WallGran(_)
             | FixKind::CheckTimestep(_)
             | FixKind::Mesh(_)
@@ -117,7 +106,6 @@ impl FixKind {
             | FixKind::Settings
             | FixKind::PropertyAtom(_)
             | FixKind::HeatGran(_) => false,
-            FixKind::SetForce(f) | FixKind::AddForce(f) => f.values.iter().any(variable),
             FixKind::Move(m) => matches!(m.motion, Motion::Variable { .. }),
             FixKind::Style(s) => s.reads_computes(),
             _ => true,
@@ -164,13 +152,6 @@ pub fn initial_integrate(
         .any(|f| matches!(f.kind, FixKind::InsertStream(_)));
     for fix in fixes {
         match &mut fix.kind {
-            FixKind::NveSphere => integrate::initial_integrate(p, fix.group, dt),
-            FixKind::NveDisc => integrate::initial_integrate_with(
-                p,
-                fix.group,
-                dt,
-                crate::engine::planar::DISC_INERTIA,
-            ),
             FixKind::Multisphere(ms) => ms.initial_integrate(p, dt, domain, step, has_stream),
             FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt, domain),
             FixKind::HeatGran(h) => h.initial_integrate(p),
@@ -216,10 +197,11 @@ impl PrintFix {
     }
 }
 
-/// One component of `fix setforce`/`addforce` (force units).
+/// A value a fix reads each step (`fix setforce`/`addforce` components, `fix move variable`
+/// displacements and velocities, `fix adapt` diameters), in the fix's units.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub enum ForceValue {
-    /// `NULL` (setforce: leave the component alone).
+    /// `NULL` (not given: the component is left alone).
     #[default]
     Null,
     /// A number.
@@ -234,47 +216,6 @@ impl ForceValue {
     /// True for `NULL`.
     pub fn is_null(&self) -> bool {
         matches!(self, ForceValue::Null)
-    }
-}
-
-/// `fix setforce`/`addforce`: three components and an optional region.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ForceFix {
-    /// x, y, z components.
-    pub values: [ForceValue; 3],
-    /// `region ID`: only particles inside (region index).
-    pub region: Option<usize>,
-    /// Per-particle components of this step when variables or a region are involved
-    /// (None: leave / add nothing), filled by the simulation before `post_force`.
-    pub resolved: Vec<[Option<f64>; 3]>,
-}
-
-impl ForceFix {
-    /// True if the components must be evaluated per step and particle.
-    pub fn needs_resolving(&self) -> bool {
-        self.region.is_some()
-            || self
-                .values
-                .iter()
-                .any(|v| matches!(v, ForceValue::Equal(_) | ForceValue::Atom(_)))
-    }
-
-    /// The constant components (None for NULL); only valid without variables.
-    fn constants(&self) -> [Option<f64>; 3] {
-        self.values.clone().map(|v| match v {
-            ForceValue::Constant(c) => Some(c),
-            _ => None,
-        })
-    }
-
-    /// The components for particle `i`.
-    #[inline]
-    fn at(&self, i: usize, constants: &[Option<f64>; 3]) -> [Option<f64>; 3] {
-        if self.resolved.is_empty() {
-            *constants
-        } else {
-            self.resolved[i]
-        }
     }
 }
 
@@ -309,28 +250,6 @@ pub fn post_force(
                 }
             }
             FixKind::Gravity(grav) => grav.apply(p),
-            FixKind::SetForce(f) => {
-                let c = f.constants();
-                for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
-                    let v = f.at(i, &c);
-                    for d in 0..3 {
-                        if let Some(v) = v[d] {
-                            p.f[i][d] = v;
-                        }
-                    }
-                }
-            }
-            FixKind::AddForce(f) => {
-                let c = f.constants();
-                for i in (0..p.len()).filter(|&i| p.mask[i] & g != 0) {
-                    let v = f.at(i, &c);
-                    for d in 0..3 {
-                        if let Some(v) = v[d] {
-                            p.f[i][d] += v;
-                        }
-                    }
-                }
-            }
             FixKind::Buoyancy(b) => {
                 if let Some(gv) = buoyancy_g {
                     b.apply(p, g, gv);
@@ -360,13 +279,6 @@ pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, step: i64, dt: f64,
     });
     for fix in fixes {
         match &mut fix.kind {
-            FixKind::NveSphere => integrate::final_integrate(p, fix.group, dt),
-            FixKind::NveDisc => integrate::final_integrate_with(
-                p,
-                fix.group,
-                dt,
-                crate::engine::planar::DISC_INERTIA,
-            ),
             FixKind::Multisphere(ms) => {
                 ms.calc_force(p, domain, gravity);
                 ms.final_integrate(p, dt);

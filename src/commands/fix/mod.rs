@@ -61,7 +61,6 @@ pub type Build = fn(&Args, &mut Ctx, &FixDef) -> Result<FixKind, CommandError>;
 
 /// The fix styles regolith runs: the style name and the builder in the style's file.
 pub const STYLES: &[(&str, Build)] = &[
-    ("nve/sphere", nve::sphere),
     ("gravity", gravity::build),
     ("check/timestep/gran", check_timestep::build),
     ("property/global", property_global::build),
@@ -88,8 +87,6 @@ pub const STYLES: &[(&str, Build)] = &[
     ("insert/rate/region", insert_pack::build),
     ("insert/stream", insert_stream::build),
     ("wall/gran", wall_gran::build),
-    ("setforce", force::build),
-    ("addforce", force::build),
     ("adapt", adapt::build),
     ("print", print::build),
     ("ave/time", ave_time::build),
@@ -135,6 +132,11 @@ impl FixRow {
 /// The fix styles written as modules: one file each in this folder, one row here. The
 /// `fix` command looks a style up here (and in [`register`]ed rows) before [`STYLES`].
 pub const MODULES: &[FixRow] = &[
+    FixRow {
+        spec: nve::SPHERE,
+        planar: true,
+        build: nve::sphere,
+    },
     FixRow {
         spec: viscous::SPEC,
         planar: true,
@@ -184,6 +186,16 @@ pub const MODULES: &[FixRow] = &[
         spec: momentum::SPEC,
         planar: false,
         build: momentum::build,
+    },
+    FixRow {
+        spec: force::SETFORCE,
+        planar: true,
+        build: force::build,
+    },
+    FixRow {
+        spec: force::ADDFORCE,
+        planar: true,
+        build: force::build,
     },
 ];
 

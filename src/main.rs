@@ -283,64 +283,7 @@ fn dispatch() -> ExitCode {
             Ok(o) => run_with(o),
             Err(code) => code,
         },
-        Command::Check { table, root, args } => {
-            let split = args
-                .iter()
-                .position(|a| a.starts_with('-'))
-                .unwrap_or(args.len());
-            let (decks, flags) = args.split_at(split);
-            let opts = match deck_flags(None, flags) {
-                Ok(o) => o,
-                Err(code) => return code,
-            };
-            // `check -in DECK` names its deck as `run` does; with none at all, nothing is checked
-            let mut decks = decks.to_vec();
-            decks.extend(opts.input.clone());
-            if decks.is_empty() {
-                eprintln!(
-                    "ERROR: regolith check: no deck file given (flags such as -var go after the deck \
-                     files: regolith check DECK -var NAME VALUE, or give the deck as -in DECK)"
-                );
-                return exit(ExitStatus::Usage);
-            }
-            if table {
-                return match session::support_table(&decks, root.as_deref(), &opts) {
-                    Ok(text) => {
-                        print!("{text}");
-                        exit(ExitStatus::Success)
-                    }
-                    Err(d) => {
-                        eprint!("{}", d.render());
-                        exit(ExitStatus::DeckError)
-                    }
-                };
-            }
-            let mut worst = ExitStatus::Success;
-            for deck in &decks {
-                let source = match session::load_source(Some(deck.as_str())) {
-                    Ok(s) => s,
-                    Err(d) => {
-                        eprint!("{}", d.render());
-                        return exit(ExitStatus::DeckError);
-                    }
-                };
-                let (diagnostics, margins) = session::check_deck_with_margins(source, &opts);
-                // with more than one MPI rank only rank 0 speaks
-                if opts.ranks.rank == 0 {
-                    for d in &diagnostics {
-                        println!("{}", d.one_line());
-                    }
-                    for m in &margins {
-                        print!("{m}");
-                    }
-                }
-                let status = session::status_of(&diagnostics);
-                if status == ExitStatus::DeckError || worst == ExitStatus::Success {
-                    worst = status;
-                }
-            }
-            exit(worst)
-        }
+        cmd @ Command::Check { .. } => check_decks(cmd),
         Command::Help { words, markdown } => {
             if markdown {
                 print!("{}", regolith::commands::specs::markdown());
@@ -358,55 +301,7 @@ fn dispatch() -> ExitCode {
                 }
             }
         }
-        Command::Diff {
-            a,
-            b,
-            rtol,
-            atol,
-            columns,
-            steps,
-            key,
-            scale,
-        } => {
-            let scale = match scale
-                .map(|s| regolith::io::diff::Scale::parse(&s))
-                .transpose()
-            {
-                Ok(s) => s,
-                Err(m) => {
-                    eprintln!("ERROR: {m}");
-                    return ExitCode::from(2);
-                }
-            };
-            let steps = match steps
-                .map(|s| regolith::io::diff::parse_steps(&s))
-                .transpose()
-            {
-                Ok(s) => s,
-                Err(m) => {
-                    eprintln!("ERROR: {m}");
-                    return ExitCode::from(2);
-                }
-            };
-            let opts = regolith::io::diff::DiffOptions {
-                rtol,
-                atol,
-                columns,
-                steps,
-                key,
-                scale,
-            };
-            match regolith::io::diff::diff(&a, &b, &opts) {
-                Ok(mut report) => {
-                    print!("{}", report.render(&a, &b));
-                    ExitCode::from(if report.agrees() { 0 } else { 1 })
-                }
-                Err(m) => {
-                    eprintln!("ERROR: {m}");
-                    ExitCode::from(2)
-                }
-            }
-        }
+        cmd @ Command::Diff { .. } => diff_files(cmd),
         Command::Convert {
             input,
             output,
@@ -451,79 +346,204 @@ fn dispatch() -> ExitCode {
                 ExitCode::from(1)
             }
         },
-        Command::Bench {
-            scene,
-            repeat,
-            liggghts,
-            exact,
-            fast,
-            threads,
-            vars,
+        cmd @ Command::Bench { .. } => bench(cmd),
+    }
+}
+
+/// `regolith check DECK ...`: the diagnostics of each deck (or `--table`: the support table).
+fn check_decks(cmd: Command) -> ExitCode {
+    let Command::Check { table, root, args } = cmd else {
+        unreachable!("dispatched on its variant")
+    };
+    let split = args
+        .iter()
+        .position(|a| a.starts_with('-'))
+        .unwrap_or(args.len());
+    let (decks, flags) = args.split_at(split);
+    let opts = match deck_flags(None, flags) {
+        Ok(o) => o,
+        Err(code) => return code,
+    };
+    // `check -in DECK` names its deck as `run` does; with none at all, nothing is checked
+    let mut decks = decks.to_vec();
+    decks.extend(opts.input.clone());
+    if decks.is_empty() {
+        eprintln!(
+            "ERROR: regolith check: no deck file given (flags such as -var go after the deck \
+             files: regolith check DECK -var NAME VALUE, or give the deck as -in DECK)"
+        );
+        return exit(ExitStatus::Usage);
+    }
+    if table {
+        return match session::support_table(&decks, root.as_deref(), &opts) {
+            Ok(text) => {
+                print!("{text}");
+                exit(ExitStatus::Success)
+            }
+            Err(d) => {
+                eprint!("{}", d.render());
+                exit(ExitStatus::DeckError)
+            }
+        };
+    }
+    let mut worst = ExitStatus::Success;
+    for deck in &decks {
+        let source = match session::load_source(Some(deck.as_str())) {
+            Ok(s) => s,
+            Err(d) => {
+                eprint!("{}", d.render());
+                return exit(ExitStatus::DeckError);
+            }
+        };
+        let (diagnostics, margins) = session::check_deck_with_margins(source, &opts);
+        // with more than one MPI rank only rank 0 speaks
+        if opts.ranks.rank == 0 {
+            for d in &diagnostics {
+                println!("{}", d.one_line());
+            }
+            for m in &margins {
+                print!("{m}");
+            }
+        }
+        let status = session::status_of(&diagnostics);
+        if status == ExitStatus::DeckError || worst == ExitStatus::Success {
+            worst = status;
+        }
+    }
+    exit(worst)
+}
+
+/// `regolith diff A B`: compare two dump, thermo or data files within tolerances.
+fn diff_files(cmd: Command) -> ExitCode {
+    let Command::Diff {
+        a,
+        b,
+        rtol,
+        atol,
+        columns,
+        steps,
+        key,
+        scale,
+    } = cmd
+    else {
+        unreachable!("dispatched on its variant")
+    };
+    let scale = match scale
+        .map(|s| regolith::io::diff::Scale::parse(&s))
+        .transpose()
+    {
+        Ok(s) => s,
+        Err(m) => {
+            eprintln!("ERROR: {m}");
+            return ExitCode::from(2);
+        }
+    };
+    let steps = match steps
+        .map(|s| regolith::io::diff::parse_steps(&s))
+        .transpose()
+    {
+        Ok(s) => s,
+        Err(m) => {
+            eprintln!("ERROR: {m}");
+            return ExitCode::from(2);
+        }
+    };
+    let opts = regolith::io::diff::DiffOptions {
+        rtol,
+        atol,
+        columns,
+        steps,
+        key,
+        scale,
+    };
+    match regolith::io::diff::diff(&a, &b, &opts) {
+        Ok(mut report) => {
+            print!("{}", report.render(&a, &b));
+            ExitCode::from(if report.agrees() { 0 } else { 1 })
+        }
+        Err(m) => {
+            eprintln!("ERROR: {m}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// `regolith bench SCENE`: time regolith (and LIGGGHTS) on a scene or the suite of beds.
+fn bench(cmd: Command) -> ExitCode {
+    let Command::Bench {
+        scene,
+        repeat,
+        liggghts,
+        exact,
+        fast,
+        threads,
+        vars,
+        sizes,
+        models,
+        states,
+        steps,
+        beds,
+        csv,
+        plot,
+    } = cmd
+    else {
+        unreachable!("dispatched on its variant")
+    };
+    let choice = regolith::bench::ProgramChoice {
+        liggghts,
+        exact: exact || !fast,
+        fast_threads: if fast { threads } else { Vec::new() },
+    };
+    let result = if scene == "beds" {
+        let opts = regolith::bench::beds::SuiteOptions {
             sizes,
             models,
             states,
+            threads: choice.fast_threads.clone(),
+            exact: choice.exact,
+            liggghts,
+            repeat: repeat.max(1),
             steps,
-            beds,
-            csv,
-            plot,
-        } => {
-            let choice = regolith::bench::ProgramChoice {
-                liggghts,
-                exact: exact || !fast,
-                fast_threads: if fast { threads } else { Vec::new() },
-            };
-            let result = if scene == "beds" {
-                let opts = regolith::bench::beds::SuiteOptions {
-                    sizes,
-                    models,
-                    states,
-                    threads: choice.fast_threads.clone(),
-                    exact: choice.exact,
-                    liggghts,
-                    repeat: repeat.max(1),
-                    steps,
-                    beds: beds.unwrap_or_else(regolith::bench::beds::default_bed_dir),
-                    csv: csv.clone(),
-                };
-                choice.programs().and_then(|programs| {
-                    let me = std::env::current_exe()
-                        .map_err(|e| regolith::tool_error::ToolError::Run(e.to_string()))?;
-                    let rows = regolith::bench::beds::suite(&opts, &programs, &me)?;
-                    if let Some(path) = &csv {
-                        std::fs::write(path, regolith::bench::csv(&rows))
-                            .map_err(regolith::tool_error::ToolError::file(path))?;
-                    }
-                    if let Some(path) = &plot {
-                        regolith::bench::plot(&rows, path)?;
-                    }
-                    Ok(format!(
-                        "{}\n{}",
-                        regolith::bench::speed_table(&rows),
-                        regolith::bench::details(&rows)
-                    ))
-                })
-            } else {
-                let opts = regolith::bench::BenchOptions {
-                    scene,
-                    repeat: repeat.max(1),
-                    choice,
-                    vars: vars
-                        .chunks(2)
-                        .map(|c| (c[0].clone(), c.get(1).cloned().unwrap_or_default()))
-                        .collect(),
-                };
-                regolith::bench::bench(&opts)
-            };
-            match result {
-                Ok(report) => {
-                    print!("{report}");
-                    ExitCode::from(0)
-                }
-                Err(m) => {
-                    eprintln!("ERROR: {m}");
-                    ExitCode::from(1)
-                }
+            beds: beds.unwrap_or_else(regolith::bench::beds::default_bed_dir),
+            csv: csv.clone(),
+        };
+        choice.programs().and_then(|programs| {
+            let me = std::env::current_exe()
+                .map_err(|e| regolith::tool_error::ToolError::Run(e.to_string()))?;
+            let rows = regolith::bench::beds::suite(&opts, &programs, &me)?;
+            if let Some(path) = &csv {
+                std::fs::write(path, regolith::bench::csv(&rows))
+                    .map_err(regolith::tool_error::ToolError::file(path))?;
             }
+            if let Some(path) = &plot {
+                regolith::bench::plot(&rows, path)?;
+            }
+            Ok(format!(
+                "{}\n{}",
+                regolith::bench::speed_table(&rows),
+                regolith::bench::details(&rows)
+            ))
+        })
+    } else {
+        let opts = regolith::bench::BenchOptions {
+            scene,
+            repeat: repeat.max(1),
+            choice,
+            vars: vars
+                .chunks(2)
+                .map(|c| (c[0].clone(), c.get(1).cloned().unwrap_or_default()))
+                .collect(),
+        };
+        regolith::bench::bench(&opts)
+    };
+    match result {
+        Ok(report) => {
+            print!("{report}");
+            ExitCode::from(0)
+        }
+        Err(m) => {
+            eprintln!("ERROR: {m}");
+            ExitCode::from(1)
         }
     }
 }

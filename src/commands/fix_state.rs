@@ -95,7 +95,7 @@ pub fn restore_fix_state(
     ctx: &mut Ctx,
     fix: &mut Fix,
 ) -> std::result::Result<Vec<String>, CommandError> {
-    use crate::engine::insert::{InsertRestart, RELEASE_NAME, RELEASE_WIDTH};
+    use crate::engine::insert::InsertRestart;
     use crate::engine::restart_fixes::doubles;
     let mut lines = Vec::new();
     let held = ctx
@@ -199,71 +199,95 @@ pub fn restore_fix_state(
         }
     }
     if let FixKind::MeshWall(w) = &mut fix.kind {
-        // wall/gran creates each mesh's neighbour count and contact tracker, which take
-        // their stored state
-        let width = w.history_width();
-        let sim = &ctx.sim;
-        let mut trackers = Vec::new();
-        for mesh in &w.meshes {
-            let count = format!("n_neighs_mesh_{mesh}");
-            if sim.held_fix_state(&count, "property/atom").is_some() {
-                lines.push(format!("Resetting global state of Fix {count} Style property/atom from restart file info"));
-            }
-            if sim.held_peratom(&count, "property/atom") {
-                lines.push(format!("Resetting per-atom state of Fix {count} Style property/atom from restart file info"));
-            }
-            let tracker = format!("tracker_{mesh}");
-            let stored = sim
-                .restart_mesh_history
-                .get(&tracker)
-                .filter(|_| sim.restart_in_progress);
-            if let Some((stored_width, _)) = stored {
-                if *stored_width != width {
-                    return Err(a.error(2, format!("Fix {tracker}: saved simulation state used different contact history model - can not restart")));
-                }
-            }
-            if sim
-                .held_fix_state(&tracker, "contacthistory/mesh")
-                .is_some()
-            {
-                lines.push(format!("Resetting global state of Fix {tracker} Style contacthistory/mesh from restart file info"));
-            }
-            if sim.held_peratom(&tracker, "contacthistory/mesh") {
-                lines.push(format!("Resetting per-atom state of Fix {tracker} Style contacthistory/mesh from restart file info"));
-            }
-            trackers.push(match stored {
-                Some((_, lists)) => {
-                    crate::engine::mesh_wall::Tracker::from_restart(&sim.particles.id, lists)
-                }
-                None => Default::default(),
-            });
-        }
-        if trackers.iter().any(|t| *t != Default::default()) {
-            w.trackers = trackers;
-        }
+        restore_mesh_wall_trackers(a, ctx, w, &mut lines)?;
     }
     let first_stream = matches!(fix.kind, FixKind::InsertStream(_)) && !ctx.sim.stream_release;
     if first_stream {
-        // LIGGGHTS's insert/stream creates its per-atom release data here
-        ctx.sim.stream_release = true;
-        if let Some(bytes) = ctx.sim.held_fix_state(RELEASE_NAME, "property/atom") {
-            if doubles(bytes).first().map(|&n| n as usize) != Some(RELEASE_WIDTH) {
-                return Err(a.error(
-                    2,
-                    format!("Fix property/atom (id {RELEASE_NAME}): restarted fix has incompatible data size"),
-                ));
-            }
-            lines.push(format!(
-                "Resetting global state of Fix {RELEASE_NAME} Style property/atom from restart file info"
-            ));
-        }
-        if ctx.sim.held_peratom(RELEASE_NAME, "property/atom") {
-            lines.push(format!(
-                "Resetting per-atom state of Fix {RELEASE_NAME} Style property/atom from restart file info"
-            ));
-            ctx.sim.recalc_release_steps();
-        }
-        ctx.sim.particles.extra_index(RELEASE_NAME, RELEASE_WIDTH);
+        restore_release_data(a, ctx, &mut lines)?;
     }
     Ok(lines)
+}
+
+/// `fix wall/gran ... mesh` creates each mesh's neighbour count and contact tracker, which
+/// take their stored state; `lines` gets what LIGGGHTS prints.
+fn restore_mesh_wall_trackers(
+    a: &Args,
+    ctx: &Ctx,
+    w: &mut crate::engine::fixes::MeshWallFix,
+    lines: &mut Vec<String>,
+) -> std::result::Result<(), CommandError> {
+    let width = w.history_width();
+    let sim = &ctx.sim;
+    let mut trackers = Vec::new();
+    for mesh in &w.meshes {
+        let count = format!("n_neighs_mesh_{mesh}");
+        if sim.held_fix_state(&count, "property/atom").is_some() {
+            lines.push(format!(
+                "Resetting global state of Fix {count} Style property/atom from restart file info"
+            ));
+        }
+        if sim.held_peratom(&count, "property/atom") {
+            lines.push(format!("Resetting per-atom state of Fix {count} Style property/atom from restart file info"));
+        }
+        let tracker = format!("tracker_{mesh}");
+        let stored = sim
+            .restart_mesh_history
+            .get(&tracker)
+            .filter(|_| sim.restart_in_progress);
+        if let Some((stored_width, _)) = stored {
+            if *stored_width != width {
+                return Err(a.error(2, format!("Fix {tracker}: saved simulation state used different contact history model - can not restart")));
+            }
+        }
+        if sim
+            .held_fix_state(&tracker, "contacthistory/mesh")
+            .is_some()
+        {
+            lines.push(format!("Resetting global state of Fix {tracker} Style contacthistory/mesh from restart file info"));
+        }
+        if sim.held_peratom(&tracker, "contacthistory/mesh") {
+            lines.push(format!("Resetting per-atom state of Fix {tracker} Style contacthistory/mesh from restart file info"));
+        }
+        trackers.push(match stored {
+            Some((_, lists)) => {
+                crate::engine::mesh_wall::Tracker::from_restart(&sim.particles.id, lists)
+            }
+            None => Default::default(),
+        });
+    }
+    if trackers.iter().any(|t| *t != Default::default()) {
+        w.trackers = trackers;
+    }
+    Ok(())
+}
+
+/// The first `fix insert/stream` creates the per-atom release data (LIGGGHTS's), which
+/// takes its stored state; `lines` gets what LIGGGHTS prints.
+fn restore_release_data(
+    a: &Args,
+    ctx: &mut Ctx,
+    lines: &mut Vec<String>,
+) -> std::result::Result<(), CommandError> {
+    use crate::engine::insert::{RELEASE_NAME, RELEASE_WIDTH};
+    use crate::engine::restart_fixes::doubles;
+    ctx.sim.stream_release = true;
+    if let Some(bytes) = ctx.sim.held_fix_state(RELEASE_NAME, "property/atom") {
+        if doubles(bytes).first().map(|&n| n as usize) != Some(RELEASE_WIDTH) {
+            return Err(a.error(
+                2,
+                format!("Fix property/atom (id {RELEASE_NAME}): restarted fix has incompatible data size"),
+            ));
+        }
+        lines.push(format!(
+            "Resetting global state of Fix {RELEASE_NAME} Style property/atom from restart file info"
+        ));
+    }
+    if ctx.sim.held_peratom(RELEASE_NAME, "property/atom") {
+        lines.push(format!(
+            "Resetting per-atom state of Fix {RELEASE_NAME} Style property/atom from restart file info"
+        ));
+        ctx.sim.recalc_release_steps();
+    }
+    ctx.sim.particles.extra_index(RELEASE_NAME, RELEASE_WIDTH);
+    Ok(())
 }

@@ -209,21 +209,7 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
     let file = a.word(4)?;
     let mut dump_style = crate::engine::sim::DumpStyle::Text;
     if style == "custom/vtk" {
-        if file.ends_with(".gz") {
-            return Err(a.error(4, "dump custom/vtk files cannot be gzipped"));
-        }
-        if [".pvtu", ".pvtp", ".vtm"].iter().any(|e| file.ends_with(e)) {
-            return Err(a.unsupported(
-                4,
-                "dump custom/vtk parallel or multiblock files (.pvtu/.pvtp/.vtm)",
-            ));
-        }
-        if crate::io::vtk::Flavor::of(file).is_none() {
-            return Err(a.error(
-                4,
-                "dump custom/vtk: the file name must end in .vtk, .vtp or .vtu",
-            ));
-        }
+        check_vtk_file(a, file)?;
     }
     registry::require_style(a, "dump")?;
     let layout = match style {
@@ -265,22 +251,7 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
             Layout::new(&[]).expect("no columns")
         }
         "mesh/stl" | "stl" => {
-            let ids: Vec<String> = (5..a.len())
-                .map(|i| a.word(i).map(str::to_string))
-                .collect::<std::result::Result<_, _>>()?;
-            for (k, id) in ids.iter().enumerate() {
-                let is_mesh = ctx
-                    .sim
-                    .fixes
-                    .iter()
-                    .any(|f| &f.id == id && matches!(f.kind, FixKind::Mesh(_)));
-                if !is_mesh {
-                    return Err(a.error(
-                        5 + k,
-                        "Could not find fix mesh/surface ID for dump mesh/stl",
-                    ));
-                }
-            }
+            let ids = stl_meshes(a, ctx)?;
             dump_style = crate::engine::sim::DumpStyle::MeshStl(ids);
             Layout::new(&[]).expect("no columns")
         }
@@ -293,47 +264,7 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
                     .error(4, "Illegal dump custom command")
                     .with_help("list the columns to dump"));
             }
-            for (k, n) in names.iter().enumerate() {
-                if let Some(body) = n.strip_prefix("f_") {
-                    let (fid, index) =
-                        crate::util::numbers::split_reference(body).ok_or_else(|| {
-                            a.error(5 + k, "Invalid attribute in dump custom command")
-                        })?;
-                    crate::engine::fix_columns::column(ctx.sim, fid, index)
-                        .map_err(|m| a.error(5 + k, &m))?;
-                }
-            }
-            for (k, n) in names.iter().enumerate() {
-                if let Some(var) = n.strip_prefix("v_") {
-                    match ctx.vars.get(var).map(|v| v.style) {
-                        Some(crate::lang::variables::Style::Atom) => {}
-                        Some(_) => {
-                            return Err(
-                                a.error(5 + k, "Dump custom variable is not atom-style variable")
-                            )
-                        }
-                        None => {
-                            return Err(a.error(5 + k, "Could not find dump custom variable name"))
-                        }
-                    }
-                }
-            }
-            for (k, n) in names.iter().enumerate() {
-                if let Some(body) = n.strip_prefix("c_") {
-                    let (cid, index) =
-                        crate::util::numbers::split_reference(body).ok_or_else(|| {
-                            a.error(5 + k, "Invalid attribute in dump custom command")
-                        })?;
-                    let c = ctx
-                        .sim
-                        .computes
-                        .iter()
-                        .find(|c| c.id == cid)
-                        .ok_or_else(|| a.error(5 + k, "Could not find dump custom compute ID"))?;
-                    crate::engine::computes::column_of(c, index)
-                        .map_err(|m| a.error(5 + k, format!("Dump custom: {m}")))?;
-                }
-            }
+            check_custom_columns(a, ctx, &names)?;
             let layout = Layout::new(&names).map_err(|e| {
                 let k = match &e {
                     crate::io::dump::ColumnError::Attribute(w) => {
@@ -362,38 +293,7 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
             if names.is_empty() {
                 return Err(a.error(4, "Illegal dump local command"));
             }
-            let mut cols = Vec::new();
-            for (k, n) in names.iter().enumerate() {
-                let body = n
-                    .strip_prefix("c_")
-                    .ok_or_else(|| a.unsupported(5 + k, &format!("dump local column {n}")))?;
-                let (cid, index) = crate::util::numbers::split_reference(body)
-                    .ok_or_else(|| a.error(5 + k, "Invalid attribute in dump local command"))?;
-                let c = ctx
-                    .sim
-                    .computes
-                    .iter()
-                    .find(|c| c.id == cid)
-                    .ok_or_else(|| a.error(5 + k, "Could not find dump local compute ID"))?;
-                match c.kind {
-                    crate::engine::computes::ComputeKind::PairGranLocal(_) => {}
-                    // refused at the run's init, as LIGGGHTS
-                    crate::engine::computes::ComputeKind::PropertyLocal => {}
-                    // always a local array, even with one column
-                    crate::engine::computes::ComputeKind::WallGranLocal { .. } => {
-                        if index.is_none() {
-                            return Err(a.error(
-                                5 + k,
-                                "Dump local compute does not calculate local vector",
-                            ));
-                        }
-                    }
-                    _ => {
-                        return Err(a.error(5 + k, "Dump local compute does not compute local info"))
-                    }
-                }
-                cols.push((cid.to_string(), index.unwrap_or(1).max(1) - 1));
-            }
+            let cols = local_columns(a, ctx, &names)?;
             let mut layout = Layout::new(&[]).expect("no columns");
             layout.names = names.iter().map(|s| s.to_string()).collect();
             ctx.sim.dumps.push(Dump {
@@ -419,37 +319,8 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
             Layout::new(&[]).expect("no columns")
         }
         "local/gran/vtk" => {
-            if a.len() < 6 {
-                return Err(a
-                    .error(4, "dump local/gran/vtk requires 6 arguments")
-                    .with_help("name a compute pair/gran/local after the file"));
-            }
-            let cid = a.word(5)?;
-            let fields = ctx
-                .sim
-                .computes
-                .iter()
-                .find(|c| c.id == cid)
-                .and_then(|c| crate::engine::local_vtk::local_fields(&c.kind))
-                .ok_or_else(|| {
-                    a.error(
-                        5,
-                        "dump local/gran/vtk requires a valid ID of a compute pair/gran/local to be provided",
-                    )
-                })?;
-            if !fields.contains(&crate::engine::computes::LocalField::Pos) {
-                return Err(a.error(
-                    5,
-                    "dump local/gran/vtk requires a valid ID of a compute pair/gran/local that writes the positions",
-                ));
-            }
-            if !file.ends_with(".vtk") && (file.ends_with(".vtp") || file.ends_with(".vtu")) {
-                return Err(a.unsupported(
-                    4,
-                    "dump local/gran/vtk to XML or parallel VTK files (regolith writes legacy .vtk)",
-                ));
-            }
-            dump_style = crate::engine::sim::DumpStyle::LocalGranVtk(cid.to_string());
+            let cid = local_gran_vtk_compute(a, ctx, file)?;
+            dump_style = crate::engine::sim::DumpStyle::LocalGranVtk(cid);
             Layout::new(&[]).expect("no columns")
         }
         other => return Err(a.unsupported(2, &format!("dump {other}"))),
@@ -468,6 +339,165 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
         style: dump_style,
     });
     Ok(())
+}
+
+/// The file of `dump custom/vtk`: a serial VTK file regolith writes, not gzipped.
+fn check_vtk_file(a: &Args, file: &str) -> Result {
+    if file.ends_with(".gz") {
+        return Err(a.error(4, "dump custom/vtk files cannot be gzipped"));
+    }
+    if [".pvtu", ".pvtp", ".vtm"].iter().any(|e| file.ends_with(e)) {
+        return Err(a.unsupported(
+            4,
+            "dump custom/vtk parallel or multiblock files (.pvtu/.pvtp/.vtm)",
+        ));
+    }
+    if crate::io::vtk::Flavor::of(file).is_none() {
+        return Err(a.error(
+            4,
+            "dump custom/vtk: the file name must end in .vtk, .vtp or .vtu",
+        ));
+    }
+    Ok(())
+}
+
+/// The `f_`, `v_` and `c_` columns of `dump custom`: fixes with per-atom values, atom-style
+/// variables and computes with per-atom values, checked as LIGGGHTS checks them.
+fn check_custom_columns(a: &Args, ctx: &Ctx, names: &[&str]) -> Result {
+    for (k, n) in names.iter().enumerate() {
+        if let Some(body) = n.strip_prefix("f_") {
+            let (fid, index) = crate::util::numbers::split_reference(body)
+                .ok_or_else(|| a.error(5 + k, "Invalid attribute in dump custom command"))?;
+            crate::engine::fix_columns::column(ctx.sim, fid, index)
+                .map_err(|m| a.error(5 + k, &m))?;
+        }
+    }
+    for (k, n) in names.iter().enumerate() {
+        if let Some(var) = n.strip_prefix("v_") {
+            match ctx.vars.get(var).map(|v| v.style) {
+                Some(crate::lang::variables::Style::Atom) => {}
+                Some(_) => {
+                    return Err(a.error(5 + k, "Dump custom variable is not atom-style variable"))
+                }
+                None => return Err(a.error(5 + k, "Could not find dump custom variable name")),
+            }
+        }
+    }
+    for (k, n) in names.iter().enumerate() {
+        if let Some(body) = n.strip_prefix("c_") {
+            let (cid, index) = crate::util::numbers::split_reference(body)
+                .ok_or_else(|| a.error(5 + k, "Invalid attribute in dump custom command"))?;
+            let c = ctx
+                .sim
+                .computes
+                .iter()
+                .find(|c| c.id == cid)
+                .ok_or_else(|| a.error(5 + k, "Could not find dump custom compute ID"))?;
+            crate::engine::computes::column_of(c, index)
+                .map_err(|m| a.error(5 + k, format!("Dump custom: {m}")))?;
+        }
+    }
+    Ok(())
+}
+
+/// The columns of `dump local`: each a local vector or array column of a compute, as
+/// (compute ID, 0-based column).
+fn local_columns(
+    a: &Args,
+    ctx: &Ctx,
+    names: &[&str],
+) -> std::result::Result<Vec<(String, usize)>, CommandError> {
+    let mut cols = Vec::new();
+    for (k, n) in names.iter().enumerate() {
+        let body = n
+            .strip_prefix("c_")
+            .ok_or_else(|| a.unsupported(5 + k, &format!("dump local column {n}")))?;
+        let (cid, index) = crate::util::numbers::split_reference(body)
+            .ok_or_else(|| a.error(5 + k, "Invalid attribute in dump local command"))?;
+        let c = ctx
+            .sim
+            .computes
+            .iter()
+            .find(|c| c.id == cid)
+            .ok_or_else(|| a.error(5 + k, "Could not find dump local compute ID"))?;
+        match c.kind {
+            crate::engine::computes::ComputeKind::PairGranLocal(_) => {}
+            // refused at the run's init, as LIGGGHTS
+            crate::engine::computes::ComputeKind::PropertyLocal => {}
+            // always a local array, even with one column
+            crate::engine::computes::ComputeKind::WallGranLocal { .. } => {
+                if index.is_none() {
+                    return Err(
+                        a.error(5 + k, "Dump local compute does not calculate local vector")
+                    );
+                }
+            }
+            _ => return Err(a.error(5 + k, "Dump local compute does not compute local info")),
+        }
+        cols.push((cid.to_string(), index.unwrap_or(1).max(1) - 1));
+    }
+    Ok(cols)
+}
+
+/// The compute `pair/gran/local` (with positions) that `dump local/gran/vtk` writes, and
+/// its file checked to be legacy VTK.
+fn local_gran_vtk_compute(
+    a: &Args,
+    ctx: &Ctx,
+    file: &str,
+) -> std::result::Result<String, CommandError> {
+    if a.len() < 6 {
+        return Err(a
+            .error(4, "dump local/gran/vtk requires 6 arguments")
+            .with_help("name a compute pair/gran/local after the file"));
+    }
+    let cid = a.word(5)?;
+    let fields = ctx
+        .sim
+        .computes
+        .iter()
+        .find(|c| c.id == cid)
+        .and_then(|c| crate::engine::local_vtk::local_fields(&c.kind))
+        .ok_or_else(|| {
+            a.error(
+                5,
+                "dump local/gran/vtk requires a valid ID of a compute pair/gran/local to be provided",
+            )
+        })?;
+    if !fields.contains(&crate::engine::computes::LocalField::Pos) {
+        return Err(a.error(
+            5,
+            "dump local/gran/vtk requires a valid ID of a compute pair/gran/local that writes the positions",
+        ));
+    }
+    if !file.ends_with(".vtk") && (file.ends_with(".vtp") || file.ends_with(".vtu")) {
+        return Err(a.unsupported(
+            4,
+            "dump local/gran/vtk to XML or parallel VTK files (regolith writes legacy .vtk)",
+        ));
+    }
+    Ok(cid.to_string())
+}
+
+/// The mesh IDs `dump mesh/stl` writes (words 5 on), each a `fix mesh/surface`.
+fn stl_meshes(a: &Args, ctx: &Ctx) -> std::result::Result<Vec<String>, CommandError> {
+    let ids: Vec<String> = (5..a.len())
+        .map(|i| a.word(i).map(str::to_string))
+        .collect::<std::result::Result<_, _>>()?;
+    for (k, id) in ids.iter().enumerate() {
+        let is_mesh = ctx
+            .sim
+            .fixes
+            .iter()
+            .any(|f| &f.id == id && matches!(f.kind, FixKind::Mesh(_)));
+        if !is_mesh {
+            return Err(a.error(
+                5 + k,
+                "Could not find fix mesh/surface ID for dump mesh/stl",
+            ));
+        }
+    }
+    Ok(ids)
 }
 
 pub(super) fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {

@@ -98,17 +98,6 @@ impl Simulation {
             if let FixKind::Style(s) = &fix.kind {
                 s.check(p, fix.group, self.dimension)?;
             }
-            if let FixKind::NveSphere | FixKind::NveDisc = fix.kind {
-                let point =
-                    (0..p.len()).find(|&i| p.mask[i] & fix.group != 0 && p.radius[i] == 0.0);
-                if let Some(i) = point {
-                    return Err(format!(
-                        "Fix nve/sphere requires extended particles (atom {} has radius 0)",
-                        p.id[i]
-                    )
-                    .into());
-                }
-            }
         }
         if self.sort_every > 0 {
             // LIGGGHTS's atom sort bins (half the neighbour cutoff, or the user's size)

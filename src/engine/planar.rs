@@ -10,12 +10,9 @@ pub const DISC_INERTIA: f64 = 0.5;
 /// The fix styles regolith runs in 2d (the others, insertion among them, are refused there);
 /// a module fix style says so in its row instead.
 pub const PLANAR_FIXES: &[&str] = &[
-    "nve/sphere",
     "gravity",
     "property/global",
     "wall/gran",
-    "setforce",
-    "addforce",
     "print",
     "ave/time",
     "check/timestep/gran",

@@ -242,45 +242,7 @@ impl Regions {
                 }
                 Shape::Block { lo, hi }
             }
-            "cylinder" | "cone" => {
-                let axis = axis_of(geometry[0])?;
-                let (a1, a2) = cross_axes(axis);
-                let c1 = scale[a1] * numeric(geometry[1])?;
-                let c2 = scale[a2] * numeric(geometry[2])?;
-                if style == "cylinder" {
-                    let radius = plain(geometry[3], scale[0])?;
-                    let lo = coord(geometry[4], axis, true)?;
-                    let hi = coord(geometry[5], axis, false)?;
-                    if radius <= 0.0 && radius_variable.is_none() {
-                        return Err("Illegal region cylinder command".into());
-                    }
-                    Shape::Cylinder {
-                        axis,
-                        c1,
-                        c2,
-                        radius,
-                        lo,
-                        hi,
-                    }
-                } else {
-                    let radlo = scale[a1] * numeric(geometry[3])?;
-                    let radhi = scale[a1] * numeric(geometry[4])?;
-                    let lo = coord(geometry[5], axis, true)?;
-                    let hi = coord(geometry[6], axis, false)?;
-                    if radlo < 0.0 || radhi < 0.0 || (radlo == 0.0 && radhi == 0.0) || lo >= hi {
-                        return Err("Illegal region cone command".into());
-                    }
-                    Shape::Cone {
-                        axis,
-                        c1,
-                        c2,
-                        radlo,
-                        radhi,
-                        lo,
-                        hi,
-                    }
-                }
-            }
+            "cylinder" | "cone" => cylinder_or_cone(style, geometry, scale, &coord, &mut plain)?,
             "sphere" => {
                 let mut centre = [0.0; 3];
                 for d in 0..3 {
@@ -308,33 +270,7 @@ impl Regions {
                 }
                 Shape::Plane { point, normal }
             }
-            "prism" => {
-                let mut lo = [0.0; 3];
-                let mut hi = [0.0; 3];
-                for d in 0..3 {
-                    lo[d] = coord(geometry[2 * d], d, true)?;
-                    hi[d] = coord(geometry[2 * d + 1], d, false)?;
-                }
-                let tilt = [
-                    scale[0] * numeric(geometry[6])?,
-                    scale[0] * numeric(geometry[7])?,
-                    scale[1] * numeric(geometry[8])?,
-                ];
-                if (0..3).any(|d| lo[d] >= hi[d]) {
-                    return Err("Illegal region prism command".into());
-                }
-                let h = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
-                let hinv = [
-                    [
-                        1.0 / h[0],
-                        -tilt[0] / (h[0] * h[1]),
-                        (tilt[0] * tilt[2] - tilt[1] * h[1]) / (h[0] * h[1] * h[2]),
-                    ],
-                    [0.0, 1.0 / h[1], -tilt[2] / (h[1] * h[2])],
-                    [0.0, 0.0, 1.0 / h[2]],
-                ];
-                Shape::Prism { lo, hi, tilt, hinv }
-            }
+            "prism" => prism(geometry, scale, &coord)?,
             _ => {
                 let mut members = Vec::new();
                 for name in &geometry[1..] {
@@ -667,6 +603,90 @@ pub(crate) fn options(words: &[&str], ctx: RegionContext) -> Result<Options, Eng
         crate::engine::region_motion::Motion::parse(&mut motion, &words[k..], scale)?;
     }
     Ok((interior, scale, motion))
+}
+
+/// A coordinate word of a region (`INF`/`EDGE` or a number, scaled), along a dimension,
+/// on the low side or not.
+type Coord<'a> = dyn Fn(&str, usize, bool) -> Result<f64, EngineError> + 'a;
+
+/// A scaled length word of a region, or a `v_name` radius (then 0 until evaluated).
+type Plain<'a> = dyn FnMut(&str, f64) -> Result<f64, EngineError> + 'a;
+
+/// `cylinder DIM C1 C2 R LO HI` or `cone DIM C1 C2 RADLO RADHI LO HI` (length).
+fn cylinder_or_cone(
+    style: &str,
+    geometry: &[&str],
+    scale: [f64; 3],
+    coord: &Coord,
+    plain: &mut Plain,
+) -> Result<Shape, EngineError> {
+    let axis = axis_of(geometry[0])?;
+    let (a1, a2) = cross_axes(axis);
+    let c1 = scale[a1] * numeric(geometry[1])?;
+    let c2 = scale[a2] * numeric(geometry[2])?;
+    if style == "cylinder" {
+        let radius = plain(geometry[3], scale[0])?;
+        let lo = coord(geometry[4], axis, true)?;
+        let hi = coord(geometry[5], axis, false)?;
+        if radius <= 0.0 && !geometry[3].starts_with("v_") {
+            return Err("Illegal region cylinder command".into());
+        }
+        Ok(Shape::Cylinder {
+            axis,
+            c1,
+            c2,
+            radius,
+            lo,
+            hi,
+        })
+    } else {
+        let radlo = scale[a1] * numeric(geometry[3])?;
+        let radhi = scale[a1] * numeric(geometry[4])?;
+        let lo = coord(geometry[5], axis, true)?;
+        let hi = coord(geometry[6], axis, false)?;
+        if radlo < 0.0 || radhi < 0.0 || (radlo == 0.0 && radhi == 0.0) || lo >= hi {
+            return Err("Illegal region cone command".into());
+        }
+        Ok(Shape::Cone {
+            axis,
+            c1,
+            c2,
+            radlo,
+            radhi,
+            lo,
+            hi,
+        })
+    }
+}
+
+/// `prism XLO XHI YLO YHI ZLO ZHI XY XZ YZ` (length): the box and the inverse of its
+/// triangular shape matrix.
+fn prism(geometry: &[&str], scale: [f64; 3], coord: &Coord) -> Result<Shape, EngineError> {
+    let mut lo = [0.0; 3];
+    let mut hi = [0.0; 3];
+    for d in 0..3 {
+        lo[d] = coord(geometry[2 * d], d, true)?;
+        hi[d] = coord(geometry[2 * d + 1], d, false)?;
+    }
+    let tilt = [
+        scale[0] * numeric(geometry[6])?,
+        scale[0] * numeric(geometry[7])?,
+        scale[1] * numeric(geometry[8])?,
+    ];
+    if (0..3).any(|d| lo[d] >= hi[d]) {
+        return Err("Illegal region prism command".into());
+    }
+    let h = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+    let hinv = [
+        [
+            1.0 / h[0],
+            -tilt[0] / (h[0] * h[1]),
+            (tilt[0] * tilt[2] - tilt[1] * h[1]) / (h[0] * h[1] * h[2]),
+        ],
+        [0.0, 1.0 / h[1], -tilt[2] / (h[1] * h[2])],
+        [0.0, 0.0, 1.0 / h[2]],
+    ];
+    Ok(Shape::Prism { lo, hi, tilt, hinv })
 }
 
 #[cfg(test)]

@@ -63,18 +63,20 @@ pub fn mesh_state(triangles: &[Triangle], extras: &MeshExtras) -> Vec<u8> {
     to_bytes(&d)
 }
 
+/// A mesh's restart state that does not fit the mesh as the deck defines it again.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("Incompatible mesh restart file - mesh has different properties in restarted simulation")]
+pub struct IncompatibleMeshState;
+
 /// The triangles (their current, transformed nodes) and module values a mesh's restart
 /// state holds; `element` and `global` are the module value counts the re-defined mesh has.
 pub fn mesh_from_state(
     bytes: &[u8],
     element: usize,
     global: usize,
-) -> Result<(Vec<Triangle>, MeshExtras), String> {
+) -> Result<(Vec<Triangle>, MeshExtras), IncompatibleMeshState> {
     let d = doubles(bytes);
-    let incompatible = || {
-        "Incompatible mesh restart file - mesh has different properties in restarted simulation"
-            .to_string()
-    };
+    let incompatible = || IncompatibleMeshState;
     let size = MESH_ELEMENT_SIZE + element;
     if d.len() < 3 || d[1] as usize != size || d[2] as usize != global {
         return Err(incompatible());
@@ -203,11 +205,6 @@ impl Simulation {
         let mut globals = Vec::new();
         let mut peratom = Vec::new();
         let mut release_written = false;
-        let entry = |id: &str, style: &str, state: Vec<u8>| GlobalFix {
-            id: id.to_string(),
-            style: style.to_string(),
-            state,
-        };
         for f in &self.fixes {
             match &f.kind {
                 FixKind::Template(t) => globals.push(entry(
@@ -241,54 +238,7 @@ impl Simulation {
                     globals.push(entry(&f.id, &f.style, mesh_state(m.triangles(), &extras)))
                 }
                 FixKind::MeshWall(w) => {
-                    // per mesh: its neighbour counts and contact tracker (LIGGGHTS's
-                    // n_neighs_mesh_<mesh> and tracker_<mesh>)
-                    let width = w.history_width();
-                    let ids = &self.particles.id;
-                    for (k, mesh) in w.meshes.iter().enumerate() {
-                        let entries = match w.trackers.get(k) {
-                            Some(t) => t.restart_entries(ids, width),
-                            None => vec![(0, Vec::new()); ids.len()],
-                        };
-                        let count = format!("n_neighs_mesh_{mesh}");
-                        globals.push(entry(&count, "property/atom", to_bytes(&[1.0])));
-                        peratom.push((
-                            PeratomFix {
-                                id: count,
-                                style: "property/atom".into(),
-                                maxsize: 2,
-                            },
-                            entries
-                                .iter()
-                                .map(|(n, _)| vec![f64::from_bits(*n as u64)])
-                                .collect(),
-                        ));
-                        let maxtouch = entries.iter().map(|(_, c)| c.len()).max().unwrap_or(0);
-                        let tracker = format!("tracker_{mesh}");
-                        globals.push(entry(
-                            &tracker,
-                            "contacthistory/mesh",
-                            to_bytes(&[width as f64, maxtouch as f64]),
-                        ));
-                        peratom.push((
-                            PeratomFix {
-                                id: tracker,
-                                style: "contacthistory/mesh".into(),
-                                maxsize: ((width + 1) * maxtouch + 2) as i32,
-                            },
-                            entries
-                                .iter()
-                                .map(|(_, contacts)| {
-                                    let mut b = vec![f64::from_bits(contacts.len() as u64)];
-                                    for (tri, h) in contacts {
-                                        b.push(f64::from_bits(*tri as i64 as u64));
-                                        b.extend_from_slice(h);
-                                    }
-                                    b
-                                })
-                                .collect(),
-                        ));
-                    }
+                    mesh_wall_entries(w, &self.particles.id, &mut globals, &mut peratom)
                 }
                 FixKind::Style(s) => {
                     if let Some(state) = s.restart_state() {
@@ -383,6 +333,72 @@ impl Simulation {
     }
 }
 
+/// A global fix entry of the restart file.
+fn entry(id: &str, style: &str, state: Vec<u8>) -> GlobalFix {
+    GlobalFix {
+        id: id.to_string(),
+        style: style.to_string(),
+        state,
+    }
+}
+
+/// The restart entries of a mesh wall: per mesh, its neighbour counts and contact tracker
+/// (LIGGGHTS's `n_neighs_mesh_<mesh>` and `tracker_<mesh>`), rows in the order of `ids`.
+fn mesh_wall_entries(
+    w: &crate::engine::fixes::MeshWallFix,
+    ids: &[i64],
+    globals: &mut Vec<GlobalFix>,
+    peratom: &mut Vec<PeratomBlock>,
+) {
+    // per mesh: its neighbour counts and contact tracker (LIGGGHTS's
+    // n_neighs_mesh_<mesh> and tracker_<mesh>)
+    let width = w.history_width();
+    for (k, mesh) in w.meshes.iter().enumerate() {
+        let entries = match w.trackers.get(k) {
+            Some(t) => t.restart_entries(ids, width),
+            None => vec![(0, Vec::new()); ids.len()],
+        };
+        let count = format!("n_neighs_mesh_{mesh}");
+        globals.push(entry(&count, "property/atom", to_bytes(&[1.0])));
+        peratom.push((
+            PeratomFix {
+                id: count,
+                style: "property/atom".into(),
+                maxsize: 2,
+            },
+            entries
+                .iter()
+                .map(|(n, _)| vec![f64::from_bits(*n as u64)])
+                .collect(),
+        ));
+        let maxtouch = entries.iter().map(|(_, c)| c.len()).max().unwrap_or(0);
+        let tracker = format!("tracker_{mesh}");
+        globals.push(entry(
+            &tracker,
+            "contacthistory/mesh",
+            to_bytes(&[width as f64, maxtouch as f64]),
+        ));
+        peratom.push((
+            PeratomFix {
+                id: tracker,
+                style: "contacthistory/mesh".into(),
+                maxsize: ((width + 1) * maxtouch + 2) as i32,
+            },
+            entries
+                .iter()
+                .map(|(_, contacts)| {
+                    let mut b = vec![f64::from_bits(contacts.len() as u64)];
+                    for (tri, h) in contacts {
+                        b.push(f64::from_bits(*tri as i64 as u64));
+                        b.extend_from_slice(h);
+                    }
+                    b
+                })
+                .collect(),
+        ));
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -408,6 +424,7 @@ mod tests {
         assert_eq!(mesh_from_state(&bytes, 1, 3).unwrap(), (tris, worn));
         assert!(mesh_from_state(&bytes, 0, 3)
             .unwrap_err()
+            .to_string()
             .starts_with("Incompatible mesh restart file"));
     }
 

@@ -73,20 +73,90 @@ fn real(w: &str, at: &Line, what: &'static str) -> Result<f64, DataError> {
 /// Parse a data file; errors name `path` and the line.
 pub fn parse(text: &str, path: &str) -> Result<DataFile, DataError> {
     let lines: Vec<&str> = text.lines().collect();
+    let (mut data, natoms, mut k) = header(&lines, path)?;
+    // body: sections, each a keyword line, one skipped line, then its rows
+    let mut index = std::collections::HashMap::new();
+    while k < lines.len() {
+        let l = strip(lines[k]);
+        let at = line_at(path, k + 1);
+        if l.is_empty() {
+            k += 1;
+            continue;
+        }
+        let section = l.clone();
+        k += 2;
+        match section.as_str() {
+            "Atoms" => {
+                for r in 0..natoms {
+                    let (at, text) = section_row(&lines, path, k, r, natoms, "Atoms")?;
+                    let atom = atom_row(&text, at.clone(), data.ntypes)?;
+                    if index.insert(atom.id, data.atoms.len()).is_some() {
+                        return Err(DataError::DuplicateId { at, id: atom.id });
+                    }
+                    data.atoms.push(atom);
+                }
+                k += natoms;
+            }
+            "Velocities" => {
+                for r in 0..natoms {
+                    let (at, text) = section_row(&lines, path, k, r, natoms, "Velocities")?;
+                    let w: Vec<&str> = text.split_whitespace().collect();
+                    if w.len() != 7 {
+                        return Err(DataError::VelocityColumns { at, found: w.len() });
+                    }
+                    let id: i64 = number(w[0], &at, "an atom ID")?;
+                    let i = *index
+                        .get(&id)
+                        .ok_or_else(|| DataError::VelocityWithoutAtom { at: at.clone(), id })?;
+                    for d in 0..3 {
+                        data.atoms[i].v[d] = real(w[1 + d], &at, "a velocity")?;
+                        data.atoms[i].omega[d] = real(w[4 + d], &at, "an angular velocity")?;
+                    }
+                }
+                data.velocities = natoms;
+                k += natoms;
+            }
+            other => {
+                return Err(DataError::UnsupportedSection {
+                    at,
+                    section: other.to_string(),
+                })
+            }
+        }
+    }
+    if data.atoms.len() != natoms && natoms > 0 {
+        return Err(DataError::NoAtoms {
+            path: path.to_string(),
+            atoms: natoms,
+        });
+    }
+    Ok(data)
+}
+
+/// A line without its `#` comment, trimmed.
+fn strip(l: &str) -> String {
+    l.split('#').next().unwrap_or("").trim().to_string()
+}
+
+/// Line `k` (1-based) of the file at `path`, for messages.
+fn line_at(path: &str, k: usize) -> Line {
+    Line {
+        path: path.to_string(),
+        line: k,
+    }
+}
+
+/// The header: the first line is a title, then keyword lines until one is not. Gives the
+/// file with its types and box set, the atom count, and the index of the first body line.
+fn header(lines: &[&str], path: &str) -> Result<(DataFile, usize, usize), DataError> {
     let mut data = DataFile::default();
     let mut natoms: Option<usize> = None;
     let mut bounds = [None; 3];
-    let strip = |l: &str| l.split('#').next().unwrap_or("").trim().to_string();
-    let line = |k: usize| Line {
-        path: path.to_string(),
-        line: k,
-    };
     let file = || path.to_string();
-    // header: the first line is a title; then keyword lines until one is not
     let mut k = 1;
     while k < lines.len() {
         let l = strip(lines[k]);
-        let at = line(k + 1);
+        let at = line_at(path, k + 1);
         if l.is_empty() {
             k += 1;
             continue;
@@ -153,115 +223,67 @@ pub fn parse(text: &str, path: &str) -> Result<DataFile, DataError> {
         data.lo[d] = lo;
         data.hi[d] = hi;
     }
-    // body: sections, each a keyword line, one skipped line, then its rows
-    let mut index = std::collections::HashMap::new();
-    while k < lines.len() {
-        let l = strip(lines[k]);
-        let at = line(k + 1);
-        if l.is_empty() {
-            k += 1;
-            continue;
-        }
-        let section = l.clone();
-        k += 2;
-        match section.as_str() {
-            "Atoms" => {
-                for r in 0..natoms {
-                    let text = lines.get(k + r).ok_or_else(|| DataError::SectionEnds {
-                        path: file(),
-                        section: "Atoms",
-                        read: r,
-                        atoms: natoms,
-                    })?;
-                    let at = line(k + r + 1);
-                    let text = strip(text);
-                    let w: Vec<&str> = text.split_whitespace().collect();
-                    if w.len() != 7 && w.len() != 10 {
-                        return Err(DataError::AtomColumns { at, found: w.len() });
-                    }
-                    let kind: u32 = number(w[1], &at, "an atom type")?;
-                    if kind < 1 || kind > data.ntypes {
-                        return Err(DataError::TypeRange {
-                            at,
-                            kind,
-                            ntypes: data.ntypes,
-                        });
-                    }
-                    let mut atom = DataAtom {
-                        id: number(w[0], &at, "an atom ID")?,
-                        kind,
-                        diameter: real(w[2], &at, "a diameter")?,
-                        density: real(w[3], &at, "a density")?,
-                        x: [0.0; 3],
-                        image: [0; 3],
-                        v: [0.0; 3],
-                        omega: [0.0; 3],
-                    };
-                    for d in 0..3 {
-                        atom.x[d] = real(w[4 + d], &at, "a coordinate")?;
-                        if w.len() == 10 {
-                            atom.image[d] = number(w[7 + d], &at, "an image count")?;
-                        }
-                    }
-                    if atom.diameter < 0.0 || atom.density <= 0.0 {
-                        return Err(DataError::BadSize { at });
-                    }
-                    if atom.diameter > 0.0 {
-                        crate::state::limits::check_sphere(atom.diameter, atom.density, "diameter")
-                            .map_err(|reason| DataError::Sphere {
-                                at: at.clone(),
-                                id: atom.id,
-                                reason,
-                            })?;
-                    }
-                    if index.insert(atom.id, data.atoms.len()).is_some() {
-                        return Err(DataError::DuplicateId { at, id: atom.id });
-                    }
-                    data.atoms.push(atom);
-                }
-                k += natoms;
-            }
-            "Velocities" => {
-                for r in 0..natoms {
-                    let text = lines.get(k + r).ok_or_else(|| DataError::SectionEnds {
-                        path: file(),
-                        section: "Velocities",
-                        read: r,
-                        atoms: natoms,
-                    })?;
-                    let at = line(k + r + 1);
-                    let text = strip(text);
-                    let w: Vec<&str> = text.split_whitespace().collect();
-                    if w.len() != 7 {
-                        return Err(DataError::VelocityColumns { at, found: w.len() });
-                    }
-                    let id: i64 = number(w[0], &at, "an atom ID")?;
-                    let i = *index
-                        .get(&id)
-                        .ok_or_else(|| DataError::VelocityWithoutAtom { at: at.clone(), id })?;
-                    for d in 0..3 {
-                        data.atoms[i].v[d] = real(w[1 + d], &at, "a velocity")?;
-                        data.atoms[i].omega[d] = real(w[4 + d], &at, "an angular velocity")?;
-                    }
-                }
-                data.velocities = natoms;
-                k += natoms;
-            }
-            other => {
-                return Err(DataError::UnsupportedSection {
-                    at,
-                    section: other.to_string(),
-                })
-            }
+    Ok((data, natoms, k))
+}
+
+/// Row `r` of the section whose rows start at line index `k`: its line (for messages) and
+/// its text without comment; an error when the file ends first.
+fn section_row(
+    lines: &[&str],
+    path: &str,
+    k: usize,
+    r: usize,
+    natoms: usize,
+    section: &'static str,
+) -> Result<(Line, String), DataError> {
+    let text = lines.get(k + r).ok_or_else(|| DataError::SectionEnds {
+        path: path.to_string(),
+        section,
+        read: r,
+        atoms: natoms,
+    })?;
+    Ok((line_at(path, k + r + 1), strip(text)))
+}
+
+/// One row of the `Atoms` section (`id type diameter density x y z [ix iy iz]`), checked.
+fn atom_row(text: &str, at: Line, ntypes: u32) -> Result<DataAtom, DataError> {
+    let w: Vec<&str> = text.split_whitespace().collect();
+    if w.len() != 7 && w.len() != 10 {
+        return Err(DataError::AtomColumns { at, found: w.len() });
+    }
+    let kind: u32 = number(w[1], &at, "an atom type")?;
+    if kind < 1 || kind > ntypes {
+        return Err(DataError::TypeRange { at, kind, ntypes });
+    }
+    let mut atom = DataAtom {
+        id: number(w[0], &at, "an atom ID")?,
+        kind,
+        diameter: real(w[2], &at, "a diameter")?,
+        density: real(w[3], &at, "a density")?,
+        x: [0.0; 3],
+        image: [0; 3],
+        v: [0.0; 3],
+        omega: [0.0; 3],
+    };
+    for d in 0..3 {
+        atom.x[d] = real(w[4 + d], &at, "a coordinate")?;
+        if w.len() == 10 {
+            atom.image[d] = number(w[7 + d], &at, "an image count")?;
         }
     }
-    if data.atoms.len() != natoms && natoms > 0 {
-        return Err(DataError::NoAtoms {
-            path: file(),
-            atoms: natoms,
-        });
+    if atom.diameter < 0.0 || atom.density <= 0.0 {
+        return Err(DataError::BadSize { at });
     }
-    Ok(data)
+    if atom.diameter > 0.0 {
+        crate::state::limits::check_sphere(atom.diameter, atom.density, "diameter").map_err(
+            |reason| DataError::Sphere {
+                at: at.clone(),
+                id: atom.id,
+                reason,
+            },
+        )?;
+    }
+    Ok(atom)
 }
 
 fn e16(x: f64) -> String {

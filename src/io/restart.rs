@@ -158,6 +158,11 @@ struct Reader<'a> {
 }
 
 impl<'a> Reader<'a> {
+    /// The file's name, for messages.
+    fn file(&self) -> String {
+        self.name.to_string()
+    }
+
     fn take(&mut self, n: usize, what: &'static str) -> Result<&'a [u8], RestartError> {
         if self.bytes.len() - self.at < n {
             return Err(RestartError::Truncated {
@@ -387,7 +392,17 @@ impl Restart {
         }
         let mut r = Reader { bytes, at: 0, name };
         let mut out = Restart::default();
-        // 1. header
+        out.read_header(&mut r)?;
+        out.read_groups(&mut r)?;
+        out.read_settings(&mut r)?;
+        let nperatom = out.read_fixes(&mut r)?;
+        out.read_atoms(&mut r, nperatom, chunks)?;
+        Ok(out)
+    }
+
+    /// Section 1, the header: flag and value pairs up to a negative flag, refusing what
+    /// regolith cannot read.
+    fn read_header(&mut self, r: &mut Reader) -> Result<(), RestartError> {
         loop {
             let at = r.at;
             let f = r.i32()?;
@@ -395,14 +410,14 @@ impl Restart {
                 break;
             }
             let read = kind_of(f).ok_or_else(|| RestartError::UnknownFlag {
-                file: file(),
+                file: r.file(),
                 offset: at,
                 flag: f,
             })?;
             if (flag::XY..=flag::YZ).contains(&f) {
-                return Err(RestartError::Triclinic { file: file() });
+                return Err(RestartError::Triclinic { file: r.file() });
             }
-            let v = read(&mut r)?;
+            let v = read(r)?;
             if f == flag::VERSION {
                 let Value::Text(t) = &v else { unreachable!() };
                 let major = t
@@ -412,7 +427,7 @@ impl Restart {
                     .and_then(|s| s.parse::<i32>().ok());
                 if !t.starts_with("Version LIGGGHTS") || major.is_none_or(|m| m < 3) {
                     return Err(RestartError::Version {
-                        file: file(),
+                        file: r.file(),
                         version: t.clone(),
                     });
                 }
@@ -421,47 +436,55 @@ impl Restart {
                 let Value::Text(t) = &v else { unreachable!() };
                 if t != "granular" && t != "sphere" {
                     return Err(RestartError::AtomStyle {
-                        file: file(),
+                        file: r.file(),
                         style: t.clone(),
                     });
                 }
             }
             if matches!(f, 25 | 28 | 31 | 34) && v != Value::Big(0) {
-                return Err(RestartError::Molecular { file: file() });
+                return Err(RestartError::Molecular { file: r.file() });
             }
-            out.header.push((f, v));
+            self.header.push((f, v));
         }
-        if out.text(flag::VERSION).is_none() {
-            return Err(RestartError::NoVersion { file: file() });
+        if self.text(flag::VERSION).is_none() {
+            return Err(RestartError::NoVersion { file: r.file() });
         }
-        // 2. groups
-        out.ngroup = r.count("group count", 32)? as i32;
+        Ok(())
+    }
+
+    /// Section 2, the group names (an empty name for an unused group bit).
+    fn read_groups(&mut self, r: &mut Reader) -> Result<(), RestartError> {
+        self.ngroup = r.count("group count", 32)? as i32;
         let mut found = 0;
-        while found < out.ngroup as usize {
-            if out.groups.len() >= 32 {
-                return Err(RestartError::TooManyGroups { file: file() });
+        while found < self.ngroup as usize {
+            if self.groups.len() >= 32 {
+                return Err(RestartError::TooManyGroups { file: r.file() });
             }
             let n = r.count("group name length", 4096)?;
             if n == 0 {
-                out.groups.push(None);
+                self.groups.push(None);
                 continue;
             }
             let raw = r.take(n, "a group name")?;
             let raw = raw.strip_suffix(&[0]).unwrap_or(raw);
-            out.groups
+            self.groups
                 .push(Some(String::from_utf8_lossy(raw).into_owned()));
             found += 1;
         }
-        // 3. type arrays
-        let ntypes = out.ntypes() as usize;
+        Ok(())
+    }
+
+    /// Sections 3 and 4, the per-type masses and the pair style's settings.
+    fn read_settings(&mut self, r: &mut Reader) -> Result<(), RestartError> {
+        let ntypes = self.ntypes() as usize;
         loop {
             let at = r.at;
             match r.i32()? {
                 f if f < 0 => break,
-                0 => out.masses = Some(r.doubles(ntypes)?),
+                0 => self.masses = Some(r.doubles(ntypes)?),
                 f => {
                     return Err(RestartError::TypeArrayFlag {
-                        file: file(),
+                        file: r.file(),
                         offset: at,
                         flag: f,
                     })
@@ -477,7 +500,7 @@ impl Restart {
                     let style = r.string()?;
                     if style != "gran" {
                         return Err(RestartError::PairStyle {
-                            file: file(),
+                            file: r.file(),
                             style,
                         });
                     }
@@ -487,57 +510,72 @@ impl Restart {
                         .and_then(|n| (n / 2).checked_mul(4))
                         .and_then(|n| n.checked_add(8))
                         .ok_or_else(|| RestartError::PairSize {
-                            file: file(),
+                            file: r.file(),
                             ntypes,
                         })?;
                     let raw = r.take(size, "pair gran settings")?;
-                    out.pair = Some((style, raw.to_vec()));
+                    self.pair = Some((style, raw.to_vec()));
                 }
                 f => {
                     return Err(RestartError::TopologyStyle {
-                        file: file(),
+                        file: r.file(),
                         offset: at,
                         flag: f,
                     })
                 }
             }
         }
-        // 5. fixes
+        Ok(())
+    }
+
+    /// Section 5, the fixes' global states and the list of per-atom states; gives the
+    /// per-atom count.
+    fn read_fixes(&mut self, r: &mut Reader) -> Result<usize, RestartError> {
         let nglobal = r.count("count of fixes with global state", 4096)?;
         for _ in 0..nglobal {
             let id = r.string()?;
             let style = r.string()?;
             let n = r.count("fix state size", 1 << 30)?;
             let state = r.take(n, "fix state")?.to_vec();
-            out.global_fixes.push(GlobalFix { id, style, state });
+            self.global_fixes.push(GlobalFix { id, style, state });
         }
         let nperatom = r.count("count of fixes with per-atom state", 4096)?;
         for _ in 0..nperatom {
             let id = r.string()?;
             let style = r.string()?;
             let maxsize = r.i32()?;
-            out.peratom_fixes.push(PeratomFix { id, style, maxsize });
+            self.peratom_fixes.push(PeratomFix { id, style, maxsize });
         }
-        // 6. atoms
-        let nprocs = out.int(flag::NPROCS).unwrap_or(1).max(1) as usize;
+        Ok(nperatom)
+    }
+
+    /// Section 6, the atoms: from the file itself or from the per-processor files `chunks`
+    /// reads, their count checked against the header's.
+    fn read_atoms(
+        &mut self,
+        r: &mut Reader,
+        nperatom: usize,
+        chunks: Option<&dyn Fn(usize) -> Result<Vec<u8>, RestartError>>,
+    ) -> Result<(), RestartError> {
+        let nprocs = self.int(flag::NPROCS).unwrap_or(1).max(1) as usize;
         match chunks {
             None => {
                 for _ in 0..nprocs {
                     let n = r.count("atom chunk size", usize::MAX >> 4)?;
                     let buf = r.doubles(n)?;
-                    records(&buf, nperatom, name, &mut out.atoms)?;
+                    records(&buf, nperatom, r.name, &mut self.atoms)?;
                 }
-                if r.at != bytes.len() {
+                if r.at != r.bytes.len() {
                     return Err(RestartError::Trailing {
-                        file: file(),
-                        count: bytes.len() - r.at,
+                        file: r.file(),
+                        count: r.bytes.len() - r.at,
                     });
                 }
             }
             Some(read_chunk) => {
                 for p in 0..nprocs {
                     let data = read_chunk(p)?;
-                    let pname = format!("{name} (processor file {p})");
+                    let pname = format!("{} (processor file {p})", r.name);
                     let mut c = Reader {
                         bytes: &data,
                         at: 0,
@@ -545,19 +583,19 @@ impl Restart {
                     };
                     let n = c.count("atom chunk size", usize::MAX >> 4)?;
                     let buf = c.doubles(n)?;
-                    records(&buf, nperatom, &pname, &mut out.atoms)?;
+                    records(&buf, nperatom, &pname, &mut self.atoms)?;
                 }
             }
         }
-        let natoms = out.int(flag::NATOMS).unwrap_or(-1);
-        if natoms != out.atoms.len() as i64 {
+        let natoms = self.int(flag::NATOMS).unwrap_or(-1);
+        if natoms != self.atoms.len() as i64 {
             return Err(RestartError::AtomCount {
-                file: file(),
+                file: r.file(),
                 header: natoms,
-                found: out.atoms.len(),
+                found: self.atoms.len(),
             });
         }
-        Ok(out)
+        Ok(())
     }
 
     /// The file's bytes (single-file form).

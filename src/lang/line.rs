@@ -10,6 +10,17 @@ pub enum VarRef<'a> {
     Immediate(&'a str),
 }
 
+/// Why a `$` reference has no value.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum SubstitutionError {
+    /// The named variable does not exist.
+    #[error("Substitution for illegal variable")]
+    Undefined,
+    /// Its formula (a named equal-style variable or `$(expr)`) could not be evaluated.
+    #[error(transparent)]
+    Formula(#[from] crate::lang::expr::ExprError),
+}
+
 /// A lexical problem with a byte offset into the text being processed.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct LexError {
@@ -85,7 +96,7 @@ pub fn strip_comment(text: &str) -> &str {
 /// state and each `'` the single-quote state, independently.
 pub fn substitute(
     text: &str,
-    mut lookup: impl FnMut(VarRef<'_>) -> Result<String, String>,
+    mut lookup: impl FnMut(VarRef<'_>) -> Result<String, SubstitutionError>,
     mut progress: impl FnMut(&str),
 ) -> Result<String, LexError> {
     let bytes = text.as_bytes();
@@ -136,8 +147,8 @@ pub fn substitute(
                 }
                 None => (VarRef::Named(""), i + 1),
             };
-            let value = lookup(reference).map_err(|message| LexError {
-                message,
+            let value = lookup(reference).map_err(|e| LexError {
+                message: e.to_string(),
                 span: (i, beyond),
             })?;
             out.push_str(&value);
@@ -244,7 +255,7 @@ mod tests {
             VarRef::Named("a") => Ok("1".to_string()),
             VarRef::Named("long") => Ok("22".to_string()),
             VarRef::Immediate(e) => Ok(format!("<{e}>")),
-            _ => Err("Substitution for illegal variable".to_string()),
+            _ => Err(SubstitutionError::Undefined),
         };
         let mut seen = Vec::new();
         let out = substitute("x $a ${long} $(f(1)+2) '$a'", look, |p| {
@@ -253,7 +264,9 @@ mod tests {
         assert_eq!(out.unwrap(), "x 1 22 <f(1)+2> '$a'");
         assert_eq!(seen[0], "x 1 ${long} $(f(1)+2) '$a'");
         assert_eq!(seen.len(), 3);
-        assert_eq!(substitute("$b", look, |_| {}).unwrap_err().span, (0, 2));
+        let undefined = substitute("$b", look, |_| {}).unwrap_err();
+        assert_eq!(undefined.span, (0, 2));
+        assert_eq!(undefined.message, "Substitution for illegal variable");
         assert!(substitute("${a", look, |_| {}).is_err());
         assert!(substitute("$(1", look, |_| {}).is_err());
         assert!(substitute("$", look, |_| {}).is_err());

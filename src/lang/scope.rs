@@ -473,26 +473,23 @@ pub struct RunVariables<'a> {
 
 impl VariableSource for RunVariables<'_> {
     fn substitute(&mut self, sim: &Simulation, text: &str) -> Result<String, EngineError> {
+        use crate::lang::line::SubstitutionError;
         let vars = &mut *self.vars;
         let sys = &mut *self.sys;
         crate::lang::line::substitute(
             text,
             |r| match r {
                 crate::lang::line::VarRef::Named(name) => match vars.retrieve(name, sys) {
-                    None => Err("Substitution for illegal variable".to_string()),
+                    None => Err(SubstitutionError::Undefined),
                     Some(Value::Text(t)) => Ok(t),
                     Some(Value::Formula(f)) => {
                         let mut scope = Scope::new(vars, sys, sim);
-                        expr::evaluate(&f, &mut scope)
-                            .map(|x| g_precision(x, 15))
-                            .map_err(|e| e.to_string())
+                        Ok(g_precision(expr::evaluate(&f, &mut scope)?, 15))
                     }
                 },
                 crate::lang::line::VarRef::Immediate(e) => {
                     let mut scope = Scope::new(vars, sys, sim);
-                    expr::evaluate(e, &mut scope)
-                        .map(|x| g_precision(x, 20))
-                        .map_err(|e| e.to_string())
+                    Ok(g_precision(expr::evaluate(e, &mut scope)?, 20))
                 }
             },
             |_| {},

@@ -259,29 +259,7 @@ impl Variables {
                 if exists.is_some() {
                     return Ok(());
                 }
-                let padded = rest.last().map(String::as_str) == Some("pad");
-                let numbers = if padded {
-                    &rest[..rest.len() - 1]
-                } else {
-                    rest
-                };
-                let (first, last) = match numbers {
-                    [n] => {
-                        let n = parse_int(n)?;
-                        if n <= 0 {
-                            return Err(illegal());
-                        }
-                        (1, n)
-                    }
-                    [a, b] => {
-                        let (a, b) = (parse_int(a)?, parse_int(b)?);
-                        if a > b || b < 0 {
-                            return Err(illegal());
-                        }
-                        (a, b)
-                    }
-                    _ => return Err(illegal()),
-                };
+                let (first, last, padded) = loop_range(rest)?;
                 // LIGGGHTS stores which = N1 - 1 and count = N2, so N1 may be negative
                 let mut v = new(Style::Loop, Vec::new());
                 v.count = last;
@@ -483,6 +461,35 @@ impl Variables {
     pub fn names(&self) -> Vec<&str> {
         self.vars.iter().map(|v| v.name.as_str()).collect()
     }
+}
+
+/// The words after `variable NAME loop`: `N` or `N1 N2`, then `pad` or not. Gives the first
+/// and last values and whether the values are zero-padded.
+fn loop_range(rest: &[String]) -> Result<(i64, i64, bool), VariableCommandError> {
+    let padded = rest.last().map(String::as_str) == Some("pad");
+    let numbers = if padded {
+        &rest[..rest.len() - 1]
+    } else {
+        rest
+    };
+    let (first, last) = match numbers {
+        [n] => {
+            let n = parse_int(n)?;
+            if n <= 0 {
+                return Err(illegal());
+            }
+            (1, n)
+        }
+        [a, b] => {
+            let (a, b) = (parse_int(a)?, parse_int(b)?);
+            if a > b || b < 0 {
+                return Err(illegal());
+            }
+            (a, b)
+        }
+        _ => return Err(illegal()),
+    };
+    Ok((first, last, padded))
 }
 
 #[cfg(test)]

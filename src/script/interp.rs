@@ -269,8 +269,8 @@ impl Interpreter {
                         Ok(UNKNOWN_VALUE.to_string())
                     }
                     Ok(text) => Ok(text),
-                    Err(None) => Err("Substitution for illegal variable".to_string()),
-                    Err(Some(e)) => Err(e.to_string()),
+                    Err(None) => Err(line::SubstitutionError::Undefined),
+                    Err(Some(e)) => Err(line::SubstitutionError::Formula(e)),
                 }
             },
             |progress| {

@@ -502,45 +502,13 @@ pub fn read_csv(label: &str, text: &str) -> Result<ReadSweep, ToolError> {
 /// per sweep, observable and combination of the later axes; a column per value of the first
 /// axis) and one figure; written to `out` as `trade.md` and `trade.png`. Returns the table.
 pub fn merge(dirs: &[PathBuf], out: &Path, title: &str, cost: Cost) -> Result<String, ToolError> {
-    let mut sweeps = Vec::new();
-    for d in dirs {
-        let p = d.join("sweep.csv");
-        let text = std::fs::read_to_string(&p).map_err(ToolError::file(&p))?;
-        let label = d
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        let sweep = read_csv(&label, &text).map_err(|m| ToolError::File {
-            path: p.clone(),
-            why: m.to_string(),
-        })?;
-        sweeps.push(sweep);
-    }
+    let sweeps = read_sweeps(dirs)?;
     let first_axis = sweeps
         .first()
         .and_then(|s| s.axes.first())
         .cloned()
         .unwrap_or_default();
-    // the columns: values of the first axis, numerically ordered when they are numbers
-    let mut columns: Vec<String> = Vec::new();
-    for s in &sweeps {
-        for r in &s.rows {
-            if let Some(v) = r.values.first() {
-                if !columns.contains(v) {
-                    columns.push(v.clone());
-                }
-            }
-        }
-    }
-    if columns.iter().all(|c| c.parse::<f64>().is_ok()) {
-        columns.sort_by(|a, b| {
-            let (x, y) = (
-                a.parse::<f64>().unwrap_or(0.0),
-                b.parse::<f64>().unwrap_or(0.0),
-            );
-            x.total_cmp(&y)
-        });
-    }
+    let columns = first_axis_values(&sweeps);
     let mut md = format!(
         "| sweep | observable | {} |\n",
         columns
@@ -550,29 +518,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path, title: &str, cost: Cost) -> Result<St
             .join(" | ")
     );
     md.push_str(&format!("|---|---|{}\n", "---|".repeat(columns.len())));
-    let mut by_axis = Chart {
-        title: format!("{title}: error against {first_axis}"),
-        x_label: first_axis.clone(),
-        y_label: "error |value - ref| / |ref| (absolute where marked)".into(),
-        log_x: true,
-        log_y: true,
-        curves: Vec::new(),
-    };
-    let (cost_title, cost_label) = match cost {
-        Cost::Wall => ("wall time", "wall time / wall time of the reference run"),
-        Cost::Steps => (
-            "cost (steps)",
-            "steps / steps of the reference run (deterministic cost)",
-        ),
-    };
-    let mut by_cost = Chart {
-        title: format!("{title}: error against {cost_title}"),
-        x_label: cost_label.into(),
-        y_label: "error".into(),
-        log_x: true,
-        log_y: true,
-        curves: Vec::new(),
-    };
+    let (mut by_axis, mut by_cost) = trade_charts(title, &first_axis, cost);
     for s in &sweeps {
         let ref_row = s.rows.iter().find(|r| r.reference);
         let ref_cost = ref_row.map_or(f64::NAN, |r| match cost {
@@ -685,6 +631,77 @@ pub fn merge(dirs: &[PathBuf], out: &Path, title: &str, cost: Cost) -> Result<St
     std::fs::write(&md_path, &md).map_err(ToolError::file(&md_path))?;
     plot::save(&out.join("trade.png"), &[by_axis, by_cost], 1100, 700)?;
     Ok(md)
+}
+
+/// The `sweep.csv` of each directory, labelled with the directory's name.
+fn read_sweeps(dirs: &[PathBuf]) -> Result<Vec<ReadSweep>, ToolError> {
+    let mut sweeps = Vec::new();
+    for d in dirs {
+        let p = d.join("sweep.csv");
+        let text = std::fs::read_to_string(&p).map_err(ToolError::file(&p))?;
+        let label = d
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let sweep = read_csv(&label, &text).map_err(|m| ToolError::File {
+            path: p.clone(),
+            why: m.to_string(),
+        })?;
+        sweeps.push(sweep);
+    }
+    Ok(sweeps)
+}
+
+/// The values of the first axis over all sweeps, numerically ordered when they are numbers.
+fn first_axis_values(sweeps: &[ReadSweep]) -> Vec<String> {
+    let mut columns: Vec<String> = Vec::new();
+    for s in sweeps {
+        for r in &s.rows {
+            if let Some(v) = r.values.first() {
+                if !columns.contains(v) {
+                    columns.push(v.clone());
+                }
+            }
+        }
+    }
+    if columns.iter().all(|c| c.parse::<f64>().is_ok()) {
+        columns.sort_by(|a, b| {
+            let (x, y) = (
+                a.parse::<f64>().unwrap_or(0.0),
+                b.parse::<f64>().unwrap_or(0.0),
+            );
+            x.total_cmp(&y)
+        });
+    }
+    columns
+}
+
+/// The two empty figures of a merge: error against the first axis, and against the cost.
+fn trade_charts(title: &str, first_axis: &str, cost: Cost) -> (Chart, Chart) {
+    let by_axis = Chart {
+        title: format!("{title}: error against {first_axis}"),
+        x_label: first_axis.to_string(),
+        y_label: "error |value - ref| / |ref| (absolute where marked)".into(),
+        log_x: true,
+        log_y: true,
+        curves: Vec::new(),
+    };
+    let (cost_title, cost_label) = match cost {
+        Cost::Wall => ("wall time", "wall time / wall time of the reference run"),
+        Cost::Steps => (
+            "cost (steps)",
+            "steps / steps of the reference run (deterministic cost)",
+        ),
+    };
+    let by_cost = Chart {
+        title: format!("{title}: error against {cost_title}"),
+        x_label: cost_label.into(),
+        y_label: "error".into(),
+        log_x: true,
+        log_y: true,
+        curves: Vec::new(),
+    };
+    (by_axis, by_cost)
 }
 
 #[cfg(test)]

@@ -83,21 +83,8 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 if a.len() < i + 2 {
                     return Err(fail(i, "Illegal keyword entry"));
                 }
-                let name = a.word(i + 1)?;
-                if ctx.sys.mode == crate::lang::system::Mode::Run {
-                    let f = std::fs::OpenOptions::new()
-                        .create(true)
-                        .write(true)
-                        .append(kw == "append")
-                        .truncate(kw == "file")
-                        .open(name)
-                        .map_err(|_| {
-                            a.file_error(
-                                i + 1,
-                                format!("Fix massflow/mesh (id {id}): Cannot open file {name}"),
-                            )
-                        })?;
-                    file = Some(std::io::BufWriter::new(f));
+                if let Some(f) = open_output(a, ctx, i, kw == "append", id)? {
+                    file = Some(f);
                 }
                 i += 2;
             }
@@ -127,20 +114,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 if a.len() < i + 2 {
                     return Err(fail(i, "not enough arguments for 'sum_property'"));
                 }
-                let name = a.word(i + 1)?;
-                // a per-atom scalar of fix property/atom, found by its variable name
-                let found = ctx.sim.fixes.iter().find_map(|f| match &f.kind {
-                    FixKind::PropertyAtom(pa) if pa.name == name && !pa.vector => {
-                        Some(f.id.clone())
-                    }
-                    _ => None,
-                });
-                property = Some(found.ok_or_else(|| {
-                    a.error(
-                        i + 1,
-                        format!("Could not locate a fix/property storing value(s) for {name} as requested by massflow/mesh."),
-                    )
-                })?);
+                property = Some(summed_property(a, ctx, i + 1)?);
                 i += 2;
             }
             _ => return Err(fail(i, "unknown keyword")),
@@ -172,4 +146,48 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     m.write_header()
         .map_err(|e| a.error(0, format!("fix massflow/mesh: {e}")))?;
     Ok(FixKind::Massflow(Box::new(m)))
+}
+
+/// The output file of `file F` (`append` false) or `append F` at word `i` (the file name
+/// is word `i + 1`); None in a dry run, which opens no file.
+fn open_output(
+    a: &Args,
+    ctx: &Ctx,
+    i: usize,
+    append: bool,
+    id: &str,
+) -> Result<Option<std::io::BufWriter<std::fs::File>>, CommandError> {
+    let name = a.word(i + 1)?;
+    if ctx.sys.mode != crate::lang::system::Mode::Run {
+        return Ok(None);
+    }
+    let f = std::fs::OpenOptions::new()
+        .create(true)
+        .write(true)
+        .append(append)
+        .truncate(!append)
+        .open(name)
+        .map_err(|_| {
+            a.file_error(
+                i + 1,
+                format!("Fix massflow/mesh (id {id}): Cannot open file {name}"),
+            )
+        })?;
+    Ok(Some(std::io::BufWriter::new(f)))
+}
+
+/// The fix ID of the per-atom scalar of `fix property/atom` named by word `i` (its variable
+/// name), whose sum crossing the mesh is counted.
+fn summed_property(a: &Args, ctx: &Ctx, i: usize) -> Result<String, CommandError> {
+    let name = a.word(i)?;
+    let found = ctx.sim.fixes.iter().find_map(|f| match &f.kind {
+        FixKind::PropertyAtom(pa) if pa.name == name && !pa.vector => Some(f.id.clone()),
+        _ => None,
+    });
+    found.ok_or_else(|| {
+        a.error(
+            i,
+            format!("Could not locate a fix/property storing value(s) for {name} as requested by massflow/mesh."),
+        )
+    })
 }

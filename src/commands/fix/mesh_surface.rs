@@ -183,7 +183,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
             _ => (0, 0),
         };
         let (t, extras) = crate::engine::restart_fixes::mesh_from_state(&bytes, element, global)
-            .map_err(|m| a.error(2, &m))?;
+            .map_err(|m| a.error(2, m))?;
         restored = Some(extras);
         t
     } else {

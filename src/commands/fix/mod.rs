@@ -63,7 +63,6 @@ pub type Build = fn(&Args, &mut Ctx, &FixDef) -> Result<FixKind, CommandError>;
 
 /// The fix styles regolith runs: the style name and the builder in the style's file.
 pub const STYLES: &[(&str, Build)] = &[
-    ("nve/sphere", nve::sphere),
     ("gravity", gravity::build),
     ("check/timestep/gran", check_timestep::build),
     ("property/global", property_global::build),
@@ -90,8 +89,6 @@ pub const STYLES: &[(&str, Build)] = &[
     ("insert/rate/region", insert_pack::build),
     ("insert/stream", insert_stream::build),
     ("wall/gran", wall_gran::build),
-    ("setforce", force::build),
-    ("addforce", force::build),
     ("adapt", adapt::build),
     ("print", print::build),
     ("ave/time", ave_time::build),
@@ -137,6 +134,11 @@ impl FixRow {
 /// The fix styles written as modules: one file each in this folder, one row here. The
 /// `fix` command looks a style up here (and in [`register`]ed rows) before [`STYLES`].
 pub const MODULES: &[FixRow] = &[
+    FixRow {
+        spec: nve::SPHERE,
+        planar: true,
+        build: nve::sphere,
+    },
     FixRow {
         spec: viscous::SPEC,
         planar: true,
@@ -201,6 +203,16 @@ pub const MODULES: &[FixRow] = &[
         spec: spring::SPEC,
         planar: false,
         build: spring::build,
+    },
+    FixRow {
+        spec: force::SETFORCE,
+        planar: true,
+        build: force::build,
+    },
+    FixRow {
+        spec: force::ADDFORCE,
+        planar: true,
+        build: force::build,
     },
 ];
 

@@ -3,11 +3,12 @@
 use crate::commands::fix::FixDef;
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::fixes::FixKind;
+use crate::engine::mesh_motion::{unit_axis, Motion};
 
 /// `fix ID group move/mesh mesh MESH STYLE args...` (linear, wiggle, rotate, riggle, viblin,
 /// vibrot), with LIGGGHTS's messages.
 pub fn build(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandError> {
-    use crate::engine::mesh_motion::{unit_axis, Motion, MoveMesh};
+    use crate::engine::mesh_motion::MoveMesh;
     if a.len() < 6 {
         return Err(a.error(
             2,
@@ -27,41 +28,82 @@ pub fn build(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandE
     if m.surface_vel.is_some() {
         return Err(a.error(4, "Illegal fix move/mesh command, cannot apply move to a mesh using keywords 'velocity' or 'angular_velocity'"));
     }
-    let style = a.word(5)?;
-    // LIGGGHTS counts the style word as argument 0 of the motion's own list
-    let narg = a.len() - 5;
-    let at = |k: usize| 5 + k;
-    let need = |n: usize| -> std::result::Result<(), CommandError> {
-        if narg < n {
-            Err(a.error(5, format!("Not enough arguments for movement type {style}")))
+    let words = MotionWords {
+        a,
+        style: a.word(5)?,
+        narg: a.len() - 5,
+    };
+    let (motion, reference) = words.motion()?;
+    words.warn_excess(ctx, &motion);
+    Ok(FixKind::MoveMesh(MoveMesh {
+        mesh,
+        motion,
+        time: 0.0,
+        reference,
+    }))
+}
+
+/// (words read, per mode: amplitude, phase, angular frequency)
+type Modes = (usize, Vec<(f64, f64, f64)>);
+
+/// The motion words of `fix move/mesh` from the style (word 5) on. LIGGGHTS counts the
+/// style word as argument 0 of the motion's own list.
+struct MotionWords<'c> {
+    a: &'c Args<'c>,
+    style: &'c str,
+    narg: usize,
+}
+
+impl MotionWords<'_> {
+    /// The command word of the motion's argument `k`.
+    fn at(&self, k: usize) -> usize {
+        5 + k
+    }
+
+    /// At least `n` motion arguments.
+    fn need(&self, n: usize) -> Result<(), CommandError> {
+        if self.narg < n {
+            Err(self.a.error(
+                5,
+                format!("Not enough arguments for movement type {}", self.style),
+            ))
         } else {
             Ok(())
         }
-    };
-    let keyword = |k: usize, w: &str| -> std::result::Result<(), CommandError> {
-        if a.word(at(k))? != w {
-            Err(a.error(at(k), format!("Expected keyword '{w}'")))
+    }
+
+    /// Motion argument `k` is the keyword `w`.
+    fn keyword(&self, k: usize, w: &str) -> Result<(), CommandError> {
+        if self.a.word(self.at(k))? != w {
+            Err(self.a.error(self.at(k), format!("Expected keyword '{w}'")))
         } else {
             Ok(())
         }
-    };
-    let vec3 = |k: usize| -> std::result::Result<[f64; 3], CommandError> {
-        Ok([a.real(at(k))?, a.real(at(k + 1))?, a.real(at(k + 2))?])
-    };
-    let mut warn = |n: usize| {
-        if narg > n {
-            ctx.say(&format!("WARNING: Movement type {style} requires only {n} arguments, excess arguments will be ignored\n"));
-        }
-    };
-    let two_pi = 2.0 * std::f64::consts::PI;
-    // (words read, per mode: amplitude, phase, angular frequency)
-    type Modes = (usize, Vec<(f64, f64, f64)>);
-    let modes = |order_at: usize| -> std::result::Result<Modes, CommandError> {
-        keyword(order_at, "order")?;
-        let n = a.int(at(order_at + 1))?;
+    }
+
+    /// Motion arguments `k..k + 3` as a vector.
+    fn vec3(&self, k: usize) -> Result<[f64; 3], CommandError> {
+        let a = self.a;
+        Ok([
+            a.real(self.at(k))?,
+            a.real(self.at(k + 1))?,
+            a.real(self.at(k + 2))?,
+        ])
+    }
+
+    /// Motion argument `k` as a period, given as the angular frequency 2 pi / period.
+    fn omega(&self, k: usize) -> Result<f64, CommandError> {
+        Ok(2.0 * std::f64::consts::PI / self.a.real(self.at(k))?)
+    }
+
+    /// `order N amplitude C... phase P... period T...` from motion argument `order_at`.
+    fn modes(&self, order_at: usize) -> Result<Modes, CommandError> {
+        let (a, style, narg) = (self.a, self.style, self.narg);
+        self.keyword(order_at, "order")?;
+        let n = a.int(self.at(order_at + 1))?;
         if !(1..=30).contains(&n) {
             return Err(a.error(
-                at(order_at + 1),
+                self.at(order_at + 1),
                 "order can be at most 30 and must be greater 0",
             ));
         }
@@ -76,116 +118,124 @@ pub fn build(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandE
                 format!("Not enough arguments for movement type {style} (LIGGGHTS reads the periods past the end of the command and crashes)"),
             ));
         }
-        keyword(order_at + 2, "amplitude")?;
-        keyword(order_at + 3 + n, "phase")?;
-        keyword(order_at + 4 + 2 * n, "period")?;
+        self.keyword(order_at + 2, "amplitude")?;
+        self.keyword(order_at + 3 + n, "phase")?;
+        self.keyword(order_at + 4 + 2 * n, "period")?;
         let mut out = Vec::with_capacity(n);
         for j in 0..n {
-            let c = a.real(at(order_at + 3 + j))?;
-            let phase = a.real(at(order_at + 4 + n + j))?;
-            let period = a.real(at(order_at + 5 + 2 * n + j))?;
-            out.push((c, phase, two_pi / period));
+            let c = a.real(self.at(order_at + 3 + j))?;
+            let phase = a.real(self.at(order_at + 4 + n + j))?;
+            let omega = self.omega(order_at + 5 + 2 * n + j)?;
+            out.push((c, phase, omega));
         }
         Ok((n, out))
-    };
-    let (motion, reference) = match style {
-        "linear" => {
-            need(4)?;
-            (Motion::Linear(vec3(1)?), None)
-        }
-        "wiggle" => {
-            need(7)?;
-            keyword(1, "amplitude")?;
-            keyword(5, "period")?;
-            let m = Motion::Wiggle {
-                amplitude: vec3(2)?,
-                omega: two_pi / a.real(at(6))?,
-            };
-            (m, None)
-        }
-        "rotate" => {
-            need(11)?;
-            keyword(1, "origin")?;
-            keyword(5, "axis")?;
-            keyword(9, "period")?;
-            let m = Motion::Rotate {
-                axis: unit_axis(vec3(6)?),
-                omega: two_pi / a.real(at(10))?,
-            };
-            (m, Some(vec3(2)?))
-        }
-        "riggle" => {
-            need(13)?;
-            keyword(1, "origin")?;
-            keyword(5, "axis")?;
-            keyword(9, "period")?;
-            keyword(11, "amplitude")?;
-            let m = Motion::Riggle {
-                origin: vec3(2)?,
-                axis: unit_axis(vec3(6)?),
-                omega: two_pi / a.real(at(10))?,
-                alpha: (std::f64::consts::PI * a.real(at(12))?) / 180.0,
-            };
-            (m, None)
-        }
-        "viblin" => {
-            need(7)?;
-            keyword(1, "axis")?;
-            let axis = unit_axis(vec3(2)?);
-            let (_, modes) = modes(5)?;
-            (Motion::Viblin { axis, modes }, None)
-        }
-        "vibrot" => {
-            need(11)?;
-            keyword(1, "origin")?;
-            keyword(5, "axis")?;
-            let origin = vec3(2)?;
-            let axis = unit_axis(vec3(6)?);
-            let (_, modes) = modes(9)?;
-            (
-                Motion::Vibrot {
-                    origin,
-                    axis,
-                    modes,
-                },
-                None,
-            )
-        }
-        "linear/variable" | "rotate/variable" => {
-            return Err(a.unsupported(5, &format!("fix move/mesh {style}")))
-        }
-        _ => {
-            return Err(a
-                .keyword_error(
-                    5,
-                    &["linear", "wiggle", "rotate", "riggle", "viblin", "vibrot"],
-                )
-                .with_help("LIGGGHTS: Mesh movement type not available"))
-        }
-    };
-    // LIGGGHTS's excess-argument warnings (viblin's names the wiggle style)
-    match &motion {
-        Motion::Linear(_) => warn(4),
-        Motion::Wiggle { .. } => warn(7),
-        Motion::Rotate { .. } => warn(11),
-        Motion::Riggle { .. } => warn(13),
-        Motion::Viblin { modes, .. } => {
-            let n = modes.len();
-            if narg > 10 + 2 * n {
-                ctx.say("WARNING: Movement type wiggle requires only (10 + 2*$order) arguments, excess arguments will be ignored (./src/mesh_mover_linear.cpp:303)\n");
+    }
+
+    /// The motion, and the reference point of `rotate` (length).
+    fn motion(&self) -> Result<(Motion, Option<[f64; 3]>), CommandError> {
+        let (a, style) = (self.a, self.style);
+        Ok(match style {
+            "linear" => {
+                self.need(4)?;
+                (Motion::Linear(self.vec3(1)?), None)
             }
-        }
-        Motion::Vibrot { modes, .. } => {
-            let n = modes.len();
-            if narg > 14 + 2 * n {
-                ctx.say("WARNING: Movement type vibrot requires only (14 + 2*$order) arguments, excess arguments will be ignored (./src/mesh_mover_rotation.cpp:347)\n");
+            "wiggle" => {
+                self.need(7)?;
+                self.keyword(1, "amplitude")?;
+                self.keyword(5, "period")?;
+                let m = Motion::Wiggle {
+                    amplitude: self.vec3(2)?,
+                    omega: self.omega(6)?,
+                };
+                (m, None)
+            }
+            "rotate" => {
+                self.need(11)?;
+                self.keyword(1, "origin")?;
+                self.keyword(5, "axis")?;
+                self.keyword(9, "period")?;
+                let m = Motion::Rotate {
+                    axis: unit_axis(self.vec3(6)?),
+                    omega: self.omega(10)?,
+                };
+                (m, Some(self.vec3(2)?))
+            }
+            "riggle" => {
+                self.need(13)?;
+                self.keyword(1, "origin")?;
+                self.keyword(5, "axis")?;
+                self.keyword(9, "period")?;
+                self.keyword(11, "amplitude")?;
+                let m = Motion::Riggle {
+                    origin: self.vec3(2)?,
+                    axis: unit_axis(self.vec3(6)?),
+                    omega: self.omega(10)?,
+                    alpha: (std::f64::consts::PI * a.real(self.at(12))?) / 180.0,
+                };
+                (m, None)
+            }
+            "viblin" => {
+                self.need(7)?;
+                self.keyword(1, "axis")?;
+                let axis = unit_axis(self.vec3(2)?);
+                let (_, modes) = self.modes(5)?;
+                (Motion::Viblin { axis, modes }, None)
+            }
+            "vibrot" => {
+                self.need(11)?;
+                self.keyword(1, "origin")?;
+                self.keyword(5, "axis")?;
+                let origin = self.vec3(2)?;
+                let axis = unit_axis(self.vec3(6)?);
+                let (_, modes) = self.modes(9)?;
+                (
+                    Motion::Vibrot {
+                        origin,
+                        axis,
+                        modes,
+                    },
+                    None,
+                )
+            }
+            "linear/variable" | "rotate/variable" => {
+                return Err(a.unsupported(5, &format!("fix move/mesh {style}")))
+            }
+            _ => {
+                return Err(a
+                    .keyword_error(
+                        5,
+                        &["linear", "wiggle", "rotate", "riggle", "viblin", "vibrot"],
+                    )
+                    .with_help("LIGGGHTS: Mesh movement type not available"))
+            }
+        })
+    }
+
+    /// LIGGGHTS's excess-argument warnings (viblin's names the wiggle style).
+    fn warn_excess(&self, ctx: &mut Ctx, motion: &Motion) {
+        let (style, narg) = (self.style, self.narg);
+        let mut warn = |n: usize| {
+            if narg > n {
+                ctx.say(&format!("WARNING: Movement type {style} requires only {n} arguments, excess arguments will be ignored\n"));
+            }
+        };
+        match motion {
+            Motion::Linear(_) => warn(4),
+            Motion::Wiggle { .. } => warn(7),
+            Motion::Rotate { .. } => warn(11),
+            Motion::Riggle { .. } => warn(13),
+            Motion::Viblin { modes, .. } => {
+                let n = modes.len();
+                if narg > 10 + 2 * n {
+                    ctx.say("WARNING: Movement type wiggle requires only (10 + 2*$order) arguments, excess arguments will be ignored (./src/mesh_mover_linear.cpp:303)\n");
+                }
+            }
+            Motion::Vibrot { modes, .. } => {
+                let n = modes.len();
+                if narg > 14 + 2 * n {
+                    ctx.say("WARNING: Movement type vibrot requires only (14 + 2*$order) arguments, excess arguments will be ignored (./src/mesh_mover_rotation.cpp:347)\n");
+                }
             }
         }
     }
-    Ok(FixKind::MoveMesh(MoveMesh {
-        mesh,
-        motion,
-        time: 0.0,
-        reference,
-    }))
 }

@@ -103,48 +103,7 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
         "reduce/region" => crate::commands::compute_reduce_region::build(a, ctx)?,
         "msd" | "displace/atom" => crate::commands::compute_displace::build(a, ctx, bit)?,
         "erotate/sphere/atom" => no_keywords(ComputeKind::ErotateSphereAtom)?,
-        "pair/gran/local" => {
-            use crate::engine::computes::LocalField;
-            if ctx.sim.step > 0 && !ctx.sim.restart_in_progress {
-                return Err(a.error(
-                    2,
-                    "Compute pair/gran/local: Need to define this compute before first run",
-                ));
-            }
-            let mut fields = Vec::new();
-            for i in 3..a.len() {
-                let w = a.word(i)?;
-                match LocalField::parse(w) {
-                    Some(LocalField::HeatFlux) => {
-                        return Err(a.unsupported(i, "compute pair/gran/local heatFlux"))
-                    }
-                    Some(f) => fields.push(f),
-                    None if w == "verbose" => {}
-                    None if matches!(w, "heatFlux" | "ms_id") => {
-                        return Err(a.unsupported(i, &format!("compute pair/gran/local {w}")))
-                    }
-                    None => {
-                        return Err(
-                            a.error(i, "Compute pair/gran/local: illegal/unrecognized keyword")
-                        )
-                    }
-                }
-            }
-            if a.len() == 3 {
-                fields = LocalField::defaults();
-            }
-            if ctx
-                .sim
-                .computes
-                .iter()
-                .any(|c| matches!(c.kind, ComputeKind::PairGranLocal(_)))
-            {
-                return Err(a.error(2, "Pair gran allows only one compute of type pair/local"));
-            }
-            fields.sort();
-            fields.dedup();
-            ComputeKind::PairGranLocal(fields)
-        }
+        "pair/gran/local" => pair_gran_local(a, ctx)?,
         "wall/gran/local" => crate::commands::fix_state::wall_gran_local(a, ctx, id)?,
         other => return Err(a.unsupported(2, &format!("compute {other}"))),
     };
@@ -155,6 +114,51 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
         kind,
     });
     Ok(())
+}
+
+/// `compute ID GROUP pair/gran/local [FIELD ...]`: one row per touching pair with the
+/// fields (LIGGGHTS's defaults without any), defined before the first run.
+fn pair_gran_local(
+    a: &Args,
+    ctx: &Ctx,
+) -> std::result::Result<crate::engine::computes::ComputeKind, CommandError> {
+    use crate::engine::computes::ComputeKind;
+    use crate::engine::computes::LocalField;
+    if ctx.sim.step > 0 && !ctx.sim.restart_in_progress {
+        return Err(a.error(
+            2,
+            "Compute pair/gran/local: Need to define this compute before first run",
+        ));
+    }
+    let mut fields = Vec::new();
+    for i in 3..a.len() {
+        let w = a.word(i)?;
+        match LocalField::parse(w) {
+            Some(LocalField::HeatFlux) => {
+                return Err(a.unsupported(i, "compute pair/gran/local heatFlux"))
+            }
+            Some(f) => fields.push(f),
+            None if w == "verbose" => {}
+            None if matches!(w, "heatFlux" | "ms_id") => {
+                return Err(a.unsupported(i, &format!("compute pair/gran/local {w}")))
+            }
+            None => return Err(a.error(i, "Compute pair/gran/local: illegal/unrecognized keyword")),
+        }
+    }
+    if a.len() == 3 {
+        fields = LocalField::defaults();
+    }
+    if ctx
+        .sim
+        .computes
+        .iter()
+        .any(|c| matches!(c.kind, ComputeKind::PairGranLocal(_)))
+    {
+        return Err(a.error(2, "Pair gran allows only one compute of type pair/local"));
+    }
+    fields.sort();
+    fields.dedup();
+    Ok(ComputeKind::PairGranLocal(fields))
 }
 
 /// `compute ID GROUP reduce MODE input1 input2 ...` (inputs: atom attributes or per-atom

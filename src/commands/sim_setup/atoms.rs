@@ -47,14 +47,52 @@ pub(super) fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
             _ => return Err(a.unsupported(i, &format!("create_atoms keyword {}", a.word(i)?))),
         }
     }
-    let d = ctx.sim.domain.clone();
     let planar = ctx.sim.dimension == 2;
-    let zmid = d.lo[2] + 0.5 * (d.hi[2] - d.lo[2]);
     let before = ctx.sim.particles.len();
-    let mut next_id = ctx.sim.particles.max_id() + 1;
-    if style == "random" {
-        // N positions uniform in the box (cut to the region's extent), redrawn until
-        // inside the region, from one Park-Miller stream seeded by the deck
+    let new = NewAtoms {
+        kind: kind as u32,
+        region,
+        next_id: ctx.sim.particles.max_id() + 1,
+    };
+    let built = match style {
+        "random" => new.random(a, ctx)?,
+        "single" => new.single(a, ctx, lattice_units)?,
+        _ => new.lattice(a, ctx)?,
+    };
+    if !built {
+        // a dry run validates the count but does not build the atoms
+        return Ok(());
+    }
+    if planar {
+        // discs: LIGGGHTS gives 2d atoms the mass of their area
+        let p = &mut ctx.sim.particles;
+        for k in before..p.len() {
+            p.mass[k] = crate::engine::planar::disc_mass(p.radius[k], p.density[k]);
+        }
+    }
+    ctx.say(&format!(
+        "Created {} atoms\n",
+        ctx.sim.particles.len() - before
+    ));
+    Ok(())
+}
+
+/// What `create_atoms` makes: atoms of one type, inside a region or not, numbered on from
+/// an ID. Each style gives whether it built the atoms (a dry run of many does not).
+struct NewAtoms {
+    kind: u32,
+    region: Option<usize>,
+    next_id: i64,
+}
+
+impl NewAtoms {
+    /// `random N SEED REGION`: N positions uniform in the box (cut to the region's extent),
+    /// redrawn until inside the region, from one Park-Miller stream seeded by the deck.
+    fn random(&self, a: &Args, ctx: &mut Ctx) -> std::result::Result<bool, CommandError> {
+        let (kind, region, mut next_id) = (self.kind, self.region, self.next_id);
+        let d = ctx.sim.domain.clone();
+        let planar = ctx.sim.dimension == 2;
+        let zmid = d.lo[2] + 0.5 * (d.hi[2] - d.lo[2]);
         let count = a.int(2)?;
         let seed = a.int(3)?;
         if count < 0 {
@@ -73,7 +111,7 @@ pub(super) fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
         if ctx.sys.mode == Mode::Check && count as f64 > CHECK_BUILD_LIMIT {
             // a dry run validates the count but does not build the atoms
             ctx.sim.inserts_atoms = true;
-            return Ok(());
+            return Ok(false);
         }
         ctx.sim
             .particles
@@ -115,10 +153,21 @@ pub(super) fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
                     ));
                 }
             };
-            ctx.sim.particles.push(next_id, kind as u32, x, 0.5, 1.0);
+            ctx.sim.particles.push(next_id, kind, x, 0.5, 1.0);
             next_id += 1;
         }
-    } else if style == "single" {
+        Ok(true)
+    }
+
+    /// `single X Y Z`: one atom, if inside the box (lattice units unless `units box`).
+    fn single(
+        &self,
+        a: &Args,
+        ctx: &mut Ctx,
+        lattice_units: bool,
+    ) -> std::result::Result<bool, CommandError> {
+        let (kind, next_id) = (self.kind, self.next_id);
+        let d = ctx.sim.domain.clone();
         let mut x = [a.real(2)?, a.real(3)?, a.real(4)?];
         if lattice_units {
             let (scale, basis) = ctx
@@ -135,9 +184,15 @@ pub(super) fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
             x = [0, 1, 2].map(|k| x[k] * scale + scale * o[k]);
         }
         if (0..3).all(|k| x[k] >= d.lo[k] && x[k] < d.hi[k]) {
-            ctx.sim.particles.push(next_id, kind as u32, x, 0.5, 1.0);
+            ctx.sim.particles.push(next_id, kind, x, 0.5, 1.0);
         }
-    } else {
+        Ok(true)
+    }
+
+    /// `box` or `region ID`: the lattice points in the box (and the region).
+    fn lattice(&self, a: &Args, ctx: &mut Ctx) -> std::result::Result<bool, CommandError> {
+        let (kind, region, mut next_id) = (self.kind, self.region, self.next_id);
+        let d = ctx.sim.domain.clone();
         let Some((scale, basis)) = ctx.sim.lattice.clone().filter(|l| !l.1.is_empty()) else {
             return Err(a.error(1, "Cannot create atoms with undefined lattice"));
         };
@@ -175,7 +230,7 @@ pub(super) fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
         if ctx.sys.mode == Mode::Check && points > CHECK_BUILD_LIMIT {
             // a dry run validates the count but does not build the atoms
             ctx.sim.inserts_atoms = true;
-            return Ok(());
+            return Ok(false);
         }
         // room for every lattice point in the region's bounding box (all of them, at most)
         let mut room = points;
@@ -214,25 +269,14 @@ pub(super) fn create_atoms(a: &Args, ctx: &mut Ctx) -> Result {
                         if (0..3).any(|k| x[k] < lo[k] || x[k] >= hi[k]) {
                             continue;
                         }
-                        ctx.sim.particles.push(next_id, kind as u32, x, 0.5, 1.0);
+                        ctx.sim.particles.push(next_id, kind, x, 0.5, 1.0);
                         next_id += 1;
                     }
                 }
             }
         }
+        Ok(true)
     }
-    if planar {
-        // discs: LIGGGHTS gives 2d atoms the mass of their area
-        let p = &mut ctx.sim.particles;
-        for k in before..p.len() {
-            p.mass[k] = crate::engine::planar::disc_mass(p.radius[k], p.density[k]);
-        }
-    }
-    ctx.say(&format!(
-        "Created {} atoms\n",
-        ctx.sim.particles.len() - before
-    ));
-    Ok(())
 }
 
 /// LIGGGHTS numbers atoms with ints: IDs beyond this are refused.

@@ -71,52 +71,7 @@ pub(super) fn group(a: &Args, ctx: &mut Ctx) -> Result {
                     }
                 })
                 .collect();
-            let op = a.word(2)?;
-            let mut sel = vec![false; n];
-            // LIGGGHTS 3.8.0 tests only these operators; `==` and `!=` fall through to the
-            // list of values, where atoi reads them as 0 (so `type != 1` selects type 1)
-            if a.len() > 3 && matches!(op, "<" | ">" | "<=" | ">=" | "<>") {
-                let want = if op == "<>" { 5 } else { 4 };
-                if a.len() != want {
-                    return Err(a.error(2, "Illegal group command"));
-                }
-                let bound = |k: usize| inumeric(a.word(k)?).map_err(|m| a.error(k, &m));
-                let v1 = bound(3)?;
-                let v2 = if op == "<>" { bound(4)? } else { 0 };
-                sel = values
-                    .iter()
-                    .map(|&v| match op {
-                        "<" => v < v1,
-                        ">" => v > v1,
-                        "<=" => v <= v1,
-                        ">=" => v >= v1,
-                        "==" => v == v1,
-                        "!=" => v != v1,
-                        _ => v >= v1 && v <= v2,
-                    })
-                    .collect();
-                sel
-            } else {
-                // values and ranges a:b[:step], read with C's atoi as LIGGGHTS does
-                let atoi = |t: &str| crate::util::numbers::c_atof(t).trunc() as i64;
-                for k in 2..a.len() {
-                    let w = a.word(k)?;
-                    let parts: Vec<&str> = w.split(':').collect();
-                    let (lo, hi, step) = if parts.len() > 1 {
-                        let step = parts.get(2).map_or(1, |t| atoi(t));
-                        (atoi(parts[0]), atoi(parts[1]), step)
-                    } else {
-                        (atoi(w), atoi(w), 1)
-                    };
-                    if step == 0 {
-                        return Err(a.error(k, "Illegal group command"));
-                    }
-                    for (s, v) in sel.iter_mut().zip(&values) {
-                        *s |= *v >= lo && *v <= hi && (*v - lo) % step == 0;
-                    }
-                }
-                sel
-            }
+            select_by_number(a, &values)?
         }
         // a dry run that cannot evaluate the variable selects nobody
         "variable" => by_variable.flatten().unwrap_or_else(|| vec![false; n]),
@@ -167,6 +122,57 @@ pub(super) fn group(a: &Args, ctx: &mut Ctx) -> Result {
     }
     ctx.say(&format!("{count} atoms in group {name}\n"));
     Ok(())
+}
+
+/// `group ID type|id ...`: the particles whose type or ID (`values`) passes the test of the
+/// words from 2 on (`< N`, `<> N M`, ..., or values and ranges `A:B[:STEP]`).
+fn select_by_number(a: &Args, values: &[i64]) -> std::result::Result<Vec<bool>, CommandError> {
+    let op = a.word(2)?;
+    let mut sel = vec![false; values.len()];
+    // LIGGGHTS 3.8.0 tests only these operators; `==` and `!=` fall through to the
+    // list of values, where atoi reads them as 0 (so `type != 1` selects type 1)
+    if a.len() > 3 && matches!(op, "<" | ">" | "<=" | ">=" | "<>") {
+        let want = if op == "<>" { 5 } else { 4 };
+        if a.len() != want {
+            return Err(a.error(2, "Illegal group command"));
+        }
+        let bound = |k: usize| inumeric(a.word(k)?).map_err(|m| a.error(k, &m));
+        let v1 = bound(3)?;
+        let v2 = if op == "<>" { bound(4)? } else { 0 };
+        sel = values
+            .iter()
+            .map(|&v| match op {
+                "<" => v < v1,
+                ">" => v > v1,
+                "<=" => v <= v1,
+                ">=" => v >= v1,
+                "==" => v == v1,
+                "!=" => v != v1,
+                _ => v >= v1 && v <= v2,
+            })
+            .collect();
+        Ok(sel)
+    } else {
+        // values and ranges a:b[:step], read with C's atoi as LIGGGHTS does
+        let atoi = |t: &str| crate::util::numbers::c_atof(t).trunc() as i64;
+        for k in 2..a.len() {
+            let w = a.word(k)?;
+            let parts: Vec<&str> = w.split(':').collect();
+            let (lo, hi, step) = if parts.len() > 1 {
+                let step = parts.get(2).map_or(1, |t| atoi(t));
+                (atoi(parts[0]), atoi(parts[1]), step)
+            } else {
+                (atoi(w), atoi(w), 1)
+            };
+            if step == 0 {
+                return Err(a.error(k, "Illegal group command"));
+            }
+            for (s, v) in sel.iter_mut().zip(values) {
+                *s |= *v >= lo && *v <= hi && (*v - lo) % step == 0;
+            }
+        }
+        Ok(sel)
+    }
 }
 
 pub(super) fn velocity(a: &Args, ctx: &mut Ctx) -> Result {

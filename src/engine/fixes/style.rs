@@ -11,7 +11,7 @@
 use crate::engine::domain::Domain;
 use crate::engine::error::EngineError;
 use crate::engine::particles::Particles;
-use crate::engine::sim::Simulation;
+use crate::engine::sim::{Simulation, VariableSource};
 
 /// What a phase hook is told about the fix and the step.
 #[derive(Debug, Clone, Copy)]
@@ -44,6 +44,18 @@ pub enum PerAtomShape {
     Array(usize),
 }
 
+/// What a style may read in [`FixStyle::evaluate`]: the deck's variables and regions as they
+/// stand at this force evaluation.
+pub trait StepInputs {
+    /// The value of equal-style variable `name`.
+    fn equal(&mut self, name: &str) -> Result<f64, EngineError>;
+    /// The values of atom-style variable `name`, one per particle in particle order.
+    fn atom(&mut self, name: &str) -> Result<Vec<f64>, EngineError>;
+    /// Whether the point `x` (length) is inside region `region` (its index among the
+    /// deck's regions, as `Regions::find` gives it).
+    fn in_region(&self, region: usize, x: [f64; 3]) -> bool;
+}
+
 /// A fix style: the phases it hooks and the values it offers. Every hook has a default that
 /// does nothing (or offers nothing), so a style writes only what it does.
 pub trait FixStyle: Send {
@@ -62,6 +74,24 @@ pub trait FixStyle: Send {
 
     /// `initial_integrate`: the first half of a velocity-Verlet step (before the forces).
     fn initial_integrate(&mut self, _p: &mut Particles, _at: &FixStep) {}
+
+    /// Whether the style reads variables or regions in a step: only then is its
+    /// [`FixStyle::evaluate`] called (runs without such styles pay nothing for it).
+    fn evaluates(&self) -> bool {
+        false
+    }
+
+    /// Before `post_force`, after the pair forces of every force evaluation (the setup one
+    /// too): read the variables and regions the style needs for this step. While it runs the
+    /// fix itself is out of the fix list (its `f_ID` values cannot be read).
+    fn evaluate(
+        &mut self,
+        _p: &Particles,
+        _at: &FixStep,
+        _inputs: &mut dyn StepInputs,
+    ) -> Result<(), EngineError> {
+        Ok(())
+    }
 
     /// `post_force`: after the pair and wall forces (also in the setup force evaluation, as
     /// LIGGGHTS's `setup` of force fixes runs their `post_force`).
@@ -139,7 +169,60 @@ pub trait FixStyle: Send {
     }
 }
 
+/// The deck's variables and regions as a running simulation answers [`StepInputs`].
+struct SimulationInputs<'a> {
+    sim: &'a Simulation,
+    vars: &'a mut dyn VariableSource,
+}
+
+impl StepInputs for SimulationInputs<'_> {
+    fn equal(&mut self, name: &str) -> Result<f64, EngineError> {
+        self.vars.equal(self.sim, name)
+    }
+
+    fn atom(&mut self, name: &str) -> Result<Vec<f64>, EngineError> {
+        self.vars.atom(self.sim, name)
+    }
+
+    fn in_region(&self, region: usize, x: [f64; 3]) -> bool {
+        self.sim.regions.matches(region, x)
+    }
+}
+
 impl Simulation {
+    /// The `evaluate` hook of every module fix style that [`FixStyle::evaluates`], in fix
+    /// order, before the `post_force` phase.
+    pub(crate) fn evaluate_fix_styles(
+        &mut self,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        for k in 0..self.fixes.len() {
+            if !matches!(&self.fixes[k].kind, super::FixKind::Style(s) if s.evaluates()) {
+                continue;
+            }
+            let kind = std::mem::replace(&mut self.fixes[k].kind, super::FixKind::Settings);
+            let super::FixKind::Style(mut style) = kind else {
+                unreachable!("checked above")
+            };
+            let at = FixStep {
+                group: self.fixes[k].group,
+                step: self.step,
+                dt: self.dt,
+                domain: &self.domain,
+                virial: &[],
+                contact: 0.0,
+            };
+            let mut inputs = SimulationInputs {
+                sim: &*self,
+                vars: &mut *vars,
+            };
+            let result = style.evaluate(&self.particles, &at, &mut inputs);
+            self.fixes[k].kind = super::FixKind::Style(style);
+            result?;
+        }
+        Ok(())
+    }
+
     /// The `setup` hook of every module fix style, in fix order, at the start of a run.
     pub(crate) fn setup_fix_styles(&mut self) {
         let at = FixStep {

@@ -94,6 +94,38 @@ impl FixStyle for Drag {
     }
 }
 
+/// A module style in the test: a constant force added (`addforce`).
+struct Push([f64; 3]);
+
+impl FixStyle for Push {
+    fn name(&self) -> &str {
+        "push"
+    }
+
+    fn post_force(&mut self, p: &mut Particles, at: &FixStep) {
+        for i in (0..p.len()).filter(|&i| p.mask[i] & at.group != 0) {
+            for d in 0..3 {
+                p.f[i][d] += self.0[d];
+            }
+        }
+    }
+}
+
+/// A module style in the test: the y force set (`setforce NULL FY NULL`).
+struct Pin(f64);
+
+impl FixStyle for Pin {
+    fn name(&self) -> &str {
+        "pin"
+    }
+
+    fn post_force(&mut self, p: &mut Particles, at: &FixStep) {
+        for i in (0..p.len()).filter(|&i| p.mask[i] & at.group != 0) {
+            p.f[i][1] = self.0;
+        }
+    }
+}
+
 /// A module style in the test: force and torque zero, the particles held still.
 struct Hold;
 
@@ -128,21 +160,9 @@ fn post_force_order_and_freeze() {
         args: vec![],
     };
     let fixes = vec![
-        mk(FixKind::AddForce(ForceFix {
-            values: [1.0, 2.0, 3.0].map(ForceValue::Constant),
-            region: None,
-            resolved: Vec::new(),
-        })),
+        mk(FixKind::Style(Box::new(Push([1.0, 2.0, 3.0])))),
         mk(FixKind::Style(Box::new(Drag(0.5)))),
-        mk(FixKind::SetForce(ForceFix {
-            values: [
-                ForceValue::Null,
-                ForceValue::Constant(7.0),
-                ForceValue::Null,
-            ],
-            region: None,
-            resolved: Vec::new(),
-        })),
+        mk(FixKind::Style(Box::new(Pin(7.0)))),
     ];
     let mut fixes = fixes;
     post_force(

@@ -224,48 +224,19 @@ impl Simulation {
         self.list.built_positions()
     }
 
-    /// Evaluate the variables and regions of `fix setforce`/`addforce` for this step.
+    /// Reshape the dynamic regions and evaluate the variables and regions the fixes read in
+    /// this force evaluation (`fix setforce`/`addforce`).
     pub(super) fn resolve_force_fixes(
         &mut self,
         vars: &mut dyn VariableSource,
     ) -> Result<(), EngineError> {
-        use crate::engine::fixes::ForceValue;
         if self.regions.list.iter().any(|r| r.is_dynamic()) {
             let mut regions = std::mem::take(&mut self.regions);
             let result = regions.reshape(Some(self.step), &mut |name| vars.equal(self, name));
             self.regions = regions;
             result?;
         }
-        for k in 0..self.fixes.len() {
-            let f = match &self.fixes[k].kind {
-                FixKind::SetForce(f) | FixKind::AddForce(f) if f.needs_resolving() => f,
-                _ => continue,
-            };
-            let n = self.particles.len();
-            let mut columns: Vec<Option<Vec<f64>>> = Vec::with_capacity(3);
-            for v in &f.values {
-                columns.push(match v {
-                    ForceValue::Null => None,
-                    ForceValue::Constant(c) => Some(vec![*c; n]),
-                    ForceValue::Equal(name) => Some(vec![vars.equal(self, name)?; n]),
-                    ForceValue::Atom(name) => Some(vars.atom(self, name)?),
-                });
-            }
-            let region = f.region;
-            let mut resolved = vec![[None; 3]; n];
-            for (i, r) in resolved.iter_mut().enumerate() {
-                if region.is_some_and(|g| !self.regions.matches(g, self.particles.x[i])) {
-                    continue;
-                }
-                for d in 0..3 {
-                    r[d] = columns[d].as_ref().map(|c| c[i]);
-                }
-            }
-            if let FixKind::SetForce(f) | FixKind::AddForce(f) = &mut self.fixes[k].kind {
-                f.resolved = resolved;
-            }
-        }
-        Ok(())
+        self.evaluate_fix_styles(vars)
     }
 
     /// Evaluate the variables of `fix move variable` for this step (before the moves).

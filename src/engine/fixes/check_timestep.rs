@@ -1,0 +1,104 @@
+//! `fix check/timestep/gran`: the time step against the Rayleigh and Hertz times.
+
+use crate::engine::particles::Particles;
+
+/// `fix check/timestep/gran N rayleigh_limit hertz_limit [warn yes|no] [error yes|no] [vmax V]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CheckTimestep {
+    /// Check every this many steps (at the end of the step).
+    pub every: i64,
+    /// Warn above this fraction of the Rayleigh time.
+    pub rayleigh_limit: f64,
+    /// Warn above this fraction of the Hertz time.
+    pub hertz_limit: f64,
+    /// Print warnings.
+    pub warn: bool,
+    /// Stop with an error instead.
+    pub error: bool,
+    /// A velocity (length/time) assumed at least for the Hertz estimate.
+    pub vmax_user: f64,
+    /// dt / Rayleigh time, dt / Hertz time, relative travel per step / skin (f_ID[1..3]).
+    pub values: [f64; 3],
+    /// Per type (1-based index - 1): Young's modulus, Poisson ratio, and Yeff of the type with itself.
+    pub materials: Vec<(f64, f64, f64)>,
+}
+
+impl CheckTimestep {
+    /// LIGGGHTS's estimates; returns the warnings to print.
+    pub fn evaluate(&mut self, p: &Particles, group: u32, dt: f64, skin: f64) -> Vec<String> {
+        const BIG: f64 = 1.0e20;
+        let mut rayleigh = BIG;
+        let mut r_min = BIG;
+        let mut vmax_sqr: f64 = 0.0;
+        for i in 0..p.len() {
+            if p.mask[i] & group == 0 {
+                continue;
+            }
+            let rad = p.radius[i];
+            let (y, nu, _) = self.materials[p.kind[i] as usize - 1];
+            let shear = y / (2. * (nu + 1.));
+            let t =
+                std::f64::consts::PI * rad * (p.density[i] / shear).sqrt() / (0.1631 * nu + 0.8766);
+            if t < rayleigh {
+                rayleigh = t;
+            }
+            let v = p.v[i];
+            let vsq = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+            if vsq > vmax_sqr {
+                vmax_sqr = vsq;
+            }
+            if rad < r_min {
+                r_min = rad;
+            }
+        }
+        if self.vmax_user * self.vmax_user > vmax_sqr {
+            vmax_sqr = self.vmax_user * self.vmax_user;
+        }
+        let v_rel = (2. * vmax_sqr.sqrt()).max(vmax_sqr.sqrt() + 0.0);
+        let mut hertz: f64 = 1000000.;
+        if (v_rel - 0.0).abs() >= 1e-13 {
+            for ti in 1..=self.materials.len() {
+                let eeff = self.materials[ti - 1].2;
+                for i in 0..p.len() {
+                    if p.mask[i] & group == 0 || p.kind[i] as usize != ti {
+                        continue;
+                    }
+                    let r = p.radius[i];
+                    let meff = 4. * r * r * r * std::f64::consts::PI / 3. * p.density[i];
+                    let reff = r / 2.;
+                    let t = 2.87 * (meff * meff / (reff * eeff * eeff * v_rel)).powf(0.2);
+                    if t < hertz {
+                        hertz = t;
+                    }
+                }
+            }
+        }
+        self.values = [dt / rayleigh, dt / hertz, v_rel * dt / skin];
+        let mut messages = Vec::new();
+        if self.warn || self.error {
+            if self.values[0] > self.rayleigh_limit {
+                messages.push(format!(
+                    "time-step is {} % of rayleigh time",
+                    crate::util::format::with_spec("%f", self.values[0] * 100.).unwrap_or_default()
+                ));
+            }
+            if self.values[1] > self.hertz_limit {
+                messages.push(format!(
+                    "time-step is {} % of hertz time",
+                    crate::util::format::with_spec("%f", self.values[1] * 100.).unwrap_or_default()
+                ));
+            }
+            if self.values[2] > 1.0 {
+                messages.push(format!(
+                    "time step too large or skin too small - particles may relatively travel a distance of {} per time-step, but skin is {}",
+                    crate::util::format::with_spec("%f", v_rel * dt).unwrap_or_default(),
+                    crate::util::format::with_spec("%f", skin).unwrap_or_default()
+                ));
+            }
+            if v_rel * dt > r_min {
+                messages.push("time step way too large - particles relativley move further than the minimum radius in one step".into());
+            }
+        }
+        messages
+    }
+}

@@ -1,0 +1,96 @@
+//! `fix mesh/surface` (triangle meshes that walls and insertion faces use) and the
+//! `initial_integrate` motion of `fix move/mesh`.
+
+use super::{Fix, FixKind};
+
+/// `fix mesh/surface file F type T [scale|move|rotate ...] [curvature ...]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshFix {
+    /// The file it was read from.
+    pub file: String,
+    /// The wall's atom type (material).
+    pub wall_type: usize,
+    /// The triangles after scale/move/rotate, with their geometry and topology (length).
+    pub mesh: crate::engine::mesh::TriMesh,
+    /// Velocities of each triangle's nodes (length/time), for moving meshes and conveyors.
+    pub node_v: Option<Vec<[[f64; 3]; 3]>>,
+    /// `surface_vel vx vy vz` (length/time): the conveyor velocity, projected per triangle.
+    pub surface_vel: Option<[f64; 3]>,
+    /// Defined as `mesh/surface/planar`.
+    pub planar: bool,
+    /// Nodes at the last refresh of a moving mesh (for the half-skin rebuild test).
+    pub nodes_at_refresh: Vec<[[f64; 3]; 3]>,
+    /// `mesh/surface/stress`: triangle forces, stresses and wear.
+    pub stress: Option<crate::engine::mesh_stress::MeshStress>,
+    /// `mesh/surface/stress/servo`: the controller that moves the mesh.
+    pub servo: Option<Box<crate::engine::mesh_servo::MeshServo>>,
+}
+
+impl MeshFix {
+    /// The triangles (nodes in STL order).
+    pub fn triangles(&self) -> &[crate::io::stl::Triangle] {
+        &self.mesh.nodes
+    }
+
+    /// LIGGGHTS's conveyor velocity of each node: the surface velocity with its component
+    /// along the triangle normal removed, rescaled to the full speed.
+    pub fn set_surface_velocity(&mut self) {
+        let Some(v) = self.surface_vel else { return };
+        let speed = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        let mut node_v = Vec::with_capacity(self.mesh.len());
+        for n in &self.mesh.normal {
+            let s = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+            let mut t = [v[0] - s * n[0], v[1] - s * n[1], v[2] - s * n[2]];
+            let mag = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+            if mag > 0.0 {
+                let inv = 1. / mag;
+                t = t.map(|c| speed * (inv * c));
+            }
+            node_v.push([t; 3]);
+        }
+        self.node_v = Some(node_v);
+    }
+}
+
+/// `fix move/mesh` in `initial_integrate`: every mover in definition order moves its mesh
+/// and adds its node velocities (the first mover of a mesh zeroes them first); the rotation
+/// centres of the movers after it follow the displacement.
+pub fn move_meshes(fixes: &mut [Fix], dt: f64) {
+    let movers: Vec<usize> = (0..fixes.len())
+        .filter(|&k| matches!(fixes[k].kind, FixKind::MoveMesh(_)))
+        .collect();
+    for (pos, &k) in movers.iter().enumerate() {
+        let FixKind::MoveMesh(mut mv) = std::mem::replace(&mut fixes[k].kind, FixKind::Settings)
+        else {
+            unreachable!("listed as a mover")
+        };
+        let first = !movers[..pos]
+            .iter()
+            .any(|&e| matches!(&fixes[e].kind, FixKind::MoveMesh(o) if o.mesh == mv.mesh));
+        let mesh_at = fixes
+            .iter()
+            .position(|f| f.id == mv.mesh && matches!(f.kind, FixKind::Mesh(_)));
+        let mut shift = None;
+        if let Some(FixKind::Mesh(m)) = mesh_at.map(|i| &mut fixes[i].kind) {
+            let n = m.mesh.len();
+            let v = m.node_v.get_or_insert_with(|| vec![[[0.0; 3]; 3]; n]);
+            if first {
+                v.iter_mut().for_each(|t| *t = [[0.0; 3]; 3]);
+            }
+            let d = mv.step(&mut m.mesh, v, dt);
+            mv.follow(&d);
+            shift = Some(d);
+        }
+        let mesh = mv.mesh.clone();
+        fixes[k].kind = FixKind::MoveMesh(mv);
+        if let Some(d) = shift {
+            for &later in &movers[pos + 1..] {
+                if let FixKind::MoveMesh(o) = &mut fixes[later].kind {
+                    if o.mesh == mesh {
+                        o.follow(&d);
+                    }
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,179 @@
+//! `fix wall/gran`: granular walls, primitive planes and triangle meshes, and the force
+//! pass of the mesh walls.
+
+use super::{Fix, FixKind};
+use crate::engine::particles::Particles;
+
+/// A primitive granular wall: its models, the plane, and the built interaction.
+pub struct WallFix {
+    /// Selected contact models.
+    pub selection: crate::engine::granular::Selection,
+    /// The plane.
+    pub plane: crate::engine::granular::Primitive,
+    /// The wall's atom type (for material coefficients).
+    pub wall_type: usize,
+    /// `shear dim vshear`: the wall surface moves along `dim` at `vshear` (m/s); for a
+    /// cylinder sheared across its axis, it turns about the axis at `vshear` (rad/s).
+    pub shear: Option<(usize, f64)>,
+    /// Built at each run from the current materials.
+    pub model: Option<Box<dyn crate::engine::granular::WallInteraction>>,
+    /// Name of the per-particle history array (`history_<fix ID>`, as in LIGGGHTS restarts).
+    pub history_name: String,
+}
+
+/// `fix wall/gran model ... mesh n_meshes N meshes ...`.
+pub struct MeshWallFix {
+    /// Selected contact models.
+    pub selection: crate::engine::granular::Selection,
+    /// IDs of the `fix mesh/surface` meshes, in the order given.
+    pub meshes: Vec<String>,
+    /// Index of the fix's group (LIGGGHTS ORs it into the mesh group bits).
+    pub group_index: u32,
+    /// Built at each run from the current materials.
+    pub model: Option<Box<dyn crate::engine::mesh_wall::MeshWallInteraction>>,
+    /// Contact bookkeeping per mesh (kept across runs).
+    pub trackers: Vec<crate::engine::mesh_wall::Tracker>,
+    /// The pair-list build the trackers' candidate lists belong to.
+    pub built: Option<u64>,
+}
+
+impl MeshWallFix {
+    /// Doubles of history per contact of its contact model (the model of the current run,
+    /// or the one its selection gives before the first run).
+    pub fn history_width(&self) -> usize {
+        match &self.model {
+            Some(m) => m.history_width(),
+            None => crate::engine::contact::AnyContactModel::new(&self.selection)
+                .map_or(0, |m| m.history_len()),
+        }
+    }
+}
+
+/// The meshes of a mesh wall, in its `meshes` order, as its force loop sees them.
+fn mesh_refs<'a>(fixes: &'a [Fix], w: &MeshWallFix) -> Vec<crate::engine::mesh_wall::MeshRef<'a>> {
+    w.meshes
+        .iter()
+        .filter_map(|id| {
+            fixes.iter().find_map(|f| match &f.kind {
+                FixKind::Mesh(m) if &f.id == id => {
+                    let moving = m.servo.is_some()
+                        || fixes
+                            .iter()
+                            .any(|g| matches!(&g.kind, FixKind::MoveMesh(mv) if &mv.mesh == id));
+                    Some(crate::engine::mesh_wall::MeshRef {
+                        moving,
+                        stress: m.stress.is_some(),
+                        mesh: &m.mesh,
+                        wall_type: m.wall_type,
+                        group: f.group | w.group_index,
+                        node_v: m.node_v.as_deref(),
+                    })
+                }
+                _ => None,
+            })
+        })
+        .collect()
+}
+
+/// The contacts of the mesh wall fix `fixes[k]` as a second force pass finds them, with
+/// nothing applied and no history advanced (`compute wall/gran/local`); empty before the
+/// wall's first run.
+pub fn mesh_wall_contacts(
+    fixes: &[Fix],
+    k: usize,
+    p: &Particles,
+    dt: f64,
+) -> Vec<crate::engine::mesh_wall::WallContact> {
+    let FixKind::MeshWall(w) = &fixes[k].kind else {
+        return Vec::new();
+    };
+    let Some(model) = w.model.as_ref() else {
+        return Vec::new();
+    };
+    let refs = mesh_refs(fixes, w);
+    if w.trackers.len() != refs.len() {
+        return Vec::new();
+    }
+    let mut trackers = w.trackers.clone();
+    model.contacts(p, &refs, &mut trackers, dt)
+}
+
+/// The forces of the mesh wall fix `fixes[k]` on the particles.
+pub(super) fn mesh_wall_force(
+    fixes: &mut [Fix],
+    k: usize,
+    p: &mut Particles,
+    dt: f64,
+    update: bool,
+    list: (u64, f64),
+    moving_skin: bool,
+) {
+    let mut kind = std::mem::replace(&mut fixes[k].kind, FixKind::Settings);
+    if let FixKind::MeshWall(w) = &mut kind {
+        if let Some(model) = w.model.as_ref() {
+            let mesh_fix: Vec<usize> = w
+                .meshes
+                .iter()
+                .filter_map(|id| {
+                    fixes
+                        .iter()
+                        .position(|f| &f.id == id && matches!(f.kind, FixKind::Mesh(_)))
+                })
+                .collect();
+            let refs = mesh_refs(fixes, w);
+            if w.trackers.len() != refs.len() {
+                w.trackers = vec![Default::default(); refs.len()];
+                w.built = None;
+            }
+            if w.built != Some(list.0) {
+                for (tr, m) in w.trackers.iter_mut().zip(&refs) {
+                    let skin = if moving_skin || m.moving {
+                        list.1
+                    } else {
+                        0.5 * list.1
+                    };
+                    tr.rebuild(p, m, skin);
+                }
+                w.built = Some(list.0);
+            }
+            let mut records = Vec::new();
+            model.compute(p, &refs, &mut w.trackers, dt, update, &mut records);
+            drop(refs);
+            // a servo mesh sums its force in LIGGGHTS's loop order (it feeds back on the motion)
+            for (k, &at) in mesh_fix.iter().enumerate() {
+                if let FixKind::Mesh(m) = &fixes[at].kind {
+                    if let Some(s) = m.servo.as_ref() {
+                        let mut own: Vec<_> =
+                            records.iter().filter(|r| r.0 == k).map(|r| r.1).collect();
+                        crate::engine::mesh_servo::order_contacts(&mut own, &s.bins);
+                        records.retain(|r| r.0 != k);
+                        records.extend(own.into_iter().map(|c| (k, c)));
+                    }
+                }
+            }
+            for (mesh_index, c) in records {
+                let f = &mut fixes[mesh_fix[mesh_index]];
+                if p.mask[c.particle] & f.group == 0 {
+                    continue;
+                }
+                if let FixKind::Mesh(m) = &mut f.kind {
+                    let t = c.tri as usize;
+                    let (normal, area) = (m.mesh.normal[t], m.mesh.area[t]);
+                    if let Some(st) = m.stress.as_mut() {
+                        st.add(
+                            &c,
+                            p.x[c.particle],
+                            p.v[c.particle],
+                            normal,
+                            area,
+                            m.wall_type,
+                            p.kind[c.particle] as usize,
+                            dt,
+                        );
+                    }
+                }
+            }
+        }
+    }
+    fixes[k].kind = kind;
+}

@@ -422,38 +422,6 @@ fn any_shift(pr: &[&Pair; LANES]) -> bool {
     }
 }
 
-/// Three lanes of x, y and z components as four (x, y, z, 0) vectors, one per lane: lane
-/// k's force or torque, ready to add to a padded per-particle sum in one addition.
-#[inline(always)]
-pub fn per_lane(v: &[F64x4; 3]) -> [F64x4; LANES] {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::*;
-        // SAFETY: F64x4 is 32-byte aligned; lanes code runs only where the processor has AVX
-        unsafe {
-            let [x, y, z] = v.map(|c| _mm256_load_pd(c.0.as_ptr()));
-            let zero = _mm256_setzero_pd();
-            let t0 = _mm256_unpacklo_pd(x, y);
-            let t1 = _mm256_unpackhi_pd(x, y);
-            let t2 = _mm256_unpacklo_pd(z, zero);
-            let t3 = _mm256_unpackhi_pd(z, zero);
-            let cols = [
-                _mm256_permute2f128_pd::<0x20>(t0, t2),
-                _mm256_permute2f128_pd::<0x20>(t1, t3),
-                _mm256_permute2f128_pd::<0x31>(t0, t2),
-                _mm256_permute2f128_pd::<0x31>(t1, t3),
-            ];
-            cols.map(|c| {
-                let mut out = F64x4::default();
-                _mm256_store_pd(out.0.as_mut_ptr(), c);
-                out
-            })
-        }
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    std::array::from_fn(|k| F64x4([v[0].0[k], v[1].0[k], v[2].0[k], 0.0]))
-}
-
 /// Four records' 12 fields as lanes.
 ///
 /// # Safety

@@ -51,8 +51,6 @@ pub struct PairGran<N, T, C, R> {
     pub worst: Option<(f64, u32, u32)>,
     /// The fast path's contributions between blocks of particles, per block (reused).
     pub foreign: Vec<Owed>,
-    /// The fast path's per-particle sums of forces and torques, padded (reused).
-    pub sums: Vec<Sum>,
     /// The mirrors' pairs, touching entries and results of the current step (reused).
     pub mirror_scratch: mirrored::Scratch,
 }
@@ -466,27 +464,12 @@ impl Owed {
 /// tally the virial.
 type BlockVirial<'a> = Option<(&'a [[f64; 3]], &'a mut [[f64; 6]])>;
 
-/// One particle's force (N) and torque (N m) as the fast path adds them up: each padded to
-/// four lanes, so a contact adds its three components with one vector addition (the same
-/// roundings as three scalar ones).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-#[repr(C, align(64))]
-pub struct Sum {
-    /// Force x, y, z, 0 (N).
-    pub f: F64x4,
-    /// Torque x, y, z, 0 (N m).
-    pub t: F64x4,
-}
-
 /// One block's sums: its own particles' forces and torques from its list entries (first
 /// particles all in the block), and its contributions to other blocks' particles, kept in
 /// list order.
 struct BlockSums<'a> {
     /// First particle of the block.
     lo: usize,
-    /// The block's particles' sums.
-    acc: &'a mut [Sum],
-    /// The block's particles' forces (N) and torques (N m), written from `acc` at the end.
     f: &'a mut [[f64; 3]],
     torque: &'a mut [[f64; 3]],
     /// Positions of all particles and the block's per-particle virials, on steps that
@@ -501,12 +484,11 @@ impl BlockSums<'_> {
     /// half the pair's virial `w`.
     #[inline(never)]
     fn add(&mut self, n: usize, f: [f64; 3], t: [f64; 3], w: &[f64; 6]) {
-        match n.checked_sub(self.lo).filter(|&k| k < self.acc.len()) {
+        match n.checked_sub(self.lo).filter(|&k| k < self.f.len()) {
             Some(k) => {
-                let sum = &mut self.acc[k];
                 for d in 0..3 {
-                    sum.f.0[d] += f[d];
-                    sum.t.0[d] += t[d];
+                    self.f[k][d] += f[d];
+                    self.torque[k][d] += t[d];
                 }
                 if let Some((_, v)) = self.virial.as_mut() {
                     add6(&mut v[k], w);
@@ -545,24 +527,15 @@ impl batch::Sink for BlockSums<'_> {
         out: &PairLanesOutput,
         overlaps: &batch::Overlaps,
     ) {
-        let len = self.acc.len();
-        let (fi, ti) = (batch::per_lane(&out.fi), batch::per_lane(&out.ti));
-        let (fj, tj) = (batch::per_lane(&out.fj), batch::per_lane(&out.tj));
+        let len = self.f.len().min(self.torque.len());
         for (k, pair) in pairs.iter().enumerate().take(batch.len()) {
             let (i, j) = (pair.i as usize, pair.j as usize);
             let (ki, kj) = (i.wrapping_sub(self.lo), j.wrapping_sub(self.lo));
             let pick = |v: &[F64x4; 3]| [v[0].0[k], v[1].0[k], v[2].0[k]];
             if ki < len && kj < len {
-                // both particles in the block (most contacts), i's side first
+                // both particles in the block (most contacts)
                 // SAFETY: ki, kj < len (just checked)
-                unsafe {
-                    let a = self.acc.get_unchecked_mut(ki);
-                    a.f += fi[k];
-                    a.t += ti[k];
-                    let b = self.acc.get_unchecked_mut(kj);
-                    b.f += fj[k];
-                    b.t += tj[k];
-                }
+                unsafe { add_lane(self.f, self.torque, (ki, kj), out, k) };
                 if let Some((x, v)) = self.virial.as_mut() {
                     let w = half_virial(x, pair, pick(&out.fi));
                     add6(&mut v[ki], &w);
@@ -571,9 +544,11 @@ impl batch::Sink for BlockSums<'_> {
             } else if ki < len {
                 // i in the block (the list groups entries by i), j in another block
                 let w = self.half_virial(pair, pick(&out.fi));
-                let a = &mut self.acc[ki];
-                a.f += fi[k];
-                a.t += ti[k];
+                let (fi, ti) = (pick(&out.fi), pick(&out.ti));
+                for d in 0..3 {
+                    self.f[ki][d] += fi[d];
+                    self.torque[ki][d] += ti[d];
+                }
                 if let Some((_, v)) = self.virial.as_mut() {
                     add6(&mut v[ki], &w);
                 }
@@ -625,12 +600,9 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         // each block owns its particles' forces, its entries' history and its buffers
         let mut jobs = Vec::with_capacity(blocks);
         let tally = virial.is_some();
-        let mut sums_all = std::mem::take(&mut self.sums);
-        sums_all.resize(p.len(), Sum::default());
         {
             let x = &p.x[..];
             let (mut f, mut t, mut h) = (&mut p.f[..], &mut p.torque[..], &mut history[..]);
-            let mut acc = &mut sums_all[..];
             let mut w: &mut [[f64; 6]] = virial.as_deref_mut().unwrap_or_default();
             for (b, (touch, out)) in parts.iter_mut().zip(foreign.iter_mut()).enumerate() {
                 let own = BLOCK_PARTICLES.min(f.len());
@@ -638,8 +610,6 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
                 f = rest;
                 let (tb, rest) = std::mem::take(&mut t).split_at_mut(own);
                 t = rest;
-                let (ab, rest) = std::mem::take(&mut acc).split_at_mut(own);
-                acc = rest;
                 let (s, e) = (starts[b] as usize, starts[b + 1] as usize);
                 let (hb, rest) = std::mem::take(&mut h).split_at_mut((e - s) * width);
                 h = rest;
@@ -652,7 +622,6 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
                 };
                 let sums = BlockSums {
                     lo: b * BLOCK_PARTICLES,
-                    acc: ab,
                     f: fb,
                     torque: tb,
                     virial,
@@ -670,21 +639,13 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             BlockSums,
         )| {
             let part = &pairs[range];
-            sums.acc.fill(Sum::default());
+            sums.f.fill([0.0; 3]);
+            sums.torque.fill([0.0; 3]);
             touch.clear();
             sums.foreign.made.clear();
             sums.foreign.made_virial.clear();
             batch::touching_entries(packed, part, 0, touch);
             kernel.run(packed, kinds, part, touch, h, &mut sums);
-            for ((f, t), s) in sums
-                .f
-                .iter_mut()
-                .zip(sums.torque.iter_mut())
-                .zip(&*sums.acc)
-            {
-                *f = [s.f.0[0], s.f.0[1], s.f.0[2]];
-                *t = [s.t.0[0], s.t.0[1], s.t.0[2]];
-            }
             sums.foreign.group(blocks);
             sums.worst
         };
@@ -764,7 +725,6 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         self.block_contacts = Some(parts.iter().map(Vec::len).sum());
         self.parts = parts;
         self.foreign = foreign;
-        self.sums = sums_all;
     }
 }
 
@@ -988,7 +948,6 @@ pub fn build(
                 block_contacts: None,
                 worst: None,
                 foreign: Vec::new(),
-                sums: Vec::new(),
                 mirror_scratch: Default::default(),
             })
         }

@@ -161,10 +161,7 @@ fn parse(a: &Args, ctx: &Ctx) -> Result<Options> {
         "xyz" => return Err(a.unsupported(i - 1, "read_dump format xyz")),
         _ => return Err(a.error(i - 1, "Invalid dump reader style")),
     }
-    if i < a.len() {
-        // the native reader takes no settings
-        return Err(a.error(i, ILLEGAL));
-    }
+    // words after `format native` go to the native reader, which ignores them
     if o.add {
         return Err(a.unsupported(0, "read_dump add yes (new particles from a snapshot)"));
     }
@@ -348,6 +345,7 @@ pub fn read_dump(a: &Args, ctx: &mut Ctx) -> Result {
     if name.contains('*') {
         return Err(a.unsupported(0, "read_dump of several files (a * in the file name)"));
     }
+    ctx.out.screen("Scanning dump file ...\n");
     let text = if name.ends_with(".gz") {
         crate::io::diff::read_text(&ctx.sys.resolve(name).to_string_lossy())
             .map_err(|e| e.to_string())
@@ -355,7 +353,6 @@ pub fn read_dump(a: &Args, ctx: &mut Ctx) -> Result {
         ctx.sys.read(name).map_err(|e| e.to_string())
     }
     .map_err(|m| a.file_error(0, format!("Cannot open file {name}: {m}")))?;
-    ctx.out.screen("Scanning dump file ...\n");
     let snap = find_snapshot(&text, nstep, &o.fields).map_err(|m| a.error(0, m))?;
     ctx.sim.reset_timestep(nstep);
     ctx.out.screen("Reading snapshot from dump file ...\n");

@@ -41,6 +41,7 @@ pub const COMMANDS: &[(&str, Handler)] = &[
     ("create_atoms", create_atoms),
     ("lattice", lattice),
     ("displace_atoms", displace_atoms),
+    ("read_dump", super::read_dump::read_dump),
     ("replicate", super::replicate::replicate),
     ("delete_atoms", delete_atoms),
     ("set", super::set::set),

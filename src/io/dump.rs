@@ -91,7 +91,8 @@ impl Column {
             Column::Type => p.kind[i] as f64,
             Column::Mol => crate::state::bodies::body_tags(p).map_or(-1.0, |t| t[i]),
             Column::X(d) => p.x[i][*d],
-            Column::Scaled(d) => (p.x[i][*d] - domain.lo[*d]) / domain.length(*d),
+            // LIGGGHTS multiplies by the reciprocal length (its `invxprd`)
+            Column::Scaled(d) => (p.x[i][*d] - domain.lo[*d]) * (1.0 / domain.length(*d)),
             Column::Unwrapped(d) => p.x[i][*d] + p.image[i][*d] as f64 * domain.length(*d),
             Column::Image(d) => p.image[i][*d] as f64,
             Column::V(d) => p.v[i][*d],

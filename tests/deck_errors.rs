@@ -1,6 +1,7 @@
 //! Decks LIGGGHTS 3.8.0 rejects are rejected before anything runs, with LIGGGHTS's message,
 //! the file and line, and what to write instead: `compute wall/gran/local` rules and the
-//! LIGGGHTS 2.x syntax of the contactModels tutorial's `in.oldModels`.
+//! LIGGGHTS 2.x syntax of the contactModels tutorial's `in.oldModels`. Errors met during a run
+//! (a variable a `fix print` line cannot substitute) carry LIGGGHTS's message too.
 
 mod common;
 
@@ -194,4 +195,16 @@ write_dump all custom after.dump id c_s[1]
         err.contains("Per-atom virial was not tallied on needed timestep"),
         "{err}"
     );
+}
+
+#[test]
+fn an_undefined_variable_in_fix_print_is_liggghts_s_error_not_a_debug_dump() {
+    let deck = with(
+        "create_atoms 1 single 0 0 0 units box\nset atom 1 diameter 0.01 density 2500\n\
+         fix integr all nve/sphere\ntimestep 1e-5\nfix p all print 5 \"value ${nothere}\"\nrun 10\n",
+    );
+    let (status, err) = run("printvar", &deck);
+    assert_eq!(status, Some(1), "{err}");
+    assert!(err.contains("Substitution for illegal variable"), "{err}");
+    assert!(!err.contains("LexError"), "{err}");
 }

@@ -494,7 +494,7 @@ impl VariableSource for RunVariables<'_> {
             },
             |_| {},
         )
-        .map_err(|e| EngineError::Invalid(format!("{e:?}")))
+        .map_err(|e| EngineError::Invalid(e.message))
     }
 
     fn equal(&mut self, sim: &Simulation, name: &str) -> Result<f64, EngineError> {

@@ -208,3 +208,24 @@ fn an_undefined_variable_in_fix_print_is_liggghts_s_error_not_a_debug_dump() {
     assert!(err.contains("Substitution for illegal variable"), "{err}");
     assert!(!err.contains("LexError"), "{err}");
 }
+
+#[test]
+fn an_insertion_region_outside_the_box_stops_as_liggghts_does() {
+    // no Monte Carlo test point lands in the region: LIGGGHTS stops instead of inserting
+    let deck = with(
+        "timestep 1e-5\n\
+         fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.002\n\
+         fix pdd all particledistribution/discrete 32452843 1 pts 1.0\n\
+         region far block 1 2 1 2 1 2 units box\n\
+         fix ins all insert/pack seed 49979693 distributiontemplate pdd insert_every once \
+         overlapcheck yes all_in yes particles_in_region 10 region far\n\
+         fix integr all nve/sphere\nrun 10\n",
+    );
+    let (status, err) = run("farregion", &deck);
+    assert_eq!(status, Some(1), "{err}");
+    assert!(err.contains("Unable to calculate region volume"), "{err}");
+    assert!(
+        err.contains("region volume is too small or out of domain"),
+        "{err}"
+    );
+}

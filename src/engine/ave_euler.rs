@@ -65,6 +65,20 @@ pub struct EulerGrid {
     pub stress: Vec<[f64; 7]>,
 }
 
+/// The most cells a grid gets: 2^26, about 10 GB of cell data (LIGGGHTS fails to allocate
+/// grids far larger, or overflows its `int` count of them).
+const MAX_CELLS: usize = 1 << 26;
+
+/// A double truncated to `int` as LIGGGHTS's `static_cast<int>` does on x86-64: values
+/// outside the `int` range, and NaN, give `INT_MIN`.
+fn c_int(x: f64) -> i32 {
+    if x.is_nan() || x >= 2_147_483_648.0 || x <= -2_147_483_649.0 {
+        i32::MIN
+    } else {
+        x as i32
+    }
+}
+
 impl EulerGrid {
     /// LIGGGHTS's `setup_bins`: cells of at least `relative` times the largest contact
     /// distance `cutoff` (length) fitted into the box `lo`..`hi`, at least one per axis.
@@ -73,13 +87,22 @@ impl EulerGrid {
         let ideal = relative * cutoff;
         let mut less_than_one = false;
         for d in 0..3 {
-            let mut n = ((hi[d] - lo[d]) / ideal) as i32;
+            let mut n = c_int((hi[d] - lo[d]) / ideal);
             if n < 1 {
                 n = 1;
                 less_than_one = true;
             }
             self.dims[d] = n as usize;
-            self.size[d] = (hi[d] - lo[d]) / n as f64;
+        }
+        // more cells than memory holds (where LIGGGHTS fails to allocate them): regolith
+        // keeps one cell rather than stop the run
+        let total = self.dims.iter().try_fold(1usize, |t, &n| t.checked_mul(n));
+        if total.is_none_or(|t| t > MAX_CELLS) {
+            self.dims = [1; 3];
+            less_than_one = true;
+        }
+        for d in 0..3 {
+            self.size[d] = (hi[d] - lo[d]) / self.dims[d] as f64;
             self.size_inv[d] = 1.0 / self.size[d];
         }
         self.lo = lo;
@@ -298,6 +321,20 @@ impl EulerGrid {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn cells_far_smaller_than_the_box_give_one_cell_as_liggghts_int_cast_does() {
+        let mut g = EulerGrid::default();
+        // 0.1 / 3e-300 is past the int range: LIGGGHTS's cast gives INT_MIN, so one cell
+        assert!(g.setup_bins([0.0; 3], [0.1; 3], 3.0, 1e-300));
+        assert_eq!(g.dims, [1, 1, 1]);
+        assert_eq!(g.cells(), 1);
+        // 2000 cells a side fit an int each, but their product does not fit in memory
+        assert!(g.setup_bins([0.0; 3], [2.0; 3], 1.0, 1e-3));
+        assert_eq!(g.dims, [1, 1, 1]);
+        assert!(!g.setup_bins([0.0; 3], [0.02; 3], 1.0, 1e-3));
+        assert_eq!(g.dims, [20, 20, 20]);
+    }
 
     #[test]
     fn cells_fit_the_box_and_average_by_mass() {

@@ -405,6 +405,17 @@ impl InsertPack {
             }
         }
         let _ = max_radius;
+        if hits == 0 {
+            // no test point fell in the region (a region too small, out of the box, or with
+            // NaN bounds): LIGGGHTS stops here
+            return Err(EngineError::Invalid(
+                "Unable to calculate region volume. Possible sources of error: \n   \
+                 (a) region volume is too small or out of domain (you may want to increase \
+                 the 'volume_limit' in the input script)\n   (b) particles for insertion are \
+                 too large when using all_in yes\n   (c) region is 2d, but should be 3d"
+                    .into(),
+            ));
+        }
         let vbox = (ehi[0] - elo[0]) * (ehi[1] - elo[1]) * (ehi[2] - elo[2]);
         self.region_volume = hits as f64 / self.ntry_mc as f64 * vbox;
         Ok(self.region_volume)

@@ -155,17 +155,9 @@ pub fn initial_integrate(
             FixKind::Multisphere(ms) => ms.initial_integrate(p, dt, domain, step, has_stream),
             FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt, domain),
             FixKind::HeatGran(h) => h.initial_integrate(p),
-            FixKind::Style(s) => s.initial_integrate(
-                p,
-                &FixStep {
-                    group: fix.group,
-                    step,
-                    dt,
-                    domain,
-                    virial: &[],
-                    contact: 0.0,
-                },
-            ),
+            FixKind::Style(s) => {
+                s.initial_integrate(p, &FixStep::plain(fix.group, step, dt, domain))
+            }
             _ => {}
         }
     }
@@ -257,17 +249,7 @@ pub fn post_force(
                     b.apply(p, g, gv);
                 }
             }
-            FixKind::Style(s) => s.post_force(
-                p,
-                &FixStep {
-                    group: g,
-                    step: at.0,
-                    dt,
-                    domain: at.1,
-                    virial: &[],
-                    contact: 0.0,
-                },
-            ),
+            FixKind::Style(s) => s.post_force(p, &FixStep::plain(g, at.0, dt, at.1)),
             FixKind::SpringSelf(s) => s.apply(p, g),
             _ => {}
         }
@@ -289,17 +271,7 @@ pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, step: i64, dt: f64,
             }
             FixKind::Move(m) => m.final_integrate(p, fix.group, dt),
             FixKind::HeatGran(h) => h.final_integrate(p, fix.group, dt),
-            FixKind::Style(s) => s.final_integrate(
-                p,
-                &FixStep {
-                    group: fix.group,
-                    step,
-                    dt,
-                    domain,
-                    virial: &[],
-                    contact: 0.0,
-                },
-            ),
+            FixKind::Style(s) => s.final_integrate(p, &FixStep::plain(fix.group, step, dt, domain)),
             _ => {}
         }
     }

@@ -226,14 +226,7 @@ mod tests {
         p.push(2, 1, [1.0, 0.0, 0.0], 0.1, 1000.0);
         p.f = vec![[1.0; 3], [1.0; 3]];
         let domain = Domain::default();
-        let at = FixStep {
-            group: 1,
-            step: 0,
-            dt: 1e-4,
-            domain: &domain,
-            virial: &[],
-            contact: 0.0,
-        };
+        let at = FixStep::plain(1, 0, 1e-4, &domain);
         let mut set = Force {
             action: Action::Set,
             values: [

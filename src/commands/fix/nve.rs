@@ -102,13 +102,9 @@ impl FixStyle for Nve {
 
     /// Half-kick v with the force, then drift x by a full step.
     fn initial_integrate(&mut self, p: &mut Particles, at: &FixStep) {
-        let dtf = 0.5 * at.dt;
+        half_kick(p, at);
         for i in 0..p.len() {
             if p.mask[i] & at.group != 0 {
-                let dtfm = dtf / p.mass[i];
-                for d in 0..3 {
-                    p.v[i][d] += dtfm * p.f[i][d];
-                }
                 for d in 0..3 {
                     p.x[i][d] += at.dt * p.v[i][d];
                 }
@@ -118,15 +114,7 @@ impl FixStyle for Nve {
 
     /// The second half-kick.
     fn final_integrate(&mut self, p: &mut Particles, at: &FixStep) {
-        let dtf = 0.5 * at.dt;
-        for i in 0..p.len() {
-            if p.mask[i] & at.group != 0 {
-                let dtfm = dtf / p.mass[i];
-                for d in 0..3 {
-                    p.v[i][d] += dtfm * p.f[i][d];
-                }
-            }
-        }
+        half_kick(p, at);
     }
 }
 
@@ -158,4 +146,17 @@ pub fn plain(a: &Args, _ctx: &mut Ctx, _fix: &FixDef) -> Result<Box<dyn FixStyle
         return Err(a.error(3, "Illegal fix nve command"));
     }
     Ok(Box::new(Nve))
+}
+
+/// Half-kick the velocities of the fix's group: v += (dt / 2) f / m (velocity).
+fn half_kick(p: &mut Particles, at: &FixStep) {
+    let dtf = 0.5 * at.dt;
+    for i in 0..p.len() {
+        if p.mask[i] & at.group != 0 {
+            let dtfm = dtf / p.mass[i];
+            for d in 0..3 {
+                p.v[i][d] += dtfm * p.f[i][d];
+            }
+        }
+    }
 }

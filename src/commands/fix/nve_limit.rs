@@ -134,14 +134,7 @@ mod tests {
             count: 0,
         };
         let domain = crate::engine::domain::Domain::default();
-        let at = FixStep {
-            group: 1,
-            step: 1,
-            dt: 1e-3,
-            domain: &domain,
-            virial: &[],
-            contact: 0.0,
-        };
+        let at = FixStep::plain(1, 1, 1e-3, &domain);
         n.initial_integrate(&mut p, &at);
         // speed 5 capped at 1: direction kept
         assert!((p.v[0][0] - 0.6).abs() < 1e-12 && (p.v[0][1] - 0.8).abs() < 1e-12);

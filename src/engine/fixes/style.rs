@@ -32,6 +32,22 @@ pub struct FixStep<'a> {
     pub contact: f64,
 }
 
+impl<'a> FixStep<'a> {
+    /// A step of fix `group` at `step` with time step `dt` (time) in `domain`, with no
+    /// virial and no contact distance (what every phase but `end_of_step` and
+    /// `setup_values` gets).
+    pub fn plain(group: u32, step: i64, dt: f64, domain: &'a Domain) -> Self {
+        FixStep {
+            group,
+            step,
+            dt,
+            domain,
+            virial: &[],
+            contact: 0.0,
+        }
+    }
+}
+
 /// The shape of a style's per-atom values (`f_ID` / `f_ID[N]` in dumps, atom-style
 /// variables and computes that read fixes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -204,14 +220,7 @@ impl Simulation {
             let super::FixKind::Style(mut style) = kind else {
                 unreachable!("checked above")
             };
-            let at = FixStep {
-                group: self.fixes[k].group,
-                step: self.step,
-                dt: self.dt,
-                domain: &self.domain,
-                virial: &[],
-                contact: 0.0,
-            };
+            let at = FixStep::plain(self.fixes[k].group, self.step, self.dt, &self.domain);
             let mut inputs = SimulationInputs {
                 sim: &*self,
                 vars: &mut *vars,
@@ -225,14 +234,7 @@ impl Simulation {
 
     /// The `setup` hook of every module fix style, in fix order, at the start of a run.
     pub(crate) fn setup_fix_styles(&mut self) {
-        let at = FixStep {
-            group: 0,
-            step: self.step,
-            dt: self.dt,
-            domain: &self.domain,
-            virial: &[],
-            contact: 0.0,
-        };
+        let at = FixStep::plain(0, self.step, self.dt, &self.domain);
         for fix in &mut self.fixes {
             if let super::FixKind::Style(s) = &mut fix.kind {
                 s.setup(

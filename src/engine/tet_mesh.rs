@@ -121,6 +121,209 @@ fn atoi(w: &str) -> i64 {
     sign * digits[..end].parse::<i64>().unwrap_or(0)
 }
 
+/// The words of a line before its comment (a `#` outside quotes; the VTK header line is
+/// one).
+fn words_of(raw: &str) -> Vec<&str> {
+    let mut quote = None;
+    let cut = raw
+        .char_indices()
+        .find(|&(_, c)| {
+            match quote {
+                Some(q) if c == q => quote = None,
+                None if c == '"' || c == '\'' => quote = Some(c),
+                None => return c == '#',
+                _ => {}
+            }
+            false
+        })
+        .map_or(raw.len(), |(k, _)| k);
+    raw[..cut].split_whitespace().collect()
+}
+
+/// A legacy VTK file read line by line (non-empty lines counted from 1): the header, then
+/// the `POINTS`, `CELLS` and `CELL_TYPES` sections in turn.
+struct VtkReader<'a> {
+    place: &'a Placement,
+    inside_box: &'a dyn Fn([f64; 3]) -> bool,
+    notes: ReadNotes,
+    /// The placed points read so far (length).
+    points: Vec<[f64; 3]>,
+    /// Points the `POINTS` line announces.
+    npoints: usize,
+    /// The cells read so far (None: not four nodes, or not a tetrahedron).
+    cells: Vec<Option<[usize; 4]>>,
+    /// Cells the `CELLS` line announces.
+    ncells: usize,
+    points_done: bool,
+    cells_done: bool,
+    last_point_line: usize,
+    last_cell_line: usize,
+    /// Cell types read so far.
+    types_seen: usize,
+    /// A placed point lies outside the box.
+    outside: bool,
+    /// The current line (non-empty lines from 1).
+    line_no: usize,
+}
+
+impl VtkReader<'_> {
+    /// Take one line of the file.
+    fn line(&mut self, raw: &str) -> Result<(), TetMeshError> {
+        let words = words_of(raw);
+        if words.is_empty() {
+            self.notes.empty_lines += 1;
+            return Ok(());
+        }
+        self.line_no += 1;
+        let line_no = self.line_no;
+        if line_no <= 4 {
+            return self.header(&words);
+        }
+        if !self.points_done {
+            return self.point_line(&words);
+        }
+        if line_no == self.last_point_line + 1 {
+            if words[0] != "CELLS" {
+                return Err(TetMeshError::Section("CELLS"));
+            }
+            self.ncells = words.get(1).map_or(0, |w| atoi(w)).max(0) as usize;
+            if self.ncells == 0 {
+                self.cells_done = true;
+                self.last_cell_line = line_no;
+            }
+            return Ok(());
+        }
+        if !self.cells_done {
+            return self.cell_line(&words);
+        }
+        if line_no == self.last_cell_line + 1 {
+            if words[0] != "CELL_TYPES" {
+                return Err(TetMeshError::Section("CELL_TYPES"));
+            }
+            if words.get(1).map_or(0, |w| atoi(w)) != self.ncells as i64 {
+                return Err(TetMeshError::CellTypes);
+            }
+            return Ok(());
+        }
+        if line_no <= self.last_cell_line + 1 + self.ncells && self.types_seen < self.cells.len() {
+            if words[0] != "10" {
+                self.cells[self.types_seen] = None;
+                self.notes.other_cells = true;
+            }
+            self.types_seen += 1;
+        }
+        Ok(())
+    }
+
+    /// Lines 1 to 4: title, `ASCII`, `DATASET UNSTRUCTURED_GRID`, `POINTS N`.
+    fn header(&mut self, words: &[&str]) -> Result<(), TetMeshError> {
+        match self.line_no {
+            2 if words[0] != "ASCII" => Err(TetMeshError::NotAscii),
+            3 if words[0] != "DATASET" || words.get(1) != Some(&"UNSTRUCTURED_GRID") => {
+                Err(TetMeshError::NotUnstructuredGrid)
+            }
+            4 => {
+                if words[0] != "POINTS" {
+                    return Err(TetMeshError::Section("POINTS"));
+                }
+                self.npoints = words.get(1).map_or(0, |w| atoi(w)).max(0) as usize;
+                if self.npoints == 0 {
+                    self.points_done = true;
+                    self.last_point_line = self.line_no;
+                }
+                Ok(())
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// A line of points (whole points only), each placed and tested against the box.
+    fn point_line(&mut self, words: &[&str]) -> Result<(), TetMeshError> {
+        if !words.len().is_multiple_of(3) {
+            return Err(TetMeshError::PointValues);
+        }
+        for c in words.chunks(3) {
+            let mut p = [0.0; 3];
+            for (k, w) in c.iter().enumerate() {
+                p[k] = crate::util::numbers::numeric(w).unwrap_or(0.0);
+            }
+            let q = self.place.apply(p);
+            if !(self.inside_box)(q) {
+                self.outside = true;
+            }
+            self.points.push(q);
+        }
+        if self.points.len() >= self.npoints {
+            self.points_done = true;
+            self.last_point_line = self.line_no;
+        }
+        Ok(())
+    }
+
+    /// A cell line: four nodes (a count and four point indices) make a candidate
+    /// tetrahedron.
+    fn cell_line(&mut self, words: &[&str]) -> Result<(), TetMeshError> {
+        let cell = if words.len() == 5 {
+            let mut c = [0usize; 4];
+            for k in 0..4 {
+                let n = atoi(words[1 + k]);
+                if n < 0 || n as usize >= self.npoints.min(self.points.len()) {
+                    return Err(TetMeshError::CellPoint {
+                        cell: self.cells.len(),
+                        point: n,
+                        points: self.npoints,
+                    });
+                }
+                c[k] = n as usize;
+            }
+            Some(c)
+        } else {
+            None
+        };
+        self.cells.push(cell);
+        if self.cells.len() == self.ncells {
+            self.cells_done = true;
+            self.last_cell_line = self.line_no;
+        }
+        Ok(())
+    }
+
+    /// The mesh from the lines read: the tetrahedra ordered to a positive volume, and
+    /// their bounds.
+    fn finish(self) -> Result<(TetMesh, ReadNotes), TetMeshError> {
+        if self.outside {
+            return Err(TetMeshError::OutsideBox);
+        }
+        // cells whose type was never read count as tetrahedra when they have four nodes
+        let points = &self.points;
+        let mut tets = Vec::new();
+        for c in self.cells.iter().flatten() {
+            let mut n = c.map(|k| points[k]);
+            if volume(n[0], n[1], n[2], n[3]) < 0.0 {
+                n.swap(0, 3);
+            }
+            if volume(n[0], n[1], n[2], n[3]) < 0.0 {
+                return Err(TetMeshError::NegativeVolume);
+            }
+            tets.push(n);
+        }
+        if self.ncells == 0 {
+            return Err(TetMeshError::NoCells);
+        }
+        let mut lo = [crate::engine::region::BIG; 3];
+        let mut hi = [-crate::engine::region::BIG; 3];
+        for t in &tets {
+            for n in t {
+                for d in 0..3 {
+                    lo[d] = lo[d].min(n[d]);
+                    hi[d] = hi[d].max(n[d]);
+                }
+            }
+        }
+        Ok((TetMesh { tets, lo, hi }, self.notes))
+    }
+}
+
 /// Read a legacy ASCII VTK unstructured grid. `inside_box` tells whether a placed point lies
 /// in the simulation box (LIGGGHTS refuses meshes that stick out).
 pub fn read(
@@ -128,163 +331,26 @@ pub fn read(
     place: &Placement,
     inside_box: &dyn Fn([f64; 3]) -> bool,
 ) -> Result<(TetMesh, ReadNotes), TetMeshError> {
-    let mut notes = ReadNotes::default();
-    let mut points: Vec<[f64; 3]> = Vec::new();
-    let mut npoints = 0usize;
-    let mut cells: Vec<Option<[usize; 4]>> = Vec::new();
-    let mut ncells = 0usize;
-    let mut ntets = 0usize;
-    let (mut points_done, mut cells_done) = (false, false);
-    let (mut last_point_line, mut last_cell_line) = (0usize, 0usize);
-    let mut types_seen = 0usize;
-    let mut outside = false;
-    let mut line_no = 0usize;
+    let mut reader = VtkReader {
+        place,
+        inside_box,
+        notes: ReadNotes::default(),
+        points: Vec::new(),
+        npoints: 0,
+        cells: Vec::new(),
+        ncells: 0,
+        points_done: false,
+        cells_done: false,
+        last_point_line: 0,
+        last_cell_line: 0,
+        types_seen: 0,
+        outside: false,
+        line_no: 0,
+    };
     for raw in text.lines() {
-        // a `#` outside quotes starts a comment (the VTK header line is one)
-        let mut quote = None;
-        let cut = raw
-            .char_indices()
-            .find(|&(_, c)| {
-                match quote {
-                    Some(q) if c == q => quote = None,
-                    None if c == '"' || c == '\'' => quote = Some(c),
-                    None => return c == '#',
-                    _ => {}
-                }
-                false
-            })
-            .map_or(raw.len(), |(k, _)| k);
-        let words: Vec<&str> = raw[..cut].split_whitespace().collect();
-        if words.is_empty() {
-            notes.empty_lines += 1;
-            continue;
-        }
-        line_no += 1;
-        match line_no {
-            1 => continue,
-            2 if words[0] != "ASCII" => return Err(TetMeshError::NotAscii),
-            3 if words[0] != "DATASET" || words.get(1) != Some(&"UNSTRUCTURED_GRID") => {
-                return Err(TetMeshError::NotUnstructuredGrid)
-            }
-            2 | 3 => continue,
-            4 => {
-                if words[0] != "POINTS" {
-                    return Err(TetMeshError::Section("POINTS"));
-                }
-                npoints = words.get(1).map_or(0, |w| atoi(w)).max(0) as usize;
-                if npoints == 0 {
-                    points_done = true;
-                    last_point_line = line_no;
-                }
-                continue;
-            }
-            _ => {}
-        }
-        if !points_done {
-            if !words.len().is_multiple_of(3) {
-                return Err(TetMeshError::PointValues);
-            }
-            for c in words.chunks(3) {
-                let mut p = [0.0; 3];
-                for (k, w) in c.iter().enumerate() {
-                    p[k] = crate::util::numbers::numeric(w).unwrap_or(0.0);
-                }
-                let q = place.apply(p);
-                if !inside_box(q) {
-                    outside = true;
-                }
-                points.push(q);
-            }
-            if points.len() >= npoints {
-                points_done = true;
-                last_point_line = line_no;
-            }
-            continue;
-        }
-        if line_no == last_point_line + 1 {
-            if words[0] != "CELLS" {
-                return Err(TetMeshError::Section("CELLS"));
-            }
-            ncells = words.get(1).map_or(0, |w| atoi(w)).max(0) as usize;
-            if ncells == 0 {
-                cells_done = true;
-                last_cell_line = line_no;
-            }
-            continue;
-        }
-        if !cells_done {
-            cells.push(if words.len() == 5 {
-                let mut c = [0usize; 4];
-                for k in 0..4 {
-                    let n = atoi(words[1 + k]);
-                    if n < 0 || n as usize >= npoints.min(points.len()) {
-                        return Err(TetMeshError::CellPoint {
-                            cell: cells.len(),
-                            point: n,
-                            points: npoints,
-                        });
-                    }
-                    c[k] = n as usize;
-                }
-                Some(c)
-            } else {
-                None
-            });
-            if cells.len() == ncells {
-                cells_done = true;
-                last_cell_line = line_no;
-            }
-            continue;
-        }
-        if line_no == last_cell_line + 1 {
-            if words[0] != "CELL_TYPES" {
-                return Err(TetMeshError::Section("CELL_TYPES"));
-            }
-            if words.get(1).map_or(0, |w| atoi(w)) != ncells as i64 {
-                return Err(TetMeshError::CellTypes);
-            }
-            continue;
-        }
-        if line_no <= last_cell_line + 1 + ncells && types_seen < cells.len() {
-            if words[0] != "10" {
-                cells[types_seen] = None;
-                notes.other_cells = true;
-            } else if cells[types_seen].is_some() {
-                ntets += 1;
-            }
-            types_seen += 1;
-        }
+        reader.line(raw)?;
     }
-    if outside {
-        return Err(TetMeshError::OutsideBox);
-    }
-    // cells whose type was never read count as tetrahedra when they have four nodes
-    let _ = ntets;
-    let mut tets = Vec::new();
-    for c in cells.iter().flatten() {
-        let mut n = c.map(|k| points[k]);
-        if volume(n[0], n[1], n[2], n[3]) < 0.0 {
-            n.swap(0, 3);
-        }
-        if volume(n[0], n[1], n[2], n[3]) < 0.0 {
-            return Err(TetMeshError::NegativeVolume);
-        }
-        tets.push(n);
-    }
-    if ncells == 0 {
-        return Err(TetMeshError::NoCells);
-    }
-    let mut lo = [crate::engine::region::BIG; 3];
-    let mut hi = [-crate::engine::region::BIG; 3];
-    for t in &tets {
-        for n in t {
-            for d in 0..3 {
-                lo[d] = lo[d].min(n[d]);
-                hi[d] = hi[d].max(n[d]);
-            }
-        }
-    }
-    Ok((TetMesh { tets, lo, hi }, notes))
+    reader.finish()
 }
 
 impl TetMesh {

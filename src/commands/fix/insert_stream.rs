@@ -1,44 +1,31 @@
 //! `fix insert/stream`: particles inserted through a mesh face.
 
-use super::seed_arg;
+use super::insertion::{keyword, yes, Family, Insertion};
 use crate::commands::fix::FixDef;
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::{FixKind, StreamFix};
+use crate::io::stl::Triangle;
 
 /// `fix ID GROUP insert/stream seed S distributiontemplate D nparticles N particlerate R
 /// insertion_face MESH extrude_length L|insert_every N vel ... [overlapcheck ...]`.
 pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
     let id = fix.id;
     ctx.sim.inserts_atoms = true;
-    use crate::engine::insert::Velocity;
     a.count(5..=usize::MAX, "fix ID GROUP insert/stream seed S distributiontemplate D nparticles N particlerate R insertion_face MESH extrude_length L ...")?;
-    let (mut seed, mut dist, mut face, mut extrude, mut every) = (None, None, None, None, None);
-    let mut duration = None;
-    let (mut total, mut rate) = (None, None);
-    let (mut overlap, mut maxattempt, mut ntry_mc, mut verbose) = (true, 50i64, 100000i64, true);
-    let mut velocity = Velocity::Constant([0.0; 3]);
-    let mut omega = [0.0; 3];
-    let mut random_orientation = false;
-    let mut start = ctx.sim.step + 1;
-    let (mut all_in, mut all_in_at, mut face_id) = (false, 0, String::new());
-    let mut i = 3;
-    let yes = |a: &Args, k: usize| a.word_in(k, &["yes", "no"]).map(|w| w == "yes");
+    let mut stream = StreamArgs::new(ctx.sim.step + 1, id);
+    let families: [Family<StreamArgs>; 4] = [
+        |s, a, ctx, i, w| s.common.keyword(a, ctx, i, w),
+        StreamArgs::face,
+        StreamArgs::amounts,
+        StreamArgs::schedule,
+    ];
     // LIGGGHTS reads the general insertion keywords first, then insert/stream's own; a
     // general one after those is an error there
     let mut own_part = false;
+    let mut i = 3;
     while i < a.len() {
         let w = a.word(i)?;
-        let own = matches!(
-            w,
-            "insertion_face"
-                | "extrude_length"
-                | "duration"
-                | "duration_time"
-                | "parallel"
-                | "ntry_mc"
-                | "save_template"
-        );
-        if own {
+        if OWN.contains(&w) {
             own_part = true;
         } else if own_part {
             return Err(a.error(
@@ -46,24 +33,121 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 format!("Fix insert/stream (id {id}): unknown keyword or wrong keyword order"),
             ));
         }
+        match keyword(&mut stream, &families, a, ctx, i, w)? {
+            Some(used) => i += used,
+            None => return Err(unknown(a, i, w)),
+        }
+    }
+    stream.finish(a, id)
+}
+
+/// insert/stream's own keywords (after the general insertion keywords).
+const OWN: &[&str] = &[
+    "insertion_face",
+    "extrude_length",
+    "duration",
+    "duration_time",
+    "parallel",
+    "ntry_mc",
+    "save_template",
+];
+
+/// A keyword no family knows: LIGGGHTS's keywords regolith does not run, else the known ones.
+fn unknown(a: &Args, i: usize, w: &str) -> CommandError {
+    if matches!(
+        w,
+        "parallel" | "set_property" | "compress_tags" | "random_distribute"
+    ) {
+        return a.unsupported(i, &format!("fix insert/stream {w}"));
+    }
+    a.keyword_error(
+        i,
+        &[
+            "seed",
+            "distributiontemplate",
+            "nparticles",
+            "mass",
+            "particlerate",
+            "massrate",
+            "insertion_face",
+            "extrude_length",
+            "insert_every",
+            "insert_every_time",
+            "duration",
+            "duration_time",
+            "vel",
+            "omega",
+            "overlapcheck",
+            "maxattempt",
+            "ntry_mc",
+            "verbose",
+            "start",
+            "all_in",
+            "orientation",
+        ],
+    )
+}
+
+/// The keywords of `fix insert/stream` as given.
+struct StreamArgs {
+    /// The fix ID (LIGGGHTS's messages name it).
+    id: String,
+    /// The keywords every insertion fix takes.
+    common: Insertion,
+    /// `insertion_face MESH`: its triangles and whether it is a planar mesh.
+    face: Option<(Vec<Triangle>, bool)>,
+    /// The insertion face's fix ID.
+    face_id: String,
+    /// `extrude_length L` (length).
+    extrude: Option<f64>,
+    /// `insert_every N` (steps).
+    every: Option<i64>,
+    /// `duration N` (steps).
+    duration: Option<i64>,
+    /// `nparticles N` (Ok) or `mass M` (Err).
+    total: Option<Result<i64, f64>>,
+    /// `particlerate R` (Ok) or `massrate R` (Err).
+    rate: Option<Result<f64, f64>>,
+    /// `ntry_mc N`.
+    ntry_mc: i64,
+    /// `start N` (step).
+    start: i64,
+    /// `all_in yes|no`.
+    all_in: bool,
+    /// The word `all_in` was given at.
+    all_in_at: usize,
+}
+
+impl StreamArgs {
+    /// LIGGGHTS's defaults; insertion starts at step `start`.
+    fn new(start: i64, id: &str) -> StreamArgs {
+        StreamArgs {
+            id: id.to_string(),
+            common: Insertion::default(),
+            face: None,
+            face_id: String::new(),
+            extrude: None,
+            every: None,
+            duration: None,
+            total: None,
+            rate: None,
+            ntry_mc: 100000,
+            start,
+            all_in: false,
+            all_in_at: 0,
+        }
+    }
+
+    /// The face and its extrusion: `insertion_face`, `extrude_length`, `duration`, `ntry_mc`.
+    fn face(
+        &mut self,
+        a: &Args,
+        ctx: &Ctx,
+        i: usize,
+        w: &str,
+    ) -> Result<Option<usize>, CommandError> {
+        let id = &self.id;
         match w {
-            "seed" => {
-                seed = Some(seed_arg(a, ctx, i + 1)?);
-                i += 2;
-            }
-            "distributiontemplate" => {
-                let d = a.word(i + 1)?;
-                if !ctx
-                    .sim
-                    .fixes
-                    .iter()
-                    .any(|f| f.id == d && matches!(f.kind, FixKind::Distribution(_)))
-                {
-                    return Err(a.error(i + 1, "Fix insert: distributiontemplate must be a fix particledistribution/discrete"));
-                }
-                dist = Some(d.to_string());
-                i += 2;
-            }
             "insertion_face" => {
                 let m = a.word(i + 1)?;
                 let tri = ctx.sim.fixes.iter().find_map(|f| match &f.kind {
@@ -72,28 +156,16 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                     }
                     _ => None,
                 });
-                face_id = m.to_string();
-                face = Some(tri.ok_or_else(|| {
+                self.face_id = m.to_string();
+                self.face = Some(tri.ok_or_else(|| {
                     a.error(
                         i + 1,
                         "Fix insert/stream: could not find the insertion_face mesh",
                     )
                 })?);
-                i += 2;
             }
-            "extrude_length" => {
-                extrude = Some(a.real(i + 1)?);
-                i += 2;
-            }
-            w @ ("insert_every" | "every" | "insert_every_time") => {
-                every = Some(if w == "insert_every_time" {
-                    (a.real(i + 1)? / ctx.sim.dt) as i32 as i64
-                } else {
-                    a.int(i + 1)?
-                });
-                i += 2;
-            }
-            w @ ("duration" | "duration_time") => {
+            "extrude_length" => self.extrude = Some(a.real(i + 1)?),
+            "duration" | "duration_time" => {
                 let d = if w == "duration_time" {
                     (a.real(i + 1)? / ctx.sim.dt) as i32 as i64
                 } else {
@@ -105,172 +177,150 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                         format!("Fix insert/stream (id {id}): 'duration' can not be < 1"),
                     ));
                 }
-                duration = Some(d);
-                i += 2;
+                self.duration = Some(d);
             }
-            w @ ("nparticles" | "mass") => {
+            "ntry_mc" => {
+                self.ntry_mc = a.int32(i + 1)?;
+                if self.ntry_mc < 1000 {
+                    return Err(a.error(
+                        i + 1,
+                        format!("Fix insert/stream (id {id}): ntry_mc must be > 1000"),
+                    ));
+                }
+            }
+            _ => return Ok(None),
+        }
+        Ok(Some(2))
+    }
+
+    /// How many and how fast: `nparticles` or `mass`, `particlerate` or `massrate`.
+    fn amounts(
+        &mut self,
+        a: &Args,
+        _ctx: &Ctx,
+        i: usize,
+        w: &str,
+    ) -> Result<Option<usize>, CommandError> {
+        match w {
+            "nparticles" | "mass" => {
                 if a.word(i + 1)? == "INF" {
                     return Err(a.unsupported(i + 1, &format!("fix insert/stream {w} INF")));
                 }
-                if total.is_some() {
+                if self.total.is_some() {
                     return Err(a.error(
                         i,
                         "Fix insert/stream: must not define both 'nparticles' and 'mass'",
                     ));
                 }
-                total = Some(if w == "mass" {
+                self.total = Some(if w == "mass" {
                     Err(a.real(i + 1)?)
                 } else {
                     Ok(a.int32(i + 1)?)
                 });
-                i += 2;
             }
-            w @ ("particlerate" | "massrate") => {
-                if rate.is_some() {
+            "particlerate" | "massrate" => {
+                if self.rate.is_some() {
                     return Err(a.error(
                         i,
                         "Fix insert/stream: must not define both 'particlerate' and 'massrate'",
                     ));
                 }
                 let r = a.real(i + 1)?;
-                rate = Some(if w == "massrate" { Err(r) } else { Ok(r) });
-                i += 2;
+                self.rate = Some(if w == "massrate" { Err(r) } else { Ok(r) });
             }
-            "start" => {
-                start = a.int(i + 1)?;
-                i += 2;
-            }
-            "overlapcheck" => {
-                overlap = yes(a, i + 1)?;
-                i += 2;
-            }
-            "verbose" => {
-                verbose = yes(a, i + 1)?;
-                i += 2;
-            }
-            "maxattempt" => {
-                maxattempt = a.int32(i + 1)?;
-                i += 2;
-            }
-            "ntry_mc" => {
-                ntry_mc = a.int32(i + 1)?;
-                if ntry_mc < 1000 {
-                    return Err(a.error(
-                        i + 1,
-                        format!("Fix insert/stream (id {id}): ntry_mc must be > 1000"),
-                    ));
-                }
-                i += 2;
-            }
-            "vel" => {
-                let used;
-                (velocity, used) = super::insertion_velocity(a, i)?;
-                i += used;
-            }
-            "omega" => {
-                a.word_in(i + 1, &["constant"])?;
-                omega = [a.real(i + 2)?, a.real(i + 3)?, a.real(i + 4)?];
-                i += 5;
-            }
-            "all_in" => {
-                all_in = yes(a, i + 1)?;
-                all_in_at = i;
-                i += 2;
-            }
-            "orientation" => {
-                random_orientation = super::orientation_arg(a, i)?;
-                i += 2;
-            }
-            w @ ("parallel" | "set_property" | "compress_tags" | "random_distribute") => {
-                return Err(a.unsupported(i, &format!("fix insert/stream {w}")))
-            }
-            _ => {
-                return Err(a.keyword_error(
-                    i,
-                    &[
-                        "seed",
-                        "distributiontemplate",
-                        "nparticles",
-                        "mass",
-                        "particlerate",
-                        "massrate",
-                        "insertion_face",
-                        "extrude_length",
-                        "insert_every",
-                        "insert_every_time",
-                        "duration",
-                        "duration_time",
-                        "vel",
-                        "omega",
-                        "overlapcheck",
-                        "maxattempt",
-                        "ntry_mc",
-                        "verbose",
-                        "start",
-                        "all_in",
-                        "orientation",
-                    ],
-                ))
-            }
+            _ => return Ok(None),
         }
+        Ok(Some(2))
     }
-    let need = |what: &str| a.error(2, format!("Fix insert/stream: have to define '{what}'"));
-    let seed = seed.ok_or_else(|| need("seed"))?;
-    let distribution = dist.ok_or_else(|| need("distributiontemplate"))?;
-    let (triangles, planar) = face.ok_or_else(|| need("insertion_face"))?;
-    if all_in && !planar {
-        return Err(a.error(
-            all_in_at,
-            format!("Fix insert/stream (id {id}): using all_in yes requires you to use a fix mesh/surface/planar"),
-        ));
+
+    /// When and where in the face: `insert_every` (or `every`, `insert_every_time`),
+    /// `start`, `all_in`.
+    fn schedule(
+        &mut self,
+        a: &Args,
+        ctx: &Ctx,
+        i: usize,
+        w: &str,
+    ) -> Result<Option<usize>, CommandError> {
+        match w {
+            "insert_every" | "every" | "insert_every_time" => {
+                self.every = Some(if w == "insert_every_time" {
+                    (a.real(i + 1)? / ctx.sim.dt) as i32 as i64
+                } else {
+                    a.int(i + 1)?
+                });
+            }
+            "start" => self.start = a.int(i + 1)?,
+            "all_in" => {
+                self.all_in = yes(a, i + 1)?;
+                self.all_in_at = i;
+            }
+            _ => return Ok(None),
+        }
+        Ok(Some(2))
     }
-    let total = total.ok_or_else(|| {
-        a.error(
-            2,
-            "Fix insert/stream: must define either 'nparticles' or 'mass'",
-        )
-    })?;
-    let rate = rate.ok_or_else(|| {
-        a.error(
-            2,
-            "Fix insert/stream: must define either 'massrate' or 'particlerate'",
-        )
-    })?;
-    if extrude.is_some() == every.is_some() {
-        return Err(a.error(
-            2,
-            "Fix insert/stream: must define either 'insert_every' or 'extrude_length'",
-        ));
-    }
-    if extrude.is_some() && duration.is_some() {
-        return Err(a.error(
-            2,
-            format!("Fix insert/stream (id {id}): must not provide both 'extrude_length' and 'duration'"),
-        ));
-    }
-    Ok(FixKind::InsertStream(Box::new(
-        crate::engine::fixes::StreamFix {
+
+    /// The fix from the keywords, after LIGGGHTS's checks of what they must define.
+    fn finish(self, a: &Args, id: &str) -> Result<FixKind, CommandError> {
+        let need = |what: &str| a.error(2, format!("Fix insert/stream: have to define '{what}'"));
+        let common = self.common;
+        let seed = common.seed.ok_or_else(|| need("seed"))?;
+        let distribution = common
+            .distribution
+            .ok_or_else(|| need("distributiontemplate"))?;
+        let (triangles, planar) = self.face.ok_or_else(|| need("insertion_face"))?;
+        if self.all_in && !planar {
+            return Err(a.error(
+                self.all_in_at,
+                format!("Fix insert/stream (id {id}): using all_in yes requires you to use a fix mesh/surface/planar"),
+            ));
+        }
+        let total = self.total.ok_or_else(|| {
+            a.error(
+                2,
+                "Fix insert/stream: must define either 'nparticles' or 'mass'",
+            )
+        })?;
+        let rate = self.rate.ok_or_else(|| {
+            a.error(
+                2,
+                "Fix insert/stream: must define either 'massrate' or 'particlerate'",
+            )
+        })?;
+        if self.extrude.is_some() == self.every.is_some() {
+            return Err(a.error(
+                2,
+                "Fix insert/stream: must define either 'insert_every' or 'extrude_length'",
+            ));
+        }
+        if self.extrude.is_some() && self.duration.is_some() {
+            return Err(a.error(
+                2,
+                format!("Fix insert/stream (id {id}): must not provide both 'extrude_length' and 'duration'"),
+            ));
+        }
+        Ok(FixKind::InsertStream(Box::new(StreamFix {
             id: id.to_string(),
             seed,
             distribution,
             triangles,
-            face_id,
-            all_in,
-            extrude,
-            every,
-            duration,
+            face_id: self.face_id,
+            all_in: self.all_in,
+            extrude: self.extrude,
+            every: self.every,
+            duration: self.duration,
             total,
             rate,
-            velocity,
-            omega,
-            overlapcheck: overlap,
-            maxattempt,
-            ntry_mc,
-            verbose,
-            start,
+            velocity: common.velocity,
+            omega: common.omega,
+            overlapcheck: common.overlapcheck,
+            maxattempt: common.maxattempt,
+            ntry_mc: self.ntry_mc,
+            verbose: common.verbose,
+            start: self.start,
             state: None,
             restored: None,
-            random_orientation,
-        },
-    )))
+            random_orientation: common.random_orientation,
+        })))
+    }
 }

@@ -1,15 +1,19 @@
 //! `fix mesh/surface[/planar|/stress|/stress/servo]`: a triangle mesh read from a file.
 
+use super::insertion::{keyword, Family};
+use super::mesh_servo::{ServoArgs, KEYWORDS as SERVO_KEYWORDS};
 use crate::commands::fix::FixDef;
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::{FixKind, MeshFix};
+use crate::engine::mesh::MeshSettings;
+use crate::engine::restart_fixes::MeshExtras;
+use crate::io::stl::{MeshOp, Triangle};
 
 /// `fix ID GROUP mesh/surface[/planar] file F type T [scale f] [move x y z]
 /// [rotate axis x y z angle deg] [curvature deg] [curvature_tolerant yes|no]
 /// [precision p] [heal auto_remove_duplicates|no] [verbose yes|no]`.
 pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
     let style = fix.style;
-    use crate::io::stl::MeshOp;
     a.count(
         5..=usize::MAX,
         &format!("fix ID GROUP {style} file FILE type T ..."),
@@ -19,67 +23,173 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         "fix" => return Err(a.unsupported(3, "fix mesh/surface fix (meshes from another fix)")),
         _ => return Err(a.keyword_error(3, &["file", "fix"])),
     }
-    let file = a.word(4)?.to_string();
-    let (mut wall_type, mut ops) = (None, Vec::new());
-    let mut settings = crate::engine::mesh::MeshSettings::default();
-    let (mut heal, mut surface_vel) = (false, None);
-    // the stress module's keywords (after all mesh/surface keywords, as LIGGGHTS requires)
-    let (mut stress_on, mut wear_on, mut reference) = (true, false, [0.0; 3]);
-    let mut module_from = None;
-    let module_keyword = |w: &str| matches!(w, "stress" | "wear" | "reference_point");
-    let stress_style = style.starts_with("mesh/surface/stress");
-    let servo_style = style == "mesh/surface/stress/servo";
-    // the servo module's keywords (after the stress module's)
-    let mut servo = super::mesh_servo::ServoArgs::default();
-    let mut servo_from = None;
+    let mut mesh = MeshArgs::new(a.word(4)?, style);
+    let families: [Family<MeshArgs>; 2] = [MeshArgs::transform, MeshArgs::setting];
     let mut i = 5;
     while i < a.len() {
         let w = a.word(i)?;
-        if servo_style && super::mesh_servo::KEYWORDS.contains(&w) {
-            module_from.get_or_insert(i);
-            servo_from.get_or_insert(i);
-            i += servo.parse(a, i)?;
+        if let Some(used) = mesh.module_keyword(a, i, w)? {
+            i += used;
             continue;
         }
-        if stress_style && module_keyword(w) && servo_from.is_none() {
-            module_from.get_or_insert(i);
-            match w {
-                "stress" => stress_on = a.word_in(i + 1, &["on", "off"])? == "on",
-                "wear" => wear_on = a.word_in(i + 1, &["finnie", "off"])? == "finnie",
-                _ => {
-                    reference = [a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?];
-                    i += 2;
-                }
-            }
-            i += 2;
-            continue;
-        }
-        if let Some(at) = module_from {
+        if let Some(at) = mesh.module_from {
             return Err(a.error(
                 i,
                 format!("Fix mesh/surface/stress: unknown keyword or wrong keyword order ('{w}' after the stress keyword at word {at})"),
             ));
         }
+        match keyword(&mut mesh, &families, a, ctx, i, w)? {
+            Some(used) => i += used,
+            None => return Err(unknown(a, i, w)),
+        }
+    }
+    let wall_type = mesh
+        .wall_type
+        .ok_or_else(|| a.error(2, "Fix mesh: must define type"))?;
+    let (triangles, restored) = mesh.triangles(a, ctx)?;
+    mesh.check(a, ctx, &triangles)?;
+    mesh.assemble(a, wall_type, &triangles, restored)
+}
+
+/// A keyword no family knows: LIGGGHTS's keywords regolith does not run, else the known ones.
+fn unknown(a: &Args, i: usize, w: &str) -> CommandError {
+    if matches!(
+        w,
+        "temperature"
+            | "mass_temperature"
+            | "surface_ang_vel"
+            | "region"
+            | "extrude_planar"
+            | "element_exclusion_list"
+            | "min_feature_length"
+    ) {
+        return a.unsupported(i, &format!("fix mesh/surface {w}"));
+    }
+    a.keyword_error(
+        i,
+        &[
+            "type",
+            "scale",
+            "move",
+            "rotate",
+            "curvature",
+            "curvature_tolerant",
+            "precision",
+            "heal",
+            "verbose",
+            "temperature",
+            "surface_vel",
+        ],
+    )
+}
+
+/// The keywords of a `fix mesh/surface` style as given.
+struct MeshArgs {
+    /// The style name.
+    style: String,
+    /// The STL file as written.
+    file: String,
+    /// `type T`: the wall's atom type.
+    wall_type: Option<usize>,
+    /// `scale`, `move` and `rotate`, in order.
+    ops: Vec<MeshOp>,
+    /// `curvature`, `precision`, `curvature_tolerant`.
+    settings: MeshSettings,
+    /// `heal auto_remove_duplicates`.
+    heal: bool,
+    /// `surface_vel vx vy vz` (length/time).
+    surface_vel: Option<[f64; 3]>,
+    /// The style is `mesh/surface/stress` or its servo.
+    stress_style: bool,
+    /// The style is `mesh/surface/stress/servo`.
+    servo_style: bool,
+    /// `stress on|off`.
+    stress_on: bool,
+    /// `wear finnie|off`.
+    wear_on: bool,
+    /// `reference_point x y z` (length).
+    reference: [f64; 3],
+    /// The word the stress or servo module's keywords start at.
+    module_from: Option<usize>,
+    /// The servo module's keywords.
+    servo: ServoArgs,
+    /// The word the servo module's keywords start at.
+    servo_from: Option<usize>,
+}
+
+impl MeshArgs {
+    /// LIGGGHTS's defaults for `style` reading `file`.
+    fn new(file: &str, style: &str) -> MeshArgs {
+        MeshArgs {
+            style: style.to_string(),
+            file: file.to_string(),
+            wall_type: None,
+            ops: Vec::new(),
+            settings: MeshSettings::default(),
+            heal: false,
+            surface_vel: None,
+            stress_style: style.starts_with("mesh/surface/stress"),
+            servo_style: style == "mesh/surface/stress/servo",
+            stress_on: true,
+            wear_on: false,
+            reference: [0.0; 3],
+            module_from: None,
+            servo: ServoArgs::default(),
+            servo_from: None,
+        }
+    }
+
+    /// A keyword of the stress module (after all mesh/surface keywords, as LIGGGHTS
+    /// requires) or of the servo module (after the stress module's): the words it took.
+    fn module_keyword(
+        &mut self,
+        a: &Args,
+        mut i: usize,
+        w: &str,
+    ) -> Result<Option<usize>, CommandError> {
+        if self.servo_style && SERVO_KEYWORDS.contains(&w) {
+            self.module_from.get_or_insert(i);
+            self.servo_from.get_or_insert(i);
+            return self.servo.parse(a, i).map(Some);
+        }
+        let module_keyword = matches!(w, "stress" | "wear" | "reference_point");
+        if !(self.stress_style && module_keyword && self.servo_from.is_none()) {
+            return Ok(None);
+        }
+        let from = i;
+        self.module_from.get_or_insert(i);
         match w {
-            "type" => {
-                let t = a.int(i + 1)?;
-                if t < 1 || t > ctx.sim.ntypes as i64 {
-                    return Err(a.error(i + 1, "Fix mesh: type is out of range"));
-                }
-                wall_type = Some(t as usize);
+            "stress" => self.stress_on = a.word_in(i + 1, &["on", "off"])? == "on",
+            "wear" => self.wear_on = a.word_in(i + 1, &["finnie", "off"])? == "finnie",
+            _ => {
+                self.reference = [a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?];
                 i += 2;
             }
+        }
+        i += 2;
+        Ok(Some(i - from))
+    }
+
+    /// `scale`, `move` and `rotate`.
+    fn transform(
+        &mut self,
+        a: &Args,
+        _ctx: &Ctx,
+        i: usize,
+        w: &str,
+    ) -> Result<Option<usize>, CommandError> {
+        Ok(Some(match w {
             "scale" => {
-                ops.push(MeshOp::Scale(a.real(i + 1)?));
-                i += 2;
+                self.ops.push(MeshOp::Scale(a.real(i + 1)?));
+                2
             }
             "move" => {
-                ops.push(MeshOp::Move([
+                self.ops.push(MeshOp::Move([
                     a.real(i + 1)?,
                     a.real(i + 2)?,
                     a.real(i + 3)?,
                 ]));
-                i += 4;
+                4
             }
             "rotate" => {
                 if a.word(i + 1)? != "axis" || a.word(i + 5)? != "angle" {
@@ -87,118 +197,119 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                         .error(i, "Illegal fix mesh/surface command")
                         .with_help("expected: rotate axis AX AY AZ angle DEGREES"));
                 }
-                ops.push(MeshOp::Rotate {
+                self.ops.push(MeshOp::Rotate {
                     axis: [a.real(i + 2)?, a.real(i + 3)?, a.real(i + 4)?],
                     degrees: a.real(i + 6)?,
                 });
-                i += 7;
+                7
+            }
+            _ => return Ok(None),
+        }))
+    }
+
+    /// The mesh's settings: `type`, `curvature`, `precision`, `curvature_tolerant`,
+    /// `verbose`, `heal`, `surface_vel`.
+    fn setting(
+        &mut self,
+        a: &Args,
+        ctx: &Ctx,
+        i: usize,
+        w: &str,
+    ) -> Result<Option<usize>, CommandError> {
+        match w {
+            "type" => {
+                let t = a.int(i + 1)?;
+                if t < 1 || t > ctx.sim.ntypes as i64 {
+                    return Err(a.error(i + 1, "Fix mesh: type is out of range"));
+                }
+                self.wall_type = Some(t as usize);
             }
             "curvature" => {
                 let v = a.real(i + 1)?;
                 if v <= 0.0 || v > 60.0 {
                     return Err(a.error(i + 1, "Fix mesh: 0° < curvature < 60° required"));
                 }
-                settings.curvature = (v * std::f64::consts::PI / 180.).cos();
-                i += 2;
+                self.settings.curvature = (v * std::f64::consts::PI / 180.).cos();
             }
             "precision" => {
                 let v = a.real(i + 1)?;
                 if v <= 0.0 || v > 0.001 {
                     return Err(a.error(i + 1, "Fix mesh: 0 < precision < 0.001 required"));
                 }
-                settings.precision = v;
-                i += 2;
+                self.settings.precision = v;
             }
             "curvature_tolerant" => {
-                settings.curvature_tolerant = a.word_in(i + 1, &["yes", "no"])? == "yes";
-                i += 2;
+                self.settings.curvature_tolerant = a.word_in(i + 1, &["yes", "no"])? == "yes";
             }
             // only LIGGGHTS's extra screen output
             "verbose" => {
                 a.word_in(i + 1, &["yes", "no"])?;
-                i += 2;
             }
             "heal" => {
-                heal = a.word_in(i + 1, &["auto_remove_duplicates", "no"])? != "no";
-                i += 2;
+                self.heal = a.word_in(i + 1, &["auto_remove_duplicates", "no"])? != "no";
             }
             "surface_vel" => {
-                surface_vel = Some([a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?]);
-                i += 4;
+                self.surface_vel = Some([a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?]);
+                return Ok(Some(4));
             }
-            w @ ("temperature"
-            | "mass_temperature"
-            | "surface_ang_vel"
-            | "region"
-            | "extrude_planar"
-            | "element_exclusion_list"
-            | "min_feature_length") => {
-                return Err(a.unsupported(i, &format!("fix mesh/surface {w}")))
-            }
-            _ => {
-                return Err(a.keyword_error(
-                    i,
-                    &[
-                        "type",
-                        "scale",
-                        "move",
-                        "rotate",
-                        "curvature",
-                        "curvature_tolerant",
-                        "precision",
-                        "heal",
-                        "verbose",
-                        "temperature",
-                        "surface_vel",
-                    ],
-                ))
-            }
+            _ => return Ok(None),
         }
+        Ok(Some(2))
     }
-    let wall_type = wall_type.ok_or_else(|| a.error(2, "Fix mesh: must define type"))?;
-    let path = ctx.sys.resolve(&file).to_string_lossy().into_owned();
-    let stored = ctx
-        .sim
-        .held_fix_state(a.word(0)?, style)
-        .map(<[u8]>::to_vec);
-    let mut restored = None;
-    let mut triangles = if let Some(bytes) = stored {
-        // LIGGGHTS takes the nodes from the restart file (scale/move/rotate act on an empty
-        // mesh); the file must still open
-        if std::fs::File::open(&path).is_err() {
-            return Err(a.file_error(
-                4,
-                format!("Cannot open mesh file {file}. FYI: This file is required, but data will be taken from restart file"),
-            ));
+
+    /// The triangles: from a restart file's state of this fix (with the stress module's
+    /// extras), else read from the STL file, transformed and healed.
+    fn triangles(
+        &self,
+        a: &Args,
+        ctx: &mut Ctx,
+    ) -> Result<(Vec<Triangle>, Option<MeshExtras>), CommandError> {
+        let (file, style) = (&self.file, self.style.as_str());
+        let path = ctx.sys.resolve(file).to_string_lossy().into_owned();
+        let stored = ctx
+            .sim
+            .held_fix_state(a.word(0)?, style)
+            .map(<[u8]>::to_vec);
+        if let Some(bytes) = stored {
+            // LIGGGHTS takes the nodes from the restart file (scale/move/rotate act on an
+            // empty mesh); the file must still open
+            if std::fs::File::open(&path).is_err() {
+                return Err(a.file_error(
+                    4,
+                    format!("Cannot open mesh file {file}. FYI: This file is required, but data will be taken from restart file"),
+                ));
+            }
+            ctx.say(&format!("INFO: mesh file ({file}) is required, but data will be taken from restart file (./src/fix_mesh.cpp:417)\n"));
+            // the stress module adds each triangle's wear (when on) and the reference point
+            if self.servo_style {
+                return Err(a.unsupported(2, "fix mesh/surface/stress/servo from a restart file"));
+            }
+            let (element, global) = match (self.stress_style, self.wear_on) {
+                (true, true) => (1, 3),
+                (true, false) => (0, 3),
+                _ => (0, 0),
+            };
+            let (t, extras) =
+                crate::engine::restart_fixes::mesh_from_state(&bytes, element, global)
+                    .map_err(|m| a.error(2, m))?;
+            return Ok((t, Some(extras)));
         }
-        ctx.say(&format!("INFO: mesh file ({file}) is required, but data will be taken from restart file (./src/fix_mesh.cpp:417)\n"));
-        // the stress module adds each triangle's wear (when on) and the reference point
-        if servo_style {
-            return Err(a.unsupported(2, "fix mesh/surface/stress/servo from a restart file"));
-        }
-        let stress = stress_style;
-        let (element, global) = match (stress, wear_on) {
-            (true, true) => (1, 3),
-            (true, false) => (0, 3),
-            _ => (0, 0),
-        };
-        let (t, extras) = crate::engine::restart_fixes::mesh_from_state(&bytes, element, global)
-            .map_err(|m| a.error(2, m))?;
-        restored = Some(extras);
-        t
-    } else {
         ctx.say(&format!(
             "\nReading STL file '{file}' (mesh processing step 1/3) \n"
         ));
         let mut t = crate::io::stl::read(&path).map_err(|m| a.error(4, &m))?;
-        crate::io::stl::transform(&mut t, &ops);
-        t
-    };
-    if heal && restored.is_none() {
-        // `heal auto_remove_duplicates`: a triangle with the nodes of an earlier one goes
-        let p = settings.precision;
+        crate::io::stl::transform(&mut t, &self.ops);
+        if self.heal {
+            t = self.healed(t);
+        }
+        Ok((t, None))
+    }
+
+    /// `heal auto_remove_duplicates`: a triangle with the nodes of an earlier one goes.
+    fn healed(&self, triangles: Vec<Triangle>) -> Vec<Triangle> {
+        let p = self.settings.precision;
         let same = |x: [f64; 3], y: [f64; 3]| (0..3).all(|k| (x[k] - y[k]).abs() < p);
-        let mut kept: Vec<crate::io::stl::Triangle> = Vec::with_capacity(triangles.len());
+        let mut kept: Vec<Triangle> = Vec::with_capacity(triangles.len());
         for t in triangles {
             let dup = kept
                 .iter()
@@ -207,59 +318,76 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 kept.push(t);
             }
         }
-        triangles = kept;
+        kept
     }
-    let d = &ctx.sim.domain;
-    let size = (0..3).map(|k| d.length(k)).fold(0.0, f64::max);
-    for w in crate::io::stl::check(&triangles, &file, Some(size)).map_err(|m| a.error(4, &m))? {
-        ctx.say(&format!("WARNING: {w}\n"));
-    }
-    if style == "mesh/surface/planar" {
-        let n0 = crate::io::stl::normal(&triangles[0]);
-        let p0 = triangles[0][0];
-        let off = |v: [f64; 3]| (0..3).map(|k| (v[k] - p0[k]) * n0[k]).sum::<f64>().abs();
-        let scale = size.max(f64::MIN_POSITIVE);
-        if triangles.iter().flatten().any(|v| off(*v) > 1e-8 * scale) {
-            return Err(a.error(4, "Fix mesh/surface/planar: the mesh is not planar"));
+
+    /// LIGGGHTS's mesh checks (warnings said), and a planar style's flatness.
+    fn check(&self, a: &Args, ctx: &mut Ctx, triangles: &[Triangle]) -> Result<(), CommandError> {
+        let d = &ctx.sim.domain;
+        let size = (0..3).map(|k| d.length(k)).fold(0.0, f64::max);
+        for w in
+            crate::io::stl::check(triangles, &self.file, Some(size)).map_err(|m| a.error(4, &m))?
+        {
+            ctx.say(&format!("WARNING: {w}\n"));
         }
-    }
-    let mut fix = crate::engine::fixes::MeshFix {
-        file,
-        wall_type,
-        mesh: crate::engine::mesh::TriMesh::new(&triangles, settings),
-        node_v: None,
-        surface_vel,
-        planar: style == "mesh/surface/planar",
-        nodes_at_refresh: Vec::new(),
-        stress: None,
-        servo: None,
-    };
-    if stress_style {
-        let mut st = crate::engine::mesh_stress::MeshStress::new(
-            fix.mesh.len(),
-            stress_on,
-            wear_on,
-            reference,
-        );
-        if let Some(extras) = restored {
-            if wear_on {
-                st.wear = extras.element.iter().map(|e| e[0]).collect();
+        if self.style == "mesh/surface/planar" {
+            let n0 = crate::io::stl::normal(&triangles[0]);
+            let p0 = triangles[0][0];
+            let off = |v: [f64; 3]| (0..3).map(|k| (v[k] - p0[k]) * n0[k]).sum::<f64>().abs();
+            let scale = size.max(f64::MIN_POSITIVE);
+            if triangles.iter().flatten().any(|v| off(*v) > 1e-8 * scale) {
+                return Err(a.error(4, "Fix mesh/surface/planar: the mesh is not planar"));
             }
-            st.reference = [extras.global[0], extras.global[1], extras.global[2]];
         }
-        fix.stress = Some(st);
+        Ok(())
     }
-    if servo_style {
-        let s = servo.build(a, 2)?;
-        if let Some(st) = fix.stress.as_mut() {
-            if !st.stress {
-                return Err(a.error(2, "stress = 'on' required"));
+
+    /// The fix: the mesh with its stress and servo modules.
+    fn assemble(
+        self,
+        a: &Args,
+        wall_type: usize,
+        triangles: &[Triangle],
+        restored: Option<MeshExtras>,
+    ) -> Result<FixKind, CommandError> {
+        let mut fix = MeshFix {
+            file: self.file,
+            wall_type,
+            mesh: crate::engine::mesh::TriMesh::new(triangles, self.settings),
+            node_v: None,
+            surface_vel: self.surface_vel,
+            planar: self.style == "mesh/surface/planar",
+            nodes_at_refresh: Vec::new(),
+            stress: None,
+            servo: None,
+        };
+        if self.stress_style {
+            let mut st = crate::engine::mesh_stress::MeshStress::new(
+                fix.mesh.len(),
+                self.stress_on,
+                self.wear_on,
+                self.reference,
+            );
+            if let Some(extras) = restored {
+                if self.wear_on {
+                    st.wear = extras.element.iter().map(|e| e[0]).collect();
+                }
+                st.reference = [extras.global[0], extras.global[1], extras.global[2]];
             }
-            st.reference = s.xcm;
+            fix.stress = Some(st);
         }
-        fix.node_v = Some(vec![[[0.0; 3]; 3]; fix.mesh.len()]);
-        fix.servo = Some(Box::new(s));
+        if self.servo_style {
+            let s = self.servo.build(a, 2)?;
+            if let Some(st) = fix.stress.as_mut() {
+                if !st.stress {
+                    return Err(a.error(2, "stress = 'on' required"));
+                }
+                st.reference = s.xcm;
+            }
+            fix.node_v = Some(vec![[[0.0; 3]; 3]; fix.mesh.len()]);
+            fix.servo = Some(Box::new(s));
+        }
+        fix.set_surface_velocity();
+        Ok(FixKind::Mesh(Box::new(fix)))
     }
-    fix.set_surface_velocity();
-    Ok(FixKind::Mesh(Box::new(fix)))
 }

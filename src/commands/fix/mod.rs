@@ -19,6 +19,7 @@ mod gravity;
 mod heat_gran;
 mod insert_pack;
 mod insert_stream;
+mod insertion;
 mod lineforce;
 mod massflow_mesh;
 mod mesh_servo;
@@ -386,43 +387,6 @@ fn seed_arg(a: &Args, ctx: &Ctx, i: usize) -> Result<i32, CommandError> {
         return Err(a.error(i, "Invalid seed for Park random # generator"));
     }
     Ok(seed as i32)
-}
-
-/// The `vel constant vx vy vz` or `vel uniform|gaussian vx vy vz dvx dvy dvz` keyword of
-/// the insertion fixes at word `i`: the velocity (m/s) and the words it took.
-fn insertion_velocity(
-    a: &Args,
-    i: usize,
-) -> Result<(crate::engine::insert::Velocity, usize), CommandError> {
-    use crate::engine::insert::Velocity;
-    let v = [a.real(i + 2)?, a.real(i + 3)?, a.real(i + 4)?];
-    Ok(
-        match a.word_in(i + 1, &["constant", "uniform", "gaussian"])? {
-            "constant" => (Velocity::Constant(v), 5),
-            style => {
-                let d = [a.real(i + 5)?, a.real(i + 6)?, a.real(i + 7)?];
-                if style == "uniform" {
-                    (Velocity::Uniform(v, d), 8)
-                } else {
-                    (Velocity::Gaussian(v, d), 8)
-                }
-            }
-        },
-    )
-}
-
-/// `orientation random|template` of an insertion fix at `i`: true for random (`constant`
-/// is not supported yet).
-fn orientation_arg(a: &Args, i: usize) -> Result<bool, CommandError> {
-    match a.word(i + 1)? {
-        "random" => Ok(true),
-        "template" => Ok(false),
-        "constant" => Err(a.unsupported(i + 1, "insertion orientation constant")),
-        _ => Err(a.error(
-            i + 1,
-            "expecting 'random', template' or 'constant' after keyword 'quat'",
-        )),
-    }
 }
 
 #[cfg(test)]

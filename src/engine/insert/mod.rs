@@ -9,6 +9,7 @@ use crate::engine::region::{Regions, Shape};
 use crate::util::random::RanPark;
 
 mod orient;
+mod place;
 mod stream;
 mod surface;
 mod tet;
@@ -18,7 +19,6 @@ pub use orient::{random_unit_quat, rotate_axes, Axes};
 pub use stream::{
     Face, InsertRestart, InsertStream, Release, TriangleEdges, Within, RELEASE_NAME, RELEASE_WIDTH,
 };
-use surface::*;
 pub use surface::{surface_contacts, surface_exterior, surface_interior};
 
 /// `fix particletemplate/sphere`: one particle kind.
@@ -482,23 +482,9 @@ impl InsertPack {
         Ok(lines)
     }
 
-    /// One insertion at `step` (due when `self.next == Some(step)`): the new particles in
-    /// placement order, and the lines LIGGGHTS prints.
-    pub fn insert(
-        &mut self,
-        step: i64,
-        regions: &Regions,
-        dist: &mut Distribution,
-        w: &World,
-    ) -> Result<(Vec<NewParticle>, Vec<String>), EngineError> {
-        let mut lines = Vec::new();
-        let shape = self.shape(regions).clone();
-        self.next = if self.every > 0 {
-            Some(step + self.every)
-        } else {
-            None
-        };
-        // how many: the region's content now
+    /// The region's content now: particles (a clump counted once, where its bounding
+    /// sphere's centre is), their volume (length^3) and mass.
+    fn region_content(&self, regions: &Regions, w: &World) -> (i64, f64, f64) {
         let (mut np, mut vol, mut mass) = (0i64, 0.0, 0.0);
         for i in 0..w.x.len() {
             if w.members.is_some_and(|t| t[i] >= 0.0) {
@@ -519,6 +505,13 @@ impl InsertPack {
                 mass += m;
             }
         }
+        (np, vol, mass)
+    }
+
+    /// How many particles this insertion adds (the rate's share, or what the target
+    /// lacks; fix generator draws), and how full the region is (NaN for a rate).
+    fn how_many(&mut self, regions: &Regions, dist: &Distribution, w: &World) -> (i64, f64) {
+        let (np, vol, mass) = self.region_content(regions, w);
         let (mut n, mut ratio) = match (self.rate, self.target) {
             (Some((total, _)), _) => {
                 let mut n = (self.per_insertion + self.rng.uniform()) as i64;
@@ -544,6 +537,26 @@ impl InsertPack {
         if !ratio.is_nan() {
             ratio = ratio.clamp(0.0, 1.0);
         }
+        (n, ratio)
+    }
+
+    /// One insertion at `step` (due when `self.next == Some(step)`): the new particles in
+    /// placement order, and the lines LIGGGHTS prints.
+    pub fn insert(
+        &mut self,
+        step: i64,
+        regions: &Regions,
+        dist: &mut Distribution,
+        w: &World,
+    ) -> Result<(Vec<NewParticle>, Vec<String>), EngineError> {
+        let mut lines = Vec::new();
+        let shape = self.shape(regions).clone();
+        self.next = if self.every > 0 {
+            Some(step + self.every)
+        } else {
+            None
+        };
+        let (n, ratio) = self.how_many(regions, dist, w);
         if w.box_changes {
             self.volume_mc(regions, w, dist.max_radius)?;
         }
@@ -556,7 +569,6 @@ impl InsertPack {
         lines.extend(narrow_box_warning(w, maxrad));
         // existing atoms near the region (periodic images too), then placed ones
         let (elo, ehi) = regions.extent(self.region).unwrap_or(([0.0; 3], [0.0; 3]));
-        let exact_near = matches!(shape, Shape::Block { .. } | Shape::Cylinder { .. });
         let tet_mesh = match &shape {
             Shape::TetMesh(m) => Some((m.as_ref(), tet::TetVolumes::of(m))),
             _ => None,
@@ -577,42 +589,11 @@ impl InsertPack {
         };
         let bblo = [0, 1, 2].map(|d| elo[d].max(w.lo[d]) - grow);
         let bbhi = [0, 1, 2].map(|d| ehi[d].min(w.hi[d]) + grow);
-        let mut near: Vec<([f64; 3], f64)> = Vec::new();
-        if self.overlapcheck {
-            let len = [0, 1, 2].map(|d| w.hi[d] - w.lo[d]);
-            let shifts = |d: usize| {
-                if w.periodic[d] {
-                    vec![0.0, -len[d], len[d]]
-                } else {
-                    vec![0.0]
-                }
-            };
-            for i in 0..w.x.len() {
-                let cut = if self.all_in {
-                    reach
-                } else {
-                    w.radius[i] + reach
-                };
-                for sx in shifts(0) {
-                    for sy in shifts(1) {
-                        for sz in shifts(2) {
-                            let x = [w.x[i][0] + sx, w.x[i][1] + sy, w.x[i][2] + sz];
-                            // an atom farther than cut outside the region cannot touch a
-                            // new particle, so intersections keep a superset
-                            if exact_near
-                                && !(inside(&shape, x) || surface_exterior(&shape, x, cut))
-                            {
-                                continue;
-                            }
-                            if !(0..3).all(|d| x[d] >= bblo[d] && x[d] <= bbhi[d]) {
-                                continue;
-                            }
-                            near.push((x, w.radius[i]));
-                        }
-                    }
-                }
-            }
-        }
+        let near = if self.overlapcheck {
+            self.near_particles(&shape, w, reach, bblo, bbhi)
+        } else {
+            Vec::new()
+        };
         let maxtry = if ratio.is_nan() || ratio >= 1.0 {
             nlist.saturating_mul(self.maxattempt)
         } else {
@@ -620,116 +601,34 @@ impl InsertPack {
         };
         let lo = [0, 1, 2].map(|d| elo[d].max(w.lo[d]));
         let hi = [0, 1, 2].map(|d| ehi[d].min(w.hi[d]));
-        let diff = [0, 1, 2].map(|d| hi[d] - lo[d]);
-        let all_in = self.all_in;
-        let region = self.region;
-        let gen_box = |rng: &mut RanPark, rb: f64| loop {
-            let p = [
-                lo[0] + rng.uniform() * diff[0],
-                lo[1] + rng.uniform() * diff[1],
-                lo[2] + rng.uniform() * diff[2],
-            ];
-            if all_in {
-                if regions.matches(region, p) && surface_contacts(regions, region, p, rb).is_empty()
-                {
-                    return p;
-                }
-            } else if regions.matches(region, p) {
-                return p;
-            }
+        let sampler = place::Sampler {
+            regions,
+            region: self.region,
+            all_in: self.all_in,
+            lo,
+            diff: [0, 1, 2].map(|d| hi[d] - lo[d]),
+            tet_mesh,
+            w,
         };
-        // a tet region draws a tetrahedron, then a point in it
-        let gen = |rng: &mut RanPark, rb: f64| -> Result<[f64; 3], EngineError> {
-            if let Some((mesh, vols)) = &tet_mesh {
-                return tet::random_point(mesh, vols, rng, w.lo, w.hi);
-            }
-            Ok(gen_box(rng, rb))
-        };
-        let dist_sub = |p: [f64; 3]| {
-            let dlo = (0..3)
-                .map(|d| (w.lo[d] - p[d]).abs())
-                .fold(f64::INFINITY, f64::min);
-            let dhi = (0..3)
-                .map(|d| (w.hi[d] - p[d]).abs())
-                .fold(f64::INFINITY, f64::min);
-            if dlo < dhi {
-                dlo
-            } else {
-                dhi
-            }
-        };
-        let velocity = |rng: &mut RanPark| match self.velocity {
-            Velocity::Constant(v) => v,
-            Velocity::Uniform(v, dv) => {
-                [0, 1, 2].map(|d| v[d] + dv[d] * 2.0 * (rng.uniform() - 0.50))
-            }
-            Velocity::Gaussian(v, s) => [0, 1, 2].map(|d| v[d] + s[d] * rng.gaussian()),
-        };
-        let mut placed: Vec<NewParticle> = Vec::new();
-        let mut ntry = 0i64;
-        let nl = nlist as usize;
-        if self.overlapcheck {
-            while ntry < maxtry && placed.len() < nl {
-                let t = list[placed.len()];
-                let rb = dist.templates[t].radius;
-                if self.verbose && nl >= 10 && placed.len().is_multiple_of(nl / 10) {
-                    lines.push(format!(
-                        "insertion: proc 0 at {} %",
-                        10 * placed.len() / (nl / 10)
-                    ));
-                }
-                let mut done = false;
-                while !done && ntry < maxtry {
-                    let mut p;
-                    loop {
-                        p = gen(&mut self.region_rng, rb)?;
-                        ntry += 1;
-                        if !(self.check_dist && ntry < maxtry && dist_sub(p) < rb) {
-                            break;
-                        }
-                    }
-                    if ntry == maxtry {
-                        break;
-                    }
-                    let v = velocity(&mut self.rng);
-                    let axes = if self.random_orientation {
-                        random_orientation(&mut self.rng, &dist.templates[t])
-                    } else {
-                        None
-                    };
-                    // every sphere of the template (a clump's members) against the near
-                    // ones; a NaN distance counts as clear, as in LIGGGHTS
-                    let spheres = dist.templates[t].spheres_at(p, axes.as_ref());
-                    #[allow(clippy::neg_cmp_op_on_partial_ord)]
-                    let clear = spheres.iter().all(|&(s, rs_new)| {
-                        near.iter().all(|(q, rq)| {
-                            let d = [s[0] - q[0], s[1] - q[1], s[2] - q[2]];
-                            let rs = rs_new + rq;
-                            !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= rs * rs)
-                        })
-                    });
-                    if clear {
-                        near.extend(spheres);
-                        placed.push((t, p, v, axes));
-                        done = true;
-                    }
-                }
-            }
+        let placed = if self.overlapcheck {
+            self.place_checked(&sampler, &list, dist, maxtry, near, &mut lines)?
         } else {
-            for (k, &t) in list.iter().enumerate() {
-                if self.verbose && nl >= 10 && k % (nl / 10) == 0 {
-                    lines.push(format!("insertion: proc 0 at {} %", 10 * k / (nl / 10)));
-                }
-                let p = gen(&mut self.region_rng, dist.templates[t].radius)?;
-                let v = velocity(&mut self.rng);
-                let axes = if self.random_orientation {
-                    random_orientation(&mut self.rng, &dist.templates[t])
-                } else {
-                    None
-                };
-                placed.push((t, p, v, axes));
-            }
-        }
+            self.place_unchecked(&sampler, &list, dist, &mut lines)?
+        };
+        self.count_inserted(step, &placed, nlist, dist, &mut lines);
+        Ok((placed, lines))
+    }
+
+    /// Count the particles `placed` at `step` (`nlist` were asked for): the totals, the
+    /// end of a rate's insertions, and LIGGGHTS's report.
+    fn count_inserted(
+        &mut self,
+        step: i64,
+        placed: &[NewParticle],
+        nlist: i64,
+        dist: &Distribution,
+        lines: &mut Vec<String>,
+    ) {
         let m: f64 = placed.iter().map(|(t, ..)| dist.templates[*t].mass).sum();
         self.inserted += placed.len() as i64;
         self.inserted_mass += m;
@@ -751,6 +650,5 @@ impl InsertPack {
         if (placed.len() as i64) < nlist {
             lines.push("WARNING: Particle insertion: Less insertions than requested (./src/fix_insert.cpp:814)".into());
         }
-        Ok((placed, lines))
     }
 }

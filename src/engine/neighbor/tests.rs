@@ -1,5 +1,6 @@
 use super::*;
 use crate::engine::domain::parse_boundary;
+use crate::engine::domain::Domain;
 
 fn brute(x: &[[f64; 3]], cut: f64, domain: &Domain) -> Vec<(u32, u32)> {
     let mut v = Vec::new();

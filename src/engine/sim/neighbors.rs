@@ -191,55 +191,74 @@ impl Simulation {
         d
     }
 
+    /// Rebuild the neighbour list: the pairs (the fast path's cell list, LIGGGHTS's stencil
+    /// walk, or the general search), the excluded pairs dropped, the contact history carried
+    /// to the new pairs, and the order the pair forces are summed in.
     pub(super) fn build_neighbors(&mut self) {
-        let old_pairs = std::mem::take(&mut self.list.pairs);
-        let old_mirrors = std::mem::take(&mut self.list.mirrors);
-        let old_mirrored = self.list.mirrored;
-        let old_mirror_history = std::mem::take(&mut self.mirror_history);
-        let width = self.pair.as_ref().map_or(0, |p| p.history_width());
+        let old = OldList {
+            pairs: std::mem::take(&mut self.list.pairs),
+            mirrors: std::mem::take(&mut self.list.mirrors),
+            mirrored: self.list.mirrored,
+            mirror_history: std::mem::take(&mut self.mirror_history),
+        };
         // a wet model lists pairs up to its contact distance (LIGGGHTS scales the radii)
         let factor = self.contact_factor();
         // the fast path's cell list knows no contact distance: wet runs use the exact list
         if !(self.accel.fast && factor == 1.0 && self.build_list_fast()) {
-            let scaled: Vec<f64>;
-            let reach = if factor == 1.0 {
-                &self.particles.radius
-            } else {
-                scaled = self.particles.radius.iter().map(|r| r * factor).collect();
-                &scaled
-            };
-            let mut order = crate::engine::neighbor::BinOrder::sized(
-                self.domain.lo,
-                self.domain.hi,
-                self.neighbor.cutneighmax,
-                self.extras.neigh_binsize,
-            );
-            if self.dimension == 2 {
-                order = order.planar();
-            }
-            let domain = self.list_domain();
-            // LIGGGHTS's stencil walk; the general search where particles have grown
-            // (pairs beyond the stencil are counted) or the box is too short
-            let walked = !self.radii_vary()
-                && std::env::var_os("REGOLITH_SORTED_LIST").is_none()
-                && self.list.build_stencil(
-                    &self.particles.x,
-                    reach,
-                    self.neighbor.skin,
-                    &domain,
-                    &order,
-                );
-            if !walked {
-                self.list.build(
-                    &self.particles.x,
-                    reach,
-                    self.neighbor.skin,
-                    &domain,
-                    Some(&order),
-                );
-            }
+            self.build_exact_list(factor);
         }
         self.exclude_clump_pairs();
+        self.exclude_pairs();
+        self.carry_contact_history(old, factor);
+        self.list_ids = self.particles.id.clone();
+        self.ago = 0;
+        self.box_at_build = (self.domain.lo, self.domain.hi);
+        self.choose_sum_order();
+    }
+
+    /// The exact path's list, with the radii scaled by the contact `factor`: LIGGGHTS's
+    /// stencil walk, or the general search where particles have grown (pairs beyond the
+    /// stencil are counted) or the box is too short.
+    fn build_exact_list(&mut self, factor: f64) {
+        let scaled: Vec<f64>;
+        let reach = if factor == 1.0 {
+            &self.particles.radius
+        } else {
+            scaled = self.particles.radius.iter().map(|r| r * factor).collect();
+            &scaled
+        };
+        let mut order = crate::engine::neighbor::BinOrder::sized(
+            self.domain.lo,
+            self.domain.hi,
+            self.neighbor.cutneighmax,
+            self.extras.neigh_binsize,
+        );
+        if self.dimension == 2 {
+            order = order.planar();
+        }
+        let domain = self.list_domain();
+        let walked = !self.radii_vary()
+            && std::env::var_os("REGOLITH_SORTED_LIST").is_none()
+            && self.list.build_stencil(
+                &self.particles.x,
+                reach,
+                self.neighbor.skin,
+                &domain,
+                &order,
+            );
+        if !walked {
+            self.list.build(
+                &self.particles.x,
+                reach,
+                self.neighbor.skin,
+                &domain,
+                Some(&order),
+            );
+        }
+    }
+
+    /// `neigh_modify exclude type|molecule/intra ...`: the excluded pairs leave the list.
+    fn exclude_pairs(&mut self) {
         let n = &self.neighbor;
         if !n.exclude_types.is_empty() || !n.exclude_groups.is_empty() {
             let p = &self.particles;
@@ -256,36 +275,45 @@ impl Simulation {
                         .any(|&(a, b)| (mi & a != 0 && mj & b != 0) || (mi & b != 0 && mj & a != 0))
             });
         }
+    }
+
+    /// The contact history of the `old` list carried to the new pairs (and mirrors), a
+    /// restart file's pending history applied, and as LIGGGHTS's granular list build: a
+    /// pair keeps its history only if it touches at the build (`factor`: the contact
+    /// distance's scale).
+    fn carry_contact_history(&mut self, old: OldList, factor: f64) {
+        let width = self.pair.as_ref().map_or(0, |p| p.history_width());
         let flips = self.pair.as_ref().map_or(Vec::new(), |p| p.history_flips());
         // a pair style redefined with another history layout starts its contacts afresh
         // (LIGGGHTS replaces its contact-history fix with the pair style)
-        let old_width = if old_pairs.is_empty() {
+        let old_width = if old.pairs.is_empty() {
             0
         } else {
-            self.history.len() / old_pairs.len()
+            self.history.len() / old.pairs.len()
         };
         if old_width != width {
             self.history.clear();
         }
         let old_pairs = if old_width == width {
-            old_pairs
+            old.pairs
         } else {
             Vec::new()
         };
+        let old_mirrored = old.mirrored;
         if self.list.mirrored || old_mirrored {
-            let old = crate::engine::mirror_history::Sides {
+            let sides = crate::engine::mirror_history::Sides {
                 pairs: &old_pairs,
                 mirrors: if old_pairs.is_empty() {
                     &[]
                 } else {
-                    &old_mirrors
+                    &old.mirrors
                 },
                 mirrored: old_mirrored,
                 history: &self.history,
-                mirror_history: &old_mirror_history,
+                mirror_history: &old.mirror_history,
             };
             let (h, m) = crate::engine::mirror_history::carry_mirrored(
-                &old,
+                &sides,
                 &self.list.pairs,
                 &self.list.mirrors,
                 &self.particles.id,
@@ -316,33 +344,38 @@ impl Simulation {
         if let Some(pending) = pending {
             self.apply_pending_history(pending, width);
         }
-        // as LIGGGHTS's granular list build: a pair keeps its history only if it touches
-        // at the build (separated pairs keep stale values until then, and lose them now);
-        // the plain carry above has left those at zero already
+        // the plain carry above has left the separated pairs at zero already
         if width > 0 {
-            let p = &self.particles;
-            if !zeroed {
-                for (k, pair) in self.list.pairs.iter().enumerate() {
-                    if !touches(p, pair, factor) {
-                        self.history[k * width..(k + 1) * width].fill(0.0);
-                    }
-                }
-            }
-            for (k, m) in self.list.mirrors.iter().enumerate() {
-                let (i, j) = (m.pair.i as usize, m.pair.j as usize);
-                let d = [0, 1, 2].map(|c| p.x[i][c] - (p.x[j][c] + m.pair.shift[c]));
-                let radsum = (p.radius[i] + p.radius[j]) * factor;
-                #[allow(clippy::neg_cmp_op_on_partial_ord)]
-                if !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < radsum * radsum) {
-                    self.mirror_history[k * width..(k + 1) * width].fill(0.0);
+            self.zero_separated(width, factor, zeroed);
+        }
+    }
+
+    /// Separated pairs (and mirrors) lose their history (`width` doubles a pair; `zeroed`:
+    /// the pairs' is zero already).
+    fn zero_separated(&mut self, width: usize, factor: f64, zeroed: bool) {
+        let p = &self.particles;
+        if !zeroed {
+            for (k, pair) in self.list.pairs.iter().enumerate() {
+                if !touches(p, pair, factor) {
+                    self.history[k * width..(k + 1) * width].fill(0.0);
                 }
             }
         }
-        self.list_ids = self.particles.id.clone();
-        self.ago = 0;
-        self.box_at_build = (self.domain.lo, self.domain.hi);
-        // the fast path sums by blocks of particles on any thread count; the exact path's
-        // parallel sums need each particle's entries; small lists stay sequential
+        for (k, m) in self.list.mirrors.iter().enumerate() {
+            let (i, j) = (m.pair.i as usize, m.pair.j as usize);
+            let d = [0, 1, 2].map(|c| p.x[i][c] - (p.x[j][c] + m.pair.shift[c]));
+            let radsum = (p.radius[i] + p.radius[j]) * factor;
+            #[allow(clippy::neg_cmp_op_on_partial_ord)]
+            if !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < radsum * radsum) {
+                self.mirror_history[k * width..(k + 1) * width].fill(0.0);
+            }
+        }
+    }
+
+    /// The order the pair forces are summed in: the fast path sums by blocks of particles
+    /// on any thread count; the exact path's parallel sums need each particle's entries;
+    /// small lists stay sequential.
+    fn choose_sum_order(&mut self) {
         use crate::engine::neighbor::{block_starts, Incidence, SumOrder};
         let (pairs, n) = (&self.list.pairs, self.particles.len());
         let threads = self.accel.thread_count() > 1;
@@ -493,4 +526,13 @@ impl Simulation {
         };
         first_where_in(x.len().div_ceil(BLOCK), BLOCK, moved).is_some()
     }
+}
+
+/// The list before a rebuild: its pairs and mirrors, whether it was mirrored, and the
+/// mirrors' contact history.
+struct OldList {
+    pairs: Vec<Pair>,
+    mirrors: Vec<crate::engine::neighbor::Mirror>,
+    mirrored: bool,
+    mirror_history: Vec<f64>,
 }

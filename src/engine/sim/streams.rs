@@ -12,174 +12,106 @@ impl Simulation {
     /// First run's setup of the `fix insert/stream` at `k`: face normal, normal velocity,
     /// interval.
     pub(super) fn setup_stream(&mut self, k: usize, out: Sink<'_>) -> Result<(), EngineError> {
-        use crate::engine::insert::{Face, InsertStream, Velocity};
+        use crate::engine::insert::{InsertStream, Velocity};
         let dt = self.dt;
-        {
-            let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
-                return Ok(());
-            };
-            if self.clumps().is_some() && !matches!(sf.velocity, Velocity::Constant(_)) {
-                return Err(format!("Fix insert/stream (id {}): Currently only fix insert/stream with multisphere particles only supports constant velocity", sf.id).into());
-            }
-            if sf.state.is_some() {
-                return Ok(());
-            }
-            let dist = self
-                .fixes
-                .iter()
-                .find_map(|f| match &f.kind {
-                    FixKind::Distribution(d) if f.id == sf.distribution => Some(d.clone()),
-                    _ => None,
-                })
-                .ok_or_else(|| {
-                    format!(
-                        "Fix insert: could not find distribution {}",
-                        sf.distribution
-                    )
-                })?;
-            let t = sf.triangles[0];
-            let mut ev = [[0.0; 3]; 2];
-            for (j, e) in ev.iter_mut().enumerate() {
-                let d = [0, 1, 2].map(|c| t[j + 1][c] - t[j][c]);
-                let inv = 1.0 / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-                *e = d.map(|c| inv * c);
-            }
-            let c = [
-                ev[0][1] * ev[1][2] - ev[0][2] * ev[1][1],
-                ev[0][2] * ev[1][0] - ev[0][0] * ev[1][2],
-                ev[0][0] * ev[1][1] - ev[0][1] * ev[1][0],
-            ];
-            let inv = 1.0 / (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
-            let mut n = c.map(|x| inv * x);
-            let v = match sf.velocity {
-                Velocity::Constant(v) | Velocity::Uniform(v, _) | Velocity::Gaussian(v, _) => v,
-            };
-            if v[0] * n[0] + v[1] * n[1] + v[2] * n[2] < 0.0 {
-                n = n.map(|x| -x);
-            }
-            let dot = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
-            let v_normal = n.map(|x| x * dot);
-            let vn =
-                (v_normal[0] * v_normal[0] + v_normal[1] * v_normal[1] + v_normal[2] * v_normal[2])
-                    .sqrt();
-            if vn < 1e-3 {
-                return Err(format!("Fix insert/stream (id {}): insertion velocity projected on face normal is < 1e-3", sf.id).into());
-            }
-            let rbound = dist.max_radius;
-            let (every, extrude) = match (sf.extrude, sf.every) {
-                (Some(l), _) => {
-                    if l < 3.0 * rbound && (sf.all_in || sf.overlapcheck) {
-                        return Err(format!(
-                            "Fix insert/stream (id {}): 'extrude_length' is too small",
-                            sf.id
-                        )
-                        .into());
-                    }
-                    let every = ((l + 1e-14) / (dt * vn)) as i32 as i64;
-                    if every == 0 {
-                        return Err(format!("Fix insert/stream (id {}): insertion velocity too high or extrude_length too low", sf.id).into());
-                    }
-                    (every, l)
-                }
-                (None, Some(e)) => {
-                    if e < 1 {
-                        return Err(format!(
-                            "Fix insert/stream (id {}): 'insert_every' must be > 0",
-                            sf.id
-                        )
-                        .into());
-                    }
-                    // particles travel `duration` steps (default: insert_every) in the zone
-                    let duration = sf.duration.unwrap_or(e);
-                    if duration > e {
-                        return Err(format!(
-                            "Fix insert/stream (id {}): 'duration' > 'insert_every' not allowed",
-                            sf.id
-                        )
-                        .into());
-                    }
-                    let l = duration as f64 * dt * vn;
-                    if l < 2.0 * rbound {
-                        return Err(format!("Fix insert/stream (id {}): 'insert_every' or 'vel' is too small, or (bounding) radius of inserted particles too large", sf.id).into());
-                    }
-                    (e, l)
-                }
-                _ => unreachable!("checked when the fix was defined"),
-            };
-            // nparticles from mass, and the other rate, from the expected particle mass
-            let me = dist.mass_expect;
-            let total = match sf.total {
-                Ok(n) => n,
-                Err(mass) => {
-                    if mass / me > 2.0e9 {
-                        return Err(format!("Fix insert/stream (id {}): you are attempting to insert more than 2e9 particles. Reduce the mass to be inserted or increase the particle diameter", sf.id).into());
-                    }
-                    ((mass + 1e-14) / me) as i64
-                }
-            };
-            let rates = match sf.rate {
-                Ok(n) => (n, n * me),
-                Err(m) => (m / me, m),
-            };
-            let mut face = Face::new(sf.triangles.clone());
-            let (all_in, face_id) = (sf.all_in, sf.face_id.clone());
-            if all_in {
-                let (lo, hi) = (self.domain.lo, self.domain.hi);
-                let mesh = self.fixes.iter_mut().find_map(|f| match &mut f.kind {
-                    FixKind::Mesh(m) if f.id == face_id => Some((m, f.id.clone())),
-                    _ => None,
-                });
-                if let Some((m, name)) = mesh {
-                    if !m.mesh.has_topology {
-                        m.mesh.build_topology(lo, hi, &name)?;
-                    }
-                    face.within = Some(crate::engine::insert::Within::new(&m.mesh));
-                }
-            }
-            let moving = if self.stream_integrator() == Some(k) {
-                self.releases_pending(self.fixes[k].group)
-            } else {
-                Vec::new()
-            };
-            let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
-                return Ok(());
-            };
-            let restored = sf.restored;
-            let state = InsertStream {
-                id: sf.id.clone(),
-                distribution: sf.distribution.clone(),
-                face,
-                normal: n,
-                v_normal,
-                p_ref: t[0],
-                extrude,
-                every,
-                per_insertion: rates.0 * (every as f64 * dt),
-                rates,
-                total,
-                velocity: sf.velocity,
-                omega: sf.omega,
-                overlapcheck: sf.overlapcheck,
-                maxattempt: sf.maxattempt,
-                ntry_mc: sf.ntry_mc,
-                verbose: sf.verbose,
-                rng: crate::util::random::RanPark::new(restored.map_or(sf.seed, |r| r.rng_state))?,
-                next: Some(sf.start),
-                measured: false,
-                inserted: restored.map_or(0, |r| r.inserted),
-                inserted_mass: restored.map_or(0.0, |r| r.mass),
-                moving,
-                first_step: restored.map_or(sf.start, |r| r.first_step),
-                random_orientation: sf.random_orientation,
-            };
-            for l in state.setup_lines(&dist) {
-                out(&format!("{l}\n"));
-            }
-            if let FixKind::InsertStream(sf) = &mut self.fixes[k].kind {
-                sf.state = Some(state);
-            }
+        let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
+            return Ok(());
+        };
+        if self.clumps().is_some() && !matches!(sf.velocity, Velocity::Constant(_)) {
+            return Err(format!("Fix insert/stream (id {}): Currently only fix insert/stream with multisphere particles only supports constant velocity", sf.id).into());
+        }
+        if sf.state.is_some() {
+            return Ok(());
+        }
+        let dist = self
+            .fixes
+            .iter()
+            .find_map(|f| match &f.kind {
+                FixKind::Distribution(d) if f.id == sf.distribution => Some(d.clone()),
+                _ => None,
+            })
+            .ok_or_else(|| {
+                format!(
+                    "Fix insert: could not find distribution {}",
+                    sf.distribution
+                )
+            })?;
+        let t = sf.triangles[0];
+        let (n, v_normal, vn) = normal_velocity(sf, face_normal(&t))?;
+        let (every, extrude) = stream_interval(sf, dist.max_radius, dt, vn)?;
+        // nparticles from mass, and the other rate, from the expected particle mass
+        let (total, rates) = stream_amounts(sf, dist.mass_expect)?;
+        let triangles = sf.triangles.clone();
+        let (all_in, face_id) = (sf.all_in, sf.face_id.clone());
+        let face = self.stream_face(triangles, all_in, &face_id)?;
+        let moving = if self.stream_integrator() == Some(k) {
+            self.releases_pending(self.fixes[k].group)
+        } else {
+            Vec::new()
+        };
+        let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
+            return Ok(());
+        };
+        let restored = sf.restored;
+        let state = InsertStream {
+            id: sf.id.clone(),
+            distribution: sf.distribution.clone(),
+            face,
+            normal: n,
+            v_normal,
+            p_ref: t[0],
+            extrude,
+            every,
+            per_insertion: rates.0 * (every as f64 * dt),
+            rates,
+            total,
+            velocity: sf.velocity,
+            omega: sf.omega,
+            overlapcheck: sf.overlapcheck,
+            maxattempt: sf.maxattempt,
+            ntry_mc: sf.ntry_mc,
+            verbose: sf.verbose,
+            rng: crate::util::random::RanPark::new(restored.map_or(sf.seed, |r| r.rng_state))?,
+            next: Some(sf.start),
+            measured: false,
+            inserted: restored.map_or(0, |r| r.inserted),
+            inserted_mass: restored.map_or(0.0, |r| r.mass),
+            moving,
+            first_step: restored.map_or(sf.start, |r| r.first_step),
+            random_orientation: sf.random_orientation,
+        };
+        for l in state.setup_lines(&dist) {
+            out(&format!("{l}\n"));
+        }
+        if let FixKind::InsertStream(sf) = &mut self.fixes[k].kind {
+            sf.state = Some(state);
         }
         Ok(())
+    }
+
+    /// The insertion face of a stream: its triangles, and with `all_in` the mesh fix
+    /// `face_id`'s test for whole particles inside (its topology built if need be).
+    fn stream_face(
+        &mut self,
+        triangles: Vec<crate::io::stl::Triangle>,
+        all_in: bool,
+        face_id: &str,
+    ) -> Result<crate::engine::insert::Face, EngineError> {
+        let mut face = crate::engine::insert::Face::new(triangles);
+        if all_in {
+            let (lo, hi) = (self.domain.lo, self.domain.hi);
+            let mesh = self.fixes.iter_mut().find_map(|f| match &mut f.kind {
+                FixKind::Mesh(m) if f.id == face_id => Some((m, f.id.clone())),
+                _ => None,
+            });
+            if let Some((m, name)) = mesh {
+                if !m.mesh.has_topology {
+                    m.mesh.build_topology(lo, hi, &name)?;
+                }
+                face.within = Some(crate::engine::insert::Within::new(&m.mesh));
+            }
+        }
+        Ok(face)
     }
 
     /// `fix insert/stream` insertions due at this step.
@@ -516,4 +448,122 @@ impl Simulation {
             .iter()
             .position(|f| matches!(f.kind, FixKind::InsertStream(_)))
     }
+}
+
+/// The unit normal of triangle `t`, as LIGGGHTS computes it from its first two edges.
+fn face_normal(t: &crate::io::stl::Triangle) -> [f64; 3] {
+    let mut ev = [[0.0; 3]; 2];
+    for (j, e) in ev.iter_mut().enumerate() {
+        let d = [0, 1, 2].map(|c| t[j + 1][c] - t[j][c]);
+        let inv = 1.0 / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        *e = d.map(|c| inv * c);
+    }
+    let c = [
+        ev[0][1] * ev[1][2] - ev[0][2] * ev[1][1],
+        ev[0][2] * ev[1][0] - ev[0][0] * ev[1][2],
+        ev[0][0] * ev[1][1] - ev[0][1] * ev[1][0],
+    ];
+    let inv = 1.0 / (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+    c.map(|x| inv * x)
+}
+
+/// The face normal `n` turned along the stream's velocity, the velocity's normal part
+/// (length/time) and its magnitude; LIGGGHTS's error for a velocity along the face.
+fn normal_velocity(
+    sf: &crate::engine::fixes::StreamFix,
+    mut n: [f64; 3],
+) -> Result<([f64; 3], [f64; 3], f64), EngineError> {
+    use crate::engine::insert::Velocity;
+    let v = match sf.velocity {
+        Velocity::Constant(v) | Velocity::Uniform(v, _) | Velocity::Gaussian(v, _) => v,
+    };
+    if v[0] * n[0] + v[1] * n[1] + v[2] * n[2] < 0.0 {
+        n = n.map(|x| -x);
+    }
+    let dot = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+    let v_normal = n.map(|x| x * dot);
+    let vn =
+        (v_normal[0] * v_normal[0] + v_normal[1] * v_normal[1] + v_normal[2] * v_normal[2]).sqrt();
+    if vn < 1e-3 {
+        return Err(format!(
+            "Fix insert/stream (id {}): insertion velocity projected on face normal is < 1e-3",
+            sf.id
+        )
+        .into());
+    }
+    Ok((n, v_normal, vn))
+}
+
+/// A stream's steps between insertions and extrusion length (length), from
+/// `extrude_length` or `insert_every` (`rbound`: the largest bounding radius, length; `vn`:
+/// the normal speed), with LIGGGHTS's checks.
+fn stream_interval(
+    sf: &crate::engine::fixes::StreamFix,
+    rbound: f64,
+    dt: f64,
+    vn: f64,
+) -> Result<(i64, f64), EngineError> {
+    match (sf.extrude, sf.every) {
+        (Some(l), _) => {
+            if l < 3.0 * rbound && (sf.all_in || sf.overlapcheck) {
+                return Err(format!(
+                    "Fix insert/stream (id {}): 'extrude_length' is too small",
+                    sf.id
+                )
+                .into());
+            }
+            let every = ((l + 1e-14) / (dt * vn)) as i32 as i64;
+            if every == 0 {
+                return Err(format!("Fix insert/stream (id {}): insertion velocity too high or extrude_length too low", sf.id).into());
+            }
+            Ok((every, l))
+        }
+        (None, Some(e)) => {
+            if e < 1 {
+                return Err(format!(
+                    "Fix insert/stream (id {}): 'insert_every' must be > 0",
+                    sf.id
+                )
+                .into());
+            }
+            // particles travel `duration` steps (default: insert_every) in the zone
+            let duration = sf.duration.unwrap_or(e);
+            if duration > e {
+                return Err(format!(
+                    "Fix insert/stream (id {}): 'duration' > 'insert_every' not allowed",
+                    sf.id
+                )
+                .into());
+            }
+            let l = duration as f64 * dt * vn;
+            if l < 2.0 * rbound {
+                return Err(format!("Fix insert/stream (id {}): 'insert_every' or 'vel' is too small, or (bounding) radius of inserted particles too large", sf.id).into());
+            }
+            Ok((e, l))
+        }
+        _ => unreachable!("checked when the fix was defined"),
+    }
+}
+
+/// A stream's particles in all, and its rates (particles and mass per time), from
+/// `nparticles` or `mass` and `particlerate` or `massrate` (`me`: the expected particle
+/// mass).
+fn stream_amounts(
+    sf: &crate::engine::fixes::StreamFix,
+    me: f64,
+) -> Result<(i64, (f64, f64)), EngineError> {
+    let total = match sf.total {
+        Ok(n) => n,
+        Err(mass) => {
+            if mass / me > 2.0e9 {
+                return Err(format!("Fix insert/stream (id {}): you are attempting to insert more than 2e9 particles. Reduce the mass to be inserted or increase the particle diameter", sf.id).into());
+            }
+            ((mass + 1e-14) / me) as i64
+        }
+    };
+    let rates = match sf.rate {
+        Ok(n) => (n, n * me),
+        Err(m) => (m / me, m),
+    };
+    Ok((total, rates))
 }

@@ -1,0 +1,170 @@
+//! The keywords `fix insert/pack`, `insert/rate/region` and `insert/stream` share, and the
+//! table of keyword families their parsers run.
+
+use super::seed_arg;
+use crate::commands::{Args, CommandError, Ctx};
+use crate::engine::fixes::FixKind;
+use crate::engine::insert::Velocity;
+
+/// One family of a style's keywords: reads the keyword `w` at word `i` into the parser's
+/// state and gives the words it took, or None when `w` is not of the family.
+pub(super) type Family<S> =
+    fn(&mut S, &Args, &Ctx, usize, &str) -> Result<Option<usize>, CommandError>;
+
+/// The words the keyword `w` at word `i` takes, read by the first of `families` that knows
+/// it (None: no family knows it).
+pub(super) fn keyword<S>(
+    state: &mut S,
+    families: &[Family<S>],
+    a: &Args,
+    ctx: &Ctx,
+    i: usize,
+    w: &str,
+) -> Result<Option<usize>, CommandError> {
+    for family in families {
+        if let Some(used) = family(state, a, ctx, i, w)? {
+            return Ok(Some(used));
+        }
+    }
+    Ok(None)
+}
+
+/// The keywords every insertion fix takes, as given (LIGGGHTS's defaults otherwise).
+#[derive(Debug, Clone)]
+pub(super) struct Insertion {
+    /// `seed S`.
+    pub seed: Option<i32>,
+    /// `distributiontemplate D`: the ID of a `fix particledistribution/discrete`.
+    pub distribution: Option<String>,
+    /// `vel constant|uniform|gaussian ...` (m/s).
+    pub velocity: Velocity,
+    /// `omega constant wx wy wz` (rad/s).
+    pub omega: [f64; 3],
+    /// `orientation random` (true) or `template`.
+    pub random_orientation: bool,
+    /// `overlapcheck yes|no`.
+    pub overlapcheck: bool,
+    /// `maxattempt N`.
+    pub maxattempt: i64,
+    /// `verbose yes|no`.
+    pub verbose: bool,
+}
+
+impl Default for Insertion {
+    fn default() -> Insertion {
+        Insertion {
+            seed: None,
+            distribution: None,
+            velocity: Velocity::Constant([0.0; 3]),
+            omega: [0.0; 3],
+            random_orientation: false,
+            overlapcheck: true,
+            maxattempt: 50,
+            verbose: true,
+        }
+    }
+}
+
+/// `yes` or `no` at word `k`: true for yes.
+pub(super) fn yes(a: &Args, k: usize) -> Result<bool, CommandError> {
+    a.word_in(k, &["yes", "no"]).map(|w| w == "yes")
+}
+
+impl Insertion {
+    /// The shared keyword `w` at word `i` (see [`Family`]).
+    pub fn keyword(
+        &mut self,
+        a: &Args,
+        ctx: &Ctx,
+        i: usize,
+        w: &str,
+    ) -> Result<Option<usize>, CommandError> {
+        Ok(Some(match w {
+            "seed" => {
+                self.seed = Some(seed_arg(a, ctx, i + 1)?);
+                2
+            }
+            "distributiontemplate" => {
+                self.distribution = Some(distribution_arg(a, ctx, i + 1)?);
+                2
+            }
+            "overlapcheck" => {
+                self.overlapcheck = yes(a, i + 1)?;
+                2
+            }
+            "verbose" => {
+                self.verbose = yes(a, i + 1)?;
+                2
+            }
+            "maxattempt" => {
+                self.maxattempt = a.int32(i + 1)?;
+                2
+            }
+            "vel" => {
+                let used;
+                (self.velocity, used) = insertion_velocity(a, i)?;
+                used
+            }
+            "omega" => {
+                a.word_in(i + 1, &["constant"])?;
+                self.omega = [a.real(i + 2)?, a.real(i + 3)?, a.real(i + 4)?];
+                5
+            }
+            "orientation" => {
+                self.random_orientation = orientation_arg(a, i)?;
+                2
+            }
+            _ => return Ok(None),
+        }))
+    }
+}
+
+/// The `distributiontemplate` ID at word `i`: a `fix particledistribution/discrete`.
+fn distribution_arg(a: &Args, ctx: &Ctx, i: usize) -> Result<String, CommandError> {
+    let d = a.word(i)?;
+    if !ctx
+        .sim
+        .fixes
+        .iter()
+        .any(|f| f.id == d && matches!(f.kind, FixKind::Distribution(_)))
+    {
+        return Err(a.error(
+            i,
+            "Fix insert: distributiontemplate must be a fix particledistribution/discrete",
+        ));
+    }
+    Ok(d.to_string())
+}
+
+/// The `vel constant vx vy vz` or `vel uniform|gaussian vx vy vz dvx dvy dvz` keyword of
+/// the insertion fixes at word `i`: the velocity (m/s) and the words it took.
+fn insertion_velocity(a: &Args, i: usize) -> Result<(Velocity, usize), CommandError> {
+    let v = [a.real(i + 2)?, a.real(i + 3)?, a.real(i + 4)?];
+    Ok(
+        match a.word_in(i + 1, &["constant", "uniform", "gaussian"])? {
+            "constant" => (Velocity::Constant(v), 5),
+            style => {
+                let d = [a.real(i + 5)?, a.real(i + 6)?, a.real(i + 7)?];
+                if style == "uniform" {
+                    (Velocity::Uniform(v, d), 8)
+                } else {
+                    (Velocity::Gaussian(v, d), 8)
+                }
+            }
+        },
+    )
+}
+
+/// `orientation random|template` of an insertion fix at `i`: true for random (`constant`
+/// is not supported yet).
+fn orientation_arg(a: &Args, i: usize) -> Result<bool, CommandError> {
+    match a.word(i + 1)? {
+        "random" => Ok(true),
+        "template" => Ok(false),
+        "constant" => Err(a.unsupported(i + 1, "insertion orientation constant")),
+        _ => Err(a.error(
+            i + 1,
+            "expecting 'random', template' or 'constant' after keyword 'quat'",
+        )),
+    }
+}

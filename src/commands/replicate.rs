@@ -22,7 +22,6 @@ fn unsupported_state(ctx: &Ctx) -> Option<String> {
     for f in &sim.fixes {
         let keeps_state = match &f.kind {
             FixKind::Move(_)
-            | FixKind::SpringSelf(_)
             | FixKind::Multisphere(_)
             | FixKind::AveAtom(_)
             | FixKind::StoreState(_)
@@ -30,7 +29,7 @@ fn unsupported_state(ctx: &Ctx) -> Option<String> {
             | FixKind::Massflow(_)
             | FixKind::InsertStream(_)
             | FixKind::HeatGran(_) => true,
-            FixKind::Style(s) => s.per_atom_shape() != crate::engine::fixes::PerAtomShape::None,
+            FixKind::Style(s) => s.keeps_per_atom_state(),
             _ => false,
         };
         if keeps_state {

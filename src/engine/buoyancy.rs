@@ -68,7 +68,7 @@ pub fn check(fixes: &[crate::engine::fixes::Fix]) -> Result<(), EngineError> {
     let gravities: Vec<[f64; 3]> = fixes
         .iter()
         .filter_map(|f| match &f.kind {
-            FixKind::Gravity(g) => Some(g.acc),
+            FixKind::Style(s) => s.acceleration(),
             _ => None,
         })
         .collect();
@@ -95,7 +95,7 @@ pub fn gravity_for(fixes: &[crate::engine::fixes::Fix]) -> Option<[f64; 3]> {
         return None;
     }
     fixes.iter().find_map(|f| match &f.kind {
-        FixKind::Gravity(g) => Some(g.acc),
+        FixKind::Style(s) => s.acceleration(),
         _ => None,
     })
 }

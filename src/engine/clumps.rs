@@ -374,7 +374,7 @@ impl crate::engine::sim::Simulation {
     /// The setup of `fix multisphere`: the bodies' forces from the setup force evaluation.
     pub(crate) fn setup_clump_forces(&mut self) {
         let gravity = self.fixes.iter().find_map(|f| match &f.kind {
-            crate::engine::fixes::FixKind::Gravity(g) => Some(g.acc),
+            crate::engine::fixes::FixKind::Style(s) => s.acceleration(),
             _ => None,
         });
         if let Some(ms) = clumps_in(&mut self.fixes) {

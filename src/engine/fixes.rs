@@ -5,7 +5,6 @@
 
 use crate::engine::domain::Domain;
 use crate::engine::error::EngineError;
-use crate::engine::integrate::Gravity;
 use crate::engine::particles::Particles;
 
 mod ave_time;
@@ -28,8 +27,6 @@ pub use walls::{mesh_wall_contacts, MeshWallFix, WallFix};
 pub enum FixKind {
     /// `fix move`.
     Move(Move),
-    /// `fix gravity`.
-    Gravity(Gravity),
     /// `fix wall/gran ... primitive`: a granular plane wall.
     WallGran(WallFix),
     /// `fix check/timestep/gran`: time step as a fraction of Rayleigh and Hertz times.
@@ -38,8 +35,6 @@ pub enum FixKind {
     Print(PrintFix),
     /// `fix ave/time` (scalar mode).
     AveTime(AveTime),
-    /// `fix spring/self`: particles tethered to their positions at definition.
-    SpringSelf(crate::engine::spring_self::SpringSelf),
     /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
     Mesh(Box<MeshFix>),
     /// `fix particletemplate/sphere`.
@@ -91,8 +86,7 @@ impl FixKind {
     /// be current on every step)? Kinds not listed answer yes.
     pub fn may_read_computes(&self) -> bool {
         match self {
-            FixKind::Gravity(_)
-            | FixKind::WallGran(_)
+            FixKind::WallGran(_)
             | FixKind::CheckTimestep(_)
             | FixKind::Mesh(_)
             | FixKind::Template(_)
@@ -243,14 +237,12 @@ pub fn post_force(
                     p.extra[k].data = history;
                 }
             }
-            FixKind::Gravity(grav) => grav.apply(p),
             FixKind::Buoyancy(b) => {
                 if let Some(gv) = buoyancy_g {
                     b.apply(p, g, gv);
                 }
             }
             FixKind::Style(s) => s.post_force(p, &FixStep::plain(g, at.0, dt, at.1)),
-            FixKind::SpringSelf(s) => s.apply(p, g),
             _ => {}
         }
     }
@@ -260,7 +252,7 @@ pub fn post_force(
 pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, step: i64, dt: f64, domain: &Domain) {
     // the clumps' weight comes from the (single) gravity fix
     let gravity = fixes.iter().find_map(|f| match &f.kind {
-        FixKind::Gravity(g) => Some(g.acc),
+        FixKind::Style(s) => s.acceleration(),
         _ => None,
     });
     for fix in fixes {

@@ -400,11 +400,15 @@ impl Simulation {
         };
         for f in &self.fixes {
             match &f.kind {
-                FixKind::Gravity(grav) => {
-                    let a = norm(grav.acc);
+                FixKind::Style(s) => {
+                    // free fall under `fix gravity`
+                    let Some(acc) = s.acceleration() else {
+                        continue;
+                    };
+                    let a = norm(acc);
                     if a > 0.0 {
                         let h: f64 = (0..3)
-                            .map(|d| grav.acc[d].abs() / a * self.domain.length(d))
+                            .map(|d| acc[d].abs() / a * self.domain.length(d))
                             .sum();
                         offer(
                             (2.0 * a * h).sqrt(),

@@ -49,7 +49,6 @@ pub mod restart_fixes;
 pub mod restart_state;
 pub mod rigid_body;
 pub mod sim;
-pub mod spring_self;
 pub mod store_state;
 pub mod temperature;
 pub mod tet_mesh;

@@ -10,7 +10,6 @@ pub const DISC_INERTIA: f64 = 0.5;
 /// The fix styles regolith runs in 2d (the others, insertion among them, are refused there);
 /// a module fix style says so in its row instead.
 pub const PLANAR_FIXES: &[&str] = &[
-    "gravity",
     "property/global",
     "wall/gran",
     "print",

@@ -244,6 +244,10 @@ impl Simulation {
                     if let Some(state) = s.restart_state() {
                         globals.push(entry(&f.id, &f.style, state));
                     }
+                    if let Some((maxsize, rows)) = s.restart_per_atom(&self.particles) {
+                        let (id, style) = (f.id.clone(), f.style.clone());
+                        peratom.push((PeratomFix { id, style, maxsize }, rows));
+                    }
                 }
                 FixKind::MoveMesh(mv) => globals.push(entry(&f.id, &f.style, to_bytes(&[mv.time]))),
                 FixKind::Move(mv) => {
@@ -253,22 +257,6 @@ impl Simulation {
                         p.id.iter()
                             .map(|id| mv.origin.get(id).map_or(vec![0.0; 3], |x| x.to_vec()))
                             .collect();
-                    peratom.push((
-                        PeratomFix {
-                            id: f.id.clone(),
-                            style: f.style.clone(),
-                            maxsize: 4,
-                        },
-                        rows,
-                    ));
-                }
-                FixKind::SpringSelf(spring) => {
-                    // the tether points, as LIGGGHTS's per-atom `xoriginal`
-                    let p = &self.particles;
-                    let rows = match p.extra.iter().position(|e| e.name == spring.slot) {
-                        Some(k) => p.extra[k].data.chunks(3).map(<[f64]>::to_vec).collect(),
-                        None => vec![vec![0.0; 3]; p.len()],
-                    };
                     peratom.push((
                         PeratomFix {
                             id: f.id.clone(),

@@ -1,21 +1,67 @@
-//! `fix gravity`: a uniform acceleration.
+//! `fix gravity`: a uniform acceleration added as m g to the group's forces (`post_force`);
+//! clumps, `fix buoyancy` and the speed estimate read the acceleration.
 
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::{FixStep, FixStyle};
 use crate::engine::integrate::Gravity;
+use crate::engine::particles::Particles;
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "fix",
+    "gravity",
+    "fix ID GROUP gravity G vector X Y Z",
+    &[],
+    "gravitational acceleration G (acceleration) along a direction",
+);
+
+impl FixStyle for Gravity {
+    fn name(&self) -> &str {
+        "gravity"
+    }
+
+    fn post_force(&mut self, p: &mut Particles, _at: &FixStep) {
+        self.apply(p);
+    }
+
+    fn acceleration(&self) -> Option<[f64; 3]> {
+        Some(self.acc)
+    }
+}
 
 /// `fix ID GROUP gravity MAG vector X Y Z` (acceleration).
-pub fn build(a: &Args, _ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, _ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     let FixDef { bit, .. } = *fix;
     a.count(4..=usize::MAX, "fix ID GROUP gravity MAG vector X Y Z")?;
     let magnitude = a.real(3)?;
-    Ok(match a.word(4)? {
+    match a.word(4)? {
         "vector" => {
             a.count(8..=8, "fix ID GROUP gravity MAG vector X Y Z")?;
             let dir = [a.real(5)?, a.real(6)?, a.real(7)?];
-            FixKind::Gravity(Gravity::along(magnitude, dir, bit).map_err(|m| a.error(5, &m))?)
+            let g = Gravity::along(magnitude, dir, bit).map_err(|m| a.error(5, &m))?;
+            Ok(Box::new(g))
         }
-        other => return Err(a.unsupported(4, &format!("fix gravity {other}"))),
-    })
+        other => Err(a.unsupported(4, &format!("fix gravity {other}"))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn adds_the_weight_of_its_group_and_offers_its_acceleration() {
+        let mut p = Particles::default();
+        p.push(1, 1, [0.0; 3], 0.5, 2.0);
+        p.push(2, 1, [1.0; 3], 0.5, 3.0);
+        p.mask[1] = 2;
+        let mut g = Gravity::along(9.81, [0.0, 0.0, -2.0], 1).expect("direction");
+        let domain = crate::engine::domain::Domain::default();
+        g.post_force(&mut p, &FixStep::plain(1, 0, 1e-5, &domain));
+        assert_eq!(p.f[0], [0.0, 0.0, -9.81 * p.mass[0]]);
+        assert_eq!(p.f[1], [0.0; 3]);
+        assert_eq!(FixStyle::acceleration(&g), Some([0.0, 0.0, -9.81]));
+    }
 }

@@ -64,7 +64,6 @@ pub type Build = fn(&Args, &mut Ctx, &FixDef) -> Result<FixKind, CommandError>;
 
 /// The fix styles regolith runs: the style name and the builder in the style's file.
 pub const STYLES: &[(&str, Build)] = &[
-    ("gravity", gravity::build),
     ("check/timestep/gran", check_timestep::build),
     ("property/global", property_global::build),
     ("mesh/surface", mesh_surface::build),
@@ -101,7 +100,6 @@ pub const STYLES: &[(&str, Build)] = &[
     ("heat/gran", heat_gran::build),
     ("heat/gran/conduction", heat_gran::build),
     ("multisphere", multisphere::build),
-    ("spring/self", spring_self::build),
     ("ave/atom", ave_atom::build),
     ("store/state", store_state::build),
     ("ave/spatial", ave_spatial::build),
@@ -214,6 +212,16 @@ pub const MODULES: &[FixRow] = &[
         spec: force::ADDFORCE,
         planar: true,
         build: force::build,
+    },
+    FixRow {
+        spec: gravity::SPEC,
+        planar: true,
+        build: gravity::build,
+    },
+    FixRow {
+        spec: spring_self::SPEC,
+        planar: false,
+        build: spring_self::build,
     },
 ];
 

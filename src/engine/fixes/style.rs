@@ -149,6 +149,25 @@ pub trait FixStyle: Send {
         )))
     }
 
+    /// The per-atom state written to restart files: the values each particle writes
+    /// (LIGGGHTS's `maxsize_restart`, the count included) and each particle's values in
+    /// particle order (None: the style writes none).
+    fn restart_per_atom(&self, _p: &Particles) -> Option<(i32, Vec<Vec<f64>>)> {
+        None
+    }
+
+    /// Whether the style keeps per-particle state that copies of the particles
+    /// (`replicate`) could not take over.
+    fn keeps_per_atom_state(&self) -> bool {
+        self.per_atom_shape() != PerAtomShape::None
+    }
+
+    /// The uniform acceleration the style adds to its group (`fix gravity`; length/time^2):
+    /// clumps, `fix buoyancy` and the speed estimate read it (None: the style adds none).
+    fn acceleration(&self) -> Option<[f64; 3]> {
+        None
+    }
+
     /// Whether the style holds its group's particles still (`fix freeze`: contacts treat
     /// them as infinitely heavy).
     fn holds_still(&self) -> bool {

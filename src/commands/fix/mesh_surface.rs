@@ -23,6 +23,8 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     let (mut wall_type, mut ops) = (None, Vec::new());
     let mut settings = crate::engine::mesh::MeshSettings::default();
     let (mut heal, mut surface_vel) = (false, None);
+    let mut exclusion: Option<Vec<i64>> = None;
+    let mut past_base = false;
     // the stress module's keywords (after all mesh/surface keywords, as LIGGGHTS requires)
     let (mut stress_on, mut wear_on, mut reference) = (true, false, [0.0; 3]);
     let mut module_from = None;
@@ -58,6 +60,29 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
             return Err(a.error(
                 i,
                 format!("Fix mesh/surface/stress: unknown keyword or wrong keyword order ('{w}' after the stress keyword at word {at})"),
+            ));
+        }
+        // LIGGGHTS's fix mesh reads its own keywords first; once another follows, they are
+        // refused
+        let base = matches!(
+            w,
+            "type"
+                | "verbose"
+                | "region"
+                | "heal"
+                | "precision"
+                | "min_feature_length"
+                | "element_exclusion_list"
+        );
+        if !base {
+            past_base = true;
+        } else if past_base {
+            return Err(a.error(
+                i,
+                format!(
+                    "Fix {style} (id {}): unknown keyword or wrong keyword order: {w}",
+                    a.word(0)?
+                ),
             ));
         }
         match w {
@@ -126,13 +151,12 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 surface_vel = Some([a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?]);
                 i += 4;
             }
-            w @ ("temperature"
-            | "mass_temperature"
-            | "surface_ang_vel"
-            | "region"
-            | "extrude_planar"
-            | "element_exclusion_list"
-            | "min_feature_length") => {
+            "element_exclusion_list" => {
+                exclusion = Some(exclusion_list(a, i, ctx)?);
+                i += 3;
+            }
+            w @ ("temperature" | "mass_temperature" | "surface_ang_vel" | "region"
+            | "extrude_planar" | "min_feature_length") => {
                 return Err(a.unsupported(i, &format!("fix mesh/surface {w}")))
             }
             _ => {
@@ -190,7 +214,11 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         ctx.say(&format!(
             "\nReading STL file '{file}' (mesh processing step 1/3) \n"
         ));
-        let mut t = crate::io::stl::read(&path).map_err(|m| a.error(4, &m))?;
+        let (t, ids, ascii) = crate::io::stl::read_with_ids(&path).map_err(|m| a.error(4, &m))?;
+        let mut t = match &exclusion {
+            Some(list) => crate::io::stl::exclude(t, &ids, list, ascii),
+            None => t,
+        };
         crate::io::stl::transform(&mut t, &ops);
         t
     };
@@ -262,4 +290,58 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     }
     fix.set_surface_velocity();
     Ok(FixKind::Mesh(Box::new(fix)))
+}
+
+/// `element_exclusion_list read|write FILE` at word `i`: the sorted triangle IDs to leave out
+/// (`read`), or none (`write`: LIGGGHTS creates the file at once and lists in it the elements
+/// its mesh checks remove, which a mesh those checks pass leaves empty).
+fn exclusion_list(a: &Args, i: usize, ctx: &mut Ctx) -> Result<Vec<i64>, CommandError> {
+    let mode = a.word(i + 1)?;
+    if mode != "read" && mode != "write" {
+        // LIGGGHTS's own spelling
+        return Err(a.error(
+            i + 1,
+            format!(
+                "Fix {} (id {}): expecing 'read' or 'write' after 'element_exclusion_list'",
+                a.word(2)?,
+                a.word(0)?
+            ),
+        ));
+    }
+    let name = a.word(i + 2)?;
+    if mode == "write" {
+        if ctx.sys.mode != crate::lang::system::Mode::Run {
+            return Ok(Vec::new());
+        }
+        std::fs::File::create(name).map_err(|_| {
+            a.file_error(
+                i + 2,
+                "Fix mesh: can not open file for 'element_exclusion_list' for writing",
+            )
+        })?;
+        return Ok(Vec::new());
+    }
+    let text = std::fs::read(ctx.sys.resolve(name)).map_err(|_| {
+        a.file_error(
+            i + 2,
+            "Fix mesh: can not open file for 'element_exclusion_list' for reading",
+        )
+    })?;
+    let mut list = Vec::new();
+    // one ID a line, read as LIGGGHTS's integer parser reads it (digits and signs only)
+    for line in String::from_utf8_lossy(&text).lines() {
+        let word = line.trim_matches(|c: char| c.is_ascii_whitespace());
+        if !word
+            .chars()
+            .all(|c| c.is_ascii_digit() || c == '-' || c == '+')
+        {
+            return Err(a.error(
+                i + 2,
+                "Expected integer parameter in input script or data file",
+            ));
+        }
+        list.push(crate::util::numbers::atol(word));
+    }
+    list.sort_unstable();
+    Ok(list)
 }

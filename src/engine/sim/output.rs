@@ -224,7 +224,7 @@ impl Simulation {
                 continue;
             }
             if let DumpStyle::LocalGranVtk(cid) = &self.dumps[k].style {
-                let text = crate::engine::local_vtk::snapshot(self, cid)?;
+                let text = crate::engine::local_vtk::snapshot(self, cid, &self.dumps[k].file)?;
                 self.write_dump_text(k, step, &text)?;
                 continue;
             }

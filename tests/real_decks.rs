@@ -293,7 +293,13 @@ fn fails_alike(dir: &PathBuf, body: &str, needle: &str, line: usize) {
 
 /// As [`fails_alike`], with exit status `code` (3: not supported yet).
 fn stops_alike(dir: &PathBuf, body: &str, needle: &str, line: usize, code: i32) {
-    std::fs::write(dir.join("in.t"), format!("{HEAD}{body}\n")).unwrap();
+    stops_deck(dir, &format!("{HEAD}{body}\n"), needle, line, code);
+}
+
+/// The whole `deck` stops in both `check` and `-in` with `needle` at `line`, status `code`.
+fn stops_deck(dir: &PathBuf, deck: &str, needle: &str, line: usize, code: i32) {
+    let body = deck;
+    std::fs::write(dir.join("in.t"), deck).unwrap();
     let out = regolith(dir, &["check", "in.t"]);
     let stdout = text(&out.stdout);
     assert!(
@@ -524,4 +530,137 @@ fn dump_columns_of_fixes_as_liggghts_checks_them() {
         dump.ends_with("ITEM: ATOMS id f_mv[1] f_mv[2] f_mv[3] \n1 0 0 0 \n2 0.02 0.03 0.04 \n"),
         "{dump}"
     );
+}
+
+/// A one-particle run after the pair style (five lines).
+const RUN_ONE: &str =
+    "create_atoms 1 single 0.05 0.05 0.05\nset atom 1 diameter 0.01 density 2500\n\
+                       timestep 1e-5\nfix i all nve/sphere\nrun 1\n";
+
+#[test]
+fn pair_coeff_type_ranges_as_liggghts_sets_them() {
+    let dir = scratch("paircoeff");
+    // one atom type: `pair_coeff 1 1` sets every pair (a researcher's deck writes it so)
+    let deck = format!(
+        "{HEAD}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff 1 1\n{RUN_ONE}"
+    );
+    std::fs::write(dir.join("in.t"), &deck).unwrap();
+    for mode in [&["check", "in.t"][..], &["-in", "in.t", "-log", "none"]] {
+        let out = regolith(&dir, mode);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    }
+    // two types: LIGGGHTS needs every I,I pair set before the run, and refuses ranges that
+    // set nothing or extra words
+    let two = HEAD.replace("create_box 1 reg", "create_box 2 reg");
+    let material = "fix m1 all property/global youngsModulus peratomtype 5e6 5e6\n\
+                    fix m2 all property/global poissonsRatio peratomtype 0.45 0.45\n\
+                    fix m3 all property/global coefficientRestitution peratomtypepair 2 0.3 0.3 0.3 0.3\n\
+                    fix m4 all property/global coefficientFriction peratomtypepair 2 0.5 0.5 0.5 0.5\n";
+    let pair = "pair_style gran model hertz tangential history";
+    for (coeff, needle, line) in [
+        ("pair_coeff 1 1", "All pair coeffs are not set", 21),
+        ("pair_coeff 1*2 1", "All pair coeffs are not set", 21),
+        ("pair_coeff 2 1", "Incorrect args for pair coefficients", 16),
+        (
+            "pair_coeff * * 5",
+            "Incorrect args for pair coefficients",
+            16,
+        ),
+    ] {
+        let deck = format!("{two}{material}{pair}\n{coeff}\n{RUN_ONE}");
+        stops_deck(&dir, &deck, needle, line, 1);
+    }
+    let deck = format!("{two}{material}{pair}\npair_coeff 1 *\npair_coeff 2 2\n{RUN_ONE}");
+    std::fs::write(dir.join("in.t"), &deck).unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+}
+
+#[test]
+fn gravity_styles_refuse_what_liggghts_refuses() {
+    let dir = scratch("gravity");
+    for body in [
+        "fix g all gravity 9.81",
+        "fix g all gravity 9.81 chute",
+        "fix g all gravity 9.81 chute 10 2",
+        "fix g all gravity 9.81 spherical 1",
+        "fix g all gravity 9.81 cute 3",
+    ] {
+        fails_alike(&dir, body, "Illegal fix gravity command", 11);
+    }
+}
+
+#[test]
+fn element_exclusion_lists_as_liggghts_reads_them() {
+    let dir = scratch("exclusion");
+    let facet = |x: f64| {
+        format!(
+            "facet normal 0 0 1\nouter loop\nvertex {x} 0 0\nvertex {} 0 0\nvertex {x} 0.05 0\n\
+             endloop\nendfacet\n",
+            x + 0.05
+        )
+    };
+    let stl = format!("solid s\n{}{}endsolid s\n", facet(0.0), facet(0.05));
+    std::fs::write(dir.join("floor.stl"), stl).unwrap();
+    std::fs::write(dir.join("x.txt"), "9\n").unwrap();
+    std::fs::write(dir.join("bad.txt"), "2x\n").unwrap();
+    let mesh = "fix f all mesh/surface file floor.stl type 1";
+    for (tail, needle) in [
+        (
+            "element_exclusion_list rd x.txt",
+            "Fix mesh/surface (id f): expecing 'read' or 'write' after 'element_exclusion_list'",
+        ),
+        (
+            "element_exclusion_list read missing.txt",
+            "Fix mesh: can not open file for 'element_exclusion_list' for reading",
+        ),
+        (
+            "element_exclusion_list read bad.txt",
+            "Expected integer parameter in input script or data file",
+        ),
+        // LIGGGHTS's fix mesh keywords come before the surface's
+        (
+            "scale 1 element_exclusion_list read x.txt",
+            "Fix mesh/surface (id f): unknown keyword or wrong keyword order: element_exclusion_list",
+        ),
+        (
+            "scale 1 heal auto_remove_duplicates",
+            "Fix mesh/surface (id f): unknown keyword or wrong keyword order: heal",
+        ),
+    ] {
+        fails_alike(&dir, &format!("{mesh} {tail}"), needle, 11);
+    }
+    // the second facet (line 9) left out; `write` creates its (empty) list
+    std::fs::write(
+        dir.join("in.t"),
+        format!(
+            "{HEAD}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n\
+             {mesh} element_exclusion_list read x.txt\n\
+             fix g all mesh/surface file floor.stl type 1 element_exclusion_list write w.txt\n\
+             create_atoms 1 single 0.05 0.05 0.05\nset atom 1 diameter 0.01 density 2500\n\
+             dump s all stl 1 out*.stl f\nrun 0\n"
+        ),
+    )
+    .unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let stl = std::fs::read_to_string(dir.join("out0.stl")).unwrap();
+    assert_eq!(stl.matches("facet normal").count(), 1, "{stl}");
+    assert!(stl.contains("vertex 0 0 0"), "{stl}");
+    assert_eq!(std::fs::read_to_string(dir.join("w.txt")).unwrap(), "");
+}
+
+#[test]
+fn write_restart_creates_its_folders_as_liggghts_does() {
+    let dir = scratch("restartdirs");
+    // a CFD-DEM case's init deck writes ../DEM/post/restart/liggghts.restart before any
+    // solver has made the folder
+    let deck = format!(
+        "{HEAD}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n\
+         {RUN_ONE}write_restart post/restart/liggghts.restart\n"
+    );
+    std::fs::write(dir.join("in.t"), deck).unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(dir.join("post/restart/liggghts.restart").is_file());
 }

@@ -470,11 +470,8 @@ fn local_gran_vtk_compute(
             "dump local/gran/vtk requires a valid ID of a compute pair/gran/local that writes the positions",
         ));
     }
-    if !file.ends_with(".vtk") && (file.ends_with(".vtp") || file.ends_with(".vtu")) {
-        return Err(a.unsupported(
-            4,
-            "dump local/gran/vtk to XML or parallel VTK files (regolith writes legacy .vtk)",
-        ));
+    if file.ends_with(".pvtp") || file.ends_with(".pvtu") {
+        return Err(a.unsupported(4, "dump local/gran/vtk to parallel VTK files"));
     }
     Ok(cid.to_string())
 }
@@ -636,6 +633,10 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     if stop.is_some_and(|s| s < ctx.sim.step + nsteps) {
         return Err(a.error(0, "Run command stop value is before end of run"));
     }
+    // LIGGGHTS's Pair::init checks every I,I type pair before the style's own init
+    if ctx.sim.pair_selection.is_some() && !ctx.sim.pair_coeff_set {
+        return Err(a.error(0, "All pair coeffs are not set"));
+    }
     super::material_check::validate(a, ctx)?;
     super::fix::check_deform_variables(ctx).map_err(|e| a.engine_error(0, e))?;
     crate::engine::temperature::setup_counts(ctx.sim);
@@ -659,9 +660,6 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         // what a run leaves behind (contact history) counts as there for later commands
         ctx.sim.has_run = true;
         return Ok(());
-    }
-    if ctx.sim.pair_selection.is_some() && !ctx.sim.pair_coeff_set {
-        return Err(a.error(0, "All pair coeffs are not set"));
     }
     ctx.sim.ramp_bounds = (start, stop);
     let out = &mut *ctx.out;
@@ -826,6 +824,7 @@ fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
     }
     ctx.sim.pair_selection = Some(sel);
     ctx.sim.pair_coeff_set = false;
+    ctx.sim.pair_coeff_types.clear();
     if let Some(d) = pending {
         // the style is defined (so `pair_coeff` is not refused), only this setting is reported
         return Err(d);
@@ -842,19 +841,35 @@ fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
 }
 
 fn pair_coeff(a: &Args, ctx: &mut Ctx) -> Result {
-    a.count(2..=2, "pair_coeff * *")?;
     if ctx.sim.pair_selection.is_none() {
         return Err(a.error(0, "Pair_coeff command before pair_style is defined"));
     }
-    for i in 0..2 {
-        let w = a.word(i)?;
-        crate::util::numbers::bounds(w, ctx.sim.ntypes.max(1) as i64)
-            .map_err(|m| a.error(i, &m))?;
+    // granular pair styles take no coefficients: exactly the two type ranges
+    if a.len() != 2 {
+        return Err(a.error(0, "Incorrect args for pair coefficients"));
     }
-    if a.word(0)? != "*" || a.word(1)? != "*" {
-        return Err(a.unsupported(0, "pair_coeff for single type pairs"));
+    let ntypes = ctx.sim.ntypes.max(1) as i64;
+    let mut range = [(0, 0); 2];
+    for (i, r) in range.iter_mut().enumerate() {
+        *r = crate::util::numbers::bounds(a.word(i)?, ntypes).map_err(|m| a.error(i, &m))?;
     }
-    ctx.sim.pair_coeff_set = true;
+    // as LIGGGHTS's granular pair styles: every I,J with I <= J in the ranges is set
+    let ((ilo, ihi), (jlo, jhi)) = (range[0], range[1]);
+    let mut count = 0;
+    let types = &mut ctx.sim.pair_coeff_types;
+    types.resize(ntypes as usize, false);
+    for i in ilo..=ihi {
+        for j in jlo.max(i)..=jhi {
+            if i == j {
+                types[(i - 1) as usize] = true;
+            }
+            count += 1;
+        }
+    }
+    if count == 0 {
+        return Err(a.error(0, "Incorrect args for pair coefficients"));
+    }
+    ctx.sim.pair_coeff_set = types.iter().all(|&t| t);
     Ok(())
 }
 

@@ -230,6 +230,26 @@ impl Gravity {
         })
     }
 
+    /// Gravity of `magnitude` at the polar angle `theta` and azimuth `phi` (degrees), as
+    /// LIGGGHTS's `spherical` and `chute` styles turn them into a direction (`dimension` 2: in
+    /// the xy plane, the angle measured from +y).
+    pub fn spherical(magnitude: f64, phi: f64, theta: f64, dimension: u32, group: u32) -> Gravity {
+        let degree2rad = std::f64::consts::PI / 180.0;
+        let dir = if dimension == 3 {
+            [
+                (degree2rad * theta).sin() * (degree2rad * phi).cos(),
+                (degree2rad * theta).sin() * (degree2rad * phi).sin(),
+                (degree2rad * theta).cos(),
+            ]
+        } else {
+            [(degree2rad * theta).sin(), (degree2rad * theta).cos(), 0.0]
+        };
+        Gravity {
+            acc: dir.map(|d| magnitude * d),
+            group,
+        }
+    }
+
     /// Add m g to every particle's force (LIGGGHTS's post_force).
     pub fn apply(&self, p: &mut Particles) {
         // members of multisphere clumps get their weight through their body

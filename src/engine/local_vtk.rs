@@ -5,6 +5,7 @@ use crate::engine::computes::{ComputeKind, LocalField};
 use crate::engine::error::EngineError;
 use crate::engine::sim::Simulation;
 use crate::io::local_vtk::{write_contacts, ContactLayout};
+use crate::io::local_vtk_xml::{write_contacts_xml, XmlKind};
 
 /// The fields of a `pair/gran/local` or `wall/gran/local` compute (else `None`).
 pub fn local_fields(kind: &ComputeKind) -> Option<&[LocalField]> {
@@ -14,8 +15,9 @@ pub fn local_fields(kind: &ComputeKind) -> Option<&[LocalField]> {
     }
 }
 
-/// The VTK text of compute `cid`'s contacts at the current step.
-pub fn snapshot(sim: &Simulation, cid: &str) -> Result<Vec<u8>, EngineError> {
+/// The VTK text of compute `cid`'s contacts at the current step, in the layout the dump's
+/// `file` name asks for (legacy `.vtk`, XML `.vtp` or `.vtu`).
+pub fn snapshot(sim: &Simulation, cid: &str, file: &str) -> Result<Vec<u8>, EngineError> {
     let c = sim
         .computes
         .iter()
@@ -29,6 +31,10 @@ pub fn snapshot(sim: &Simulation, cid: &str) -> Result<Vec<u8>, EngineError> {
     let layout = ContactLayout::new(fields, ncols.saturating_sub(fixed))
         .ok_or_else(|| format!("compute {cid} does not write the positions"))?;
     let mut text = Vec::new();
-    write_contacts(&mut text, &layout, ncols, &rows).map_err(|e| e.to_string())?;
+    match XmlKind::of_file(file) {
+        Some(kind) => write_contacts_xml(&mut text, kind, &layout, ncols, &rows),
+        None => write_contacts(&mut text, &layout, ncols, &rows),
+    }
+    .map_err(|e| e.to_string())?;
     Ok(text)
 }

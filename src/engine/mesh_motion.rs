@@ -147,24 +147,30 @@ impl MoveMesh {
 
     /// Carry this mover's reference point along with a displacement of its mesh.
     pub fn follow(&mut self, d: &Displacement) {
-        let Some(r) = self.reference.as_mut() else {
-            return;
-        };
-        match d {
-            Displacement::Translation(dx) => *r = [r[0] + dx[0], r[1] + dx[1], r[2] + dx[2]],
-            Displacement::Rotation {
-                angle,
-                axis,
-                centre,
-            } => {
-                let tmp = [r[0] - centre[0], r[1] - centre[1], r[2] - centre[2]];
-                let t2 = tmp[0] * tmp[0] + tmp[1] * tmp[1] + tmp[2] * tmp[2];
-                let r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
-                if t2 > 1e-20 * r2 {
-                    let q = rotation_quaternion(*angle, *axis);
-                    let p = quat_rotate(q, tmp);
-                    *r = [p[0] + centre[0], p[1] + centre[1], p[2] + centre[2]];
-                }
+        if let Some(r) = self.reference.as_mut() {
+            follow_point(r, d);
+        }
+    }
+}
+
+/// Carry a point that moves with a mesh (LIGGGHTS's `frame_general` mesh properties: a
+/// mover's rotation centre, the stress module's `reference_point`) along with a
+/// displacement of the mesh (length).
+pub fn follow_point(r: &mut V3, d: &Displacement) {
+    match d {
+        Displacement::Translation(dx) => *r = [r[0] + dx[0], r[1] + dx[1], r[2] + dx[2]],
+        Displacement::Rotation {
+            angle,
+            axis,
+            centre,
+        } => {
+            let tmp = [r[0] - centre[0], r[1] - centre[1], r[2] - centre[2]];
+            let t2 = tmp[0] * tmp[0] + tmp[1] * tmp[1] + tmp[2] * tmp[2];
+            let r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+            if t2 > 1e-20 * r2 {
+                let q = rotation_quaternion(*angle, *axis);
+                let p = quat_rotate(q, tmp);
+                *r = [p[0] + centre[0], p[1] + centre[1], p[2] + centre[2]];
             }
         }
     }

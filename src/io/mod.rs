@@ -7,6 +7,7 @@ pub mod dump;
 pub mod dump_compare;
 pub mod error;
 pub mod local_vtk;
+pub mod local_vtk_xml;
 pub mod mesh_vtk;
 pub mod output;
 pub mod restart;

@@ -58,9 +58,12 @@ pub fn normal(t: &Triangle) -> [f64; 3] {
     }
 }
 
-/// Parse an ASCII STL text; `name` labels errors.
-fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, StlError> {
+/// Parse an ASCII STL text; `name` labels errors. Also returns each triangle's ID as
+/// LIGGGHTS numbers them for `element_exclusion_list`: the line of its `facet` keyword.
+fn parse_ascii(text: &str, name: &str) -> Result<(Vec<Triangle>, Vec<usize>), StlError> {
     let mut out = Vec::new();
+    let mut ids = Vec::new();
+    let mut facet_line = 0;
     let mut current: Vec<[f64; 3]> = Vec::new();
     for (n, line) in text.lines().enumerate() {
         // LIGGGHTS strips `#` comments from STL lines as from deck lines
@@ -71,6 +74,7 @@ fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, StlError> {
             line: n + 1,
         };
         match w.next() {
+            Some("facet") => facet_line = n + 1,
             Some("vertex") => {
                 let mut v = [0.0; 3];
                 for c in v.iter_mut() {
@@ -91,6 +95,7 @@ fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, StlError> {
                     });
                 }
                 out.push([current[0], current[1], current[2]]);
+                ids.push(facet_line);
                 current.clear();
             }
             _ => {}
@@ -102,11 +107,17 @@ fn parse_ascii(text: &str, name: &str) -> Result<Vec<Triangle>, StlError> {
             facet: out.len() + 1,
         });
     }
-    Ok(out)
+    Ok((out, ids))
 }
 
 /// Read an STL file (ASCII or binary).
 pub fn read(path: &str) -> Result<Vec<Triangle>, StlError> {
+    read_with_ids(path).map(|(t, _, _)| t)
+}
+
+/// Read an STL file with each triangle's ID as LIGGGHTS numbers them (ASCII: the line of
+/// its `facet` keyword; binary: its position from 1) and whether the file was ASCII.
+pub fn read_with_ids(path: &str) -> Result<(Vec<Triangle>, Vec<usize>, bool), StlError> {
     let file = || path.to_string();
     let bytes = std::fs::read(path).map_err(|source| StlError::Open {
         path: file(),
@@ -124,7 +135,7 @@ pub fn read(path: &str) -> Result<Vec<Triangle>, StlError> {
         .join("\n");
     let ascii = (commented && head.lines().count() > 1 && std::str::from_utf8(&bytes).is_ok())
         || (significant.trim_start().starts_with("solid") && head.contains("facet"));
-    let triangles = if ascii {
+    let (triangles, ids) = if ascii {
         let text = String::from_utf8(bytes).map_err(|_| StlError::NotText { path: file() })?;
         parse_ascii(&text, path)?
     } else {
@@ -148,15 +159,45 @@ pub fn read(path: &str) -> Result<Vec<Triangle>, StlError> {
             path: file(),
             source,
         })?;
-        mesh.faces
+        let t: Vec<Triangle> = mesh
+            .faces
             .iter()
             .map(|f| f.vertices.map(|k| mesh.vertices[k].0.map(|c| c as f64)))
-            .collect()
+            .collect();
+        let ids = (1..=t.len()).collect();
+        (t, ids)
     };
     if triangles.is_empty() {
         return Err(StlError::Empty { path: file() });
     }
-    Ok(triangles)
+    Ok((triangles, ids, ascii))
+}
+
+/// The triangles `fix mesh/surface ... element_exclusion_list read` keeps: LIGGGHTS walks the
+/// sorted list along the file, skipping a triangle whose ID is the entry it points at and
+/// only then moving on (in ASCII files also past repeated entries), so an entry no triangle
+/// has stops the walk there.
+pub fn exclude(
+    triangles: Vec<Triangle>,
+    ids: &[usize],
+    list: &[i64],
+    ascii: bool,
+) -> Vec<Triangle> {
+    let mut i = 0;
+    let mut kept = Vec::with_capacity(triangles.len());
+    for (t, &id) in triangles.into_iter().zip(ids) {
+        if !list.is_empty() && id as i64 == list[i] {
+            if i + 1 < list.len() {
+                i += 1;
+                while ascii && list[i - 1] == list[i] && i + 1 < list.len() {
+                    i += 1;
+                }
+            }
+        } else {
+            kept.push(t);
+        }
+    }
+    kept
 }
 
 /// Apply the transformations in order.
@@ -303,7 +344,7 @@ mod tests {
 
     #[test]
     fn ascii_in_double_precision_and_transforms_in_order() {
-        let mut t = parse_ascii(SQUARE, "sq.stl").unwrap();
+        let mut t = parse_ascii(SQUARE, "sq.stl").unwrap().0;
         assert_eq!(t.len(), 2);
         assert_eq!(t[0][2], [0.21, -0.005, -0.02]);
         check(&t, "sq.stl", Some(1.0)).unwrap();
@@ -338,7 +379,7 @@ mod tests {
         )
         .unwrap();
         let t = read(path.to_str().unwrap()).unwrap();
-        assert_eq!(t, parse_ascii(SQUARE, "sq.stl").unwrap());
+        assert_eq!(t, parse_ascii(SQUARE, "sq.stl").unwrap().0);
         let _ = std::fs::remove_dir_all(&dir);
     }
 
@@ -348,7 +389,7 @@ mod tests {
             "vertex 0.21 -0.005 -0.02\n endloop\nendfacet\nfacet",
             "vertex 0.25 -0.025 -0.02\n endloop\nendfacet\nfacet",
         );
-        let t = parse_ascii(&flat, "flat.stl").unwrap();
+        let t = parse_ascii(&flat, "flat.stl").unwrap().0;
         let e = check(&t, "flat.stl", None).unwrap_err();
         assert!(
             matches!(e, StlError::Degenerate { triangle: 1, .. }),
@@ -356,7 +397,7 @@ mod tests {
         );
         let e = e.to_string();
         assert!(e.starts_with("flat.stl: triangle 1 is degenerate"), "{e}");
-        let t = parse_ascii(SQUARE, "sq.stl").unwrap();
+        let t = parse_ascii(SQUARE, "sq.stl").unwrap().0;
         let mut three = t.clone();
         three.push([t[0][1], t[0][2], [0.3, 0.3, 0.3]]); // the shared edge again
                                                          // LIGGGHTS imports a non-manifold mesh: a warning, not an error

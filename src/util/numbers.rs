@@ -137,6 +137,30 @@ pub fn bounds(text: &str, nmax: i64) -> Result<(i64, i64), NumberError> {
     Ok((lo, hi))
 }
 
+/// C's `atol`: leading white space, an optional sign, then the digits up to the first other
+/// character (none: 0); saturating at the `long` range as glibc's `strtol` does.
+pub fn atol(text: &str) -> i64 {
+    let t = text.trim_start();
+    let (negative, t) = match t.as_bytes().first() {
+        Some(b'-') => (true, &t[1..]),
+        Some(b'+') => (false, &t[1..]),
+        _ => (false, t),
+    };
+    let mut value: i64 = 0;
+    for d in t.bytes().take_while(u8::is_ascii_digit) {
+        let digit = i64::from(d - b'0');
+        value = match value.checked_mul(10).and_then(|v| v.checked_add(digit)) {
+            Some(v) => v,
+            None => return if negative { i64::MIN } else { i64::MAX },
+        };
+    }
+    if negative {
+        -value
+    } else {
+        value
+    }
+}
+
 /// `ID` or `ID[N]` of a `c_`/`f_`/`v_` reference body: the ID and the 1-based index.
 pub fn split_reference(body: &str) -> Option<(&str, Option<usize>)> {
     match body.split_once('[') {
@@ -161,6 +185,17 @@ pub fn split_reference_atoi(body: &str) -> Option<(&str, Option<usize>)> {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn atol_reads_as_c_does() {
+        assert_eq!(atol("32452843.0"), 32452843);
+        assert_eq!(atol("  -17x"), -17);
+        assert_eq!(atol("+5"), 5);
+        assert_eq!(atol("abc"), 0);
+        assert_eq!(atol("1e5"), 1);
+        assert_eq!(atol("99999999999999999999"), i64::MAX);
+    }
+
     use super::*;
 
     #[test]

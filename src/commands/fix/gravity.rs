@@ -12,9 +12,9 @@ use crate::engine::particles::Particles;
 pub const SPEC: Spec = style(
     "fix",
     "gravity",
-    "fix ID GROUP gravity G vector X Y Z",
+    "fix ID GROUP gravity G vector X Y Z | chute ANGLE | spherical PHI THETA",
     &[],
-    "gravitational acceleration G (acceleration) along a direction",
+    "gravitational acceleration G (acceleration) along a direction, down a chute inclined by ANGLE (degrees) about y, or at polar angles PHI THETA (degrees)",
 );
 
 impl FixStyle for Gravity {
@@ -31,20 +31,46 @@ impl FixStyle for Gravity {
     }
 }
 
-/// `fix ID GROUP gravity MAG vector X Y Z` (acceleration).
-pub fn build(a: &Args, _ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
+/// `fix ID GROUP gravity MAG vector X Y Z | chute ANGLE | spherical PHI THETA` (acceleration;
+/// angles in degrees).
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     let FixDef { bit, .. } = *fix;
-    a.count(4..=usize::MAX, "fix ID GROUP gravity MAG vector X Y Z")?;
-    let magnitude = a.real(3)?;
-    match a.word(4)? {
-        "vector" => {
-            a.count(8..=8, "fix ID GROUP gravity MAG vector X Y Z")?;
-            let dir = [a.real(5)?, a.real(6)?, a.real(7)?];
-            let g = Gravity::along(magnitude, dir, bit).map_err(|m| a.error(5, &m))?;
-            Ok(Box::new(g))
-        }
-        other => Err(a.unsupported(4, &format!("fix gravity {other}"))),
+    let illegal = || a.error(a.len().saturating_sub(1), "Illegal fix gravity command");
+    if a.len() < 5 {
+        return Err(illegal());
     }
+    if let Some(i) = (3..a.len()).find(|&i| i != 4 && a.word(i).is_ok_and(|w| w.starts_with("v_")))
+    {
+        return Err(a.unsupported(i, "fix gravity with an equal-style variable"));
+    }
+    let magnitude = a.real(3)?;
+    let dimension = ctx.sim.dimension;
+    let g = match a.word(4)? {
+        "vector" => {
+            if a.len() != 8 {
+                return Err(illegal());
+            }
+            let dir = [a.real(5)?, a.real(6)?, a.real(7)?];
+            Gravity::along(magnitude, dir, bit).map_err(|m| a.error(5, &m))?
+        }
+        // the chute's incline: the polar angle 180 - ANGLE in the xz plane
+        "chute" => {
+            if a.len() != 6 {
+                return Err(illegal());
+            }
+            let vert = a.real(5)?;
+            Gravity::spherical(magnitude, 0.0, 180.0 - vert, dimension, bit)
+        }
+        "spherical" => {
+            if a.len() != 7 {
+                return Err(illegal());
+            }
+            let (phi, theta) = (a.real(5)?, a.real(6)?);
+            Gravity::spherical(magnitude, phi, theta, dimension, bit)
+        }
+        _ => return Err(a.error(4, "Illegal fix gravity command")),
+    };
+    Ok(Box::new(g))
 }
 
 #[cfg(test)]

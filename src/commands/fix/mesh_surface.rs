@@ -38,6 +38,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 format!("Fix mesh/surface/stress: unknown keyword or wrong keyword order ('{w}' after the stress keyword at word {at})"),
             ));
         }
+        mesh.check_order(a, i, w)?;
         match keyword(&mut mesh, &families, a, ctx, i, w)? {
             Some(used) => i += used,
             None => return Err(unknown(a, i, w)),
@@ -60,7 +61,6 @@ fn unknown(a: &Args, i: usize, w: &str) -> CommandError {
             | "surface_ang_vel"
             | "region"
             | "extrude_planar"
-            | "element_exclusion_list"
             | "min_feature_length"
     ) {
         return a.unsupported(i, &format!("fix mesh/surface {w}"));
@@ -99,6 +99,10 @@ struct MeshArgs {
     heal: bool,
     /// `surface_vel vx vy vz` (length/time).
     surface_vel: Option<[f64; 3]>,
+    /// `element_exclusion_list read FILE`: the sorted triangle IDs left out.
+    exclusion: Option<Vec<i64>>,
+    /// A keyword other than fix mesh's own has been read (fix mesh's own must come first).
+    past_base: bool,
     /// The style is `mesh/surface/stress` or its servo.
     stress_style: bool,
     /// The style is `mesh/surface/stress/servo`.
@@ -128,6 +132,8 @@ impl MeshArgs {
             settings: MeshSettings::default(),
             heal: false,
             surface_vel: None,
+            exclusion: None,
+            past_base: false,
             stress_style: style.starts_with("mesh/surface/stress"),
             servo_style: style == "mesh/surface/stress/servo",
             stress_on: true,
@@ -207,6 +213,34 @@ impl MeshArgs {
         }))
     }
 
+    /// LIGGGHTS's fix mesh reads its own keywords first; once another follows, they are
+    /// refused.
+    fn check_order(&mut self, a: &Args, i: usize, w: &str) -> Result<(), CommandError> {
+        let base = matches!(
+            w,
+            "type"
+                | "verbose"
+                | "region"
+                | "heal"
+                | "precision"
+                | "min_feature_length"
+                | "element_exclusion_list"
+        );
+        if !base {
+            self.past_base = true;
+        } else if self.past_base {
+            return Err(a.error(
+                i,
+                format!(
+                    "Fix {} (id {}): unknown keyword or wrong keyword order: {w}",
+                    self.style,
+                    a.word(0)?
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     /// The mesh's settings: `type`, `curvature`, `precision`, `curvature_tolerant`,
     /// `verbose`, `heal`, `surface_vel`.
     fn setting(
@@ -251,6 +285,10 @@ impl MeshArgs {
             "surface_vel" => {
                 self.surface_vel = Some([a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?]);
                 return Ok(Some(4));
+            }
+            "element_exclusion_list" => {
+                self.exclusion = Some(exclusion_list(a, i, ctx)?);
+                return Ok(Some(3));
             }
             _ => return Ok(None),
         }
@@ -297,7 +335,11 @@ impl MeshArgs {
         ctx.say(&format!(
             "\nReading STL file '{file}' (mesh processing step 1/3) \n"
         ));
-        let mut t = crate::io::stl::read(&path).map_err(|m| a.error(4, &m))?;
+        let (t, ids, ascii) = crate::io::stl::read_with_ids(&path).map_err(|m| a.error(4, &m))?;
+        let mut t = match &self.exclusion {
+            Some(list) => crate::io::stl::exclude(t, &ids, list, ascii),
+            None => t,
+        };
         crate::io::stl::transform(&mut t, &self.ops);
         if self.heal {
             t = self.healed(t);
@@ -390,4 +432,58 @@ impl MeshArgs {
         fix.set_surface_velocity();
         Ok(FixKind::Mesh(Box::new(fix)))
     }
+}
+
+/// `element_exclusion_list read|write FILE` at word `i`: the sorted triangle IDs to leave out
+/// (`read`), or none (`write`: LIGGGHTS creates the file at once and lists in it the elements
+/// its mesh checks remove, which a mesh those checks pass leaves empty).
+fn exclusion_list(a: &Args, i: usize, ctx: &Ctx) -> Result<Vec<i64>, CommandError> {
+    let mode = a.word(i + 1)?;
+    if mode != "read" && mode != "write" {
+        // LIGGGHTS's own spelling
+        return Err(a.error(
+            i + 1,
+            format!(
+                "Fix {} (id {}): expecing 'read' or 'write' after 'element_exclusion_list'",
+                a.word(2)?,
+                a.word(0)?
+            ),
+        ));
+    }
+    let name = a.word(i + 2)?;
+    if mode == "write" {
+        if ctx.sys.mode != crate::lang::system::Mode::Run {
+            return Ok(Vec::new());
+        }
+        std::fs::File::create(name).map_err(|_| {
+            a.file_error(
+                i + 2,
+                "Fix mesh: can not open file for 'element_exclusion_list' for writing",
+            )
+        })?;
+        return Ok(Vec::new());
+    }
+    let text = std::fs::read(ctx.sys.resolve(name)).map_err(|_| {
+        a.file_error(
+            i + 2,
+            "Fix mesh: can not open file for 'element_exclusion_list' for reading",
+        )
+    })?;
+    let mut list = Vec::new();
+    // one ID a line, read as LIGGGHTS's integer parser reads it (digits and signs only)
+    for line in String::from_utf8_lossy(&text).lines() {
+        let word = line.trim_matches(|c: char| c.is_ascii_whitespace());
+        if !word
+            .chars()
+            .all(|c| c.is_ascii_digit() || c == '-' || c == '+')
+        {
+            return Err(a.error(
+                i + 2,
+                "Expected integer parameter in input script or data file",
+            ));
+        }
+        list.push(crate::util::numbers::atol(word));
+    }
+    list.sort_unstable();
+    Ok(list)
 }

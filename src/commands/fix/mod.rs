@@ -385,9 +385,10 @@ fn variable_value(
     }
 }
 
-/// Argument `i` as a seed of LIGGGHTS's Park random generator (positive, within an int).
+/// Argument `i` as a seed of LIGGGHTS's Park random generator (positive, within an int),
+/// read as LIGGGHTS reads it, with C's `atol` (`32452843.0` is 32452843, `abc` is 0).
 fn seed_arg(a: &Args, ctx: &Ctx, i: usize) -> Result<i32, CommandError> {
-    let seed = a.int(i)?;
+    let seed = crate::util::numbers::atol(a.word(i)?);
     if !ctx.sim.seed_tolerant {
         crate::util::random::check_seed(seed).map_err(|m| a.error(i, &m))?;
     }

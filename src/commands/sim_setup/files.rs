@@ -205,6 +205,10 @@ pub(super) fn write_restart(a: &Args, ctx: &mut Ctx) -> Result {
         ctx.sys.keep_binary(std::path::Path::new(&path), bytes);
         return Ok(());
     }
+    // LIGGGHTS's write_restart (not the periodic `restart` output) creates the file's folders
+    if let Some(dir) = std::path::Path::new(&path).parent() {
+        let _ = std::fs::create_dir_all(dir);
+    }
     ctx.sim
         .save_restart(&path)
         .map_err(|e| a.engine_error(0, e))

@@ -79,6 +79,9 @@ pub fn move_meshes(fixes: &mut [Fix], dt: f64) {
             }
             let d = mv.step(&mut m.mesh, v, dt);
             mv.follow(&d);
+            if let Some(st) = m.stress.as_mut() {
+                crate::engine::mesh_motion::follow_point(&mut st.reference, &d);
+            }
             shift = Some(d);
         }
         let mesh = mv.mesh.clone();

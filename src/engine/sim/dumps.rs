@@ -35,7 +35,7 @@ impl Simulation {
             } else if let DumpStyle::EulerVtk = &self.dumps[k].style {
                 self.euler_vtk()?.into_bytes()
             } else if let DumpStyle::LocalGranVtk(cid) = &self.dumps[k].style {
-                crate::engine::local_vtk::snapshot(self, cid)?
+                crate::engine::local_vtk::snapshot(self, cid, &self.dumps[k].file)?
             } else {
                 self.atom_dump_text(k, vars)?
             };

@@ -345,8 +345,11 @@ pub struct Simulation {
     pub pair: Option<Box<dyn PairInteraction>>,
     /// The contact models `pair_style gran` selected.
     pub pair_selection: Option<crate::engine::granular::Selection>,
-    /// `pair_coeff * *` was given.
+    /// `pair_coeff` has set every I,I type pair.
     pub pair_coeff_set: bool,
+    /// Atom types whose I,I pair `pair_coeff` has set (index type - 1; LIGGGHTS's diagonal
+    /// setflag, which its run init requires for every type).
+    pub pair_coeff_types: Vec<bool>,
     /// `soft_particles yes` / `hard_particles yes`.
     pub soft_hard: (bool, bool),
     /// `communicate ... vel yes` (LIGGGHTS's pair gran requires it).
@@ -443,6 +446,7 @@ impl Default for Simulation {
             pair: None,
             pair_selection: None,
             pair_coeff_set: false,
+            pair_coeff_types: Vec::new(),
             soft_hard: (false, false),
             comm_vel: false,
             seed_tolerant: false,

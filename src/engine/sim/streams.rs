@@ -409,7 +409,7 @@ impl Simulation {
     }
 
     /// LIGGGHTS's check at setup: mesh triangles whose centre lies outside the box (along
-    /// directions with fixed or periodic faces) are an error.
+    /// directions with fixed or periodic faces; the faces padded by 1e-8 length) are an error.
     pub(super) fn check_meshes_in_box(&self) -> Result<(), EngineError> {
         let d = &self.domain;
         for f in &self.fixes {
@@ -427,7 +427,8 @@ impl Simulation {
                                     | crate::engine::domain::Boundary::Periodic
                             )
                         });
-                        fixed && !(c >= d.lo[k] && c < d.hi[k])
+                        // LIGGGHTS pads the box faces by SMALL_DMBRDR against round-off
+                        fixed && !(c >= d.lo[k] - 1.0e-8 && c < d.hi[k] + 1.0e-8)
                     })
                 })
                 .count();

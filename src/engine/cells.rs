@@ -175,21 +175,33 @@ impl CellGrid {
     ) -> Vec<Pair> {
         let n = x.len();
         let tasks = n.div_ceil(chunk.max(1));
+        let cols = Columns::new(x, reach);
         let mut parts: Vec<Vec<Pair>> = vec![Vec::new(); tasks];
         let slots = Shards::new(&mut parts);
+        let wide = crate::engine::contact::real::lanes_supported();
         stage(tasks, true, |c| {
             // SAFETY: each task fills its own slot
             let slot = unsafe { slots.range(c..c + 1) };
             slot[0] = {
-                let mut out = Vec::new();
+                let range = c * chunk..((c + 1) * chunk).min(n);
+                // room for a settled bed's listed partners (about six per particle), so
+                // the list seldom grows by copying
+                let mut out = Vec::with_capacity(8 * range.len());
                 // particles sorted by cell: neighbours share their cell's stencil
                 let mut stencil = Stencil::default();
-                for i in c * chunk..((c + 1) * chunk).min(n) {
+                for i in range {
                     let cell = self.coords(&x[i]);
                     if stencil.cell != Some(cell) {
                         self.stencil(cell, start, &mut stencil);
                     }
-                    partners(i, x, reach, skin, &stencil, &mut out);
+                    #[cfg(target_arch = "x86_64")]
+                    if wide {
+                        // SAFETY: the processor has AVX2 (checked at run time)
+                        unsafe { partners_avx2(i, &cols, skin, &stencil, &mut out) };
+                        continue;
+                    }
+                    let _ = wide;
+                    partners(i, &cols, skin, &stencil, &mut out);
                 }
                 out
             };
@@ -206,33 +218,44 @@ impl CellGrid {
     fn stencil(&self, c: [usize; 3], start: &[u32], stencil: &mut Stencil) {
         stencil.cell = Some(c);
         stencil.len = 0;
-        for dz in -1i64..=1 {
-            for dy in -1i64..=1 {
-                for dx in -1i64..=1 {
-                    let mut cell = [0usize; 3];
-                    let mut shift = [0.0; 3];
-                    let mut outside = false;
-                    for (d, off) in [dx, dy, dz].into_iter().enumerate() {
-                        let k = c[d] as i64 + off;
-                        let m = self.n[d] as i64;
-                        if (0..m).contains(&k) {
-                            cell[d] = k as usize;
-                        } else if self.wrap[d] {
-                            cell[d] = k.rem_euclid(m) as usize;
-                            shift[d] = if k < 0 {
-                                -self.length[d]
-                            } else {
-                                self.length[d]
-                            };
-                        } else {
-                            outside = true;
+        // per axis, the cells at offsets -1, 0, +1 that exist: (index, periodic shift)
+        let mut along = [[(0usize, 0.0f64); 3]; 3];
+        let mut count = [0usize; 3];
+        for d in 0..3 {
+            let m = self.n[d] as i64;
+            for o in -1i64..=1 {
+                let k = c[d] as i64 + o;
+                let cell = if (0..m).contains(&k) {
+                    (k as usize, 0.0)
+                } else if self.wrap[d] {
+                    let shift = if k < 0 {
+                        -self.length[d]
+                    } else {
+                        self.length[d]
+                    };
+                    (k.rem_euclid(m) as usize, shift)
+                } else {
+                    continue;
+                };
+                along[d][count[d]] = cell;
+                count[d] += 1;
+            }
+        }
+        for z in &along[2][..count[2]] {
+            for y in &along[1][..count[1]] {
+                let row = (z.0 * self.n[1] + y.0) * self.n[0];
+                for x in &along[0][..count[0]] {
+                    let f = self.rank[row + x.0] as usize;
+                    let (a, b, shift) = (start[f], start[f + 1], [x.1, y.1, z.1]);
+                    // a cell whose particles follow the previous range's with the same shift
+                    // extends it: the same partners in the same order, one loop fewer
+                    if let Some(last) = stencil.cells[..stencil.len].last_mut() {
+                        if last.1 == a && last.2 == shift {
+                            last.1 = b;
+                            continue;
                         }
                     }
-                    if outside {
-                        continue;
-                    }
-                    let f = self.ranked(cell);
-                    stencil.cells[stencil.len] = (start[f], start[f + 1], shift);
+                    stencil.cells[stencil.len] = (a, b, shift);
                     stencil.len += 1;
                 }
             }
@@ -250,31 +273,126 @@ struct Stencil {
     len: usize,
 }
 
+/// Positions (m) and reaches (m) of the particles as separate columns, so four
+/// consecutive particles load as one vector each.
+struct Columns {
+    x: Vec<f64>,
+    y: Vec<f64>,
+    z: Vec<f64>,
+    reach: Vec<f64>,
+}
+
+impl Columns {
+    fn new(x: &[[f64; 3]], reach: &[f64]) -> Columns {
+        Columns {
+            x: x.iter().map(|p| p[0]).collect(),
+            y: x.iter().map(|p| p[1]).collect(),
+            z: x.iter().map(|p| p[2]).collect(),
+            reach: reach[..x.len()].to_vec(),
+        }
+    }
+
+    /// Is j within `reach[i] + reach[j] + skin` of i, j moved by `shift`? (The arithmetic
+    /// the four-at-a-time search repeats lane by lane.)
+    #[inline(always)]
+    fn near(&self, i: usize, j: usize, shift: [f64; 3], skin: f64) -> bool {
+        let del = [
+            self.x[j] + shift[0] - self.x[i],
+            self.y[j] + shift[1] - self.y[i],
+            self.z[j] + shift[2] - self.z[i],
+        ];
+        let cut = self.reach[i] + self.reach[j] + skin;
+        del[0] * del[0] + del[1] * del[1] + del[2] * del[2] < cut * cut
+    }
+}
+
+/// The partners of i that one stencil range offers: j from `a` (but above i) to `b`.
+#[inline(always)]
+fn above(i: usize, a: u32, b: u32) -> std::ops::Range<usize> {
+    (a as usize).max(i + 1)..(b as usize).max(i + 1)
+}
+
 /// Append the partners j > i of particle i, from the stencil of its cell.
-#[inline]
-fn partners(
+fn partners(i: usize, cols: &Columns, skin: f64, stencil: &Stencil, out: &mut Vec<Pair>) {
+    for &(a, b, shift) in &stencil.cells[..stencil.len] {
+        for j in above(i, a, b) {
+            if cols.near(i, j, shift, skin) {
+                out.push(Pair {
+                    i: i as u32,
+                    j: j as u32,
+                    shift,
+                });
+            }
+        }
+    }
+}
+
+/// [`partners`] four candidates at a time (the same arithmetic per candidate, so the same
+/// list in the same order).
+///
+/// # Safety
+/// The processor must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn partners_avx2(
     i: usize,
-    x: &[[f64; 3]],
-    reach: &[f64],
+    cols: &Columns,
     skin: f64,
     stencil: &Stencil,
     out: &mut Vec<Pair>,
 ) {
-    let xi = x[i];
+    use std::arch::x86_64::*;
+    let n = cols.x.len();
+    assert!(i < n && cols.y.len() == n && cols.z.len() == n && cols.reach.len() == n);
+    let (xi, yi, zi) = (
+        _mm256_set1_pd(cols.x[i]),
+        _mm256_set1_pd(cols.y[i]),
+        _mm256_set1_pd(cols.z[i]),
+    );
+    let base = _mm256_set1_pd(cols.reach[i]);
+    let skin4 = _mm256_set1_pd(skin);
     for &(a, b, shift) in &stencil.cells[..stencil.len] {
-        let (a, b) = (a as usize, b as usize);
-        if b <= i + 1 {
-            continue;
+        let range = above(i, a, b);
+        let end = range.end.min(n);
+        let (sx, sy, sz) = (
+            _mm256_set1_pd(shift[0]),
+            _mm256_set1_pd(shift[1]),
+            _mm256_set1_pd(shift[2]),
+        );
+        let mut j = range.start;
+        while j + 4 <= end {
+            // SAFETY: j + 3 < end <= n, the columns' length
+            let (x, y, z, r) = unsafe {
+                (
+                    _mm256_loadu_pd(cols.x.as_ptr().add(j)),
+                    _mm256_loadu_pd(cols.y.as_ptr().add(j)),
+                    _mm256_loadu_pd(cols.z.as_ptr().add(j)),
+                    _mm256_loadu_pd(cols.reach.as_ptr().add(j)),
+                )
+            };
+            let dx = _mm256_sub_pd(_mm256_add_pd(x, sx), xi);
+            let dy = _mm256_sub_pd(_mm256_add_pd(y, sy), yi);
+            let dz = _mm256_sub_pd(_mm256_add_pd(z, sz), zi);
+            let cut = _mm256_add_pd(_mm256_add_pd(base, r), skin4);
+            let rsq = _mm256_add_pd(
+                _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)),
+                _mm256_mul_pd(dz, dz),
+            );
+            let mut mask =
+                _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(rsq, _mm256_mul_pd(cut, cut)));
+            while mask != 0 {
+                let k = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                out.push(Pair {
+                    i: i as u32,
+                    j: (j + k) as u32,
+                    shift,
+                });
+            }
+            j += 4;
         }
-        for j in a.max(i + 1)..b {
-            let xj = x[j];
-            let del = [
-                xj[0] + shift[0] - xi[0],
-                xj[1] + shift[1] - xi[1],
-                xj[2] + shift[2] - xi[2],
-            ];
-            let cut = reach[i] + reach[j] + skin;
-            if del[0] * del[0] + del[1] * del[1] + del[2] * del[2] < cut * cut {
+        for j in j..end {
+            if cols.near(i, j, shift, skin) {
                 out.push(Pair {
                     i: i as u32,
                     j: j as u32,
@@ -319,6 +437,39 @@ mod tests {
         assert_eq!(pairs, grid.half_list(&sorted, &reach, 0.02, &start, 1000));
         // a periodic box too short for three cells needs the general search
         assert!(CellGrid::new(&x, 0.3, &domain).is_none());
+    }
+
+    #[test]
+    fn four_at_a_time_partner_search_lists_what_the_one_by_one_search_lists() {
+        let mut domain = Domain::default();
+        domain.boundary = parse_boundary(&["p", "p", "f"]).unwrap();
+        domain.create([0.0; 3], [1.0, 0.7, 0.5]);
+        let mut r = crate::util::random::RanPark::new(4711).unwrap();
+        let x: Vec<[f64; 3]> = (0..900)
+            .map(|_| [r.uniform(), 0.7 * r.uniform(), 0.5 * r.uniform()])
+            .collect();
+        let reach: Vec<f64> = (0..x.len()).map(|_| 0.02 + 0.02 * r.uniform()).collect();
+        let grid = CellGrid::new(&x, 0.1, &domain).unwrap();
+        let (order, start) = grid.sort(&x);
+        let sorted: Vec<[f64; 3]> = order.iter().map(|&k| x[k]).collect();
+        let reach: Vec<f64> = order.iter().map(|&k| reach[k]).collect();
+        let cols = Columns::new(&sorted, &reach);
+        let (mut one, mut four) = (Vec::new(), Vec::new());
+        let mut stencil = Stencil::default();
+        for i in 0..sorted.len() {
+            grid.stencil(grid.coords(&sorted[i]), &start, &mut stencil);
+            partners(i, &cols, 0.01, &stencil, &mut one);
+            #[cfg(target_arch = "x86_64")]
+            if is_x86_feature_detected!("avx2") {
+                // SAFETY: AVX2 checked just above
+                unsafe { partners_avx2(i, &cols, 0.01, &stencil, &mut four) };
+                continue;
+            }
+            partners(i, &cols, 0.01, &stencil, &mut four);
+        }
+        assert!(one.len() > 1000, "{} pairs", one.len());
+        assert!(one.iter().any(|p| p.shift != [0.0; 3]));
+        assert_eq!(one, four);
     }
 
     #[test]

@@ -13,6 +13,21 @@ pub struct Launch {
     _comm: Option<crate::util::comm_mpi::MpiComm>,
 }
 
+impl Launch {
+    /// The communicator of a run on more than one rank, handed to the run (None on one
+    /// process or without MPI).
+    pub fn take_comm(&mut self) -> Option<comm::RankComm> {
+        #[cfg(feature = "mpi")]
+        if self.ranks.size > 1 {
+            return self
+                ._comm
+                .take()
+                .map(|c| Box::new(crate::util::comm_mpi::SendComm(c)) as comm::RankComm);
+        }
+        None
+    }
+}
+
 /// Why this process cannot run as it was started.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum LaunchError {

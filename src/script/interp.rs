@@ -306,6 +306,15 @@ impl Interpreter {
     /// Execute one parsed command.
     pub fn execute(&mut self, cmd: &CommandLine) -> Result<(), Diagnostic> {
         let args = arg_texts(cmd);
+        if self.engine.sim.procs.nprocs > 1 {
+            if let Some(what) = crate::commands::ranks::refusal(cmd, &self.engine.sim) {
+                if self.sys.mode == Mode::Check {
+                    self.engine.diverged = true;
+                }
+                let d = Diagnostic::unsupported(crate::commands::ranks::message(&what));
+                return Err(d.at(&cmd.location));
+            }
+        }
         match cmd.name() {
             "clear" => {
                 if !args.is_empty() {

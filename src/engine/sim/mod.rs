@@ -17,6 +17,7 @@ mod meshes;
 mod neighbors;
 mod output;
 mod prepare;
+mod ranks;
 mod servo;
 mod streams;
 mod values;
@@ -397,6 +398,8 @@ pub struct Simulation {
     pub(crate) stats: RunStats,
     /// How the pair pass adds contributions (set at each list build).
     pub(crate) sum_order: crate::engine::neighbor::SumOrder,
+    /// The ranks of a run on more than one MPI rank (None: one process).
+    pub comm: Option<crate::util::comm::RankComm>,
 }
 
 impl Default for Simulation {
@@ -465,6 +468,7 @@ impl Default for Simulation {
             natoms_expected: 0,
             accel: crate::engine::accel::Accel::default(),
             sum_order: Default::default(),
+            comm: None,
             stats: RunStats::default(),
         }
     }
@@ -634,6 +638,10 @@ impl Simulation {
         out: Sink<'_>,
         vars: &mut dyn VariableSource,
     ) -> Result<(), EngineError> {
+        if self.comm.as_ref().is_some_and(|c| c.size() > 1) {
+            // each rank runs on its own thread (ranks never wait on one another's threads)
+            return self.run_ranks(nsteps, out, vars);
+        }
         self.accel.settle_threads();
         let accel = self.accel.clone();
         let team = self.accel.team();

@@ -1,7 +1,6 @@
 //! Starting under an MPI launcher (`mpirun -np N regolith ...`). A build without the `mpi`
 //! feature stops at once when the launcher started more than one rank; a build with it
-//! initialises MPI and learns the ranks (a run on more than one is refused for now, after the
-//! deck's processor grid is reported as LIGGGHTS reports it).
+//! initialises MPI and learns the ranks, and hands the communicator to the run.
 
 use crate::util::comm::{self, Ranks};
 

@@ -96,6 +96,12 @@ const THERMO: &[&str] = &[
     "zhi",
 ];
 
+/// What runs on more than one rank, as a refusal's help says it.
+pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic \
+    and fixed faces, pair_style gran, fix nve/sphere, gravity and primitive wall/gran, thermo \
+    (step, atoms, ke, ...) and dump custom; or run it as one process (with threads: -sf fast \
+    -pk fast N)";
+
 /// What of `cmd` does not run on more than one rank yet (None: it runs), as the words
 /// the refusal names: "<what> on more than one MPI rank: not supported yet".
 pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {

@@ -311,7 +311,19 @@ impl Interpreter {
                 if self.sys.mode == Mode::Check {
                     self.engine.diverged = true;
                 }
-                let d = Diagnostic::unsupported(crate::commands::ranks::message(&what));
+                let mut d = Diagnostic::unsupported(crate::commands::ranks::message(&what));
+                let procs = &self.engine.sim.procs;
+                if let Some((lines, _)) = procs.reported.first() {
+                    let said: Vec<&str> = lines.lines().map(str::trim).collect();
+                    d = d.with_help(format!(
+                        "the box is split over the {} ranks as a {}; {}",
+                        procs.nprocs,
+                        said.join(", "),
+                        crate::commands::ranks::WHAT_RUNS
+                    ));
+                } else {
+                    d = d.with_help(crate::commands::ranks::WHAT_RUNS);
+                }
                 return Err(d.at(&cmd.location));
             }
         }

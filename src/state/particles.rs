@@ -339,6 +339,25 @@ mod tests {
     use super::*;
 
     #[test]
+    fn ghosts_split_off_and_appended_come_back_unchanged() {
+        let mut p = Particles::default();
+        let k = p.extra_index("history_wall", 2);
+        for id in 1..=5 {
+            p.push(id, 1, [id as f64, 0.0, 0.0], 0.1, 2500.0);
+        }
+        p.extra[k].data = (0..10).map(f64::from).collect();
+        let before = format!("{p:?}");
+        let mut ghosts = p.split_off(3);
+        assert_eq!((p.len(), ghosts.len()), (3, 2));
+        assert_eq!(ghosts.id, vec![4, 5]);
+        assert_eq!(ghosts.extra[0].data, vec![6.0, 7.0, 8.0, 9.0]);
+        assert_eq!(p.extra[0].data.len(), 6);
+        p.append(&mut ghosts);
+        assert!(ghosts.is_empty());
+        assert_eq!(format!("{p:?}"), before);
+    }
+
+    #[test]
     fn push_remove_permute() {
         let mut p = Particles::default();
         for i in 0..4 {

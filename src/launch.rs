@@ -1,7 +1,6 @@
 //! Starting under an MPI launcher (`mpirun -np N regolith ...`). A build without the `mpi`
 //! feature stops at once when the launcher started more than one rank; a build with it
-//! initialises MPI and learns the ranks (a run on more than one is refused for now, after the
-//! deck's processor grid is reported as LIGGGHTS reports it).
+//! initialises MPI and learns the ranks, and hands the communicator to the run.
 
 use crate::util::comm::{self, Ranks};
 
@@ -11,6 +10,21 @@ pub struct Launch {
     pub ranks: Ranks,
     #[cfg(feature = "mpi")]
     _comm: Option<crate::util::comm_mpi::MpiComm>,
+}
+
+impl Launch {
+    /// The communicator of a run on more than one rank, handed to the run (None on one
+    /// process or without MPI).
+    pub fn take_comm(&mut self) -> Option<comm::RankComm> {
+        #[cfg(feature = "mpi")]
+        if self.ranks.size > 1 {
+            return self
+                ._comm
+                .take()
+                .map(|c| Box::new(crate::util::comm_mpi::SendComm(c)) as comm::RankComm);
+        }
+        None
+    }
 }
 
 /// Why this process cannot run as it was started.

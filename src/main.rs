@@ -221,8 +221,12 @@ fn run_with(opts: DeckOptions) -> ExitCode {
             }
         };
     }
-    exit(session::run_deck(&opts))
+    let comm = COMM.lock().ok().and_then(|mut c| c.take());
+    exit(session::run_deck_on(&opts, comm))
 }
+
+/// The communicator of a run on several MPI ranks (taken by the run).
+static COMM: std::sync::Mutex<Option<regolith::util::comm::RankComm>> = std::sync::Mutex::new(None);
 
 /// The MPI ranks this process is one of (set once at start).
 static RANKS: std::sync::OnceLock<Ranks> = std::sync::OnceLock::new();
@@ -258,6 +262,10 @@ fn main() -> ExitCode {
         }
     };
     let _ = RANKS.set(launch.ranks);
+    let mut launch = launch;
+    if let Ok(mut c) = COMM.lock() {
+        *c = launch.take_comm();
+    }
     // `launch` lives until `dispatch` has returned
     dispatch()
 }

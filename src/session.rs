@@ -89,37 +89,13 @@ fn check_deck_full(source: Source, opts: &DeckOptions, cwd: Option<&Path>) -> Ch
     }
     let _ = interp.run_source(source);
     let margins = std::mem::take(&mut interp.engine.sim.margin_notes);
-    let mut diagnostics = interp.diagnostics;
+    let diagnostics = interp.diagnostics;
     let reported = std::mem::take(&mut interp.engine.sim.procs.reported);
-    if opts.ranks.size > 1 {
-        diagnostics.push(many_ranks(opts.ranks.size, &reported));
-    }
     Checked {
         diagnostics,
         margins,
         grid: reported.into_iter().map(|(lines, _)| lines).collect(),
     }
-}
-
-/// The refusal of a run on more than one MPI rank, at the command that chose the grid.
-fn many_ranks(n: usize, reported: &[(String, Option<crate::error::Location>)]) -> Diagnostic {
-    let mut d = Diagnostic::unsupported(crate::util::comm::MANY_RANKS);
-    let grid = match reported.first() {
-        Some((lines, at)) => {
-            if let Some(at) = at {
-                d = d.at(at);
-            }
-            let said: Vec<&str> = lines.lines().map(str::trim).collect();
-            format!(
-                "LIGGGHTS would split the box over the {n} ranks as a {}; ",
-                said.join(", ")
-            )
-        }
-        None => String::new(),
-    };
-    d.with_help(format!(
-        "{grid}regolith runs one process (with threads: -sf fast -pk fast N); start it without mpirun"
-    ))
 }
 
 /// The exit status a list of check diagnostics leads to.
@@ -148,6 +124,12 @@ fn open_output(name: &str) -> Result<Option<Box<dyn Write>>, Diagnostic> {
 
 /// Run a deck as `liggghts -in ...` would. Problems go to standard error.
 pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
+    run_deck_on(opts, None)
+}
+
+/// [`run_deck`] as one of `opts.ranks.size` ranks joined by `comm` (None: one process).
+/// Only rank 0 writes to the screen, the log and output files.
+pub fn run_deck_on(opts: &DeckOptions, comm: Option<crate::util::comm::RankComm>) -> ExitStatus {
     // with more than one MPI rank only rank 0 speaks
     let report = |d: &Diagnostic| {
         if opts.ranks.rank == 0 {
@@ -177,15 +159,24 @@ pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
         .into_iter()
         .filter(|d| d.severity != Severity::Warning)
         .collect();
-    if opts.ranks.size > 1 {
-        // on more than one rank: rank 0 reports the grid as LIGGGHTS would, then the refusal
+    if opts.ranks.size > 1 && (comm.is_none() || !problems.is_empty()) {
+        // on more than one rank: rank 0 reports the grid as LIGGGHTS would, then the refusals
         if opts.ranks.rank == 0 {
             print!("{}", checked.grid.concat());
             for d in &problems {
                 report(d);
             }
+            if comm.is_none() {
+                report(&Diagnostic::unsupported(format!(
+                    "this run {}",
+                    crate::util::comm::MANY_RANKS
+                )));
+            }
         }
-        return status_of(&problems);
+        return match status_of(&problems) {
+            ExitStatus::Success => ExitStatus::Unsupported,
+            other => other,
+        };
     }
     if !problems.is_empty() {
         for d in &problems {
@@ -199,7 +190,9 @@ pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
         return status_of(&problems);
     }
 
+    let quiet = opts.ranks.rank > 0;
     let screen: Option<Box<dyn Write>> = match opts.screen.as_deref() {
+        _ if quiet => None,
         None => Some(Box::new(std::io::stdout())),
         Some(name) => match open_output(name) {
             Ok(s) => s,
@@ -210,7 +203,12 @@ pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
         },
     };
     let (observer, screen) = crate::progress::attach(screen);
-    let log = match open_output(opts.log.as_deref().unwrap_or("log.liggghts")) {
+    let log_name = if quiet {
+        "none"
+    } else {
+        opts.log.as_deref().unwrap_or("log.liggghts")
+    };
+    let log = match open_output(log_name) {
         Ok(l) => l,
         Err(d) => {
             report(&d);
@@ -237,6 +235,9 @@ pub fn run_deck(opts: &DeckOptions) -> ExitStatus {
     interp.engine.sim.accel.fast = opts.fast;
     interp.engine.sim.accel.ask_threads(opts.threads);
     interp.engine.sim.observer = observer;
+    interp.engine.sim.procs.nprocs = opts.ranks.size as i64;
+    interp.engine.sim.procs.procs_per_node = opts.ranks.per_node as i64;
+    interp.engine.sim.comm = comm;
     for (name, values) in &opts.vars {
         if let Err(d) = interp.set_command_line_variable(name, values) {
             report(&d);

@@ -1,6 +1,7 @@
 //! Running under MPI: the processor grid LIGGGHTS 3.8.0 chooses for N ranks (measured with
 //! Debian's liggghts under `mpirun -np N`), the `processors` command's errors, and the
-//! refusal of a run on more than one rank (with and without MPI in the build).
+//! refusals on more than one rank (with and without MPI in the build), and a run under
+//! `mpirun` with MPI built in.
 
 use regolith::cli::DeckOptions;
 use regolith::error::{Diagnostic, Severity};
@@ -779,8 +780,9 @@ fn processors_errors_are_liggghts_words() {
 }
 
 #[test]
-fn a_check_on_many_ranks_reports_the_grid_and_refuses() {
+fn a_check_on_many_ranks_reports_the_grid_and_refuses_what_does_not_run() {
     let opts = DeckOptions {
+        fast: true,
         ranks: Ranks {
             size: 4,
             rank: 0,
@@ -788,19 +790,18 @@ fn a_check_on_many_ranks_reports_the_grid_and_refuses() {
         },
         ..DeckOptions::default()
     };
-    let d = regolith::session::check_deck(
-        Source::from_text(
-            "in.deck",
-            &deck([10.0, 1.0, 1.0], "processors 2 * *"),
-            false,
-        ),
-        &opts,
-    );
+    let text = deck([10.0, 1.0, 1.0], "processors 2 * *");
+    let check = |text: &str| {
+        regolith::session::check_deck(Source::from_text("in.deck", text, false), &opts)
+    };
+    // the set-up runs on ranks
+    assert!(check(&text).is_empty());
+    let d = check(&format!("{text}compute c all ke/atom\n"));
     assert_eq!(d.len(), 1, "{d:?}");
     assert_eq!(d[0].severity, Severity::Unsupported);
     let line = d[0].one_line();
     assert!(
-        line.starts_with("in.deck:9: runs on more than one MPI rank: not supported yet"),
+        line.starts_with("in.deck:10: compute on more than one MPI rank: not supported yet"),
         "{line}"
     );
     assert!(
@@ -887,11 +888,61 @@ fn a_build_without_mpi_stops_under_mpirun() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// With MPI built in: `mpirun -np 2` reports LIGGGHTS's grid on rank 0, then refuses on every
-/// rank (run and check alike), writing no log.
+/// A bed of about 250 spheres settling on a floor, periodic in x and y (as tests/ranks.rs).
+#[cfg(feature = "mpi")]
+const BED: &str = "\
+atom_style granular
+atom_modify map array
+boundary p p f
+newton off
+communicate single vel yes
+units si
+processors * * *
+region reg block 0 0.01488 0 0.01488 0 0.02 units box
+create_box 1 reg
+neighbor 0.0005 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.2
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.8
+fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.3
+pair_style gran model hertz tangential history rolling_friction cdt
+pair_coeff * *
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+lattice sc 0.00248
+region pile block 0 0.01488 0 0.01488 0.0013 0.019 units box
+create_atoms 1 region pile
+set group all diameter 0.0025 density 2500
+displace_atoms all random 0.0001 0.0001 0.0001 15485863
+velocity all set 0.01 0.0 -0.05
+fix gr all gravity 9.81 vector 0 0 -1
+fix integr all nve/sphere
+timestep 2e-6
+thermo_style custom step atoms ke
+thermo 50
+dump d all custom 25 out.dump id type x y z vx vy vz fx fy fz omegax omegay omegaz radius
+dump_modify d sort id format \"%d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"
+run 100
+run 50
+";
+
+/// The atom lines of a dump's snapshots, as numbers.
+#[cfg(feature = "mpi")]
+fn atom_rows(dump: &str) -> Vec<Vec<f64>> {
+    dump.lines()
+        .filter(|l| !l.starts_with("ITEM") && l.split_whitespace().count() > 6)
+        .map(|l| l.split_whitespace().map(|w| w.parse().unwrap()).collect())
+        .collect()
+}
+
+/// With MPI built in: `mpirun -np N` runs what runs on ranks (the same dump as one process,
+/// within 1e-10 of each column's scale), reports LIGGGHTS's grid and refuses on every rank
+/// what does not (run and check alike, writing no log), and stops with LIGGGHTS's error
+/// where LIGGGHTS finds no grid.
 #[cfg(feature = "mpi")]
 #[test]
-fn a_build_with_mpi_reports_the_grid_then_refuses() {
+fn a_build_with_mpi_runs_on_ranks_and_refuses_the_rest() {
     if std::process::Command::new("mpirun")
         .arg("--version")
         .output()
@@ -903,11 +954,6 @@ fn a_build_with_mpi_reports_the_grid_then_refuses() {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join(format!("regolith-mpi-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(
-        dir.join("in.deck"),
-        deck([10.0, 1.0, 1.0], "processors 2 * *"),
-    )
-    .unwrap();
     let bin = env!("CARGO_BIN_EXE_regolith");
     let mpirun = |np: &str, args: &[&str]| {
         std::process::Command::new("mpirun")
@@ -917,7 +963,55 @@ fn a_build_with_mpi_reports_the_grid_then_refuses() {
             .output()
             .expect("mpirun runs")
     };
-    let out = mpirun("4", &["-in", "in.deck"]);
+    // the bed on one process and on 2 and 3 ranks
+    std::fs::write(dir.join("in.bed"), BED).unwrap();
+    let out = std::process::Command::new(bin)
+        .args(["-sf", "fast", "-in", "in.bed", "-log", "none"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let serial = atom_rows(&std::fs::read_to_string(dir.join("out.dump")).unwrap());
+    assert_eq!(serial.len(), 7 * 252);
+    for np in ["2", "3"] {
+        std::fs::remove_file(dir.join("out.dump")).unwrap();
+        let out = mpirun(np, &["-sf", "fast", "-in", "in.bed", "-log", "none"]);
+        let so = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{so}{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(
+            so.contains(&format!("on {np} procs for 50 steps with 252 atoms")),
+            "{so}"
+        );
+        let ranks = atom_rows(&std::fs::read_to_string(dir.join("out.dump")).unwrap());
+        assert_eq!(ranks.len(), serial.len());
+        for c in 0..serial[0].len() {
+            let scale = serial.iter().map(|r| r[c].abs()).fold(0.0, f64::max);
+            for (a, b) in serial.iter().zip(&ranks) {
+                assert!(
+                    (a[c] - b[c]).abs() <= 1e-10 * scale,
+                    "{np} ranks, column {c}"
+                );
+            }
+        }
+    }
+    // a command that does not run on ranks
+    std::fs::write(
+        dir.join("in.deck"),
+        format!(
+            "{}compute c all ke/atom\n",
+            deck([10.0, 1.0, 1.0], "processors 2 * *")
+        ),
+    )
+    .unwrap();
+    let out = mpirun("4", &["-sf", "fast", "-in", "in.deck"]);
     let (so, se) = (
         String::from_utf8_lossy(&out.stdout),
         String::from_utf8_lossy(&out.stderr),
@@ -925,18 +1019,18 @@ fn a_build_with_mpi_reports_the_grid_then_refuses() {
     assert_ne!(out.status.code(), Some(0));
     assert_eq!(so, "  2 by 2 by 1 MPI processor grid\n");
     assert_eq!(
-        se.matches("runs on more than one MPI rank: not supported yet")
+        se.matches("compute on more than one MPI rank: not supported yet")
             .count(),
         1,
         "{se}"
     );
     assert!(!dir.join("log.liggghts").exists());
-    let out = mpirun("4", &["check", "in.deck"]);
+    let out = mpirun("4", &["check", "in.deck", "-sf", "fast"]);
     let so = String::from_utf8_lossy(&out.stdout);
     assert_ne!(out.status.code(), Some(0));
     assert!(so.contains("as a 2 by 2 by 1 MPI processor grid"), "{so}");
     // LIGGGHTS's error on 3 ranks
-    let out = mpirun("3", &["-in", "in.deck"]);
+    let out = mpirun("3", &["-sf", "fast", "-in", "in.deck"]);
     let se = String::from_utf8_lossy(&out.stderr);
     assert!(
         se.contains("ERROR: Could not create 3d grid of processors"),

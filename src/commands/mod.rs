@@ -23,6 +23,7 @@ pub mod material_check;
 pub mod names;
 pub mod out_of_scope;
 pub mod processors;
+pub mod ranks;
 pub mod read_dump;
 pub mod region_tet;
 pub mod registry;

@@ -306,6 +306,27 @@ impl Interpreter {
     /// Execute one parsed command.
     pub fn execute(&mut self, cmd: &CommandLine) -> Result<(), Diagnostic> {
         let args = arg_texts(cmd);
+        if self.engine.sim.procs.nprocs > 1 {
+            if let Some(what) = crate::commands::ranks::refusal(cmd, &self.engine.sim) {
+                if self.sys.mode == Mode::Check {
+                    self.engine.diverged = true;
+                }
+                let mut d = Diagnostic::unsupported(crate::commands::ranks::message(&what));
+                let procs = &self.engine.sim.procs;
+                if let Some((lines, _)) = procs.reported.first() {
+                    let said: Vec<&str> = lines.lines().map(str::trim).collect();
+                    d = d.with_help(format!(
+                        "the box is split over the {} ranks as a {}; {}",
+                        procs.nprocs,
+                        said.join(", "),
+                        crate::commands::ranks::WHAT_RUNS
+                    ));
+                } else {
+                    d = d.with_help(crate::commands::ranks::WHAT_RUNS);
+                }
+                return Err(d.at(&cmd.location));
+            }
+        }
         match cmd.name() {
             "clear" => {
                 if !args.is_empty() {

@@ -241,6 +241,55 @@ impl Particles {
         }
     }
 
+    /// Split off the particles from index `n` on (e.g. the ghosts after the owned ones),
+    /// with their extra arrays; `self` keeps the first `n`.
+    pub fn split_off(&mut self, n: usize) -> Particles {
+        Particles {
+            id: self.id.split_off(n),
+            kind: self.kind.split_off(n),
+            mask: self.mask.split_off(n),
+            x: self.x.split_off(n),
+            v: self.v.split_off(n),
+            f: self.f.split_off(n),
+            omega: self.omega.split_off(n),
+            torque: self.torque.split_off(n),
+            radius: self.radius.split_off(n),
+            mass: self.mass.split_off(n),
+            density: self.density.split_off(n),
+            image: self.image.split_off(n),
+            extra: self
+                .extra
+                .iter_mut()
+                .map(|e| PerAtom {
+                    name: e.name.clone(),
+                    width: e.width,
+                    data: e.data.split_off(n * e.width),
+                    fill: e.fill.clone(),
+                })
+                .collect(),
+        }
+    }
+
+    /// Append the particles of `other` (split off by [`Self::split_off`], so its extra
+    /// arrays are this one's, in the same order), leaving it empty.
+    pub fn append(&mut self, other: &mut Particles) {
+        self.id.append(&mut other.id);
+        self.kind.append(&mut other.kind);
+        self.mask.append(&mut other.mask);
+        self.x.append(&mut other.x);
+        self.v.append(&mut other.v);
+        self.f.append(&mut other.f);
+        self.omega.append(&mut other.omega);
+        self.torque.append(&mut other.torque);
+        self.radius.append(&mut other.radius);
+        self.mass.append(&mut other.mass);
+        self.density.append(&mut other.density);
+        self.image.append(&mut other.image);
+        for (e, o) in self.extra.iter_mut().zip(other.extra.iter_mut()) {
+            e.data.append(&mut o.data);
+        }
+    }
+
     /// Reorder every array by `order` (new index -> old index), e.g. to sort by cell.
     pub fn permute(&mut self, order: &[usize]) {
         fn apply<T: Copy>(v: &mut Vec<T>, order: &[usize]) {
@@ -288,6 +337,25 @@ impl AsRef<Particles> for Particles {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ghosts_split_off_and_appended_come_back_unchanged() {
+        let mut p = Particles::default();
+        let k = p.extra_index("history_wall", 2);
+        for id in 1..=5 {
+            p.push(id, 1, [id as f64, 0.0, 0.0], 0.1, 2500.0);
+        }
+        p.extra[k].data = (0..10).map(f64::from).collect();
+        let before = format!("{p:?}");
+        let mut ghosts = p.split_off(3);
+        assert_eq!((p.len(), ghosts.len()), (3, 2));
+        assert_eq!(ghosts.id, vec![4, 5]);
+        assert_eq!(ghosts.extra[0].data, vec![6.0, 7.0, 8.0, 9.0]);
+        assert_eq!(p.extra[0].data.len(), 6);
+        p.append(&mut ghosts);
+        assert!(ghosts.is_empty());
+        assert_eq!(format!("{p:?}"), before);
+    }
 
     #[test]
     fn push_remove_permute() {

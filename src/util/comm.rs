@@ -35,6 +35,36 @@ pub trait Comm {
     fn send_recv_bytes(&self, to: usize, from: usize, bytes: &[u8]) -> Vec<u8>;
 }
 
+impl<C: Comm + ?Sized> Comm for Box<C> {
+    fn rank(&self) -> usize {
+        (**self).rank()
+    }
+    fn size(&self) -> usize {
+        (**self).size()
+    }
+    fn barrier(&self) {
+        (**self).barrier()
+    }
+    fn all_reduce_f64(&self, values: &mut [f64], op: Reduce) {
+        (**self).all_reduce_f64(values, op)
+    }
+    fn all_reduce_i64(&self, value: i64, op: Reduce) -> i64 {
+        (**self).all_reduce_i64(value, op)
+    }
+    fn broadcast_bytes(&self, root: usize, bytes: &mut Vec<u8>) {
+        (**self).broadcast_bytes(root, bytes)
+    }
+    fn gather_bytes(&self, bytes: &[u8]) -> Option<Vec<Vec<u8>>> {
+        (**self).gather_bytes(bytes)
+    }
+    fn send_recv_bytes(&self, to: usize, from: usize, bytes: &[u8]) -> Vec<u8> {
+        (**self).send_recv_bytes(to, from, bytes)
+    }
+}
+
+/// The communicator a run on several ranks uses (MPI's world, or threads in tests).
+pub type RankComm = Box<dyn Comm + Send>;
+
 /// One process: every collective is the identity.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Single;

@@ -79,3 +79,37 @@ impl Comm for MpiComm {
         out
     }
 }
+
+/// [`MpiComm`] handed to the thread that runs a deck: MPI is called from one thread at a
+/// time (the run's), never from two at once.
+pub struct SendComm(pub MpiComm);
+
+// SAFETY: the communicator is moved to the run and used by one thread at a time
+unsafe impl Send for SendComm {}
+
+impl Comm for SendComm {
+    fn rank(&self) -> usize {
+        self.0.rank()
+    }
+    fn size(&self) -> usize {
+        self.0.size()
+    }
+    fn barrier(&self) {
+        self.0.barrier()
+    }
+    fn all_reduce_f64(&self, values: &mut [f64], r: Reduce) {
+        self.0.all_reduce_f64(values, r)
+    }
+    fn all_reduce_i64(&self, value: i64, r: Reduce) -> i64 {
+        self.0.all_reduce_i64(value, r)
+    }
+    fn broadcast_bytes(&self, root: usize, bytes: &mut Vec<u8>) {
+        self.0.broadcast_bytes(root, bytes)
+    }
+    fn gather_bytes(&self, bytes: &[u8]) -> Option<Vec<Vec<u8>>> {
+        self.0.gather_bytes(bytes)
+    }
+    fn send_recv_bytes(&self, to: usize, from: usize, bytes: &[u8]) -> Vec<u8> {
+        self.0.send_recv_bytes(to, from, bytes)
+    }
+}

@@ -24,10 +24,16 @@ impl ThreadRanks {
     /// Run `work` on `n` ranks (threads) and return each rank's result, in rank order. A
     /// panic on any rank is passed on once every rank has stopped.
     pub fn run<T: Send>(n: usize, work: impl Fn(&ThreadComm) -> T + Sync) -> Vec<T> {
+        ThreadRanks::run_owned(n, |c| work(&c))
+    }
+
+    /// As [`ThreadRanks::run`], each rank given its [`ThreadComm`] to keep (e.g. to hand
+    /// to a simulation).
+    pub fn run_owned<T: Send>(n: usize, work: impl Fn(ThreadComm) -> T + Sync) -> Vec<T> {
+        // channel a -> b: its sender goes to rank a, its receiver to rank b
         let n = n.max(1);
         let mut senders: Vec<Vec<Sender<Vec<u8>>>> = (0..n).map(|_| Vec::new()).collect();
         let mut receivers: Vec<Vec<Receiver<Vec<u8>>>> = (0..n).map(|_| Vec::new()).collect();
-        // channel a -> b: its sender goes to rank a, its receiver to rank b
         for receiver in receivers.iter_mut() {
             for sender in senders.iter_mut() {
                 let (tx, rx) = channel();
@@ -45,7 +51,7 @@ impl ThreadRanks {
         std::thread::scope(|s| {
             let handles: Vec<_> = comms
                 .into_iter()
-                .map(|c| s.spawn(move || work(&c)))
+                .map(|c| s.spawn(move || work(c)))
                 .collect();
             let results: Vec<_> = handles.into_iter().map(|h| h.join()).collect();
             results

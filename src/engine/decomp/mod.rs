@@ -2,8 +2,9 @@
 //! rank owns the particles in its sub-domain of the box, keeps copies (ghosts) of the
 //! particles within the ghost cutoff of it, refreshes them every step and sends the
 //! forces computed on ghosts back to their owners. Written over [`crate::util::comm::Comm`],
-//! so the same code runs on one process, under MPI, or on threads in tests. Not yet used by
-//! runs: a run on more than one rank is still refused.
+//! so the same code runs on one process, under MPI, or on threads in tests. Runs on more
+//! than one rank use it (`engine::sim` ranks module) with LIGGGHTS's granular `newton off`
+//! pairs, so they need no reverse communication.
 //!
 //! A step on several ranks: wrap positions into the periodic box, write the pair list's
 //! contact history into the particles' partner lists ([`PartnerHistory::from_pairs`]),

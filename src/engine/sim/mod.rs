@@ -18,6 +18,7 @@ mod meshes;
 mod neighbors;
 mod output;
 mod prepare;
+mod ranks;
 mod run;
 mod servo;
 mod streams;
@@ -402,6 +403,8 @@ pub struct Simulation {
     pub(crate) stats: RunStats,
     /// How the pair pass adds contributions (set at each list build).
     pub(crate) sum_order: crate::engine::neighbor::SumOrder,
+    /// The ranks of a run on more than one MPI rank (None: one process).
+    pub comm: Option<crate::util::comm::RankComm>,
 }
 
 impl Default for Simulation {
@@ -471,6 +474,7 @@ impl Default for Simulation {
             natoms_expected: 0,
             accel: crate::engine::accel::Accel::default(),
             sum_order: Default::default(),
+            comm: None,
             stats: RunStats::default(),
         }
     }

@@ -1,0 +1,182 @@
+//! What runs on more than one MPI rank (the first slice of the domain decomposition): a box
+//! with periodic and fixed faces, particles from `create_atoms`, `read_data` or
+//! `read_restart` (set-up commands run identically on every rank), `pair_style gran`,
+//! `fix nve/sphere`, `nve`, `gravity`, primitive `wall/gran` and `property/global`, `thermo`
+//! with the keywords below, and `dump custom`, on the fast path. Everything else is refused
+//! by name before anything runs.
+
+use crate::commands::CommandLine;
+use crate::engine::sim::Simulation;
+
+/// Commands that run as they do on one process (set-up, script and output settings).
+const COMMANDS: &[&str] = &[
+    "atom_style",
+    "atom_modify",
+    "units",
+    "newton",
+    "communicate",
+    "comm_modify",
+    "processors",
+    "region",
+    "create_box",
+    "create_atoms",
+    "read_data",
+    "read_restart",
+    "lattice",
+    "mass",
+    "set",
+    "group",
+    "velocity",
+    "displace_atoms",
+    "delete_atoms",
+    "neighbor",
+    "neigh_modify",
+    "pair_style",
+    "pair_coeff",
+    "fix",
+    "unfix",
+    "timestep",
+    "thermo",
+    "thermo_style",
+    "thermo_modify",
+    "dump",
+    "dump_modify",
+    "undump",
+    "run",
+    "reset_timestep",
+    "hard_particles",
+    "soft_particles",
+    "suffix",
+    "package",
+    "echo",
+    "if",
+    "include",
+    "jump",
+    "label",
+    "next",
+    "print",
+    "quit",
+    "variable",
+    "dimension",
+    "boundary",
+];
+
+/// Fix styles that run on ranks.
+const FIXES: &[&str] = &[
+    "nve/sphere",
+    "nve",
+    "gravity",
+    "wall/gran",
+    "property/global",
+];
+
+/// Thermo keywords evaluated from the particles alone (gathered on rank 0).
+const THERMO: &[&str] = &[
+    "step",
+    "elapsed",
+    "elaplong",
+    "dt",
+    "time",
+    "cpu",
+    "tpcpu",
+    "spcpu",
+    "cpuremain",
+    "atoms",
+    "ke",
+    "temp",
+    "vol",
+    "lx",
+    "ly",
+    "lz",
+    "xlo",
+    "xhi",
+    "ylo",
+    "yhi",
+    "zlo",
+    "zhi",
+];
+
+/// What runs on more than one rank, as a refusal's help says it.
+pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic \
+    and fixed faces, pair_style gran, fix nve/sphere, gravity and primitive wall/gran, thermo \
+    (step, atoms, ke, ...) and dump custom; or run it as one process (with threads: -sf fast \
+    -pk fast N)";
+
+/// What of `cmd` does not run on more than one rank yet (None: it runs), as the words
+/// the refusal names: "<what> on more than one MPI rank: not supported yet".
+pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
+    let name = cmd.name();
+    let args: Vec<&str> = (0..cmd.nargs()).filter_map(|i| cmd.arg(i)).collect();
+    if !COMMANDS.contains(&name) {
+        return Some(name.to_string());
+    }
+    match name {
+        "fix" => {
+            let style = *args.get(2)?;
+            if !FIXES.contains(&style) {
+                return Some(format!("fix {style}"));
+            }
+            if style == "wall/gran" && !args.contains(&"primitive") {
+                return Some("fix wall/gran with a mesh".into());
+            }
+            None
+        }
+        "pair_style" => match args.first() {
+            Some(&"gran") => None,
+            Some(s) => Some(format!("pair_style {s}")),
+            None => None,
+        },
+        "dump" => match args.get(2) {
+            Some(&"custom") => {
+                let columns = args.get(5..).unwrap_or(&[]);
+                let derived = columns
+                    .iter()
+                    .find(|c| c.starts_with("c_") || c.starts_with("f_") || c.starts_with("v_"));
+                derived.map(|c| format!("dump custom column {c}"))
+            }
+            Some(s) => Some(format!("dump {s}")),
+            None => None,
+        },
+        "thermo_style" => {
+            let keywords = match args.first() {
+                Some(&"custom") => &args[1..],
+                Some(&"one") => &[][..],
+                Some(s) => return Some(format!("thermo_style {s}")),
+                None => return None,
+            };
+            keywords
+                .iter()
+                .find(|k| !THERMO.contains(k))
+                .map(|k| format!("thermo keyword {k}"))
+        }
+        "boundary" => args
+            .iter()
+            .find(|b| b.contains(['s', 'm']))
+            .map(|b| format!("boundary {b} (shrink-wrapped faces)")),
+        "dimension" => (args.first() != Some(&"3")).then(|| "dimension 2".to_string()),
+        "neigh_modify" => args
+            .iter()
+            .find(|w| **w == "exclude")
+            .map(|_| "neigh_modify exclude".to_string()),
+        "print" => args
+            .iter()
+            .find(|w| matches!(**w, "file" | "append" | "universe"))
+            .map(|w| format!("print {w}")),
+        "run" => {
+            if !sim.accel.fast {
+                return Some("run on the exact path (add -sf fast)".into());
+            }
+            if args.contains(&"every") {
+                return Some("run every".into());
+            }
+            let pre_no = args.windows(2).any(|w| w == ["pre", "no"]);
+            pre_no.then(|| "run pre no".to_string())
+        }
+        _ => None,
+    }
+}
+
+/// The full refusal message of what [`refusal`] names.
+pub fn message(what: &str) -> String {
+    format!("{what} on more than one MPI rank")
+}

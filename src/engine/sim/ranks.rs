@@ -1,0 +1,588 @@
+//! Runs on more than one MPI rank (the first slice of the domain decomposition, fast path
+//! only). Each rank owns the particles of its brick of the box (LIGGGHTS's `processors`
+//! grid) and keeps ghost copies of the particles within the ghost cutoff of it. Pairs
+//! follow LIGGGHTS's granular `newton off` rule: a rank computes every pair with at least
+//! one particle it owns, so a pair of an owned particle and a ghost is computed on both
+//! ranks, each keeping its own copy of the contact history; forces reach owned particles
+//! without reverse communication. Pairs are listed with the lower ID first and sorted by
+//! ID, so both ranks compute a pair the same way and each particle adds its contacts in
+//! the order of its partners' IDs, whatever the rank count.
+//!
+//! Every step the ghosts' positions and velocities are refreshed (forward communication);
+//! at each neighbour-list build particles are wrapped into the box, migrate with their
+//! contact history and per-atom fix state, and the ghosts are made again. Thermo and dumps
+//! see every rank's particles gathered on rank 0 (in rank order, as LIGGGHTS gathers a
+//! dump); at the end of a run every rank gets the whole set back in the exact path's order
+//! with the contact history, so the commands between runs act identically on every rank.
+
+use super::*;
+use crate::engine::accel::ORDER_ARRAY;
+use crate::engine::decomp::pack::{pack_particle, unpack_particle, Reader, Writer};
+use crate::engine::decomp::{borders, forward, migrate, Decomposition, GhostPlan, Halo};
+use crate::engine::decomp::{DecompError, PartnerHistory};
+use crate::engine::neighbor::SumOrder;
+use crate::engine::particles::PerAtom;
+use crate::engine::restart_state::PendingHistory;
+use crate::util::comm::{Comm, RankComm, Reduce};
+
+/// This rank's part of a run on several ranks.
+struct RankState {
+    /// The bricks.
+    dec: Decomposition,
+    /// How far ghosts reach.
+    halo: Halo,
+    /// The ghost swaps of the last build.
+    plan: GhostPlan,
+    /// Owned particles (the ghosts follow them in the particle arrays).
+    nlocal: usize,
+    /// Pairs with at least one owned particle, the lower ID first, sorted by ID.
+    pairs: Vec<Pair>,
+    /// Their contact history (`flips.len()` values per pair, seen from the first particle).
+    history: Vec<f64>,
+    /// Which history values change sign seen from the other particle.
+    flips: Vec<bool>,
+    /// Owned positions at the last build (length).
+    built: Vec<[f64; 3]>,
+    /// Steps since the last build.
+    ago: u64,
+    /// Builds so far (walls refresh their own lists with it).
+    builds: u64,
+}
+
+impl From<DecompError> for EngineError {
+    fn from(e: DecompError) -> Self {
+        EngineError::Invalid(e.to_string())
+    }
+}
+
+/// Every pair closer than the radii plus `skin` with at least one owned particle (below
+/// `nlocal`): owned pairs once, an owned particle and a ghost once; the lower ID first (an
+/// owned particle before its own periodic image), sorted by the two IDs, then by the
+/// positions' bits (images of one partner).
+fn rank_pairs(p: &Particles, nlocal: usize, skin: f64) -> Vec<Pair> {
+    let n = p.len();
+    if nlocal == 0 {
+        return Vec::new();
+    }
+    let rmax = p.radius.iter().copied().fold(0.0, f64::max);
+    let cell = (2.0 * rmax + skin).max(f64::MIN_POSITIVE);
+    let mut lo = [f64::INFINITY; 3];
+    for x in &p.x {
+        for d in 0..3 {
+            lo[d] = lo[d].min(x[d]);
+        }
+    }
+    let key = |x: &[f64; 3]| [0, 1, 2].map(|d| ((x[d] - lo[d]) / cell).floor() as i64);
+    let mut bins: std::collections::HashMap<[i64; 3], Vec<usize>> =
+        std::collections::HashMap::new();
+    for (j, x) in p.x.iter().enumerate() {
+        bins.entry(key(x)).or_default().push(j);
+    }
+    let mut pairs = Vec::new();
+    for i in 0..nlocal {
+        let c = key(&p.x[i]);
+        for m in 0..27 {
+            let at = [c[0] + m % 3 - 1, c[1] + (m / 3) % 3 - 1, c[2] + m / 9 - 1];
+            let Some(list) = bins.get(&at) else { continue };
+            for &j in list {
+                if j == i || (j < nlocal && j < i) || j >= n {
+                    continue;
+                }
+                let d = [0, 1, 2].map(|k| p.x[i][k] - p.x[j][k]);
+                let cut = p.radius[i] + p.radius[j] + skin;
+                if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cut * cut {
+                    let (a, b) = if p.id[j] < p.id[i] { (j, i) } else { (i, j) };
+                    pairs.push(Pair {
+                        i: a as u32,
+                        j: b as u32,
+                        shift: [0.0; 3],
+                    });
+                }
+            }
+        }
+    }
+    let order = |q: &Pair| {
+        let (a, b) = (q.i as usize, q.j as usize);
+        (
+            p.id[a],
+            p.id[b],
+            p.x[b].map(f64::to_bits),
+            p.x[a].map(f64::to_bits),
+        )
+    };
+    pairs.sort_by_key(order);
+    pairs
+}
+
+/// Does listed `pair` touch (centres closer than the radii summed)?
+fn pair_touches(p: &Particles, pair: &Pair) -> bool {
+    let (i, j) = (pair.i as usize, pair.j as usize);
+    let d = [0, 1, 2].map(|c| p.x[i][c] - p.x[j][c]);
+    let radsum = p.radius[i] + p.radius[j];
+    d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < radsum * radsum
+}
+
+/// No particles, with the per-atom arrays of `like`.
+fn empty_like(like: &Particles) -> Particles {
+    Particles {
+        extra: like
+            .extra
+            .iter()
+            .map(|e| PerAtom {
+                name: e.name.clone(),
+                width: e.width,
+                data: Vec::new(),
+                fill: e.fill.clone(),
+            })
+            .collect(),
+        ..Particles::default()
+    }
+}
+
+impl Simulation {
+    /// `run N` on more than one rank (see the module's description).
+    pub(super) fn run_ranks(
+        &mut self,
+        nsteps: i64,
+        out: Sink<'_>,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        let comm = self.comm.take().ok_or("no ranks to run on")?;
+        let result = self.run_ranks_with(&comm, nsteps, out, vars);
+        self.comm = Some(comm);
+        result
+    }
+
+    fn run_ranks_with(
+        &mut self,
+        comm: &RankComm,
+        nsteps: i64,
+        out: Sink<'_>,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        if !self.domain.exists {
+            return Err("Run command before simulation box is defined".into());
+        }
+        self.init_pair()?;
+        if self.contact_factor() != 1.0 {
+            return Err(EngineError::Invalid(
+                "a wet pair model on more than one MPI rank: not supported yet".into(),
+            ));
+        }
+        let first = self.step;
+        let last = self.step + nsteps;
+        self.run_bounds = Some((
+            self.ramp_bounds.0.unwrap_or(first),
+            self.ramp_bounds.1.unwrap_or(last),
+        ));
+        self.atime_step = self.step;
+        let started = std::time::Instant::now();
+        self.neighbor.cutneighmax = self.liggghts_cutneighmax();
+        self.check_run_init()?;
+        self.setup_fix_styles();
+        self.energy_watch = None;
+        self.guard_notes = GuardNotes::default();
+        let mut st = self.rank_setup(comm)?;
+        self.rank_forces(&mut st, false);
+        self.has_run = true;
+        self.restart_in_progress = false;
+        self.restart_fixes.clear();
+        self.restart_peratom.clear();
+        self.restart_move_origins.clear();
+        self.restart_mesh_history.clear();
+        self.thermo.run_start = first;
+        self.thermo.run_last = last;
+        self.thermo.prepare_run(self.box_changes());
+        if comm.rank() == 0 {
+            self.thermo.header(out);
+        }
+        self.loop_clock = Some(std::time::Instant::now());
+        self.stats = RunStats::default();
+        self.rank_output(comm, &st, true, last, out, vars)?;
+        for _ in 0..nsteps {
+            self.step += 1;
+            let mut ghosts = self.particles.split_off(st.nlocal);
+            fixes::initial_integrate(
+                &mut self.fixes,
+                &mut self.particles,
+                self.step,
+                self.dt,
+                &self.domain,
+            );
+            self.particles.append(&mut ghosts);
+            if self.rank_decide(comm, &mut st) {
+                let hist = PartnerHistory::from_pairs(
+                    &st.pairs,
+                    &st.history,
+                    &self.particles.id,
+                    st.nlocal,
+                    &st.flips,
+                );
+                self.particles.truncate(st.nlocal);
+                self.rank_build(comm, &mut st, hist)?;
+                self.stats.builds += 1;
+            } else {
+                forward(comm, &st.dec, &st.plan, &mut self.particles, false)?;
+            }
+            self.rank_forces(&mut st, true);
+            let mut ghosts = self.particles.split_off(st.nlocal);
+            fixes::final_integrate(
+                &mut self.fixes,
+                &mut self.particles,
+                self.step,
+                self.dt,
+                &self.domain,
+            );
+            self.particles.append(&mut ghosts);
+            self.rank_output(comm, &st, false, last, out, vars)?;
+        }
+        self.run_bounds = None;
+        self.loop_clock = None;
+        self.atime += (self.step - self.atime_step) as f64 * self.dt;
+        self.atime_step = self.step;
+        let stats = self.rank_statistics(comm, &st);
+        self.rank_gather_all(comm, &st)?;
+        out(&format!(
+            "Loop time of {} on {} procs for {} steps with {} atoms\n\n",
+            crate::util::format::g(started.elapsed().as_secs_f64()),
+            comm.size(),
+            nsteps,
+            self.particles.len()
+        ));
+        out(&stats);
+        Ok(())
+    }
+
+    /// The whole set wrapped into the box on every rank, the exact order recorded, and
+    /// this rank's brick kept, with its ghosts and pair list made.
+    fn rank_setup(&mut self, comm: &RankComm) -> Result<RankState, EngineError> {
+        self.pbc_and_box()?;
+        self.natoms_expected = self.particles.len();
+        let k = self.particles.extra_index(ORDER_ARRAY, 1);
+        for (i, r) in self.particles.extra[k].data.iter_mut().enumerate() {
+            *r = (i + 1) as f64;
+        }
+        let flips = self.pair.as_ref().map_or(Vec::new(), |p| p.history_flips());
+        let mut hist = self.history_rows(flips.len());
+        let prd = [0, 1, 2].map(|d| self.domain.length(d));
+        let grid = crate::engine::procmap::choose_grid(&self.procs, prd)?;
+        if grid.procs.iter().product::<i64>() != comm.size() as i64 {
+            return Err(EngineError::Invalid(format!(
+                "the processor grid {:?} does not hold the {} ranks of the run",
+                grid.procs,
+                comm.size()
+            )));
+        }
+        let periodic = [0, 1, 2].map(|d| self.domain.periodic(d));
+        let dec = Decomposition::new(
+            &self.procs,
+            &grid,
+            comm.rank(),
+            self.domain.lo,
+            self.domain.hi,
+            periodic,
+        );
+        let remove: Vec<bool> = self.particles.x.iter().map(|x| !dec.owns(*x)).collect();
+        self.particles.retain_by(&remove);
+        for what in [&mut hist.partners as &mut dyn RetainBy, &mut hist.values] {
+            what.retain_by(&remove);
+        }
+        let mut st = RankState {
+            dec,
+            halo: Halo::granular(self.neighbor.cutneighmax, self.neighbor.skin),
+            plan: GhostPlan::default(),
+            nlocal: self.particles.len(),
+            pairs: Vec::new(),
+            history: Vec::new(),
+            flips,
+            built: Vec::new(),
+            ago: 0,
+            builds: self.list.builds,
+        };
+        self.rank_build(comm, &mut st, hist)?;
+        Ok(st)
+    }
+
+    /// The contact history of the whole set as per-particle partner lists: what
+    /// `read_restart` or the last run left (`width` values per contact).
+    fn history_rows(&mut self, width: usize) -> PartnerHistory {
+        let n = self.particles.len();
+        let mut hist = PartnerHistory::new(width, n);
+        let pending = self.pending_history.take();
+        if let Some(pending) = pending.filter(|h| h.width == width && width > 0) {
+            for (i, id) in self.particles.id.iter().enumerate() {
+                for (partner, values) in pending.partners.get(id).into_iter().flatten() {
+                    hist.insert(i, *partner, values);
+                }
+            }
+        }
+        // a fresh list; its build count goes on (walls refresh their lists by it)
+        let builds = self.list.builds;
+        self.list = crate::engine::neighbor::NeighborList::default();
+        self.list.builds = builds;
+        self.history.clear();
+        self.mirror_history.clear();
+        hist
+    }
+
+    /// A neighbour-list build on this rank: owned particles (ghosts already dropped)
+    /// wrapped into the box, those lost through fixed faces dropped, migration with the
+    /// contact history `hist` (one row per owned particle), new ghosts and pair list, and
+    /// the history taken back from the partner lists.
+    fn rank_build(
+        &mut self,
+        comm: &RankComm,
+        st: &mut RankState,
+        mut hist: PartnerHistory,
+    ) -> Result<(), EngineError> {
+        let p = &mut self.particles;
+        let mut i = 0;
+        while i < p.len() {
+            let placed = self.domain.remap(&mut p.x[i], &mut p.image[i]);
+            if !placed || !self.domain.contains(p.x[i]) {
+                p.fill_from_last(i);
+                hist.fill_from_last(i);
+            } else {
+                i += 1;
+            }
+        }
+        migrate(comm, &st.dec, p, Some(&mut hist))?;
+        st.nlocal = p.len();
+        let natoms = comm.all_reduce_i64(st.nlocal as i64, Reduce::Sum) as usize;
+        if natoms != self.natoms_expected && !self.lost_ignore {
+            return Err(EngineError::Invalid(format!(
+                "Lost atoms: original {} current {natoms}",
+                self.natoms_expected
+            )));
+        }
+        self.natoms_expected = natoms;
+        st.plan = borders(comm, &st.dec, &st.halo, p, st.nlocal)?;
+        st.pairs = rank_pairs(p, st.nlocal, self.neighbor.skin);
+        st.history = hist.to_pairs(&st.pairs, &p.id, st.nlocal, &st.flips);
+        let width = st.flips.len();
+        if width > 0 {
+            for (k, pair) in st.pairs.iter().enumerate() {
+                if !pair_touches(p, pair) {
+                    st.history[k * width..(k + 1) * width].fill(0.0);
+                }
+            }
+        }
+        st.built = p.x[..st.nlocal].to_vec();
+        st.ago = 0;
+        st.builds += 1;
+        Ok(())
+    }
+
+    /// LIGGGHTS's rebuild decision, the same on every rank: the delay and every settings,
+    /// then whether any rank's particle moved more than half the skin.
+    fn rank_decide(&mut self, comm: &RankComm, st: &mut RankState) -> bool {
+        st.ago += 1;
+        let n = &self.neighbor;
+        if st.ago < n.delay || !st.ago.is_multiple_of(n.every) {
+            return false;
+        }
+        if !n.check {
+            return true;
+        }
+        let limit = (0.5 * n.skin) * (0.5 * n.skin);
+        let x = &self.particles.x[..st.nlocal];
+        let moved = x.iter().zip(&st.built).any(|(a, b)| {
+            let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+            d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > limit
+        });
+        let rebuild = comm.all_reduce_i64(i64::from(moved), Reduce::Max) > 0;
+        if rebuild && st.ago == n.every.max(n.delay) {
+            self.stats.dangerous += 1;
+        }
+        rebuild
+    }
+
+    /// Pair forces on owned particles and ghosts (the ghosts' are not used), then the
+    /// forcing fixes on owned particles; `update` false in the setup evaluation.
+    fn rank_forces(&mut self, st: &mut RankState, update: bool) {
+        match self.pair.as_mut() {
+            Some(pair) => pair.compute(
+                &mut self.particles,
+                &st.pairs,
+                &mut st.history,
+                self.dt,
+                update,
+                None,
+                &SumOrder::ListOrder,
+                None,
+            ),
+            None => self.particles.clear_forces(),
+        }
+        let mut ghosts = self.particles.split_off(st.nlocal);
+        fixes::post_force(
+            &mut self.fixes,
+            &mut self.particles,
+            (self.step, &self.domain),
+            self.dt,
+            update,
+            (st.builds, self.neighbor.skin),
+            false,
+        );
+        self.particles.append(&mut ghosts);
+    }
+
+    /// This rank's owned particles as one message (with their contact history rows).
+    fn pack_owned(&self, st: &RankState, hist: Option<&PartnerHistory>) -> Vec<u8> {
+        let mut w = Writer::default();
+        for i in 0..st.nlocal {
+            pack_particle(&mut w, &self.particles, i, [0.0; 3], hist);
+        }
+        w.bytes
+    }
+
+    /// Thermo and dumps due at this step, written by rank 0 from every rank's particles
+    /// gathered in rank order.
+    fn rank_output(
+        &mut self,
+        comm: &RankComm,
+        st: &RankState,
+        setup: bool,
+        last: i64,
+        out: Sink<'_>,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        let step = self.step;
+        let thermo = setup || self.thermo.due(step, last);
+        let dump = setup
+            || self
+                .dumps
+                .iter()
+                .any(|d| d.every > 0 && step % d.every == 0);
+        if !thermo && !dump {
+            return Ok(());
+        }
+        let Some(all) = comm.gather_bytes(&self.pack_owned(st, None)) else {
+            return Ok(());
+        };
+        let mut full = empty_like(&self.particles);
+        for bytes in &all {
+            let mut r = Reader::new(bytes);
+            while !r.done() {
+                unpack_particle(&mut r, &mut full, None)?;
+            }
+        }
+        std::mem::swap(&mut self.particles, &mut full);
+        let mut written = || -> Result<(), EngineError> {
+            if thermo {
+                self.thermo_line(out, vars)?;
+            }
+            self.write_dumps(setup, vars)
+        };
+        let result = written();
+        std::mem::swap(&mut self.particles, &mut full);
+        result
+    }
+
+    /// The end of a run: every rank's particles and contact history on every rank, in
+    /// the exact path's order (the order record dropped), the history kept by atom ID for
+    /// the next run.
+    fn rank_gather_all(&mut self, comm: &RankComm, st: &RankState) -> Result<(), EngineError> {
+        let hist = PartnerHistory::from_pairs(
+            &st.pairs,
+            &st.history,
+            &self.particles.id,
+            st.nlocal,
+            &st.flips,
+        );
+        let mine = self.pack_owned(st, Some(&hist));
+        let mut all = comm
+            .gather_bytes(&mine)
+            .map(|v| v.concat())
+            .unwrap_or_default();
+        comm.broadcast_bytes(0, &mut all);
+        let mut full = empty_like(&self.particles);
+        let mut rows = PartnerHistory::new(hist.width, 0);
+        let mut r = Reader::new(&all);
+        while !r.done() {
+            unpack_particle(&mut r, &mut full, Some(&mut rows))?;
+        }
+        let width = hist.width;
+        if width > 0 {
+            let mut partners = std::collections::HashMap::new();
+            for (i, id) in full.id.iter().enumerate() {
+                let contacts: Vec<(i64, Vec<f64>)> = rows.partners[i]
+                    .iter()
+                    .zip(rows.values[i].chunks(width))
+                    .map(|(&p, v)| (p, v.to_vec()))
+                    .collect();
+                if !contacts.is_empty() {
+                    partners.insert(*id, contacts);
+                }
+            }
+            self.pending_history = Some(PendingHistory { width, partners });
+        }
+        if let Some(k) = full.extra.iter().position(|e| e.name == ORDER_ARRAY) {
+            let ranks = full.extra[k].data.clone();
+            let mut order: Vec<usize> = (0..ranks.len()).collect();
+            order.sort_by(|&a, &b| ranks[a].total_cmp(&ranks[b]));
+            full.permute(&order);
+            full.extra.remove(k);
+        }
+        self.particles = full;
+        self.list = crate::engine::neighbor::NeighborList::default();
+        self.list.builds = st.builds;
+        self.history.clear();
+        self.mirror_history.clear();
+        self.list_ids.clear();
+        Ok(())
+    }
+
+    /// LIGGGHTS's per-process counts after a run (ave, max, min over ranks) and the
+    /// neighbour-list figures.
+    fn rank_statistics(&self, comm: &RankComm, st: &RankState) -> String {
+        use crate::util::format::g;
+        let n = comm.size() as f64;
+        let nghost = self.particles.len() - st.nlocal;
+        let mut s = String::new();
+        let mut total_neighs = 0.0;
+        for (name, v) in [
+            ("Nlocal", st.nlocal as f64),
+            ("Nghost", nghost as f64),
+            ("Neighs", st.pairs.len() as f64),
+        ] {
+            let mut sum = [v];
+            let mut max = [v];
+            let mut min = [v];
+            comm.all_reduce_f64(&mut sum, Reduce::Sum);
+            comm.all_reduce_f64(&mut max, Reduce::Max);
+            comm.all_reduce_f64(&mut min, Reduce::Min);
+            if name == "Neighs" {
+                total_neighs = sum[0];
+            }
+            s.push_str(&format!(
+                "{name}:    {} ave {} max {} min\n",
+                g(sum[0] / n),
+                g(max[0]),
+                g(min[0])
+            ));
+        }
+        let natoms = self.natoms_expected.max(1) as f64;
+        s.push_str(&format!("\nTotal # of neighbors = {}\n", g(total_neighs)));
+        s.push_str(&format!("Ave neighs/atom = {}\n", g(total_neighs / natoms)));
+        s.push_str(&format!("Neighbor list builds = {}\n", self.stats.builds));
+        s.push_str(&format!("Dangerous builds = {}\n\n", self.stats.dangerous));
+        s
+    }
+}
+
+/// Vectors whose rows follow the particles when some are removed.
+trait RetainBy {
+    /// Remove the rows for which `remove` is true, keeping the others' order.
+    fn retain_by(&mut self, remove: &[bool]);
+}
+
+impl<T> RetainBy for Vec<T> {
+    fn retain_by(&mut self, remove: &[bool]) {
+        let mut k = 0;
+        self.retain(|_| {
+            let keep = !remove.get(k).copied().unwrap_or(false);
+            k += 1;
+            keep
+        });
+    }
+}

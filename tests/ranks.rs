@@ -1,0 +1,265 @@
+//! Runs on several ranks, in-process: N ranks are N threads joined by channels, each running
+//! the whole deck as `mpirun -np N regolith -sf fast -in deck` would. Dumps are compared with
+//! the serial fast path's (within 1e-10 of each column's scale) and between rank counts and
+//! repeated runs (bit for bit).
+
+use regolith::cli::DeckOptions;
+use regolith::error::ExitStatus;
+use regolith::util::comm::{Comm, Ranks};
+use regolith::util::comm_threads::ThreadRanks;
+
+/// About 300 spheres poured on a floor, periodic in x and y, touching when the run starts
+/// (a settling bed with contact history, friction and rolling friction).
+const BED: &str = "\
+atom_style granular
+atom_modify map array
+boundary p p f
+newton off
+communicate single vel yes
+units si
+${grid}
+region reg block 0 0.01488 0 0.01488 0 0.02 units box
+create_box 1 reg
+neighbor 0.0005 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.2
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.8
+fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.3
+pair_style gran model hertz tangential history rolling_friction cdt
+pair_coeff * *
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+lattice sc 0.00248
+region pile block 0 0.01488 0 0.01488 0.0013 0.019 units box
+create_atoms 1 region pile
+set group all diameter 0.0025 density 2500
+displace_atoms all random 0.0001 0.0001 0.0001 15485863
+velocity all set 0.01 0.0 -0.05
+fix gr all gravity 9.81 vector 0 0 -1
+fix integr all nve/sphere
+timestep 2e-6
+thermo_style custom step atoms ke
+thermo 50
+dump d all custom 25 ${out} id type x y z vx vy vz fx fy fz omegax omegay omegaz radius
+dump_modify d sort id format \"%d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"
+run 100
+run 50
+";
+
+fn scratch(tag: &str) -> std::path::PathBuf {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-ranks-{}-{tag}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn options(deck: &std::path::Path, dump: &std::path::Path, grid: &str, size: usize) -> DeckOptions {
+    DeckOptions {
+        input: Some(deck.to_string_lossy().into_owned()),
+        vars: vec![
+            ("out".into(), vec![dump.to_string_lossy().into_owned()]),
+            ("grid".into(), vec![grid.into()]),
+        ],
+        log: Some("none".into()),
+        screen: Some("none".into()),
+        fast: true,
+        threads: Some(1),
+        ranks: Ranks {
+            size,
+            rank: 0,
+            per_node: size,
+        },
+        ..DeckOptions::default()
+    }
+}
+
+/// The dump of `deck` run on `n` ranks (0: the serial fast path) with `processors` line
+/// `grid` (may be empty).
+fn dump_of(deck: &str, n: usize, grid: &str, tag: &str) -> String {
+    let dir = scratch(tag);
+    let path = dir.join("in.deck");
+    std::fs::write(&path, deck).unwrap();
+    let dump = dir.join("out.dump");
+    let status = if n == 0 {
+        vec![regolith::session::run_deck(&options(&path, &dump, grid, 1))]
+    } else {
+        ThreadRanks::run_owned(n, |c| {
+            let mut o = options(&path, &dump, grid, n);
+            o.ranks.rank = c.rank();
+            regolith::session::run_deck_on(&o, Some(Box::new(c)))
+        })
+    };
+    assert!(
+        status.iter().all(|s| *s == ExitStatus::Success),
+        "{tag}: {status:?}"
+    );
+    let text = std::fs::read_to_string(&dump).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    text
+}
+
+/// Per snapshot, the atom lines as numbers.
+fn snapshots(dump: &str) -> Vec<Vec<Vec<f64>>> {
+    let mut out = Vec::new();
+    let mut lines = dump.lines().peekable();
+    while let Some(l) = lines.next() {
+        if l.starts_with("ITEM: ATOMS") {
+            let mut rows = Vec::new();
+            while let Some(r) = lines.peek() {
+                if r.starts_with("ITEM:") {
+                    break;
+                }
+                rows.push(r.split_whitespace().map(|w| w.parse().unwrap()).collect());
+                lines.next();
+            }
+            out.push(rows);
+        }
+    }
+    out
+}
+
+/// The largest difference between two dumps in units of each column's scale (its largest
+/// magnitude in the snapshot).
+fn worst_difference(a: &str, b: &str) -> f64 {
+    let (sa, sb) = (snapshots(a), snapshots(b));
+    assert_eq!(sa.len(), sb.len(), "snapshot counts");
+    let mut worst: f64 = 0.0;
+    for (ra, rb) in sa.iter().zip(&sb) {
+        assert_eq!(ra.len(), rb.len(), "atom counts");
+        let cols = ra.first().map_or(0, Vec::len);
+        for c in 0..cols {
+            let scale = ra.iter().map(|r| r[c].abs()).fold(0.0, f64::max);
+            for (x, y) in ra.iter().zip(rb) {
+                assert_eq!(x[0], y[0], "atom IDs in order");
+                if scale > 0.0 {
+                    worst = worst.max((x[c] - y[c]).abs() / scale);
+                }
+            }
+        }
+    }
+    worst
+}
+
+/// `deck` on the serial fast path and on the rank grids `grids` ((ranks, processors line)):
+/// every rank run within 1e-10 of each column's scale of the serial dump, and the dumps
+/// of the rank runs (the first one twice).
+fn on_grids(deck: &str, grids: &[(usize, &str)], tag: &str) -> (String, Vec<String>) {
+    let serial = dump_of(deck, 0, "", &format!("{tag}-serial"));
+    let mut dumps = Vec::new();
+    for (k, &(n, grid)) in grids.iter().enumerate() {
+        let dump = dump_of(deck, n, grid, &format!("{tag}-{k}"));
+        let d = worst_difference(&serial, &dump);
+        assert!(
+            d < 1e-10,
+            "{tag}: {grid} differs from the serial run by {d:e}"
+        );
+        dumps.push(dump);
+    }
+    let (n, grid) = grids[0];
+    let again = dump_of(deck, n, grid, &format!("{tag}-again"));
+    assert!(
+        again == dumps[0],
+        "{tag}: {grid} run twice gave different dumps"
+    );
+    (serial, dumps)
+}
+
+#[test]
+fn a_settling_bed_on_ranks_matches_the_serial_fast_path() {
+    let grids = [
+        (2, "processors 2 1 1"),
+        (3, "processors 3 1 1"),
+        (2, "processors 1 2 1"),
+        (4, "processors 2 2 1"),
+    ];
+    let (serial, _) = on_grids(BED, &grids, "bed");
+    let snaps = snapshots(&serial);
+    assert_eq!(snaps.len(), 7, "steps 0..150 every 25");
+    assert_eq!(snaps[0].len(), 252);
+    // the bed moves: velocities change over the run
+    let last = snaps.last().unwrap();
+    assert!(snaps[0].iter().zip(last).any(|(a, b)| a[7] != b[7]));
+}
+
+#[test]
+fn without_periodic_faces_any_grid_gives_the_same_bits() {
+    // walls all round and a list rebuilt every step: particles migrate and their contact
+    // history is carried at every step
+    let deck = BED.replace("boundary p p f", "boundary f f f").replace(
+        "neigh_modify delay 0",
+        "neigh_modify delay 0 every 1 check no",
+    );
+    let grids = [
+        (2, "processors 2 1 1"),
+        (3, "processors 3 1 1"),
+        (3, "processors 1 3 1"),
+        (4, "processors 2 2 1"),
+    ];
+    let (_, dumps) = on_grids(&deck, &grids, "fixed");
+    for (d, (_, grid)) in dumps.iter().zip(&grids).skip(1) {
+        assert!(*d == dumps[0], "{grid} and 2 1 1 gave different dumps");
+    }
+}
+
+/// The problems `regolith check` finds in `text` on two ranks, fast path or not.
+fn check_on_two(text: &str, fast: bool) -> Vec<String> {
+    let opts = DeckOptions {
+        fast,
+        ranks: Ranks {
+            size: 2,
+            rank: 0,
+            per_node: 2,
+        },
+        ..DeckOptions::default()
+    };
+    let source = regolith::script::interp::Source::from_text("in.deck", text, false);
+    regolith::session::check_deck(source, &opts)
+        .iter()
+        .map(|d| d.one_line())
+        .collect()
+}
+
+#[test]
+fn what_does_not_run_on_ranks_is_refused_by_name() {
+    let deck = BED
+        .replace("${grid}", "processors 2 1 1")
+        .replace("${out}", "out.dump");
+    assert_eq!(check_on_two(&deck, true), Vec::<String>::new());
+    let exact = check_on_two(&deck, false);
+    assert_eq!(exact.len(), 2, "{exact:?}");
+    assert!(exact[0].starts_with(
+        "in.deck:33: run on the exact path (add -sf fast) on more than one MPI rank: not supported yet"
+    ), "{exact:?}");
+    let before_run = |line: &str| (String::from("run 50\n"), format!("{line}\nrun 50\n"));
+    for ((from, to), at, refused) in [
+        (before_run("compute c all ke/atom"), 34, "compute"),
+        (
+            before_run("fix ins all insert/pack seed 10007"),
+            34,
+            "fix insert/pack",
+        ),
+        (before_run("write_restart r.restart"), 34, "write_restart"),
+        (
+            before_run("thermo_style custom step c_thermo_press"),
+            34,
+            "thermo keyword c_thermo_press",
+        ),
+        (before_run("dump d2 all xyz 10 out.xyz"), 34, "dump xyz"),
+        (before_run("run 10 every 5 NULL"), 34, "run every"),
+        (
+            ("boundary p p f".into(), "boundary p p m".into()),
+            3,
+            "boundary m (shrink-wrapped faces)",
+        ),
+    ] {
+        let text = deck.replace(&from, &to);
+        let got = check_on_two(&text, true);
+        let want = format!("in.deck:{at}: {refused} on more than one MPI rank: not supported yet");
+        assert!(
+            got.first().is_some_and(|g| g.starts_with(&want)),
+            "{to}: {got:?}"
+        );
+    }
+}

@@ -456,8 +456,8 @@ mod tests {
         let cols = Columns::new(&sorted, &reach);
         let (mut one, mut four) = (Vec::new(), Vec::new());
         let mut stencil = Stencil::default();
-        for i in 0..sorted.len() {
-            grid.stencil(grid.coords(&sorted[i]), &start, &mut stencil);
+        for (i, xi) in sorted.iter().enumerate() {
+            grid.stencil(grid.coords(xi), &start, &mut stencil);
             partners(i, &cols, 0.01, &stencil, &mut one);
             #[cfg(target_arch = "x86_64")]
             if is_x86_feature_detected!("avx2") {

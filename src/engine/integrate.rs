@@ -63,13 +63,16 @@ fn kick_factors_plain(
     }
 }
 
+/// Positions (m), velocities (m/s) and angular velocities (rad/s) of some particles.
+type Motion<'a> = (&'a mut [[f64; 3]], &'a mut [[f64; 3]], &'a mut [[f64; 3]]);
+
 /// Up to [`SUB`] particles, all in the group: v += lin f and omega += rot torque, then (with
 /// `drift` = Some(dt)) x += dt v. The same operations per component as the particle-by-particle
 /// loops, done over the flattened arrays, several components per instruction where the
 /// processor allows.
 #[inline(always)]
 fn kick_drift_all(
-    (x, v, w): (&mut [[f64; 3]], &mut [[f64; 3]], &mut [[f64; 3]]),
+    (x, v, w): Motion<'_>,
     (f, t): (&[[f64; 3]], &[[f64; 3]]),
     (lin, rot): (&[f64], &[f64]),
     drift: Option<f64>,
@@ -86,7 +89,7 @@ fn kick_drift_all(
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn kick_drift_all_avx2(
-    xvw: (&mut [[f64; 3]], &mut [[f64; 3]], &mut [[f64; 3]]),
+    xvw: Motion<'_>,
     ft: (&[[f64; 3]], &[[f64; 3]]),
     factors: (&[f64], &[f64]),
     drift: Option<f64>,
@@ -96,7 +99,7 @@ unsafe fn kick_drift_all_avx2(
 
 #[inline(always)]
 fn kick_drift_all_plain(
-    (x, v, w): (&mut [[f64; 3]], &mut [[f64; 3]], &mut [[f64; 3]]),
+    (x, v, w): Motion<'_>,
     (f, t): (&[[f64; 3]], &[[f64; 3]]),
     (lin, rot): (&[f64], &[f64]),
     drift: Option<f64>,

@@ -65,9 +65,11 @@ pub struct EulerGrid {
     pub stress: Vec<[f64; 7]>,
 }
 
-/// The most cells a grid gets: 2^26, about 10 GB of cell data (LIGGGHTS fails to allocate
-/// grids far larger, or overflows its `int` count of them).
-const MAX_CELLS: usize = 1 << 26;
+/// The most cells a grid gets: 2^20, a grid for a bed of some 10^8 particles (its
+/// `dump euler/vtk` text alone is about 200 MB). Larger grids come from boxes blown up by
+/// runaway particles (LIGGGHTS fails to allocate them, or overflows its `int` count), and
+/// keep one cell.
+const MAX_CELLS: usize = 1 << 20;
 
 /// A double truncated to `int` as LIGGGHTS's `static_cast<int>` does on x86-64: values
 /// outside the `int` range, and NaN, give `INT_MIN`.

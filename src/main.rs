@@ -132,6 +132,10 @@ enum Command {
         /// Thread counts of the fast path, e.g. 1,2.
         #[arg(long, value_delimiter = ',', default_value = "1")]
         threads: Vec<usize>,
+        /// Also time the fast path under `mpirun -np N` (one thread per rank) for each of
+        /// these rank counts, e.g. 1,2 (needs a regolith built with the `mpi` feature).
+        #[arg(long, value_delimiter = ',')]
+        ranks: Vec<usize>,
         /// Deck variables: --var NAME VALUE (repeatable).
         #[arg(long = "var", num_args = 2, value_names = ["NAME", "VALUE"], action = clap::ArgAction::Append)]
         vars: Vec<String>,
@@ -485,6 +489,7 @@ fn bench(cmd: Command) -> ExitCode {
         exact,
         fast,
         threads,
+        ranks,
         vars,
         sizes,
         models,
@@ -499,8 +504,9 @@ fn bench(cmd: Command) -> ExitCode {
     };
     let choice = regolith::bench::ProgramChoice {
         liggghts,
-        exact: exact || !fast,
+        exact: exact || !(fast || !ranks.is_empty()),
         fast_threads: if fast { threads } else { Vec::new() },
+        ranks,
     };
     let result = if scene == "beds" {
         let opts = regolith::bench::beds::SuiteOptions {

@@ -237,6 +237,7 @@ pub fn run_deck_on(opts: &DeckOptions, comm: Option<crate::util::comm::RankComm>
     interp.engine.sim.observer = observer;
     interp.engine.sim.procs.nprocs = opts.ranks.size as i64;
     interp.engine.sim.procs.procs_per_node = opts.ranks.per_node as i64;
+    interp.engine.sim.accel.ranks_per_node = opts.ranks.per_node;
     interp.engine.sim.comm = comm;
     for (name, values) in &opts.vars {
         if let Err(d) = interp.set_command_line_variable(name, values) {

@@ -36,6 +36,8 @@ pub struct ProgramChoice {
     pub exact: bool,
     /// regolith's fast path at these thread counts.
     pub fast_threads: Vec<usize>,
+    /// regolith's fast path under `mpirun -np N`, one thread per rank, at these rank counts.
+    pub ranks: Vec<usize>,
 }
 
 impl ProgramChoice {
@@ -76,9 +78,31 @@ impl ProgramChoice {
                 threads: t,
             });
         }
+        for &n in &self.ranks {
+            v.push(Program {
+                label: format!("fast {n}r"),
+                exe: PathBuf::from("mpirun"),
+                args: vec![
+                    "-np".into(),
+                    n.to_string(),
+                    me.to_string_lossy().into_owned(),
+                    "-sf".into(),
+                    "fast".into(),
+                    "-pk".into(),
+                    "fast".into(),
+                    "1".into(),
+                ],
+                // Open MPI refuses to start as root unless told both
+                env: vec![
+                    ("OMPI_ALLOW_RUN_AS_ROOT".into(), "1".into()),
+                    ("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM".into(), "1".into()),
+                ],
+                threads: n,
+            });
+        }
         if v.is_empty() {
             return Err(ToolError::usage(
-                "nothing to time: give --exact, --fast or --liggghts",
+                "nothing to time: give --exact, --fast, --ranks or --liggghts",
             ));
         }
         Ok(v)
@@ -345,6 +369,23 @@ pub fn csv(rows: &[beds::Row]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rank_counts_run_the_fast_path_under_mpirun_one_thread_per_rank() {
+        let choice = ProgramChoice {
+            liggghts: false,
+            exact: false,
+            fast_threads: vec![1],
+            ranks: vec![2, 3],
+        };
+        let p = choice.programs().unwrap();
+        let labels: Vec<&str> = p.iter().map(|p| p.label.as_str()).collect();
+        assert_eq!(labels, ["fast 1t", "fast 2r", "fast 3r"]);
+        assert_eq!(p[2].exe, PathBuf::from("mpirun"));
+        assert_eq!(&p[2].args[..2], ["-np", "3"]);
+        assert_eq!(&p[2].args[3..], ["-sf", "fast", "-pk", "fast", "1"]);
+        assert_eq!(p[2].threads, 3);
+    }
 
     fn row(program: &str, rate: f64) -> beds::Row {
         beds::Row {

@@ -93,6 +93,9 @@ pub struct Accel {
     pub threads: Option<usize>,
     /// The command line or the deck asked for a thread count (`-pk fast N`, `package`).
     pub asked: bool,
+    /// MPI ranks sharing this machine (0 or 1: none other): the cores are shared out
+    /// between them.
+    pub ranks_per_node: usize,
     pool: Option<Arc<rayon::ThreadPool>>,
     /// The next rank handed to an inserted particle (fast path order record).
     pub next_rank: f64,
@@ -124,7 +127,8 @@ impl Accel {
     }
 
     /// The threads of a run nobody chose them for, decided when a run starts: every core (or
-    /// `RAYON_NUM_THREADS`) on the fast path, whose sums by blocks of particles split across
+    /// `RAYON_NUM_THREADS`; under MPI the machine's cores shared out between its ranks) on
+    /// the fast path, whose sums by blocks of particles split across
     /// threads; one on the exact path (its parallel sums gather every contact in list
     /// order and do not pay on two cores) unless `RAYON_NUM_THREADS` is set.
     pub fn settle_threads(&mut self) {
@@ -132,7 +136,16 @@ impl Accel {
             return;
         }
         let env = std::env::var_os("RAYON_NUM_THREADS").is_some();
-        let want = if env || self.fast { None } else { Some(1) };
+        let want = if env {
+            None
+        } else if self.fast && self.ranks_per_node > 1 {
+            let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+            Some((cores / self.ranks_per_node).max(1))
+        } else if self.fast {
+            None
+        } else {
+            Some(1)
+        };
         if want != self.threads || (want.is_none() && self.pool.is_some()) {
             self.set_threads(want);
         }

@@ -270,6 +270,68 @@ impl Particles {
         }
     }
 
+    /// Copy the particles from index `n` on into `out`, replacing its particles (its extra
+    /// arrays become this one's); `self` is unchanged.
+    pub fn copy_tail_into(&self, n: usize, out: &mut Particles) {
+        fn copy<T: Copy>(src: &[T], n: usize, dst: &mut Vec<T>) {
+            dst.clear();
+            dst.extend_from_slice(&src[n.min(src.len())..]);
+        }
+        copy(&self.id, n, &mut out.id);
+        copy(&self.kind, n, &mut out.kind);
+        copy(&self.mask, n, &mut out.mask);
+        copy(&self.x, n, &mut out.x);
+        copy(&self.v, n, &mut out.v);
+        copy(&self.f, n, &mut out.f);
+        copy(&self.omega, n, &mut out.omega);
+        copy(&self.torque, n, &mut out.torque);
+        copy(&self.radius, n, &mut out.radius);
+        copy(&self.mass, n, &mut out.mass);
+        copy(&self.density, n, &mut out.density);
+        copy(&self.image, n, &mut out.image);
+        out.extra.resize_with(self.extra.len(), PerAtom::default);
+        for (e, o) in self.extra.iter().zip(out.extra.iter_mut()) {
+            o.name.clone_from(&e.name);
+            o.width = e.width;
+            o.fill.clone_from(&e.fill);
+            copy(&e.data, n * e.width, &mut o.data);
+        }
+    }
+
+    /// Append copies of the particles of `other`; an extra array of this one that `other`
+    /// lacks (by name and width) gets its new particles' fill values.
+    pub fn extend_from(&mut self, other: &Particles) {
+        self.id.extend_from_slice(&other.id);
+        self.kind.extend_from_slice(&other.kind);
+        self.mask.extend_from_slice(&other.mask);
+        self.x.extend_from_slice(&other.x);
+        self.v.extend_from_slice(&other.v);
+        self.f.extend_from_slice(&other.f);
+        self.omega.extend_from_slice(&other.omega);
+        self.torque.extend_from_slice(&other.torque);
+        self.radius.extend_from_slice(&other.radius);
+        self.mass.extend_from_slice(&other.mass);
+        self.density.extend_from_slice(&other.density);
+        self.image.extend_from_slice(&other.image);
+        let n = other.len();
+        for (k, e) in self.extra.iter_mut().enumerate() {
+            let same = |o: &&PerAtom| o.name == e.name && o.width == e.width;
+            let found = other.extra.get(k).filter(same);
+            match found.or_else(|| other.extra.iter().find(same)) {
+                Some(o) => e.data.extend_from_slice(&o.data),
+                None => {
+                    for _ in 0..n {
+                        if e.fill.len() == e.width {
+                            e.data.extend_from_slice(&e.fill);
+                        } else {
+                            e.data.resize(e.data.len() + e.width, 0.0);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
     /// Append the particles of `other` (split off by [`Self::split_off`], so its extra
     /// arrays are this one's, in the same order), leaving it empty.
     pub fn append(&mut self, other: &mut Particles) {

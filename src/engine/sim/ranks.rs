@@ -4,9 +4,9 @@
 //! follow LIGGGHTS's granular `newton off` rule: a rank computes every pair with at least
 //! one particle it owns, so a pair of an owned particle and a ghost is computed on both
 //! ranks, each keeping its own copy of the contact history; forces reach owned particles
-//! without reverse communication. Pairs are listed with the lower ID first and sorted by
-//! ID, so both ranks compute a pair the same way and each particle adds its contacts in
-//! the order of its partners' IDs, whatever the rank count.
+//! without reverse communication. Pairs are listed with the lower ID first, so both ranks
+//! compute a pair the same way, and each particle adds its contacts in the order of its
+//! partners' IDs, whatever the rank count; owned particles are stored by ID.
 //!
 //! Every step the ghosts' positions and velocities are refreshed (forward communication);
 //! at each neighbour-list build particles are wrapped into the box, migrate with their
@@ -47,6 +47,21 @@ struct RankState {
     ago: u64,
     /// Builds so far (walls refresh their own lists with it).
     builds: u64,
+    /// The ghosts, kept apart while the fixes act on the owned particles and copied
+    /// behind them for the pair forces (their positions and velocities refreshed then).
+    ghosts: Particles,
+    /// The ghosts behind the owned particles were made by the last build (not copied
+    /// from `ghosts`), so they are copied there when set apart.
+    fresh: bool,
+}
+
+impl RankState {
+    /// Atom IDs of the owned particles `owned` (the first `nlocal`) and of the ghosts.
+    fn ids(&self, owned: &Particles) -> Vec<i64> {
+        let mut ids = owned.id[..self.nlocal.min(owned.len())].to_vec();
+        ids.extend_from_slice(&self.ghosts.id);
+        ids
+    }
 }
 
 impl From<DecompError> for EngineError {
@@ -64,27 +79,14 @@ fn rank_pairs(p: &Particles, nlocal: usize, skin: f64) -> Vec<Pair> {
     if nlocal == 0 {
         return Vec::new();
     }
-    let rmax = p.radius.iter().copied().fold(0.0, f64::max);
-    let cell = (2.0 * rmax + skin).max(f64::MIN_POSITIVE);
-    let mut lo = [f64::INFINITY; 3];
-    for x in &p.x {
-        for d in 0..3 {
-            lo[d] = lo[d].min(x[d]);
-        }
-    }
-    let key = |x: &[f64; 3]| [0, 1, 2].map(|d| ((x[d] - lo[d]) / cell).floor() as i64);
-    let mut bins: std::collections::HashMap<[i64; 3], Vec<usize>> =
-        std::collections::HashMap::new();
-    for (j, x) in p.x.iter().enumerate() {
-        bins.entry(key(x)).or_default().push(j);
-    }
-    let mut pairs = Vec::new();
+    let bins = Bins::new(p, skin);
+    let mut pairs = Vec::with_capacity(8 * nlocal);
     for i in 0..nlocal {
-        let c = key(&p.x[i]);
+        let c = bins.cell_of(p.x[i]);
         for m in 0..27 {
             let at = [c[0] + m % 3 - 1, c[1] + (m / 3) % 3 - 1, c[2] + m / 9 - 1];
-            let Some(list) = bins.get(&at) else { continue };
-            for &j in list {
+            for &j in bins.members(at) {
+                let j = j as usize;
                 if j == i || (j < nlocal && j < i) || j >= n {
                     continue;
                 }
@@ -101,7 +103,8 @@ fn rank_pairs(p: &Particles, nlocal: usize, skin: f64) -> Vec<Pair> {
             }
         }
     }
-    let order = |q: &Pair| {
+    // no two entries have the same key (two images of one partner differ in position)
+    pairs.sort_unstable_by_key(|q: &Pair| {
         let (a, b) = (q.i as usize, q.j as usize);
         (
             p.id[a],
@@ -109,9 +112,97 @@ fn rank_pairs(p: &Particles, nlocal: usize, skin: f64) -> Vec<Pair> {
             p.x[b].map(f64::to_bits),
             p.x[a].map(f64::to_bits),
         )
-    };
-    pairs.sort_by_key(order);
+    });
     pairs
+}
+
+/// The particles binned in cubic cells a largest pair cutoff wide, as one array sorted by
+/// cell (a counting sort), for the pair search.
+struct Bins {
+    /// Lower corner of cell (0, 0, 0) (length).
+    lo: [f64; 3],
+    /// Cell edge (length).
+    cell: f64,
+    /// Cells per direction.
+    dims: [i64; 3],
+    /// Where each cell's particles start in `order` (one more entry than cells).
+    start: Vec<u32>,
+    /// Particle indices, cell by cell.
+    order: Vec<u32>,
+}
+
+impl Bins {
+    /// Bin every particle of `p` in cells of the largest diameter plus `skin`, fewer
+    /// and larger when the particles' extent would need more than eight per particle.
+    fn new(p: &Particles, skin: f64) -> Bins {
+        let rmax = p.radius.iter().copied().fold(0.0, f64::max);
+        let mut cell = (2.0 * rmax + skin).max(f64::MIN_POSITIVE);
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for x in &p.x {
+            for d in 0..3 {
+                lo[d] = lo[d].min(x[d]);
+                hi[d] = hi[d].max(x[d]);
+            }
+        }
+        let limit = (8 * p.len()).max(64) as f64;
+        let count = |cell: f64| [0, 1, 2].map(|d| ((hi[d] - lo[d]) / cell).floor() + 1.0);
+        while count(cell).iter().product::<f64>() > limit {
+            cell *= 2.0;
+        }
+        // a blown-up extent (not finite) gets one cell: the blow-up guard stops such a run
+        let dims = count(cell).map(|c| {
+            if c.is_finite() && c >= 1.0 {
+                c as i64
+            } else {
+                1
+            }
+        });
+        let mut bins = Bins {
+            lo,
+            cell,
+            dims,
+            start: Vec::new(),
+            order: Vec::new(),
+        };
+        let total = (dims[0] * dims[1] * dims[2]) as usize;
+        let index: Vec<u32> =
+            p.x.iter()
+                .map(|&x| bins.index(bins.cell_of(x)).unwrap_or(0) as u32)
+                .collect();
+        bins.start = vec![0; total + 1];
+        for &c in &index {
+            bins.start[c as usize + 1] += 1;
+        }
+        for c in 0..total {
+            bins.start[c + 1] += bins.start[c];
+        }
+        let mut at = bins.start.clone();
+        bins.order = vec![0; p.len()];
+        for (j, &c) in index.iter().enumerate() {
+            bins.order[at[c as usize] as usize] = j as u32;
+            at[c as usize] += 1;
+        }
+        bins
+    }
+
+    /// The cell (possibly outside the grid) holding position `x`.
+    fn cell_of(&self, x: [f64; 3]) -> [i64; 3] {
+        [0, 1, 2].map(|d| ((x[d] - self.lo[d]) / self.cell).floor() as i64)
+    }
+
+    /// The array index of cell `c`, None outside the grid.
+    fn index(&self, c: [i64; 3]) -> Option<usize> {
+        let inside = (0..3).all(|d| c[d] >= 0 && c[d] < self.dims[d]);
+        inside.then(|| ((c[2] * self.dims[1] + c[1]) * self.dims[0] + c[0]) as usize)
+    }
+
+    /// The particles of cell `c` in index order (none outside the grid).
+    fn members(&self, c: [i64; 3]) -> &[u32] {
+        match self.index(c) {
+            Some(k) => &self.order[self.start[k] as usize..self.start[k + 1] as usize],
+            None => &[],
+        }
+    }
 }
 
 /// Does listed `pair` touch (centres closer than the radii summed)?
@@ -201,7 +292,6 @@ impl Simulation {
         self.rank_output(comm, &st, true, last, out, vars)?;
         for _ in 0..nsteps {
             self.step += 1;
-            let mut ghosts = self.particles.split_off(st.nlocal);
             fixes::initial_integrate(
                 &mut self.fixes,
                 &mut self.particles,
@@ -209,23 +299,21 @@ impl Simulation {
                 self.dt,
                 &self.domain,
             );
-            self.particles.append(&mut ghosts);
             if self.rank_decide(comm, &mut st) {
                 let hist = PartnerHistory::from_pairs(
                     &st.pairs,
                     &st.history,
-                    &self.particles.id,
+                    &st.ids(&self.particles),
                     st.nlocal,
                     &st.flips,
                 );
-                self.particles.truncate(st.nlocal);
                 self.rank_build(comm, &mut st, hist)?;
                 self.stats.builds += 1;
             } else {
+                self.particles.extend_from(&st.ghosts);
                 forward(comm, &st.dec, &st.plan, &mut self.particles, false)?;
             }
             self.rank_forces(&mut st, true);
-            let mut ghosts = self.particles.split_off(st.nlocal);
             fixes::final_integrate(
                 &mut self.fixes,
                 &mut self.particles,
@@ -233,7 +321,6 @@ impl Simulation {
                 self.dt,
                 &self.domain,
             );
-            self.particles.append(&mut ghosts);
             self.rank_output(comm, &st, false, last, out, vars)?;
         }
         self.run_bounds = None;
@@ -298,6 +385,8 @@ impl Simulation {
             built: Vec::new(),
             ago: 0,
             builds: self.list.builds,
+            ghosts: empty_like(&self.particles),
+            fresh: false,
         };
         self.rank_build(comm, &mut st, hist)?;
         Ok(st)
@@ -347,6 +436,23 @@ impl Simulation {
             }
         }
         migrate(comm, &st.dec, p, Some(&mut hist))?;
+        // owned particles stored by ID, as the pair list runs: the pass over the list reads
+        // the first particles of its pairs in memory order
+        let mut order: Vec<usize> = (0..p.len()).collect();
+        order.sort_unstable_by_key(|&k| (p.id[k], p.x[k].map(f64::to_bits)));
+        p.permute(&order);
+        let (mut partners, mut values) = (
+            std::mem::take(&mut hist.partners),
+            std::mem::take(&mut hist.values),
+        );
+        hist.partners = order
+            .iter()
+            .map(|&k| std::mem::take(&mut partners[k]))
+            .collect();
+        hist.values = order
+            .iter()
+            .map(|&k| std::mem::take(&mut values[k]))
+            .collect();
         st.nlocal = p.len();
         let natoms = comm.all_reduce_i64(st.nlocal as i64, Reduce::Sum) as usize;
         if natoms != self.natoms_expected && !self.lost_ignore {
@@ -370,6 +476,7 @@ impl Simulation {
         st.built = p.x[..st.nlocal].to_vec();
         st.ago = 0;
         st.builds += 1;
+        st.fresh = true;
         Ok(())
     }
 
@@ -397,8 +504,9 @@ impl Simulation {
         rebuild
     }
 
-    /// Pair forces on owned particles and ghosts (the ghosts' are not used), then the
-    /// forcing fixes on owned particles; `update` false in the setup evaluation.
+    /// Pair forces on owned particles and ghosts (the ghosts behind the owned particles;
+    /// their forces are not used), then the ghosts set apart and the forcing fixes run on
+    /// the owned particles; `update` false in the setup evaluation.
     fn rank_forces(&mut self, st: &mut RankState, update: bool) {
         match self.pair.as_mut() {
             Some(pair) => pair.compute(
@@ -413,7 +521,11 @@ impl Simulation {
             ),
             None => self.particles.clear_forces(),
         }
-        let mut ghosts = self.particles.split_off(st.nlocal);
+        if st.fresh {
+            self.particles.copy_tail_into(st.nlocal, &mut st.ghosts);
+            st.fresh = false;
+        }
+        self.particles.truncate(st.nlocal);
         fixes::post_force(
             &mut self.fixes,
             &mut self.particles,
@@ -423,7 +535,6 @@ impl Simulation {
             (st.builds, self.neighbor.skin),
             false,
         );
-        self.particles.append(&mut ghosts);
     }
 
     /// This rank's owned particles as one message (with their contact history rows).
@@ -485,7 +596,7 @@ impl Simulation {
         let hist = PartnerHistory::from_pairs(
             &st.pairs,
             &st.history,
-            &self.particles.id,
+            &st.ids(&self.particles),
             st.nlocal,
             &st.flips,
         );
@@ -537,7 +648,7 @@ impl Simulation {
     fn rank_statistics(&self, comm: &RankComm, st: &RankState) -> String {
         use crate::util::format::g;
         let n = comm.size() as f64;
-        let nghost = self.particles.len() - st.nlocal;
+        let nghost = st.ghosts.len();
         let mut s = String::new();
         let mut total_neighs = 0.0;
         for (name, v) in [
@@ -584,5 +695,85 @@ impl<T> RetainBy for Vec<T> {
             k += 1;
             keep
         });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Particles on a jittered grid with mixed radii (IDs in reverse order of storage).
+    fn cloud(n: usize) -> Particles {
+        let mut p = Particles::default();
+        let mut s = 12345u64;
+        let mut r = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for k in 0..n {
+            let x = [r() * 0.02, r() * 0.02, r() * 0.01];
+            p.push((n - k) as i64, 1, x, 0.0008 + 0.0006 * r(), 2500.0);
+        }
+        p
+    }
+
+    #[test]
+    fn the_cell_search_lists_every_pair_within_reach_once_by_id() {
+        let p = cloud(800);
+        let (nlocal, skin) = (500, 0.0005);
+        let pairs = rank_pairs(&p, nlocal, skin);
+        let mut want = Vec::new();
+        for i in 0..p.len() {
+            for j in i + 1..p.len() {
+                if i >= nlocal && j >= nlocal {
+                    continue;
+                }
+                let d = [0, 1, 2].map(|k| p.x[i][k] - p.x[j][k]);
+                let cut = p.radius[i] + p.radius[j] + skin;
+                if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cut * cut {
+                    want.push(if p.id[j] < p.id[i] { (j, i) } else { (i, j) });
+                }
+            }
+        }
+        let mut got: Vec<(usize, usize)> =
+            pairs.iter().map(|q| (q.i as usize, q.j as usize)).collect();
+        let ids = |v: &[(usize, usize)]| -> Vec<(i64, i64)> {
+            v.iter().map(|&(a, b)| (p.id[a], p.id[b])).collect()
+        };
+        // listed in ID order, the lower ID first
+        let listed = ids(&got);
+        assert!(listed.windows(2).all(|w| w[0] < w[1]));
+        assert!(listed.iter().all(|&(a, b)| a < b));
+        got.sort_unstable();
+        want.sort_unstable();
+        assert!(want.len() > 1000, "{} pairs", want.len());
+        assert_eq!(got, want);
+    }
+
+    #[test]
+    fn ghosts_set_apart_and_copied_back_are_the_same_rows() {
+        let mut p = cloud(50);
+        let k = p.extra_index("history_w", 3);
+        for (n, v) in p.extra[k].data.iter_mut().enumerate() {
+            *v = n as f64;
+        }
+        let whole = p.clone();
+        let mut ghosts = empty_like(&p);
+        p.copy_tail_into(30, &mut ghosts);
+        p.truncate(30);
+        assert_eq!((p.len(), ghosts.len()), (30, 20));
+        p.extend_from(&ghosts);
+        assert_eq!(p.x, whole.x);
+        assert_eq!(p.id, whole.id);
+        assert_eq!(p.extra, whole.extra);
+        // an array made while the ghosts were apart gets its fill values for them
+        p.truncate(30);
+        let k = p.extra_index("new", 2);
+        p.extra[k].fill = vec![7.0, 8.0];
+        p.extend_from(&ghosts);
+        assert_eq!(p.extra[k].data.len(), 100);
+        assert_eq!(&p.extra[k].data[98..], &[7.0, 8.0]);
     }
 }

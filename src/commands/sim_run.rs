@@ -31,6 +31,7 @@ pub const COMMANDS: &[(&str, Handler)] = &[
     ("uncompute", uncompute),
     ("pair_style", pair_style),
     ("pair_coeff", pair_coeff),
+    ("pair_modify", pair_modify),
     ("soft_particles", |a, ctx| {
         soft_hard("soft_particles", a, ctx)
     }),
@@ -823,6 +824,8 @@ fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.unsupported(next, &format!("pair_style gran option {}", a.word(next)?)));
     }
     ctx.sim.pair_selection = Some(sel);
+    // a new pair style: computed until `pair_modify compute no`
+    ctx.sim.pair_compute = true;
     ctx.sim.pair_coeff_set = false;
     ctx.sim.pair_coeff_types.clear();
     if let Some(d) = pending {
@@ -838,6 +841,60 @@ fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
         &format!("pair coefficients ({} atom types)", ctx.sim.ntypes),
     )
     .map_err(|m| a.error(0, &m))
+}
+
+/// `pair_modify KEYWORD VALUE ...`: LIGGGHTS's keywords of every pair style. Only `compute
+/// yes|no` changes a granular run (no: the pair forces are not computed, as LIGGGHTS's
+/// integrator skips the pair); mixing, shifting, tables and tail corrections concern
+/// potentials with coefficients, which `pair_style gran` has not.
+fn pair_modify(a: &Args, ctx: &mut Ctx) -> Result {
+    if ctx.sim.pair_selection.is_none() {
+        return Err(a.error(0, "Pair_modify command before pair_style is defined"));
+    }
+    let illegal = |i: usize| {
+        a.error(i.min(a.len().saturating_sub(1)), "Illegal pair_modify command")
+            .with_help("pair_modify compute yes|no | mix geometric|arithmetic|sixthpower | shift yes|no | tail yes|no | table N | table/disp N | tabinner R | tabinner/disp R")
+    };
+    if a.is_empty() {
+        return Err(illegal(0));
+    }
+    let mut compute = ctx.sim.pair_compute;
+    let mut i = 0;
+    while i < a.len() {
+        if i + 2 > a.len() {
+            return Err(illegal(i));
+        }
+        let value = a.word(i + 1)?;
+        match a.word(i)? {
+            "compute" | "shift" | "tail" => {
+                let yes = match value {
+                    "yes" => true,
+                    "no" => false,
+                    _ => return Err(illegal(i + 1)),
+                };
+                if a.word(i)? == "compute" {
+                    compute = yes;
+                }
+            }
+            "mix" => {
+                if !["geometric", "arithmetic", "sixthpower"].contains(&value) {
+                    return Err(illegal(i + 1));
+                }
+            }
+            "table" | "table/disp" => {
+                if a.int(i + 1)? > 32 {
+                    return Err(a.error(i + 1, "Too many total bits for bitmapped lookup table"));
+                }
+            }
+            "tabinner" | "tabinner/disp" => {
+                a.real(i + 1)?;
+            }
+            _ => return Err(illegal(i)),
+        }
+        i += 2;
+    }
+    ctx.sim.pair_compute = compute;
+    Ok(())
 }
 
 fn pair_coeff(a: &Args, ctx: &mut Ctx) -> Result {

@@ -112,6 +112,22 @@ fn check_deck(name: &str) -> Vec<String> {
     let mut files = Vec::new();
     files_below(&reference, &reference, &mut files);
     for f in files.iter().filter(|f| f.as_os_str() != "thermo.txt") {
+        let bytes = std::fs::read(reference.join(f)).unwrap();
+        if f.extension().is_some_and(|e| e == "bin") || std::str::from_utf8(&bytes).is_err() {
+            // LAMMPS's binary dumps and binary VTK files: byte for byte
+            let want = bytes;
+            let got = std::fs::read(work.join(f)).unwrap_or_default();
+            if got != want {
+                let k = want.iter().zip(&got).take_while(|(x, y)| x == y).count();
+                problems.push(format!(
+                    "{} differs from byte {k} ({} bytes, liggghts {})",
+                    f.display(),
+                    got.len(),
+                    want.len()
+                ));
+            }
+            continue;
+        }
         // a gzipped reference stands for the plain file the deck writes
         let (want, f) = if f.extension().is_some_and(|e| e == "gz") {
             let text = regolith::io::diff::read_text(&reference.join(f).to_string_lossy()).unwrap();

@@ -217,6 +217,10 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
         "atom" | "xyz" => {
             a.count(5..=5, &format!("dump ID GROUP {style} N FILE"))?;
             if style == "xyz" {
+                if file.ends_with(".bin") {
+                    // LAMMPS's xyz dumps have no binary format
+                    return Err(a.error(4, "Invalid dump xyz filename"));
+                }
                 dump_style = crate::engine::sim::DumpStyle::Xyz(Vec::new());
                 Layout::new(&[]).expect("no columns")
             } else {
@@ -556,6 +560,18 @@ pub(super) fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
                 if a.word_in(i + 1, &["yes", "no"])? == "yes" {
                     return Err(a.unsupported(i, "dump_modify binary yes (binary VTK)"));
                 }
+            }
+            // LIGGGHTS's text dumps take no `binary` keyword (a `.bin` file name makes
+            // `dump custom` binary)
+            "binary"
+                if matches!(
+                    dump.style,
+                    crate::engine::sim::DumpStyle::Text | crate::engine::sim::DumpStyle::Xyz(_)
+                ) =>
+            {
+                return Err(a
+                    .error(i, "Illegal dump_modify command")
+                    .with_help("dump custom writes LAMMPS's binary format to a file named *.bin"));
             }
             other => return Err(a.unsupported(i, &format!("dump_modify {other}"))),
         }

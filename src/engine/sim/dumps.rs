@@ -116,6 +116,13 @@ impl Simulation {
         let mut text = Vec::new();
         let p = &self.particles;
         match &dump.style {
+            // LAMMPS's binary format for names ending in .bin, as LIGGGHTS's dump custom
+            DumpStyle::Text if dump.file.ends_with(".bin") => dump
+                .layout
+                .write_binary_snapshot(&mut text, step, p, dump.group, &self.domain, |c, i| {
+                    columns[c].0.get(i, columns[c].1)
+                })
+                .map_err(|e| e.to_string())?,
             DumpStyle::Text => dump
                 .layout
                 .write_snapshot(&mut text, step, p, dump.group, &self.domain, |c, i| {

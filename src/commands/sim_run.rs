@@ -351,16 +351,13 @@ fn check_vtk_file(a: &Args, file: &str) -> Result {
     if file.ends_with(".gz") {
         return Err(a.error(4, "dump custom/vtk files cannot be gzipped"));
     }
-    if [".pvtu", ".pvtp", ".vtm"].iter().any(|e| file.ends_with(e)) {
-        return Err(a.unsupported(
-            4,
-            "dump custom/vtk parallel or multiblock files (.pvtu/.pvtp/.vtm)",
-        ));
+    if file.ends_with(".vtm") {
+        return Err(a.unsupported(4, "dump custom/vtk multiblock files (.vtm)"));
     }
     if crate::io::vtk::Flavor::of(file).is_none() {
         return Err(a.error(
             4,
-            "dump custom/vtk: the file name must end in .vtk, .vtp or .vtu",
+            "dump custom/vtk: the file name must end in .vtk, .vtp, .vtu, .pvtp or .pvtu",
         ));
     }
     Ok(())
@@ -475,8 +472,9 @@ fn local_gran_vtk_compute(
             "dump local/gran/vtk requires a valid ID of a compute pair/gran/local that writes the positions",
         ));
     }
-    if file.ends_with(".pvtp") || file.ends_with(".pvtu") {
-        return Err(a.unsupported(4, "dump local/gran/vtk to parallel VTK files"));
+    if crate::io::vtk::is_parallel(file) {
+        // LIGGGHTS 3.8.0's parallel names set its old `%` flag, which the style then refuses
+        return Err(a.error(4, "dump local/gran/vtk no longer allow parallel writing by setting the % character. Instead use a filename with suffix .pvtX (X = {u, p})."));
     }
     Ok(cid.to_string())
 }

@@ -233,7 +233,7 @@ pub const SPECS: &[Spec] = &[
     command("replicate NX NY NZ offset OX OY OZ shift SX SY SZ", "copy the particles NX x NY x NZ times, each copy moved by multiples of the offset (length), the box grown from its corner moved by the shift"),
     style("dump", "atom", "dump ID GROUP atom N FILE", &[], "positions, scaled, every N steps (LAMMPS layout)"),
     style("dump", "custom", "dump ID GROUP custom N FILE COLUMN ...", &[], "chosen per-particle columns every N steps (LAMMPS's binary format for a FILE named *.bin)"),
-    style("dump", "custom/vtk", "dump ID GROUP custom/vtk N FILE.vtk|vtp|vtu COLUMN ...", &[], "chosen per-particle columns as VTK files"),
+    style("dump", "custom/vtk", "dump ID GROUP custom/vtk N FILE.vtk|vtp|vtu|pvtp|pvtu COLUMN ...", &[], "chosen per-particle columns as VTK files (.pvtp/.pvtu: a parallel master file and its one piece FILE_0.vtp/.vtu)"),
     style("dump", "euler/vtk", "dump ID GROUP euler/vtk N FILE*.vtk", &[], "the cells of the first fix ave/euler as legacy VTK points (average velocity, volume fraction, radius, pressure)"),
     style("dump", "local/gran/vtk", "dump ID GROUP local/gran/vtk N FILE.vtk|FILE.vtp|FILE.vtu COMPUTE", &[], "the contacts of a compute pair/gran/local or wall/gran/local as VTK lines (legacy .vtk, XML .vtp polydata or .vtu grid)"),
     style("dump", "local", "dump ID GROUP local N FILE c_ID[N] ...", &[], "per-contact columns of local computes"),

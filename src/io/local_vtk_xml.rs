@@ -78,7 +78,7 @@ pub fn shortest(v: f64) -> String {
 
 /// One `DataArray`: `values` hold `width` components per tuple, already formatted; `numbers`
 /// the same values for the range.
-fn data_array(
+pub(crate) fn data_array(
     out: &mut impl Write,
     kind: &str,
     name: &str,

@@ -215,6 +215,11 @@ impl Flavor {
             Some(Flavor::PolyData)
         } else if name.ends_with(".vtu") {
             Some(Flavor::Unstructured)
+        } else if name.ends_with(".pvtp") {
+            // a parallel master file: its one piece holds the polydata
+            Some(Flavor::PolyData)
+        } else if name.ends_with(".pvtu") {
+            Some(Flavor::Unstructured)
         } else {
             None
         }
@@ -228,33 +233,9 @@ fn xml_escape(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-fn xml_array(
-    out: &mut impl Write,
-    kind: &str,
-    name: &str,
-    components: usize,
-    count: usize,
-    mut value: impl FnMut(usize) -> String,
-) -> std::io::Result<()> {
-    let comps = if components > 1 {
-        format!(" NumberOfComponents=\"{components}\"")
-    } else {
-        String::new()
-    };
-    writeln!(
-        out,
-        "        <DataArray type=\"{kind}\" Name=\"{}\"{comps} format=\"ascii\">",
-        xml_escape(name)
-    )?;
-    for start in (0..count).step_by(6) {
-        let line: Vec<String> = (start..(start + 6).min(count)).map(&mut value).collect();
-        writeln!(out, "          {}", line.join(" "))?;
-    }
-    writeln!(out, "        </DataArray>")
-}
-
-/// One snapshot as an XML file (`.vtp` polydata or `.vtu` unstructured grid), the same
-/// fields as the legacy file, full double precision.
+/// One snapshot as an XML file (`.vtp` polydata or `.vtu` unstructured grid) in the layout
+/// LIGGGHTS 3.8.0 writes through VTK 9.1: the legacy file's fields with their ranges, numbers
+/// in VTK's shortest round-trip form, single-precision points, one vertex cell per particle.
 pub fn write_particles_xml(
     out: &mut impl Write,
     flavor: Flavor,
@@ -263,6 +244,7 @@ pub fn write_particles_xml(
     position: impl Fn(usize) -> [f64; 3],
     value: impl Fn(usize, usize) -> f64,
 ) -> std::io::Result<()> {
+    use crate::io::local_vtk_xml::{data_array, shortest};
     let n = atoms.len();
     let (kind, piece) = match flavor {
         Flavor::Unstructured => (
@@ -282,55 +264,95 @@ pub fn write_particles_xml(
     )?;
     for f in fields {
         let width = f.columns.len();
+        let numbers: Vec<f64> = (0..width * n)
+            .map(|k| {
+                let v = value(f.columns[k % width], atoms[k / width]);
+                if f.integer {
+                    v as i32 as f64
+                } else {
+                    v
+                }
+            })
+            .collect();
+        let text: Vec<String> = numbers
+            .iter()
+            .map(|&v| {
+                if f.integer {
+                    (v as i64).to_string()
+                } else {
+                    shortest(v)
+                }
+            })
+            .collect();
         let t = if f.integer { "Int32" } else { "Float64" };
-        xml_array(out, t, &f.name, width, width * n, |k| {
-            let v = value(f.columns[k % width], atoms[k / width]);
-            if f.integer {
-                (v as i64).to_string()
-            } else {
-                g_precision(v, 17)
-            }
-        })?;
+        data_array(out, t, &xml_escape(&f.name), width, &text, &numbers)?;
     }
     writeln!(
         out,
         "      </PointData>\n      <CellData>\n      </CellData>\n      <Points>"
     )?;
-    xml_array(out, "Float32", "Points", 3, 3 * n, |k| {
-        g_precision(position(atoms[k / 3])[k % 3] as f32 as f64, 9)
-    })?;
+    let points: Vec<f64> = (0..3 * n)
+        .map(|k| position(atoms[k / 3])[k % 3] as f32 as f64)
+        .collect();
+    let text: Vec<String> = points.iter().map(|&v| shortest(v)).collect();
+    data_array(out, "Float32", "Points", 3, &text, &points)?;
     writeln!(out, "      </Points>")?;
-    let section = if flavor == Flavor::Unstructured {
-        "Cells"
-    } else {
-        "Verts"
-    };
-    writeln!(out, "      <{section}>")?;
-    xml_array(out, "Int64", "connectivity", 1, n, |k| k.to_string())?;
-    xml_array(out, "Int64", "offsets", 1, n, |k| (k + 1).to_string())?;
-    if flavor == Flavor::Unstructured {
-        xml_array(out, "UInt8", "types", 1, n, |_| "1".to_string())?;
+    fn ints(out: &mut impl Write, kind: &str, name: &str, values: &[u64]) -> std::io::Result<()> {
+        let text: Vec<String> = values.iter().map(u64::to_string).collect();
+        let numbers: Vec<f64> = values.iter().map(|&v| v as f64).collect();
+        crate::io::local_vtk_xml::data_array(out, kind, name, 1, &text, &numbers)
     }
-    writeln!(
-        out,
-        "      </{section}>\n    </Piece>\n  </{kind}>\n</VTKFile>"
-    )
+    let connectivity: Vec<u64> = (0..n as u64).collect();
+    let offsets: Vec<u64> = (1..=n as u64).collect();
+    let sections: &[(&str, bool)] = match flavor {
+        Flavor::Unstructured => &[("Cells", true)],
+        _ => &[
+            ("Verts", true),
+            ("Lines", false),
+            ("Strips", false),
+            ("Polys", false),
+        ],
+    };
+    for &(section, vertices) in sections {
+        writeln!(out, "      <{section}>")?;
+        let (c, o) = if vertices {
+            (&connectivity[..], &offsets[..])
+        } else {
+            (&[][..], &[][..])
+        };
+        ints(out, "Int64", "connectivity", c)?;
+        ints(out, "Int64", "offsets", o)?;
+        if flavor == Flavor::Unstructured {
+            ints(out, "UInt8", "types", &vec![1; n])?;
+        }
+        writeln!(out, "      </{section}>")?;
+    }
+    writeln!(out, "    </Piece>\n  </{kind}>\n</VTKFile>")
 }
 
-/// The box as an XML rectilinear grid (`.vtr`).
+/// The box as an XML rectilinear grid (`.vtr`, and the `.pvtr` of parallel dumps), in VTK
+/// 9.1's layout as LIGGGHTS writes it; VTK names the coordinate arrays after their memory
+/// addresses (`Array 0x...`), regolith names them x, y, z.
 pub fn write_bounding_box_xml(out: &mut impl Write, domain: &Domain) -> std::io::Result<()> {
+    use crate::io::local_vtk_xml::shortest;
     writeln!(
         out,
-        "<?xml version=\"1.0\"?>\n<VTKFile type=\"RectilinearGrid\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n  <RectilinearGrid WholeExtent=\"0 1 0 1 0 1\">\n    <Piece Extent=\"0 1 0 1 0 1\">\n      <PointData>\n      </PointData>\n      <CellData>\n      </CellData>\n      <Coordinates>"
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"RectilinearGrid\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n  <RectilinearGrid WholeExtent=\"0 1 0 1 0 1\">\n  <Piece Extent=\"0 1 0 1 0 1\">\n    <PointData>\n    </PointData>\n    <CellData>\n    </CellData>\n    <Coordinates>"
     )?;
     for (d, axis) in ["x", "y", "z"].iter().enumerate() {
-        xml_array(out, "Float64", axis, 1, 2, |k| {
-            g_precision(if k == 0 { domain.lo[d] } else { domain.hi[d] }, 17)
-        })?;
+        let (lo, hi) = (domain.lo[d], domain.hi[d]);
+        writeln!(
+            out,
+            "      <DataArray type=\"Float64\" Name=\"{axis}\" format=\"ascii\" RangeMin=\"{}\" RangeMax=\"{}\">\n        {} {}\n      </DataArray>",
+            shortest(lo.min(hi)),
+            shortest(lo.max(hi)),
+            shortest(lo),
+            shortest(hi)
+        )?;
     }
     writeln!(
         out,
-        "      </Coordinates>\n    </Piece>\n  </RectilinearGrid>\n</VTKFile>"
+        "    </Coordinates>\n  </Piece>\n  </RectilinearGrid>\n</VTKFile>"
     )
 }
 
@@ -339,12 +361,86 @@ pub fn write_bounding_box_xml(out: &mut impl Write, domain: &Domain) -> std::io:
 /// XML dumps get a `.vtr` box.
 pub fn bounding_box_name(name: &str, step_text: &str) -> String {
     let legacy = bounding_box_name_legacy(name, step_text);
+    if is_parallel(name) {
+        // LIGGGHTS names the box of a parallel dump `.pvtr` (its content a serial grid)
+        return format!("{}.pvtr", &legacy[..legacy.len() - 5]);
+    }
     match Flavor::of(name) {
         Some(Flavor::PolyData) | Some(Flavor::Unstructured) => {
             format!("{}.vtr", &legacy[..legacy.len() - 4])
         }
         _ => legacy,
     }
+}
+
+/// Whether `name` is a parallel VTK master file (`.pvtp`, `.pvtu`): LIGGGHTS writes the
+/// master and one piece per process (regolith: one piece, see [`piece_name`]).
+pub fn is_parallel(name: &str) -> bool {
+    name.ends_with(".pvtp") || name.ends_with(".pvtu")
+}
+
+/// The file of the (only) piece of parallel master file `name`: `d10.pvtp` gives
+/// `d10_0.vtp`, as LIGGGHTS numbers the pieces by process.
+pub fn piece_name(name: &str) -> String {
+    let (stem, ext) = name.split_at(name.len() - 5);
+    format!("{stem}_0.{}", &ext[2..])
+}
+
+/// The parallel master file of a one-piece XML dump, as VTK 9.1's parallel writers write
+/// it for LIGGGHTS: the piece's point-data arrays and points declared by type, name and
+/// component count, then the piece's file name (`source`, without its folder).
+pub fn parallel_master(piece: &str, source: &str, flavor: Flavor) -> String {
+    let kind = match flavor {
+        Flavor::Unstructured => "PUnstructuredGrid",
+        _ => "PPolyData",
+    };
+    let mut out = format!(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"{kind}\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n  <{kind} GhostLevel=\"0\">\n"
+    );
+    // the piece's PointData and Points sections, each array's declaration
+    let mut section: Option<&str> = None;
+    for line in piece.lines().map(str::trim) {
+        match line {
+            "<PointData>" => {
+                section = Some("PPointData");
+                out.push_str("    <PPointData>\n");
+            }
+            "<Points>" => {
+                section = Some("PPoints");
+                out.push_str("    <PPoints>\n");
+            }
+            "</PointData>" | "</Points>" => {
+                if let Some(tag) = section.take() {
+                    out.push_str(&format!("    </{tag}>\n"));
+                }
+            }
+            l if section.is_some() && l.starts_with("<DataArray ") => {
+                let attr = |key: &str| {
+                    let pat = format!(" {key}=\"");
+                    l.find(&pat).map(|k| {
+                        let rest = &l[k + pat.len()..];
+                        rest[..rest.find('"').unwrap_or(rest.len())].to_string()
+                    })
+                };
+                let mut decl = format!(
+                    "      <PDataArray type=\"{}\" Name=\"{}\"",
+                    attr("type").unwrap_or_default(),
+                    attr("Name").unwrap_or_default()
+                );
+                if let Some(n) = attr("NumberOfComponents") {
+                    decl.push_str(&format!(" NumberOfComponents=\"{n}\""));
+                }
+                decl.push_str("/>\n");
+                out.push_str(&decl);
+            }
+            _ => {}
+        }
+    }
+    out.push_str(&format!(
+        "    <Piece Source=\"{}\"/>\n  </{kind}>\n</VTKFile>\n",
+        xml_escape(source)
+    ));
+    out
 }
 
 fn bounding_box_name_legacy(name: &str, step_text: &str) -> String {
@@ -419,6 +515,27 @@ OFFSETS vtktypeint64\n0 1 2 \nCONNECTIVITY vtktypeint64\n0 1 \nPOINT_DATA 2\n\
 FIELD FieldData 3\nid 1 2 int\n1 2 \nvx 1 2 double\n-0.2017150924 0.48928728984 \n\
 fx 1 2 double\n-3896.8263952 3896.8263952 \n";
         assert_eq!(String::from_utf8(out).unwrap(), want);
+    }
+
+    #[test]
+    fn parallel_names_and_master() {
+        assert_eq!(piece_name("post/d10.pvtp"), "post/d10_0.vtp");
+        assert_eq!(piece_name("atoms.pvtu"), "atoms_0.vtu");
+        assert_eq!(
+            bounding_box_name("post/d*.pvtp", "10"),
+            "post/dboundingBox_10.pvtr"
+        );
+        assert_eq!(
+            bounding_box_name("atoms.pvtu", "10"),
+            "atoms_boundingBox.pvtr"
+        );
+        let piece = "<PointData>\n<DataArray type=\"Int32\" Name=\"id\" format=\"ascii\">\n1\n</DataArray>\n\
+            <DataArray type=\"Float64\" Name=\"v\" NumberOfComponents=\"3\" format=\"ascii\">\n</DataArray>\n</PointData>\n\
+            <CellData>\n</CellData>\n<Points>\n<DataArray type=\"Float32\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n</DataArray>\n</Points>\n";
+        assert_eq!(
+            parallel_master(piece, "d10_0.vtp", Flavor::PolyData),
+            "<?xml version=\"1.0\"?>\n<VTKFile type=\"PPolyData\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n  <PPolyData GhostLevel=\"0\">\n    <PPointData>\n      <PDataArray type=\"Int32\" Name=\"id\"/>\n      <PDataArray type=\"Float64\" Name=\"v\" NumberOfComponents=\"3\"/>\n    </PPointData>\n    <PPoints>\n      <PDataArray type=\"Float32\" Name=\"Points\" NumberOfComponents=\"3\"/>\n    </PPoints>\n    <Piece Source=\"d10_0.vtp\"/>\n  </PPolyData>\n</VTKFile>\n"
+        );
     }
 
     #[test]

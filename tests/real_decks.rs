@@ -73,25 +73,33 @@ fn a_misspelt_pair_style_is_the_only_error_in_check_and_run() {
     // LIGGGHTS 3.8.0 stops at the pair_style line ("Invalid model specified"); the
     // pair_coeff after it must not add "Pair_coeff command before pair_style is defined"
     for (style, message) in [
-        ("gran model hertzz tangential history", "Invalid model specified"),
+        (
+            "gran model hertzz tangential history",
+            "Invalid model specified",
+        ),
         ("granx model hertz", "Invalid pair style"),
     ] {
         let dir = scratch("pairtypo");
-        let deck = format!(
-            "{HEAD}{MATERIAL}pair_style {style}\npair_coeff * *\ntimestep 1e-5\nrun 1\n"
-        );
+        let deck =
+            format!("{HEAD}{MATERIAL}pair_style {style}\npair_coeff * *\ntimestep 1e-5\nrun 1\n");
         std::fs::write(dir.join("in.t"), deck).unwrap();
         let out = regolith(&dir, &["check", "in.t"]);
         let stdout = text(&out.stdout);
         let problems: Vec<&str> = stdout.lines().filter(|l| l.starts_with("in.t:")).collect();
         assert_eq!(problems.len(), 1, "{stdout}");
-        assert!(problems[0].starts_with(&format!("in.t:15: {message}")), "{stdout}");
+        assert!(
+            problems[0].starts_with(&format!("in.t:15: {message}")),
+            "{stdout}"
+        );
         assert_eq!(out.status.code(), Some(1));
         let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
         assert_eq!(out.status.code(), Some(1));
         let err = text(&out.stderr);
         assert!(err.contains(message), "{err}");
-        assert!(!err.contains("Pair_coeff command before pair_style"), "{err}");
+        assert!(
+            !err.contains("Pair_coeff command before pair_style"),
+            "{err}"
+        );
         assert!(err.contains("1 problem(s) found"), "{err}");
     }
 }
@@ -115,7 +123,10 @@ fn dump_modify_binary_is_illegal_for_text_dumps_as_in_liggghts() {
         let stdout = text(&out.stdout);
         let problems: Vec<&str> = stdout.lines().filter(|l| l.starts_with("in.t:")).collect();
         assert_eq!(problems.len(), 1, "{stdout}");
-        assert!(problems[0].starts_with(&format!("in.t:{line}: {message}")), "{stdout}");
+        assert!(
+            problems[0].starts_with(&format!("in.t:{line}: {message}")),
+            "{stdout}"
+        );
         assert_eq!(out.status.code(), Some(1));
     }
 }

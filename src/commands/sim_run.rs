@@ -555,9 +555,7 @@ pub(super) fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
                 continue;
             }
             "binary" if matches!(dump.style, crate::engine::sim::DumpStyle::Vtk(_)) => {
-                if a.word_in(i + 1, &["yes", "no"])? == "yes" {
-                    return Err(a.unsupported(i, "dump_modify binary yes (binary VTK)"));
-                }
+                dump.layout.binary = a.word_in(i + 1, &["yes", "no"])? == "yes";
             }
             // LIGGGHTS's text dumps take no `binary` keyword (a `.bin` file name makes
             // `dump custom` binary)

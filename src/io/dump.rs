@@ -141,6 +141,8 @@ pub struct Layout {
     /// Values separated by single blanks without a trailing one (LAMMPS's `dump atom`);
     /// LIGGGHTS's `dump custom` ends every name and value with a blank.
     pub no_trailing_blank: bool,
+    /// `dump_modify binary yes` of VTK dumps: binary legacy files, base64 XML arrays.
+    pub binary: bool,
 }
 
 impl Layout {
@@ -156,6 +158,7 @@ impl Layout {
             format: None,
             sort_by_id: false,
             no_trailing_blank: false,
+            binary: false,
         })
     }
 

@@ -102,7 +102,9 @@ impl FixStyle for VariableGravity {
                 // LIGGGHTS's init names the fix when the variable is missing
                 Term::Variable(name) => inputs.equal(name).map_err(|e| {
                     if e.to_string() == format!("Variable name {name} does not exist") {
-                        EngineError::from("Variable name for fix gravity does not exist".to_string())
+                        EngineError::from(
+                            "Variable name for fix gravity does not exist".to_string(),
+                        )
                     } else {
                         e
                     }

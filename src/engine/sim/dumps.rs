@@ -250,11 +250,15 @@ impl Simulation {
             }
             other => other.value(p, domain, i),
         };
-        use crate::io::vtk::{write_particles, write_particles_xml, Flavor};
+        use crate::io::vtk::{
+            write_particles, write_particles_binary, write_particles_xml, Flavor,
+        };
+        let binary = dump.layout.binary;
         match Flavor::of(&dump.file) {
             Some(f @ (Flavor::PolyData | Flavor::Unstructured)) => {
-                write_particles_xml(text, f, &atoms, fields, |i| p.x[i], value)
+                write_particles_xml(text, f, binary, &atoms, fields, |i| p.x[i], value)
             }
+            _ if binary => write_particles_binary(text, &atoms, fields, |i| p.x[i], value),
             _ => write_particles(text, &atoms, fields, |i| p.x[i], value),
         }
         .map_err(|e| e.to_string())?;

@@ -69,6 +69,69 @@ fn an_unsupported_pair_setting_is_reported_alone() {
 }
 
 #[test]
+fn a_misspelt_pair_style_is_the_only_error_in_check_and_run() {
+    // LIGGGHTS 3.8.0 stops at the pair_style line ("Invalid model specified"); the
+    // pair_coeff after it must not add "Pair_coeff command before pair_style is defined"
+    for (style, message) in [
+        (
+            "gran model hertzz tangential history",
+            "Invalid model specified",
+        ),
+        ("granx model hertz", "Invalid pair style"),
+    ] {
+        let dir = scratch("pairtypo");
+        let deck =
+            format!("{HEAD}{MATERIAL}pair_style {style}\npair_coeff * *\ntimestep 1e-5\nrun 1\n");
+        std::fs::write(dir.join("in.t"), deck).unwrap();
+        let out = regolith(&dir, &["check", "in.t"]);
+        let stdout = text(&out.stdout);
+        let problems: Vec<&str> = stdout.lines().filter(|l| l.starts_with("in.t:")).collect();
+        assert_eq!(problems.len(), 1, "{stdout}");
+        assert!(
+            problems[0].starts_with(&format!("in.t:15: {message}")),
+            "{stdout}"
+        );
+        assert_eq!(out.status.code(), Some(1));
+        let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+        assert_eq!(out.status.code(), Some(1));
+        let err = text(&out.stderr);
+        assert!(err.contains(message), "{err}");
+        assert!(
+            !err.contains("Pair_coeff command before pair_style"),
+            "{err}"
+        );
+        assert!(err.contains("1 problem(s) found"), "{err}");
+    }
+}
+
+#[test]
+fn dump_modify_binary_is_illegal_for_text_dumps_as_in_liggghts() {
+    // LIGGGHTS 3.8.0's dump custom takes no `binary` keyword (a .bin file name makes it
+    // binary), nor may an xyz dump be binary
+    for (dump, line, message) in [
+        (
+            "dump d all custom 10 d.txt id x\ndump_modify d binary yes\n",
+            18,
+            "Illegal dump_modify command",
+        ),
+        ("dump d all xyz 10 d.bin\n", 17, "Invalid dump xyz filename"),
+    ] {
+        let dir = scratch("dumpbinary");
+        let deck = format!("{HEAD}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n{dump}");
+        std::fs::write(dir.join("in.t"), deck).unwrap();
+        let out = regolith(&dir, &["check", "in.t"]);
+        let stdout = text(&out.stdout);
+        let problems: Vec<&str> = stdout.lines().filter(|l| l.starts_with("in.t:")).collect();
+        assert_eq!(problems.len(), 1, "{stdout}");
+        assert!(
+            problems[0].starts_with(&format!("in.t:{line}: {message}")),
+            "{stdout}"
+        );
+        assert_eq!(out.status.code(), Some(1));
+    }
+}
+
+#[test]
 fn material_limits_point_at_the_property_line_in_check_and_run() {
     let dir = scratch("youngs");
     let deck = format!(

@@ -186,8 +186,14 @@ impl Engine {
         vars: &mut Variables,
         out: &mut Output,
     ) -> Result<(), Diagnostic> {
-        validate_names(cmd).map_err(|e| e.into_diagnostic(cmd))?;
         let check = sys.mode == Mode::Check;
+        if let Err(e) = validate_names(cmd) {
+            // LIGGGHTS stops at a misspelt name too: the dry run goes on without the command,
+            // so errors about the state it would have made (a `pair_coeff` after a refused
+            // `pair_style`) are artefacts
+            self.diverged |= check;
+            return Err(e.into_diagnostic(cmd));
+        }
         let args = Args { cmd };
         let mut ctx = Ctx {
             sim: &mut self.sim,

@@ -116,6 +116,9 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
             if !FIXES.contains(&style) {
                 return Some(format!("fix {style}"));
             }
+            if style == "gravity" && args.iter().any(|a| a.starts_with("v_")) {
+                return Some("fix gravity with a variable".into());
+            }
             if style == "wall/gran" && !args.contains(&"primitive") {
                 return Some("fix wall/gran with a mesh".into());
             }

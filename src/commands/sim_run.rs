@@ -31,6 +31,7 @@ pub const COMMANDS: &[(&str, Handler)] = &[
     ("uncompute", uncompute),
     ("pair_style", pair_style),
     ("pair_coeff", pair_coeff),
+    ("pair_modify", pair_modify),
     ("soft_particles", |a, ctx| {
         soft_hard("soft_particles", a, ctx)
     }),
@@ -216,6 +217,10 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
         "atom" | "xyz" => {
             a.count(5..=5, &format!("dump ID GROUP {style} N FILE"))?;
             if style == "xyz" {
+                if file.ends_with(".bin") {
+                    // LAMMPS's xyz dumps have no binary format
+                    return Err(a.error(4, "Invalid dump xyz filename"));
+                }
                 dump_style = crate::engine::sim::DumpStyle::Xyz(Vec::new());
                 Layout::new(&[]).expect("no columns")
             } else {
@@ -346,16 +351,13 @@ fn check_vtk_file(a: &Args, file: &str) -> Result {
     if file.ends_with(".gz") {
         return Err(a.error(4, "dump custom/vtk files cannot be gzipped"));
     }
-    if [".pvtu", ".pvtp", ".vtm"].iter().any(|e| file.ends_with(e)) {
-        return Err(a.unsupported(
-            4,
-            "dump custom/vtk parallel or multiblock files (.pvtu/.pvtp/.vtm)",
-        ));
+    if file.ends_with(".vtm") {
+        return Err(a.unsupported(4, "dump custom/vtk multiblock files (.vtm)"));
     }
     if crate::io::vtk::Flavor::of(file).is_none() {
         return Err(a.error(
             4,
-            "dump custom/vtk: the file name must end in .vtk, .vtp or .vtu",
+            "dump custom/vtk: the file name must end in .vtk, .vtp, .vtu, .pvtp or .pvtu",
         ));
     }
     Ok(())
@@ -470,8 +472,9 @@ fn local_gran_vtk_compute(
             "dump local/gran/vtk requires a valid ID of a compute pair/gran/local that writes the positions",
         ));
     }
-    if file.ends_with(".pvtp") || file.ends_with(".pvtu") {
-        return Err(a.unsupported(4, "dump local/gran/vtk to parallel VTK files"));
+    if crate::io::vtk::is_parallel(file) {
+        // LIGGGHTS 3.8.0's parallel names set its old `%` flag, which the style then refuses
+        return Err(a.error(4, "dump local/gran/vtk no longer allow parallel writing by setting the % character. Instead use a filename with suffix .pvtX (X = {u, p})."));
     }
     Ok(cid.to_string())
 }
@@ -552,9 +555,19 @@ pub(super) fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
                 continue;
             }
             "binary" if matches!(dump.style, crate::engine::sim::DumpStyle::Vtk(_)) => {
-                if a.word_in(i + 1, &["yes", "no"])? == "yes" {
-                    return Err(a.unsupported(i, "dump_modify binary yes (binary VTK)"));
-                }
+                dump.layout.binary = a.word_in(i + 1, &["yes", "no"])? == "yes";
+            }
+            // LIGGGHTS's text dumps take no `binary` keyword (a `.bin` file name makes
+            // `dump custom` binary)
+            "binary"
+                if matches!(
+                    dump.style,
+                    crate::engine::sim::DumpStyle::Text | crate::engine::sim::DumpStyle::Xyz(_)
+                ) =>
+            {
+                return Err(a
+                    .error(i, "Illegal dump_modify command")
+                    .with_help("dump custom writes LAMMPS's binary format to a file named *.bin"));
             }
             other => return Err(a.unsupported(i, &format!("dump_modify {other}"))),
         }
@@ -823,6 +836,8 @@ fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.unsupported(next, &format!("pair_style gran option {}", a.word(next)?)));
     }
     ctx.sim.pair_selection = Some(sel);
+    // a new pair style: computed until `pair_modify compute no`
+    ctx.sim.pair_compute = true;
     ctx.sim.pair_coeff_set = false;
     ctx.sim.pair_coeff_types.clear();
     if let Some(d) = pending {
@@ -838,6 +853,60 @@ fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
         &format!("pair coefficients ({} atom types)", ctx.sim.ntypes),
     )
     .map_err(|m| a.error(0, &m))
+}
+
+/// `pair_modify KEYWORD VALUE ...`: LIGGGHTS's keywords of every pair style. Only `compute
+/// yes|no` changes a granular run (no: the pair forces are not computed, as LIGGGHTS's
+/// integrator skips the pair); mixing, shifting, tables and tail corrections concern
+/// potentials with coefficients, which `pair_style gran` has not.
+fn pair_modify(a: &Args, ctx: &mut Ctx) -> Result {
+    if ctx.sim.pair_selection.is_none() {
+        return Err(a.error(0, "Pair_modify command before pair_style is defined"));
+    }
+    let illegal = |i: usize| {
+        a.error(i.min(a.len().saturating_sub(1)), "Illegal pair_modify command")
+            .with_help("pair_modify compute yes|no | mix geometric|arithmetic|sixthpower | shift yes|no | tail yes|no | table N | table/disp N | tabinner R | tabinner/disp R")
+    };
+    if a.is_empty() {
+        return Err(illegal(0));
+    }
+    let mut compute = ctx.sim.pair_compute;
+    let mut i = 0;
+    while i < a.len() {
+        if i + 2 > a.len() {
+            return Err(illegal(i));
+        }
+        let value = a.word(i + 1)?;
+        match a.word(i)? {
+            "compute" | "shift" | "tail" => {
+                let yes = match value {
+                    "yes" => true,
+                    "no" => false,
+                    _ => return Err(illegal(i + 1)),
+                };
+                if a.word(i)? == "compute" {
+                    compute = yes;
+                }
+            }
+            "mix" => {
+                if !["geometric", "arithmetic", "sixthpower"].contains(&value) {
+                    return Err(illegal(i + 1));
+                }
+            }
+            "table" | "table/disp" => {
+                if a.int(i + 1)? > 32 {
+                    return Err(a.error(i + 1, "Too many total bits for bitmapped lookup table"));
+                }
+            }
+            "tabinner" | "tabinner/disp" => {
+                a.real(i + 1)?;
+            }
+            _ => return Err(illegal(i)),
+        }
+        i += 2;
+    }
+    ctx.sim.pair_compute = compute;
+    Ok(())
 }
 
 fn pair_coeff(a: &Args, ctx: &mut Ctx) -> Result {

@@ -76,15 +76,47 @@ pub fn shortest(v: f64) -> String {
     }
 }
 
+/// How a `DataArray`'s values are written.
+pub(crate) enum Encoding {
+    /// The formatted values, six a line.
+    Ascii,
+    /// `format="binary"`: these raw little-endian bytes after their byte count (a 4-byte
+    /// integer), base64 on one line.
+    Binary(Vec<u8>),
+}
+
+/// Base64 (RFC 4648, padded) of `bytes`.
+pub(crate) fn base64(bytes: &[u8]) -> String {
+    const SYMBOLS: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let b = [
+            chunk[0],
+            *chunk.get(1).unwrap_or(&0),
+            *chunk.get(2).unwrap_or(&0),
+        ];
+        let word = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for k in 0..4 {
+            if k <= chunk.len() {
+                out.push(SYMBOLS[((word >> (18 - 6 * k)) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
 /// One `DataArray`: `values` hold `width` components per tuple, already formatted; `numbers`
-/// the same values for the range.
-fn data_array(
+/// the same values for the range; `encoding` says which of them the file holds.
+pub(crate) fn data_array(
     out: &mut impl Write,
     kind: &str,
     name: &str,
     width: usize,
     values: &[String],
     numbers: &[f64],
+    encoding: &Encoding,
 ) -> std::io::Result<()> {
     // an empty array's range is VTK's untouched (1e299, -1e299)
     let mut range = (1e299_f64, -1e299_f64);
@@ -104,14 +136,27 @@ fn data_array(
     } else {
         String::new()
     };
+    let format = match encoding {
+        Encoding::Ascii => "ascii",
+        Encoding::Binary(_) => "binary",
+    };
     writeln!(
         out,
-        "        <DataArray type=\"{kind}\" Name=\"{name}\"{comps} format=\"ascii\" RangeMin=\"{}\" RangeMax=\"{}\">",
+        "        <DataArray type=\"{kind}\" Name=\"{name}\"{comps} format=\"{format}\" RangeMin=\"{}\" RangeMax=\"{}\">",
         shortest(range.0),
         shortest(range.1)
     )?;
-    for line in values.chunks(6) {
-        writeln!(out, "          {}", line.join(" "))?;
+    match encoding {
+        Encoding::Ascii => {
+            for line in values.chunks(6) {
+                writeln!(out, "          {}", line.join(" "))?;
+            }
+        }
+        Encoding::Binary(raw) => {
+            let mut block = (raw.len() as u32).to_le_bytes().to_vec();
+            block.extend_from_slice(raw);
+            writeln!(out, "          {}", base64(&block))?;
+        }
     }
     if width > 1 {
         writeln!(
@@ -134,7 +179,7 @@ fn data_array(
 fn int_array(out: &mut impl Write, kind: &str, name: &str, values: &[u64]) -> std::io::Result<()> {
     let text: Vec<String> = values.iter().map(u64::to_string).collect();
     let numbers: Vec<f64> = values.iter().map(|&v| v as f64).collect();
-    data_array(out, kind, name, 1, &text, &numbers)
+    data_array(out, kind, name, 1, &text, &numbers, &Encoding::Ascii)
 }
 
 /// One snapshot: `rows` holds `ncols` values per contact, row-major.
@@ -169,7 +214,15 @@ pub fn write_contacts_xml(
             .map(|k| at(k / width, first + k % width))
             .collect();
         let text: Vec<String> = numbers.iter().map(|&v| shortest(v)).collect();
-        data_array(out, "Float64", name, width, &text, &numbers)?;
+        data_array(
+            out,
+            "Float64",
+            name,
+            width,
+            &text,
+            &numbers,
+            &Encoding::Ascii,
+        )?;
     }
     writeln!(out, "      </CellData>\n      <Points>")?;
     // single-precision points, written as the doubles they widen to
@@ -177,7 +230,15 @@ pub fn write_contacts_xml(
         .map(|k| at(k / 6, layout.pos + k % 6) as f32 as f64)
         .collect();
     let text: Vec<String> = points.iter().map(|&v| shortest(v)).collect();
-    data_array(out, "Float32", "Points", 3, &text, &points)?;
+    data_array(
+        out,
+        "Float32",
+        "Points",
+        3,
+        &text,
+        &points,
+        &Encoding::Ascii,
+    )?;
     writeln!(out, "      </Points>")?;
     let connectivity: Vec<u64> = (0..2 * n as u64).collect();
     let offsets: Vec<u64> = (1..=n as u64).map(|k| 2 * k).collect();
@@ -210,6 +271,15 @@ pub fn write_contacts_xml(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn base64_as_vtk_writes_it() {
+        // LIGGGHTS's binary id array [1, 2] after its byte count 8
+        let block = [8u8, 0, 0, 0, 1, 0, 0, 0, 2, 0, 0, 0];
+        assert_eq!(base64(&block), "CAAAAAEAAAACAAAA");
+        assert_eq!(base64(&[0, 0, 0, 0]), "AAAAAA==");
+        assert_eq!(base64(&[0, 0, 0, 0, 1]), "AAAAAAE=");
+    }
 
     #[test]
     fn numbers_as_vtk_writes_them() {

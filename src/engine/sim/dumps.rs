@@ -116,6 +116,13 @@ impl Simulation {
         let mut text = Vec::new();
         let p = &self.particles;
         match &dump.style {
+            // LAMMPS's binary format for names ending in .bin, as LIGGGHTS's dump custom
+            DumpStyle::Text if dump.file.ends_with(".bin") => dump
+                .layout
+                .write_binary_snapshot(&mut text, step, p, dump.group, &self.domain, |c, i| {
+                    columns[c].0.get(i, columns[c].1)
+                })
+                .map_err(|e| e.to_string())?,
             DumpStyle::Text => dump
                 .layout
                 .write_snapshot(&mut text, step, p, dump.group, &self.domain, |c, i| {
@@ -243,11 +250,15 @@ impl Simulation {
             }
             other => other.value(p, domain, i),
         };
-        use crate::io::vtk::{write_particles, write_particles_xml, Flavor};
+        use crate::io::vtk::{
+            write_particles, write_particles_binary, write_particles_xml, Flavor,
+        };
+        let binary = dump.layout.binary;
         match Flavor::of(&dump.file) {
             Some(f @ (Flavor::PolyData | Flavor::Unstructured)) => {
-                write_particles_xml(text, f, &atoms, fields, |i| p.x[i], value)
+                write_particles_xml(text, f, binary, &atoms, fields, |i| p.x[i], value)
             }
+            _ if binary => write_particles_binary(text, &atoms, fields, |i| p.x[i], value),
             _ => write_particles(text, &atoms, fields, |i| p.x[i], value),
         }
         .map_err(|e| e.to_string())?;

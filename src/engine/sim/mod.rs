@@ -348,6 +348,8 @@ pub struct Simulation {
     pub pair_selection: Option<crate::engine::granular::Selection>,
     /// `pair_coeff` has set every I,I type pair.
     pub pair_coeff_set: bool,
+    /// The pair forces are computed (false after `pair_modify compute no`).
+    pub pair_compute: bool,
     /// Atom types whose I,I pair `pair_coeff` has set (index type - 1; LIGGGHTS's diagonal
     /// setflag, which its run init requires for every type).
     pub pair_coeff_types: Vec<bool>,
@@ -449,6 +451,7 @@ impl Default for Simulation {
             pair: None,
             pair_selection: None,
             pair_coeff_set: false,
+            pair_compute: true,
             pair_coeff_types: Vec::new(),
             soft_hard: (false, false),
             comm_vel: false,
@@ -554,7 +557,7 @@ impl Simulation {
     ) -> Result<(), EngineError> {
         self.reset_clump_forces();
         let p = &mut self.particles;
-        if self.pair.is_none() {
+        if self.pair.is_none() || !self.pair_compute {
             // a pair style sets the forces itself (on the fast path, block by block)
             p.clear_forces();
         }
@@ -570,7 +573,7 @@ impl Simulation {
         if tally {
             self.virial.resize(p.len(), [0.0; 6]);
         }
-        if let Some(pair) = self.pair.as_mut() {
+        if let Some(pair) = self.pair.as_mut().filter(|_| self.pair_compute) {
             let virial = if tally {
                 Some(&mut self.virial[..])
             } else {

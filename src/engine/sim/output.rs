@@ -103,14 +103,34 @@ impl Simulation {
             // one snapshot per file (overwritten without `*`), and the box beside it
             let mut bbox = Vec::new();
             match crate::io::vtk::Flavor::of(&dump.file) {
+                Some(crate::io::vtk::Flavor::Legacy) | None if dump.layout.binary => {
+                    crate::io::vtk::write_bounding_box_binary(&mut bbox, &self.domain)
+                }
                 Some(crate::io::vtk::Flavor::Legacy) | None => {
                     crate::io::vtk::write_bounding_box(&mut bbox, &self.domain)
                 }
-                Some(_) => crate::io::vtk::write_bounding_box_xml(&mut bbox, &self.domain),
+                Some(_) => crate::io::vtk::write_bounding_box_xml(
+                    &mut bbox,
+                    &self.domain,
+                    dump.layout.binary,
+                ),
             }
             .map_err(|e| e.to_string())?;
-            crate::io::write_atomically(&name, text)
-                .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
+            if crate::io::vtk::is_parallel(&name) {
+                // the master file names its one piece (the process-0 file LIGGGHTS writes)
+                let piece = crate::io::vtk::piece_name(&name);
+                let source = piece.rsplit('/').next().unwrap_or(&piece);
+                let flavor = crate::io::vtk::Flavor::of(&name).expect("a parallel VTK name");
+                let master =
+                    crate::io::vtk::parallel_master(&String::from_utf8_lossy(text), source, flavor);
+                crate::io::write_atomically(&piece, text)
+                    .map_err(|e| format!("Cannot open dump file {piece}: {e}"))?;
+                crate::io::write_atomically(&name, master.as_bytes())
+                    .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
+            } else {
+                crate::io::write_atomically(&name, text)
+                    .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
+            }
             let box_name = crate::io::vtk::bounding_box_name(&dump.file, &step_text);
             crate::io::write_atomically(&box_name, &bbox)
                 .map_err(|e| format!("Cannot open dump file {box_name}: {e}"))?;

@@ -504,7 +504,7 @@ fn bench(cmd: Command) -> ExitCode {
     };
     let choice = regolith::bench::ProgramChoice {
         liggghts,
-        exact: exact || !(fast || !ranks.is_empty()),
+        exact: exact || (!fast && ranks.is_empty()),
         fast_threads: if fast { threads } else { Vec::new() },
         ranks,
     };

@@ -114,7 +114,7 @@ const fn first_word(text: &'static str) -> &'static str {
     }
 }
 
-const YES_NO: Value = Value::OneOf(&["yes", "no"]);
+pub(crate) const YES_NO: Value = Value::OneOf(&["yes", "no"]);
 const ON_OFF: Value = Value::OneOf(&["on", "off"]);
 const LENGTH: Value = Value::Real("length");
 const VELOCITY: Value = Value::Real("velocity");
@@ -277,7 +277,6 @@ pub const SPECS: &[Spec] = &[
     style("fix", "particledistribution/discrete/numberbased", "fix ID GROUP particledistribution/discrete/numberbased SEED N TEMPLATE FRACTION ...", &[], "a mix of particle templates by number fraction"),
     style("fix", "particletemplate/multisphere", "fix ID GROUP particletemplate/multisphere SEED atom_type T density constant D nspheres N ntry N spheres file F scale S | spheres X Y Z R ... type MT", &[kw("mass", &[arg("M", Value::Real("mass"))], "clump mass instead of the sampled one (with inertia_tensor)"), kw("inertia_tensor", &[arg("IXX IXY IXZ IYY IYZ IZZ", NUMBER)], "inertia tensor about the centre of mass (mass*length^2)"), kw("use_volume", &[], "density from the given mass and the sampled volume"), kw("use_density", &[], "volume from the given mass and the density"), kw("fflag", &[arg("on|off on|off on|off", Value::Word)], "translations integrated along x, y, z"), kw("tflag", &[arg("on|off on|off on|off", Value::Word)], "rotations integrated about x, y, z")], "a rigid clump of spheres (length); volume, centre of mass and inertia by Monte Carlo with NTRY samples"),
     style("fix", "particletemplate/sphere", "fix ID GROUP particletemplate/sphere SEED atom_type T density constant D radius constant|gaussian|lognormal|uniform ...", &[kw("volume_limit", &[arg("V", Value::Real("volume"))], "smallest particle volume")], "one kind of sphere: type, density (density), radius (length)"),
-    style("fix", "print", "fix ID GROUP print N TEXT", &[kw("file", &[arg("F", Value::File)], "write to this file"), kw("append", &[arg("F", Value::File)], "append to this file"), kw("screen", &[arg("yes|no", YES_NO)], "print to the screen"), kw("title", &[arg("T", Value::Word)], "first line of the file")], "print a text every N steps"),
     style("fix", "property/atom/tracer", "fix ID GROUP property/atom/tracer region_mark R mark_step S", &[kw("marker_style", &[arg("dirac|heaviside|none", Value::OneOf(&["dirac", "heaviside", "none"]))], "mark once at the mark step, or at every check from it on"), kw("check_mark_every", &[arg("N", Value::Int)], "steps between checks (default 10)")], "mark particles inside a region (per-atom f_ID; f_ID: marked since last read)"),
     style("fix", "property/atom", "fix ID GROUP property/atom NAME scalar|vector RESTART COMM_GHOST COMM_REV VALUE ...", &[], "a user per-particle property (flags yes|no; one default value, or one per column); f_ID or f_ID[N] in dumps, set ... property/atom NAME VALUE ..."),
     style("fix", "property/global", "fix ID GROUP property/global NAME scalar|vector|peratomtype|peratomtypepair N VALUES ...", &[], "material properties (youngsModulus, poissonsRatio, coefficientRestitution, coefficientFriction ...)"),

@@ -31,8 +31,6 @@ pub enum FixKind {
     WallGran(WallFix),
     /// `fix check/timestep/gran`: time step as a fraction of Rayleigh and Hertz times.
     CheckTimestep(CheckTimestep),
-    /// `print N "text" [file F | append F] [screen yes|no] [title T]`.
-    Print(PrintFix),
     /// `fix ave/time` (scalar mode).
     AveTime(AveTime),
     /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
@@ -154,34 +152,6 @@ pub fn initial_integrate(
             }
             _ => {}
         }
-    }
-}
-
-/// `fix print`: a line with variables substituted every `every` steps.
-pub struct PrintFix {
-    /// Print every this many steps.
-    pub every: i64,
-    /// The text, `$` references still in it.
-    pub text: String,
-    /// Also print to screen and log.
-    pub screen: bool,
-    /// The output file, if any.
-    pub file: Option<std::io::BufWriter<std::fs::File>>,
-}
-
-impl PrintFix {
-    /// Write one substituted line where the fix sends it.
-    pub fn emit(&mut self, line: &str, out: &mut dyn FnMut(&str)) -> Result<(), EngineError> {
-        use std::io::Write;
-        if self.screen {
-            out(&format!("{line}\n"));
-        }
-        if let Some(f) = self.file.as_mut() {
-            writeln!(f, "{line}")
-                .and_then(|_| f.flush())
-                .map_err(|e| format!("fix print: {e}"))?;
-        }
-        Ok(())
     }
 }
 

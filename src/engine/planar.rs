@@ -12,7 +12,6 @@ pub const DISC_INERTIA: f64 = 0.5;
 pub const PLANAR_FIXES: &[&str] = &[
     "property/global",
     "wall/gran",
-    "print",
     "ave/time",
     "check/timestep/gran",
 ];

@@ -90,7 +90,6 @@ pub const STYLES: &[(&str, Build)] = &[
     ("insert/stream", insert_stream::build),
     ("wall/gran", wall_gran::build),
     ("adapt", adapt::build),
-    ("print", print::build),
     ("ave/time", ave_time::build),
     ("move", move_atoms::build),
     ("massflow/mesh", massflow_mesh::build),
@@ -222,6 +221,11 @@ pub const MODULES: &[FixRow] = &[
         spec: spring_self::SPEC,
         planar: false,
         build: spring_self::build,
+    },
+    FixRow {
+        spec: print::SPEC,
+        planar: true,
+        build: print::build,
     },
 ];
 

@@ -70,6 +70,16 @@ pub trait StepInputs {
     /// Whether the point `x` (length) is inside region `region` (its index among the
     /// deck's regions, as `Regions::find` gives it).
     fn in_region(&self, region: usize, x: [f64; 3]) -> bool;
+    /// `text` with its `$` references to the deck's variables substituted (`fix print`);
+    /// by default only a text without `$` passes.
+    fn substitute(&mut self, text: &str) -> Result<String, EngineError> {
+        if text.contains('$') {
+            return Err(EngineError::Invalid(format!(
+                "cannot substitute variables in '{text}' here"
+            )));
+        }
+        Ok(text.to_string())
+    }
 }
 
 /// A fix style: the phases it hooks and the values it offers. Every hook has a default that
@@ -118,6 +128,24 @@ pub trait FixStyle: Send {
 
     /// `end_of_step`: after the step, before output (the style decides its own interval).
     fn end_of_step(&mut self, _p: &mut Particles, _at: &FixStep) {}
+
+    /// Whether the style writes output at the end of `step`: only then is its
+    /// [`FixStyle::end_of_step_output`] called.
+    fn outputs_at(&self, _step: i64) -> bool {
+        false
+    }
+
+    /// At `end_of_step`, right after [`FixStyle::end_of_step`]: output that reads the deck's
+    /// variables (`fix print`), written to `out` (screen and log) or the style's own files.
+    /// While it runs the fix itself is out of the fix list (its `f_ID` values cannot be read).
+    fn end_of_step_output(
+        &mut self,
+        _at: &FixStep,
+        _inputs: &mut dyn StepInputs,
+        _out: &mut dyn FnMut(&str),
+    ) -> Result<(), EngineError> {
+        Ok(())
+    }
 
     /// The global value `f_ID` (index None) or `f_ID[i]` (1-based) for thermo, variables and
     /// `fix ave/time`; None when the style has no such value.
@@ -222,6 +250,10 @@ impl StepInputs for SimulationInputs<'_> {
     fn in_region(&self, region: usize, x: [f64; 3]) -> bool {
         self.sim.regions.matches(region, x)
     }
+
+    fn substitute(&mut self, text: &str) -> Result<String, EngineError> {
+        self.vars.substitute(self.sim, text)
+    }
 }
 
 impl Simulation {
@@ -249,6 +281,29 @@ impl Simulation {
             result?;
         }
         Ok(())
+    }
+
+    /// The `end_of_step_output` hook of module fix style `k` (see
+    /// [`FixStyle::end_of_step_output`]).
+    pub(crate) fn fix_style_output(
+        &mut self,
+        k: usize,
+        out: &mut dyn FnMut(&str),
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        let kind = std::mem::replace(&mut self.fixes[k].kind, super::FixKind::Settings);
+        let super::FixKind::Style(mut style) = kind else {
+            self.fixes[k].kind = kind;
+            return Ok(());
+        };
+        let at = FixStep::plain(self.fixes[k].group, self.step, self.dt, &self.domain);
+        let mut inputs = SimulationInputs {
+            sim: &*self,
+            vars: &mut *vars,
+        };
+        let result = style.end_of_step_output(&at, &mut inputs, out);
+        self.fixes[k].kind = super::FixKind::Style(style);
+        result
     }
 
     /// The `setup` hook of every module fix style, in fix order, at the start of a run.

@@ -22,17 +22,22 @@ impl Simulation {
                         out(&format!("WARNING: {m}\n"));
                     }
                 }
-                FixKind::Style(s) => s.end_of_step(
-                    &mut self.particles,
-                    &fixes::FixStep {
-                        group: fix.group,
-                        step,
-                        dt,
-                        domain: &self.domain,
-                        virial: if tallied { &self.virial } else { &[] },
-                        contact,
-                    },
-                ),
+                FixKind::Style(s) => {
+                    s.end_of_step(
+                        &mut self.particles,
+                        &fixes::FixStep {
+                            group: fix.group,
+                            step,
+                            dt,
+                            domain: &self.domain,
+                            virial: if tallied { &self.virial } else { &[] },
+                            contact,
+                        },
+                    );
+                    if s.outputs_at(step) {
+                        self.fix_style_output(k, out, vars)?;
+                    }
+                }
                 FixKind::Tracer(t) if step % t.every == 0 => {
                     t.end_of_step(&mut self.particles, fix.group, &self.regions, step);
                 }
@@ -50,13 +55,6 @@ impl Simulation {
                     self.store_state(k, Snapshot::All, vars)?
                 }
                 FixKind::Deform(d) if step % d.every == 0 => self.deform_step(k, vars)?,
-                FixKind::Print(pf) if step % pf.every == 0 => {
-                    let text = pf.text.clone();
-                    let line = vars.substitute(self, &text)?;
-                    if let FixKind::Print(pf) = &mut self.fixes[k].kind {
-                        pf.emit(&line, out)?;
-                    }
-                }
                 _ => {}
             }
         }

@@ -20,7 +20,7 @@ pub use check_timestep::CheckTimestep;
 pub use meshes::{move_meshes, MeshFix};
 pub use motion::{Motion, Move};
 pub use stream::StreamFix;
-pub use style::{FixStep, FixStyle, PerAtomShape, StepInputs};
+pub use style::{FixInit, FixStep, FixStyle, PerAtomShape, StepInputs};
 pub use walls::{mesh_wall_contacts, MeshWallFix, WallFix};
 
 /// What a fix does.
@@ -53,8 +53,6 @@ pub enum FixKind {
     MoveMesh(crate::engine::mesh_motion::MoveMesh),
     /// `fix massflow/mesh`: particles and mass crossing a mesh face.
     Massflow(Box<crate::engine::massflow::Massflow>),
-    /// `fix buoyancy`: the weight of displaced liquid below a level.
-    Buoyancy(crate::engine::buoyancy::Buoyancy),
     /// `fix property/atom/tracer`: particles marked in a region.
     Tracer(Box<crate::engine::tracer::Tracer>),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
@@ -189,7 +187,6 @@ pub fn post_force(
     list: (u64, f64),
     moving_skin: bool,
 ) {
-    let buoyancy_g = crate::engine::buoyancy::gravity_for(fixes);
     for k in 0..fixes.len() {
         if let FixKind::MeshWall(_) = fixes[k].kind {
             walls::mesh_wall_force(fixes, k, p, dt, update, list, moving_skin);
@@ -205,11 +202,6 @@ pub fn post_force(
                     let mut history = std::mem::take(&mut p.extra[k].data);
                     model.compute(p, g, &mut history, dt, update, list);
                     p.extra[k].data = history;
-                }
-            }
-            FixKind::Buoyancy(b) => {
-                if let Some(gv) = buoyancy_g {
-                    b.apply(p, g, gv);
                 }
             }
             FixKind::Style(s) => s.post_force(p, &FixStep::plain(g, at.0, dt, at.1)),

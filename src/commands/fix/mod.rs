@@ -93,7 +93,6 @@ pub const STYLES: &[(&str, Build)] = &[
     ("ave/time", ave_time::build),
     ("move", move_atoms::build),
     ("massflow/mesh", massflow_mesh::build),
-    ("buoyancy", buoyancy::build),
     ("property/atom/tracer", tracer::build),
     ("property/atom", property_atom::build),
     ("heat/gran", heat_gran::build),
@@ -226,6 +225,11 @@ pub const MODULES: &[FixRow] = &[
         spec: print::SPEC,
         planar: true,
         build: print::build,
+    },
+    FixRow {
+        spec: buoyancy::SPEC,
+        planar: false,
+        build: buoyancy::build,
     },
 ];
 

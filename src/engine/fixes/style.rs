@@ -82,6 +82,14 @@ pub trait StepInputs {
     }
 }
 
+/// What a style's [`FixStyle::init`] may read of the run's other fixes.
+#[derive(Debug, Clone, Copy)]
+pub struct FixInit<'a> {
+    /// The uniform accelerations the run's fixes add (length/time^2; see
+    /// [`FixStyle::acceleration`]), in fix order.
+    pub accelerations: &'a [[f64; 3]],
+}
+
 /// A fix style: the phases it hooks and the values it offers. Every hook has a default that
 /// does nothing (or offers nothing), so a style writes only what it does.
 pub trait FixStyle: Send {
@@ -91,6 +99,12 @@ pub trait FixStyle: Send {
     /// LIGGGHTS's `init` checks at the start of every run (and of a dry run's `run`): an
     /// error stops the run with LIGGGHTS's message. `dimension` is 2 or 3.
     fn check(&self, _p: &Particles, _group: u32, _dimension: u32) -> Result<(), EngineError> {
+        Ok(())
+    }
+
+    /// LIGGGHTS's `init` of a style that reads the run's other fixes (`fix buoyancy` takes
+    /// the gravity), after [`FixStyle::check`]: an error stops the run with LIGGGHTS's message.
+    fn init(&mut self, _run: &FixInit) -> Result<(), EngineError> {
         Ok(())
     }
 
@@ -304,6 +318,27 @@ impl Simulation {
         let result = style.end_of_step_output(&at, &mut inputs, out);
         self.fixes[k].kind = super::FixKind::Style(style);
         result
+    }
+
+    /// The `init` hook of every module fix style, in fix order, at a run's init.
+    pub(crate) fn init_fix_styles(&mut self) -> Result<(), EngineError> {
+        let accelerations: Vec<[f64; 3]> = self
+            .fixes
+            .iter()
+            .filter_map(|f| match &f.kind {
+                super::FixKind::Style(s) => s.acceleration(),
+                _ => None,
+            })
+            .collect();
+        let run = FixInit {
+            accelerations: &accelerations,
+        };
+        for fix in &mut self.fixes {
+            if let super::FixKind::Style(s) = &mut fix.kind {
+                s.init(&run)?;
+            }
+        }
+        Ok(())
     }
 
     /// The `setup` hook of every module fix style, in fix order, at the start of a run.

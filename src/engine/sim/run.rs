@@ -73,7 +73,7 @@ impl Simulation {
         self.check_meshes_in_box()?;
         let (first, last, started) = self.begin_run(nsteps)?;
         self.setup_deform(first)?;
-        crate::engine::buoyancy::check(&self.fixes)?;
+        self.init_fix_styles()?;
         self.setup_fix_styles();
         self.setup_displacements();
         self.accel.settle_threads();

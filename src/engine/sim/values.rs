@@ -157,7 +157,6 @@ impl Simulation {
             (FixKind::Massflow(m), Some(i)) if m.value(i).is_some() => {
                 Ok(m.value(i).unwrap_or(0.0))
             }
-            (FixKind::Buoyancy(b), Some(i @ 1..=3)) => Ok(b.total[i - 1]),
             (FixKind::Tracer(t), None) => Ok(t.scalar()),
             (FixKind::Style(s), i) if s.value(i).is_some() => Ok(s.value(i).unwrap_or(0.0)),
             _ => Err(format!("fix {id} ({}) has no such value", fix.style).into()),

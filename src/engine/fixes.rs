@@ -47,8 +47,6 @@ pub enum FixKind {
     InsertStream(Box<StreamFix>),
     /// `fix wall/gran ... mesh`: granular walls of triangle meshes.
     MeshWall(MeshWallFix),
-    /// `fix adapt N atom diameter v_name`: particle diameters from a variable.
-    Adapt(Adapt),
     /// `fix move/mesh`: prescribed motion of a mesh.
     MoveMesh(crate::engine::mesh_motion::MoveMesh),
     /// `fix massflow/mesh`: particles and mass crossing a mesh face.
@@ -101,17 +99,6 @@ impl FixKind {
             _ => true,
         }
     }
-}
-
-/// `fix adapt N atom diameter v_name [scale yes|no] [reset yes|no]`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Adapt {
-    /// Apply every this many steps (0: only at the setup of each run).
-    pub every: i64,
-    /// The diameter (length), or the factor on the current diameter with `scale yes`.
-    pub diameter: ForceValue,
-    /// `scale yes`: the variable multiplies the current diameter.
-    pub scale: bool,
 }
 
 /// One defined fix.

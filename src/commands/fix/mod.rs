@@ -89,7 +89,6 @@ pub const STYLES: &[(&str, Build)] = &[
     ("insert/rate/region", insert_pack::build),
     ("insert/stream", insert_stream::build),
     ("wall/gran", wall_gran::build),
-    ("adapt", adapt::build),
     ("ave/time", ave_time::build),
     ("move", move_atoms::build),
     ("massflow/mesh", massflow_mesh::build),
@@ -230,6 +229,11 @@ pub const MODULES: &[FixRow] = &[
         spec: buoyancy::SPEC,
         planar: false,
         build: buoyancy::build,
+    },
+    FixRow {
+        spec: adapt::SPEC,
+        planar: false,
+        build: adapt::build,
     },
 ];
 

@@ -112,6 +112,39 @@ pub trait FixStyle: Send {
     /// for the run (LIGGGHTS's `init`/`setup` bookkeeping).
     fn setup(&mut self, _p: &Particles, _at: &FixStep) {}
 
+    /// Whether the style changes particle radii during runs (`fix adapt`: the neighbour
+    /// lists then allow for growing particles).
+    fn changes_radii(&self) -> bool {
+        false
+    }
+
+    /// The part of the run the fast path leaves to the exact path's code because of this
+    /// style, as its note names it (None: the style runs on the fast path).
+    fn unaccelerated(&self) -> Option<&'static str> {
+        None
+    }
+
+    /// Whether the style has `pre_force` work at `step` (`setup`: the run's setup force
+    /// evaluation, LIGGGHTS's `setup_pre_force`): only then are
+    /// [`FixStyle::pre_force_evaluate`] and [`FixStyle::pre_force`] called.
+    fn pre_force_due(&self, _step: i64, _setup: bool) -> bool {
+        false
+    }
+
+    /// Before `pre_force`: read the variables the style needs. While it runs the fix itself
+    /// is out of the fix list (its `f_ID` values cannot be read).
+    fn pre_force_evaluate(
+        &mut self,
+        _p: &Particles,
+        _at: &FixStep,
+        _inputs: &mut dyn StepInputs,
+    ) -> Result<(), EngineError> {
+        Ok(())
+    }
+
+    /// `pre_force`: after the neighbour lists, before the forces (`fix adapt` sets radii).
+    fn pre_force(&mut self, _p: &mut Particles, _at: &FixStep) {}
+
     /// `initial_integrate`: the first half of a velocity-Verlet step (before the forces).
     fn initial_integrate(&mut self, _p: &mut Particles, _at: &FixStep) {}
 
@@ -318,6 +351,38 @@ impl Simulation {
         let result = style.end_of_step_output(&at, &mut inputs, out);
         self.fixes[k].kind = super::FixKind::Style(style);
         result
+    }
+
+    /// The `pre_force` hooks of every module fix style due now, in fix order (`setup`: the
+    /// run's setup force evaluation).
+    pub(crate) fn pre_force_fix_styles(
+        &mut self,
+        setup: bool,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        let step = self.step;
+        for k in 0..self.fixes.len() {
+            if !matches!(&self.fixes[k].kind, super::FixKind::Style(s) if s.pre_force_due(step, setup))
+            {
+                continue;
+            }
+            let kind = std::mem::replace(&mut self.fixes[k].kind, super::FixKind::Settings);
+            let super::FixKind::Style(mut style) = kind else {
+                unreachable!("checked above")
+            };
+            let at = FixStep::plain(self.fixes[k].group, step, self.dt, &self.domain);
+            let mut inputs = SimulationInputs {
+                sim: &*self,
+                vars: &mut *vars,
+            };
+            let result = style.pre_force_evaluate(&self.particles, &at, &mut inputs);
+            if result.is_ok() {
+                style.pre_force(&mut self.particles, &at);
+            }
+            self.fixes[k].kind = super::FixKind::Style(style);
+            result?;
+        }
+        Ok(())
     }
 
     /// The `init` hook of every module fix style, in fix order, at a run's init.

@@ -168,56 +168,7 @@ impl Simulation {
     pub(super) fn radii_vary(&self) -> bool {
         self.fixes
             .iter()
-            .any(|f| matches!(f.kind, FixKind::Adapt(_)))
-    }
-
-    /// `fix adapt ... atom diameter v_name` (LIGGGHTS's pre_force, and setup_pre_force when
-    /// `setup`): every N steps set the diameters of the group's particles from the variable,
-    /// keeping each particle's density.
-    pub(super) fn adapt_radii(
-        &mut self,
-        setup: bool,
-        vars: &mut dyn VariableSource,
-    ) -> Result<(), EngineError> {
-        use crate::engine::fixes::ForceValue;
-        use std::f64::consts::PI;
-        for k in 0..self.fixes.len() {
-            let FixKind::Adapt(ad) = &self.fixes[k].kind else {
-                continue;
-            };
-            if !setup && (ad.every == 0 || self.step % ad.every != 0) {
-                continue;
-            }
-            let (group, scale) = (self.fixes[k].group, ad.scale);
-            let values = match &ad.diameter {
-                ForceValue::Equal(name) => {
-                    let name = name.clone();
-                    vec![vars.equal(self, &name)?; self.particles.len()]
-                }
-                ForceValue::Atom(name) => {
-                    let name = name.clone();
-                    vars.atom(self, &name)?
-                }
-                ForceValue::Constant(c) => vec![*c; self.particles.len()],
-                ForceValue::Null => continue,
-            };
-            let p = &mut self.particles;
-            for (i, &value) in values.iter().enumerate().take(p.len()) {
-                if p.mask[i] & group == 0 {
-                    continue;
-                }
-                let r = p.radius[i];
-                let density = p.mass[i] / (4.0 * PI / 3.0 * r * r * r);
-                let mut value = value;
-                if scale {
-                    value *= r * 2.0;
-                }
-                let r = 0.5 * value;
-                p.radius[i] = r;
-                p.mass[i] = 4.0 * PI / 3.0 * r * r * r * density;
-            }
-        }
-        Ok(())
+            .any(|f| matches!(&f.kind, FixKind::Style(s) if s.changes_radii()))
     }
 
     pub(super) fn list_positions(&self) -> &[[f64; 3]] {

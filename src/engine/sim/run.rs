@@ -118,7 +118,7 @@ impl Simulation {
         self.refresh_moving_meshes(true);
         self.zero_mesh_velocities(true);
         self.mesh_stress_phase(StressPhase::Setup)?;
-        self.adapt_radii(true, vars)?;
+        self.pre_force_fix_styles(true, vars)?;
         // LIGGGHTS's setup evaluation does not advance contact history
         self.compute_forces(false, true, vars)?;
         self.setup_clump_forces();
@@ -223,7 +223,7 @@ impl Simulation {
         }
         self.refresh_moving_meshes(rebuilt);
         self.mesh_stress_phase(StressPhase::PreForce)?;
-        self.adapt_radii(false, vars)?;
+        self.pre_force_fix_styles(false, vars)?;
         let tally = self.virial_wanted(last);
         self.compute_forces(true, tally, vars)?;
         self.guard_forces()?;

@@ -51,8 +51,6 @@ pub enum FixKind {
     MoveMesh(crate::engine::mesh_motion::MoveMesh),
     /// `fix massflow/mesh`: particles and mass crossing a mesh face.
     Massflow(Box<crate::engine::massflow::Massflow>),
-    /// `fix property/atom/tracer`: particles marked in a region.
-    Tracer(Box<crate::engine::tracer::Tracer>),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
     /// `fix property/atom`: a per-atom property (values in the particle array of the fix ID).
@@ -90,7 +88,6 @@ impl FixKind {
             | FixKind::InsertStream(_)
             | FixKind::MeshWall(_)
             | FixKind::Massflow(_)
-            | FixKind::Tracer(_)
             | FixKind::Settings
             | FixKind::PropertyAtom(_)
             | FixKind::HeatGran(_) => false,

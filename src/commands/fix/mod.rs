@@ -92,7 +92,6 @@ pub const STYLES: &[(&str, Build)] = &[
     ("ave/time", ave_time::build),
     ("move", move_atoms::build),
     ("massflow/mesh", massflow_mesh::build),
-    ("property/atom/tracer", tracer::build),
     ("property/atom", property_atom::build),
     ("heat/gran", heat_gran::build),
     ("heat/gran/conduction", heat_gran::build),
@@ -234,6 +233,11 @@ pub const MODULES: &[FixRow] = &[
         spec: adapt::SPEC,
         planar: false,
         build: adapt::build,
+    },
+    FixRow {
+        spec: tracer::SPEC,
+        planar: false,
+        build: tracer::build,
     },
 ];
 

@@ -11,6 +11,7 @@
 use crate::engine::domain::Domain;
 use crate::engine::error::EngineError;
 use crate::engine::particles::Particles;
+use crate::engine::region::Regions;
 use crate::engine::sim::{Simulation, VariableSource};
 
 /// What a phase hook is told about the fix and the step.
@@ -30,6 +31,8 @@ pub struct FixStep<'a> {
     /// LIGGGHTS's largest contact distance, `cutneighmax - skin` (length; given at
     /// `end_of_step` and `setup_values`, else 0).
     pub contact: f64,
+    /// The deck's regions (given at `end_of_step` and `setup_values`, else None).
+    pub regions: Option<&'a Regions>,
 }
 
 impl<'a> FixStep<'a> {
@@ -44,6 +47,7 @@ impl<'a> FixStep<'a> {
             domain,
             virial: &[],
             contact: 0.0,
+            regions: None,
         }
     }
 }

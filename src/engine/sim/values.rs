@@ -32,14 +32,12 @@ impl Simulation {
                             domain: &self.domain,
                             virial: if tallied { &self.virial } else { &[] },
                             contact,
+                            regions: Some(&self.regions),
                         },
                     );
                     if s.outputs_at(step) {
                         self.fix_style_output(k, out, vars)?;
                     }
-                }
-                FixKind::Tracer(t) if step % t.every == 0 => {
-                    t.end_of_step(&mut self.particles, fix.group, &self.regions, step);
                 }
                 FixKind::AveTime(at) if at.next == step => {
                     let values = self.ave_time_values(k, vars)?;
@@ -110,6 +108,7 @@ impl Simulation {
                         domain: &self.domain,
                         virial: if tallied { &self.virial } else { &[] },
                         contact,
+                        regions: Some(&self.regions),
                     },
                 );
             }
@@ -157,8 +156,10 @@ impl Simulation {
             (FixKind::Massflow(m), Some(i)) if m.value(i).is_some() => {
                 Ok(m.value(i).unwrap_or(0.0))
             }
-            (FixKind::Tracer(t), None) => Ok(t.scalar()),
-            (FixKind::Style(s), i) if s.value(i).is_some() => Ok(s.value(i).unwrap_or(0.0)),
+            // read once: a value may be consumed by its reading (fix property/atom/tracer)
+            (FixKind::Style(s), i) => s
+                .value(i)
+                .ok_or_else(|| format!("fix {id} ({}) has no such value", fix.style).into()),
             _ => Err(format!("fix {id} ({}) has no such value", fix.style).into()),
         }
     }

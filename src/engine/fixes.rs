@@ -20,7 +20,7 @@ pub use check_timestep::CheckTimestep;
 pub use meshes::{move_meshes, MeshFix};
 pub use motion::{Motion, Move};
 pub use stream::StreamFix;
-pub use style::{FixInit, FixStep, FixStyle, PerAtomShape, StepInputs};
+pub use style::{FixInit, FixStep, FixStyle, PairInit, PerAtomShape, StepInputs};
 pub use walls::{mesh_wall_contacts, MeshWallFix, WallFix};
 
 /// What a fix does.
@@ -29,8 +29,6 @@ pub enum FixKind {
     Move(Move),
     /// `fix wall/gran ... primitive`: a granular plane wall.
     WallGran(WallFix),
-    /// `fix check/timestep/gran`: time step as a fraction of Rayleigh and Hertz times.
-    CheckTimestep(CheckTimestep),
     /// `fix ave/time` (scalar mode).
     AveTime(AveTime),
     /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
@@ -79,7 +77,6 @@ impl FixKind {
     pub fn may_read_computes(&self) -> bool {
         match self {
             FixKind::WallGran(_)
-            | FixKind::CheckTimestep(_)
             | FixKind::Mesh(_)
             | FixKind::Template(_)
             | FixKind::ClumpTemplate(_)

@@ -64,7 +64,6 @@ pub type Build = fn(&Args, &mut Ctx, &FixDef) -> Result<FixKind, CommandError>;
 
 /// The fix styles regolith runs: the style name and the builder in the style's file.
 pub const STYLES: &[(&str, Build)] = &[
-    ("check/timestep/gran", check_timestep::build),
     ("property/global", property_global::build),
     ("mesh/surface", mesh_surface::build),
     ("mesh/surface/planar", mesh_surface::build),
@@ -238,6 +237,11 @@ pub const MODULES: &[FixRow] = &[
         spec: tracer::SPEC,
         planar: false,
         build: tracer::build,
+    },
+    FixRow {
+        spec: check_timestep::SPEC,
+        planar: true,
+        build: check_timestep::build,
     },
 ];
 

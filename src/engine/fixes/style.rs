@@ -8,6 +8,7 @@
 //! A style is one file under `commands/fix/` (its arguments, its state, this trait) and one
 //! row in that folder's table.
 
+use crate::engine::contact::MaterialInput;
 use crate::engine::domain::Domain;
 use crate::engine::error::EngineError;
 use crate::engine::particles::Particles;
@@ -31,6 +32,8 @@ pub struct FixStep<'a> {
     /// LIGGGHTS's largest contact distance, `cutneighmax - skin` (length; given at
     /// `end_of_step` and `setup_values`, else 0).
     pub contact: f64,
+    /// The neighbour skin (length; given at `end_of_step` and `setup_values`, else 0).
+    pub skin: f64,
     /// The deck's regions (given at `end_of_step` and `setup_values`, else None).
     pub regions: Option<&'a Regions>,
 }
@@ -47,6 +50,7 @@ impl<'a> FixStep<'a> {
             domain,
             virial: &[],
             contact: 0.0,
+            skin: 0.0,
             regions: None,
         }
     }
@@ -94,6 +98,19 @@ pub struct FixInit<'a> {
     pub accelerations: &'a [[f64; 3]],
 }
 
+/// What a style's [`FixStyle::init_pair`] reads at the pair style's init.
+#[derive(Debug, Clone, Copy)]
+pub struct PairInit<'a> {
+    /// Whether a granular pair style is defined.
+    pub pair_gran: bool,
+    /// The material properties as `fix property/global` defines them.
+    pub materials: &'a MaterialInput,
+    /// The thermo interval (steps).
+    pub thermo_every: i64,
+    /// The thermo keywords (`f_ID[2]` ...).
+    pub thermo_keywords: &'a [&'a str],
+}
+
 /// A fix style: the phases it hooks and the values it offers. Every hook has a default that
 /// does nothing (or offers nothing), so a style writes only what it does.
 pub trait FixStyle: Send {
@@ -104,6 +121,18 @@ pub trait FixStyle: Send {
     /// error stops the run with LIGGGHTS's message. `dimension` is 2 or 3.
     fn check(&self, _p: &Particles, _group: u32, _dimension: u32) -> Result<(), EngineError> {
         Ok(())
+    }
+
+    /// LIGGGHTS's `init` of a style that reads the pair style and the materials (at the
+    /// pair style's init, the first of a run's checks): an error stops the run.
+    fn init_pair(&mut self, _pair: &PairInit) -> Result<(), EngineError> {
+        Ok(())
+    }
+
+    /// How often the style computes its global values (steps), for LIGGGHTS's "not
+    /// computed at compatible time" checks.
+    fn global_freq(&self) -> i64 {
+        1
     }
 
     /// LIGGGHTS's `init` of a style that reads the run's other fixes (`fix buoyancy` takes
@@ -385,6 +414,38 @@ impl Simulation {
             }
             self.fixes[k].kind = super::FixKind::Style(style);
             result?;
+        }
+        Ok(())
+    }
+
+    /// The `init_pair` hook of every module fix style, in fix order.
+    pub(crate) fn init_pair_fix_styles(
+        &mut self,
+        materials: &MaterialInput,
+    ) -> Result<(), EngineError> {
+        if !self
+            .fixes
+            .iter()
+            .any(|f| matches!(f.kind, super::FixKind::Style(_)))
+        {
+            return Ok(());
+        }
+        let keywords: Vec<&str> = self
+            .thermo
+            .fields
+            .iter()
+            .map(|f| f.keyword.as_str())
+            .collect();
+        let pair = PairInit {
+            pair_gran: self.pair_selection.is_some(),
+            materials,
+            thermo_every: self.thermo.every,
+            thermo_keywords: &keywords,
+        };
+        for fix in &mut self.fixes {
+            if let super::FixKind::Style(s) = &mut fix.kind {
+                s.init_pair(&pair)?;
+            }
         }
         Ok(())
     }

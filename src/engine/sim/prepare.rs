@@ -6,52 +6,9 @@ use super::*;
 impl Simulation {
     /// Build the contact models (pair and walls) from the current material properties.
     pub(super) fn init_pair(&mut self) -> Result<(), EngineError> {
-        use crate::engine::contact::material::mix_yeff;
         use crate::engine::granular;
         let input = self.material_input();
-        for k in 0..self.fixes.len() {
-            if let FixKind::CheckTimestep(_) = &self.fixes[k].kind {
-                if self.pair_selection.is_none() {
-                    return Err(
-                        "Fix check/timestep/gran can only be used together with: gran".into(),
-                    );
-                }
-                let missing = |name: &str| {
-                    format!("Could not locate a fix/property storing value(s) for {name} as requested by fix check/timestep/gran.")
-                };
-                let youngs = input
-                    .youngs_modulus
-                    .clone()
-                    .ok_or_else(|| missing("youngsModulus"))?;
-                let poisson = input
-                    .poissons_ratio
-                    .clone()
-                    .ok_or_else(|| missing("poissonsRatio"))?;
-                let n = self.ntypes as usize;
-                if youngs.len() < n || poisson.len() < n {
-                    return Err("fix check/timestep/gran: youngsModulus and poissonsRatio need one value per atom type".into());
-                }
-                let materials = (0..n)
-                    .map(|t| {
-                        let (y, nu) = (youngs[t], poisson[t]);
-                        (y, nu, mix_yeff(y, y, nu, nu))
-                    })
-                    .collect();
-                let every = self.thermo.every;
-                let prefix = format!("f_{}", self.fixes[k].id);
-                let in_thermo = self
-                    .thermo
-                    .fields
-                    .iter()
-                    .any(|f| f.keyword.starts_with(&prefix));
-                if let FixKind::CheckTimestep(c) = &mut self.fixes[k].kind {
-                    if in_thermo && every % c.every != 0 {
-                        return Err("Thermo and fix not computed at compatible times".into());
-                    }
-                    c.materials = materials;
-                }
-            }
-        }
+        self.init_pair_fix_styles(&input)?;
         // the rolling-friction models use a disc's inertia factor in 2d
         let two_d = self.dimension == 2;
         for k in 0..self.fixes.len() {

@@ -17,11 +17,6 @@ impl Simulation {
         for k in 0..self.fixes.len() {
             let fix = &mut self.fixes[k];
             match &mut fix.kind {
-                FixKind::CheckTimestep(c) if step % c.every == 0 => {
-                    for m in c.evaluate(&self.particles, fix.group, dt, skin) {
-                        out(&format!("WARNING: {m}\n"));
-                    }
-                }
                 FixKind::Style(s) => {
                     s.end_of_step(
                         &mut self.particles,
@@ -32,6 +27,7 @@ impl Simulation {
                             domain: &self.domain,
                             virial: if tallied { &self.virial } else { &[] },
                             contact,
+                            skin,
                             regions: Some(&self.regions),
                         },
                     );
@@ -108,6 +104,7 @@ impl Simulation {
                         domain: &self.domain,
                         virial: if tallied { &self.virial } else { &[] },
                         contact,
+                        skin: self.neighbor.skin,
                         regions: Some(&self.regions),
                     },
                 );
@@ -145,7 +142,6 @@ impl Simulation {
             return v;
         }
         match (&fix.kind, index) {
-            (FixKind::CheckTimestep(c), Some(i @ 1..=3)) => Ok(c.values[i - 1]),
             (FixKind::Mesh(m), Some(i)) if m.servo.as_ref().and_then(|s| s.value(i)).is_some() => {
                 Ok(m.servo.as_ref().and_then(|s| s.value(i)).unwrap_or(0.0))
             }

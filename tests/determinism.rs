@@ -1,6 +1,8 @@
 //! The same deck gives bit-identical dumps run to run and for any thread count. The deck
 //! packs ~3000 overlapping spheres so the contact loop takes its parallel path.
 
+mod common;
+
 use std::process::Command;
 
 const DECK: &str = "\
@@ -99,29 +101,7 @@ fn the_fast_path_gives_the_same_dumps_for_1_2_and_3_threads() {
 /// Largest deviation of `b` from `a` relative to each column's largest magnitude in `a`
 /// (atoms matched by ID), over all snapshots.
 fn scale_deviation(a: &[u8], b: &[u8]) -> f64 {
-    use regolith::io::dump_compare::parse;
-    let (a, b) = (
-        parse(&String::from_utf8_lossy(a)).unwrap(),
-        parse(&String::from_utf8_lossy(b)).unwrap(),
-    );
-    assert_eq!(a.len(), b.len());
-    let mut worst: f64 = 0.0;
-    for (sa, sb) in a.iter().zip(&b) {
-        assert_eq!(sa.step, sb.step);
-        assert_eq!(
-            sa.rows.keys().collect::<Vec<_>>(),
-            sb.rows.keys().collect::<Vec<_>>()
-        );
-        for c in 0..sa.columns.len() {
-            let scale = sa.rows.values().map(|r| r[c].abs()).fold(0.0, f64::max);
-            for (id, r) in &sa.rows {
-                if scale > 0.0 {
-                    worst = worst.max((r[c] - sb.rows[id][c]).abs() / scale);
-                }
-            }
-        }
-    }
-    worst
+    common::scale_deviation(&String::from_utf8_lossy(a), &String::from_utf8_lossy(b))
 }
 
 #[test]

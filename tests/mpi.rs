@@ -3,6 +3,8 @@
 //! refusals on more than one rank (with and without MPI in the build), and a run under
 //! `mpirun` with MPI built in.
 
+mod common;
+
 use regolith::cli::DeckOptions;
 use regolith::error::{Diagnostic, Severity};
 use regolith::lang::system::Mode;
@@ -927,15 +929,6 @@ run 100
 run 50
 ";
 
-/// The atom lines of a dump's snapshots, as numbers.
-#[cfg(feature = "mpi")]
-fn atom_rows(dump: &str) -> Vec<Vec<f64>> {
-    dump.lines()
-        .filter(|l| !l.starts_with("ITEM") && l.split_whitespace().count() > 6)
-        .map(|l| l.split_whitespace().map(|w| w.parse().unwrap()).collect())
-        .collect()
-}
-
 /// With MPI built in: `mpirun -np N` runs what runs on ranks (the same dump as one process,
 /// within 1e-10 of each column's scale), reports LIGGGHTS's grid and refuses on every rank
 /// what does not (run and check alike, writing no log), and stops with LIGGGHTS's error
@@ -975,8 +968,10 @@ fn a_build_with_mpi_runs_on_ranks_and_refuses_the_rest() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let serial = atom_rows(&std::fs::read_to_string(dir.join("out.dump")).unwrap());
-    assert_eq!(serial.len(), 7 * 252);
+    let serial = std::fs::read_to_string(dir.join("out.dump")).unwrap();
+    let snapshots = regolith::io::dump_compare::parse(&serial).unwrap();
+    assert_eq!(snapshots.len(), 7);
+    assert!(snapshots.iter().all(|s| s.rows.len() == 252));
     for np in ["2", "3"] {
         std::fs::remove_file(dir.join("out.dump")).unwrap();
         let out = mpirun(np, &["-sf", "fast", "-in", "in.bed", "-log", "none"]);
@@ -990,17 +985,9 @@ fn a_build_with_mpi_runs_on_ranks_and_refuses_the_rest() {
             so.contains(&format!("on {np} procs for 50 steps with 252 atoms")),
             "{so}"
         );
-        let ranks = atom_rows(&std::fs::read_to_string(dir.join("out.dump")).unwrap());
-        assert_eq!(ranks.len(), serial.len());
-        for c in 0..serial[0].len() {
-            let scale = serial.iter().map(|r| r[c].abs()).fold(0.0, f64::max);
-            for (a, b) in serial.iter().zip(&ranks) {
-                assert!(
-                    (a[c] - b[c]).abs() <= 1e-10 * scale,
-                    "{np} ranks, column {c}"
-                );
-            }
-        }
+        let ranks = std::fs::read_to_string(dir.join("out.dump")).unwrap();
+        let d = common::scale_deviation(&serial, &ranks);
+        assert!(d <= 1e-10, "{np} ranks differ from one process by {d:e}");
     }
     // a command that does not run on ranks
     std::fs::write(

@@ -3,6 +3,8 @@
 //! the serial fast path's (within 1e-10 of each column's scale) and between rank counts and
 //! repeated runs (bit for bit).
 
+mod common;
+
 use regolith::cli::DeckOptions;
 use regolith::error::ExitStatus;
 use regolith::util::comm::{Comm, Ranks};
@@ -100,48 +102,6 @@ fn dump_of(deck: &str, n: usize, grid: &str, tag: &str) -> String {
     text
 }
 
-/// Per snapshot, the atom lines as numbers.
-fn snapshots(dump: &str) -> Vec<Vec<Vec<f64>>> {
-    let mut out = Vec::new();
-    let mut lines = dump.lines().peekable();
-    while let Some(l) = lines.next() {
-        if l.starts_with("ITEM: ATOMS") {
-            let mut rows = Vec::new();
-            while let Some(r) = lines.peek() {
-                if r.starts_with("ITEM:") {
-                    break;
-                }
-                rows.push(r.split_whitespace().map(|w| w.parse().unwrap()).collect());
-                lines.next();
-            }
-            out.push(rows);
-        }
-    }
-    out
-}
-
-/// The largest difference between two dumps in units of each column's scale (its largest
-/// magnitude in the snapshot).
-fn worst_difference(a: &str, b: &str) -> f64 {
-    let (sa, sb) = (snapshots(a), snapshots(b));
-    assert_eq!(sa.len(), sb.len(), "snapshot counts");
-    let mut worst: f64 = 0.0;
-    for (ra, rb) in sa.iter().zip(&sb) {
-        assert_eq!(ra.len(), rb.len(), "atom counts");
-        let cols = ra.first().map_or(0, Vec::len);
-        for c in 0..cols {
-            let scale = ra.iter().map(|r| r[c].abs()).fold(0.0, f64::max);
-            for (x, y) in ra.iter().zip(rb) {
-                assert_eq!(x[0], y[0], "atom IDs in order");
-                if scale > 0.0 {
-                    worst = worst.max((x[c] - y[c]).abs() / scale);
-                }
-            }
-        }
-    }
-    worst
-}
-
 /// `deck` on the serial fast path and on the rank grids `grids` ((ranks, processors line)):
 /// every rank run within 1e-10 of each column's scale of the serial dump, and the dumps
 /// of the rank runs (the first one twice).
@@ -150,7 +110,7 @@ fn on_grids(deck: &str, grids: &[(usize, &str)], tag: &str) -> (String, Vec<Stri
     let mut dumps = Vec::new();
     for (k, &(n, grid)) in grids.iter().enumerate() {
         let dump = dump_of(deck, n, grid, &format!("{tag}-{k}"));
-        let d = worst_difference(&serial, &dump);
+        let d = common::scale_deviation(&serial, &dump);
         assert!(
             d < 1e-10,
             "{tag}: {grid} differs from the serial run by {d:e}"
@@ -175,12 +135,12 @@ fn a_settling_bed_on_ranks_matches_the_serial_fast_path() {
         (4, "processors 2 2 1"),
     ];
     let (serial, _) = on_grids(BED, &grids, "bed");
-    let snaps = snapshots(&serial);
+    let snaps = regolith::io::dump_compare::parse(&serial).unwrap();
     assert_eq!(snaps.len(), 7, "steps 0..150 every 25");
-    assert_eq!(snaps[0].len(), 252);
+    assert_eq!(snaps[0].rows.len(), 252);
     // the bed moves: velocities change over the run
     let last = snaps.last().unwrap();
-    assert!(snaps[0].iter().zip(last).any(|(a, b)| a[7] != b[7]));
+    assert!(snaps[0].rows.iter().any(|(id, r)| r[7] != last.rows[id][7]));
 }
 
 #[test]

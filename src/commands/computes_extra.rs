@@ -99,7 +99,7 @@ pub fn nparticles_tracer_region(a: &Args, ctx: &mut Ctx) -> Result<ComputeKind, 
         .sim
         .fixes
         .iter()
-        .any(|f| f.id == tracer && matches!(f.kind, crate::engine::fixes::FixKind::Tracer(_)))
+        .any(|f| f.id == tracer && f.style == "property/atom/tracer")
     {
         return Err(fail(
             at,

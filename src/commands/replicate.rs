@@ -25,7 +25,6 @@ fn unsupported_state(ctx: &Ctx) -> Option<String> {
             | FixKind::Multisphere(_)
             | FixKind::AveAtom(_)
             | FixKind::StoreState(_)
-            | FixKind::Tracer(_)
             | FixKind::Massflow(_)
             | FixKind::InsertStream(_)
             | FixKind::HeatGran(_) => true,

@@ -388,7 +388,10 @@ impl Simulation {
                 FixKind::MeshWall(_) => "mesh walls (fix wall/gran ... mesh)",
                 FixKind::MoveMesh(_) => "moving meshes (fix move/mesh)",
                 FixKind::Mesh(m) if m.stress.is_some() => "mesh stresses (fix mesh/surface/stress)",
-                FixKind::Adapt(_) => "growing particles (fix adapt)",
+                FixKind::Style(s) => match s.unaccelerated() {
+                    Some(part) => part,
+                    None => continue,
+                },
                 FixKind::Multisphere(_) => "multisphere clumps (fix multisphere)",
                 _ => continue,
             };

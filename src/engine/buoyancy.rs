@@ -2,12 +2,13 @@
 //! adds it in `post_force` (partly immersed spheres displace their immersed cap).
 
 use crate::engine::error::EngineError;
-use crate::engine::fixes::FixKind;
 use crate::engine::particles::Particles;
 
 /// One `fix buoyancy level L dim x|y|z density RHO [region R]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Buoyancy {
+    /// The fix ID (LIGGGHTS's messages name it).
+    pub id: String,
     /// Liquid density (mass/length^3).
     pub density: f64,
     /// The axis normal to the liquid surface (0, 1, 2).
@@ -20,6 +21,8 @@ pub struct Buoyancy {
     pub inside: Vec<bool>,
     /// Total buoyancy force of the last step (force): f_ID[1..3].
     pub total: [f64; 3],
+    /// The run's gravity (length/time^2), taken at the run's init.
+    pub gravity: Option<[f64; 3]>,
 }
 
 impl Buoyancy {
@@ -62,67 +65,21 @@ impl Buoyancy {
     }
 }
 
-/// LIGGGHTS's checks at a run's setup: exactly one `fix gravity`, along each buoyancy fix's
-/// `dim`.
-pub fn check(fixes: &[crate::engine::fixes::Fix]) -> Result<(), EngineError> {
-    let gravities: Vec<[f64; 3]> = fixes
-        .iter()
-        .filter_map(|f| match &f.kind {
-            FixKind::Style(s) => s.acceleration(),
-            _ => None,
-        })
-        .collect();
-    for f in fixes {
-        let FixKind::Buoyancy(b) = &f.kind else {
-            continue;
-        };
-        let fail = |m: &str| EngineError::from(format!("Fix buoyancy (id {}): {m}", f.id));
+impl Buoyancy {
+    /// LIGGGHTS's checks at a run's init, given the accelerations of the run's fixes
+    /// (length/time^2): exactly one `fix gravity`, along `dim`; it is the gravity the run uses.
+    pub fn init(&mut self, gravities: &[[f64; 3]]) -> Result<(), EngineError> {
+        let fail = |m: &str| EngineError::from(format!("Fix buoyancy (id {}): {m}", self.id));
         if gravities.len() != 1 {
             return Err(fail("need exactly one fix gravity"));
         }
         let g = gravities[0];
-        let across: f64 = (0..3).filter(|&d| d != b.dim).map(|d| g[d]).sum();
-        if across.abs() > 0. || g[b.dim] == 0. {
+        let across: f64 = (0..3).filter(|&d| d != self.dim).map(|d| g[d]).sum();
+        if across.abs() > 0. || g[self.dim] == 0. {
             return Err(fail(" fix gravity direction is not equal to 'dim'"));
         }
-    }
-    Ok(())
-}
-
-/// The gravity vector the buoyancy fixes use (length/time^2), if there are any.
-pub fn gravity_for(fixes: &[crate::engine::fixes::Fix]) -> Option<[f64; 3]> {
-    if !fixes.iter().any(|f| matches!(f.kind, FixKind::Buoyancy(_))) {
-        return None;
-    }
-    fixes.iter().find_map(|f| match &f.kind {
-        FixKind::Style(s) => s.acceleration(),
-        _ => None,
-    })
-}
-
-impl crate::engine::sim::Simulation {
-    /// Which particles are inside each buoyancy fix's region this step.
-    pub(crate) fn resolve_buoyancy_regions(&mut self) {
-        for k in 0..self.fixes.len() {
-            let FixKind::Buoyancy(b) = &self.fixes[k].kind else {
-                continue;
-            };
-            let Some(region) = b.region else { continue };
-            let mut inside = Vec::new();
-            if let FixKind::Buoyancy(b) = &mut self.fixes[k].kind {
-                inside = std::mem::take(&mut b.inside);
-            }
-            inside.clear();
-            inside.extend(
-                self.particles
-                    .x
-                    .iter()
-                    .map(|&x| self.regions.matches(region, x)),
-            );
-            if let FixKind::Buoyancy(b) = &mut self.fixes[k].kind {
-                b.inside = inside;
-            }
-        }
+        self.gravity = Some(g);
+        Ok(())
     }
 }
 
@@ -133,12 +90,14 @@ mod tests {
     #[test]
     fn immersed_volumes_follow_the_level() {
         let mut b = Buoyancy {
+            id: "b".into(),
             density: 1000.,
             dim: 2,
             level: 0.0,
             region: None,
             inside: Vec::new(),
             total: [0.0; 3],
+            gravity: None,
         };
         let mut p = Particles::default();
         let r = 0.01;

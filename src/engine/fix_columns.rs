@@ -41,8 +41,8 @@ pub fn column(sim: &Simulation, id: &str, index: Option<usize>) -> Result<usize,
         .iter()
         .find(|f| f.id == id)
         .ok_or("Could not find dump custom fix ID")?;
-    if matches!(fix.kind, FixKind::Tracer(_)) {
-        // a per-atom scalar: the marker
+    if fix.style == "property/atom/tracer" {
+        // a per-atom scalar, the marker, which LIGGGHTS reads as f_ID only
         return match index {
             None => Ok(0),
             Some(_) => Err("Dump custom fix does not compute per-atom array".into()),
@@ -74,14 +74,6 @@ pub fn per_atom(
     let col = column(sim, id, index)?;
     let p = &sim.particles;
     match sim.fixes.iter().find(|f| f.id == id).map(|f| &f.kind) {
-        Some(FixKind::Tracer(t)) => {
-            let values = p
-                .extra
-                .iter()
-                .find(|e| e.name == t.marker && e.width == 1)
-                .map_or_else(|| vec![0.0; p.len()], |e| e.data.clone());
-            return Ok((PerAtom { columns: 1, values }, col));
-        }
         Some(FixKind::PropertyAtom(pa)) => {
             let columns = pa.defaults.len();
             let values = crate::engine::heat::property_values(p, id, columns);

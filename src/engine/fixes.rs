@@ -20,7 +20,7 @@ pub use check_timestep::CheckTimestep;
 pub use meshes::{move_meshes, MeshFix};
 pub use motion::{Motion, Move};
 pub use stream::StreamFix;
-pub use style::{FixStep, FixStyle, PerAtomShape, StepInputs};
+pub use style::{FixInit, FixStep, FixStyle, PairInit, PerAtomShape, StepInputs};
 pub use walls::{mesh_wall_contacts, MeshWallFix, WallFix};
 
 /// What a fix does.
@@ -29,10 +29,6 @@ pub enum FixKind {
     Move(Move),
     /// `fix wall/gran ... primitive`: a granular plane wall.
     WallGran(WallFix),
-    /// `fix check/timestep/gran`: time step as a fraction of Rayleigh and Hertz times.
-    CheckTimestep(CheckTimestep),
-    /// `print N "text" [file F | append F] [screen yes|no] [title T]`.
-    Print(PrintFix),
     /// `fix ave/time` (scalar mode).
     AveTime(AveTime),
     /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
@@ -49,16 +45,10 @@ pub enum FixKind {
     InsertStream(Box<StreamFix>),
     /// `fix wall/gran ... mesh`: granular walls of triangle meshes.
     MeshWall(MeshWallFix),
-    /// `fix adapt N atom diameter v_name`: particle diameters from a variable.
-    Adapt(Adapt),
     /// `fix move/mesh`: prescribed motion of a mesh.
     MoveMesh(crate::engine::mesh_motion::MoveMesh),
     /// `fix massflow/mesh`: particles and mass crossing a mesh face.
     Massflow(Box<crate::engine::massflow::Massflow>),
-    /// `fix buoyancy`: the weight of displaced liquid below a level.
-    Buoyancy(crate::engine::buoyancy::Buoyancy),
-    /// `fix property/atom/tracer`: particles marked in a region.
-    Tracer(Box<crate::engine::tracer::Tracer>),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
     /// `fix property/atom`: a per-atom property (values in the particle array of the fix ID).
@@ -87,7 +77,6 @@ impl FixKind {
     pub fn may_read_computes(&self) -> bool {
         match self {
             FixKind::WallGran(_)
-            | FixKind::CheckTimestep(_)
             | FixKind::Mesh(_)
             | FixKind::Template(_)
             | FixKind::ClumpTemplate(_)
@@ -96,7 +85,6 @@ impl FixKind {
             | FixKind::InsertStream(_)
             | FixKind::MeshWall(_)
             | FixKind::Massflow(_)
-            | FixKind::Tracer(_)
             | FixKind::Settings
             | FixKind::PropertyAtom(_)
             | FixKind::HeatGran(_) => false,
@@ -105,17 +93,6 @@ impl FixKind {
             _ => true,
         }
     }
-}
-
-/// `fix adapt N atom diameter v_name [scale yes|no] [reset yes|no]`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Adapt {
-    /// Apply every this many steps (0: only at the setup of each run).
-    pub every: i64,
-    /// The diameter (length), or the factor on the current diameter with `scale yes`.
-    pub diameter: ForceValue,
-    /// `scale yes`: the variable multiplies the current diameter.
-    pub scale: bool,
 }
 
 /// One defined fix.
@@ -157,34 +134,6 @@ pub fn initial_integrate(
     }
 }
 
-/// `fix print`: a line with variables substituted every `every` steps.
-pub struct PrintFix {
-    /// Print every this many steps.
-    pub every: i64,
-    /// The text, `$` references still in it.
-    pub text: String,
-    /// Also print to screen and log.
-    pub screen: bool,
-    /// The output file, if any.
-    pub file: Option<std::io::BufWriter<std::fs::File>>,
-}
-
-impl PrintFix {
-    /// Write one substituted line where the fix sends it.
-    pub fn emit(&mut self, line: &str, out: &mut dyn FnMut(&str)) -> Result<(), EngineError> {
-        use std::io::Write;
-        if self.screen {
-            out(&format!("{line}\n"));
-        }
-        if let Some(f) = self.file.as_mut() {
-            writeln!(f, "{line}")
-                .and_then(|_| f.flush())
-                .map_err(|e| format!("fix print: {e}"))?;
-        }
-        Ok(())
-    }
-}
-
 /// A value a fix reads each step (`fix setforce`/`addforce` components, `fix move variable`
 /// displacements and velocities, `fix adapt` diameters), in the fix's units.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -219,7 +168,6 @@ pub fn post_force(
     list: (u64, f64),
     moving_skin: bool,
 ) {
-    let buoyancy_g = crate::engine::buoyancy::gravity_for(fixes);
     for k in 0..fixes.len() {
         if let FixKind::MeshWall(_) = fixes[k].kind {
             walls::mesh_wall_force(fixes, k, p, dt, update, list, moving_skin);
@@ -235,11 +183,6 @@ pub fn post_force(
                     let mut history = std::mem::take(&mut p.extra[k].data);
                     model.compute(p, g, &mut history, dt, update, list);
                     p.extra[k].data = history;
-                }
-            }
-            FixKind::Buoyancy(b) => {
-                if let Some(gv) = buoyancy_g {
-                    b.apply(p, g, gv);
                 }
             }
             FixKind::Style(s) => s.post_force(p, &FixStep::plain(g, at.0, dt, at.1)),

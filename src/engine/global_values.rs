@@ -72,7 +72,7 @@ pub fn fix_shape(sim: &Simulation, id: &str) -> Option<GlobalShape> {
 /// "not computed at compatible time" check.
 pub fn fix_global_freq(sim: &Simulation, id: &str) -> i64 {
     match sim.fixes.iter().find(|f| f.id == id).map(|f| &f.kind) {
-        Some(FixKind::CheckTimestep(c)) => c.every,
+        Some(FixKind::Style(s)) => s.global_freq(),
         Some(FixKind::AveTime(at)) => at.freq,
         _ => 1,
     }

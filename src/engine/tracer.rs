@@ -48,7 +48,7 @@ pub struct Tracer {
 
 impl Tracer {
     /// LIGGGHTS's `end_of_step`: mark the group's particles inside the region.
-    pub fn end_of_step(&mut self, p: &mut Particles, group: u32, regions: &Regions, step: i64) {
+    pub fn mark(&mut self, p: &mut Particles, group: u32, regions: &Regions, step: i64) {
         if step < self.step
             || self.style == MarkerStyle::None
             || (self.style == MarkerStyle::Dirac && !self.first_mark)
@@ -75,6 +75,14 @@ impl Tracer {
     pub fn scalar(&self) -> f64 {
         let last = self.marked_read.swap(self.marked, Ordering::Relaxed);
         (self.marked - last) as f64
+    }
+
+    /// The marker of each particle (1 marked, 0 not), in particle order.
+    pub fn markers(&self, p: &Particles) -> Vec<f64> {
+        p.extra
+            .iter()
+            .find(|e| e.name == self.marker && e.width == 1)
+            .map_or_else(|| vec![0.0; p.len()], |e| e.data.clone())
     }
 }
 
@@ -218,11 +226,11 @@ mod tests {
             marked: 0,
             marked_read: AtomicI64::new(0),
         };
-        t.end_of_step(&mut p, 1, &regions, 5);
+        t.mark(&mut p, 1, &regions, 5);
         assert_eq!(t.marked, 0);
-        t.end_of_step(&mut p, 1, &regions, 10);
+        t.mark(&mut p, 1, &regions, 10);
         p.x[1] = [0.5, 0.2, 0.5];
-        t.end_of_step(&mut p, 1, &regions, 11);
+        t.mark(&mut p, 1, &regions, 11);
         assert_eq!((t.marked, t.scalar(), t.scalar()), (1, 1.0, 0.0));
         let mut c = TracerCount {
             region: 0,

@@ -60,3 +60,30 @@ pub fn tutorials_root() -> PathBuf {
     );
     root
 }
+
+/// The largest difference of dump text `b` from dump text `a` in units of each column's
+/// scale (its largest magnitude in `a`'s snapshot), atoms matched by ID; fails the test when
+/// the snapshots' counts, steps or atoms differ.
+pub fn scale_deviation(a: &str, b: &str) -> f64 {
+    use regolith::io::dump_compare::parse;
+    let (a, b) = (parse(a).unwrap(), parse(b).unwrap());
+    assert_eq!(a.len(), b.len(), "snapshot counts");
+    let mut worst: f64 = 0.0;
+    for (sa, sb) in a.iter().zip(&b) {
+        assert_eq!(sa.step, sb.step, "snapshot steps");
+        assert!(
+            sa.rows.keys().eq(sb.rows.keys()),
+            "step {}: other atoms",
+            sa.step
+        );
+        for c in 0..sa.columns.len() {
+            let scale = sa.rows.values().map(|r| r[c].abs()).fold(0.0, f64::max);
+            if scale > 0.0 {
+                for (id, r) in &sa.rows {
+                    worst = worst.max((r[c] - sb.rows[id][c]).abs() / scale);
+                }
+            }
+        }
+    }
+    worst
+}

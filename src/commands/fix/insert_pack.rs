@@ -1,6 +1,6 @@
 //! `fix insert/pack` and `fix insert/rate/region`: particles inserted into a region.
 
-use super::insertion::{keyword, yes, Family, Insertion};
+use super::insertion::{keyword, yes, Family, Insertion, Schedule};
 use crate::commands::fix::FixDef;
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::fixes::FixKind;
@@ -14,11 +14,11 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         5..=usize::MAX,
         "fix ID GROUP insert/pack seed S distributiontemplate D region R ...",
     )?;
-    let mut pack = PackArgs::new(fix.style == "insert/rate/region");
+    let mut pack = PackArgs::new(fix.style == "insert/rate/region", ctx.sim.step);
     let families: [Family<PackArgs>; 5] = [
         |s, a, ctx, i, w| s.common.keyword(a, ctx, i, w),
         PackArgs::placement,
-        PackArgs::schedule,
+        |s, a, ctx, i, w| s.schedule.keyword(a, ctx, i, w),
         PackArgs::switches,
         PackArgs::rate_keyword,
     ];
@@ -43,10 +43,8 @@ struct PackArgs {
     region: Option<(usize, String)>,
     /// `particles_in_region`, `volumefraction_region` or `mass_in_region`.
     target: Option<Target>,
-    /// `insert_every N|once` (steps; 0 for once).
-    every: Option<i64>,
-    /// `start N` (step).
-    start: Option<i64>,
+    /// `insert_every N|once` and `start N`.
+    schedule: Schedule,
     /// `all_in yes|no`.
     all_in: bool,
     /// `ntry_mc N`.
@@ -133,15 +131,14 @@ fn insertion_region(a: &Args, ctx: &Ctx, i: usize) -> Result<(usize, String), Co
 }
 
 impl PackArgs {
-    /// LIGGGHTS's defaults.
-    fn new(rate_style: bool) -> PackArgs {
+    /// LIGGGHTS's defaults at step `step`.
+    fn new(rate_style: bool, step: i64) -> PackArgs {
         PackArgs {
             common: Insertion::default(),
             rate_style,
             region: None,
             target: None,
-            every: None,
-            start: None,
+            schedule: Schedule::new(step, true),
             all_in: false,
             ntry_mc: 100000,
             check_dist: true,
@@ -185,39 +182,6 @@ impl PackArgs {
                     return Err(a.error(i + 1, "Fix insert/pack: mass_in_region must be > 0"));
                 }
                 self.target = Some(Target::Mass(m));
-            }
-            _ => return Ok(None),
-        }
-        Ok(Some(2))
-    }
-
-    /// When: `insert_every` (or `every`, `insert_every_time`) and `start`.
-    fn schedule(
-        &mut self,
-        a: &Args,
-        ctx: &Ctx,
-        i: usize,
-        w: &str,
-    ) -> Result<Option<usize>, CommandError> {
-        match w {
-            "insert_every" | "every" | "insert_every_time" => {
-                self.every = Some(if a.word(i + 1)? == "once" {
-                    0
-                } else if w == "insert_every_time" {
-                    (a.real(i + 1)? / ctx.sim.dt) as i32 as i64
-                } else {
-                    a.int(i + 1)?
-                });
-            }
-            "start" => {
-                let st = a.int(i + 1)?;
-                if st < ctx.sim.step + 1 {
-                    return Err(a.error(
-                        i + 1,
-                        "Fix insert: 'start' step can not be before current step",
-                    ));
-                }
-                self.start = Some(st);
             }
             _ => return Ok(None),
         }
@@ -373,6 +337,7 @@ impl PackArgs {
             (None, None) => return Err(a.error(2, "Fix insert/pack: must define exactly one keyword out of 'volumefraction_region', 'particles_in_region', and 'mass_in_region'")),
         };
         let every = self
+            .schedule
             .every
             .ok_or_else(|| a.error(2, "Fix insert/pack: must define 'insert_every'"))?;
         let clumps = ctx.sim.fixes.iter().any(|f| {
@@ -390,7 +355,7 @@ impl PackArgs {
             region_id,
             target,
             every,
-            next: Some(self.start.unwrap_or(ctx.sim.step + 1)),
+            next: Some(self.schedule.start),
             overlapcheck: common.overlapcheck,
             all_in,
             maxattempt: common.maxattempt,

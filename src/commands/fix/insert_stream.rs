@@ -1,6 +1,6 @@
 //! `fix insert/stream`: particles inserted through a mesh face.
 
-use super::insertion::{keyword, yes, Family, Insertion};
+use super::insertion::{keyword, yes, Family, Insertion, Schedule};
 use crate::commands::fix::FixDef;
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::fixes::{FixKind, StreamFix};
@@ -12,12 +12,13 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     let id = fix.id;
     ctx.sim.inserts_atoms = true;
     a.count(5..=usize::MAX, "fix ID GROUP insert/stream seed S distributiontemplate D nparticles N particlerate R insertion_face MESH extrude_length L ...")?;
-    let mut stream = StreamArgs::new(ctx.sim.step + 1, id);
-    let families: [Family<StreamArgs>; 4] = [
+    let mut stream = StreamArgs::new(ctx.sim.step, id);
+    let families: [Family<StreamArgs>; 5] = [
         |s, a, ctx, i, w| s.common.keyword(a, ctx, i, w),
         StreamArgs::face,
         StreamArgs::amounts,
-        StreamArgs::schedule,
+        |s, a, ctx, i, w| s.schedule.keyword(a, ctx, i, w),
+        StreamArgs::all_in,
     ];
     // LIGGGHTS reads the general insertion keywords first, then insert/stream's own; a
     // general one after those is an error there
@@ -100,8 +101,8 @@ struct StreamArgs {
     face_id: String,
     /// `extrude_length L` (length).
     extrude: Option<f64>,
-    /// `insert_every N` (steps).
-    every: Option<i64>,
+    /// `insert_every N` and `start N`.
+    schedule: Schedule,
     /// `duration N` (steps).
     duration: Option<i64>,
     /// `nparticles N` (Ok) or `mass M` (Err).
@@ -110,8 +111,6 @@ struct StreamArgs {
     rate: Option<Result<f64, f64>>,
     /// `ntry_mc N`.
     ntry_mc: i64,
-    /// `start N` (step).
-    start: i64,
     /// `all_in yes|no`.
     all_in: bool,
     /// The word `all_in` was given at.
@@ -119,20 +118,19 @@ struct StreamArgs {
 }
 
 impl StreamArgs {
-    /// LIGGGHTS's defaults; insertion starts at step `start`.
-    fn new(start: i64, id: &str) -> StreamArgs {
+    /// LIGGGHTS's defaults at step `step`.
+    fn new(step: i64, id: &str) -> StreamArgs {
         StreamArgs {
             id: id.to_string(),
             common: Insertion::default(),
             face: None,
             face_id: String::new(),
             extrude: None,
-            every: None,
+            schedule: Schedule::new(step, false),
             duration: None,
             total: None,
             rate: None,
             ntry_mc: 100000,
-            start,
             all_in: false,
             all_in_at: 0,
         }
@@ -233,30 +231,19 @@ impl StreamArgs {
         Ok(Some(2))
     }
 
-    /// When and where in the face: `insert_every` (or `every`, `insert_every_time`),
-    /// `start`, `all_in`.
-    fn schedule(
+    /// Where in the face: `all_in`.
+    fn all_in(
         &mut self,
         a: &Args,
-        ctx: &Ctx,
+        _ctx: &Ctx,
         i: usize,
         w: &str,
     ) -> Result<Option<usize>, CommandError> {
-        match w {
-            "insert_every" | "every" | "insert_every_time" => {
-                self.every = Some(if w == "insert_every_time" {
-                    (a.real(i + 1)? / ctx.sim.dt) as i32 as i64
-                } else {
-                    a.int(i + 1)?
-                });
-            }
-            "start" => self.start = a.int(i + 1)?,
-            "all_in" => {
-                self.all_in = yes(a, i + 1)?;
-                self.all_in_at = i;
-            }
-            _ => return Ok(None),
+        if w != "all_in" {
+            return Ok(None);
         }
+        self.all_in = yes(a, i + 1)?;
+        self.all_in_at = i;
         Ok(Some(2))
     }
 
@@ -287,7 +274,7 @@ impl StreamArgs {
                 "Fix insert/stream: must define either 'massrate' or 'particlerate'",
             )
         })?;
-        if self.extrude.is_some() == self.every.is_some() {
+        if self.extrude.is_some() == self.schedule.every.is_some() {
             return Err(a.error(
                 2,
                 "Fix insert/stream: must define either 'insert_every' or 'extrude_length'",
@@ -307,7 +294,7 @@ impl StreamArgs {
             face_id: self.face_id,
             all_in: self.all_in,
             extrude: self.extrude,
-            every: self.every,
+            every: self.schedule.every,
             duration: self.duration,
             total,
             rate,
@@ -317,7 +304,7 @@ impl StreamArgs {
             maxattempt: common.maxattempt,
             ntry_mc: self.ntry_mc,
             verbose: common.verbose,
-            start: self.start,
+            start: self.schedule.start,
             state: None,
             restored: None,
             random_orientation: common.random_orientation,

@@ -65,6 +65,62 @@ impl Default for Insertion {
     }
 }
 
+/// The schedule keywords of the insertion fixes, `insert_every` (or `every`,
+/// `insert_every_time`) and `start`, as given.
+#[derive(Debug, Clone)]
+pub(super) struct Schedule {
+    /// `insert_every N` (steps; 0 for `once`).
+    pub every: Option<i64>,
+    /// `start N` (step; the next step unless given).
+    pub start: i64,
+    /// insert/pack's forms: `insert_every once`, and a `start` before the next step refused.
+    pub region_style: bool,
+}
+
+impl Schedule {
+    /// LIGGGHTS's defaults at step `step`; `region_style` for insert/pack and insert/rate/region.
+    pub fn new(step: i64, region_style: bool) -> Schedule {
+        Schedule {
+            every: None,
+            start: step + 1,
+            region_style,
+        }
+    }
+
+    /// The schedule keyword `w` at word `i` (see [`Family`]).
+    pub fn keyword(
+        &mut self,
+        a: &Args,
+        ctx: &Ctx,
+        i: usize,
+        w: &str,
+    ) -> Result<Option<usize>, CommandError> {
+        match w {
+            "insert_every" | "every" | "insert_every_time" => {
+                self.every = Some(if self.region_style && a.word(i + 1)? == "once" {
+                    0
+                } else if w == "insert_every_time" {
+                    (a.real(i + 1)? / ctx.sim.dt) as i32 as i64
+                } else {
+                    a.int(i + 1)?
+                });
+            }
+            "start" => {
+                let st = a.int(i + 1)?;
+                if self.region_style && st < ctx.sim.step + 1 {
+                    return Err(a.error(
+                        i + 1,
+                        "Fix insert: 'start' step can not be before current step",
+                    ));
+                }
+                self.start = st;
+            }
+            _ => return Ok(None),
+        }
+        Ok(Some(2))
+    }
+}
+
 /// `yes` or `no` at word `k`: true for yes.
 pub(super) fn yes(a: &Args, k: usize) -> Result<bool, CommandError> {
     a.word_in(k, &["yes", "no"]).map(|w| w == "yes")

@@ -64,7 +64,6 @@ pub type Build = fn(&Args, &mut Ctx, &FixDef) -> Result<FixKind, CommandError>;
 
 /// The fix styles regolith runs: the style name and the builder in the style's file.
 pub const STYLES: &[(&str, Build)] = &[
-    ("check/timestep/gran", check_timestep::build),
     ("property/global", property_global::build),
     ("mesh/surface", mesh_surface::build),
     ("mesh/surface/planar", mesh_surface::build),
@@ -89,13 +88,9 @@ pub const STYLES: &[(&str, Build)] = &[
     ("insert/rate/region", insert_pack::build),
     ("insert/stream", insert_stream::build),
     ("wall/gran", wall_gran::build),
-    ("adapt", adapt::build),
-    ("print", print::build),
     ("ave/time", ave_time::build),
     ("move", move_atoms::build),
     ("massflow/mesh", massflow_mesh::build),
-    ("buoyancy", buoyancy::build),
-    ("property/atom/tracer", tracer::build),
     ("property/atom", property_atom::build),
     ("heat/gran", heat_gran::build),
     ("heat/gran/conduction", heat_gran::build),
@@ -222,6 +217,31 @@ pub const MODULES: &[FixRow] = &[
         spec: spring_self::SPEC,
         planar: false,
         build: spring_self::build,
+    },
+    FixRow {
+        spec: print::SPEC,
+        planar: true,
+        build: print::build,
+    },
+    FixRow {
+        spec: buoyancy::SPEC,
+        planar: false,
+        build: buoyancy::build,
+    },
+    FixRow {
+        spec: adapt::SPEC,
+        planar: false,
+        build: adapt::build,
+    },
+    FixRow {
+        spec: tracer::SPEC,
+        planar: false,
+        build: tracer::build,
+    },
+    FixRow {
+        spec: check_timestep::SPEC,
+        planar: true,
+        build: check_timestep::build,
     },
 ];
 

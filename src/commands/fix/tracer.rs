@@ -1,13 +1,68 @@
-//! `fix property/atom/tracer`: mark particles that are inside a region.
+//! `fix property/atom/tracer`: mark particles that are inside a region (`end_of_step`;
+//! the marker per atom as f_ID, the particles marked since the last read as global f_ID).
 
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{arg, kw, style, Spec, Value};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::{FixStep, FixStyle, PerAtomShape};
+use crate::engine::particles::Particles;
 use crate::engine::tracer::{MarkerStyle, Tracer};
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "fix",
+    "property/atom/tracer",
+    "fix ID GROUP property/atom/tracer region_mark R mark_step S",
+    &[
+        kw(
+            "marker_style",
+            &[arg(
+                "dirac|heaviside|none",
+                Value::OneOf(&["dirac", "heaviside", "none"]),
+            )],
+            "mark once at the mark step, or at every check from it on",
+        ),
+        kw(
+            "check_mark_every",
+            &[arg("N", Value::Int)],
+            "steps between checks (default 10)",
+        ),
+    ],
+    "mark particles inside a region (per-atom f_ID; f_ID: marked since last read)",
+);
+
+impl FixStyle for Tracer {
+    fn name(&self) -> &str {
+        "property/atom/tracer"
+    }
+
+    fn end_of_step(&mut self, p: &mut Particles, at: &FixStep) {
+        if at.step % self.every == 0 {
+            if let Some(regions) = at.regions {
+                self.mark(p, at.group, regions, at.step);
+            }
+        }
+    }
+
+    fn value(&self, index: Option<usize>) -> Option<f64> {
+        match index {
+            None => Some(self.scalar()),
+            Some(_) => None,
+        }
+    }
+
+    fn per_atom_shape(&self) -> PerAtomShape {
+        PerAtomShape::Vector
+    }
+
+    fn per_atom(&self, p: &Particles) -> Vec<f64> {
+        self.markers(p)
+    }
+}
 
 /// `fix ID GROUP property/atom/tracer region_mark R mark_step S [marker_style
 /// dirac|heaviside|none] [check_mark_every N]`.
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     let id = fix.id;
     let fail = |i: usize, m: &str| a.error(i, format!("Fix property/atom/tracer (id {id}): {m}"));
     let (mut region, mut step, mut style, mut every) = (None, None, MarkerStyle::Dirac, 10);
@@ -67,7 +122,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     }
     let region = region.ok_or_else(|| fail(2, "expecting keyword 'region_mark'"))?;
     let step = step.ok_or_else(|| fail(2, "expecting keyword 'mark_step'"))?;
-    Ok(FixKind::Tracer(Box::new(Tracer {
+    Ok(Box::new(Tracer {
         region,
         step,
         style,
@@ -76,5 +131,5 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         marker: id.to_string(),
         marked: 0,
         marked_read: std::sync::atomic::AtomicI64::new(0),
-    })))
+    }))
 }

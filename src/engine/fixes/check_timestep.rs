@@ -1,10 +1,14 @@
 //! `fix check/timestep/gran`: the time step against the Rayleigh and Hertz times.
 
+use crate::engine::error::EngineError;
+use crate::engine::fixes::PairInit;
 use crate::engine::particles::Particles;
 
 /// `fix check/timestep/gran N rayleigh_limit hertz_limit [warn yes|no] [error yes|no] [vmax V]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CheckTimestep {
+    /// The fix ID (thermo reads its values as `f_ID[N]`).
+    pub id: String,
     /// Check every this many steps (at the end of the step).
     pub every: i64,
     /// Warn above this fraction of the Rayleigh time.
@@ -21,9 +25,49 @@ pub struct CheckTimestep {
     pub values: [f64; 3],
     /// Per type (1-based index - 1): Young's modulus, Poisson ratio, and Yeff of the type with itself.
     pub materials: Vec<(f64, f64, f64)>,
+    /// The warnings of the last check, not yet printed.
+    pub warnings: Vec<String>,
 }
 
 impl CheckTimestep {
+    /// LIGGGHTS's init: a granular pair style, Young's moduli and Poisson ratios per type
+    /// (each type's own effective modulus kept), and a thermo interval its values fit.
+    pub fn init_pair(&mut self, pair: &PairInit) -> Result<(), EngineError> {
+        use crate::engine::contact::material::mix_yeff;
+        if !pair.pair_gran {
+            return Err("Fix check/timestep/gran can only be used together with: gran".into());
+        }
+        let missing = |name: &str| {
+            format!("Could not locate a fix/property storing value(s) for {name} as requested by fix check/timestep/gran.")
+        };
+        let input = pair.materials;
+        let youngs = input
+            .youngs_modulus
+            .as_ref()
+            .ok_or_else(|| missing("youngsModulus"))?;
+        let poisson = input
+            .poissons_ratio
+            .as_ref()
+            .ok_or_else(|| missing("poissonsRatio"))?;
+        let n = input.ntypes;
+        if youngs.len() < n || poisson.len() < n {
+            return Err("fix check/timestep/gran: youngsModulus and poissonsRatio need one value per atom type".into());
+        }
+        let materials = (0..n)
+            .map(|t| {
+                let (y, nu) = (youngs[t], poisson[t]);
+                (y, nu, mix_yeff(y, y, nu, nu))
+            })
+            .collect();
+        let prefix = format!("f_{}", self.id);
+        let in_thermo = pair.thermo_keywords.iter().any(|k| k.starts_with(&prefix));
+        if in_thermo && pair.thermo_every % self.every != 0 {
+            return Err("Thermo and fix not computed at compatible times".into());
+        }
+        self.materials = materials;
+        Ok(())
+    }
+
     /// LIGGGHTS's estimates; returns the warnings to print.
     pub fn evaluate(&mut self, p: &Particles, group: u32, dt: f64, skin: f64) -> Vec<String> {
         const BIG: f64 = 1.0e20;

@@ -8,9 +8,11 @@
 //! A style is one file under `commands/fix/` (its arguments, its state, this trait) and one
 //! row in that folder's table.
 
+use crate::engine::contact::MaterialInput;
 use crate::engine::domain::Domain;
 use crate::engine::error::EngineError;
 use crate::engine::particles::Particles;
+use crate::engine::region::Regions;
 use crate::engine::sim::{Simulation, VariableSource};
 
 /// What a phase hook is told about the fix and the step.
@@ -30,6 +32,10 @@ pub struct FixStep<'a> {
     /// LIGGGHTS's largest contact distance, `cutneighmax - skin` (length; given at
     /// `end_of_step` and `setup_values`, else 0).
     pub contact: f64,
+    /// The neighbour skin (length; given at `end_of_step` and `setup_values`, else 0).
+    pub skin: f64,
+    /// The deck's regions (given at `end_of_step` and `setup_values`, else None).
+    pub regions: Option<&'a Regions>,
 }
 
 impl<'a> FixStep<'a> {
@@ -44,6 +50,8 @@ impl<'a> FixStep<'a> {
             domain,
             virial: &[],
             contact: 0.0,
+            skin: 0.0,
+            regions: None,
         }
     }
 }
@@ -70,6 +78,37 @@ pub trait StepInputs {
     /// Whether the point `x` (length) is inside region `region` (its index among the
     /// deck's regions, as `Regions::find` gives it).
     fn in_region(&self, region: usize, x: [f64; 3]) -> bool;
+    /// `text` with its `$` references to the deck's variables substituted (`fix print`);
+    /// by default only a text without `$` passes.
+    fn substitute(&mut self, text: &str) -> Result<String, EngineError> {
+        if text.contains('$') {
+            return Err(EngineError::Invalid(format!(
+                "cannot substitute variables in '{text}' here"
+            )));
+        }
+        Ok(text.to_string())
+    }
+}
+
+/// What a style's [`FixStyle::init`] may read of the run's other fixes.
+#[derive(Debug, Clone, Copy)]
+pub struct FixInit<'a> {
+    /// The uniform accelerations the run's fixes add (length/time^2; see
+    /// [`FixStyle::acceleration`]), in fix order.
+    pub accelerations: &'a [[f64; 3]],
+}
+
+/// What a style's [`FixStyle::init_pair`] reads at the pair style's init.
+#[derive(Debug, Clone, Copy)]
+pub struct PairInit<'a> {
+    /// Whether a granular pair style is defined.
+    pub pair_gran: bool,
+    /// The material properties as `fix property/global` defines them.
+    pub materials: &'a MaterialInput,
+    /// The thermo interval (steps).
+    pub thermo_every: i64,
+    /// The thermo keywords (`f_ID[2]` ...).
+    pub thermo_keywords: &'a [&'a str],
 }
 
 /// A fix style: the phases it hooks and the values it offers. Every hook has a default that
@@ -84,9 +123,60 @@ pub trait FixStyle: Send {
         Ok(())
     }
 
+    /// LIGGGHTS's `init` of a style that reads the pair style and the materials (at the
+    /// pair style's init, the first of a run's checks): an error stops the run.
+    fn init_pair(&mut self, _pair: &PairInit) -> Result<(), EngineError> {
+        Ok(())
+    }
+
+    /// How often the style computes its global values (steps), for LIGGGHTS's "not
+    /// computed at compatible time" checks.
+    fn global_freq(&self) -> i64 {
+        1
+    }
+
+    /// LIGGGHTS's `init` of a style that reads the run's other fixes (`fix buoyancy` takes
+    /// the gravity), after [`FixStyle::check`]: an error stops the run with LIGGGHTS's message.
+    fn init(&mut self, _run: &FixInit) -> Result<(), EngineError> {
+        Ok(())
+    }
+
     /// At the start of every run, before the setup force evaluation: state the style keeps
     /// for the run (LIGGGHTS's `init`/`setup` bookkeeping).
     fn setup(&mut self, _p: &Particles, _at: &FixStep) {}
+
+    /// Whether the style changes particle radii during runs (`fix adapt`: the neighbour
+    /// lists then allow for growing particles).
+    fn changes_radii(&self) -> bool {
+        false
+    }
+
+    /// The part of the run the fast path leaves to the exact path's code because of this
+    /// style, as its note names it (None: the style runs on the fast path).
+    fn unaccelerated(&self) -> Option<&'static str> {
+        None
+    }
+
+    /// Whether the style has `pre_force` work at `step` (`setup`: the run's setup force
+    /// evaluation, LIGGGHTS's `setup_pre_force`): only then are
+    /// [`FixStyle::pre_force_evaluate`] and [`FixStyle::pre_force`] called.
+    fn pre_force_due(&self, _step: i64, _setup: bool) -> bool {
+        false
+    }
+
+    /// Before `pre_force`: read the variables the style needs. While it runs the fix itself
+    /// is out of the fix list (its `f_ID` values cannot be read).
+    fn pre_force_evaluate(
+        &mut self,
+        _p: &Particles,
+        _at: &FixStep,
+        _inputs: &mut dyn StepInputs,
+    ) -> Result<(), EngineError> {
+        Ok(())
+    }
+
+    /// `pre_force`: after the neighbour lists, before the forces (`fix adapt` sets radii).
+    fn pre_force(&mut self, _p: &mut Particles, _at: &FixStep) {}
 
     /// `initial_integrate`: the first half of a velocity-Verlet step (before the forces).
     fn initial_integrate(&mut self, _p: &mut Particles, _at: &FixStep) {}
@@ -118,6 +208,24 @@ pub trait FixStyle: Send {
 
     /// `end_of_step`: after the step, before output (the style decides its own interval).
     fn end_of_step(&mut self, _p: &mut Particles, _at: &FixStep) {}
+
+    /// Whether the style writes output at the end of `step`: only then is its
+    /// [`FixStyle::end_of_step_output`] called.
+    fn outputs_at(&self, _step: i64) -> bool {
+        false
+    }
+
+    /// At `end_of_step`, right after [`FixStyle::end_of_step`]: output that reads the deck's
+    /// variables (`fix print`), written to `out` (screen and log) or the style's own files.
+    /// While it runs the fix itself is out of the fix list (its `f_ID` values cannot be read).
+    fn end_of_step_output(
+        &mut self,
+        _at: &FixStep,
+        _inputs: &mut dyn StepInputs,
+        _out: &mut dyn FnMut(&str),
+    ) -> Result<(), EngineError> {
+        Ok(())
+    }
 
     /// The global value `f_ID` (index None) or `f_ID[i]` (1-based) for thermo, variables and
     /// `fix ave/time`; None when the style has no such value.
@@ -222,6 +330,10 @@ impl StepInputs for SimulationInputs<'_> {
     fn in_region(&self, region: usize, x: [f64; 3]) -> bool {
         self.sim.regions.matches(region, x)
     }
+
+    fn substitute(&mut self, text: &str) -> Result<String, EngineError> {
+        self.vars.substitute(self.sim, text)
+    }
 }
 
 impl Simulation {
@@ -247,6 +359,114 @@ impl Simulation {
             let result = style.evaluate(&self.particles, &at, &mut inputs);
             self.fixes[k].kind = super::FixKind::Style(style);
             result?;
+        }
+        Ok(())
+    }
+
+    /// The `end_of_step_output` hook of module fix style `k` (see
+    /// [`FixStyle::end_of_step_output`]).
+    pub(crate) fn fix_style_output(
+        &mut self,
+        k: usize,
+        out: &mut dyn FnMut(&str),
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        let kind = std::mem::replace(&mut self.fixes[k].kind, super::FixKind::Settings);
+        let super::FixKind::Style(mut style) = kind else {
+            self.fixes[k].kind = kind;
+            return Ok(());
+        };
+        let at = FixStep::plain(self.fixes[k].group, self.step, self.dt, &self.domain);
+        let mut inputs = SimulationInputs {
+            sim: &*self,
+            vars: &mut *vars,
+        };
+        let result = style.end_of_step_output(&at, &mut inputs, out);
+        self.fixes[k].kind = super::FixKind::Style(style);
+        result
+    }
+
+    /// The `pre_force` hooks of every module fix style due now, in fix order (`setup`: the
+    /// run's setup force evaluation).
+    pub(crate) fn pre_force_fix_styles(
+        &mut self,
+        setup: bool,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        let step = self.step;
+        for k in 0..self.fixes.len() {
+            if !matches!(&self.fixes[k].kind, super::FixKind::Style(s) if s.pre_force_due(step, setup))
+            {
+                continue;
+            }
+            let kind = std::mem::replace(&mut self.fixes[k].kind, super::FixKind::Settings);
+            let super::FixKind::Style(mut style) = kind else {
+                unreachable!("checked above")
+            };
+            let at = FixStep::plain(self.fixes[k].group, step, self.dt, &self.domain);
+            let mut inputs = SimulationInputs {
+                sim: &*self,
+                vars: &mut *vars,
+            };
+            let result = style.pre_force_evaluate(&self.particles, &at, &mut inputs);
+            if result.is_ok() {
+                style.pre_force(&mut self.particles, &at);
+            }
+            self.fixes[k].kind = super::FixKind::Style(style);
+            result?;
+        }
+        Ok(())
+    }
+
+    /// The `init_pair` hook of every module fix style, in fix order.
+    pub(crate) fn init_pair_fix_styles(
+        &mut self,
+        materials: &MaterialInput,
+    ) -> Result<(), EngineError> {
+        if !self
+            .fixes
+            .iter()
+            .any(|f| matches!(f.kind, super::FixKind::Style(_)))
+        {
+            return Ok(());
+        }
+        let keywords: Vec<&str> = self
+            .thermo
+            .fields
+            .iter()
+            .map(|f| f.keyword.as_str())
+            .collect();
+        let pair = PairInit {
+            pair_gran: self.pair_selection.is_some(),
+            materials,
+            thermo_every: self.thermo.every,
+            thermo_keywords: &keywords,
+        };
+        for fix in &mut self.fixes {
+            if let super::FixKind::Style(s) = &mut fix.kind {
+                s.init_pair(&pair)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The `init` hook of every module fix style, in fix order, at a run's init.
+    pub(crate) fn init_fix_styles(&mut self) -> Result<(), EngineError> {
+        let accelerations: Vec<[f64; 3]> = self
+            .fixes
+            .iter()
+            .filter_map(|f| match &f.kind {
+                super::FixKind::Style(s) => s.acceleration(),
+                _ => None,
+            })
+            .collect();
+        let run = FixInit {
+            accelerations: &accelerations,
+        };
+        for fix in &mut self.fixes {
+            if let super::FixKind::Style(s) = &mut fix.kind {
+                s.init(&run)?;
+            }
         }
         Ok(())
     }

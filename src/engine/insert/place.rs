@@ -64,7 +64,7 @@ impl Sampler<'_> {
 
 /// The distance of `p` to the nearest face of the (sub-)domain (length), as LIGGGHTS
 /// measures it for `check_dist_from_subdomain_border`.
-fn subdomain_distance(w: &World, p: [f64; 3]) -> f64 {
+pub(super) fn subdomain_distance(w: &World, p: [f64; 3]) -> f64 {
     let dlo = (0..3)
         .map(|d| (w.lo[d] - p[d]).abs())
         .fold(f64::INFINITY, f64::min);

@@ -502,19 +502,6 @@ impl InsertStream {
             }
         }
         let in_sub = |p: [f64; 3]| (0..3).all(|d| p[d] >= w.lo[d] && p[d] < w.hi[d]);
-        let dist_sub = |p: [f64; 3]| {
-            let dlo = (0..3)
-                .map(|d| (w.lo[d] - p[d]).abs())
-                .fold(f64::INFINITY, f64::min);
-            let dhi = (0..3)
-                .map(|d| (w.hi[d] - p[d]).abs())
-                .fold(f64::INFINITY, f64::min);
-            if dlo < dhi {
-                dlo
-            } else {
-                dhi
-            }
-        };
         let maxtry = (list.len() as i64).saturating_mul(self.maxattempt);
         let mut ntry = 0;
         let mut placed: Vec<NewParticle> = Vec::new();
@@ -544,7 +531,8 @@ impl InsertStream {
                     };
                     p = [p[0] + nrm[0] * r, p[1] + nrm[1] * r, p[2] + nrm[2] * r];
                     ntry += 1;
-                    let bad = !in_sub(p) || (self.overlapcheck && dist_sub(p) < rad);
+                    let bad = !in_sub(p)
+                        || (self.overlapcheck && super::place::subdomain_distance(w, p) < rad);
                     if !(ntry < maxtry && bad) {
                         break;
                     }

@@ -608,7 +608,6 @@ impl Simulation {
             self.force_time_state = (self.particles.v.clone(), self.particles.omega.clone());
         }
         self.resolve_force_fixes(vars)?;
-        self.resolve_buoyancy_regions();
         let list = (self.list.builds, self.neighbor.skin);
         // LIGGGHTS's mesh lists use the full skin when a mesh moves or the box can change
         // (a moving mesh's own lists use the full skin as well)

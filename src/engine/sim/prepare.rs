@@ -6,52 +6,9 @@ use super::*;
 impl Simulation {
     /// Build the contact models (pair and walls) from the current material properties.
     pub(super) fn init_pair(&mut self) -> Result<(), EngineError> {
-        use crate::engine::contact::material::mix_yeff;
         use crate::engine::granular;
         let input = self.material_input();
-        for k in 0..self.fixes.len() {
-            if let FixKind::CheckTimestep(_) = &self.fixes[k].kind {
-                if self.pair_selection.is_none() {
-                    return Err(
-                        "Fix check/timestep/gran can only be used together with: gran".into(),
-                    );
-                }
-                let missing = |name: &str| {
-                    format!("Could not locate a fix/property storing value(s) for {name} as requested by fix check/timestep/gran.")
-                };
-                let youngs = input
-                    .youngs_modulus
-                    .clone()
-                    .ok_or_else(|| missing("youngsModulus"))?;
-                let poisson = input
-                    .poissons_ratio
-                    .clone()
-                    .ok_or_else(|| missing("poissonsRatio"))?;
-                let n = self.ntypes as usize;
-                if youngs.len() < n || poisson.len() < n {
-                    return Err("fix check/timestep/gran: youngsModulus and poissonsRatio need one value per atom type".into());
-                }
-                let materials = (0..n)
-                    .map(|t| {
-                        let (y, nu) = (youngs[t], poisson[t]);
-                        (y, nu, mix_yeff(y, y, nu, nu))
-                    })
-                    .collect();
-                let every = self.thermo.every;
-                let prefix = format!("f_{}", self.fixes[k].id);
-                let in_thermo = self
-                    .thermo
-                    .fields
-                    .iter()
-                    .any(|f| f.keyword.starts_with(&prefix));
-                if let FixKind::CheckTimestep(c) = &mut self.fixes[k].kind {
-                    if in_thermo && every % c.every != 0 {
-                        return Err("Thermo and fix not computed at compatible times".into());
-                    }
-                    c.materials = materials;
-                }
-            }
-        }
+        self.init_pair_fix_styles(&input)?;
         // the rolling-friction models use a disc's inertia factor in 2d
         let two_d = self.dimension == 2;
         for k in 0..self.fixes.len() {
@@ -168,56 +125,7 @@ impl Simulation {
     pub(super) fn radii_vary(&self) -> bool {
         self.fixes
             .iter()
-            .any(|f| matches!(f.kind, FixKind::Adapt(_)))
-    }
-
-    /// `fix adapt ... atom diameter v_name` (LIGGGHTS's pre_force, and setup_pre_force when
-    /// `setup`): every N steps set the diameters of the group's particles from the variable,
-    /// keeping each particle's density.
-    pub(super) fn adapt_radii(
-        &mut self,
-        setup: bool,
-        vars: &mut dyn VariableSource,
-    ) -> Result<(), EngineError> {
-        use crate::engine::fixes::ForceValue;
-        use std::f64::consts::PI;
-        for k in 0..self.fixes.len() {
-            let FixKind::Adapt(ad) = &self.fixes[k].kind else {
-                continue;
-            };
-            if !setup && (ad.every == 0 || self.step % ad.every != 0) {
-                continue;
-            }
-            let (group, scale) = (self.fixes[k].group, ad.scale);
-            let values = match &ad.diameter {
-                ForceValue::Equal(name) => {
-                    let name = name.clone();
-                    vec![vars.equal(self, &name)?; self.particles.len()]
-                }
-                ForceValue::Atom(name) => {
-                    let name = name.clone();
-                    vars.atom(self, &name)?
-                }
-                ForceValue::Constant(c) => vec![*c; self.particles.len()],
-                ForceValue::Null => continue,
-            };
-            let p = &mut self.particles;
-            for (i, &value) in values.iter().enumerate().take(p.len()) {
-                if p.mask[i] & group == 0 {
-                    continue;
-                }
-                let r = p.radius[i];
-                let density = p.mass[i] / (4.0 * PI / 3.0 * r * r * r);
-                let mut value = value;
-                if scale {
-                    value *= r * 2.0;
-                }
-                let r = 0.5 * value;
-                p.radius[i] = r;
-                p.mass[i] = 4.0 * PI / 3.0 * r * r * r * density;
-            }
-        }
-        Ok(())
+            .any(|f| matches!(&f.kind, FixKind::Style(s) if s.changes_radii()))
     }
 
     pub(super) fn list_positions(&self) -> &[[f64; 3]] {

@@ -260,19 +260,8 @@ impl Simulation {
                 "a wet pair model on more than one MPI rank: not supported yet".into(),
             ));
         }
-        let first = self.step;
-        let last = self.step + nsteps;
-        self.run_bounds = Some((
-            self.ramp_bounds.0.unwrap_or(first),
-            self.ramp_bounds.1.unwrap_or(last),
-        ));
-        self.atime_step = self.step;
-        let started = std::time::Instant::now();
-        self.neighbor.cutneighmax = self.liggghts_cutneighmax();
-        self.check_run_init()?;
+        let (first, last, started) = self.begin_run(nsteps)?;
         self.setup_fix_styles();
-        self.energy_watch = None;
-        self.guard_notes = GuardNotes::default();
         let mut st = self.rank_setup(comm)?;
         self.rank_forces(&mut st, false);
         self.has_run = true;

@@ -71,6 +71,25 @@ impl Simulation {
         self.init_liquid()?;
         self.init_heat()?;
         self.check_meshes_in_box()?;
+        let (first, last, started) = self.begin_run(nsteps)?;
+        self.setup_deform(first)?;
+        self.init_fix_styles()?;
+        self.setup_fix_styles();
+        self.setup_displacements();
+        self.accel.settle_threads();
+        if self.accel.fast {
+            self.start_order_record();
+        }
+        Ok((first, last, started))
+    }
+
+    /// The part of a run's `init` every run shares (one process or several ranks): the run's
+    /// step bounds, the time origin, the neighbour cutoff, the run checks and the motion
+    /// guard's watch reset. The run's first and last steps and its start time.
+    pub(super) fn begin_run(
+        &mut self,
+        nsteps: i64,
+    ) -> Result<(i64, i64, std::time::Instant), EngineError> {
         let first = self.step;
         let last = self.step + nsteps;
         self.run_bounds = Some((
@@ -81,14 +100,6 @@ impl Simulation {
         let started = std::time::Instant::now();
         self.neighbor.cutneighmax = self.liggghts_cutneighmax();
         self.check_run_init()?;
-        self.setup_deform(first)?;
-        crate::engine::buoyancy::check(&self.fixes)?;
-        self.setup_fix_styles();
-        self.setup_displacements();
-        self.accel.settle_threads();
-        if self.accel.fast {
-            self.start_order_record();
-        }
         self.energy_watch = None;
         self.guard_notes = GuardNotes::default();
         Ok((first, last, started))
@@ -107,7 +118,7 @@ impl Simulation {
         self.refresh_moving_meshes(true);
         self.zero_mesh_velocities(true);
         self.mesh_stress_phase(StressPhase::Setup)?;
-        self.adapt_radii(true, vars)?;
+        self.pre_force_fix_styles(true, vars)?;
         // LIGGGHTS's setup evaluation does not advance contact history
         self.compute_forces(false, true, vars)?;
         self.setup_clump_forces();
@@ -212,7 +223,7 @@ impl Simulation {
         }
         self.refresh_moving_meshes(rebuilt);
         self.mesh_stress_phase(StressPhase::PreForce)?;
-        self.adapt_radii(false, vars)?;
+        self.pre_force_fix_styles(false, vars)?;
         let tally = self.virial_wanted(last);
         self.compute_forces(true, tally, vars)?;
         self.guard_forces()?;

@@ -17,24 +17,23 @@ impl Simulation {
         for k in 0..self.fixes.len() {
             let fix = &mut self.fixes[k];
             match &mut fix.kind {
-                FixKind::CheckTimestep(c) if step % c.every == 0 => {
-                    for m in c.evaluate(&self.particles, fix.group, dt, skin) {
-                        out(&format!("WARNING: {m}\n"));
+                FixKind::Style(s) => {
+                    s.end_of_step(
+                        &mut self.particles,
+                        &fixes::FixStep {
+                            group: fix.group,
+                            step,
+                            dt,
+                            domain: &self.domain,
+                            virial: if tallied { &self.virial } else { &[] },
+                            contact,
+                            skin,
+                            regions: Some(&self.regions),
+                        },
+                    );
+                    if s.outputs_at(step) {
+                        self.fix_style_output(k, out, vars)?;
                     }
-                }
-                FixKind::Style(s) => s.end_of_step(
-                    &mut self.particles,
-                    &fixes::FixStep {
-                        group: fix.group,
-                        step,
-                        dt,
-                        domain: &self.domain,
-                        virial: if tallied { &self.virial } else { &[] },
-                        contact,
-                    },
-                ),
-                FixKind::Tracer(t) if step % t.every == 0 => {
-                    t.end_of_step(&mut self.particles, fix.group, &self.regions, step);
                 }
                 FixKind::AveTime(at) if at.next == step => {
                     let values = self.ave_time_values(k, vars)?;
@@ -50,13 +49,6 @@ impl Simulation {
                     self.store_state(k, Snapshot::All, vars)?
                 }
                 FixKind::Deform(d) if step % d.every == 0 => self.deform_step(k, vars)?,
-                FixKind::Print(pf) if step % pf.every == 0 => {
-                    let text = pf.text.clone();
-                    let line = vars.substitute(self, &text)?;
-                    if let FixKind::Print(pf) = &mut self.fixes[k].kind {
-                        pf.emit(&line, out)?;
-                    }
-                }
                 _ => {}
             }
         }
@@ -112,6 +104,8 @@ impl Simulation {
                         domain: &self.domain,
                         virial: if tallied { &self.virial } else { &[] },
                         contact,
+                        skin: self.neighbor.skin,
+                        regions: Some(&self.regions),
                     },
                 );
             }
@@ -148,7 +142,6 @@ impl Simulation {
             return v;
         }
         match (&fix.kind, index) {
-            (FixKind::CheckTimestep(c), Some(i @ 1..=3)) => Ok(c.values[i - 1]),
             (FixKind::Mesh(m), Some(i)) if m.servo.as_ref().and_then(|s| s.value(i)).is_some() => {
                 Ok(m.servo.as_ref().and_then(|s| s.value(i)).unwrap_or(0.0))
             }
@@ -159,9 +152,10 @@ impl Simulation {
             (FixKind::Massflow(m), Some(i)) if m.value(i).is_some() => {
                 Ok(m.value(i).unwrap_or(0.0))
             }
-            (FixKind::Buoyancy(b), Some(i @ 1..=3)) => Ok(b.total[i - 1]),
-            (FixKind::Tracer(t), None) => Ok(t.scalar()),
-            (FixKind::Style(s), i) if s.value(i).is_some() => Ok(s.value(i).unwrap_or(0.0)),
+            // read once: a value may be consumed by its reading (fix property/atom/tracer)
+            (FixKind::Style(s), i) => s
+                .value(i)
+                .ok_or_else(|| format!("fix {id} ({}) has no such value", fix.style).into()),
             _ => Err(format!("fix {id} ({}) has no such value", fix.style).into()),
         }
     }

@@ -288,6 +288,7 @@ impl Simulation {
                 self.dt,
                 &self.domain,
             );
+            let clock = std::time::Instant::now();
             if self.rank_decide(comm, &mut st) {
                 let hist = PartnerHistory::from_pairs(
                     &st.pairs,
@@ -298,11 +299,15 @@ impl Simulation {
                 );
                 self.rank_build(comm, &mut st, hist)?;
                 self.stats.builds += 1;
+                self.stats.neigh += clock.elapsed().as_secs_f64();
             } else {
                 self.particles.extend_from(&st.ghosts);
                 forward(comm, &st.dec, &st.plan, &mut self.particles, false)?;
+                self.stats.comm += clock.elapsed().as_secs_f64();
             }
+            let clock = std::time::Instant::now();
             self.rank_forces(&mut st, true);
+            self.stats.pair += clock.elapsed().as_secs_f64();
             fixes::final_integrate(
                 &mut self.fixes,
                 &mut self.particles,
@@ -310,17 +315,20 @@ impl Simulation {
                 self.dt,
                 &self.domain,
             );
+            let clock = std::time::Instant::now();
             self.rank_output(comm, &st, false, last, out, vars)?;
+            self.stats.output += clock.elapsed().as_secs_f64();
         }
         self.run_bounds = None;
         self.loop_clock = None;
         self.atime += (self.step - self.atime_step) as f64 * self.dt;
         self.atime_step = self.step;
-        let stats = self.rank_statistics(comm, &st);
+        let loop_time = started.elapsed().as_secs_f64();
+        let stats = self.rank_statistics(comm, &st, loop_time);
         self.rank_gather_all(comm, &st)?;
         out(&format!(
             "Loop time of {} on {} procs for {} steps with {} atoms\n\n",
-            crate::util::format::g(started.elapsed().as_secs_f64()),
+            crate::util::format::g(loop_time),
             comm.size(),
             nsteps,
             self.particles.len()
@@ -634,11 +642,27 @@ impl Simulation {
 
     /// LIGGGHTS's per-process counts after a run (ave, max, min over ranks) and the
     /// neighbour-list figures.
-    fn rank_statistics(&self, comm: &RankComm, st: &RankState) -> String {
+    fn rank_statistics(&self, comm: &RankComm, st: &RankState, loop_time: f64) -> String {
         use crate::util::format::g;
         let n = comm.size() as f64;
         let nghost = st.ghosts.len();
         let mut s = String::new();
+        // the time split, each part averaged over the ranks, as LIGGGHTS prints it
+        let t = &self.stats;
+        let mut parts = [t.pair, t.neigh, t.comm, t.output];
+        comm.all_reduce_f64(&mut parts, Reduce::Sum);
+        let parts = parts.map(|v| v / n);
+        let other = (loop_time - parts.iter().sum::<f64>()).max(0.0);
+        let names = ["Pair ", "Neigh", "Comm ", "Outpt", "Other"];
+        for (name, v) in names.iter().zip(parts.iter().chain([&other])) {
+            let pct = if loop_time > 0.0 {
+                100.0 * v / loop_time
+            } else {
+                0.0
+            };
+            s.push_str(&format!("{name} time (%) = {} ({})\n", g(*v), g(pct)));
+        }
+        s.push('\n');
         let mut total_neighs = 0.0;
         for (name, v) in [
             ("Nlocal", st.nlocal as f64),

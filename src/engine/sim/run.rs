@@ -23,11 +23,12 @@ impl Simulation {
         out: Sink<'_>,
         vars: &mut dyn VariableSource,
     ) -> Result<(), EngineError> {
+        // on ranks, those sharing this machine share out its cores
+        self.accel.settle_threads();
         if self.comm.as_ref().is_some_and(|c| c.size() > 1) {
             // each rank runs on its own thread (ranks never wait on one another's threads)
             return self.run_ranks(nsteps, out, vars);
         }
-        self.accel.settle_threads();
         let accel = self.accel.clone();
         let team = self.accel.team();
         let mut job = crate::engine::accel::Handed((self, out, vars));

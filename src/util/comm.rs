@@ -33,6 +33,15 @@ pub trait Comm {
     /// sent to this rank in the same swap (`to` and `from` may be this rank itself). Every
     /// rank calls it in the same order, as MPI's sendrecv.
     fn send_recv_bytes(&self, to: usize, from: usize, bytes: &[u8]) -> Vec<u8>;
+    /// A swap of doubles whose counts both sides know (`into.len()` is what rank `from`
+    /// sends): `out` to rank `to`, `into` filled from rank `from`, with no length message.
+    fn send_recv_f64(&self, to: usize, from: usize, out: &[f64], into: &mut [f64]) {
+        let bytes: Vec<u8> = out.iter().flat_map(|v| v.to_le_bytes()).collect();
+        let got = self.send_recv_bytes(to, from, &bytes);
+        for (v, b) in into.iter_mut().zip(got.chunks_exact(8)) {
+            *v = f64::from_le_bytes(b.try_into().unwrap_or([0; 8]));
+        }
+    }
 }
 
 impl<C: Comm + ?Sized> Comm for Box<C> {
@@ -59,6 +68,9 @@ impl<C: Comm + ?Sized> Comm for Box<C> {
     }
     fn send_recv_bytes(&self, to: usize, from: usize, bytes: &[u8]) -> Vec<u8> {
         (**self).send_recv_bytes(to, from, bytes)
+    }
+    fn send_recv_f64(&self, to: usize, from: usize, out: &[f64], into: &mut [f64]) {
+        (**self).send_recv_f64(to, from, out, into)
     }
 }
 

@@ -78,6 +78,11 @@ impl Comm for MpiComm {
         mpi::point_to_point::send_receive_into(bytes, &dest, &mut out[..], &src);
         out
     }
+    fn send_recv_f64(&self, to: usize, from: usize, out: &[f64], into: &mut [f64]) {
+        let dest = self.world.process_at_rank(to as i32);
+        let src = self.world.process_at_rank(from as i32);
+        mpi::point_to_point::send_receive_into(out, &dest, into, &src);
+    }
 }
 
 /// [`MpiComm`] handed to the thread that runs a deck: MPI is called from one thread at a
@@ -111,5 +116,8 @@ impl Comm for SendComm {
     }
     fn send_recv_bytes(&self, to: usize, from: usize, bytes: &[u8]) -> Vec<u8> {
         self.0.send_recv_bytes(to, from, bytes)
+    }
+    fn send_recv_f64(&self, to: usize, from: usize, out: &[f64], into: &mut [f64]) {
+        self.0.send_recv_f64(to, from, out, into)
     }
 }

@@ -64,7 +64,7 @@ pub type Vec3 = [f64; 3];
 
 /// One touching contact as the sub-models see it (LIGGGHTS's `SurfacesIntersectData`
 /// together with the two `ForceData` sums). For a wall, j is the wall.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Contact<S = f64> {
     /// The contact is with a wall (no particle j; reff = radi, meff = mi).
     pub is_wall: bool,
@@ -135,6 +135,52 @@ pub struct Contact<S = f64> {
     pub ft: [S; 3],
     /// Rolling torque subtracted from i by the rolling model (N m).
     pub r_torque: [S; 3],
+}
+
+impl<S: Copy + Default> Default for Contact<S> {
+    /// All zeros (written out and inlined: on builds without link-time optimisation the
+    /// derived one stayed a call inside the pair kernel's loop).
+    #[inline(always)]
+    fn default() -> Self {
+        let z = S::default();
+        let v = [z; 3];
+        Contact {
+            is_wall: false,
+            radi: z,
+            radj: z,
+            radsum: z,
+            r: z,
+            rinv: z,
+            delta: v,
+            en: v,
+            deltan: z,
+            mi: z,
+            mj: z,
+            meff: z,
+            vi: v,
+            vj: v,
+            omegai: v,
+            omegaj: v,
+            dt: z,
+            update_history: false,
+            vn: z,
+            vtr: v,
+            wr: v,
+            cri: z,
+            crj: z,
+            normal_force: z,
+            kn: z,
+            kt: z,
+            gamman: z,
+            gammat: z,
+            fi: v,
+            fj: v,
+            ti: v,
+            tj: v,
+            ft: v,
+            r_torque: v,
+        }
+    }
 }
 
 /// A particle pair, as the pair loop sees it. Particle j is the image that is closest

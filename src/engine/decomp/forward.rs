@@ -21,6 +21,15 @@ fn swap_bytes(comm: &impl Comm, me: usize, to: usize, from: usize, out: Vec<u8>)
     }
 }
 
+/// Buffers of forward communication, kept between steps so a step allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub struct SwapBuffers {
+    /// Values sent along the current swap.
+    send: Vec<f64>,
+    /// Values received along it.
+    recv: Vec<f64>,
+}
+
 /// Copy owners' positions (length), velocities (length/time), angular velocities (1/time)
 /// and, with `radius`, radii (length) to their ghosts.
 pub fn forward(
@@ -30,27 +39,69 @@ pub fn forward(
     p: &mut Particles,
     radius: bool,
 ) -> Result<(), DecompError> {
+    forward_with(comm, dec, plan, p, radius, &mut SwapBuffers::default())
+}
+
+/// [`forward`] with buffers kept by the caller. A swap with this rank alone (a periodic
+/// axis with one rank along it) copies particle to ghost directly; a swap with another rank
+/// sends one message of doubles, whose count both sides know from the ghost plan.
+pub fn forward_with(
+    comm: &impl Comm,
+    dec: &Decomposition,
+    plan: &GhostPlan,
+    p: &mut Particles,
+    radius: bool,
+    buf: &mut SwapBuffers,
+) -> Result<(), DecompError> {
+    let stride = if radius { 10 } else { 9 };
     for s in &plan.swaps {
-        let mut out = Writer::default();
         let shift = f64::from(s.pbc) * dec.length(s.dim);
+        if s.first_recv + s.n_recv > p.len() {
+            return Err(DecompError::PlanMismatch {
+                ghosts: s.first_recv + s.n_recv,
+                particles: p.len(),
+            });
+        }
+        if s.send_to == dec.me && s.recv_from == dec.me {
+            if s.send.len() != s.n_recv {
+                return Err(DecompError::PlanMismatch {
+                    ghosts: s.send.len(),
+                    particles: s.n_recv,
+                });
+            }
+            for (k, &i) in s.send.iter().enumerate() {
+                let g = s.first_recv + k;
+                let mut x = p.x[i];
+                x[s.dim] += shift;
+                p.x[g] = x;
+                p.v[g] = p.v[i];
+                p.omega[g] = p.omega[i];
+                if radius {
+                    p.radius[g] = p.radius[i];
+                }
+            }
+            continue;
+        }
+        buf.send.clear();
         for &i in &s.send {
             let mut x = p.x[i];
             x[s.dim] += shift;
-            out.vec3(x);
-            out.vec3(p.v[i]);
-            out.vec3(p.omega[i]);
+            buf.send.extend_from_slice(&x);
+            buf.send.extend_from_slice(&p.v[i]);
+            buf.send.extend_from_slice(&p.omega[i]);
             if radius {
-                out.f64(p.radius[i]);
+                buf.send.push(p.radius[i]);
             }
         }
-        let incoming = swap_bytes(comm, dec.me, s.send_to, s.recv_from, out.bytes);
-        let mut r = Reader::new(&incoming);
-        for g in s.first_recv..s.first_recv + s.n_recv {
-            p.x[g] = r.vec3()?;
-            p.v[g] = r.vec3()?;
-            p.omega[g] = r.vec3()?;
+        buf.recv.resize(s.n_recv * stride, 0.0);
+        comm.send_recv_f64(s.send_to, s.recv_from, &buf.send, &mut buf.recv);
+        let ghosts = s.first_recv..s.first_recv + s.n_recv;
+        for (g, v) in ghosts.zip(buf.recv.chunks_exact(stride)) {
+            p.x[g] = [v[0], v[1], v[2]];
+            p.v[g] = [v[3], v[4], v[5]];
+            p.omega[g] = [v[6], v[7], v[8]];
             if radius {
-                p.radius[g] = r.f64()?;
+                p.radius[g] = v[9];
             }
         }
     }

@@ -22,6 +22,8 @@ pub mod pack;
 
 pub use borders::{borders, GhostPlan, Halo, Swap};
 pub use decomposition::{global_extent, Decomposition};
-pub use forward::{canonical_sum, forward, reverse, reverse_contributions, Contribution};
+pub use forward::{
+    canonical_sum, forward, forward_with, reverse, reverse_contributions, Contribution, SwapBuffers,
+};
 pub use migrate::migrate;
 pub use pack::{DecompError, PartnerHistory};

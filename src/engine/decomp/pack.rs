@@ -17,6 +17,16 @@ pub enum DecompError {
         /// The message length.
         len: usize,
     },
+    /// A ghost plan that does not fit the particle arrays it is replayed on.
+    #[error(
+        "the ghost plan names {ghosts} ghosts, which the {particles} particle slots do not hold"
+    )]
+    PlanMismatch {
+        /// Ghost slots the plan writes up to.
+        ghosts: usize,
+        /// Particle slots there are.
+        particles: usize,
+    },
     /// Ranks disagree on the per-particle arrays fixes keep.
     #[error("ranks disagree on the per-atom arrays of fixes (expected {expected} values per atom, a message has {found})")]
     ExtraWidth {

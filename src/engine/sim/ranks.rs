@@ -4,9 +4,12 @@
 //! follow LIGGGHTS's granular `newton off` rule: a rank computes every pair with at least
 //! one particle it owns, so a pair of an owned particle and a ghost is computed on both
 //! ranks, each keeping its own copy of the contact history; forces reach owned particles
-//! without reverse communication. Pairs are listed with the lower ID first, so both ranks
-//! compute a pair the same way, and each particle adds its contacts in the order of its
-//! partners' IDs, whatever the rank count; owned particles are stored by ID.
+//! without reverse communication. Each particle has a sum key at every list build: the cell
+//! of a grid over the whole box that holds it, then its ID. Pairs are listed with the lower
+//! key first and sorted by the two keys, so each particle adds its contacts in the order of
+//! its partners' keys, whatever the rank count (the keys come from positions, which are the
+//! same on every grid); owned particles are stored by key, cell by cell, so the pass over
+//! the list reads its particles in memory order and their partners nearby.
 //!
 //! Every step the ghosts' positions and velocities are refreshed (forward communication);
 //! at each neighbour-list build particles are wrapped into the box, migrate with their
@@ -18,7 +21,8 @@
 use super::*;
 use crate::engine::accel::ORDER_ARRAY;
 use crate::engine::decomp::pack::{pack_particle, unpack_particle, Reader, Writer};
-use crate::engine::decomp::{borders, forward, migrate, Decomposition, GhostPlan, Halo};
+use crate::engine::decomp::SwapBuffers;
+use crate::engine::decomp::{borders, forward_with, migrate, Decomposition, GhostPlan, Halo};
 use crate::engine::decomp::{DecompError, PartnerHistory};
 use crate::engine::neighbor::SumOrder;
 use crate::engine::particles::PerAtom;
@@ -33,6 +37,8 @@ struct RankState {
     halo: Halo,
     /// The ghost swaps of the last build.
     plan: GhostPlan,
+    /// Forward communication's buffers.
+    swap: SwapBuffers,
     /// Owned particles (the ghosts follow them in the particle arrays).
     nlocal: usize,
     /// Pairs with at least one owned particle, the lower ID first, sorted by ID.
@@ -70,22 +76,73 @@ impl From<DecompError> for EngineError {
     }
 }
 
+/// The cells of the sum keys: a grid over the whole box (the same on every rank), in
+/// row-major order (x fastest).
+#[derive(Debug, Clone, Copy)]
+struct KeyGrid {
+    /// Lower corner of the box (length).
+    lo: [f64; 3],
+    /// Cells per length along each axis (1/length).
+    inv: [f64; 3],
+    /// Cells along each axis.
+    dims: [u64; 3],
+}
+
+impl KeyGrid {
+    /// Cells about `cell` wide (length) over the box `lo`..`hi`.
+    fn new(lo: [f64; 3], hi: [f64; 3], cell: f64) -> KeyGrid {
+        let dims = [0, 1, 2].map(|d| {
+            let n = ((hi[d] - lo[d]) / cell).floor();
+            if n.is_finite() && n >= 1.0 {
+                n.min(1e5) as u64
+            } else {
+                1
+            }
+        });
+        let inv = [0, 1, 2].map(|d| {
+            let len = hi[d] - lo[d];
+            if len > 0.0 {
+                dims[d] as f64 / len
+            } else {
+                0.0
+            }
+        });
+        KeyGrid { lo, inv, dims }
+    }
+
+    /// The cell of position `x` (outside the box: the nearest cell).
+    fn cell(&self, x: [f64; 3]) -> u64 {
+        // a conversion truncates, which is the floor for the cells at or above zero
+        let c = [0, 1, 2].map(|d| {
+            let t = (x[d] - self.lo[d]) * self.inv[d];
+            if t >= 0.0 {
+                (t as u64).min(self.dims[d] - 1)
+            } else {
+                0
+            }
+        });
+        (c[2] * self.dims[1] + c[1]) * self.dims[0] + c[0]
+    }
+}
+
 /// Every pair closer than the radii plus `skin` with at least one owned particle (below
-/// `nlocal`): owned pairs once, an owned particle and a ghost once; the lower ID first (an
-/// owned particle before its own periodic image), sorted by the two IDs, then by the
-/// positions' bits (images of one partner).
-fn rank_pairs(p: &Particles, nlocal: usize, skin: f64) -> Vec<Pair> {
-    let n = p.len();
+/// `nlocal`): owned pairs once, an owned particle and a ghost once; the lower sum key
+/// (`cells`, then ID) first (an owned particle before its own periodic image), sorted by
+/// the two keys, then by the positions' bits (images of one partner).
+fn rank_pairs(p: &Particles, nlocal: usize, skin: f64, cells: &[u64]) -> Vec<Pair> {
+    let n = p.len().min(cells.len());
     if nlocal == 0 {
         return Vec::new();
     }
+    let key = |k: usize| (cells[k], p.id[k]);
     let bins = Bins::new(p, skin);
-    let mut pairs = Vec::with_capacity(8 * nlocal);
+    let mut found = Vec::with_capacity(8 * nlocal);
     for i in 0..nlocal {
         let c = bins.cell_of(p.x[i]);
-        for m in 0..27 {
-            let at = [c[0] + m % 3 - 1, c[1] + (m / 3) % 3 - 1, c[2] + m / 9 - 1];
-            for &j in bins.members(at) {
+        // the three cells along x of each of the nine rows around i are one run of `order`
+        for m in 0..9 {
+            let row = [c[1] + m % 3 - 1, c[2] + m / 3 - 1];
+            for &j in bins.row_members(c[0], row) {
                 let j = j as usize;
                 if j == i || (j < nlocal && j < i) || j >= n {
                     continue;
@@ -93,27 +150,28 @@ fn rank_pairs(p: &Particles, nlocal: usize, skin: f64) -> Vec<Pair> {
                 let d = [0, 1, 2].map(|k| p.x[i][k] - p.x[j][k]);
                 let cut = p.radius[i] + p.radius[j] + skin;
                 if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cut * cut {
-                    let (a, b) = if p.id[j] < p.id[i] { (j, i) } else { (i, j) };
-                    pairs.push(Pair {
-                        i: a as u32,
-                        j: b as u32,
-                        shift: [0.0; 3],
-                    });
+                    let ghost_first = p.id[j] != p.id[i] && key(j) < key(i);
+                    let (a, b) = if ghost_first { (j, i) } else { (i, j) };
+                    found.push((key(a), key(b), a as u32, b as u32));
                 }
             }
         }
     }
-    // no two entries have the same key (two images of one partner differ in position)
-    pairs.sort_unstable_by_key(|q: &Pair| {
-        let (a, b) = (q.i as usize, q.j as usize);
-        (
-            p.id[a],
-            p.id[b],
-            p.x[b].map(f64::to_bits),
-            p.x[a].map(f64::to_bits),
-        )
+    // by the two keys; two images of one partner (the same keys) by their positions' bits
+    let bits = |k: u32| p.x[k as usize].map(f64::to_bits);
+    found.sort_unstable_by(|q, r| {
+        (q.0, q.1)
+            .cmp(&(r.0, r.1))
+            .then_with(|| (bits(q.3), bits(q.2)).cmp(&(bits(r.3), bits(r.2))))
     });
-    pairs
+    found
+        .into_iter()
+        .map(|(_, _, a, b)| Pair {
+            i: a,
+            j: b,
+            shift: [0.0; 3],
+        })
+        .collect()
 }
 
 /// The particles binned in cubic cells a largest pair cutoff wide, as one array sorted by
@@ -187,7 +245,15 @@ impl Bins {
 
     /// The cell (possibly outside the grid) holding position `x`.
     fn cell_of(&self, x: [f64; 3]) -> [i64; 3] {
-        [0, 1, 2].map(|d| ((x[d] - self.lo[d]) / self.cell).floor() as i64)
+        [0, 1, 2].map(|d| {
+            let t = (x[d] - self.lo[d]) / self.cell;
+            // a conversion truncates: the floor at or above zero, without a library call
+            if t >= 0.0 {
+                t as i64
+            } else {
+                t.floor() as i64
+            }
+        })
     }
 
     /// The array index of cell `c`, None outside the grid.
@@ -196,11 +262,19 @@ impl Bins {
         inside.then(|| ((c[2] * self.dims[1] + c[1]) * self.dims[0] + c[0]) as usize)
     }
 
-    /// The particles of cell `c` in index order (none outside the grid).
-    fn members(&self, c: [i64; 3]) -> &[u32] {
-        match self.index(c) {
-            Some(k) => &self.order[self.start[k] as usize..self.start[k + 1] as usize],
-            None => &[],
+    /// The particles of the cells `cx - 1 ..= cx + 1` along x (those inside the grid) in
+    /// row `row` (y, z), cell by cell; none when the row is outside the grid.
+    fn row_members(&self, cx: i64, row: [i64; 2]) -> &[u32] {
+        let (lo, hi) = ((cx - 1).max(0), (cx + 1).min(self.dims[0] - 1));
+        if lo > hi {
+            return &[];
+        }
+        match (
+            self.index([lo, row[0], row[1]]),
+            self.index([hi, row[0], row[1]]),
+        ) {
+            (Some(a), Some(b)) => &self.order[self.start[a] as usize..self.start[b + 1] as usize],
+            _ => &[],
         }
     }
 }
@@ -302,7 +376,8 @@ impl Simulation {
                 self.stats.neigh += clock.elapsed().as_secs_f64();
             } else {
                 self.particles.extend_from(&st.ghosts);
-                forward(comm, &st.dec, &st.plan, &mut self.particles, false)?;
+                let p = &mut self.particles;
+                forward_with(comm, &st.dec, &st.plan, p, false, &mut st.swap)?;
                 self.stats.comm += clock.elapsed().as_secs_f64();
             }
             let clock = std::time::Instant::now();
@@ -375,6 +450,7 @@ impl Simulation {
             dec,
             halo: Halo::granular(self.neighbor.cutneighmax, self.neighbor.skin),
             plan: GhostPlan::default(),
+            swap: SwapBuffers::default(),
             nlocal: self.particles.len(),
             pairs: Vec::new(),
             history: Vec::new(),
@@ -433,10 +509,14 @@ impl Simulation {
             }
         }
         migrate(comm, &st.dec, p, Some(&mut hist))?;
-        // owned particles stored by ID, as the pair list runs: the pass over the list reads
-        // the first particles of its pairs in memory order
-        let mut order: Vec<usize> = (0..p.len()).collect();
-        order.sort_unstable_by_key(|&k| (p.id[k], p.x[k].map(f64::to_bits)));
+        // owned particles stored by sum key, as the pair list runs: the pass over the list
+        // reads the first particles of its pairs in memory order, their partners nearby
+        let grid = KeyGrid::new(self.domain.lo, self.domain.hi, self.neighbor.cutneighmax);
+        let mut keyed: Vec<(u64, i64, [u64; 3], usize)> = (0..p.len())
+            .map(|k| (grid.cell(p.x[k]), p.id[k], p.x[k].map(f64::to_bits), k))
+            .collect();
+        keyed.sort_unstable();
+        let order: Vec<usize> = keyed.into_iter().map(|(.., k)| k).collect();
         p.permute(&order);
         let (mut partners, mut values) = (
             std::mem::take(&mut hist.partners),
@@ -460,7 +540,8 @@ impl Simulation {
         }
         self.natoms_expected = natoms;
         st.plan = borders(comm, &st.dec, &st.halo, p, st.nlocal)?;
-        st.pairs = rank_pairs(p, st.nlocal, self.neighbor.skin);
+        let cells: Vec<u64> = p.x.iter().map(|&x| grid.cell(x)).collect();
+        st.pairs = rank_pairs(p, st.nlocal, self.neighbor.skin, &cells);
         st.history = hist.to_pairs(&st.pairs, &p.id, st.nlocal, &st.flips);
         let width = st.flips.len();
         if width > 0 {
@@ -733,10 +814,14 @@ mod tests {
     }
 
     #[test]
-    fn the_cell_search_lists_every_pair_within_reach_once_by_id() {
+    fn the_cell_search_lists_every_pair_within_reach_once_by_key() {
         let p = cloud(800);
         let (nlocal, skin) = (500, 0.0005);
-        let pairs = rank_pairs(&p, nlocal, skin);
+        let grid = KeyGrid::new([0.0; 3], [0.02, 0.02, 0.01], 0.0025);
+        let cells: Vec<u64> = p.x.iter().map(|&x| grid.cell(x)).collect();
+        assert_eq!(grid.dims, [8, 8, 4]);
+        let key = |k: usize| (cells[k], p.id[k]);
+        let pairs = rank_pairs(&p, nlocal, skin, &cells);
         let mut want = Vec::new();
         for i in 0..p.len() {
             for j in i + 1..p.len() {
@@ -746,17 +831,17 @@ mod tests {
                 let d = [0, 1, 2].map(|k| p.x[i][k] - p.x[j][k]);
                 let cut = p.radius[i] + p.radius[j] + skin;
                 if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cut * cut {
-                    want.push(if p.id[j] < p.id[i] { (j, i) } else { (i, j) });
+                    want.push(if key(j) < key(i) { (j, i) } else { (i, j) });
                 }
             }
         }
         let mut got: Vec<(usize, usize)> =
             pairs.iter().map(|q| (q.i as usize, q.j as usize)).collect();
-        let ids = |v: &[(usize, usize)]| -> Vec<(i64, i64)> {
-            v.iter().map(|&(a, b)| (p.id[a], p.id[b])).collect()
+        let keys = |v: &[(usize, usize)]| -> Vec<((u64, i64), (u64, i64))> {
+            v.iter().map(|&(a, b)| (key(a), key(b))).collect()
         };
-        // listed in ID order, the lower ID first
-        let listed = ids(&got);
+        // listed in key order, the lower key first
+        let listed = keys(&got);
         assert!(listed.windows(2).all(|w| w[0] < w[1]));
         assert!(listed.iter().all(|&(a, b)| a < b));
         got.sort_unstable();

@@ -4,6 +4,7 @@
 
 pub mod args;
 pub mod change_box;
+pub mod compute;
 pub mod compute_analysis;
 pub mod compute_coord;
 pub mod compute_displace;
@@ -148,6 +149,8 @@ impl Engine {
         let mut sim = Simulation::default();
         // LIGGGHTS's computes of every deck (its Output constructor makes them)
         sim.computes = crate::engine::temperature::default_computes();
+        sim.computes
+            .push(crate::commands::compute::thermo_kin_eng());
         Engine {
             sim,
             diverged: false,

@@ -129,6 +129,8 @@ pub fn validate_names(cmd: &CommandLine) -> Result<(), CommandError> {
         // accepted beyond LIGGGHTS
     } else if kind == NameKind::FixStyle && crate::commands::fix::is_registered(style) {
         // a module style added at run time
+    } else if kind == NameKind::ComputeStyle && crate::commands::compute::is_registered(style) {
+        // a module style added at run time
     } else if !names::names(kind).contains(&style) {
         return Err(unknown(kind, style, index));
     }

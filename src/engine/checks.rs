@@ -140,14 +140,18 @@ impl Simulation {
     }
 
     /// LIGGGHTS's init checks of `compute contact/atom` and `coord/atom`: a pair style, and
-    /// a coord/atom cutoff within the neighbour cutoff.
+    /// a coord/atom cutoff within the neighbour cutoff; the `init` hooks of module compute
+    /// styles, in compute order.
     fn check_count_computes(&self) -> Result<(), EngineError> {
         use crate::engine::computes::ComputeKind;
         for c in &self.computes {
             let name = match &c.kind {
-                ComputeKind::ContactAtom { .. } => "contact/atom",
                 ComputeKind::CoordAtom(_) => "coord/atom",
                 ComputeKind::Rdf(_) => "rdf",
+                ComputeKind::Style(s) => {
+                    s.init(self)?;
+                    continue;
+                }
                 ComputeKind::PropertyLocal => {
                     return Err(if self.pair_selection.is_none() {
                         "No pair style is defined for compute property/local"

@@ -16,6 +16,22 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
     if ctx.sim.computes.iter().any(|c| c.id == id) {
         return Err(a.error(0, "Reuse of compute ID"));
     }
+    if let Some(row) = crate::commands::compute::module_row(style) {
+        let def = crate::commands::compute::ComputeDef {
+            id,
+            group,
+            bit,
+            style,
+        };
+        let kind = ComputeKind::Style((row.build)(a, ctx, &def)?);
+        ctx.sim.computes.push(Compute {
+            id: id.into(),
+            style: style.into(),
+            group: bit,
+            kind,
+        });
+        return Ok(());
+    }
     let no_keywords = |kind: ComputeKind| {
         if a.len() > 3 {
             Err(a.error(3, format!("Illegal compute {style} command")))
@@ -25,46 +41,13 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
     };
     registry::require_style(a, "compute")?;
     let kind = match style {
-        "erotate/sphere" => no_keywords(ComputeKind::ErotateSphere)?,
-        // LIGGGHTS's `erotate` sums erotate/sphere (and multisphere) of its group
-        "erotate" => {
-            if ctx.sim.computes.iter().any(|c| c.style == "erotate") {
-                // each adds an internal compute `erotate_sphere_`
-                return Err(a.error(0, "Reuse of compute ID").with_help(
-                    "LIGGGHTS 3.8.0's compute erotate defines an internal compute \
-                     erotate_sphere_, so a deck can have only one; use compute erotate/sphere",
-                ));
-            }
-            no_keywords(ComputeKind::ErotateSphere)?
-        }
-        "pe" => crate::commands::computes_extra::pe(a, ctx)?,
-        "ke" => no_keywords(ComputeKind::Ke)?,
         "temp" => no_keywords(ComputeKind::Temp)?,
-        "ke/atom" => no_keywords(ComputeKind::KeAtom)?,
-        "contact/atom" => {
-            let mut skin = 0.0;
-            if a.len() > 3 {
-                if a.len() != 5 {
-                    return Err(a.error(3, "Illegal compute contact/atom command"));
-                }
-                if a.word(3)? != "skin" {
-                    return Err(a.error(
-                        3,
-                        "Illegal compute contact/atom command, expecting keyword 'skin'",
-                    ));
-                }
-                skin = a.real(4)?;
-            }
-            ComputeKind::ContactAtom { skin }
-        }
         "coord/atom" => crate::commands::compute_coord::build(a, ctx)?,
         "rdf" => crate::commands::compute_rdf::build(a, ctx)?,
         "gyration" => crate::commands::compute_analysis::gyration(a)?,
-        "pe/atom" => crate::commands::compute_analysis::pe_atom(a)?,
         "pressure" => crate::commands::compute_analysis::pressure(a, ctx)?,
         "slice" => crate::commands::compute_analysis::slice(a, ctx)?,
         "property/local" => crate::commands::compute_analysis::property_local(a)?,
-        "com" => no_keywords(ComputeKind::Com)?,
         "nparticles/tracer/region" => {
             crate::commands::computes_extra::nparticles_tracer_region(a, ctx)?
         }
@@ -102,7 +85,6 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
         "reduce" => compute_reduce(a, ctx, 3, None)?,
         "reduce/region" => crate::commands::compute_reduce_region::build(a, ctx)?,
         "msd" | "displace/atom" => crate::commands::compute_displace::build(a, ctx, bit)?,
-        "erotate/sphere/atom" => no_keywords(ComputeKind::ErotateSphereAtom)?,
         "pair/gran/local" => pair_gran_local(a, ctx)?,
         "wall/gran/local" => crate::commands::fix_state::wall_gran_local(a, ctx, id)?,
         other => return Err(a.unsupported(2, &format!("compute {other}"))),

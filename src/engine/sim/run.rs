@@ -77,6 +77,7 @@ impl Simulation {
         self.init_fix_styles()?;
         self.setup_fix_styles();
         self.setup_displacements();
+        self.setup_compute_styles();
         self.accel.settle_threads();
         if self.accel.fast {
             self.start_order_record();

@@ -6,8 +6,6 @@ pub mod args;
 pub mod change_box;
 pub mod compute;
 pub mod compute_analysis;
-pub mod compute_coord;
-pub mod compute_displace;
 pub mod compute_modify;
 pub mod compute_rdf;
 pub mod compute_reduce_region;

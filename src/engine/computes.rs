@@ -17,16 +17,6 @@ pub use style::{ComputeAt, ComputeStyle};
 pub enum ComputeKind {
     /// `temp`: temperature of the group (temperature; see `commands::compute_modify`).
     Temp,
-    /// `stress/atom`: per-atom stress times volume, xx yy zz xy xz yz (pressure volume =
-    /// force length), with the kinetic and/or pair-virial parts.
-    StressAtom {
-        /// Include -m v_a v_b.
-        ke: bool,
-        /// Include the pair virial -1/2 sum del_a F_b.
-        pair: bool,
-    },
-    /// `property/atom`: atom attributes as per-atom columns.
-    PropertyAtom(Vec<Column>),
     /// `reduce`: sum, min, max or average over the group of per-atom inputs.
     Reduce {
         /// The reduction.
@@ -48,12 +38,6 @@ pub enum ComputeKind {
         /// ID of the mesh wall fix.
         wall: String,
     },
-    /// `msd [com yes|no]`: mean squared displacement along x, y, z and in total (area).
-    Msd(Box<crate::engine::displacement::Origins>),
-    /// `displace/atom`: dx, dy, dz and distance from the start position per atom (length).
-    DisplaceAtom(Box<crate::engine::displacement::Origins>),
-    /// `coord/atom`: partners within a cutoff per atom, one column per type range.
-    CoordAtom(Box<crate::engine::neighbour_counts::CoordAtom>),
     /// `rdf Nbin [itype jtype ...]`: g(r) and coord(r) per type pair, a global array.
     Rdf(Box<crate::engine::rdf::Rdf>),
     /// `gyration`: radius of gyration (length) and its tensor (area), unwrapped.
@@ -220,10 +204,6 @@ impl Compute {
     /// Number of per-atom values per particle (0 if the compute is not per-atom).
     pub fn per_atom_columns(&self) -> usize {
         match &self.kind {
-            ComputeKind::DisplaceAtom(_) => 4,
-            ComputeKind::StressAtom { .. } => 6,
-            ComputeKind::PropertyAtom(c) => c.len(),
-            ComputeKind::CoordAtom(c) => c.columns(),
             ComputeKind::Style(s) => s.per_atom_columns(),
             _ => 0,
         }
@@ -233,7 +213,6 @@ impl Compute {
     pub fn vector_len(&self) -> usize {
         match &self.kind {
             ComputeKind::TracerCount(_) => 4,
-            ComputeKind::Msd(_) => 4,
             ComputeKind::Reduce { inputs, .. } if inputs.len() > 1 => inputs.len(),
             ComputeKind::Style(s) => s.vector_len(),
             kind => crate::engine::analysis_computes::vector_len(kind),
@@ -285,7 +264,6 @@ impl Compute {
             ComputeKind::TracerCount(t) => {
                 Ok(t.values(&sim.particles, self.group, &sim.regions)[index - 1])
             }
-            ComputeKind::Msd(o) => Ok(o.msd(&sim.particles, &sim.domain, self.group)[index - 1]),
             ComputeKind::Reduce {
                 mode,
                 inputs,
@@ -584,54 +562,9 @@ impl Compute {
         sim: &Simulation,
         vars: &mut dyn VariableSource,
     ) -> Result<PerAtom, EngineError> {
-        let p = &sim.particles;
-        let n = p.len();
-        let group = self.group;
         let columns = self.per_atom_columns();
-        let mut values = vec![0.0; n * columns];
+        let mut values = vec![0.0; sim.particles.len() * columns];
         match &self.kind {
-            ComputeKind::StressAtom { ke, pair } => {
-                if *pair && sim.pair.is_some() && sim.virial_step != Some(sim.step) {
-                    return Err("Per-atom virial was not tallied on needed timestep".into());
-                }
-                for i in 0..n {
-                    if p.mask[i] & group == 0 {
-                        continue;
-                    }
-                    let mut s = [0.0; 6];
-                    if *pair {
-                        if let Some(w) = sim.virial.get(i) {
-                            for k in 0..6 {
-                                s[k] += w[k];
-                            }
-                        }
-                    }
-                    if *ke {
-                        let m = 1.0 * p.mass[i];
-                        let v = p.v[i];
-                        s[0] += m * v[0] * v[0];
-                        s[1] += m * v[1] * v[1];
-                        s[2] += m * v[2] * v[2];
-                        s[3] += m * v[0] * v[1];
-                        s[4] += m * v[0] * v[2];
-                        s[5] += m * v[1] * v[2];
-                    }
-                    for k in 0..6 {
-                        values[i * 6 + k] = -s[k];
-                    }
-                }
-            }
-            ComputeKind::DisplaceAtom(o) => o.displace(p, &sim.domain, group, &mut values),
-            ComputeKind::PropertyAtom(cols) => {
-                for i in 0..n {
-                    if p.mask[i] & group != 0 {
-                        for (k, c) in cols.iter().enumerate() {
-                            values[i * columns + k] = c.value(p, &sim.domain, i);
-                        }
-                    }
-                }
-            }
-            ComputeKind::CoordAtom(c) => c.counts(sim, group, &mut values),
             ComputeKind::Style(s) if columns > 0 => s.per_atom(&self.at(sim), &mut values, vars)?,
             _ => {
                 return Err(format!(

@@ -8,15 +8,21 @@
 
 mod com;
 mod contact_atom;
+mod coord_atom;
+mod displace;
 mod erotate_sphere;
 mod ke;
 mod pe;
+mod property_atom;
+mod stress_atom;
 
 use crate::commands::specs::Spec;
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::computes::ComputeStyle;
 
+pub(crate) use coord_atom::type_range;
 pub use ke::thermo_kin_eng;
+pub use stress_atom::StressAtom;
 
 /// What a style's builder is told about the compute being defined.
 #[derive(Debug, Clone, Copy)]
@@ -65,6 +71,18 @@ pub const MODULES: &[ComputeRow] = &[
         build: contact_atom::build,
     },
     ComputeRow {
+        spec: coord_atom::SPEC,
+        build: coord_atom::build,
+    },
+    ComputeRow {
+        spec: displace::ATOM,
+        build: displace::atom,
+    },
+    ComputeRow {
+        spec: displace::MSD,
+        build: displace::msd,
+    },
+    ComputeRow {
         spec: erotate_sphere::EROTATE,
         build: erotate_sphere::erotate,
     },
@@ -91,6 +109,14 @@ pub const MODULES: &[ComputeRow] = &[
     ComputeRow {
         spec: pe::ATOM,
         build: pe::atom,
+    },
+    ComputeRow {
+        spec: property_atom::SPEC,
+        build: property_atom::build,
+    },
+    ComputeRow {
+        spec: stress_atom::SPEC,
+        build: stress_atom::build,
     },
 ];
 

@@ -42,7 +42,6 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
     registry::require_style(a, "compute")?;
     let kind = match style {
         "temp" => no_keywords(ComputeKind::Temp)?,
-        "coord/atom" => crate::commands::compute_coord::build(a, ctx)?,
         "rdf" => crate::commands::compute_rdf::build(a, ctx)?,
         "gyration" => crate::commands::compute_analysis::gyration(a)?,
         "pressure" => crate::commands::compute_analysis::pressure(a, ctx)?,
@@ -51,40 +50,8 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
         "nparticles/tracer/region" => {
             crate::commands::computes_extra::nparticles_tracer_region(a, ctx)?
         }
-        "stress/atom" => {
-            let (mut ke, mut pair) = (a.len() == 3, a.len() == 3);
-            for i in 3..a.len() {
-                match a.word(i)? {
-                    "ke" => ke = true,
-                    "pair" | "virial" => pair = true,
-                    // no bonds, angles, kspace or virial-contributing fixes exist in a
-                    // granular run: these parts are zero
-                    "bond" | "angle" | "dihedral" | "improper" | "kspace" | "fix" => {}
-                    _ => return Err(a.error(i, "Illegal compute stress/atom command")),
-                }
-            }
-            ComputeKind::StressAtom { ke, pair }
-        }
-        "property/atom" => {
-            if a.len() < 4 {
-                return Err(a.error(2, "Illegal compute property/atom command"));
-            }
-            let mut cols = Vec::new();
-            for i in 3..a.len() {
-                let w = a.word(i)?;
-                let col = match crate::io::dump::Column::parse(w) {
-                    Ok(crate::io::dump::Column::Reference(_)) | Err(_) => {
-                        return Err(a.unsupported(i, &format!("compute property/atom {w}")))
-                    }
-                    Ok(c) => c,
-                };
-                cols.push(col);
-            }
-            ComputeKind::PropertyAtom(cols)
-        }
         "reduce" => compute_reduce(a, ctx, 3, None)?,
         "reduce/region" => crate::commands::compute_reduce_region::build(a, ctx)?,
-        "msd" | "displace/atom" => crate::commands::compute_displace::build(a, ctx, bit)?,
         "pair/gran/local" => pair_gran_local(a, ctx)?,
         "wall/gran/local" => crate::commands::fix_state::wall_gran_local(a, ctx, id)?,
         other => return Err(a.unsupported(2, &format!("compute {other}"))),

@@ -76,7 +76,6 @@ impl Simulation {
         self.setup_deform(first)?;
         self.init_fix_styles()?;
         self.setup_fix_styles();
-        self.setup_displacements();
         self.setup_compute_styles();
         self.accel.settle_threads();
         if self.accel.fast {

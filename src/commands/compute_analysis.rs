@@ -1,4 +1,4 @@
-//! `compute gyration`, `slice` and `pressure`: their arguments, with LIGGGHTS
+//! `compute slice`, `pressure` and `property/local`: their arguments, with LIGGGHTS
 //! 3.8.0's errors.
 
 use crate::commands::{Args, CommandError, Ctx};
@@ -22,15 +22,6 @@ pub fn after_general_keyword(a: &Args, style: &str) -> Result<usize, CommandErro
             "Value for keyword 'update_on_run_end' must be either 'yes' or 'no'",
         )),
     }
-}
-
-/// `compute ID GROUP gyration`.
-pub fn gyration(a: &Args) -> Result<ComputeKind, CommandError> {
-    let i = after_general_keyword(a, "gyration")?;
-    if a.len() != i {
-        return Err(a.error(i, "Illegal compute gyration command"));
-    }
-    Ok(ComputeKind::Gyration)
 }
 
 /// `compute ID all pressure temp-ID [ke pair bond angle dihedral improper kspace fix virial]`.

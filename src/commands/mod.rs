@@ -9,7 +9,6 @@ pub mod compute_analysis;
 pub mod compute_modify;
 pub mod compute_rdf;
 pub mod compute_reduce_region;
-pub mod computes_extra;
 pub mod diverged;
 pub mod error;
 pub mod fix;

@@ -26,8 +26,6 @@ pub enum ComputeKind {
         /// `reduce/region`: only atoms inside this region (index) count.
         region: Option<usize>,
     },
-    /// `nparticles/tracer/region`: all and marked particles in a region, and their masses.
-    TracerCount(Box<crate::engine::tracer::TracerCount>),
     /// `pair/gran/local`: one row per touching pair with the selected fields.
     PairGranLocal(Vec<LocalField>),
     /// `wall/gran/local`: one row per particle-mesh contact of the mesh wall fix with this
@@ -40,8 +38,6 @@ pub enum ComputeKind {
     },
     /// `rdf Nbin [itype jtype ...]`: g(r) and coord(r) per type pair, a global array.
     Rdf(Box<crate::engine::rdf::Rdf>),
-    /// `gyration`: radius of gyration (length) and its tensor (area), unwrapped.
-    Gyration,
     /// `slice`: every Nskip-th element of a global vector or array column.
     Slice(Box<crate::engine::analysis_computes::Slice>),
     /// `pressure`: kinetic and pair-virial pressure (pressure), scalar and tensor.
@@ -212,7 +208,6 @@ impl Compute {
     /// True for computes with a global vector (`c_ID[N]` in thermo and formulas).
     pub fn vector_len(&self) -> usize {
         match &self.kind {
-            ComputeKind::TracerCount(_) => 4,
             ComputeKind::Reduce { inputs, .. } if inputs.len() > 1 => inputs.len(),
             ComputeKind::Style(s) => s.vector_len(),
             kind => crate::engine::analysis_computes::vector_len(kind),
@@ -232,9 +227,7 @@ impl Compute {
                 inputs,
                 region,
             } if inputs.len() == 1 => self.reduce(sim, (*mode, *region), &inputs[0], vars)?,
-            ComputeKind::Gyration | ComputeKind::Pressure(_) => {
-                crate::engine::analysis_computes::scalar(self, sim, vars)?
-            }
+            ComputeKind::Pressure(_) => crate::engine::analysis_computes::scalar(self, sim, vars)?,
             ComputeKind::Style(s) if s.has_scalar() => s.scalar(&self.at(sim), vars)?,
             _ => {
                 return Err(format!(
@@ -261,9 +254,6 @@ impl Compute {
             .into());
         }
         match &self.kind {
-            ComputeKind::TracerCount(t) => {
-                Ok(t.values(&sim.particles, self.group, &sim.regions)[index - 1])
-            }
             ComputeKind::Reduce {
                 mode,
                 inputs,

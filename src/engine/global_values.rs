@@ -166,7 +166,7 @@ pub fn compute_ext(sim: &Simulation, c: &Compute, column: Option<usize>) -> Opti
     match &c.kind {
         ComputeKind::Temp => Some(1),
         ComputeKind::Reduce { mode, .. } => Some((*mode == ReduceMode::Sum) as i8),
-        ComputeKind::Gyration | ComputeKind::Pressure(_) => Some(0),
+        ComputeKind::Pressure(_) => Some(0),
         ComputeKind::Slice(s) => match (&s.compute, &s.fix) {
             (Some((id, col)), _) => {
                 let src = sim.computes.iter().find(|x| &x.id == id)?;

@@ -11,10 +11,12 @@ mod contact_atom;
 mod coord_atom;
 mod displace;
 mod erotate_sphere;
+mod gyration;
 mod ke;
 mod pe;
 mod property_atom;
 mod stress_atom;
+mod tracer_region;
 
 use crate::commands::specs::Spec;
 use crate::commands::{Args, CommandError, Ctx};
@@ -95,6 +97,10 @@ pub const MODULES: &[ComputeRow] = &[
         build: erotate_sphere::atom,
     },
     ComputeRow {
+        spec: gyration::SPEC,
+        build: gyration::build,
+    },
+    ComputeRow {
         spec: ke::SPEC,
         build: ke::build,
     },
@@ -117,6 +123,10 @@ pub const MODULES: &[ComputeRow] = &[
     ComputeRow {
         spec: stress_atom::SPEC,
         build: stress_atom::build,
+    },
+    ComputeRow {
+        spec: tracer_region::SPEC,
+        build: tracer_region::build,
     },
 ];
 

@@ -43,13 +43,9 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
     let kind = match style {
         "temp" => no_keywords(ComputeKind::Temp)?,
         "rdf" => crate::commands::compute_rdf::build(a, ctx)?,
-        "gyration" => crate::commands::compute_analysis::gyration(a)?,
         "pressure" => crate::commands::compute_analysis::pressure(a, ctx)?,
         "slice" => crate::commands::compute_analysis::slice(a, ctx)?,
         "property/local" => crate::commands::compute_analysis::property_local(a)?,
-        "nparticles/tracer/region" => {
-            crate::commands::computes_extra::nparticles_tracer_region(a, ctx)?
-        }
         "reduce" => compute_reduce(a, ctx, 3, None)?,
         "reduce/region" => crate::commands::compute_reduce_region::build(a, ctx)?,
         "pair/gran/local" => pair_gran_local(a, ctx)?,

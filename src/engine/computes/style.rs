@@ -111,6 +111,11 @@ pub trait ComputeStyle: Send + std::fmt::Debug {
     fn keeps_per_atom_state(&self) -> bool {
         false
     }
+
+    /// At the start of every step and of a run's setup, before anything moves: changes the
+    /// style makes to the particles for what its last evaluation counted
+    /// (`nparticles/tracer/region reset_marker yes` un-marks them).
+    fn before_step(&mut self, _p: &mut Particles) {}
 }
 
 impl Simulation {
@@ -120,6 +125,15 @@ impl Simulation {
         for c in &mut self.computes {
             if let super::ComputeKind::Style(s) = &mut c.kind {
                 s.setup(p, c.group);
+            }
+        }
+    }
+
+    /// The `before_step` hook of every module compute style, in compute order.
+    pub(crate) fn before_step_compute_styles(&mut self) {
+        for c in &mut self.computes {
+            if let super::ComputeKind::Style(s) = &mut c.kind {
+                s.before_step(&mut self.particles);
             }
         }
     }

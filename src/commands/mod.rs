@@ -8,7 +8,6 @@ pub mod compute;
 pub mod compute_analysis;
 pub mod compute_modify;
 pub mod compute_rdf;
-pub mod compute_reduce_region;
 pub mod diverged;
 pub mod error;
 pub mod fix;

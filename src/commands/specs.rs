@@ -200,8 +200,6 @@ pub const SPECS: &[Spec] = &[
     style("compute", "slice", "compute ID GROUP slice NSTART NSTOP NSKIP c_ID|c_ID[I]|f_ID|f_ID[I]", &[], "elements NSTART, NSTART+NSKIP, ... below NSTOP of a global vector or array column (a global vector)"),
     style("compute", "property/local", "compute ID GROUP property/local patom1|patom2|ptype1|ptype2|natom1|... ...", &[], "per-pair IDs and types; as LIGGGHTS 3.8.0, a run refuses it (granular pair styles have no single())"),
     style("compute", "rdf", "compute ID GROUP rdf NBIN [ITYPE JTYPE ...]", &[], "radial distribution g(r) and coordination number per type pair over NBIN bins up to the pair cutoff (global array: r, then g and coord per pair; fix ave/time mode vector writes it)"),
-    style("compute", "reduce/region", "compute ID GROUP reduce/region REGION sum|min|max|ave INPUT ...", &[], "compute reduce over the group's particles inside a region"),
-    style("compute", "reduce", "compute ID GROUP reduce sum|min|max|ave INPUT ...", &[], "sum, minimum, maximum or mean of per-particle values"),
     style("compute", "temp", "compute ID GROUP temp", &[], "temperature of the group (3N - 3 degrees of freedom; see compute_modify)"),
     style("compute", "wall/gran/local", "compute ID GROUP wall/gran/local [FIELDS...]", &[], "per-contact data of particles with a wall"),
     with(command("compute_modify ID KEYWORD VALUE ...", "change a compute's settings (thermo_temp and thermo_kin_eng exist from the start)"), &[

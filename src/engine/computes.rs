@@ -6,26 +6,16 @@ use crate::engine::error::EngineError;
 use crate::engine::integrate::SPHERE_INERTIA;
 use crate::engine::particles::Particles;
 use crate::engine::sim::{Simulation, VariableSource};
-use crate::io::dump::Column;
 pub use crate::state::local_field::LocalField;
 
 mod style;
 pub use style::{ComputeAt, ComputeStyle};
 
-/// What a compute calculates.
+/// What a compute calculates: a module style, or one of the styles still dispatched by kind.
 #[derive(Debug)]
 pub enum ComputeKind {
     /// `temp`: temperature of the group (temperature; see `commands::compute_modify`).
     Temp,
-    /// `reduce`: sum, min, max or average over the group of per-atom inputs.
-    Reduce {
-        /// The reduction.
-        mode: ReduceMode,
-        /// One value per input.
-        inputs: Vec<Input>,
-        /// `reduce/region`: only atoms inside this region (index) count.
-        region: Option<usize>,
-    },
     /// `pair/gran/local`: one row per touching pair with the selected fields.
     PairGranLocal(Vec<LocalField>),
     /// `wall/gran/local`: one row per particle-mesh contact of the mesh wall fix with this
@@ -47,32 +37,6 @@ pub enum ComputeKind {
     PropertyLocal,
     /// A style written as a module (see [`ComputeStyle`]): its hooks give its values.
     Style(Box<dyn ComputeStyle>),
-}
-
-/// The reductions of `compute reduce`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ReduceMode {
-    /// Sum over the atoms.
-    Sum,
-    /// Minimum.
-    Min,
-    /// Maximum.
-    Max,
-    /// Average (sum over count).
-    Ave,
-}
-
-/// A per-atom input of `compute reduce`.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Input {
-    /// An atom attribute (x, vx, fx, ...).
-    Atom(Column),
-    /// A per-atom compute `c_ID` or column `c_ID[N]` (1-based).
-    Compute(String, Option<usize>),
-    /// An atom-style variable `v_name`.
-    Variable(String),
-    /// A per-atom fix `f_ID` or column `f_ID[N]` (1-based).
-    Fix(String, Option<usize>),
 }
 
 /// Per-atom values of a compute: `columns` values per particle, row-major in particle
@@ -208,7 +172,6 @@ impl Compute {
     /// True for computes with a global vector (`c_ID[N]` in thermo and formulas).
     pub fn vector_len(&self) -> usize {
         match &self.kind {
-            ComputeKind::Reduce { inputs, .. } if inputs.len() > 1 => inputs.len(),
             ComputeKind::Style(s) => s.vector_len(),
             kind => crate::engine::analysis_computes::vector_len(kind),
         }
@@ -222,11 +185,6 @@ impl Compute {
     ) -> Result<f64, EngineError> {
         Ok(match &self.kind {
             ComputeKind::Temp => crate::engine::temperature::temperature(sim, self),
-            ComputeKind::Reduce {
-                mode,
-                inputs,
-                region,
-            } if inputs.len() == 1 => self.reduce(sim, (*mode, *region), &inputs[0], vars)?,
             ComputeKind::Pressure(_) => crate::engine::analysis_computes::scalar(self, sim, vars)?,
             ComputeKind::Style(s) if s.has_scalar() => s.scalar(&self.at(sim), vars)?,
             _ => {
@@ -254,73 +212,9 @@ impl Compute {
             .into());
         }
         match &self.kind {
-            ComputeKind::Reduce {
-                mode,
-                inputs,
-                region,
-            } => self.reduce(sim, (*mode, *region), &inputs[index - 1], vars),
             ComputeKind::Style(s) => s.vector(&self.at(sim), index, vars),
             _ => crate::engine::analysis_computes::vector(self, index, sim, vars),
         }
-    }
-
-    /// LIGGGHTS's `compute reduce` of one input over the group (atom order), and of
-    /// `reduce/region` over the group's atoms inside the region.
-    fn reduce(
-        &self,
-        sim: &Simulation,
-        (mode, region): (ReduceMode, Option<usize>),
-        input: &Input,
-        vars: &mut dyn VariableSource,
-    ) -> Result<f64, EngineError> {
-        let p = &sim.particles;
-        let values: Box<dyn Fn(usize) -> f64> = match input {
-            Input::Atom(col) => {
-                let col = col.clone();
-                Box::new(move |i| col.value(p, &sim.domain, i))
-            }
-            Input::Compute(id, index) => {
-                let c =
-                    sim.computes.iter().find(|c| &c.id == id).ok_or_else(|| {
-                        format!("Compute ID {id} for compute reduce does not exist")
-                    })?;
-                let data = c.per_atom(sim, vars)?;
-                let col = column_of(c, *index)?;
-                Box::new(move |i| data.get(i, col))
-            }
-            Input::Variable(name) => {
-                let data = vars.atom(sim, name)?;
-                Box::new(move |i| data[i])
-            }
-            Input::Fix(id, index) => {
-                let (data, col) = crate::engine::fix_columns::per_atom(sim, id, *index)?;
-                Box::new(move |i| data.get(i, col))
-            }
-        };
-        let (mut acc, mut count) = match mode {
-            ReduceMode::Sum | ReduceMode::Ave => (0.0, 0usize),
-            ReduceMode::Min => (1.0e20, 0), // LIGGGHTS's BIG: what an empty group reduces to,
-            ReduceMode::Max => (-1.0e20, 0),
-        };
-        for i in 0..p.len() {
-            if p.mask[i] & self.group == 0 {
-                continue;
-            }
-            if region.is_some_and(|r| !sim.regions.matches(r, p.x[i])) {
-                continue;
-            }
-            let v = values(i);
-            count += 1;
-            match mode {
-                ReduceMode::Sum | ReduceMode::Ave => acc += v,
-                ReduceMode::Min => acc = acc.min(v),
-                ReduceMode::Max => acc = acc.max(v),
-            }
-        }
-        if mode == ReduceMode::Ave {
-            acc = if count > 0 { acc / count as f64 } else { 0.0 };
-        }
-        Ok(acc)
     }
 
     /// Rows of a local compute: (columns per row, values row-major).

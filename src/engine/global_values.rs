@@ -22,7 +22,6 @@ impl Compute {
     pub fn shape(&self) -> GlobalShape {
         let scalar = match &self.kind {
             ComputeKind::Temp => true,
-            ComputeKind::Reduce { inputs, .. } => inputs.len() == 1,
             ComputeKind::Style(s) => s.has_scalar(),
             kind => crate::engine::analysis_computes::has_scalar(kind),
         };
@@ -156,7 +155,6 @@ impl Simulation {
 /// Whether the global vector (`column` None) or array of the compute is extensive (1),
 /// intensive (0) or mixed (-1), as LIGGGHTS flags it; None where regolith does not know.
 pub fn compute_ext(sim: &Simulation, c: &Compute, column: Option<usize>) -> Option<i8> {
-    use crate::engine::computes::ReduceMode;
     if let ComputeKind::Style(s) = &c.kind {
         return s.extensive(column);
     }
@@ -165,7 +163,6 @@ pub fn compute_ext(sim: &Simulation, c: &Compute, column: Option<usize>) -> Opti
     }
     match &c.kind {
         ComputeKind::Temp => Some(1),
-        ComputeKind::Reduce { mode, .. } => Some((*mode == ReduceMode::Sum) as i8),
         ComputeKind::Pressure(_) => Some(0),
         ComputeKind::Slice(s) => match (&s.compute, &s.fix) {
             (Some((id, col)), _) => {

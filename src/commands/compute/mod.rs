@@ -3,7 +3,8 @@
 //! declared signature, its arguments, its state and its
 //! [`ComputeStyle`](crate::engine::computes::ComputeStyle) hooks) and adding its row.
 //!
-//! The styles not moved here yet are still built by the `compute` command's own dispatch
+//! The styles not moved here yet (temp, pressure, rdf, slice, property/local,
+//! pair/gran/local, wall/gran/local) are still built by the `compute` command's own dispatch
 //! (`commands::sim_run::compute`) and evaluated by kind in `engine::computes`.
 
 mod com;
@@ -15,6 +16,7 @@ mod gyration;
 mod ke;
 mod pe;
 mod property_atom;
+mod reduce;
 mod stress_atom;
 mod tracer_region;
 
@@ -119,6 +121,14 @@ pub const MODULES: &[ComputeRow] = &[
     ComputeRow {
         spec: property_atom::SPEC,
         build: property_atom::build,
+    },
+    ComputeRow {
+        spec: reduce::REGION,
+        build: reduce::region,
+    },
+    ComputeRow {
+        spec: reduce::SPEC,
+        build: reduce::build,
     },
     ComputeRow {
         spec: stress_atom::SPEC,

@@ -40,14 +40,16 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
         }
     };
     registry::require_style(a, "compute")?;
+    // Not module styles yet (`commands::compute`): temp and pressure (thermo_temp,
+    // compute_modify and pressure's temperature read Temp by kind), rdf and slice (global
+    // arrays, which the trait does not offer yet), and the local computes (dump local,
+    // local/gran/vtk and the pair style read them by kind).
     let kind = match style {
         "temp" => no_keywords(ComputeKind::Temp)?,
         "rdf" => crate::commands::compute_rdf::build(a, ctx)?,
         "pressure" => crate::commands::compute_analysis::pressure(a, ctx)?,
         "slice" => crate::commands::compute_analysis::slice(a, ctx)?,
         "property/local" => crate::commands::compute_analysis::property_local(a)?,
-        "reduce" => compute_reduce(a, ctx, 3, None)?,
-        "reduce/region" => crate::commands::compute_reduce_region::build(a, ctx)?,
         "pair/gran/local" => pair_gran_local(a, ctx)?,
         "wall/gran/local" => crate::commands::fix_state::wall_gran_local(a, ctx, id)?,
         other => return Err(a.unsupported(2, &format!("compute {other}"))),
@@ -104,82 +106,6 @@ fn pair_gran_local(
     fields.sort();
     fields.dedup();
     Ok(ComputeKind::PairGranLocal(fields))
-}
-
-/// `compute ID GROUP reduce MODE input1 input2 ...` (inputs: atom attributes or per-atom
-/// computes `c_ID`, `c_ID[N]`), the mode at word `at`; `region`: the region index of
-/// `reduce/region`.
-pub(crate) fn compute_reduce(
-    a: &Args,
-    ctx: &Ctx,
-    at: usize,
-    region: Option<usize>,
-) -> std::result::Result<crate::engine::computes::ComputeKind, CommandError> {
-    use crate::engine::computes::{column_of, ComputeKind, Input, ReduceMode};
-    if a.len() < at + 2 {
-        return Err(a.error(2, "Illegal compute reduce command"));
-    }
-    let mode = match a.word(at)? {
-        "sum" => ReduceMode::Sum,
-        "min" => ReduceMode::Min,
-        "max" => ReduceMode::Max,
-        "ave" => ReduceMode::Ave,
-        "region" => return Err(a.unsupported(at, "compute reduce/region")),
-        _ => return Err(a.error(at, "Illegal compute reduce command")),
-    };
-    let mut inputs = Vec::new();
-    for i in at + 1..a.len() {
-        let w = a.word(i)?;
-        if w == "replace" {
-            return Err(a.unsupported(i, "compute reduce replace"));
-        }
-        if let Some(body) = w.strip_prefix("c_") {
-            let (id, index) = crate::util::numbers::split_reference(body)
-                .ok_or_else(|| a.error(i, "Illegal compute reduce command"))?;
-            let c = ctx
-                .sim
-                .computes
-                .iter()
-                .find(|c| c.id == id)
-                .ok_or_else(|| a.error(i, "Compute ID for compute reduce does not exist"))?;
-            column_of(c, index).map_err(|m| a.error(i, &m))?;
-            inputs.push(Input::Compute(id.to_string(), index));
-            continue;
-        }
-        if let Some(name) = w.strip_prefix("v_") {
-            match ctx.vars.get(name).map(|v| v.style) {
-                Some(crate::lang::variables::Style::Atom) => {}
-                Some(_) => {
-                    return Err(a.error(i, "Compute reduce variable is not atom-style variable"))
-                }
-                None => return Err(a.error(i, "Variable name for compute reduce does not exist")),
-            }
-            inputs.push(Input::Variable(name.to_string()));
-            continue;
-        }
-        if let Some(body) = w.strip_prefix("f_") {
-            let (id, index) = crate::util::numbers::split_reference(body)
-                .ok_or_else(|| a.error(i, "Illegal compute reduce command"))?;
-            if !ctx.sim.fixes.iter().any(|f| f.id == id) {
-                return Err(a.error(i, "Fix ID for compute reduce does not exist"));
-            }
-            crate::engine::fix_columns::column(ctx.sim, id, index)
-                .map_err(|e| a.error(i, format!("Compute reduce: {e}")))?;
-            inputs.push(Input::Fix(id.to_string(), index));
-            continue;
-        }
-        match crate::io::dump::Column::parse(w) {
-            Ok(crate::io::dump::Column::Reference(_)) | Err(_) => {
-                return Err(a.error(i, "Illegal compute reduce command"))
-            }
-            Ok(c) => inputs.push(Input::Atom(c)),
-        }
-    }
-    Ok(ComputeKind::Reduce {
-        mode,
-        inputs,
-        region,
-    })
 }
 
 pub(super) fn uncompute(a: &Args, ctx: &mut Ctx) -> Result {

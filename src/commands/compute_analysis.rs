@@ -1,4 +1,4 @@
-//! `compute gyration`, `pe/atom`, `slice` and `pressure`: their arguments, with LIGGGHTS
+//! `compute slice`, `pressure` and `property/local`: their arguments, with LIGGGHTS
 //! 3.8.0's errors.
 
 use crate::commands::{Args, CommandError, Ctx};
@@ -22,29 +22,6 @@ pub fn after_general_keyword(a: &Args, style: &str) -> Result<usize, CommandErro
             "Value for keyword 'update_on_run_end' must be either 'yes' or 'no'",
         )),
     }
-}
-
-/// `compute ID GROUP gyration`.
-pub fn gyration(a: &Args) -> Result<ComputeKind, CommandError> {
-    let i = after_general_keyword(a, "gyration")?;
-    if a.len() != i {
-        return Err(a.error(i, "Illegal compute gyration command"));
-    }
-    Ok(ComputeKind::Gyration)
-}
-
-/// `compute ID GROUP pe/atom [pair bond angle dihedral improper kspace]`.
-pub fn pe_atom(a: &Args) -> Result<ComputeKind, CommandError> {
-    let i = after_general_keyword(a, "pe/atom")?;
-    for k in i..a.len() {
-        if !matches!(
-            a.word(k)?,
-            "pair" | "bond" | "angle" | "dihedral" | "improper" | "kspace"
-        ) {
-            return Err(a.error(k, "Illegal compute pe/atom command"));
-        }
-    }
-    Ok(ComputeKind::PeAtom)
 }
 
 /// `compute ID all pressure temp-ID [ke pair bond angle dihedral improper kspace fix virial]`.

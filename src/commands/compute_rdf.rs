@@ -1,6 +1,6 @@
 //! `compute rdf`: its arguments, with LIGGGHTS 3.8.0's errors.
 
-use crate::commands::compute_coord::type_range;
+use crate::commands::compute::type_range;
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::computes::ComputeKind;
 use crate::engine::rdf::Rdf;

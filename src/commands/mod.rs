@@ -4,13 +4,10 @@
 
 pub mod args;
 pub mod change_box;
+pub mod compute;
 pub mod compute_analysis;
-pub mod compute_coord;
-pub mod compute_displace;
 pub mod compute_modify;
 pub mod compute_rdf;
-pub mod compute_reduce_region;
-pub mod computes_extra;
 pub mod diverged;
 pub mod error;
 pub mod fix;
@@ -148,6 +145,8 @@ impl Engine {
         let mut sim = Simulation::default();
         // LIGGGHTS's computes of every deck (its Output constructor makes them)
         sim.computes = crate::engine::temperature::default_computes();
+        sim.computes
+            .push(crate::commands::compute::thermo_kin_eng());
         Engine {
             sim,
             diverged: false,

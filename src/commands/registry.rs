@@ -127,7 +127,7 @@ pub fn validate_names(cmd: &CommandLine) -> Result<(), CommandError> {
         validate_mesh_modules(style, index)?;
     } else if kind == NameKind::DumpStyle && EXTENSION_DUMP_STYLES.contains(&style) {
         // accepted beyond LIGGGHTS
-    } else if kind == NameKind::FixStyle && crate::commands::fix::is_registered(style) {
+    } else if is_registered_module(kind, style) {
         // a module style added at run time
     } else if !names::names(kind).contains(&style) {
         return Err(unknown(kind, style, index));
@@ -141,6 +141,16 @@ pub fn validate_names(cmd: &CommandLine) -> Result<(), CommandError> {
         validate_gran_models(cmd, start)?;
     }
     Ok(())
+}
+
+/// Whether `style` is a module fix or compute style added at run time (its name need not
+/// be one LIGGGHTS knows).
+fn is_registered_module(kind: NameKind, style: &str) -> bool {
+    match kind {
+        NameKind::FixStyle => crate::commands::fix::is_registered(style),
+        NameKind::ComputeStyle => crate::commands::compute::is_registered(style),
+        _ => false,
+    }
 }
 
 /// Mesh modules LIGGGHTS 3.8.0 composes into `fix mesh/surface/...` styles.

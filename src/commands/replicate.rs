@@ -38,11 +38,10 @@ fn unsupported_state(ctx: &Ctx) -> Option<String> {
             ));
         }
     }
-    use crate::engine::computes::ComputeKind;
     if let Some(c) = sim
         .computes
         .iter()
-        .find(|c| matches!(c.kind, ComputeKind::Msd(_) | ComputeKind::DisplaceAtom(_)))
+        .find(|c| c.style().is_some_and(|s| s.keeps_per_atom_state()))
     {
         return Some(format!(
             "replicate with compute {} ({}) defined (its start positions for the copies)",

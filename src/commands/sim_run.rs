@@ -11,7 +11,6 @@ use crate::lang::system::Mode;
 
 mod compute;
 
-pub(crate) use compute::compute_reduce;
 use compute::*;
 
 type Result = std::result::Result<(), CommandError>;

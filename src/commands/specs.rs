@@ -195,29 +195,11 @@ pub const SPECS: &[Spec] = &[
     ]),
     command("comm_modify KEYWORD VALUE ...", "communication settings (accepted; one process)"),
     command("communicate single|multi [vel yes|no] [cutoff C]", "communication settings (accepted; one process)"),
-    style("compute", "com", "compute ID GROUP com", &[], "centre of mass of the group"),
-    style("compute", "contact/atom", "compute ID GROUP contact/atom", &[kw("skin", &[arg("S", LENGTH)], "count contacts within this gap")], "number of contacts per particle"),
-    style("compute", "coord/atom", "compute ID GROUP coord/atom CUTOFF [TYPES ...]", &[kw("mix", &[arg("yes|no", YES_NO)], "leave out partners of the particle's own type")], "partners within CUTOFF (length) per particle, one column per type range (N, *, N*, *N, M*N)"),
-    style("compute", "erotate", "compute ID GROUP erotate", &[], "rotational kinetic energy of the group (through an erotate/sphere compute)"),
-    style("compute", "displace/atom", "compute ID GROUP displace/atom", &[], "per-particle displacement dx dy dz and distance (length) since the compute was defined"),
-    style("compute", "erotate/sphere/atom", "compute ID GROUP erotate/sphere/atom", &[], "rotational kinetic energy per particle (energy)"),
-    style("compute", "msd", "compute ID GROUP msd", &[kw("com", &[arg("yes|no", YES_NO)], "displacements relative to the group's centre of mass")], "mean squared displacement (area) along x, y, z and in total since the compute was defined (c_ID[1..4])"),
-    style("compute", "erotate/sphere", "compute ID GROUP erotate/sphere", &[], "rotational kinetic energy of the group"),
-    style("compute", "ke", "compute ID GROUP ke", &[], "translational kinetic energy of the group"),
-    style("compute", "ke/atom", "compute ID GROUP ke/atom", &[], "kinetic energy per particle"),
-    style("compute", "nparticles/tracer/region", "compute ID GROUP nparticles/tracer/region region_count R tracer T", &[kw("periodic", &[arg("x|y|z", Value::OneOf(&["x", "y", "z"])), arg("IMAGE|all", Value::Word)], "count only particles in this periodic image"), kw("reset_marker", &[arg("yes|no", YES_NO)], "un-mark counted particles (default yes)")], "particles and marked particles in a region and their masses (c_ID[1..4])"),
-    style("compute", "pe", "compute ID all pe [pair] [bond] ...", &[], "potential energy (0 for granular pair styles)"),
     style("compute", "pair/gran/local", "compute ID GROUP pair/gran/local [FIELDS...]", &[], "per-contact positions, forces, overlaps of particle pairs"),
-    style("compute", "property/atom", "compute ID GROUP property/atom ATTRIBUTE ...", &[], "per-particle attributes as columns"),
-    style("compute", "gyration", "compute ID GROUP gyration", &[], "radius of gyration of the group (length) and its tensor xx yy zz xy xz yz (area, c_ID[1..6]), unwrapped"),
-    style("compute", "pe/atom", "compute ID GROUP pe/atom [pair|bond|angle|dihedral|improper|kspace ...]", &[], "potential energy per particle (0: granular pair styles tally none)"),
     style("compute", "pressure", "compute ID all pressure TEMP-ID [ke|pair|virial ...]", &[], "pressure (scalar) and pressure tensor (c_ID[1..6]) from the kinetic energy of the temperature compute and the pair virial"),
     style("compute", "slice", "compute ID GROUP slice NSTART NSTOP NSKIP c_ID|c_ID[I]|f_ID|f_ID[I]", &[], "elements NSTART, NSTART+NSKIP, ... below NSTOP of a global vector or array column (a global vector)"),
     style("compute", "property/local", "compute ID GROUP property/local patom1|patom2|ptype1|ptype2|natom1|... ...", &[], "per-pair IDs and types; as LIGGGHTS 3.8.0, a run refuses it (granular pair styles have no single())"),
     style("compute", "rdf", "compute ID GROUP rdf NBIN [ITYPE JTYPE ...]", &[], "radial distribution g(r) and coordination number per type pair over NBIN bins up to the pair cutoff (global array: r, then g and coord per pair; fix ave/time mode vector writes it)"),
-    style("compute", "reduce/region", "compute ID GROUP reduce/region REGION sum|min|max|ave INPUT ...", &[], "compute reduce over the group's particles inside a region"),
-    style("compute", "reduce", "compute ID GROUP reduce sum|min|max|ave INPUT ...", &[], "sum, minimum, maximum or mean of per-particle values"),
-    style("compute", "stress/atom", "compute ID GROUP stress/atom [ke|pair|virial ...]", &[], "per-particle stress tensor (pressure times volume)"),
     style("compute", "temp", "compute ID GROUP temp", &[], "temperature of the group (3N - 3 degrees of freedom; see compute_modify)"),
     style("compute", "wall/gran/local", "compute ID GROUP wall/gran/local [FIELDS...]", &[], "per-contact data of particles with a wall"),
     with(command("compute_modify ID KEYWORD VALUE ...", "change a compute's settings (thermo_temp and thermo_kin_eng exist from the start)"), &[
@@ -371,14 +353,30 @@ pub const SPECS: &[Spec] = &[
 ];
 
 /// Every declared spec: [`SPECS`], with the module fix styles' rows
-/// ([`crate::commands::fix::MODULES`]) after the last fix style there.
+/// ([`crate::commands::fix::MODULES`]) after the last fix style there and the module compute
+/// styles' rows ([`crate::commands::compute::MODULES`]) after the last compute style there.
 pub fn all() -> impl Iterator<Item = &'static Spec> {
-    let at = SPECS
+    let after = |command: &str| {
+        SPECS
+            .iter()
+            .rposition(|s| s.command == command)
+            .map_or(SPECS.len(), |k| k + 1)
+    };
+    let (computes, fixes) = (after("compute"), after("fix"));
+    let fix_modules = crate::commands::fix::MODULES.iter().map(|row| &row.spec);
+    let compute_modules = crate::commands::compute::MODULES
         .iter()
-        .rposition(|s| s.command == "fix")
-        .map_or(SPECS.len(), |k| k + 1);
-    let modules = crate::commands::fix::MODULES.iter().map(|row| &row.spec);
-    SPECS[..at].iter().chain(modules).chain(SPECS[at..].iter())
+        .map(|row| &row.spec);
+    debug_assert!(
+        computes <= fixes,
+        "compute styles come before fix styles in SPECS"
+    );
+    SPECS[..computes]
+        .iter()
+        .chain(compute_modules)
+        .chain(SPECS[computes..fixes].iter())
+        .chain(fix_modules)
+        .chain(SPECS[fixes..].iter())
 }
 
 /// The spec of `command` (with `style`, for styled commands).

@@ -1,6 +1,6 @@
-//! The analysis computes of researchers' decks: `rdf`, `gyration`, `pe/atom`, `slice` and
-//! `pressure` (LIGGGHTS 3.8.0's compute_gyration.cpp, compute_pe_atom.cpp,
-//! compute_slice.cpp, compute_pressure.cpp): their global outputs and values.
+//! The analysis computes of researchers' decks still dispatched by kind: `rdf`, `slice` and
+//! `pressure` (LIGGGHTS 3.8.0's compute_slice.cpp, compute_pressure.cpp): their global
+//! outputs and values.
 
 use crate::engine::computes::{Compute, ComputeKind};
 use crate::engine::error::EngineError;
@@ -53,13 +53,13 @@ pub fn reads_virial(c: &Compute) -> bool {
 
 /// Whether a compute of this kind has a global scalar (kinds `computes` does not cover).
 pub fn has_scalar(kind: &ComputeKind) -> bool {
-    matches!(kind, ComputeKind::Gyration | ComputeKind::Pressure(_))
+    matches!(kind, ComputeKind::Pressure(_))
 }
 
 /// Length of the global vector of the kinds of this file (0: none).
 pub fn vector_len(kind: &ComputeKind) -> usize {
     match kind {
-        ComputeKind::Gyration | ComputeKind::Pressure(_) | ComputeKind::Temp => 6,
+        ComputeKind::Pressure(_) | ComputeKind::Temp => 6,
         ComputeKind::Slice(s) => s.len(),
         _ => 0,
     }
@@ -85,42 +85,13 @@ pub fn global_array(c: &Compute, sim: &Simulation) -> Result<(Vec<f64>, usize), 
     }
 }
 
-/// The group's mass and unwrapped centre of mass, summed as LIGGGHTS's group->xcm.
-fn mass_xcm(sim: &Simulation, group: u32) -> (f64, [f64; 3]) {
-    let p = &sim.particles;
-    let mass = crate::engine::momentum::group_mass(p, group);
-    (
-        mass,
-        crate::engine::computes::center_of_mass(p, &sim.domain, group),
-    )
-}
-
-/// Unwrapped arms from the centre of mass of the group's particles, with their masses.
-fn arms(sim: &Simulation, group: u32, cm: [f64; 3]) -> impl Iterator<Item = ([f64; 3], f64)> + '_ {
-    let p = &sim.particles;
-    (0..p.len())
-        .filter(move |&i| p.mask[i] & group != 0)
-        .map(move |i| {
-            let d =
-                [0, 1, 2].map(|k| p.x[i][k] + p.image[i][k] as f64 * sim.domain.length(k) - cm[k]);
-            (d, p.mass[i])
-        })
-}
-
-/// Global scalar of `gyration` (length) and `pressure` (pressure).
+/// Global scalar of `pressure` (pressure).
 pub fn scalar(
     c: &Compute,
     sim: &Simulation,
     vars: &mut dyn VariableSource,
 ) -> Result<f64, EngineError> {
     match &c.kind {
-        ComputeKind::Gyration => {
-            let (mass, cm) = mass_xcm(sim, c.group);
-            let rg: f64 = arms(sim, c.group, cm)
-                .map(|([dx, dy, dz], m)| (dx * dx + dy * dy + dz * dz) * m)
-                .fold(0.0, |a, b| a + b);
-            Ok(if mass > 0.0 { (rg / mass).sqrt() } else { 0.0 })
-        }
         ComputeKind::Pressure(pr) => {
             let n = sim.dimension as usize;
             let virial = virial(sim, pr)?;
@@ -148,17 +119,6 @@ pub fn vector(
 ) -> Result<f64, EngineError> {
     let k = index - 1;
     match &c.kind {
-        ComputeKind::Gyration => {
-            let (mass, cm) = mass_xcm(sim, c.group);
-            let mut rg = [0.0; 6];
-            for ([dx, dy, dz], m) in arms(sim, c.group, cm) {
-                let t = [dx * dx, dy * dy, dz * dz, dx * dy, dx * dz, dy * dz];
-                for (r, v) in rg.iter_mut().zip(t) {
-                    *r += v * m;
-                }
-            }
-            Ok(if mass == 0.0 { rg[k] } else { rg[k] / mass })
-        }
         ComputeKind::Temp => Ok(ke_tensor(sim, c.group)[k]),
         ComputeKind::Pressure(pr) => {
             let mut v = virial(sim, pr)?;

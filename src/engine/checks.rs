@@ -139,15 +139,17 @@ impl Simulation {
         Ok(())
     }
 
-    /// LIGGGHTS's init checks of `compute contact/atom` and `coord/atom`: a pair style, and
-    /// a coord/atom cutoff within the neighbour cutoff.
+    /// LIGGGHTS's init checks of the computes, in compute order: `rdf` and `property/local`
+    /// need a pair style (that supports them), module compute styles run their `init` hook.
     fn check_count_computes(&self) -> Result<(), EngineError> {
         use crate::engine::computes::ComputeKind;
         for c in &self.computes {
             let name = match &c.kind {
-                ComputeKind::ContactAtom { .. } => "contact/atom",
-                ComputeKind::CoordAtom(_) => "coord/atom",
                 ComputeKind::Rdf(_) => "rdf",
+                ComputeKind::Style(s) => {
+                    s.init(self)?;
+                    continue;
+                }
                 ComputeKind::PropertyLocal => {
                     return Err(if self.pair_selection.is_none() {
                         "No pair style is defined for compute property/local"
@@ -161,13 +163,6 @@ impl Simulation {
             };
             if self.pair_selection.is_none() {
                 return Err(format!("Compute {name} requires a pair style be defined").into());
-            }
-            if let ComputeKind::CoordAtom(co) = &c.kind {
-                if co.cutoff > self.liggghts_cutneighmax() {
-                    return Err("Compute coord/atom cutoff is longer than neigh cutoff"
-                        .to_string()
-                        .into());
-                }
             }
         }
         Ok(())

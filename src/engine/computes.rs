@@ -6,50 +6,16 @@ use crate::engine::error::EngineError;
 use crate::engine::integrate::SPHERE_INERTIA;
 use crate::engine::particles::Particles;
 use crate::engine::sim::{Simulation, VariableSource};
-use crate::io::dump::Column;
 pub use crate::state::local_field::LocalField;
 
-/// What a compute calculates.
-#[derive(Debug, Clone, PartialEq)]
+mod style;
+pub use style::{ComputeAt, ComputeStyle};
+
+/// What a compute calculates: a module style, or one of the styles still dispatched by kind.
+#[derive(Debug)]
 pub enum ComputeKind {
-    /// `erotate/sphere`: rotational kinetic energy, 0.5 I w^2 summed (energy).
-    ErotateSphere,
-    /// `ke`: translational kinetic energy, 0.5 m v^2 summed (energy).
-    Ke,
     /// `temp`: temperature of the group (temperature; see `commands::compute_modify`).
     Temp,
-    /// `pe`: potential energy (energy); granular pair styles and walls tally none, so 0.
-    PotentialEnergy,
-    /// `ke/atom`: 0.5 m v^2 per atom (energy).
-    KeAtom,
-    /// `stress/atom`: per-atom stress times volume, xx yy zz xy xz yz (pressure volume =
-    /// force length), with the kinetic and/or pair-virial parts.
-    StressAtom {
-        /// Include -m v_a v_b.
-        ke: bool,
-        /// Include the pair virial -1/2 sum del_a F_b.
-        pair: bool,
-    },
-    /// `property/atom`: atom attributes as per-atom columns.
-    PropertyAtom(Vec<Column>),
-    /// `contact/atom [skin S]`: neighbours within the sum of radii plus S (length, default 0).
-    ContactAtom {
-        /// Extra distance (length).
-        skin: f64,
-    },
-    /// `reduce`: sum, min, max or average over the group of per-atom inputs.
-    Reduce {
-        /// The reduction.
-        mode: ReduceMode,
-        /// One value per input.
-        inputs: Vec<Input>,
-        /// `reduce/region`: only atoms inside this region (index) count.
-        region: Option<usize>,
-    },
-    /// `com`: centre of mass of the group, unwrapped (length), a 3-vector.
-    Com,
-    /// `nparticles/tracer/region`: all and marked particles in a region, and their masses.
-    TracerCount(Box<crate::engine::tracer::TracerCount>),
     /// `pair/gran/local`: one row per touching pair with the selected fields.
     PairGranLocal(Vec<LocalField>),
     /// `wall/gran/local`: one row per particle-mesh contact of the mesh wall fix with this
@@ -60,20 +26,8 @@ pub enum ComputeKind {
         /// ID of the mesh wall fix.
         wall: String,
     },
-    /// `msd [com yes|no]`: mean squared displacement along x, y, z and in total (area).
-    Msd(Box<crate::engine::displacement::Origins>),
-    /// `displace/atom`: dx, dy, dz and distance from the start position per atom (length).
-    DisplaceAtom(Box<crate::engine::displacement::Origins>),
-    /// `erotate/sphere/atom`: 0.5 I w^2 per atom (energy).
-    ErotateSphereAtom,
-    /// `coord/atom`: partners within a cutoff per atom, one column per type range.
-    CoordAtom(Box<crate::engine::neighbour_counts::CoordAtom>),
     /// `rdf Nbin [itype jtype ...]`: g(r) and coord(r) per type pair, a global array.
     Rdf(Box<crate::engine::rdf::Rdf>),
-    /// `gyration`: radius of gyration (length) and its tensor (area), unwrapped.
-    Gyration,
-    /// `pe/atom`: per-atom potential energy (energy); granular styles tally none, so 0.
-    PeAtom,
     /// `slice`: every Nskip-th element of a global vector or array column.
     Slice(Box<crate::engine::analysis_computes::Slice>),
     /// `pressure`: kinetic and pair-virial pressure (pressure), scalar and tensor.
@@ -81,32 +35,8 @@ pub enum ComputeKind {
     /// `property/local` of neighbour or pair inputs (patom1, ntype2, ...): LIGGGHTS 3.8.0's
     /// granular pair styles have no `single()`, so a run refuses it at init.
     PropertyLocal,
-}
-
-/// The reductions of `compute reduce`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ReduceMode {
-    /// Sum over the atoms.
-    Sum,
-    /// Minimum.
-    Min,
-    /// Maximum.
-    Max,
-    /// Average (sum over count).
-    Ave,
-}
-
-/// A per-atom input of `compute reduce`.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Input {
-    /// An atom attribute (x, vx, fx, ...).
-    Atom(Column),
-    /// A per-atom compute `c_ID` or column `c_ID[N]` (1-based).
-    Compute(String, Option<usize>),
-    /// An atom-style variable `v_name`.
-    Variable(String),
-    /// A per-atom fix `f_ID` or column `f_ID[N]` (1-based).
-    Fix(String, Option<usize>),
+    /// A style written as a module (see [`ComputeStyle`]): its hooks give its values.
+    Style(Box<dyn ComputeStyle>),
 }
 
 /// Per-atom values of a compute: `columns` values per particle, row-major in particle
@@ -127,7 +57,7 @@ impl PerAtom {
 }
 
 /// One defined compute.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug)]
 pub struct Compute {
     /// Its ID.
     pub id: String,
@@ -152,6 +82,22 @@ pub fn kinetic_energy(p: &Particles, group: u32) -> f64 {
         }
     }
     sum * 0.5
+}
+
+/// Rotational kinetic energy of the spheres in `group`, summed as LIGGGHTS's `compute
+/// erotate/sphere` does: 0.5 * 0.4 * sum m r^2 w^2 (energy); members of multisphere clumps
+/// are left out.
+pub fn rotational_energy(p: &Particles, group: u32) -> f64 {
+    let tags = crate::engine::clumps::body_tags(p);
+    let mut sum = 0.0;
+    for i in 0..p.len() {
+        if p.mask[i] & group != 0 && !crate::engine::clumps::is_member(tags, i) {
+            let w = p.omega[i];
+            sum +=
+                (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]) * p.radius[i] * p.radius[i] * p.mass[i];
+        }
+    }
+    sum * (0.5 * 1.0 * SPHERE_INERTIA)
 }
 
 /// The three values of one of a local compute's force or torque fields: the force (or
@@ -198,15 +144,27 @@ pub const STYLES: &[&str] = &[
 ];
 
 impl Compute {
+    /// What the value hooks of a module style are told about this compute.
+    fn at<'a>(&'a self, sim: &'a Simulation) -> ComputeAt<'a> {
+        ComputeAt {
+            sim,
+            id: &self.id,
+            group: self.group,
+        }
+    }
+
+    /// The module style of the compute (None: a style still dispatched by kind).
+    pub fn style(&self) -> Option<&dyn ComputeStyle> {
+        match &self.kind {
+            ComputeKind::Style(s) => Some(s.as_ref()),
+            _ => None,
+        }
+    }
+
     /// Number of per-atom values per particle (0 if the compute is not per-atom).
     pub fn per_atom_columns(&self) -> usize {
         match &self.kind {
-            ComputeKind::KeAtom | ComputeKind::ContactAtom { .. } | ComputeKind::PeAtom => 1,
-            ComputeKind::ErotateSphereAtom => 1,
-            ComputeKind::DisplaceAtom(_) => 4,
-            ComputeKind::StressAtom { .. } => 6,
-            ComputeKind::PropertyAtom(c) => c.len(),
-            ComputeKind::CoordAtom(c) => c.columns(),
+            ComputeKind::Style(s) => s.per_atom_columns(),
             _ => 0,
         }
     }
@@ -214,10 +172,7 @@ impl Compute {
     /// True for computes with a global vector (`c_ID[N]` in thermo and formulas).
     pub fn vector_len(&self) -> usize {
         match &self.kind {
-            ComputeKind::Com => 3,
-            ComputeKind::TracerCount(_) => 4,
-            ComputeKind::Msd(_) => 4,
-            ComputeKind::Reduce { inputs, .. } if inputs.len() > 1 => inputs.len(),
+            ComputeKind::Style(s) => s.vector_len(),
             kind => crate::engine::analysis_computes::vector_len(kind),
         }
     }
@@ -228,35 +183,10 @@ impl Compute {
         sim: &Simulation,
         vars: &mut dyn VariableSource,
     ) -> Result<f64, EngineError> {
-        let p = &sim.particles;
         Ok(match &self.kind {
-            ComputeKind::ErotateSphere => {
-                let tags = crate::engine::clumps::body_tags(p);
-                let mut sum = 0.0;
-                for i in 0..p.len() {
-                    if p.mask[i] & self.group != 0 && !crate::engine::clumps::is_member(tags, i) {
-                        let w = p.omega[i];
-                        sum += (w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
-                            * p.radius[i]
-                            * p.radius[i]
-                            * p.mass[i];
-                    }
-                }
-                sum * (0.5 * 1.0 * SPHERE_INERTIA)
-            }
-            ComputeKind::Ke => {
-                kinetic_energy(p, self.group) + sim.clumps().map_or(0.0, |c| c.kinetic_energy())
-            }
             ComputeKind::Temp => crate::engine::temperature::temperature(sim, self),
-            ComputeKind::PotentialEnergy => 0.0,
-            ComputeKind::Reduce {
-                mode,
-                inputs,
-                region,
-            } if inputs.len() == 1 => self.reduce(sim, (*mode, *region), &inputs[0], vars)?,
-            ComputeKind::Gyration | ComputeKind::Pressure(_) => {
-                crate::engine::analysis_computes::scalar(self, sim, vars)?
-            }
+            ComputeKind::Pressure(_) => crate::engine::analysis_computes::scalar(self, sim, vars)?,
+            ComputeKind::Style(s) if s.has_scalar() => s.scalar(&self.at(sim), vars)?,
             _ => {
                 return Err(format!(
                     "Compute {} ({}) does not calculate a scalar",
@@ -282,79 +212,9 @@ impl Compute {
             .into());
         }
         match &self.kind {
-            ComputeKind::Com => {
-                Ok(center_of_mass(&sim.particles, &sim.domain, self.group)[index - 1])
-            }
-            ComputeKind::TracerCount(t) => {
-                Ok(t.values(&sim.particles, self.group, &sim.regions)[index - 1])
-            }
-            ComputeKind::Msd(o) => Ok(o.msd(&sim.particles, &sim.domain, self.group)[index - 1]),
-            ComputeKind::Reduce {
-                mode,
-                inputs,
-                region,
-            } => self.reduce(sim, (*mode, *region), &inputs[index - 1], vars),
+            ComputeKind::Style(s) => s.vector(&self.at(sim), index, vars),
             _ => crate::engine::analysis_computes::vector(self, index, sim, vars),
         }
-    }
-
-    /// LIGGGHTS's `compute reduce` of one input over the group (atom order), and of
-    /// `reduce/region` over the group's atoms inside the region.
-    fn reduce(
-        &self,
-        sim: &Simulation,
-        (mode, region): (ReduceMode, Option<usize>),
-        input: &Input,
-        vars: &mut dyn VariableSource,
-    ) -> Result<f64, EngineError> {
-        let p = &sim.particles;
-        let values: Box<dyn Fn(usize) -> f64> = match input {
-            Input::Atom(col) => {
-                let col = col.clone();
-                Box::new(move |i| col.value(p, &sim.domain, i))
-            }
-            Input::Compute(id, index) => {
-                let c =
-                    sim.computes.iter().find(|c| &c.id == id).ok_or_else(|| {
-                        format!("Compute ID {id} for compute reduce does not exist")
-                    })?;
-                let data = c.per_atom(sim, vars)?;
-                let col = column_of(c, *index)?;
-                Box::new(move |i| data.get(i, col))
-            }
-            Input::Variable(name) => {
-                let data = vars.atom(sim, name)?;
-                Box::new(move |i| data[i])
-            }
-            Input::Fix(id, index) => {
-                let (data, col) = crate::engine::fix_columns::per_atom(sim, id, *index)?;
-                Box::new(move |i| data.get(i, col))
-            }
-        };
-        let (mut acc, mut count) = match mode {
-            ReduceMode::Sum | ReduceMode::Ave => (0.0, 0usize),
-            ReduceMode::Min => (1.0e20, 0), // LIGGGHTS's BIG: what an empty group reduces to,
-            ReduceMode::Max => (-1.0e20, 0),
-        };
-        for i in 0..p.len() {
-            if p.mask[i] & self.group == 0 {
-                continue;
-            }
-            if region.is_some_and(|r| !sim.regions.matches(r, p.x[i])) {
-                continue;
-            }
-            let v = values(i);
-            count += 1;
-            match mode {
-                ReduceMode::Sum | ReduceMode::Ave => acc += v,
-                ReduceMode::Min => acc = acc.min(v),
-                ReduceMode::Max => acc = acc.max(v),
-            }
-        }
-        if mode == ReduceMode::Ave {
-            acc = if count > 0 { acc / count as f64 } else { 0.0 };
-        }
-        Ok(acc)
     }
 
     /// Rows of a local compute: (columns per row, values row-major).
@@ -586,80 +446,10 @@ impl Compute {
         sim: &Simulation,
         vars: &mut dyn VariableSource,
     ) -> Result<PerAtom, EngineError> {
-        let _ = vars; // no per-atom compute of regolith reads variables yet
-        let p = &sim.particles;
-        let n = p.len();
-        let group = self.group;
         let columns = self.per_atom_columns();
-        let mut values = vec![0.0; n * columns];
+        let mut values = vec![0.0; sim.particles.len() * columns];
         match &self.kind {
-            ComputeKind::KeAtom => {
-                for (i, value) in values.iter_mut().enumerate() {
-                    if p.mask[i] & group != 0 {
-                        let v = p.v[i];
-                        *value = 0.5 * 1.0 * p.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-                    }
-                }
-            }
-            ComputeKind::StressAtom { ke, pair } => {
-                if *pair && sim.pair.is_some() && sim.virial_step != Some(sim.step) {
-                    return Err("Per-atom virial was not tallied on needed timestep".into());
-                }
-                for i in 0..n {
-                    if p.mask[i] & group == 0 {
-                        continue;
-                    }
-                    let mut s = [0.0; 6];
-                    if *pair {
-                        if let Some(w) = sim.virial.get(i) {
-                            for k in 0..6 {
-                                s[k] += w[k];
-                            }
-                        }
-                    }
-                    if *ke {
-                        let m = 1.0 * p.mass[i];
-                        let v = p.v[i];
-                        s[0] += m * v[0] * v[0];
-                        s[1] += m * v[1] * v[1];
-                        s[2] += m * v[2] * v[2];
-                        s[3] += m * v[0] * v[1];
-                        s[4] += m * v[0] * v[2];
-                        s[5] += m * v[1] * v[2];
-                    }
-                    for k in 0..6 {
-                        values[i * 6 + k] = -s[k];
-                    }
-                }
-            }
-            ComputeKind::DisplaceAtom(o) => o.displace(p, &sim.domain, group, &mut values),
-            ComputeKind::ErotateSphereAtom => {
-                let tags = crate::engine::clumps::body_tags(p);
-                for (i, value) in values.iter_mut().enumerate() {
-                    if p.mask[i] & group != 0 && !crate::engine::clumps::is_member(tags, i) {
-                        let w = p.omega[i];
-                        *value = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
-                            * p.radius[i]
-                            * p.radius[i]
-                            * p.mass[i];
-                        *value *= 0.5 * 1.0 * SPHERE_INERTIA;
-                    }
-                }
-            }
-            ComputeKind::PropertyAtom(cols) => {
-                for i in 0..n {
-                    if p.mask[i] & group != 0 {
-                        for (k, c) in cols.iter().enumerate() {
-                            values[i * columns + k] = c.value(p, &sim.domain, i);
-                        }
-                    }
-                }
-            }
-            ComputeKind::ContactAtom { skin } => {
-                crate::engine::neighbour_counts::contact_counts(sim, group, *skin, &mut values)
-            }
-            ComputeKind::CoordAtom(c) => c.counts(sim, group, &mut values),
-            ComputeKind::PeAtom => {} // no granular style tallies a potential energy
+            ComputeKind::Style(s) if columns > 0 => s.per_atom(&self.at(sim), &mut values, vars)?,
             _ => {
                 return Err(format!(
                     "Compute {} ({}) does not calculate per-atom values",
@@ -760,21 +550,9 @@ mod tests {
         );
         p.v[0] = [3.0, 4.0, 0.0];
         p.omega[0] = [0.0, 0.0, 2.0];
-        let mut sim = Simulation::default();
-        sim.particles = p;
-        let p = &sim;
-        let c = |kind| Compute {
-            id: "c".into(),
-            style: "x".into(),
-            group: 1,
-            kind,
-        };
-        let nv = &mut crate::engine::sim::NoVariables;
-        assert!((c(ComputeKind::Ke).scalar(p, nv).unwrap() - 0.5 * 25.0).abs() < 1e-12);
+        assert!((kinetic_energy(&p, 1) - 0.5 * 25.0).abs() < 1e-12);
         // 0.5 * 0.4 m r^2 w^2 with m = 1
-        assert!(
-            (c(ComputeKind::ErotateSphere).scalar(p, nv).unwrap() - 0.5 * 0.4 * 0.25 * 4.0).abs()
-                < 1e-12
-        );
+        assert!((rotational_energy(&p, 1) - 0.5 * 0.4 * 0.25 * 4.0).abs() < 1e-12);
+        assert_eq!(kinetic_energy(&p, 2), 0.0);
     }
 }

@@ -124,18 +124,6 @@ impl Origins {
     }
 }
 
-impl crate::engine::sim::Simulation {
-    /// Each `compute msd` takes its group's count and mass at a run's start.
-    pub(crate) fn setup_displacements(&mut self) {
-        let p = &self.particles;
-        for c in &mut self.computes {
-            if let crate::engine::computes::ComputeKind::Msd(o) = &mut c.kind {
-                o.init(p, c.group);
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

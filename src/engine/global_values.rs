@@ -21,11 +21,8 @@ impl Compute {
     /// The compute's global outputs.
     pub fn shape(&self) -> GlobalShape {
         let scalar = match &self.kind {
-            ComputeKind::ErotateSphere
-            | ComputeKind::Ke
-            | ComputeKind::Temp
-            | ComputeKind::PotentialEnergy => true,
-            ComputeKind::Reduce { inputs, .. } => inputs.len() == 1,
+            ComputeKind::Temp => true,
+            ComputeKind::Style(s) => s.has_scalar(),
             kind => crate::engine::analysis_computes::has_scalar(kind),
         };
         GlobalShape {
@@ -158,17 +155,15 @@ impl Simulation {
 /// Whether the global vector (`column` None) or array of the compute is extensive (1),
 /// intensive (0) or mixed (-1), as LIGGGHTS flags it; None where regolith does not know.
 pub fn compute_ext(sim: &Simulation, c: &Compute, column: Option<usize>) -> Option<i8> {
-    use crate::engine::computes::ReduceMode;
+    if let ComputeKind::Style(s) = &c.kind {
+        return s.extensive(column);
+    }
     if column.is_some() {
         return matches!(c.kind, ComputeKind::Rdf(_)).then_some(0);
     }
     match &c.kind {
         ComputeKind::Temp => Some(1),
-        ComputeKind::Reduce { mode, .. } => Some((*mode == ReduceMode::Sum) as i8),
-        ComputeKind::Gyration
-        | ComputeKind::Pressure(_)
-        | ComputeKind::Com
-        | ComputeKind::Msd(_) => Some(0),
+        ComputeKind::Pressure(_) => Some(0),
         ComputeKind::Slice(s) => match (&s.compute, &s.fix) {
             (Some((id, col)), _) => {
                 let src = sim.computes.iter().find(|x| &x.id == id)?;

@@ -30,23 +30,15 @@ impl Default for ComputeSettings {
     }
 }
 
-/// The computes LIGGGHTS defines before any command: `thermo_temp` (temp of all) and
-/// `thermo_kin_eng` (ke of all).
+/// The temperature compute LIGGGHTS defines before any command: `thermo_temp` (temp of
+/// all; its `thermo_kin_eng`, a `ke` compute of all, is a module style the commands add).
 pub fn default_computes() -> Vec<Compute> {
-    vec![
-        Compute {
-            id: "thermo_temp".into(),
-            style: "temp".into(),
-            group: 1,
-            kind: ComputeKind::Temp,
-        },
-        Compute {
-            id: "thermo_kin_eng".into(),
-            style: "ke".into(),
-            group: 1,
-            kind: ComputeKind::Ke,
-        },
-    ]
+    vec![Compute {
+        id: "thermo_temp".into(),
+        style: "temp".into(),
+        group: 1,
+        kind: ComputeKind::Temp,
+    }]
 }
 
 /// At a run's setup: temperature computes that are not dynamic count their group's atoms.

@@ -432,13 +432,7 @@ fn more_keywords(
             c * (thermo.run_last - sim.step) as f64 / (sim.step - thermo.run_start) as f64
         }),
         "erotate" => {
-            let all = crate::engine::computes::Compute {
-                id: "thermo_erotate".into(),
-                style: "erotate".into(),
-                group: 1,
-                kind: crate::engine::computes::ComputeKind::ErotateSphere,
-            };
-            let e = all.scalar(sim, vars).ok()?;
+            let e = crate::engine::computes::rotational_energy(p, 1);
             if thermo.norm && n > 0.0 {
                 e / n
             } else {

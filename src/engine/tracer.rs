@@ -185,17 +185,6 @@ impl TracerCount {
     }
 }
 
-impl crate::engine::sim::Simulation {
-    /// Un-mark what `reset_marker yes` counts counted during the last step.
-    pub(crate) fn apply_tracer_resets(&mut self) {
-        for c in &mut self.computes {
-            if let crate::engine::computes::ComputeKind::TracerCount(t) = &mut c.kind {
-                t.apply_resets(&mut self.particles);
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -177,10 +177,10 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>,
         id: STRESS_COMPUTE.into(),
         style: "stress/atom".into(),
         group: ctx.sim.group_bit("all").unwrap_or(1),
-        kind: ComputeKind::StressAtom {
+        kind: ComputeKind::Style(Box::new(crate::commands::compute::StressAtom {
             ke: false,
             pair: true,
-        },
+        })),
     });
     Ok(Box::new(AveEuler {
         style: fix.style.to_string(),

@@ -563,10 +563,8 @@ impl Simulation {
         }
         let tally = want_virial
             && self.computes.iter().any(|c| {
-                matches!(
-                    c.kind,
-                    crate::engine::computes::ComputeKind::StressAtom { pair: true, .. }
-                ) || crate::engine::analysis_computes::reads_virial(c)
+                crate::engine::analysis_computes::reads_virial(c)
+                    || c.style().is_some_and(|s| s.reads_virial())
             });
         self.virial.clear();
         self.virial_step = tally.then_some(self.step);

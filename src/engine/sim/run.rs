@@ -76,7 +76,7 @@ impl Simulation {
         self.setup_deform(first)?;
         self.init_fix_styles()?;
         self.setup_fix_styles();
-        self.setup_displacements();
+        self.setup_compute_styles();
         self.accel.settle_threads();
         if self.accel.fast {
             self.start_order_record();
@@ -137,7 +137,7 @@ impl Simulation {
     ) -> Result<(), EngineError> {
         self.servo_setup()?;
         self.massflow_lists(true)?;
-        self.apply_tracer_resets();
+        self.before_step_compute_styles();
         if let Some(m) = self.new_margin() {
             guard_say(&m);
         }
@@ -251,7 +251,7 @@ impl Simulation {
         fixes::move_meshes(&mut self.fixes, self.dt);
         self.servo_initial_integrate();
         self.massflow_phase(out)?;
-        self.apply_tracer_resets();
+        self.before_step_compute_styles();
         // a runaway shows first in the half-kicked velocities, before atoms are wrapped or lost
         self.guard_motion(false)
     }

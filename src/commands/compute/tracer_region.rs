@@ -1,31 +1,73 @@
-//! Compute styles of researchers' decks that need only their arguments checked.
+//! `compute nparticles/tracer/region`: the particles in a region and those a tracer fix
+//! marked, with their masses.
 
-use crate::commands::CommandError;
-use crate::commands::{Args, Ctx};
-use crate::engine::computes::ComputeKind;
+use crate::commands::compute::ComputeDef;
+use crate::commands::specs::{arg, kw, style, Spec, Value, YES_NO};
+use crate::commands::{Args, CommandError, Ctx};
+use crate::engine::computes::{ComputeAt, ComputeStyle};
+use crate::engine::error::EngineError;
+use crate::engine::particles::Particles;
+use crate::engine::sim::VariableSource;
+use crate::engine::tracer::TracerCount;
 
-/// `compute ID all pe [pair|bond|angle|dihedral|improper|kspace ...]`: granular pair styles
-/// and walls tally no potential energy, so its value is 0 (as in LIGGGHTS).
-pub fn pe(a: &Args, ctx: &mut Ctx) -> Result<ComputeKind, CommandError> {
-    if ctx.sim.group_bit(a.word(1)?) != ctx.sim.group_bit("all") {
-        return Err(a.error(1, "Compute pe must use group all"));
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "compute",
+    "nparticles/tracer/region",
+    "compute ID GROUP nparticles/tracer/region region_count R tracer T",
+    &[
+        kw(
+            "periodic",
+            &[
+                arg("x|y|z", Value::OneOf(&["x", "y", "z"])),
+                arg("IMAGE|all", Value::Word),
+            ],
+            "count only particles in this periodic image",
+        ),
+        kw(
+            "reset_marker",
+            &[arg("yes|no", YES_NO)],
+            "un-mark counted particles (default yes)",
+        ),
+    ],
+    "particles and marked particles in a region and their masses (c_ID[1..4])",
+);
+
+/// `compute nparticles/tracer/region`: count, marked count, mass, marked mass (`c_ID[1..4]`).
+#[derive(Debug)]
+pub struct TracerRegion(TracerCount);
+
+impl ComputeStyle for TracerRegion {
+    fn name(&self) -> &str {
+        "nparticles/tracer/region"
     }
-    for i in 3..a.len() {
-        a.word_in(
-            i,
-            &["pair", "bond", "angle", "dihedral", "improper", "kspace"],
-        )
-        .map_err(|d| {
-            a.error(i, "Illegal compute pe command")
-                .with_help(d.help().unwrap_or_default())
-        })?;
+
+    fn vector_len(&self) -> usize {
+        4
     }
-    Ok(ComputeKind::PotentialEnergy)
+
+    fn vector(
+        &self,
+        at: &ComputeAt,
+        index: usize,
+        _vars: &mut dyn VariableSource,
+    ) -> Result<f64, EngineError> {
+        let sim = at.sim;
+        Ok(self.0.values(&sim.particles, at.group, &sim.regions)[index - 1])
+    }
+
+    fn before_step(&mut self, p: &mut Particles) {
+        self.0.apply_resets(p);
+    }
 }
 
 /// `compute ID GROUP nparticles/tracer/region region_count R tracer T [periodic DIM
 /// IMAGE|all] [reset_marker yes|no]`: a 4-vector (count, marked count, mass, marked mass).
-pub fn nparticles_tracer_region(a: &Args, ctx: &mut Ctx) -> Result<ComputeKind, CommandError> {
+pub fn build(
+    a: &Args,
+    ctx: &mut Ctx,
+    _def: &ComputeDef,
+) -> Result<Box<dyn ComputeStyle>, CommandError> {
     let id = a.word(0)?;
     let fail = |i: usize, m: &str| {
         a.error(
@@ -106,13 +148,11 @@ pub fn nparticles_tracer_region(a: &Args, ctx: &mut Ctx) -> Result<ComputeKind, 
             "need a tracer fix of type fix property/atom/tracer",
         ));
     }
-    Ok(ComputeKind::TracerCount(Box::new(
-        crate::engine::tracer::TracerCount {
-            region,
-            tracer,
-            image,
-            reset,
-            pending: std::sync::Mutex::new(Vec::new()),
-        },
-    )))
+    Ok(Box::new(TracerRegion(TracerCount {
+        region,
+        tracer,
+        image,
+        reset,
+        pending: std::sync::Mutex::new(Vec::new()),
+    })))
 }

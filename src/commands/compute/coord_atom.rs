@@ -1,11 +1,67 @@
-//! `compute coord/atom`: its arguments, with LIGGGHTS 3.8.0's errors.
+//! `compute coord/atom`: each particle's partners within a cutoff, one column per type
+//! range, with LIGGGHTS 3.8.0's errors.
 
+use crate::commands::compute::ComputeDef;
+use crate::commands::specs::{arg, kw, style, Spec, YES_NO};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::computes::ComputeKind;
+use crate::engine::computes::{ComputeAt, ComputeStyle};
+use crate::engine::error::EngineError;
 use crate::engine::neighbour_counts::CoordAtom;
+use crate::engine::sim::{Simulation, VariableSource};
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "compute",
+    "coord/atom",
+    "compute ID GROUP coord/atom CUTOFF [TYPES ...]",
+    &[kw(
+        "mix",
+        &[arg("yes|no", YES_NO)],
+        "leave out partners of the particle's own type",
+    )],
+    "partners within CUTOFF (length) per particle, one column per type range (N, *, N*, *N, M*N)",
+);
+
+/// `compute coord/atom`: the counts of partners within the cutoff.
+#[derive(Debug)]
+pub struct Coord(CoordAtom);
+
+impl ComputeStyle for Coord {
+    fn name(&self) -> &str {
+        "coord/atom"
+    }
+
+    fn init(&self, sim: &Simulation) -> Result<(), EngineError> {
+        if sim.pair_selection.is_none() {
+            return Err("Compute coord/atom requires a pair style be defined".into());
+        }
+        if self.0.cutoff > sim.liggghts_cutneighmax() {
+            return Err("Compute coord/atom cutoff is longer than neigh cutoff".into());
+        }
+        Ok(())
+    }
+
+    fn per_atom_columns(&self) -> usize {
+        self.0.columns()
+    }
+
+    fn per_atom(
+        &self,
+        at: &ComputeAt,
+        values: &mut [f64],
+        _vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        self.0.counts(at.sim, at.group, values);
+        Ok(())
+    }
+}
 
 /// `compute ID GROUP coord/atom cutoff [typeN ...]` or `... cutoff mix yes|no`.
-pub fn build(a: &Args, ctx: &Ctx) -> Result<ComputeKind, CommandError> {
+pub fn build(
+    a: &Args,
+    ctx: &mut Ctx,
+    _def: &ComputeDef,
+) -> Result<Box<dyn ComputeStyle>, CommandError> {
     let id = a.word(0)?;
     let own = |m: &str| format!("Compute coord/atom (id {id}): {m}");
     if a.len() < 4 {
@@ -30,7 +86,7 @@ pub fn build(a: &Args, ctx: &Ctx) -> Result<ComputeKind, CommandError> {
             coord.ranges.push(type_range(a, i, ntypes, "coord/atom")?);
         }
     }
-    Ok(ComputeKind::CoordAtom(Box::new(coord)))
+    Ok(Box::new(Coord(coord)))
 }
 
 /// A type range (`N`, `*`, `*N`, `N*`, `M*N`) at word `i`: out of 1..=ntypes is LIGGGHTS's

@@ -1,0 +1,97 @@
+//! `compute gyration`: the group's radius of gyration and its tensor, from unwrapped
+//! positions (LIGGGHTS 3.8.0's compute_gyration.cpp).
+
+use crate::commands::compute::ComputeDef;
+use crate::commands::compute_analysis::after_general_keyword;
+use crate::commands::specs::{style, Spec};
+use crate::commands::{Args, CommandError, Ctx};
+use crate::engine::computes::{center_of_mass, ComputeAt, ComputeStyle};
+use crate::engine::error::EngineError;
+use crate::engine::sim::VariableSource;
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "compute",
+    "gyration",
+    "compute ID GROUP gyration",
+    &[],
+    "radius of gyration of the group (length) and its tensor xx yy zz xy xz yz (area, c_ID[1..6]), unwrapped",
+);
+
+/// `compute gyration`: Rg (length) as the scalar, the tensor (area) as `c_ID[1..6]`.
+#[derive(Debug)]
+pub struct Gyration;
+
+/// The group's mass and each member's unwrapped arm from the centre of mass (length) with
+/// its mass, summed as LIGGGHTS's group->xcm.
+fn arms(at: &ComputeAt) -> (f64, Vec<([f64; 3], f64)>) {
+    let (p, domain) = (&at.sim.particles, &at.sim.domain);
+    let mass = crate::engine::momentum::group_mass(p, at.group);
+    let cm = center_of_mass(p, domain, at.group);
+    let arms = (0..p.len())
+        .filter(|&i| at.in_group(i))
+        .map(|i| {
+            let d = [0, 1, 2].map(|k| p.x[i][k] + p.image[i][k] as f64 * domain.length(k) - cm[k]);
+            (d, p.mass[i])
+        })
+        .collect();
+    (mass, arms)
+}
+
+impl ComputeStyle for Gyration {
+    fn name(&self) -> &str {
+        "gyration"
+    }
+
+    fn has_scalar(&self) -> bool {
+        true
+    }
+
+    fn scalar(&self, at: &ComputeAt, _vars: &mut dyn VariableSource) -> Result<f64, EngineError> {
+        let (mass, arms) = arms(at);
+        let rg: f64 = arms
+            .iter()
+            .map(|([dx, dy, dz], m)| (dx * dx + dy * dy + dz * dz) * m)
+            .fold(0.0, |a, b| a + b);
+        Ok(if mass > 0.0 { (rg / mass).sqrt() } else { 0.0 })
+    }
+
+    fn vector_len(&self) -> usize {
+        6
+    }
+
+    fn vector(
+        &self,
+        at: &ComputeAt,
+        index: usize,
+        _vars: &mut dyn VariableSource,
+    ) -> Result<f64, EngineError> {
+        let (mass, arms) = arms(at);
+        let mut rg = [0.0; 6];
+        for ([dx, dy, dz], m) in arms {
+            let t = [dx * dx, dy * dy, dz * dz, dx * dy, dx * dz, dy * dz];
+            for (r, v) in rg.iter_mut().zip(t) {
+                *r += v * m;
+            }
+        }
+        let k = index - 1;
+        Ok(if mass == 0.0 { rg[k] } else { rg[k] / mass })
+    }
+
+    fn extensive(&self, column: Option<usize>) -> Option<i8> {
+        column.is_none().then_some(0)
+    }
+}
+
+/// `compute ID GROUP gyration [update_on_run_end no]`.
+pub fn build(
+    a: &Args,
+    _ctx: &mut Ctx,
+    _def: &ComputeDef,
+) -> Result<Box<dyn ComputeStyle>, CommandError> {
+    let i = after_general_keyword(a, "gyration")?;
+    if a.len() != i {
+        return Err(a.error(i, "Illegal compute gyration command"));
+    }
+    Ok(Box::new(Gyration))
+}

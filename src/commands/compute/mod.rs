@@ -1,0 +1,179 @@
+//! Compute styles written as modules: one file per style (or small family of styles) and one
+//! row per style name in [`MODULES`]. Adding a compute style is writing its file (its
+//! declared signature, its arguments, its state and its
+//! [`ComputeStyle`](crate::engine::computes::ComputeStyle) hooks) and adding its row.
+//!
+//! The styles not moved here yet (temp, pressure, rdf, slice, property/local,
+//! pair/gran/local, wall/gran/local) are still built by the `compute` command's own dispatch
+//! (`commands::sim_run::compute`) and evaluated by kind in `engine::computes`.
+
+mod com;
+mod contact_atom;
+mod coord_atom;
+mod displace;
+mod erotate_sphere;
+mod gyration;
+mod ke;
+mod pe;
+mod property_atom;
+mod reduce;
+mod stress_atom;
+mod tracer_region;
+
+use crate::commands::specs::Spec;
+use crate::commands::{Args, CommandError, Ctx};
+use crate::engine::computes::ComputeStyle;
+
+pub(crate) use coord_atom::type_range;
+pub use ke::thermo_kin_eng;
+pub use stress_atom::StressAtom;
+
+/// What a style's builder is told about the compute being defined.
+#[derive(Debug, Clone, Copy)]
+pub struct ComputeDef<'a> {
+    /// The compute ID.
+    pub id: &'a str,
+    /// The group ID as written.
+    pub group: &'a str,
+    /// The group's bit mask.
+    pub bit: u32,
+    /// The style name as written.
+    pub style: &'a str,
+}
+
+/// Builds a module compute style from the `compute` command's arguments (the style is
+/// argument 2).
+pub type Build = fn(&Args, &mut Ctx, &ComputeDef) -> Result<Box<dyn ComputeStyle>, CommandError>;
+
+/// One row of the module compute styles: the style's declared signature (its name is the
+/// spec's style; `check`, `regolith help` and `compat/SUPPORT.md` read it) and its builder.
+#[derive(Debug, Clone, Copy)]
+pub struct ComputeRow {
+    /// The declared signature.
+    pub spec: Spec,
+    /// Makes the compute's state from the command's arguments.
+    pub build: Build,
+}
+
+impl ComputeRow {
+    /// The style name the row defines.
+    pub fn name(&self) -> &'static str {
+        self.spec.style.unwrap_or("")
+    }
+}
+
+/// The compute styles written as modules: one file each in this folder, one row here. The
+/// `compute` command looks a style up here (and in [`register`]ed rows) before its own
+/// dispatch.
+pub const MODULES: &[ComputeRow] = &[
+    ComputeRow {
+        spec: com::SPEC,
+        build: com::build,
+    },
+    ComputeRow {
+        spec: contact_atom::SPEC,
+        build: contact_atom::build,
+    },
+    ComputeRow {
+        spec: coord_atom::SPEC,
+        build: coord_atom::build,
+    },
+    ComputeRow {
+        spec: displace::ATOM,
+        build: displace::atom,
+    },
+    ComputeRow {
+        spec: displace::MSD,
+        build: displace::msd,
+    },
+    ComputeRow {
+        spec: erotate_sphere::EROTATE,
+        build: erotate_sphere::erotate,
+    },
+    ComputeRow {
+        spec: erotate_sphere::SPHERE,
+        build: erotate_sphere::sphere,
+    },
+    ComputeRow {
+        spec: erotate_sphere::ATOM,
+        build: erotate_sphere::atom,
+    },
+    ComputeRow {
+        spec: gyration::SPEC,
+        build: gyration::build,
+    },
+    ComputeRow {
+        spec: ke::SPEC,
+        build: ke::build,
+    },
+    ComputeRow {
+        spec: ke::ATOM,
+        build: ke::atom,
+    },
+    ComputeRow {
+        spec: pe::SPEC,
+        build: pe::build,
+    },
+    ComputeRow {
+        spec: pe::ATOM,
+        build: pe::atom,
+    },
+    ComputeRow {
+        spec: property_atom::SPEC,
+        build: property_atom::build,
+    },
+    ComputeRow {
+        spec: reduce::REGION,
+        build: reduce::region,
+    },
+    ComputeRow {
+        spec: reduce::SPEC,
+        build: reduce::build,
+    },
+    ComputeRow {
+        spec: stress_atom::SPEC,
+        build: stress_atom::build,
+    },
+    ComputeRow {
+        spec: tracer_region::SPEC,
+        build: tracer_region::build,
+    },
+];
+
+/// Rows added while the program runs (a style defined outside this folder).
+static REGISTERED: std::sync::RwLock<Vec<ComputeRow>> = std::sync::RwLock::new(Vec::new());
+
+/// Add a module compute style at run time: the `compute` command runs it from then on (a
+/// row of [`MODULES`] needs no registration). A row naming a style already registered
+/// replaces it.
+pub fn register(row: ComputeRow) {
+    let mut rows = REGISTERED.write().unwrap_or_else(|e| e.into_inner());
+    rows.retain(|r| r.name() != row.name());
+    rows.push(row);
+}
+
+/// The module row of `style`: a [`MODULES`] row, else a [`register`]ed one.
+pub fn module_row(style: &str) -> Option<ComputeRow> {
+    if let Some(row) = MODULES.iter().find(|r| r.name() == style) {
+        return Some(*row);
+    }
+    let rows = REGISTERED.read().unwrap_or_else(|e| e.into_inner());
+    rows.iter().find(|r| r.name() == style).copied()
+}
+
+/// Whether `style` was added with [`register`] (its name need not be one LIGGGHTS knows).
+pub fn is_registered(style: &str) -> bool {
+    let rows = REGISTERED.read().unwrap_or_else(|e| e.into_inner());
+    rows.iter().any(|r| r.name() == style)
+}
+
+/// LIGGGHTS's check of a style that takes no arguments after its name.
+pub(crate) fn no_arguments(a: &Args, style: &str) -> Result<(), CommandError> {
+    if a.len() > 3 {
+        return Err(a.error(3, format!("Illegal compute {style} command")));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests;

@@ -333,3 +333,107 @@ pub fn build_multicontact(
     }
     Ok(model.dispatch(Make(material, frozen, mc, halfspace)))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::contact::MaterialInput;
+
+    /// Three spheres of radius 1 mm on the x axis, the middle one pressed by both others.
+    fn setup() -> (Box<dyn PairInteraction>, Particles, Vec<Pair>) {
+        let sel = Selection::parse(&["model", "hertz", "tangential", "history"]).unwrap();
+        let input = MaterialInput {
+            ntypes: 1,
+            youngs_modulus: Some(vec![5e6]),
+            poissons_ratio: Some(vec![0.3]),
+            coefficient_restitution: Some(vec![0.5]),
+            coefficient_friction: Some(vec![0.5]),
+            ..MaterialInput::default()
+        };
+        let mc = MulticontactInput {
+            prefactor: 1.125,
+            group: 1,
+        };
+        let model = build_multicontact(&sel, &input, 0, mc).unwrap();
+        let mut p = Particles::default();
+        p.push(1, 1, [-0.00195, 0.0, 0.0], 0.001, 2500.0);
+        p.push(2, 1, [0.0, 0.0, 0.0], 0.001, 2500.0);
+        p.push(3, 1, [0.00195, 0.0, 0.0], 0.001, 2500.0);
+        let pairs = [(0, 1), (1, 2)]
+            .map(|(i, j)| Pair {
+                i,
+                j,
+                shift: [0.0; 3],
+            })
+            .to_vec();
+        (model, p, pairs)
+    }
+
+    #[test]
+    fn the_history_keeps_radii_and_normal_force_and_the_next_step_feels_them() {
+        let (mut model, mut p, pairs) = setup();
+        assert_eq!(model.history_width(), 6);
+        assert_eq!(model.contact_distance_factor(), 2.0);
+        let mut h = vec![0.0; 12];
+        model.compute(
+            &mut p,
+            &pairs,
+            &mut h,
+            1e-6,
+            true,
+            None,
+            &SumOrder::default(),
+            None,
+        );
+        // no force stored yet: no radius change, plain Hertz at 0.05 mm overlap
+        assert_eq!(h[0], 0.001);
+        assert_eq!(h[1], 0.001);
+        let f_first = p.f[0][0];
+        assert!(f_first < 0.0);
+        assert_eq!(h[2], -f_first, "fn is the normal force on i");
+        // the middle sphere pressed at +x gets pushed out at -x and vice versa: both contacts
+        // of the middle sphere grow, the outer ones (one contact each) do not
+        model.compute(
+            &mut p,
+            &pairs,
+            &mut h,
+            1e-6,
+            true,
+            None,
+            &SumOrder::default(),
+            None,
+        );
+        let grown = h[1];
+        assert!(grown > 0.001, "{grown}");
+        assert_eq!(h[0], 0.001, "i's own radius is stored unchanged");
+        assert!(
+            p.f[0][0] < f_first,
+            "the larger contact radius pushes harder"
+        );
+        assert!(p.f[2][0] > -f_first);
+        // LIGGGHTS gives the models i's unchanged radius: the middle sphere's change enters
+        // Hertz's effective radius where it is j (pair 1-2) but not where it is i (pair 2-3)
+        assert!(p.f[2][0] < -p.f[0][0], "{:?}", p.f);
+    }
+
+    #[test]
+    fn pairs_apart_within_twice_the_radius_sum_store_their_radii() {
+        let (mut model, mut p, pairs) = setup();
+        p.x[2][0] = 0.0035;
+        let mut h = vec![0.0; 12];
+        h[9] = 1e-9;
+        model.compute(
+            &mut p,
+            &pairs,
+            &mut h,
+            1e-6,
+            true,
+            None,
+            &SumOrder::default(),
+            None,
+        );
+        assert_eq!(&h[6..9], &[0.001, 0.001, 0.0]);
+        assert_eq!(h[9], 0.0, "the tangential history is reset apart");
+        assert_eq!(p.f[2], [0.0; 3]);
+    }
+}

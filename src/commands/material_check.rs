@@ -63,6 +63,27 @@ pub fn validate(a: &Args, ctx: &Ctx) -> Result<(), CommandError> {
         }
         sim.wet_input().map_err(|e| a.error(0, e.to_string()))?;
     }
+    if sim
+        .pair_selection
+        .as_ref()
+        .is_some_and(|s| s.surface == "multicontact")
+    {
+        // LIGGGHTS reports pairs apart within the contact distance too
+        if sim.computes.iter().any(|c| {
+            matches!(
+                c.kind,
+                crate::engine::computes::ComputeKind::PairGranLocal(_)
+            )
+        }) {
+            return Err(a.unsupported(0, "compute pair/gran/local with surface multicontact"));
+        }
+        if (0..3).any(|d| sim.domain.periodic(d)) {
+            return Err(a.unsupported(
+                0,
+                "pair_style gran surface multicontact across periodic boundaries",
+            ));
+        }
+    }
     for sel in selections {
         let Err(error) = crate::engine::granular::model_and_material(sel, &input) else {
             continue;

@@ -405,6 +405,13 @@ impl Simulation {
         if self.pair_is_wet() {
             parts.push("liquid bridges (cohesion easo/capillary/viscous)");
         }
+        if self
+            .pair_selection
+            .as_ref()
+            .is_some_and(|s| s.surface == "multicontact")
+        {
+            parts.push("the pair contacts of surface multicontact");
+        }
         let new: Vec<&str> = parts
             .into_iter()
             .filter(|p| !self.accel.said.iter().any(|s| s == p))

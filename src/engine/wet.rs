@@ -34,12 +34,15 @@ pub fn initial_content(value: f64) -> f64 {
     format!("{value:.6e}").parse().unwrap_or(value)
 }
 
-/// The pair style's selection as its dry part: cohesion easo/capillary/viscous (the pair
-/// loop's own) taken out.
+/// The pair style's selection as its dry part: cohesion easo/capillary/viscous and surface
+/// multicontact (the pair loops' own) taken out.
 pub fn dry(sel: &ModelSelection) -> ModelSelection {
     let mut dry = sel.clone();
     if dry.cohesion == EASO {
         dry.cohesion = "off".into();
+    }
+    if dry.surface == "multicontact" {
+        dry.surface = "default".into();
     }
     dry
 }

@@ -27,6 +27,7 @@ mod mesh_surface;
 mod momentum;
 mod move_atoms;
 mod move_mesh;
+mod multicontact;
 mod multisphere;
 mod nve;
 mod nve_limit;
@@ -242,6 +243,11 @@ pub const MODULES: &[FixRow] = &[
         spec: check_timestep::SPEC,
         planar: true,
         build: check_timestep::build,
+    },
+    FixRow {
+        spec: multicontact::SPEC,
+        planar: false,
+        build: multicontact::build,
     },
 ];
 

@@ -37,6 +37,7 @@ pub mod easo;
 #[cfg(test)]
 mod golden;
 pub mod material;
+pub mod multicontact;
 pub mod normal;
 pub mod real;
 pub mod rolling;

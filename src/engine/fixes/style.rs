@@ -109,6 +109,11 @@ pub struct PairInit<'a> {
     pub thermo_every: i64,
     /// The thermo keywords (`f_ID[2]` ...).
     pub thermo_keywords: &'a [&'a str],
+    /// The pair style's surface model (`default`, `multicontact`), None without a pair
+    /// style.
+    pub pair_surface: Option<&'a str>,
+    /// The surface model of every `fix wall/gran`, in fix order.
+    pub wall_surfaces: &'a [&'a str],
 }
 
 /// A fix style: the phases it hooks and the values it offers. Every hook has a default that
@@ -127,6 +132,12 @@ pub trait FixStyle: Send {
     /// pair style's init, the first of a run's checks): an error stops the run.
     fn init_pair(&mut self, _pair: &PairInit) -> Result<(), EngineError> {
         Ok(())
+    }
+
+    /// The `geometric_prefactor` of `fix multicontact/halfspace` (dimensionless), which
+    /// `pair_style gran ... surface multicontact` reads (None: another style).
+    fn multicontact_prefactor(&self) -> Option<f64> {
+        None
     }
 
     /// How often the style computes its global values (steps), for LIGGGHTS's "not
@@ -436,11 +447,24 @@ impl Simulation {
             .iter()
             .map(|f| f.keyword.as_str())
             .collect();
+        let walls: Vec<String> = self
+            .fixes
+            .iter()
+            .filter_map(|f| match &f.kind {
+                super::FixKind::WallGran(w) => Some(w.selection.surface.clone()),
+                super::FixKind::MeshWall(w) => Some(w.selection.surface.clone()),
+                _ => None,
+            })
+            .collect();
+        let wall_surfaces: Vec<&str> = walls.iter().map(String::as_str).collect();
+        let pair_surface = self.pair_selection.as_ref().map(|s| s.surface.clone());
         let pair = PairInit {
             pair_gran: self.pair_selection.is_some(),
             materials,
             thermo_every: self.thermo.every,
             thermo_keywords: &keywords,
+            pair_surface: pair_surface.as_deref(),
+            wall_surfaces: &wall_surfaces,
         };
         for fix in &mut self.fixes {
             if let super::FixKind::Style(s) = &mut fix.kind {

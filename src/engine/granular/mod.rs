@@ -18,7 +18,9 @@ use crate::util::team::Shards;
 
 pub mod batch;
 mod mirrored;
+pub mod multicontact;
 pub use batch::PairResult;
+pub use multicontact::{build_multicontact, MulticontactInput};
 mod wall;
 pub mod wet;
 pub use wall::{build_wall, Primitive, WallGran, WallInteraction};

@@ -44,12 +44,44 @@ impl Simulation {
         }
         sel.options.two_d = two_d;
         let frozen = fixes::frozen_groups(&self.fixes);
-        self.pair = Some(if sel.cohesion == crate::engine::wet::EASO {
+        self.pair = Some(if sel.surface == "multicontact" {
+            granular::build_multicontact(&sel, &input, frozen, self.multicontact_input(&sel)?)?
+        } else if sel.cohesion == crate::engine::wet::EASO {
             granular::build_wet(&sel, &input, frozen, &self.wet_input()?)?
         } else {
             granular::build(&sel, &input, frozen)?
         });
         Ok(())
+    }
+
+    /// What `fix multicontact/halfspace` gives `surface multicontact`: the first such fix's
+    /// prefactor and group, with LIGGGHTS's error without one.
+    fn multicontact_input(
+        &self,
+        sel: &crate::engine::contact::ModelSelection,
+    ) -> Result<crate::engine::granular::MulticontactInput, EngineError> {
+        if sel.cohesion == crate::engine::wet::EASO {
+            return Err("pair_style gran surface multicontact with cohesion easo/capillary/viscous: not supported yet".into());
+        }
+        // pairs across periodic faces are seen from both sides there; this loop sees one
+        if (0..3).any(|d| self.domain.periodic(d)) {
+            return Err(
+                "pair_style gran surface multicontact across periodic boundaries: not supported yet"
+                    .into(),
+            );
+        }
+        self.fixes
+            .iter()
+            .find_map(|f| match &f.kind {
+                FixKind::Style(s) => s.multicontact_prefactor().map(|prefactor| {
+                    crate::engine::granular::MulticontactInput {
+                        prefactor,
+                        group: f.group,
+                    }
+                }),
+                _ => None,
+            })
+            .ok_or_else(|| "No suitable multicontact fix found.".into())
     }
 
     /// The material inputs from the `fix property/global` definitions (each present one,

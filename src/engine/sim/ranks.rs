@@ -136,7 +136,7 @@ fn rank_pairs(p: &Particles, nlocal: usize, skin: f64, cells: &[u64]) -> Vec<Pai
     }
     let key = |k: usize| (cells[k], p.id[k]);
     let bins = Bins::new(p, skin);
-    let mut found = Vec::with_capacity(8 * nlocal);
+    let mut found: Vec<Found> = Vec::with_capacity(8 * nlocal);
     for i in 0..nlocal {
         let c = bins.cell_of(p.x[i]);
         // the three cells along x of each of the nine rows around i are one run of `order`
@@ -159,20 +159,44 @@ fn rank_pairs(p: &Particles, nlocal: usize, skin: f64, cells: &[u64]) -> Vec<Pai
     }
     // by the two keys; two images of one partner (the same keys) by their positions' bits
     let bits = |k: u32| p.x[k as usize].map(f64::to_bits);
-    found.sort_unstable_by(|q, r| {
+    let cmp = |q: &Found, r: &Found| {
         (q.0, q.1)
             .cmp(&(r.0, r.1))
             .then_with(|| (bits(q.3), bits(q.2)).cmp(&(bits(r.3), bits(r.2))))
-    });
-    found
-        .into_iter()
-        .map(|(_, _, a, b)| Pair {
-            i: a,
-            j: b,
-            shift: [0.0; 3],
-        })
-        .collect()
+    };
+    let pair = |q: Found| Pair {
+        i: q.2,
+        j: q.3,
+        shift: [0.0; 3],
+    };
+    if !(1..nlocal).all(|k| key(k - 1) < key(k)) {
+        found.sort_unstable_by(cmp);
+        return found.into_iter().map(pair).collect();
+    }
+    // owned particles stored by key (as a build leaves them): the entries led by an owned
+    // particle come in its order and need sorting only within each particle's group; those
+    // led by a ghost are sorted apart and merged in
+    let (mut owned, mut ghost): (Vec<Found>, Vec<Found>) =
+        found.into_iter().partition(|q| (q.2 as usize) < nlocal);
+    for group in owned.chunk_by_mut(|q, r| q.2 == r.2) {
+        group.sort_unstable_by(cmp);
+    }
+    ghost.sort_unstable_by(cmp);
+    let mut out = Vec::with_capacity(owned.len() + ghost.len());
+    let mut rest = ghost.into_iter().peekable();
+    for q in owned {
+        while let Some(g) = rest.next_if(|g| cmp(g, &q).is_lt()) {
+            out.push(pair(g));
+        }
+        out.push(pair(q));
+    }
+    out.extend(rest.map(pair));
+    out
 }
+
+/// A listed pair as the search finds it: the sum keys of its first and second particle
+/// (cell, ID) and their indices.
+type Found = ((u64, i64), (u64, i64), u32, u32);
 
 /// The particles binned in cubic cells a largest pair cutoff wide, as one array sorted by
 /// cell (a counting sort), for the pair search.
@@ -848,6 +872,20 @@ mod tests {
         want.sort_unstable();
         assert!(want.len() > 1000, "{} pairs", want.len());
         assert_eq!(got, want);
+        // owned particles stored by key, as a build leaves them: the same list by the merge
+        let mut order: Vec<usize> = (0..nlocal).collect();
+        order.sort_unstable_by_key(|&k| key(k));
+        order.extend(nlocal..p.len());
+        let mut q = p.clone();
+        q.permute(&order);
+        let cells_q: Vec<u64> = q.x.iter().map(|&x| grid.cell(x)).collect();
+        let merged = rank_pairs(&q, nlocal, skin, &cells_q);
+        let as_ids = |v: &[Pair], p: &Particles| -> Vec<(i64, i64)> {
+            v.iter()
+                .map(|e| (p.id[e.i as usize], p.id[e.j as usize]))
+                .collect()
+        };
+        assert_eq!(as_ids(&merged, &q), as_ids(&pairs, &p));
     }
 
     #[test]

@@ -730,6 +730,54 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
     }
 }
 
+/// The contact of touching particles `i` and `j` of `p` as a dry pair's sub-models start
+/// from it: separation `delta` = x_i - x_j (m) at distance `r` (m), the radii (radius of i,
+/// of j and their sum, m) the sub-models see, the group bits of frozen particles, the step
+/// `dt` (s) and whether history advances.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub(crate) fn touching_contact(
+    p: &Particles,
+    (i, j): (usize, usize),
+    delta: [f64; 3],
+    r: f64,
+    (radi, radj, radsum): (f64, f64, f64),
+    frozen: u32,
+    dt: f64,
+    update: bool,
+) -> crate::engine::contact::Contact {
+    let rinv = 1.0 / r;
+    let en = delta.map(|d| d * rinv);
+    let (mi, mj) = (p.mass[i], p.mass[j]);
+    let mut meff = mi * mj / (mi + mj);
+    if p.mask[i] & frozen != 0 {
+        meff = mj;
+    }
+    if p.mask[j] & frozen != 0 {
+        meff = mi;
+    }
+    crate::engine::contact::Contact {
+        is_wall: false,
+        radi,
+        radj,
+        radsum,
+        r,
+        rinv,
+        delta,
+        en,
+        mi,
+        mj,
+        meff,
+        vi: p.v[i],
+        vj: p.v[j],
+        omegai: p.omega[i],
+        omegaj: p.omega[j],
+        dt,
+        update_history: update,
+        ..Default::default()
+    }
+}
+
 /// Half a pair's virial (LIGGGHTS's `ev_tally_xyz` with del = x_i - x_j and F the force
 /// on i) added to `w`.
 #[inline(always)]

@@ -16,7 +16,7 @@ use crate::engine::contact::multicontact::{
     pair_surfaces, radius_changes, Entry, HalfSpace, CONTACT_DISTANCE_FACTOR, PAIR_HISTORY,
 };
 use crate::engine::contact::{
-    CohesionModel, Contact, ContactKernel, ContactModel, Material, NormalModel, RollingModel,
+    CohesionModel, ContactKernel, ContactModel, Material, NormalModel, RollingModel,
     TangentialModel,
 };
 use crate::engine::error::EngineError;
@@ -24,7 +24,7 @@ use crate::engine::neighbor::{Mirrored, Pair, SumOrder};
 use crate::engine::particles::Particles;
 use crate::engine::sim::{PairContact, PairInteraction};
 
-use super::{add6, half_virial, model_and_material, Selection};
+use super::{add6, half_virial, model_and_material, touching_contact, Selection};
 
 /// What the fix `multicontact/halfspace` gives the pair style.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,6 +50,9 @@ pub struct PairMulti<N, T, C, R> {
     /// Per particle, its contacts of this evaluation: (partner ID, entry), LIGGGHTS's
     /// `multicontactData_` partners in the order they were added.
     partners: Vec<Vec<(i64, Entry)>>,
+    /// One particle's entries while its radius changes are worked out (kept between
+    /// particles and steps, so the pass allocates nothing).
+    scratch: Vec<Entry>,
     /// Touching pairs at the last evaluation.
     touching: usize,
     /// The largest overlap of the last evaluation: (ratio to the smaller radius, i, j).
@@ -104,10 +107,12 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             }
             let hs = self.halfspace[p.kind[i] as usize - 1];
             let r = p.radius[i];
-            let mut entries: Vec<Entry> = self.partners[i].iter().map(|e| e.1).collect();
-            radius_changes(&mut entries, &hs, r, hs.force_eps(r));
-            for (e, v) in self.partners[i].iter_mut().zip(entries) {
-                e.1 = v;
+            let entries = &mut self.scratch;
+            entries.clear();
+            entries.extend(self.partners[i].iter().map(|e| e.1));
+            radius_changes(entries, &hs, r, hs.force_eps(r));
+            for (e, v) in self.partners[i].iter_mut().zip(entries.iter()) {
+                e.1 = *v;
             }
         }
     }
@@ -135,37 +140,10 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         let (hs, hm) = h.split_at_mut(PAIR_HISTORY);
         if rsq < radsum * radsum {
             let r = rsq.sqrt();
-            let rinv = 1.0 / r;
-            let en = [delx * rinv, dely * rinv, delz * rinv];
-            let (mi, mj) = (p.mass[i], p.mass[j]);
-            let mut meff = mi * mj / (mi + mj);
-            if p.mask[i] & self.frozen != 0 {
-                meff = mj;
-            }
-            if p.mask[j] & self.frozen != 0 {
-                meff = mi;
-            }
-            let mut c = Contact {
-                is_wall: false,
-                // LIGGGHTS passes i's unchanged radius to the sub-models
-                radi: p.radius[i],
-                radj,
-                radsum,
-                r,
-                rinv,
-                delta: [delx, dely, delz],
-                en,
-                mi,
-                mj,
-                meff,
-                vi: p.v[i],
-                vj: p.v[j],
-                omegai: p.omega[i],
-                omegaj: p.omega[j],
-                dt,
-                update_history: update,
-                ..Contact::default()
-            };
+            // LIGGGHTS passes i's unchanged radius to the sub-models
+            let radii = (p.radius[i], radj, radsum);
+            let (delta, ij) = ([delx, dely, delz], (i, j));
+            let mut c = touching_contact(p, ij, delta, r, radii, self.frozen, dt, update);
             if update {
                 hs[0] = c.radi;
                 hs[1] = c.radj;
@@ -326,6 +304,7 @@ pub fn build_multicontact(
                 group: self.2.group,
                 halfspace: self.3,
                 partners: Vec::new(),
+                scratch: Vec::new(),
                 touching: 0,
                 worst: None,
             })

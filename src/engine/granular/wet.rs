@@ -16,15 +16,15 @@
 
 use crate::engine::contact::easo::{Close, Easo, Gap, Motion, WetPair};
 use crate::engine::contact::{
-    CohesionModel, Contact, ContactKernel, ContactModel, DefaultSurface, Material, NormalModel,
-    PairCoeffs, RollingModel, SurfaceModel, TangentialModel,
+    CohesionModel, ContactKernel, ContactModel, DefaultSurface, Material, NormalModel, PairCoeffs,
+    RollingModel, SurfaceModel, TangentialModel,
 };
 use crate::engine::error::EngineError;
 use crate::engine::neighbor::{Mirrored, Pair, SumOrder};
 use crate::engine::particles::Particles;
 use crate::engine::sim::{PairContact, PairInteraction};
 
-use super::{add6, half_virial, model_and_material, Selection};
+use super::{add6, half_virial, model_and_material, touching_contact, Selection};
 
 /// Name (fix ID) of the per-atom liquid content (LIGGGHTS's units: the film volume is
 /// `4/3 1000 pi R^3` times it).
@@ -120,36 +120,9 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         let factor = self.easo.contact_distance_factor();
         if rsq < radsum * radsum {
             let r = rsq.sqrt();
-            let rinv = 1.0 / r;
-            let en = [delx * rinv, dely * rinv, delz * rinv];
-            let (mi, mj) = (p.mass[i], p.mass[j]);
-            let mut meff = mi * mj / (mi + mj);
-            if p.mask[i] & self.frozen != 0 {
-                meff = mj;
-            }
-            if p.mask[j] & self.frozen != 0 {
-                meff = mi;
-            }
-            let mut c = Contact {
-                is_wall: false,
-                radi,
-                radj,
-                radsum,
-                r,
-                rinv,
-                delta: [delx, dely, delz],
-                en,
-                mi,
-                mj,
-                meff,
-                vi: p.v[i],
-                vj: p.v[j],
-                omegai: p.omega[i],
-                omegaj: p.omega[j],
-                dt,
-                update_history: update,
-                ..Contact::default()
-            };
+            let radii = (radi, radj, radsum);
+            let (delta, ij) = ([delx, dely, delz], (i, j));
+            let mut c = touching_contact(p, ij, delta, r, radii, self.frozen, dt, update);
             let m: &PairCoeffs = self.material.pair(ti, tj);
             DefaultSurface.surfaces_intersect(&mut c);
             let (hn, rest) = h.split_at_mut(nlen);

@@ -676,10 +676,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     ctx.sim.ramp_bounds = (start, stop);
     let out = &mut *ctx.out;
     let mut sink = |s: &str| out.both(s);
-    let mut vars = crate::lang::scope::RunVariables {
-        vars: &mut *ctx.vars,
-        sys: &mut *ctx.sys,
-    };
+    let mut vars = crate::lang::scope::RunVariables::new(&mut *ctx.vars, &mut *ctx.sys);
     ctx.sim
         .run_with_setup(nsteps, pre, &mut sink, &mut vars)
         .map_err(|e| a.engine_error(0, e))

@@ -97,10 +97,7 @@ fn write_now(a: &Args, ctx: &mut Ctx, modify: usize) -> Result {
         .iter()
         .position(|d| d.id == ID)
         .expect("added above");
-    let mut vars = crate::lang::scope::RunVariables {
-        vars: &mut *ctx.vars,
-        sys: &mut *ctx.sys,
-    };
+    let mut vars = crate::lang::scope::RunVariables::new(&mut *ctx.vars, &mut *ctx.sys);
     ctx.sim
         .write_single_dump(k, &mut vars)
         .map_err(|m| a.error(2, &m))

@@ -353,6 +353,41 @@ impl Regions {
         self.inside(&r.shape, x) == r.interior
     }
 
+    /// [`Regions::matches`] for every point of `xs` (the same answers; the shape is looked
+    /// at once, so the tests of many points overlap).
+    pub fn matches_each(&self, index: usize, xs: &[[f64; 3]]) -> Vec<bool> {
+        let r = &self.list[index];
+        let interior = r.interior;
+        match (&r.shape, &r.motion) {
+            (
+                Shape::Cylinder {
+                    axis,
+                    c1,
+                    c2,
+                    radius,
+                    lo,
+                    hi,
+                },
+                None,
+            ) => {
+                let (a1, a2) = cross_axes(*axis);
+                let (axis, c1, c2, radius, lo, hi) = (*axis, *c1, *c2, *radius, *lo, *hi);
+                xs.iter()
+                    .map(|x| {
+                        let (d1, d2) = (x[a1] - c1, x[a2] - c2);
+                        let dist = (d1 * d1 + d2 * d2).sqrt();
+                        (dist <= radius && x[axis] >= lo && x[axis] <= hi) == interior
+                    })
+                    .collect()
+            }
+            (Shape::Block { lo, hi }, None) => xs
+                .iter()
+                .map(|x| (0..3).all(|d| x[d] >= lo[d] && x[d] <= hi[d]) == interior)
+                .collect(),
+            _ => xs.iter().map(|&x| self.matches(index, x)).collect(),
+        }
+    }
+
     fn inside(&self, shape: &Shape, x: [f64; 3]) -> bool {
         match shape {
             Shape::Block { lo, hi } => (0..3).all(|d| x[d] >= lo[d] && x[d] <= hi[d]),
@@ -706,6 +741,16 @@ mod tests {
         r.define(&["b", "block", "0", "1", "0", "1", "INF", "EDGE"], ctx())
             .unwrap();
         assert!(r.matches(0, [1.0, 0.0, -5.0]));
+        let points = [
+            [1.0, 0.0, -5.0],
+            [0.0, 1.0, 1.5],
+            [0.5, 0.5, 1.0],
+            [0.9, 0.9, 1.0],
+        ];
+        for k in 0..r.list.len() {
+            let each: Vec<bool> = points.iter().map(|&x| r.matches(k, x)).collect();
+            assert_eq!(r.matches_each(k, &points), each, "region {k}");
+        }
         assert!(!r.matches(0, [1.0, 0.0, 1.5]));
         r.define(
             &["c", "cylinder", "z", "0", "0", "1", "0", "2", "side", "out"],

@@ -469,6 +469,39 @@ pub struct RunVariables<'a> {
     pub vars: &'a mut Variables,
     /// Files and environment.
     pub sys: &'a mut System,
+    /// Per-atom values kept between requests while the caller holds the particles still
+    /// (see [`VariableSource::hold`]).
+    held: Option<HashMap<String, Rc<Vec<f64>>>>,
+}
+
+impl<'a> RunVariables<'a> {
+    /// The deck's variables over a running simulation, each request in a fresh scope.
+    pub fn new(vars: &'a mut Variables, sys: &'a mut System) -> RunVariables<'a> {
+        RunVariables {
+            vars,
+            sys,
+            held: None,
+        }
+    }
+
+    /// A scope over `sim`, with the per-atom values held so far.
+    fn scope<'s>(&'s mut self, sim: &'s Simulation) -> Scope<'s> {
+        let mut scope = Scope::new(self.vars, self.sys, sim);
+        if let Some(held) = self.held.as_mut() {
+            scope.per_atom = std::mem::take(held);
+        }
+        scope
+    }
+}
+
+/// Whether every formula of the deck gives the same values when evaluated twice over the
+/// same particles: no random draws (each evaluation draws anew) and no region masks (a
+/// dynamic region may move between two requests).
+fn formulas_repeatable(vars: &Variables) -> bool {
+    vars.names().into_iter().all(|name| {
+        let formula = vars.get(name).and_then(|v| v.formula()).unwrap_or("");
+        !(formula.contains("random") || formula.contains("normal") || formula.contains("mask"))
+    })
 }
 
 impl VariableSource for RunVariables<'_> {
@@ -498,12 +531,28 @@ impl VariableSource for RunVariables<'_> {
     }
 
     fn equal(&mut self, sim: &Simulation, name: &str) -> Result<f64, EngineError> {
-        Ok(Scope::new(self.vars, self.sys, sim).equal_variable(name)?)
+        let holding = self.held.is_some();
+        let mut scope = self.scope(sim);
+        let value = scope.equal_variable(name);
+        let kept = std::mem::take(&mut scope.per_atom);
+        if holding {
+            self.held = Some(kept);
+        }
+        Ok(value?)
     }
 
     fn atom(&mut self, sim: &Simulation, name: &str) -> Result<Vec<f64>, EngineError> {
-        let mut scope = Scope::new(self.vars, self.sys, sim);
-        let v = scope.atom_variable(name)?;
-        Ok(v.as_ref().clone())
+        let holding = self.held.is_some();
+        let mut scope = self.scope(sim);
+        let values = scope.atom_variable(name);
+        let kept = std::mem::take(&mut scope.per_atom);
+        if holding {
+            self.held = Some(kept);
+        }
+        Ok(values?.as_ref().clone())
+    }
+
+    fn hold(&mut self, on: bool) {
+        self.held = (on && formulas_repeatable(self.vars)).then(HashMap::new);
     }
 }

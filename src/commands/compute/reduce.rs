@@ -77,11 +77,10 @@ impl Reduce {
     ) -> Result<f64, EngineError> {
         let (sim, mode, region) = (at.sim, self.mode, self.region);
         let p = &sim.particles;
-        let values: Box<dyn Fn(usize) -> f64> = match input {
-            Input::Atom(col) => {
-                let col = col.clone();
-                Box::new(move |i| col.value(p, &sim.domain, i))
-            }
+        let n = p.len();
+        // the inputs' values for every particle, then one pass over them
+        let values: Vec<f64> = match input {
+            Input::Atom(col) => (0..n).map(|i| col.value(p, &sim.domain, i)).collect(),
             Input::Compute(id, index) => {
                 let c =
                     sim.computes.iter().find(|c| &c.id == id).ok_or_else(|| {
@@ -89,30 +88,24 @@ impl Reduce {
                     })?;
                 let data = c.per_atom(sim, vars)?;
                 let col = column_of(c, *index)?;
-                Box::new(move |i| data.get(i, col))
+                (0..n).map(|i| data.get(i, col)).collect()
             }
-            Input::Variable(name) => {
-                let data = vars.atom(sim, name)?;
-                Box::new(move |i| data[i])
-            }
+            Input::Variable(name) => vars.atom(sim, name)?,
             Input::Fix(id, index) => {
                 let (data, col) = fix_columns::per_atom(sim, id, *index)?;
-                Box::new(move |i| data.get(i, col))
+                (0..n).map(|i| data.get(i, col)).collect()
             }
         };
+        let inside = region.map(|r| sim.regions.matches_each(r, &p.x[..n]));
         let (mut acc, mut count) = match mode {
             ReduceMode::Sum | ReduceMode::Ave => (0.0, 0usize),
             ReduceMode::Min => (1.0e20, 0), // LIGGGHTS's BIG: what an empty group reduces to,
             ReduceMode::Max => (-1.0e20, 0),
         };
-        for i in 0..p.len() {
-            if !at.in_group(i) {
+        for (i, &v) in values[..n].iter().enumerate() {
+            if !at.in_group(i) || inside.as_ref().is_some_and(|inside| !inside[i]) {
                 continue;
             }
-            if region.is_some_and(|r| !sim.regions.matches(r, p.x[i])) {
-                continue;
-            }
-            let v = values(i);
             count += 1;
             match mode {
                 ReduceMode::Sum | ReduceMode::Ave => acc += v,

@@ -115,9 +115,10 @@ impl FixStyle for Force {
                 ForceValue::Atom(name) => Some(inputs.atom(name)?),
             });
         }
+        let inside = self.region.map(|g| inputs.in_region_each(g, &p.x[..n]));
         let mut resolved = vec![[None; 3]; n];
         for (i, r) in resolved.iter_mut().enumerate() {
-            if self.region.is_some_and(|g| !inputs.in_region(g, p.x[i])) {
+            if inside.as_ref().is_some_and(|inside| !inside[i]) {
                 continue;
             }
             for d in 0..3 {

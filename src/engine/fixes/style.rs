@@ -78,6 +78,10 @@ pub trait StepInputs {
     /// Whether the point `x` (length) is inside region `region` (its index among the
     /// deck's regions, as `Regions::find` gives it).
     fn in_region(&self, region: usize, x: [f64; 3]) -> bool;
+    /// [`StepInputs::in_region`] for every point of `xs`.
+    fn in_region_each(&self, region: usize, xs: &[[f64; 3]]) -> Vec<bool> {
+        xs.iter().map(|&x| self.in_region(region, x)).collect()
+    }
     /// `text` with its `$` references to the deck's variables substituted (`fix print`);
     /// by default only a text without `$` passes.
     fn substitute(&mut self, text: &str) -> Result<String, EngineError> {
@@ -340,6 +344,10 @@ impl StepInputs for SimulationInputs<'_> {
 
     fn in_region(&self, region: usize, x: [f64; 3]) -> bool {
         self.sim.regions.matches(region, x)
+    }
+
+    fn in_region_each(&self, region: usize, xs: &[[f64; 3]]) -> Vec<bool> {
+        self.sim.regions.matches_each(region, xs)
     }
 
     fn substitute(&mut self, text: &str) -> Result<String, EngineError> {

@@ -274,6 +274,9 @@ pub struct Release {
     pub v_final: [f64; 3],
     /// Angular velocity after release (1/time).
     pub omega: [f64; 3],
+    /// Where the particle stood in the particle arrays when last moved (a hint, checked
+    /// against its ID before use; `usize::MAX` when not known).
+    pub at: usize,
 }
 
 /// Width of LIGGGHTS's per-atom release data (`release_fix_insert_stream`).
@@ -317,6 +320,7 @@ impl Release {
             v_int: [r[5], r[6], r[7]],
             v_final: [r[8], r[9], r[10]],
             omega: [r[11], r[12], r[13]],
+            at: usize::MAX,
         })
     }
 }
@@ -631,6 +635,7 @@ impl InsertStream {
                 v_int: self.v_normal,
                 v_final,
                 omega: self.omega,
+                at: usize::MAX,
             });
         }
         out

@@ -132,6 +132,12 @@ pub trait VariableSource {
     fn equal(&mut self, sim: &Simulation, name: &str) -> Result<f64, EngineError>;
     /// The values of atom-style variable `name`, one per particle in particle order.
     fn atom(&mut self, sim: &Simulation, name: &str) -> Result<Vec<f64>, EngineError>;
+    /// `on`: until `hold(false)`, the caller does not change the particles, so per-atom
+    /// values (atom-style variables, per-atom computes) evaluated for one request may be
+    /// kept for the next (the same numbers, evaluated once); `off`: forget them.
+    fn hold(&mut self, on: bool) {
+        let _ = on;
+    }
     /// `text` with its `$x`, `${name}` and `$(formula)` references replaced.
     fn substitute(&mut self, sim: &Simulation, text: &str) -> Result<String, EngineError> {
         let _ = sim;

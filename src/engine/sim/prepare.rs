@@ -170,6 +170,15 @@ impl Simulation {
         &mut self,
         vars: &mut dyn VariableSource,
     ) -> Result<(), EngineError> {
+        // the particles stay put until the forcing fixes run: a variable read by several
+        // fixes and regions here is evaluated once
+        vars.hold(true);
+        let result = self.reshape_and_evaluate(vars);
+        vars.hold(false);
+        result
+    }
+
+    fn reshape_and_evaluate(&mut self, vars: &mut dyn VariableSource) -> Result<(), EngineError> {
         if self.regions.list.iter().any(|r| r.is_dynamic()) {
             let mut regions = std::mem::take(&mut self.regions);
             let result = regions.reshape(Some(self.step), &mut |name| vars.equal(self, name));

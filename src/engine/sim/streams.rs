@@ -238,7 +238,8 @@ impl Simulation {
     /// get their final velocity and spin.
     pub(super) fn move_streams(&mut self) {
         let (step, dt) = (self.step, self.dt);
-        let mut index: Option<std::collections::HashMap<i64, usize>> = None;
+        // the particles' places by ID, made only when a hint is stale (after a reorder)
+        let mut index: Option<crate::engine::neighbor::IdIndex> = None;
         // members of clumps are released through their body
         let ba = crate::engine::clumps::body_array(&self.particles);
         let mut releases: Vec<(f64, [f64; 3], [f64; 3])> = Vec::new();
@@ -253,13 +254,17 @@ impl Simulation {
                 continue;
             }
             let p = &mut self.particles;
-            let map = index
-                .get_or_insert_with(|| p.id.iter().enumerate().map(|(i, id)| (*id, i)).collect());
-            state.moving.retain(|r| {
+            state.moving.retain_mut(|r| {
                 let (vn, omega) = (r.v_int, r.omega);
-                let Some(&i) = map.get(&r.id) else {
-                    return false;
-                };
+                if p.id.get(r.at) != Some(&r.id) {
+                    let map =
+                        index.get_or_insert_with(|| crate::engine::neighbor::IdIndex::new(&p.id));
+                    let Some(i) = map.get(r.id) else {
+                        return false;
+                    };
+                    r.at = i;
+                }
+                let i = r.at;
                 if step >= r.release {
                     if let Some(tag) = ba.map(|b| p.extra[b].data[i]).filter(|&t| t >= 0.0) {
                         releases.push((tag, r.v_final, omega));

@@ -55,23 +55,42 @@ pub(super) fn columnar(node: &Node) -> bool {
 }
 
 /// A binary operator over columns, value by value as [`binary`] computes it (an error if
-/// any value would be one).
+/// any value would be one). The result takes the place of one of the operands' values.
 pub(super) fn binary_column(
     op: Op,
-    x: &Column,
-    y: &Column,
+    x: Column,
+    y: Column,
     n: usize,
     at: usize,
 ) -> Result<Vec<f64>, ExprError> {
-    if matches!(op, Op::Div | Op::Mod | Op::Pow) && (0..n).any(|i| y.at(i) == 0.0) {
+    let zero_divisor = match &y {
+        Column::Same(q) => *q == 0.0,
+        Column::Each(b) => b[..n].contains(&0.0),
+    };
+    if matches!(op, Op::Div | Op::Mod | Op::Pow) && zero_divisor {
         return binary(op, 1.0, 0.0, at).map(|_| Vec::new());
     }
-    fn zip(x: &Column, y: &Column, n: usize, f: impl Fn(f64, f64) -> f64) -> Vec<f64> {
+    fn zip(x: Column, y: Column, n: usize, f: impl Fn(f64, f64) -> f64) -> Vec<f64> {
         match (x, y) {
-            (Column::Each(a), Column::Each(b)) => a.iter().zip(b).map(|(&p, &q)| f(p, q)).collect(),
-            (Column::Each(a), Column::Same(q)) => a.iter().map(|&p| f(p, *q)).collect(),
-            (Column::Same(p), Column::Each(b)) => b.iter().map(|&q| f(*p, q)).collect(),
-            (Column::Same(p), Column::Same(q)) => vec![f(*p, *q); n],
+            (Column::Each(mut a), Column::Each(b)) => {
+                for (p, &q) in a.iter_mut().zip(&b) {
+                    *p = f(*p, q);
+                }
+                a
+            }
+            (Column::Each(mut a), Column::Same(q)) => {
+                for p in a.iter_mut() {
+                    *p = f(*p, q);
+                }
+                a
+            }
+            (Column::Same(p), Column::Each(mut b)) => {
+                for q in b.iter_mut() {
+                    *q = f(p, *q);
+                }
+                b
+            }
+            (Column::Same(p), Column::Same(q)) => vec![f(p, q); n],
         }
     }
     Ok(match op {
@@ -129,7 +148,7 @@ pub(super) fn eval_column(
             let y = eval_column(b, ctx, n)?;
             match (x, y) {
                 (Column::Same(x), Column::Same(y)) => Column::Same(binary(*op, x, y, *at)?),
-                (x, y) => Column::Each(binary_column(*op, &x, &y, n, *at)?),
+                (x, y) => Column::Each(binary_column(*op, x, y, n, *at)?),
             }
         }
         Node::Math(f, args, at) => {
@@ -139,7 +158,7 @@ pub(super) fn eval_column(
             } else {
                 *f
             };
-            let cols = args
+            let mut cols = args
                 .iter()
                 .map(|a| eval_column(a, ctx, n))
                 .collect::<Result<Vec<Column>, ExprError>>()?;
@@ -147,15 +166,18 @@ pub(super) fn eval_column(
                 let v: Vec<f64> = cols.iter().map(|c| c.at(0)).collect();
                 Column::Same(math(f, &v, ctx, *at)?)
             } else if let (1, Some(g)) = (cols.len(), plain_math(f)) {
-                // one argument, no step or time: a tight loop
-                let mut out = Vec::with_capacity(n);
-                for i in 0..n {
-                    out.push(g(cols[0].at(i)).ok_or(ExprError {
-                        kind: ExprErrorKind::NotColumnar,
-                        offset: *at,
-                    })?);
+                // one argument, no step or time: a tight loop, in place
+                let mut values = cols.pop().expect("one argument").into_vec(n);
+                let mut valid = true;
+                for x in values.iter_mut() {
+                    let y = g(*x);
+                    valid &= y.is_some();
+                    *x = y.unwrap_or(f64::NAN);
                 }
-                Column::Each(out)
+                if !valid {
+                    return err(ExprErrorKind::NotColumnar, *at);
+                }
+                Column::Each(values)
             } else {
                 let mut out = Vec::with_capacity(n);
                 let mut v = [0.0; 3];

@@ -194,7 +194,16 @@ fn what_does_not_run_on_ranks_is_refused_by_name() {
     ), "{exact:?}");
     let before_run = |line: &str| (String::from("run 50\n"), format!("{line}\nrun 50\n"));
     for ((from, to), at, refused) in [
-        (before_run("compute c all ke/atom"), 34, "compute"),
+        (
+            before_run("compute c all stress/atom"),
+            34,
+            "compute stress/atom",
+        ),
+        (
+            before_run("fix push all addforce 0 0 v_f"),
+            34,
+            "fix addforce with a variable",
+        ),
         (
             before_run("fix ins all insert/pack seed 10007"),
             34,
@@ -222,4 +231,108 @@ fn what_does_not_run_on_ranks_is_refused_by_name() {
             "{to}: {got:?}"
         );
     }
+}
+
+/// The bed with per-particle force fixes, computes in thermo and a variable column in the dump.
+fn bed_with_computes() -> String {
+    BED.replace(
+        "fix integr all nve/sphere",
+        "fix integr all nve/sphere
+group low id <= 40
+fix push all addforce 0.0 0.0 -1e-5
+fix visc all viscous 1e-5
+fix hold low freeze
+compute rke all erotate/sphere
+variable fmag atom sqrt(fx*fx+fy*fy+fz*fz)
+compute fmax all reduce max v_fmag
+compute fsum all reduce sum fz
+variable vz equal vcm(all,z)",
+    )
+    .replace(
+        "thermo_style custom step atoms ke",
+        "thermo_style custom step atoms ke c_rke c_fmax c_fsum v_vz
+thermo_modify format float %.16g",
+    )
+    .replace("omegaz radius", "omegaz radius v_fmag")
+    .replace("%.17g\"", "%.17g %.17g\"")
+}
+
+/// The thermo rows (numbers) of the log of `deck` on `n` ranks (0: serial).
+fn thermo_rows(deck: &str, n: usize, tag: &str) -> Vec<Vec<f64>> {
+    let dir = scratch(tag);
+    let path = dir.join("in.deck");
+    std::fs::write(&path, deck).unwrap();
+    let (dump, log) = (dir.join("out.dump"), dir.join("log.txt"));
+    let opts = |size: usize, rank: usize| {
+        let mut o = options(&path, &dump, "processors * 1 1", size.max(1));
+        o.ranks.rank = rank;
+        o.log = Some(log.to_string_lossy().into_owned());
+        if size == 0 {
+            o.vars.retain(|(k, _)| k != "grid");
+            o.vars.push(("grid".into(), vec![String::new()]));
+        }
+        o
+    };
+    let status = if n == 0 {
+        vec![regolith::session::run_deck(&opts(0, 0))]
+    } else {
+        ThreadRanks::run_owned(n, |c| {
+            let o = opts(n, c.rank());
+            regolith::session::run_deck_on(&o, Some(Box::new(c)))
+        })
+    };
+    assert!(
+        status.iter().all(|s| *s == ExitStatus::Success),
+        "{tag}: {status:?}"
+    );
+    let text = std::fs::read_to_string(&log).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut rows = Vec::new();
+    let mut inside = false;
+    for line in text.lines() {
+        if line.trim_start().starts_with("Step") {
+            inside = true;
+        } else if line.starts_with("Loop time") {
+            inside = false;
+        } else if inside {
+            rows.push(
+                line.split_whitespace()
+                    .map(|w| w.parse().unwrap())
+                    .collect(),
+            );
+        }
+    }
+    rows
+}
+
+#[test]
+fn force_fixes_computes_and_variables_on_ranks_match_the_serial_fast_path() {
+    let deck = bed_with_computes();
+    let grids = [(2, "processors 2 1 1"), (3, "processors 1 3 1")];
+    let (serial, _) = on_grids(&deck, &grids, "computes");
+    let snaps = regolith::io::dump_compare::parse(&serial).unwrap();
+    // the frozen particles keep their velocities (no force acts on them), the others not
+    let (first, last) = (&snaps[0], snaps.last().unwrap());
+    for id in 1..=40 {
+        assert_eq!(first.rows[&id][5..8], last.rows[&id][5..8], "atom {id}");
+    }
+    assert_ne!(first.rows[&41][5..8], last.rows[&41][5..8]);
+    let serial = thermo_rows(&deck, 0, "computes-thermo-serial");
+    assert_eq!(serial.len(), 5, "steps 0, 50, 100, then 100, 150");
+    for n in [2, 3] {
+        let ranks = thermo_rows(&deck, n, &format!("computes-thermo-{n}"));
+        assert_eq!(ranks.len(), serial.len());
+        for (a, b) in serial.iter().zip(&ranks) {
+            for (k, (x, y)) in a.iter().zip(b).enumerate() {
+                let scale = serial.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
+                assert!(
+                    (x - y).abs() <= 1e-10 * scale,
+                    "{n} ranks, column {k}: {x} against {y}"
+                );
+            }
+        }
+    }
+    // the values are not trivial: rotation, a largest force and the centre of mass moving
+    assert!(serial.iter().all(|r| r[4] > 0.0 && r[6] != 0.0));
+    assert!(serial[1..].iter().all(|r| r[3] > 0.0));
 }

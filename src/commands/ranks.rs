@@ -1,9 +1,10 @@
 //! What runs on more than one MPI rank (the first slice of the domain decomposition): a box
 //! with periodic and fixed faces, particles from `create_atoms`, `read_data` or
 //! `read_restart` (set-up commands run identically on every rank), `pair_style gran`,
-//! `fix nve/sphere`, `nve`, `gravity`, primitive `wall/gran` and `property/global`, `thermo`
-//! with the keywords below, and `dump custom`, on the fast path. Everything else is refused
-//! by name before anything runs.
+//! `fix nve/sphere`, `nve`, `gravity`, primitive `wall/gran`, `property/global` and the
+//! per-particle force fixes below, the computes below, `thermo` with the keywords below and
+//! `c_`/`v_` values, and `dump custom` with `c_`/`v_` columns, on the fast path. Everything
+//! else is refused by name before anything runs.
 
 use crate::commands::CommandLine;
 use crate::engine::sim::Simulation;
@@ -59,15 +60,42 @@ const COMMANDS: &[&str] = &[
     "variable",
     "dimension",
     "boundary",
+    "compute",
+    "uncompute",
 ];
 
-/// Fix styles that run on ranks.
+/// Fix styles that run on ranks: each acts on every owned particle alone, with no sum over
+/// particles (setforce and addforce with constant components).
 const FIXES: &[&str] = &[
     "nve/sphere",
     "nve",
+    "nve/limit",
     "gravity",
     "wall/gran",
     "property/global",
+    "freeze",
+    "setforce",
+    "addforce",
+    "viscous",
+    "lineforce",
+    "planeforce",
+];
+
+/// Compute styles that run on ranks: evaluated by rank 0 for thermo and dumps from every
+/// rank's particles gathered (positions, velocities, spins, forces, torques, groups).
+const COMPUTES: &[&str] = &[
+    "ke",
+    "erotate",
+    "erotate/sphere",
+    "reduce",
+    "reduce/region",
+    "com",
+    "property/atom",
+    "ke/atom",
+    "erotate/sphere/atom",
+    "gyration",
+    "pe",
+    "pe/atom",
 ];
 
 /// Thermo keywords evaluated from the particles alone (gathered on rank 0).
@@ -98,9 +126,10 @@ const THERMO: &[&str] = &[
 
 /// What runs on more than one rank, as a refusal's help says it.
 pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic \
-    and fixed faces, pair_style gran, fix nve/sphere, gravity and primitive wall/gran, thermo \
-    (step, atoms, ke, ...) and dump custom; or run it as one process (with threads: -sf fast \
-    -pk fast N)";
+    and fixed faces, pair_style gran, fix nve/sphere, gravity, primitive wall/gran, freeze, \
+    setforce/addforce with constants and viscous, computes ke, erotate/sphere, reduce, com and \
+    per-atom properties, thermo (step, atoms, ke, c_, v_, ...) and dump custom; or run it as \
+    one process (with threads: -sf fast -pk fast N)";
 
 /// What of `cmd` does not run on more than one rank yet (None: it runs), as the words
 /// the refusal names: "<what> on more than one MPI rank: not supported yet".
@@ -116,13 +145,20 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
             if !FIXES.contains(&style) {
                 return Some(format!("fix {style}"));
             }
-            if style == "gravity" && args.iter().any(|a| a.starts_with("v_")) {
-                return Some("fix gravity with a variable".into());
+            if args.iter().any(|a| a.starts_with("v_")) {
+                return Some(format!("fix {style} with a variable"));
+            }
+            if matches!(style, "setforce" | "addforce") && args.contains(&"region") {
+                return Some(format!("fix {style} with a region"));
             }
             if style == "wall/gran" && !args.contains(&"primitive") {
                 return Some("fix wall/gran with a mesh".into());
             }
             None
+        }
+        "compute" => {
+            let style = *args.get(2)?;
+            (!COMPUTES.contains(&style)).then(|| format!("compute {style}"))
         }
         "pair_style" => match args.first() {
             Some(&"gran") => None,
@@ -132,9 +168,7 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
         "dump" => match args.get(2) {
             Some(&"custom") => {
                 let columns = args.get(5..).unwrap_or(&[]);
-                let derived = columns
-                    .iter()
-                    .find(|c| c.starts_with("c_") || c.starts_with("f_") || c.starts_with("v_"));
+                let derived = columns.iter().find(|c| c.starts_with("f_"));
                 derived.map(|c| format!("dump custom column {c}"))
             }
             Some(s) => Some(format!("dump {s}")),
@@ -147,9 +181,14 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
                 Some(s) => return Some(format!("thermo_style {s}")),
                 None => return None,
             };
+            // computes and variables are evaluated from the gathered particles
+            // (not the pressure, which needs the pair virial)
+            let gathered = |k: &str| {
+                (k.starts_with("c_") && !k.starts_with("c_thermo_press")) || k.starts_with("v_")
+            };
             keywords
                 .iter()
-                .find(|k| !THERMO.contains(k))
+                .find(|k| !THERMO.contains(k) && !gathered(k))
                 .map(|k| format!("thermo keyword {k}"))
         }
         "boundary" => args

@@ -5,7 +5,7 @@
 use crate::commands::compute::{after_general_keyword, ComputeDef};
 use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::computes::{ComputeStyle, LocalRows};
+use crate::engine::computes::{ComputeAt, ComputeStyle, LocalRows};
 use crate::engine::error::EngineError;
 use crate::engine::sim::Simulation;
 
@@ -40,6 +40,14 @@ impl ComputeStyle for PropertyLocal {
     /// `dump local` takes it (the run refuses it at init, as LIGGGHTS).
     fn local_rows(&self) -> Option<LocalRows> {
         Some(LocalRows::VectorOrArray)
+    }
+
+    fn local(&self, at: &ComputeAt) -> Result<(usize, Vec<f64>), EngineError> {
+        Err(format!(
+            "Compute {} (property/local) does not calculate local values",
+            at.id
+        )
+        .into())
     }
 }
 

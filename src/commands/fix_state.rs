@@ -1,91 +1,9 @@
-//! Commands that meet LIGGGHTS's state kept by fixes: a fix re-defined after
-//! `read_restart` taking its stored state, and `compute wall/gran/local`, which reads the
-//! mesh wall's contact state at output.
+//! A fix re-defined after `read_restart` taking the state LIGGGHTS's fixes keep.
 
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
 use crate::engine::error::EngineError;
 use crate::engine::fixes::{Fix, FixKind};
-
-/// `compute ID group wall/gran/local [keywords]`: rows of the mesh wall's contacts
-/// (docs/notes/wall_gran_local.md), with LIGGGHTS's rules and messages.
-pub fn wall_gran_local(
-    a: &Args,
-    ctx: &mut Ctx,
-    id: &str,
-) -> std::result::Result<crate::engine::computes::ComputeKind, CommandError> {
-    use crate::engine::computes::{ComputeKind, LocalField};
-    if ctx.sim.step > 0 && !ctx.sim.restart_in_progress {
-        return Err(a.error(
-            2,
-            format!(
-                "Compute wall/gran/local (id {id}): Need to define this compute before first run"
-            ),
-        ));
-    }
-    let mut fields = Vec::new();
-    for i in 3..a.len() {
-        match a.word(i)? {
-            "verbose" => {}
-            "extraSurfDistance" => return Err(a.error(i, "this keyword is deprecated; neighbor->contactDistanceFactor is now used directly")),
-            "ms_id" => return Err(a.unsupported(i, "compute wall/gran/local ms_id (multisphere bodies)")),
-            w => match LocalField::parse(w) {
-                Some(f) => fields.push(f),
-                None => {
-                    return Err(a
-                        .error(
-                            i,
-                            format!("Compute wall/gran/local (id {id}): illegal/unrecognized keyword"),
-                        )
-                        .with_help("pos, vel, id, force, force_normal, force_tangential, torque, torque_normal, torque_tangential, history, contactArea, delta, heatFlux, contactPoint"))
-                }
-            },
-        }
-    }
-    if a.len() == 3 {
-        fields = LocalField::defaults();
-    }
-    if fields.is_empty() {
-        // LIGGGHTS 3.8.0 crashes at the first output of a compute without columns
-        return Err(a.error(
-            3,
-            format!("Compute wall/gran/local (id {id}): no output keyword given"),
-        ));
-    }
-    fields.sort();
-    fields.dedup();
-    // the last mesh wall fix; primitive walls are not reported
-    let mut wall = None;
-    let mut primitive = false;
-    for f in &ctx.sim.fixes {
-        match &f.kind {
-            FixKind::MeshWall(w) => wall = Some((f.id.clone(), w.history_width())),
-            FixKind::WallGran(_) => primitive = true,
-            _ => {}
-        }
-    }
-    if primitive {
-        ctx.say("WARNING: Compute wall/gran/local detected primitive wall, output will only happen for mesh wall - particle pairs (./src/compute_pair_gran_local.cpp:263)\n");
-    }
-    let Some((wall, history)) = wall else {
-        return Err(a.error(2, "Compute wall/gran/local requires a fix of type wall/gran using one or more mesh walls. This fix has to come before the compute in the script"));
-    };
-    if ctx
-        .sim
-        .computes
-        .iter()
-        .any(|c| matches!(&c.kind, ComputeKind::WallGranLocal { wall: w, .. } if *w == wall))
-    {
-        return Err(a.error(
-            2,
-            format!("Fix wall/gran (id {wall}): Fix wall/gran allows only one compute of type wall/gran/local"),
-        ));
-    }
-    if history == 0 && fields.contains(&LocalField::History) {
-        return Err(a.error(2, "Compute pair/gran/local or wall/gran/local can not calculate history values since pair or wall style does not compute them"));
-    }
-    Ok(ComputeKind::WallGranLocal { fields, wall })
-}
 
 /// A fix defined while a restart file's fix states are held takes the state stored under
 /// its ID and style (LIGGGHTS's Modify::add_fix); returns the lines LIGGGHTS prints. The

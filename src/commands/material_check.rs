@@ -53,12 +53,7 @@ pub fn validate(a: &Args, ctx: &Ctx) -> Result<(), CommandError> {
             return Err(a.unsupported(0, crate::engine::wet::PERIODIC));
         }
         // LIGGGHTS reports bridges apart as contacts too; regolith's compute does not yet
-        if sim.computes.iter().any(|c| {
-            matches!(
-                c.kind,
-                crate::engine::computes::ComputeKind::PairGranLocal(_)
-            )
-        }) {
+        if sim.computes.iter().any(|c| c.style().reads_pair_contacts()) {
             return Err(a.unsupported(0, crate::engine::wet::LOCAL));
         }
         sim.wet_input().map_err(|e| a.error(0, e.to_string()))?;
@@ -69,12 +64,7 @@ pub fn validate(a: &Args, ctx: &Ctx) -> Result<(), CommandError> {
         .is_some_and(|s| s.surface == "multicontact")
     {
         // LIGGGHTS reports pairs apart within the contact distance too
-        if sim.computes.iter().any(|c| {
-            matches!(
-                c.kind,
-                crate::engine::computes::ComputeKind::PairGranLocal(_)
-            )
-        }) {
+        if sim.computes.iter().any(|c| c.style().reads_pair_contacts()) {
             return Err(a.unsupported(0, "compute pair/gran/local with surface multicontact"));
         }
         if (0..3).any(|d| sim.domain.periodic(d)) {

@@ -5,9 +5,7 @@
 pub mod args;
 pub mod change_box;
 pub mod compute;
-pub mod compute_analysis;
 pub mod compute_modify;
-pub mod compute_rdf;
 pub mod diverged;
 pub mod error;
 pub mod fix;
@@ -144,9 +142,10 @@ impl Engine {
     pub fn new() -> Engine {
         let mut sim = Simulation::default();
         // LIGGGHTS's computes of every deck (its Output constructor makes them)
-        sim.computes = crate::engine::temperature::default_computes();
-        sim.computes
-            .push(crate::commands::compute::thermo_kin_eng());
+        sim.computes = vec![
+            crate::commands::compute::thermo_temp(),
+            crate::commands::compute::thermo_kin_eng(),
+        ];
         Engine {
             sim,
             diverged: false,

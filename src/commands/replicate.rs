@@ -41,7 +41,7 @@ fn unsupported_state(ctx: &Ctx) -> Option<String> {
     if let Some(c) = sim
         .computes
         .iter()
-        .find(|c| c.style().is_some_and(|s| s.keeps_per_atom_state()))
+        .find(|c| c.style().keeps_per_atom_state())
     {
         return Some(format!(
             "replicate with compute {} ({}) defined (its start positions for the copies)",

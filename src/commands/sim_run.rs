@@ -50,9 +50,12 @@ fn fix(a: &Args, ctx: &mut Ctx) -> Result {
 fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(1..=1, "unfix ID")?;
     let id = a.word(0)?;
-    if ctx.sim.computes.iter().any(|c| {
-        matches!(&c.kind, crate::engine::computes::ComputeKind::WallGranLocal { wall, .. } if wall == id)
-    }) {
+    if ctx
+        .sim
+        .computes
+        .iter()
+        .any(|c| c.style().reads_wall() == Some(id))
+    {
         return Err(a.error(0, format!("Fix wall/gran (id {id}): need to uncompute the active compute wall/gran/local before unfixing the wall")));
     }
     let movers = |mesh: &str| -> Vec<usize> {
@@ -421,19 +424,17 @@ fn local_columns(
             .iter()
             .find(|c| c.id == cid)
             .ok_or_else(|| a.error(5 + k, "Could not find dump local compute ID"))?;
-        match c.kind {
-            crate::engine::computes::ComputeKind::PairGranLocal(_) => {}
-            // refused at the run's init, as LIGGGHTS
-            crate::engine::computes::ComputeKind::PropertyLocal => {}
-            // always a local array, even with one column
-            crate::engine::computes::ComputeKind::WallGranLocal { .. } => {
+        use crate::engine::computes::LocalRows;
+        match c.style().local_rows() {
+            Some(LocalRows::VectorOrArray) => {}
+            Some(LocalRows::Array) => {
                 if index.is_none() {
                     return Err(
                         a.error(5 + k, "Dump local compute does not calculate local vector")
                     );
                 }
             }
-            _ => return Err(a.error(5 + k, "Dump local compute does not compute local info")),
+            None => return Err(a.error(5 + k, "Dump local compute does not compute local info")),
         }
         cols.push((cid.to_string(), index.unwrap_or(1).max(1) - 1));
     }
@@ -458,7 +459,7 @@ fn local_gran_vtk_compute(
         .computes
         .iter()
         .find(|c| c.id == cid)
-        .and_then(|c| crate::engine::local_vtk::local_fields(&c.kind))
+        .and_then(|c| c.style().local_fields())
         .ok_or_else(|| {
             a.error(
                 5,

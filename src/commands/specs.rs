@@ -195,13 +195,6 @@ pub const SPECS: &[Spec] = &[
     ]),
     command("comm_modify KEYWORD VALUE ...", "communication settings (accepted; one process)"),
     command("communicate single|multi [vel yes|no] [cutoff C]", "communication settings (accepted; one process)"),
-    style("compute", "pair/gran/local", "compute ID GROUP pair/gran/local [FIELDS...]", &[], "per-contact positions, forces, overlaps of particle pairs"),
-    style("compute", "pressure", "compute ID all pressure TEMP-ID [ke|pair|virial ...]", &[], "pressure (scalar) and pressure tensor (c_ID[1..6]) from the kinetic energy of the temperature compute and the pair virial"),
-    style("compute", "slice", "compute ID GROUP slice NSTART NSTOP NSKIP c_ID|c_ID[I]|f_ID|f_ID[I]", &[], "elements NSTART, NSTART+NSKIP, ... below NSTOP of a global vector or array column (a global vector)"),
-    style("compute", "property/local", "compute ID GROUP property/local patom1|patom2|ptype1|ptype2|natom1|... ...", &[], "per-pair IDs and types; as LIGGGHTS 3.8.0, a run refuses it (granular pair styles have no single())"),
-    style("compute", "rdf", "compute ID GROUP rdf NBIN [ITYPE JTYPE ...]", &[], "radial distribution g(r) and coordination number per type pair over NBIN bins up to the pair cutoff (global array: r, then g and coord per pair; fix ave/time mode vector writes it)"),
-    style("compute", "temp", "compute ID GROUP temp", &[], "temperature of the group (3N - 3 degrees of freedom; see compute_modify)"),
-    style("compute", "wall/gran/local", "compute ID GROUP wall/gran/local [FIELDS...]", &[], "per-contact data of particles with a wall"),
     with(command("compute_modify ID KEYWORD VALUE ...", "change a compute's settings (thermo_temp and thermo_kin_eng exist from the start)"), &[
         kw("extra", &[arg("N", Value::Int)], "degrees of freedom subtracted from 3N in a temperature"),
         kw("dynamic", &[arg("yes|no", YES_NO)], "count the group's atoms at every evaluation"),
@@ -353,8 +346,8 @@ pub const SPECS: &[Spec] = &[
 ];
 
 /// Every declared spec: [`SPECS`], with the module fix styles' rows
-/// ([`crate::commands::fix::MODULES`]) after the last fix style there and the module compute
-/// styles' rows ([`crate::commands::compute::MODULES`]) after the last compute style there.
+/// ([`crate::commands::fix::MODULES`]) after the last fix style there and the compute
+/// styles' rows ([`crate::commands::compute::MODULES`]) before `compute_modify`.
 pub fn all() -> impl Iterator<Item = &'static Spec> {
     let after = |command: &str| {
         SPECS
@@ -362,7 +355,11 @@ pub fn all() -> impl Iterator<Item = &'static Spec> {
             .rposition(|s| s.command == command)
             .map_or(SPECS.len(), |k| k + 1)
     };
-    let (computes, fixes) = (after("compute"), after("fix"));
+    let computes = SPECS
+        .iter()
+        .position(|s| s.command == "compute_modify")
+        .unwrap_or(SPECS.len());
+    let fixes = after("fix");
     let fix_modules = crate::commands::fix::MODULES.iter().map(|row| &row.spec);
     let compute_modules = crate::commands::compute::MODULES
         .iter()

@@ -139,31 +139,11 @@ impl Simulation {
         Ok(())
     }
 
-    /// LIGGGHTS's init checks of the computes, in compute order: `rdf` and `property/local`
-    /// need a pair style (that supports them), module compute styles run their `init` hook.
+    /// LIGGGHTS's init checks of the computes, in compute order: each style's `init` hook
+    /// (`rdf` and `property/local` need a pair style that supports them).
     fn check_count_computes(&self) -> Result<(), EngineError> {
-        use crate::engine::computes::ComputeKind;
         for c in &self.computes {
-            let name = match &c.kind {
-                ComputeKind::Rdf(_) => "rdf",
-                ComputeKind::Style(s) => {
-                    s.init(self)?;
-                    continue;
-                }
-                ComputeKind::PropertyLocal => {
-                    return Err(if self.pair_selection.is_none() {
-                        "No pair style is defined for compute property/local"
-                    } else {
-                        "Pair style does not support compute property/local"
-                    }
-                    .to_string()
-                    .into())
-                }
-                _ => continue,
-            };
-            if self.pair_selection.is_none() {
-                return Err(format!("Compute {name} requires a pair style be defined").into());
-            }
+            c.style().init(self)?;
         }
         Ok(())
     }

@@ -9,35 +9,7 @@ use crate::engine::sim::{Simulation, VariableSource};
 pub use crate::state::local_field::LocalField;
 
 mod style;
-pub use style::{ComputeAt, ComputeStyle};
-
-/// What a compute calculates: a module style, or one of the styles still dispatched by kind.
-#[derive(Debug)]
-pub enum ComputeKind {
-    /// `temp`: temperature of the group (temperature; see `commands::compute_modify`).
-    Temp,
-    /// `pair/gran/local`: one row per touching pair with the selected fields.
-    PairGranLocal(Vec<LocalField>),
-    /// `wall/gran/local`: one row per particle-mesh contact of the mesh wall fix with this
-    /// index, with the selected fields.
-    WallGranLocal {
-        /// The fields, in LIGGGHTS's column order.
-        fields: Vec<LocalField>,
-        /// ID of the mesh wall fix.
-        wall: String,
-    },
-    /// `rdf Nbin [itype jtype ...]`: g(r) and coord(r) per type pair, a global array.
-    Rdf(Box<crate::engine::rdf::Rdf>),
-    /// `slice`: every Nskip-th element of a global vector or array column.
-    Slice(Box<crate::engine::analysis_computes::Slice>),
-    /// `pressure`: kinetic and pair-virial pressure (pressure), scalar and tensor.
-    Pressure(Box<crate::engine::analysis_computes::Pressure>),
-    /// `property/local` of neighbour or pair inputs (patom1, ntype2, ...): LIGGGHTS 3.8.0's
-    /// granular pair styles have no `single()`, so a run refuses it at init.
-    PropertyLocal,
-    /// A style written as a module (see [`ComputeStyle`]): its hooks give its values.
-    Style(Box<dyn ComputeStyle>),
-}
+pub use style::{ComputeAt, ComputeStyle, LocalRows};
 
 /// Per-atom values of a compute: `columns` values per particle, row-major in particle
 /// order.
@@ -65,8 +37,8 @@ pub struct Compute {
     pub style: String,
     /// Group bits.
     pub group: u32,
-    /// What it calculates.
-    pub kind: ComputeKind,
+    /// What it calculates: its style's state and hooks.
+    pub calc: Box<dyn ComputeStyle>,
 }
 
 /// Translational kinetic energy of the particles in `group`, summed as LIGGGHTS's
@@ -100,49 +72,6 @@ pub fn rotational_energy(p: &Particles, group: u32) -> f64 {
     sum * (0.5 * 1.0 * SPHERE_INERTIA)
 }
 
-/// The three values of one of a local compute's force or torque fields: the force (or
-/// torque) on the particle, or its part along the unit `normal`, or the rest.
-fn force_torque(field: LocalField, f: [f64; 3], t: [f64; 3], normal: [f64; 3]) -> [f64; 3] {
-    use crate::engine::contact::split;
-    match field {
-        LocalField::Force => f,
-        LocalField::ForceNormal => split(f, normal).0,
-        LocalField::ForceTangential => split(f, normal).1,
-        LocalField::Torque => t,
-        LocalField::TorqueNormal => split(t, normal).0,
-        LocalField::TorqueTangential => split(t, normal).1,
-        other => unreachable!("{other:?} is not a force or torque field"),
-    }
-}
-
-/// Compute styles regolith evaluates.
-pub const STYLES: &[&str] = &[
-    "com",
-    "pair/gran/local",
-    "wall/gran/local",
-    "contact/atom",
-    "coord/atom",
-    "displace/atom",
-    "erotate/sphere/atom",
-    "msd",
-    "reduce/region",
-    "erotate",
-    "erotate/sphere",
-    "ke",
-    "ke/atom",
-    "gyration",
-    "pe",
-    "pe/atom",
-    "pressure",
-    "property/local",
-    "slice",
-    "property/atom",
-    "rdf",
-    "reduce",
-    "stress/atom",
-    "temp",
-];
-
 impl Compute {
     /// What the value hooks of a module style are told about this compute.
     fn at<'a>(&'a self, sim: &'a Simulation) -> ComputeAt<'a> {
@@ -153,28 +82,19 @@ impl Compute {
         }
     }
 
-    /// The module style of the compute (None: a style still dispatched by kind).
-    pub fn style(&self) -> Option<&dyn ComputeStyle> {
-        match &self.kind {
-            ComputeKind::Style(s) => Some(s.as_ref()),
-            _ => None,
-        }
+    /// The compute's style: its hooks and flags.
+    pub fn style(&self) -> &dyn ComputeStyle {
+        self.calc.as_ref()
     }
 
     /// Number of per-atom values per particle (0 if the compute is not per-atom).
     pub fn per_atom_columns(&self) -> usize {
-        match &self.kind {
-            ComputeKind::Style(s) => s.per_atom_columns(),
-            _ => 0,
-        }
+        self.calc.per_atom_columns()
     }
 
     /// True for computes with a global vector (`c_ID[N]` in thermo and formulas).
     pub fn vector_len(&self) -> usize {
-        match &self.kind {
-            ComputeKind::Style(s) => s.vector_len(),
-            kind => crate::engine::analysis_computes::vector_len(kind),
-        }
+        self.calc.vector_len()
     }
 
     /// The compute's global scalar.
@@ -183,18 +103,14 @@ impl Compute {
         sim: &Simulation,
         vars: &mut dyn VariableSource,
     ) -> Result<f64, EngineError> {
-        Ok(match &self.kind {
-            ComputeKind::Temp => crate::engine::temperature::temperature(sim, self),
-            ComputeKind::Pressure(_) => crate::engine::analysis_computes::scalar(self, sim, vars)?,
-            ComputeKind::Style(s) if s.has_scalar() => s.scalar(&self.at(sim), vars)?,
-            _ => {
-                return Err(format!(
-                    "Compute {} ({}) does not calculate a scalar",
-                    self.id, self.style
-                )
-                .into())
-            }
-        })
+        if !self.calc.has_scalar() {
+            return Err(format!(
+                "Compute {} ({}) does not calculate a scalar",
+                self.id, self.style
+            )
+            .into());
+        }
+        self.calc.scalar(&self.at(sim), vars)
     }
 
     /// Element `index` (1-based) of the compute's global vector.
@@ -211,233 +127,36 @@ impl Compute {
             )
             .into());
         }
-        match &self.kind {
-            ComputeKind::Style(s) => s.vector(&self.at(sim), index, vars),
-            _ => crate::engine::analysis_computes::vector(self, index, sim, vars),
-        }
+        self.calc.vector(&self.at(sim), index, vars)
+    }
+
+    /// (rows, columns) of the compute's global array, if it has one.
+    pub fn array_size(&self) -> Option<(usize, usize)> {
+        self.calc.array_size()
+    }
+
+    /// The compute's global array, row-major, and its number of columns.
+    pub fn global_array(&self, sim: &Simulation) -> Result<(Vec<f64>, usize), EngineError> {
+        let Some((_, columns)) = self.calc.array_size() else {
+            return Err(format!(
+                "Compute {} ({}) does not calculate a global array",
+                self.id, self.style
+            )
+            .into());
+        };
+        Ok((self.calc.array(&self.at(sim))?, columns))
     }
 
     /// Rows of a local compute: (columns per row, values row-major).
     pub fn local(&self, sim: &Simulation) -> Result<(usize, Vec<f64>), EngineError> {
-        if let ComputeKind::WallGranLocal { fields, wall } = &self.kind {
-            return self.wall_local(sim, fields, wall);
-        }
-        let ComputeKind::PairGranLocal(fields) = &self.kind else {
+        if self.calc.local_rows().is_none() {
             return Err(format!(
                 "Compute {} ({}) does not calculate local values",
                 self.id, self.style
             )
             .into());
-        };
-        let Some(pair) = sim.pair.as_ref() else {
-            return Err("compute pair/gran/local needs a granular pair style".into());
-        };
-        let width = pair.history_width();
-        let flips = pair.history_flips();
-        let ncols: usize = fields.iter().map(|f| f.width(width)).sum();
-        let p = &sim.particles;
-        let pairs = &sim.list.pairs;
-        let mut out = Vec::new();
-        // rows in LIGGGHTS's order: by the reporting atom, then its partners in bin order
-        // (positions of the last list build, ghosts of periodic partners beyond the box)
-        let order = crate::engine::neighbor::BinOrder::sized(
-            sim.domain.lo,
-            sim.domain.hi,
-            sim.neighbor.cutneighmax,
-            sim.extras.neigh_binsize,
-        );
-        let built = sim.list.built_positions();
-        // (reporting atom, partner's bin, partner) and the row's index in `out`
-        type RowKey = (usize, [i64; 3], usize);
-        let mut keyed: Vec<(RowKey, usize)> = Vec::new();
-        for (k, fi, ti, fj, tj) in pair.contacts(
-            p,
-            pairs,
-            &sim.history,
-            sim.dt,
-            (&sim.force_time_state.0, &sim.force_time_state.1),
-        ) {
-            let pr = &pairs[k];
-            let (mut i, mut j) = (pr.i as usize, pr.j as usize);
-            if p.mask[i] & self.group == 0 || p.mask[j] & self.group == 0 {
-                continue;
-            }
-            let periodic = pr.shift != [0.0; 3];
-            // across a periodic face LIGGGHTS reports the pair from the atom with the
-            // larger ID (its ghost partner carries the shift)
-            let mut shift = pr.shift;
-            let (mut f, mut t, mut sign) = (fi, ti, 1.0);
-            if periodic && p.id[i] < p.id[j] {
-                std::mem::swap(&mut i, &mut j);
-                shift = shift.map(|v| -v);
-                f = fj;
-                t = tj;
-                sign = -1.0;
-            }
-            let xb = built.get(j).copied().unwrap_or(p.x[j]);
-            keyed.push((
-                (i, order.bin([0, 1, 2].map(|d| xb[d] + shift[d])), j),
-                out.len(),
-            ));
-            let xi = p.x[i];
-            let xj_ghost = [
-                p.x[j][0] + shift[0],
-                p.x[j][1] + shift[1],
-                p.x[j][2] + shift[2],
-            ];
-            // the unit vector from i to j, along which force and torque are split
-            let mut normal = [
-                xj_ghost[0] - xi[0],
-                xj_ghost[1] - xi[1],
-                xj_ghost[2] - xi[2],
-            ];
-            let len =
-                (normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]).sqrt();
-            if len > 0.0 {
-                normal = normal.map(|c| c / len);
-            }
-            let (ri, rj) = (p.radius[i], p.radius[j]);
-            let del = [
-                xi[0] - xj_ghost[0],
-                xi[1] - xj_ghost[1],
-                xi[2] - xj_ghost[2],
-            ];
-            let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-            let r = rsq.sqrt();
-            for field in fields {
-                match field {
-                    LocalField::Pos => {
-                        out.extend_from_slice(&xi);
-                        out.extend_from_slice(&p.x[j]);
-                    }
-                    LocalField::Vel => {
-                        out.extend_from_slice(&p.v[i]);
-                        out.extend_from_slice(&p.v[j]);
-                    }
-                    LocalField::Id => {
-                        out.push(p.id[i] as f64);
-                        out.push(p.id[j] as f64);
-                        out.push(if periodic { 1.0 } else { 0.0 });
-                    }
-                    LocalField::Force
-                    | LocalField::ForceNormal
-                    | LocalField::ForceTangential
-                    | LocalField::Torque
-                    | LocalField::TorqueNormal
-                    | LocalField::TorqueTangential => {
-                        out.extend_from_slice(&force_torque(*field, f, t, normal))
-                    }
-                    LocalField::History => out.extend(
-                        sim.history[k * width..(k + 1) * width]
-                            .iter()
-                            .zip(&flips)
-                            .map(|(h, &f)| if f { h * sign } else { *h }),
-                    ),
-                    LocalField::ContactArea => out.push(
-                        -std::f64::consts::PI / 4.0
-                            * ((r - ri - rj) * (r + ri - rj) * (r - ri + rj) * (r + ri + rj))
-                            / rsq,
-                    ),
-                    LocalField::Delta => out.push(ri + rj - r),
-                    LocalField::HeatFlux => out.push(0.0),
-                    LocalField::ContactPoint => {
-                        for d in 0..3 {
-                            out.push((xi[d] * rj + xj_ghost[d] * ri) / (ri + rj));
-                        }
-                    }
-                }
-            }
         }
-        keyed.sort_by_key(|(key, _)| *key);
-        let mut sorted = Vec::with_capacity(out.len());
-        for (_, at) in keyed {
-            sorted.extend_from_slice(&out[at..at + ncols]);
-        }
-        Ok((ncols, sorted))
-    }
-
-    /// Rows of `compute wall/gran/local`: the mesh wall's contacts re-evaluated now, as
-    /// LIGGGHTS re-runs the wall's loop at output (docs/notes/wall_gran_local.md).
-    fn wall_local(
-        &self,
-        sim: &Simulation,
-        fields: &[LocalField],
-        wall: &str,
-    ) -> Result<(usize, Vec<f64>), EngineError> {
-        let k = sim
-            .fixes
-            .iter()
-            .position(|f| f.id == wall)
-            .ok_or_else(|| format!("Compute wall/gran/local: wall fix {wall} is gone"))?;
-        let width = match &sim.fixes[k].kind {
-            crate::engine::fixes::FixKind::MeshWall(w) => w.history_width(),
-            _ => 0,
-        };
-        let ncols: usize = fields.iter().map(|f| f.width(width)).sum();
-        let p = &sim.particles;
-        let mut out = Vec::new();
-        // LIGGGHTS's row order: mesh, triangle, then the triangle's neighbour list, which
-        // walks bins x-outermost, z-innermost (positions of the last list build) and atoms
-        // in index order within a bin
-        let mut contacts = crate::engine::fixes::mesh_wall_contacts(&sim.fixes, k, p, sim.dt);
-        let order = crate::engine::neighbor::BinOrder::sized(
-            sim.domain.lo,
-            sim.domain.hi,
-            sim.neighbor.cutneighmax,
-            sim.extras.neigh_binsize,
-        );
-        let built = sim.list.built_positions();
-        contacts.sort_by_cached_key(|c| {
-            let x = built.get(c.particle).copied().unwrap_or(p.x[c.particle]);
-            let b = order.bin(x);
-            (c.mesh, c.tri, b[2], b[1], b[0], c.particle)
-        });
-        for c in contacts {
-            let i = c.particle;
-            if p.mask[i] & self.group == 0 {
-                continue;
-            }
-            let (f, t) = (c.out.f, c.out.t);
-            let normal = c.out.en.map(|x| -x);
-            let radius = p.radius[i];
-            let r = radius - (-c.gap);
-            let rsq = r * r;
-            for field in fields {
-                match field {
-                    LocalField::Pos => {
-                        let dvec = c.to_wall.map(|x| -x);
-                        out.extend((0..3).map(|d| p.x[i][d] - dvec[d]));
-                        out.extend_from_slice(&p.x[i]);
-                    }
-                    LocalField::Vel => {
-                        out.extend_from_slice(&c.v_wall);
-                        out.extend_from_slice(&p.v[i]);
-                    }
-                    LocalField::Id => {
-                        out.push(c.mesh as f64);
-                        out.push(c.tri as f64);
-                        out.push(p.id[i] as f64);
-                    }
-                    LocalField::Force
-                    | LocalField::ForceNormal
-                    | LocalField::ForceTangential
-                    | LocalField::Torque
-                    | LocalField::TorqueNormal
-                    | LocalField::TorqueTangential => {
-                        out.extend_from_slice(&force_torque(*field, f, t, normal))
-                    }
-                    LocalField::History => out.extend_from_slice(&c.hist[..width]),
-                    LocalField::ContactArea => {
-                        out.push((radius * radius - rsq) * std::f64::consts::PI)
-                    }
-                    LocalField::Delta => out.push(radius - rsq.sqrt()),
-                    // walls fill neither (LIGGGHTS leaves them as allocated: zero)
-                    LocalField::HeatFlux => out.push(0.0),
-                    LocalField::ContactPoint => out.extend_from_slice(&[0.0; 3]),
-                }
-            }
-        }
-        Ok((ncols, out))
+        self.calc.local(&self.at(sim))
     }
 
     /// The compute's per-atom values (for dumps and `compute reduce`).
@@ -447,17 +166,15 @@ impl Compute {
         vars: &mut dyn VariableSource,
     ) -> Result<PerAtom, EngineError> {
         let columns = self.per_atom_columns();
-        let mut values = vec![0.0; sim.particles.len() * columns];
-        match &self.kind {
-            ComputeKind::Style(s) if columns > 0 => s.per_atom(&self.at(sim), &mut values, vars)?,
-            _ => {
-                return Err(format!(
-                    "Compute {} ({}) does not calculate per-atom values",
-                    self.id, self.style
-                )
-                .into())
-            }
+        if columns == 0 {
+            return Err(format!(
+                "Compute {} ({}) does not calculate per-atom values",
+                self.id, self.style
+            )
+            .into());
         }
+        let mut values = vec![0.0; sim.particles.len() * columns];
+        self.calc.per_atom(&self.at(sim), &mut values, vars)?;
         Ok(PerAtom { columns, values })
     }
 }

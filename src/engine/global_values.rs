@@ -1,7 +1,7 @@
 //! Global vectors and arrays of computes and fixes, as `fix ave/time ... mode vector` reads
 //! them: their sizes when a deck names them, and their values when the fix samples.
 
-use crate::engine::computes::{Compute, ComputeKind};
+use crate::engine::computes::Compute;
 use crate::engine::error::EngineError;
 use crate::engine::fixes::{AveInput, FixKind};
 use crate::engine::sim::{Simulation, VariableSource};
@@ -20,15 +20,10 @@ pub struct GlobalShape {
 impl Compute {
     /// The compute's global outputs.
     pub fn shape(&self) -> GlobalShape {
-        let scalar = match &self.kind {
-            ComputeKind::Temp => true,
-            ComputeKind::Style(s) => s.has_scalar(),
-            kind => crate::engine::analysis_computes::has_scalar(kind),
-        };
         GlobalShape {
-            scalar,
+            scalar: self.style().has_scalar(),
             vector: self.vector_len(),
-            array: crate::engine::analysis_computes::array_size(self),
+            array: self.array_size(),
         }
     }
 
@@ -103,8 +98,7 @@ impl Simulation {
                 AveInput::Compute(id, Some(col)) => {
                     if !arrays.iter().any(|(a, _, _)| a == id) {
                         let c = self.find_compute(id)?;
-                        let (values, cols) =
-                            crate::engine::analysis_computes::global_array(c, self)?;
+                        let (values, cols) = c.global_array(self)?;
                         arrays.push((id, values, cols));
                     }
                     let (_, values, cols) = arrays
@@ -155,25 +149,7 @@ impl Simulation {
 /// Whether the global vector (`column` None) or array of the compute is extensive (1),
 /// intensive (0) or mixed (-1), as LIGGGHTS flags it; None where regolith does not know.
 pub fn compute_ext(sim: &Simulation, c: &Compute, column: Option<usize>) -> Option<i8> {
-    if let ComputeKind::Style(s) = &c.kind {
-        return s.extensive(column);
-    }
-    if column.is_some() {
-        return matches!(c.kind, ComputeKind::Rdf(_)).then_some(0);
-    }
-    match &c.kind {
-        ComputeKind::Temp => Some(1),
-        ComputeKind::Pressure(_) => Some(0),
-        ComputeKind::Slice(s) => match (&s.compute, &s.fix) {
-            (Some((id, col)), _) => {
-                let src = sim.computes.iter().find(|x| &x.id == id)?;
-                compute_ext(sim, src, *col)
-            }
-            (_, Some((id, col))) => fix_ext(sim, id, *col),
-            _ => None,
-        },
-        _ => None,
-    }
+    c.style().extensive(sim, column)
 }
 
 /// As [`compute_ext`], for a fix's global vector or array (fix ave/time only).

@@ -1,19 +1,10 @@
 //! One snapshot of `dump local/gran/vtk`: the rows of its local compute, evaluated now,
 //! written as a VTK contact network.
 
-use crate::engine::computes::{ComputeKind, LocalField};
 use crate::engine::error::EngineError;
 use crate::engine::sim::Simulation;
 use crate::io::local_vtk::{write_contacts, ContactLayout};
 use crate::io::local_vtk_xml::{write_contacts_xml, XmlKind};
-
-/// The fields of a `pair/gran/local` or `wall/gran/local` compute (else `None`).
-pub fn local_fields(kind: &ComputeKind) -> Option<&[LocalField]> {
-    match kind {
-        ComputeKind::PairGranLocal(f) | ComputeKind::WallGranLocal { fields: f, .. } => Some(f),
-        _ => None,
-    }
-}
 
 /// The VTK text of compute `cid`'s contacts at the current step, in the layout the dump's
 /// `file` name asks for (legacy `.vtk`, XML `.vtp` or `.vtu`).
@@ -23,7 +14,9 @@ pub fn snapshot(sim: &Simulation, cid: &str, file: &str) -> Result<Vec<u8>, Engi
         .iter()
         .find(|c| c.id == cid)
         .ok_or_else(|| format!("Could not find dump local/gran/vtk compute ID {cid}"))?;
-    let fields = local_fields(&c.kind)
+    let fields = c
+        .style()
+        .local_fields()
         .ok_or_else(|| format!("compute {cid} is not a compute pair/gran/local"))?;
     let (ncols, rows) = c.local(sim).map_err(|e| e.to_string())?;
     // the history columns are what the other fields leave of a row

@@ -2,7 +2,6 @@
 //! computes and the integrator. Commands in [`crate::commands`] configure it.
 
 pub mod accel;
-pub mod analysis_computes;
 pub mod ave_atom;
 pub mod ave_euler;
 pub mod ave_histo;

@@ -1,8 +1,6 @@
-//! The temperature computes: `compute ID GROUP temp` and LIGGGHTS's default `thermo_temp`
-//! (and `thermo_kin_eng`, a `ke` compute), which exist in every deck as in LIGGGHTS 3.8.0,
-//! with the settings `compute_modify` gives them.
+//! The temperature of the temperature computes (`compute temp`, LIGGGHTS's default
+//! `thermo_temp`) with the settings `compute_modify` gives them.
 
-use crate::engine::computes::{Compute, ComputeKind};
 use crate::engine::contact::UnitStyle;
 use crate::engine::sim::Simulation;
 
@@ -30,21 +28,10 @@ impl Default for ComputeSettings {
     }
 }
 
-/// The temperature compute LIGGGHTS defines before any command: `thermo_temp` (temp of
-/// all; its `thermo_kin_eng`, a `ke` compute of all, is a module style the commands add).
-pub fn default_computes() -> Vec<Compute> {
-    vec![Compute {
-        id: "thermo_temp".into(),
-        style: "temp".into(),
-        group: 1,
-        kind: ComputeKind::Temp,
-    }]
-}
-
 /// At a run's setup: temperature computes that are not dynamic count their group's atoms.
 pub fn setup_counts(sim: &mut Simulation) {
     for c in &sim.computes {
-        if matches!(c.kind, ComputeKind::Temp) {
+        if c.style().is_temperature() {
             let n = sim
                 .particles
                 .mask
@@ -57,22 +44,24 @@ pub fn setup_counts(sim: &mut Simulation) {
     }
 }
 
-/// LIGGGHTS's temperature of a compute temp (temperature): sum of m v^2 over the group,
-/// times mvv2e / (dof kB) with dof = dimension * N - extra (0 when dof is not positive).
-pub fn temperature(sim: &Simulation, c: &Compute) -> f64 {
-    let (t, dof, boltz) = temperature_parts(sim, c);
+/// LIGGGHTS's temperature of the compute temp `id` of `group` (temperature): sum of m v^2
+/// over the group, times mvv2e / (dof kB) with dof = dimension * N - extra (0 when dof is
+/// not positive).
+pub fn temperature(sim: &Simulation, id: &str, group: u32) -> f64 {
+    let (t, dof, boltz) = temperature_parts(sim, id, group);
     let tfactor = if dof > 0.0 { 1.0 / (dof * boltz) } else { 0.0 };
     t * tfactor
 }
 
-/// The parts of a compute temp's temperature: sum of m v^2 over the group (energy), the
-/// degrees of freedom and LIGGGHTS's Boltzmann constant (energy per temperature).
-pub fn temperature_parts(sim: &Simulation, c: &Compute) -> (f64, f64, f64) {
+/// The parts of the temperature of the compute temp `id` of `group`: sum of m v^2 over the
+/// group (energy), the degrees of freedom and LIGGGHTS's Boltzmann constant (energy per
+/// temperature).
+pub fn temperature_parts(sim: &Simulation, id: &str, group: u32) -> (f64, f64, f64) {
     let p = &sim.particles;
     let mut t = 0.0;
     let mut n = 0usize;
     for i in 0..p.len() {
-        if p.mask[i] & c.group != 0 {
+        if p.mask[i] & group != 0 {
             let v = p.v[i];
             t += (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * p.mass[i];
             n += 1;
@@ -81,7 +70,7 @@ pub fn temperature_parts(sim: &Simulation, c: &Compute) -> (f64, f64, f64) {
     let s = sim
         .extras
         .compute_settings
-        .get(&c.id)
+        .get(id)
         .copied()
         .unwrap_or_default();
     let natoms = if s.dynamic { n as f64 } else { s.setup_count };

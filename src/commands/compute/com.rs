@@ -5,7 +5,7 @@ use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::computes::{center_of_mass, ComputeAt, ComputeStyle};
 use crate::engine::error::EngineError;
-use crate::engine::sim::VariableSource;
+use crate::engine::sim::{Simulation, VariableSource};
 
 /// The declared signature.
 pub const SPEC: Spec = style(
@@ -39,7 +39,7 @@ impl ComputeStyle for Com {
         Ok(center_of_mass(&sim.particles, &sim.domain, at.group)[index - 1])
     }
 
-    fn extensive(&self, column: Option<usize>) -> Option<i8> {
+    fn extensive(&self, _sim: &Simulation, column: Option<usize>) -> Option<i8> {
         column.is_none().then_some(0)
     }
 }

@@ -8,7 +8,7 @@ use crate::engine::computes::{ComputeAt, ComputeStyle};
 use crate::engine::displacement::Origins;
 use crate::engine::error::EngineError;
 use crate::engine::particles::Particles;
-use crate::engine::sim::VariableSource;
+use crate::engine::sim::{Simulation, VariableSource};
 
 /// The declared signature of `msd`.
 pub const MSD: Spec = style(
@@ -60,7 +60,7 @@ impl ComputeStyle for Msd {
         Ok(self.0.msd(&sim.particles, &sim.domain, at.group)[index - 1])
     }
 
-    fn extensive(&self, column: Option<usize>) -> Option<i8> {
+    fn extensive(&self, _sim: &Simulation, column: Option<usize>) -> Option<i8> {
         column.is_none().then_some(0)
     }
 

@@ -1,13 +1,13 @@
 //! `compute gyration`: the group's radius of gyration and its tensor, from unwrapped
 //! positions (LIGGGHTS 3.8.0's compute_gyration.cpp).
 
+use crate::commands::compute::after_general_keyword;
 use crate::commands::compute::ComputeDef;
-use crate::commands::compute_analysis::after_general_keyword;
 use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::computes::{center_of_mass, ComputeAt, ComputeStyle};
 use crate::engine::error::EngineError;
-use crate::engine::sim::VariableSource;
+use crate::engine::sim::{Simulation, VariableSource};
 
 /// The declared signature.
 pub const SPEC: Spec = style(
@@ -78,7 +78,7 @@ impl ComputeStyle for Gyration {
         Ok(if mass == 0.0 { rg[k] } else { rg[k] / mass })
     }
 
-    fn extensive(&self, column: Option<usize>) -> Option<i8> {
+    fn extensive(&self, _sim: &Simulation, column: Option<usize>) -> Option<i8> {
         column.is_none().then_some(0)
     }
 }

@@ -4,7 +4,7 @@
 use crate::commands::compute::{no_arguments, ComputeDef};
 use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::computes::{kinetic_energy, Compute, ComputeAt, ComputeKind, ComputeStyle};
+use crate::engine::computes::{kinetic_energy, Compute, ComputeAt, ComputeStyle};
 use crate::engine::error::EngineError;
 use crate::engine::sim::VariableSource;
 
@@ -103,6 +103,6 @@ pub fn thermo_kin_eng() -> Compute {
         id: "thermo_kin_eng".into(),
         style: "ke".into(),
         group: 1,
-        kind: ComputeKind::Style(Box::new(Ke)),
+        calc: Box::new(Ke),
     }
 }

@@ -2,10 +2,6 @@
 //! row per style name in [`MODULES`]. Adding a compute style is writing its file (its
 //! declared signature, its arguments, its state and its
 //! [`ComputeStyle`](crate::engine::computes::ComputeStyle) hooks) and adding its row.
-//!
-//! The styles not moved here yet (temp, pressure, rdf, slice, property/local,
-//! pair/gran/local, wall/gran/local) are still built by the `compute` command's own dispatch
-//! (`commands::sim_run::compute`) and evaluated by kind in `engine::computes`.
 
 mod com;
 mod contact_atom;
@@ -14,11 +10,18 @@ mod displace;
 mod erotate_sphere;
 mod gyration;
 mod ke;
+mod pair_gran_local;
 mod pe;
+mod pressure;
 mod property_atom;
+mod property_local;
+mod rdf;
 mod reduce;
+mod slice;
 mod stress_atom;
+mod temp;
 mod tracer_region;
+mod wall_gran_local;
 
 use crate::commands::specs::Spec;
 use crate::commands::{Args, CommandError, Ctx};
@@ -27,6 +30,7 @@ use crate::engine::computes::ComputeStyle;
 pub(crate) use coord_atom::type_range;
 pub use ke::thermo_kin_eng;
 pub use stress_atom::StressAtom;
+pub use temp::thermo_temp;
 
 /// What a style's builder is told about the compute being defined.
 #[derive(Debug, Clone, Copy)]
@@ -62,9 +66,8 @@ impl ComputeRow {
     }
 }
 
-/// The compute styles written as modules: one file each in this folder, one row here. The
-/// `compute` command looks a style up here (and in [`register`]ed rows) before its own
-/// dispatch.
+/// The compute styles: one file each in this folder, one row here. The `compute` command
+/// looks a style up here (and in [`register`]ed rows).
 pub const MODULES: &[ComputeRow] = &[
     ComputeRow {
         spec: com::SPEC,
@@ -111,6 +114,10 @@ pub const MODULES: &[ComputeRow] = &[
         build: ke::atom,
     },
     ComputeRow {
+        spec: pair_gran_local::SPEC,
+        build: pair_gran_local::build,
+    },
+    ComputeRow {
         spec: pe::SPEC,
         build: pe::build,
     },
@@ -119,8 +126,20 @@ pub const MODULES: &[ComputeRow] = &[
         build: pe::atom,
     },
     ComputeRow {
+        spec: pressure::SPEC,
+        build: pressure::build,
+    },
+    ComputeRow {
         spec: property_atom::SPEC,
         build: property_atom::build,
+    },
+    ComputeRow {
+        spec: property_local::SPEC,
+        build: property_local::build,
+    },
+    ComputeRow {
+        spec: rdf::SPEC,
+        build: rdf::build,
     },
     ComputeRow {
         spec: reduce::REGION,
@@ -131,12 +150,24 @@ pub const MODULES: &[ComputeRow] = &[
         build: reduce::build,
     },
     ComputeRow {
+        spec: slice::SPEC,
+        build: slice::build,
+    },
+    ComputeRow {
         spec: stress_atom::SPEC,
         build: stress_atom::build,
     },
     ComputeRow {
+        spec: temp::SPEC,
+        build: temp::build,
+    },
+    ComputeRow {
         spec: tracer_region::SPEC,
         build: tracer_region::build,
+    },
+    ComputeRow {
+        spec: wall_gran_local::SPEC,
+        build: wall_gran_local::build,
     },
 ];
 
@@ -173,6 +204,24 @@ pub(crate) fn no_arguments(a: &Args, style: &str) -> Result<(), CommandError> {
         return Err(a.error(3, format!("Illegal compute {style} command")));
     }
     Ok(())
+}
+
+/// The first word after LIGGGHTS's general compute keyword `update_on_run_end yes|no`.
+pub fn after_general_keyword(a: &Args, style: &str) -> Result<usize, CommandError> {
+    if a.len() < 4 || a.word(3)? != "update_on_run_end" {
+        return Ok(3);
+    }
+    if a.len() < 5 {
+        return Err(a.error(3, "Not enough arguments for keyword 'update_on_run_end'"));
+    }
+    match a.word(4)? {
+        "no" => Ok(5),
+        "yes" => Err(a.unsupported(4, &format!("compute {style} update_on_run_end yes"))),
+        _ => Err(a.error(
+            4,
+            "Value for keyword 'update_on_run_end' must be either 'yes' or 'no'",
+        )),
+    }
 }
 
 #[cfg(test)]

@@ -1,8 +1,8 @@
 //! `compute pe` (the potential energy) and `compute pe/atom` (each particle's): granular pair
 //! styles and walls tally none, so both are 0, as in LIGGGHTS 3.8.0.
 
+use crate::commands::compute::after_general_keyword;
 use crate::commands::compute::ComputeDef;
-use crate::commands::compute_analysis::after_general_keyword;
 use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::computes::{ComputeAt, ComputeStyle};

@@ -7,7 +7,7 @@ use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::computes::{column_of, ComputeAt, ComputeStyle};
 use crate::engine::error::EngineError;
 use crate::engine::fix_columns;
-use crate::engine::sim::VariableSource;
+use crate::engine::sim::{Simulation, VariableSource};
 use crate::io::dump::Column;
 
 /// The declared signature of `reduce/region`.
@@ -154,7 +154,7 @@ impl ComputeStyle for Reduce {
         self.reduce(at, &self.inputs[index - 1], vars)
     }
 
-    fn extensive(&self, column: Option<usize>) -> Option<i8> {
+    fn extensive(&self, _sim: &Simulation, column: Option<usize>) -> Option<i8> {
         column
             .is_none()
             .then_some((self.mode == ReduceMode::Sum) as i8)

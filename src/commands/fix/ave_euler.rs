@@ -7,7 +7,7 @@ use crate::commands::fix::FixDef;
 use crate::commands::specs::{arg, kw, style, Spec, Value};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::ave_euler::EulerGrid;
-use crate::engine::computes::{Compute, ComputeKind};
+use crate::engine::computes::Compute;
 use crate::engine::error::EngineError;
 use crate::engine::fixes::{FixStep, FixStyle};
 use crate::engine::particles::Particles;
@@ -177,10 +177,10 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>,
         id: STRESS_COMPUTE.into(),
         style: "stress/atom".into(),
         group: ctx.sim.group_bit("all").unwrap_or(1),
-        kind: ComputeKind::Style(Box::new(crate::commands::compute::StressAtom {
+        calc: Box::new(crate::commands::compute::StressAtom {
             ke: false,
             pair: true,
-        })),
+        }),
     });
     Ok(Box::new(AveEuler {
         style: fix.style.to_string(),

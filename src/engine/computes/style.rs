@@ -1,9 +1,9 @@
 //! Compute styles as modules: [`ComputeStyle`] is what a style may do in LIGGGHTS's phases
 //! of a run and what values it offers to thermo, variables, dumps and fixes, each hook a
-//! no-op (or offering nothing) unless the style overrides it. The engine reaches a style
-//! held as [`ComputeKind::Style`](super::ComputeKind::Style) through the methods of
-//! [`Compute`](super::Compute), so every reader of computes (thermo, formulas, dumps,
-//! `compute reduce`, `fix ave/...`) takes module styles without knowing them.
+//! no-op (or offering nothing) unless the style overrides it. The engine reaches the style
+//! a [`Compute`](super::Compute) holds through its methods, so every reader of computes
+//! (thermo, formulas, dumps, `compute reduce`, `fix ave/...`) takes any style without
+//! knowing it.
 //!
 //! A style is one file under `commands/compute/` (its arguments, its state, this trait) and
 //! one row in that folder's table.
@@ -11,6 +11,7 @@
 use crate::engine::error::EngineError;
 use crate::engine::particles::Particles;
 use crate::engine::sim::{Simulation, VariableSource};
+use crate::state::local_field::LocalField;
 
 /// What a value hook is told: the simulation as it stands and the compute's definition.
 #[derive(Clone, Copy)]
@@ -28,6 +29,15 @@ impl ComputeAt<'_> {
     pub fn in_group(&self, i: usize) -> bool {
         self.sim.particles.mask[i] & self.group != 0
     }
+}
+
+/// How `dump local` reads a local compute's rows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LocalRows {
+    /// `c_ID` (the first column) or `c_ID[N]`.
+    VectorOrArray,
+    /// Only `c_ID[N]`: a local array even with one column.
+    Array,
 }
 
 /// A compute style: the phases it hooks and the values it offers. Every hook has a default
@@ -77,9 +87,62 @@ pub trait ComputeStyle: Send + std::fmt::Debug {
         )))
     }
 
+    /// (rows, columns) of the global array (`c_ID[I]` read by `fix ave/time` and `compute
+    /// slice`), if the style has one.
+    fn array_size(&self) -> Option<(usize, usize)> {
+        None
+    }
+
+    /// The global array, row-major (only called when [`Self::array_size`] is Some).
+    fn array(&self, _at: &ComputeAt) -> Result<Vec<f64>, EngineError> {
+        Err(EngineError::Invalid(format!(
+            "compute {} does not calculate a global array",
+            self.name()
+        )))
+    }
+
     /// Whether the global vector (`column` None) or an array column is extensive (1),
     /// intensive (0) or mixed (-1), as LIGGGHTS flags it; None where it does not matter.
-    fn extensive(&self, _column: Option<usize>) -> Option<i8> {
+    /// `sim` holds the other computes and fixes (a style sliced from another reads its
+    /// flag).
+    fn extensive(&self, _sim: &Simulation, _column: Option<usize>) -> Option<i8> {
+        None
+    }
+
+    /// Whether the style is a temperature compute (`compute_modify`'s settings apply to
+    /// it, `compute pressure` reads it).
+    fn is_temperature(&self) -> bool {
+        false
+    }
+
+    /// How `dump local` may read the style's local rows (None: it has none).
+    fn local_rows(&self) -> Option<LocalRows> {
+        None
+    }
+
+    /// The local rows now: (columns per row, values row-major).
+    fn local(&self, _at: &ComputeAt) -> Result<(usize, Vec<f64>), EngineError> {
+        Err(EngineError::Invalid(format!(
+            "compute {} does not calculate local values",
+            self.name()
+        )))
+    }
+
+    /// The contact fields of a granular local compute's rows (`dump local/gran/vtk` lays
+    /// them out), in column order.
+    fn local_fields(&self) -> Option<&[LocalField]> {
+        None
+    }
+
+    /// Whether the style re-evaluates the pair contacts at output (the force evaluation
+    /// then keeps the velocities it ran with).
+    fn reads_pair_contacts(&self) -> bool {
+        false
+    }
+
+    /// The ID of the mesh wall fix whose contacts the style re-evaluates at output (the
+    /// fix may not be unfixed while the compute exists).
+    fn reads_wall(&self) -> Option<&str> {
         None
     }
 
@@ -119,22 +182,18 @@ pub trait ComputeStyle: Send + std::fmt::Debug {
 }
 
 impl Simulation {
-    /// The `setup` hook of every module compute style, in compute order, at a run's start.
+    /// The `setup` hook of every compute style, in compute order, at a run's start.
     pub(crate) fn setup_compute_styles(&mut self) {
         let p = &self.particles;
         for c in &mut self.computes {
-            if let super::ComputeKind::Style(s) = &mut c.kind {
-                s.setup(p, c.group);
-            }
+            c.calc.setup(p, c.group);
         }
     }
 
-    /// The `before_step` hook of every module compute style, in compute order.
+    /// The `before_step` hook of every compute style, in compute order.
     pub(crate) fn before_step_compute_styles(&mut self) {
         for c in &mut self.computes {
-            if let super::ComputeKind::Style(s) = &mut c.kind {
-                s.before_step(&mut self.particles);
-            }
+            c.calc.before_step(&mut self.particles);
         }
     }
 }

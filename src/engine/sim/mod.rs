@@ -567,11 +567,7 @@ impl Simulation {
             // a pair style sets the forces itself (on the fast path, block by block)
             p.clear_forces();
         }
-        let tally = want_virial
-            && self.computes.iter().any(|c| {
-                crate::engine::analysis_computes::reads_virial(c)
-                    || c.style().is_some_and(|s| s.reads_virial())
-            });
+        let tally = want_virial && self.computes.iter().any(|c| c.style().reads_virial());
         self.virial.clear();
         self.virial_step = tally.then_some(self.step);
         if tally {
@@ -603,12 +599,11 @@ impl Simulation {
                 self.stats.pair += started.elapsed().as_secs_f64();
             }
         }
-        if self.computes.iter().any(|c| {
-            matches!(
-                c.kind,
-                crate::engine::computes::ComputeKind::PairGranLocal(_)
-            )
-        }) {
+        if self
+            .computes
+            .iter()
+            .any(|c| c.style().reads_pair_contacts())
+        {
             self.force_time_state = (self.particles.v.clone(), self.particles.omega.clone());
         }
         self.resolve_force_fixes(vars)?;

@@ -162,7 +162,11 @@ fn slice_element(
         };
     }
     let (id, col) = s.fix.as_ref().expect("a slice has a compute or a fix");
-    if sim.step % crate::engine::global_values::fix_global_freq(sim, id) != 0 {
+    let freq = crate::engine::global_values::fix_global_freq(sim, id);
+    if freq == 0 {
+        return Err(crate::engine::global_values::zero_freq(id));
+    }
+    if sim.step % freq != 0 {
         return Err("Fix used in compute slice not computed at compatible time".into());
     }
     match col {

@@ -222,3 +222,15 @@ pub fn frozen_groups(fixes: &[Fix]) -> u32 {
 
 #[cfg(test)]
 mod tests;
+
+/// The largest bounding radius of the first `particledistribution/discrete*` fix among
+/// `fixes` (length; 0 without one): LIGGGHTS finds the distribution by its style's prefix.
+pub fn first_distribution_bound(fixes: &[Fix]) -> f64 {
+    fixes
+        .iter()
+        .find_map(|f| match &f.kind {
+            FixKind::Distribution(d) => Some(d.max_radius),
+            _ => None,
+        })
+        .unwrap_or(0.0)
+}

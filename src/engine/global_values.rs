@@ -60,6 +60,15 @@ pub fn fix_shape(sim: &Simulation, id: &str) -> Option<GlobalShape> {
     })
 }
 
+/// The error for reading, during a run, a fix whose output interval is 0 (`fix diam/max`):
+/// LIGGGHTS 3.8.0 divides the step by that interval there and crashes.
+pub fn zero_freq(id: &str) -> EngineError {
+    EngineError::Unsupported(format!(
+        "f_{id} during a run (LIGGGHTS 3.8.0 divides by the fix's zero output interval there \
+         and crashes); read it between runs"
+    ))
+}
+
 /// How often the fix `id` computes its global values (steps), for LIGGGHTS's
 /// "not computed at compatible time" check.
 pub fn fix_global_freq(sim: &Simulation, id: &str) -> i64 {

@@ -67,7 +67,11 @@ impl ComputeStyle for Slice {
             };
         }
         let (id, col) = self.fix.as_ref().expect("a slice has a compute or a fix");
-        if sim.step % fix_global_freq(sim, id) != 0 {
+        let freq = fix_global_freq(sim, id);
+        if freq == 0 {
+            return Err(crate::engine::global_values::zero_freq(id));
+        }
+        if sim.step % freq != 0 {
             return Err("Fix used in compute slice not computed at compatible time".into());
         }
         match col {

@@ -3,7 +3,7 @@
 use crate::commands::fix::FixDef;
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::fixes::{AveInput, AveMode, AveSchedule, AveTime, FixKind};
-use crate::engine::global_values::{fix_global_freq, fix_shape, input_ext};
+use crate::engine::global_values::{fix_global_freq, fix_shape, input_ext, zero_freq};
 use crate::lang::system::Mode;
 
 const ILLEGAL: &str = "Illegal fix ave/time command";
@@ -55,7 +55,11 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     }
     for (k, inp) in inputs.iter().enumerate() {
         if let AveInput::Fix(id, _) = inp {
-            if every % fix_global_freq(ctx.sim, id) != 0 {
+            let freq = fix_global_freq(ctx.sim, id);
+            if freq == 0 {
+                return Err(a.engine_error(6 + k.min(nvalues - 1), zero_freq(id)));
+            }
+            if every % freq != 0 {
                 let at = 6 + k.min(nvalues - 1);
                 return Err(a.error(at, "Fix for fix ave/time not computed at compatible time"));
             }

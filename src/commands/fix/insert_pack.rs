@@ -59,6 +59,8 @@ struct PackArgs {
     mass: Option<f64>,
     /// `massrate R` (mass per time, insert/rate/region).
     massrate: Option<f64>,
+    /// `nparticles INF` or `mass INF` (insert/rate/region): no end to the insertions.
+    unbounded: bool,
 }
 
 /// A keyword no family knows: LIGGGHTS's keywords regolith does not run, else the known ones.
@@ -146,6 +148,7 @@ impl PackArgs {
             particlerate: None,
             mass: None,
             massrate: None,
+            unbounded: false,
         }
     }
 
@@ -233,14 +236,11 @@ impl PackArgs {
             return Ok(None);
         }
         match w {
+            // LIGGGHTS reads INF as "no total", leaving the other amount as it was
+            "nparticles" | "mass" if a.word(i + 1)? == "INF" => self.unbounded = true,
             "nparticles" => self.nparticles = Some(a.int32(i + 1)?),
             "particlerate" => self.particlerate = Some(a.real(i + 1)?),
-            "mass" => {
-                if a.word(i + 1)? == "INF" {
-                    return Err(a.unsupported(i + 1, "fix insert/rate/region mass INF"));
-                }
-                self.mass = Some(a.real(i + 1)?);
-            }
+            "mass" => self.mass = Some(a.real(i + 1)?),
             "massrate" => self.massrate = Some(a.real(i + 1)?),
             _ => return Ok(None),
         }
@@ -256,7 +256,7 @@ impl PackArgs {
         ctx: &Ctx,
         id: &str,
         distribution: &str,
-    ) -> Result<(Option<(i64, f64)>, Option<f64>), CommandError> {
+    ) -> Result<(Option<(Option<i64>, f64)>, Option<f64>), CommandError> {
         if !self.rate_style {
             return Ok((None, None));
         }
@@ -282,8 +282,9 @@ impl PackArgs {
             return Err(a.error(2, format!("Fix insert/rate/region (id {id}): both 'nflowrate' and 'massflowrate' not allowed")));
         }
         let n = match (nparticles.filter(|&n| n != 0), mass.filter(|&m| m > 0.0)) {
-            (Some(n), _) => n,
-            (None, Some(m)) => (m / mass_expect) as i32 as i64,
+            _ if self.unbounded => None,
+            (Some(n), _) => Some(n),
+            (None, Some(m)) => Some((m / mass_expect) as i32 as i64),
             (None, None) => {
                 return Err(a.error(
                     2,

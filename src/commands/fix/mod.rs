@@ -11,6 +11,7 @@ mod aveforce;
 mod buoyancy;
 mod check_timestep;
 mod deform;
+pub(crate) mod diam_max;
 mod distribution;
 mod enforce2d;
 mod force;
@@ -143,6 +144,11 @@ pub const MODULES: &[FixRow] = &[
         spec: freeze::SPEC,
         planar: true,
         build: freeze::build,
+    },
+    FixRow {
+        spec: diam_max::SPEC,
+        planar: true,
+        build: diam_max::build,
     },
     FixRow {
         spec: enforce2d::SPEC,

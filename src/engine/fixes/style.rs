@@ -100,6 +100,9 @@ pub struct FixInit<'a> {
     /// The uniform accelerations the run's fixes add (length/time^2; see
     /// [`FixStyle::acceleration`]), in fix order.
     pub accelerations: &'a [[f64; 3]],
+    /// The largest bounding radius of the first particle distribution fix (length; 0
+    /// without one), which `fix diam/max` reads.
+    pub first_distribution_bound: f64,
 }
 
 /// What a style's [`FixStyle::init_pair`] reads at the pair style's init.
@@ -494,6 +497,7 @@ impl Simulation {
             .collect();
         let run = FixInit {
             accelerations: &accelerations,
+            first_distribution_bound: super::first_distribution_bound(&self.fixes),
         };
         for fix in &mut self.fixes {
             if let super::FixKind::Style(s) = &mut fix.kind {

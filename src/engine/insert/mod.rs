@@ -284,8 +284,8 @@ pub struct InsertPack {
     pub inserted: i64,
     /// Their mass (mass).
     pub inserted_mass: f64,
-    /// `insert/rate/region`: (nparticles, particlerate in 1/time).
-    pub rate: Option<(i64, f64)>,
+    /// `insert/rate/region`: (nparticles, None for `INF`; particlerate in 1/time).
+    pub rate: Option<(Option<i64>, f64)>,
     /// `insert/rate/region ... massrate M`: the mass rate as given (mass/time), which
     /// LIGGGHTS prints instead of particle rate x expected mass.
     pub mass_rate: Option<f64>,
@@ -461,22 +461,29 @@ impl InsertPack {
                 let f = |spec: &str, v: f64| {
                     crate::util::format::with_spec(spec, v).unwrap_or_default()
                 };
-                let within = if total as f64 <= self.per_insertion {
-                    0
-                } else {
-                    ((total as f64 / self.per_insertion) as i64).saturating_mul(self.every)
-                };
-                lines.push(format!(
-                    "INFO: Particle insertion {}: {} particles every {} steps - particle rate {}  (mass rate {})\n      {} particles (mass {}) within {} steps",
+                let mut line = format!(
+                    "INFO: Particle insertion {}: {} particles every {} steps - particle rate {}  (mass rate {})",
                     self.id,
                     f("%f", self.per_insertion),
                     self.every,
                     f("%f", rate),
                     f("%e", self.mass_rate.unwrap_or(rate * dist.mass_expect)),
-                    total,
-                    f("%e", total as f64 * dist.mass_expect),
-                    within
-                ));
+                );
+                // without a total (INF) LIGGGHTS prints the rates alone
+                if let Some(total) = total {
+                    let within = if total as f64 <= self.per_insertion {
+                        0
+                    } else {
+                        ((total as f64 / self.per_insertion) as i64).saturating_mul(self.every)
+                    };
+                    line += &format!(
+                        "\n      {} particles (mass {}) within {} steps",
+                        total,
+                        f("%e", total as f64 * dist.mass_expect),
+                        within
+                    );
+                }
+                lines.push(line);
             }
         }
         Ok(lines)
@@ -515,7 +522,7 @@ impl InsertPack {
         let (mut n, mut ratio) = match (self.rate, self.target) {
             (Some((total, _)), _) => {
                 let mut n = (self.per_insertion + self.rng.uniform()) as i64;
-                if self.inserted + n > total {
+                if let Some(total) = total.filter(|&t| self.inserted + n > t) {
                     n = total - self.inserted;
                 }
                 (n, f64::NAN)
@@ -632,7 +639,7 @@ impl InsertPack {
         let m: f64 = placed.iter().map(|(t, ..)| dist.templates[*t].mass).sum();
         self.inserted += placed.len() as i64;
         self.inserted_mass += m;
-        if let Some((total, _)) = self.rate {
+        if let Some((Some(total), _)) = self.rate {
             if self.inserted >= total {
                 self.next = None;
             }

@@ -152,6 +152,9 @@ impl Simulation {
             (FixKind::Massflow(m), Some(i)) if m.value(i).is_some() => {
                 Ok(m.value(i).unwrap_or(0.0))
             }
+            (FixKind::Style(s), _) if s.global_freq() == 0 && self.run_bounds.is_some() => {
+                Err(crate::engine::global_values::zero_freq(id))
+            }
             // read once: a value may be consumed by its reading (fix property/atom/tracer)
             (FixKind::Style(s), i) => s
                 .value(i)

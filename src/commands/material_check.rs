@@ -37,17 +37,25 @@ fn mentions(message: &str, name: &str) -> bool {
 pub fn validate(a: &Args, ctx: &Ctx) -> Result<(), CommandError> {
     let sim = &*ctx.sim;
     let input = sim.material_input();
-    let mut selections = Vec::new();
-    for f in &sim.fixes {
-        match &f.kind {
-            FixKind::WallGran(w) => selections.push(&w.selection),
-            FixKind::MeshWall(w) => selections.push(&w.selection),
-            _ => {}
-        }
-    }
+    // the walls' models (the multiple-contact model runs around their dry rest)
+    let mut selections: Vec<_> = sim
+        .fixes
+        .iter()
+        .filter_map(|f| match &f.kind {
+            FixKind::WallGran(w) => Some(&w.selection),
+            FixKind::MeshWall(w) => Some(&w.selection),
+            _ => None,
+        })
+        .map(|sel| {
+            let mut dry = sel.clone();
+            if dry.surface == "multicontact" {
+                dry.surface = "default".into();
+            }
+            dry
+        })
+        .collect();
     // the pair loop's liquid bridges around its dry model
-    let pair = sim.pair_selection.as_ref().map(crate::engine::wet::dry);
-    selections.extend(pair.as_ref());
+    selections.extend(sim.pair_selection.as_ref().map(crate::engine::wet::dry));
     if sim.pair_is_wet() {
         if (0..3).any(|d| sim.domain.periodic(d)) {
             return Err(a.unsupported(0, crate::engine::wet::PERIODIC));
@@ -74,7 +82,7 @@ pub fn validate(a: &Args, ctx: &Ctx) -> Result<(), CommandError> {
             ));
         }
     }
-    for sel in selections {
+    for sel in &selections {
         let Err(error) = crate::engine::granular::model_and_material(sel, &input) else {
             continue;
         };

@@ -809,12 +809,14 @@ pub(super) fn gran_models(
         }
     }
     // every model name the engine lacks is valid LIGGGHTS; the pair loop runs liquid
-    // bridges around any dry model it runs
-    let dry = if what == "pair_style gran" {
-        crate::engine::wet::dry(&sel)
-    } else {
-        sel.clone()
-    };
+    // bridges around any dry model it runs, the pair and wall loops the multiple-contact
+    // model around theirs
+    let mut dry = sel.clone();
+    if what == "pair_style gran" {
+        dry = crate::engine::wet::dry(&sel);
+    } else if dry.surface == "multicontact" {
+        dry.surface = "default".into();
+    }
     crate::engine::contact::AnyContactModel::new(&dry).map_err(|e| match e {
         ModelError::Unsupported(m) | ModelError::Invalid(m) => {
             a.unsupported(start, &format!("{what} {m}"))

@@ -21,7 +21,7 @@ pub use meshes::{move_meshes, MeshFix};
 pub use motion::{Motion, Move};
 pub use stream::StreamFix;
 pub use style::{FixInit, FixStep, FixStyle, PairInit, PerAtomShape, StepInputs};
-pub use walls::{mesh_wall_contacts, MeshWallFix, WallFix};
+pub use walls::{mesh_wall_contacts, refresh_trackers, MeshWallFix, WallFix};
 
 /// What a fix does.
 pub enum FixKind {
@@ -181,7 +181,8 @@ pub fn post_force(
                     let w = model.history_width();
                     let k = p.extra_index(&wall.history_name, w);
                     let mut history = std::mem::take(&mut p.extra[k].data);
-                    model.compute(p, g, &mut history, dt, update, list);
+                    let store = wall.multicontact.as_ref();
+                    model.compute(p, g, &mut history, dt, update, list, store);
                     p.extra[k].data = history;
                 }
             }

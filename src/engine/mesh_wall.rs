@@ -9,12 +9,15 @@
 //! slot dies on the first step without contact. The wall is a body of infinite radius and
 //! mass; moving meshes and conveyor belts give it a velocity interpolated at the contact.
 
+use crate::engine::contact::multicontact::Entry;
+use crate::engine::contact::multicontact_wall::{apart, touching, WALL_HISTORY, WALL_REACH};
 use crate::engine::contact::{
     CohesionModel, ContactKernel, ContactModel, Material, MaterialInput, NormalModel, RollingModel,
     TangentialModel, WallInput,
 };
 use crate::engine::error::EngineError;
 use crate::engine::granular::Selection;
+use crate::engine::granular::WallStore;
 use crate::engine::mesh::TriMesh;
 use crate::engine::mesh_stress::StressContact;
 use crate::engine::particles::Particles;
@@ -56,6 +59,32 @@ impl Tracker {
     /// neighbour list: particle-triangle pairs within reach at the last build).
     pub fn candidate_count(&self) -> usize {
         self.cand.iter().map(Vec::len).sum()
+    }
+
+    /// Candidate triangles of particle `i` (LIGGGHTS's `n_neighs_mesh`).
+    pub fn candidates_of(&self, i: usize) -> usize {
+        self.cand.get(i).map_or(0, Vec::len)
+    }
+
+    /// The multicontact surface values (the first four history values) of particle `i`'s
+    /// contacts, as `fix multicontact/halfspace` reads them: the values of the k-th used
+    /// slot under the triangle ID of the k-th slot (LIGGGHTS pairs them so; the two differ
+    /// when a free slot comes before a used one).
+    pub fn multicontact_entries(&self, i: usize) -> Vec<(i32, Entry)> {
+        let Some(slots) = self.slots.get(i) else {
+            return Vec::new();
+        };
+        slots
+            .iter()
+            .filter(|s| s.partner >= 0)
+            .enumerate()
+            .map(|(k, s)| {
+                (
+                    slots[k].partner,
+                    [s.hist[0], s.hist[1], s.hist[2], s.hist[3]],
+                )
+            })
+            .collect()
     }
 
     /// Contacts (triangle, history) of the particle with atom ID `id`, for restarts and
@@ -205,8 +234,9 @@ fn pack(s: &mut [Slot]) {
     }
 }
 
-/// Candidate triangles of each particle: those a sphere of its radius plus `skin` may reach
-/// (LIGGGHTS's prism test), found through a grid of the particles.
+/// Candidate triangles of each particle: those a sphere of its radius times the contact
+/// distance factor plus `skin` may reach (LIGGGHTS's prism test), found through a grid of
+/// the particles.
 fn candidates(p: &Particles, mesh: &MeshRef, skin: f64) -> Vec<Vec<u32>> {
     let n = p.len();
     let mut cand = vec![Vec::new(); n];
@@ -215,7 +245,7 @@ fn candidates(p: &Particles, mesh: &MeshRef, skin: f64) -> Vec<Vec<u32>> {
         return cand;
     }
     let rmax = members.iter().map(|&i| p.radius[i]).fold(0.0, f64::max);
-    let reach_max = rmax + skin;
+    let reach_max = rmax * mesh.factor + skin;
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for &i in &members {
@@ -261,7 +291,7 @@ fn candidates(p: &Particles, mesh: &MeshRef, skin: f64) -> Vec<Vec<u32>> {
             for cy in c0[1]..=c1[1] {
                 for cx in c0[0]..=c1[0] {
                     for &i in &heads[flat([cx, cy, cz])] {
-                        if m.near(t, p.x[i], p.radius[i] + skin) {
+                        if m.near(t, p.x[i], p.radius[i] * mesh.factor + skin) {
                             cand[i].push(t as u32);
                         }
                     }
@@ -287,6 +317,11 @@ pub struct MeshRef<'a> {
     pub moving: bool,
     /// `mesh/surface/stress`: record each contact for the mesh's forces and wear.
     pub stress: bool,
+    /// The contact distance factor its neighbour lists use (1; 2 with `surface
+    /// multicontact`).
+    pub factor: f64,
+    /// `surface multicontact`: the mesh's contacts `fix multicontact/halfspace` gathered.
+    pub multicontact: Option<&'a WallStore>,
 }
 
 /// One particle-triangle contact as the contact model evaluated it: what `compute
@@ -353,6 +388,12 @@ pub struct MeshWallGran<N, T, C, R> {
     pub model: ContactModel<N, T, C, R>,
     /// Coefficients per (particle type, mesh type).
     pub material: Material,
+    /// `surface multicontact` (the model is its dry rest): its surface values lead each
+    /// contact's history, and contacts apart by less than the radius are kept.
+    pub multicontact: bool,
+    /// Contacts resolved farther than this (m, LIGGGHTS's `cutneighmax`) are skipped
+    /// (multicontact).
+    pub cutneighmax: f64,
 }
 
 /// Find or make the slot of a touching contact with triangle `id` (LIGGGHTS's
@@ -396,7 +437,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Mesh
     for MeshWallGran<N, T, C, R>
 {
     fn history_width(&self) -> usize {
-        self.model.history_len()
+        self.surface_len() + self.model.history_len()
     }
 
     fn compute(
@@ -461,6 +502,16 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Mesh
 impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
     MeshWallGran<N, T, C, R>
 {
+    /// History values of the surface model before the dry models' (4 with `surface
+    /// multicontact`).
+    fn surface_len(&self) -> usize {
+        if self.multicontact {
+            WALL_HISTORY
+        } else {
+            0
+        }
+    }
+
     /// LIGGGHTS's mesh loop: every mesh, every particle, every candidate triangle; each
     /// touching contact is evaluated and handed to `sink` with the particles.
     #[inline]
@@ -473,6 +524,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
         update: bool,
         sink: &mut S,
     ) {
+        let off = self.surface_len();
         let w = self.model.history_len();
         for (mesh_index, (mref, tr)) in meshes.iter().zip(trackers.iter_mut()).enumerate() {
             let m = mref.mesh;
@@ -484,19 +536,37 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
                 for s in slots.iter_mut() {
                     s.keep = false;
                 }
+                let ncand = tr.cand[i].len();
                 for &t in &tr.cand[i] {
                     let q = p.as_ref();
-                    let Some(c) = m.closest(t as usize, q.x[i], q.radius[i]) else {
+                    // multicontact: the radius at this triangle is changed by the half-space step
+                    let radius = match mref.multicontact {
+                        Some(s) => q.radius[i] + s.change(i, t as i32, ncand).unwrap_or(0.0),
+                        None => q.radius[i],
+                    };
+                    let Some(c) = m.closest(t as usize, q.x[i], radius) else {
                         continue;
                     };
+                    if self.multicontact && c.gap > self.cutneighmax {
+                        continue;
+                    }
+                    let touches = c.gap <= 0.0;
                     // a NaN gap is no contact
-                    #[allow(clippy::neg_cmp_op_on_partial_ord)]
-                    if !(c.gap <= 0.0) {
+                    let close = self.multicontact && c.gap < WALL_REACH * q.radius[i];
+                    if !(touches || close) {
                         continue;
                     }
                     let Some(k) = handle_contact(slots, t, c.face, m) else {
                         continue;
                     };
+                    let (hs, hm) = slots[k].hist[..off + w].split_at_mut(off);
+                    if !touches {
+                        if update {
+                            apart(hs, c.to_wall, radius);
+                        }
+                        self.model.surfaces_close(hm);
+                        continue;
+                    }
                     let mut v_wall = [0.0; 3];
                     if let Some(v) = mref.node_v {
                         let (v0, v1, v2) = (v[t as usize][0], v[t as usize][1], v[t as usize][2]);
@@ -509,7 +579,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
                         x: q.x[i],
                         gap: c.gap,
                         to_wall: c.to_wall,
-                        radius: q.radius[i],
+                        radius,
                         mass: q.mass[i],
                         v: q.v[i],
                         omega: q.omega[i],
@@ -518,7 +588,11 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
                         update_history: update,
                         coeffs: self.material.pair(q.kind[i] as usize, mref.wall_type),
                     };
-                    let out = self.model.wall_force(&input, &mut slots[k].hist[..w]);
+                    let out = self.model.wall_force(&input, hm);
+                    if self.multicontact && update {
+                        touching(hs, c.to_wall, out.f, out.en);
+                    }
+                    let hist = slots[k].hist;
                     sink(
                         p,
                         &WallContact {
@@ -529,7 +603,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
                             v_wall,
                             gap: c.gap,
                             out,
-                            hist: slots[k].hist,
+                            hist,
                         },
                     );
                 }
@@ -544,19 +618,28 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
     }
 }
 
-/// Build the mesh wall interaction for a selection, monomorphised once per run.
+/// Build the mesh wall interaction for a selection, monomorphised once per run. With
+/// `surface multicontact` the dry rest of the selection is built, and `cutneighmax` (m) is
+/// LIGGGHTS's.
 pub fn build(
     sel: &Selection,
     input: &MaterialInput,
+    cutneighmax: f64,
 ) -> Result<Box<dyn MeshWallInteraction>, EngineError> {
-    let model = crate::engine::contact::AnyContactModel::new(sel).map_err(|e| e.to_string())?;
-    if model.history_len() > MAX_HISTORY {
+    let multicontact = sel.surface == "multicontact";
+    let mut dry = sel.clone();
+    if multicontact {
+        dry.surface = "default".into();
+    }
+    let model = crate::engine::contact::AnyContactModel::new(&dry).map_err(|e| e.to_string())?;
+    let surface = if multicontact { WALL_HISTORY } else { 0 };
+    if surface + model.history_len() > MAX_HISTORY {
         return Err(format!(
             "fix wall/gran mesh: contact models with more than {MAX_HISTORY} history values are not supported"
         ).into());
     }
     let material = Material::new(input, &model.properties())?;
-    struct Make(Material);
+    struct Make(Material, bool, f64);
     impl ContactKernel for Make {
         type Output = Box<dyn MeshWallInteraction>;
         fn run<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>(
@@ -566,10 +649,12 @@ pub fn build(
             Box::new(MeshWallGran {
                 model: *m,
                 material: self.0,
+                multicontact: self.1,
+                cutneighmax: self.2,
             })
         }
     }
-    Ok(model.dispatch(Make(material)))
+    Ok(model.dispatch(Make(material, multicontact, cutneighmax)))
 }
 
 #[cfg(test)]

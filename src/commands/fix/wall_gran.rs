@@ -93,6 +93,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         shear,
         model: None,
         history_name: format!("history_{id}"),
+        multicontact: None,
     }))
 }
 
@@ -169,5 +170,6 @@ fn mesh_wall(
         model: None,
         trackers: Vec::new(),
         built: None,
+        multicontact: Vec::new(),
     }))
 }

@@ -38,6 +38,7 @@ pub mod easo;
 mod golden;
 pub mod material;
 pub mod multicontact;
+pub mod multicontact_wall;
 pub mod normal;
 pub mod real;
 pub mod rolling;

@@ -19,6 +19,8 @@ pub struct WallFix {
     pub model: Option<Box<dyn crate::engine::granular::WallInteraction>>,
     /// Name of the per-particle history array (`history_<fix ID>`, as in LIGGGHTS restarts).
     pub history_name: String,
+    /// `surface multicontact`: the wall's contacts `fix multicontact/halfspace` gathers.
+    pub multicontact: Option<crate::engine::granular::WallStore>,
 }
 
 /// `fix wall/gran model ... mesh n_meshes N meshes ...`.
@@ -35,6 +37,9 @@ pub struct MeshWallFix {
     pub trackers: Vec<crate::engine::mesh_wall::Tracker>,
     /// The pair-list build the trackers' candidate lists belong to.
     pub built: Option<u64>,
+    /// `surface multicontact`: each mesh's contacts `fix multicontact/halfspace` gathers
+    /// (empty for other surface models).
+    pub multicontact: Vec<crate::engine::granular::WallStore>,
 }
 
 impl MeshWallFix {
@@ -43,17 +48,34 @@ impl MeshWallFix {
     pub fn history_width(&self) -> usize {
         match &self.model {
             Some(m) => m.history_width(),
-            None => crate::engine::contact::AnyContactModel::new(&self.selection)
-                .map_or(0, |m| m.history_len()),
+            None => {
+                let mut dry = self.selection.clone();
+                let mut surface = 0;
+                if dry.surface == "multicontact" {
+                    dry.surface = "default".into();
+                    surface = crate::engine::contact::multicontact_wall::WALL_HISTORY;
+                }
+                crate::engine::contact::AnyContactModel::new(&dry)
+                    .map_or(0, |m| surface + m.history_len())
+            }
         }
     }
 }
 
 /// The meshes of a mesh wall, in its `meshes` order, as its force loop sees them.
-fn mesh_refs<'a>(fixes: &'a [Fix], w: &MeshWallFix) -> Vec<crate::engine::mesh_wall::MeshRef<'a>> {
+fn mesh_refs<'a>(
+    fixes: &'a [Fix],
+    w: &'a MeshWallFix,
+) -> Vec<crate::engine::mesh_wall::MeshRef<'a>> {
+    let factor = if w.multicontact.is_empty() {
+        1.0
+    } else {
+        crate::engine::contact::multicontact::CONTACT_DISTANCE_FACTOR
+    };
     w.meshes
         .iter()
-        .filter_map(|id| {
+        .enumerate()
+        .filter_map(|(k, id)| {
             fixes.iter().find_map(|f| match &f.kind {
                 FixKind::Mesh(m) if &f.id == id => {
                     let moving = m.servo.is_some()
@@ -67,6 +89,8 @@ fn mesh_refs<'a>(fixes: &'a [Fix], w: &MeshWallFix) -> Vec<crate::engine::mesh_w
                         wall_type: m.wall_type,
                         group: f.group | w.group_index,
                         node_v: m.node_v.as_deref(),
+                        factor,
+                        multicontact: w.multicontact.get(k),
                     })
                 }
                 _ => None,
@@ -98,6 +122,37 @@ pub fn mesh_wall_contacts(
     model.contacts(p, &refs, &mut trackers, dt)
 }
 
+/// Rebuild the candidate lists of the mesh wall `w`'s trackers after a pair-list build
+/// (`list`: its build count and skin; `moving_skin`: mesh lists use the full skin).
+pub fn refresh_trackers(
+    fixes: &[Fix],
+    w: &mut MeshWallFix,
+    p: &Particles,
+    list: (u64, f64),
+    moving_skin: bool,
+) {
+    let mut trackers = std::mem::take(&mut w.trackers);
+    let mut built = w.built;
+    let refs = mesh_refs(fixes, w);
+    if trackers.len() != refs.len() {
+        trackers = vec![Default::default(); refs.len()];
+        built = None;
+    }
+    if built != Some(list.0) {
+        for (tr, m) in trackers.iter_mut().zip(&refs) {
+            let skin = if moving_skin || m.moving {
+                list.1
+            } else {
+                0.5 * list.1
+            };
+            tr.rebuild(p, m, skin);
+        }
+    }
+    drop(refs);
+    w.built = Some(list.0);
+    w.trackers = trackers;
+}
+
 /// The forces of the mesh wall fix `fixes[k]` on the particles.
 pub(super) fn mesh_wall_force(
     fixes: &mut [Fix],
@@ -110,7 +165,7 @@ pub(super) fn mesh_wall_force(
 ) {
     let mut kind = std::mem::replace(&mut fixes[k].kind, FixKind::Settings);
     if let FixKind::MeshWall(w) = &mut kind {
-        if let Some(model) = w.model.as_ref() {
+        if let Some(model) = w.model.take() {
             let mesh_fix: Vec<usize> = w
                 .meshes
                 .iter()
@@ -120,25 +175,14 @@ pub(super) fn mesh_wall_force(
                         .position(|f| &f.id == id && matches!(f.kind, FixKind::Mesh(_)))
                 })
                 .collect();
+            refresh_trackers(fixes, w, p, list, moving_skin);
+            let mut trackers = std::mem::take(&mut w.trackers);
             let refs = mesh_refs(fixes, w);
-            if w.trackers.len() != refs.len() {
-                w.trackers = vec![Default::default(); refs.len()];
-                w.built = None;
-            }
-            if w.built != Some(list.0) {
-                for (tr, m) in w.trackers.iter_mut().zip(&refs) {
-                    let skin = if moving_skin || m.moving {
-                        list.1
-                    } else {
-                        0.5 * list.1
-                    };
-                    tr.rebuild(p, m, skin);
-                }
-                w.built = Some(list.0);
-            }
             let mut records = Vec::new();
-            model.compute(p, &refs, &mut w.trackers, dt, update, &mut records);
+            model.compute(p, &refs, &mut trackers, dt, update, &mut records);
             drop(refs);
+            w.trackers = trackers;
+            w.model = Some(model);
             // a servo mesh sums its force in LIGGGHTS's loop order (it feeds back on the motion)
             for (k, &at) in mesh_fix.iter().enumerate() {
                 if let FixKind::Mesh(m) = &fixes[at].kind {

@@ -24,6 +24,7 @@ use crate::engine::neighbor::{Mirrored, Pair, SumOrder};
 use crate::engine::particles::Particles;
 use crate::engine::sim::{PairContact, PairInteraction};
 
+use super::multicontact_store::WallStore;
 use super::{add6, half_virial, model_and_material, touching_contact, Selection};
 
 /// What the fix `multicontact/halfspace` gives the pair style.
@@ -53,6 +54,9 @@ pub struct PairMulti<N, T, C, R> {
     /// One particle's entries while its radius changes are worked out (kept between
     /// particles and steps, so the pass allocates nothing).
     scratch: Vec<Entry>,
+    /// The walls' gathered contacts (primitive walls and meshes in wall order), each
+    /// particle's after its pair contacts.
+    walls: Vec<WallStore>,
     /// Touching pairs at the last evaluation.
     touching: usize,
     /// The largest overlap of the last evaluation: (ratio to the smaller radius, i, j).
@@ -110,9 +114,20 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             let entries = &mut self.scratch;
             entries.clear();
             entries.extend(self.partners[i].iter().map(|e| e.1));
+            for s in &self.walls {
+                entries.extend(s.slots(i).map(|k| s.entry(k)));
+            }
             radius_changes(entries, &hs, r, hs.force_eps(r));
+            let n = self.partners[i].len();
             for (e, v) in self.partners[i].iter_mut().zip(entries.iter()) {
                 e.1 = *v;
+            }
+            let mut at = n;
+            for s in &mut self.walls {
+                for k in s.slots(i) {
+                    s.set_change(k, entries[at][3]);
+                    at += 1;
+                }
             }
         }
     }
@@ -192,6 +207,10 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
 
     fn contact_distance_factor(&self) -> f64 {
         CONTACT_DISTANCE_FACTOR
+    }
+
+    fn multicontact_walls(&mut self) -> Option<&mut Vec<WallStore>> {
+        Some(&mut self.walls)
     }
 
     fn contacts(
@@ -305,6 +324,7 @@ pub fn build_multicontact(
                 halfspace: self.3,
                 partners: Vec::new(),
                 scratch: Vec::new(),
+                walls: Vec::new(),
                 touching: 0,
                 worst: None,
             })

@@ -32,7 +32,7 @@ impl Primitive {
     /// along `dim`; a cylinder sheared across its axis turns about it with angular speed
     /// `v`, evaluated at the particle centre's radial vector.
     #[inline(always)]
-    fn surface_velocity(&self, shear: Option<(usize, f64)>, pos: [f64; 3]) -> [f64; 3] {
+    pub(super) fn surface_velocity(&self, shear: Option<(usize, f64)>, pos: [f64; 3]) -> [f64; 3] {
         let mut v_wall = [0.0; 3];
         let Some((dim, v)) = shear else {
             return v_wall;
@@ -60,7 +60,7 @@ impl Primitive {
     /// LIGGGHTS's contact resolution: the gap (negative when overlapping) and the vector from
     /// the particle centre towards the wall.
     #[inline(always)]
-    fn resolve(&self, pos: [f64; 3], r: f64) -> (f64, [f64; 3]) {
+    pub(super) fn resolve(&self, pos: [f64; 3], r: f64) -> (f64, [f64; 3]) {
         let mut delta = [0.0; 3];
         match *self {
             Primitive::Plane { axis, position } => {
@@ -101,6 +101,29 @@ impl Primitive {
     }
 }
 
+impl Primitive {
+    /// LIGGGHTS's neighbour-list test of a particle at `pos` of radius `r` (length) with
+    /// `threshold` (length): a plane within `r + threshold` of the centre; for a cylinder
+    /// LIGGGHTS's test, which lets nearly every particle in.
+    pub fn near(&self, pos: [f64; 3], r: f64, threshold: f64) -> bool {
+        let reach = r + threshold;
+        match *self {
+            Primitive::Plane { axis, position } => (pos[axis] - position).abs() <= reach,
+            Primitive::Cylinder {
+                axis,
+                radius,
+                c1,
+                c2,
+            } => {
+                let dy = pos[(axis + 1) % 3] - c1;
+                let dz = pos[(axis + 2) % 3] - c2;
+                let dist = (dy * dy + dz * dz).sqrt() - radius;
+                reach < dist || -reach < dist
+            }
+        }
+    }
+}
+
 /// Wall contacts of particles with a primitive wall (`fix wall/gran ... primitive`).
 pub trait WallInteraction: Send {
     /// Doubles of history per particle.
@@ -108,6 +131,9 @@ pub trait WallInteraction: Send {
     /// Add wall forces to particles of `group`; `history` is per particle. `list` is the
     /// neighbour list's build count and skin (length): the wall keeps its own list of the
     /// particles within the skin and refreshes it whenever the pair list was rebuilt.
+    /// `store`: the wall's contacts as `fix multicontact/halfspace` gathered them (walls of
+    /// `surface multicontact` only).
+    #[allow(clippy::too_many_arguments)]
     fn compute(
         &mut self,
         p: &mut Particles,
@@ -116,6 +142,7 @@ pub trait WallInteraction: Send {
         dt: f64,
         update: bool,
         list: (u64, f64),
+        store: Option<&super::multicontact_store::WallStore>,
     );
 }
 
@@ -154,6 +181,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Wall
         dt: f64,
         update: bool,
         list: (u64, f64),
+        _store: Option<&super::multicontact_store::WallStore>,
     ) {
         let w = self.model.history_len();
         if self.near_build != Some(list.0) {

@@ -15,6 +15,7 @@ use crate::io::dump::Layout;
 mod dumps;
 mod guard;
 mod meshes;
+mod multicontact;
 mod neighbors;
 mod output;
 mod prepare;
@@ -89,6 +90,11 @@ pub trait PairInteraction: Send {
     /// dry models).
     fn contact_distance_factor(&self) -> f64 {
         1.0
+    }
+    /// `surface multicontact`: the walls' gathered contacts the next evaluation folds into
+    /// each particle's half-space step (in wall order; None for other models).
+    fn multicontact_walls(&mut self) -> Option<&mut Vec<crate::engine::granular::WallStore>> {
+        None
     }
     /// The touching listed pairs re-evaluated in the current state without advancing
     /// history (what `compute pair/gran/local` reports): (pair index, force on i, torque
@@ -573,6 +579,8 @@ impl Simulation {
         if tally {
             self.virial.resize(p.len(), [0.0; 6]);
         }
+        self.multicontact_walls_to_pair(update);
+        let p = &mut self.particles;
         if let Some(pair) = self.pair.as_mut().filter(|_| self.pair_compute) {
             let virial = if tally {
                 Some(&mut self.virial[..])
@@ -599,6 +607,7 @@ impl Simulation {
                 self.stats.pair += started.elapsed().as_secs_f64();
             }
         }
+        self.multicontact_walls_back(update);
         if self
             .computes
             .iter()

@@ -11,27 +11,7 @@ impl Simulation {
         self.init_pair_fix_styles(&input)?;
         // the rolling-friction models use a disc's inertia factor in 2d
         let two_d = self.dimension == 2;
-        for k in 0..self.fixes.len() {
-            if let FixKind::WallGran(wall) = &self.fixes[k].kind {
-                let mut sel = wall.selection.clone();
-                sel.options.two_d = two_d;
-                let model =
-                    granular::build_wall(&sel, &input, wall.wall_type, wall.plane, wall.shear)?;
-                if let FixKind::WallGran(wall) = &mut self.fixes[k].kind {
-                    wall.model = Some(model);
-                }
-            }
-        }
-        for k in 0..self.fixes.len() {
-            if let FixKind::MeshWall(wall) = &self.fixes[k].kind {
-                let mut sel = wall.selection.clone();
-                sel.options.two_d = two_d;
-                let model = crate::engine::mesh_wall::build(&sel, &input)?;
-                if let FixKind::MeshWall(wall) = &mut self.fixes[k].kind {
-                    wall.model = Some(model);
-                }
-            }
-        }
+        self.init_walls(&input)?;
         let Some(mut sel) = self.pair_selection.clone() else {
             self.pair = None;
             return Ok(());
@@ -51,6 +31,62 @@ impl Simulation {
         } else {
             granular::build(&sel, &input, frozen)?
         });
+        Ok(())
+    }
+
+    /// Build the primitive and mesh walls' contact models; walls of `surface multicontact`
+    /// get their stores of gathered contacts (kept across runs).
+    fn init_walls(
+        &mut self,
+        input: &crate::engine::contact::MaterialInput,
+    ) -> Result<(), EngineError> {
+        use crate::engine::contact::multicontact::CONTACT_DISTANCE_FACTOR;
+        use crate::engine::granular;
+        // the rolling-friction models use a disc's inertia factor in 2d
+        let two_d = self.dimension == 2;
+        // LIGGGHTS's cutneighmax with the model's contact distance factor
+        let cutneighmax =
+            2.0 * self.largest_radius() * CONTACT_DISTANCE_FACTOR + self.neighbor.skin;
+        let has_fix = self
+            .fixes
+            .iter()
+            .any(|f| matches!(&f.kind, FixKind::Style(s) if s.multicontact_prefactor().is_some()));
+        for k in 0..self.fixes.len() {
+            let (mut sel, multicontact) = match &self.fixes[k].kind {
+                FixKind::WallGran(w) => {
+                    (w.selection.clone(), w.selection.surface == "multicontact")
+                }
+                FixKind::MeshWall(w) => {
+                    (w.selection.clone(), w.selection.surface == "multicontact")
+                }
+                _ => continue,
+            };
+            if multicontact && !has_fix {
+                return Err("No suitable multicontact fix found.".into());
+            }
+            sel.options.two_d = two_d;
+            match &mut self.fixes[k].kind {
+                FixKind::WallGran(wall) => {
+                    let shape = (wall.wall_type, wall.plane, wall.shear);
+                    wall.model = Some(if multicontact {
+                        granular::build_wall_multicontact(&sel, input, shape, cutneighmax)?
+                    } else {
+                        granular::build_wall(&sel, input, shape.0, shape.1, shape.2)?
+                    });
+                    if multicontact && wall.multicontact.is_none() {
+                        wall.multicontact = Some(granular::WallStore::new());
+                    }
+                }
+                FixKind::MeshWall(wall) => {
+                    let model = crate::engine::mesh_wall::build(&sel, input, cutneighmax)?;
+                    wall.model = Some(model);
+                    if multicontact && wall.multicontact.len() != wall.meshes.len() {
+                        wall.multicontact = vec![granular::WallStore::new(); wall.meshes.len()];
+                    }
+                }
+                _ => {}
+            }
+        }
         Ok(())
     }
 

@@ -4,6 +4,7 @@ use super::insertion::{keyword, yes, Family, Insertion, Schedule};
 use crate::commands::fix::FixDef;
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::fixes::{FixKind, StreamFix};
+use crate::engine::insert::UNLIMITED;
 use crate::io::stl::Triangle;
 
 /// `fix ID GROUP insert/stream seed S distributiontemplate D nparticles N particlerate R
@@ -201,16 +202,16 @@ impl StreamArgs {
     ) -> Result<Option<usize>, CommandError> {
         match w {
             "nparticles" | "mass" => {
-                if a.word(i + 1)? == "INF" {
-                    return Err(a.unsupported(i + 1, &format!("fix insert/stream {w} INF")));
-                }
                 if self.total.is_some() {
                     return Err(a.error(
                         i,
                         "Fix insert/stream: must not define both 'nparticles' and 'mass'",
                     ));
                 }
-                self.total = Some(if w == "mass" {
+                // INF: no total, insertion at the rate until the runs end
+                self.total = Some(if a.word(i + 1)? == "INF" {
+                    Ok(UNLIMITED)
+                } else if w == "mass" {
                     Err(a.real(i + 1)?)
                 } else {
                     Ok(a.int32(i + 1)?)

@@ -18,6 +18,7 @@ pub use orient::{random_unit_quat, rotate_axes, Axes};
 
 pub use stream::{
     Face, InsertRestart, InsertStream, Release, TriangleEdges, Within, RELEASE_NAME, RELEASE_WIDTH,
+    UNLIMITED,
 };
 pub use surface::{surface_contacts, surface_exterior, surface_interior};
 

@@ -398,7 +398,7 @@ pub struct InsertStream {
     pub per_insertion: f64,
     /// Particle rate (1/time) and mass rate (mass/time), as LIGGGHTS prints them.
     pub rates: (f64, f64),
-    /// Total to insert.
+    /// Total to insert ([`UNLIMITED`] for `nparticles INF` or `mass INF`).
     pub total: i64,
     /// `vel` of the released particles.
     pub velocity: Velocity,
@@ -431,11 +431,26 @@ pub struct InsertStream {
     pub random_orientation: bool,
 }
 
+/// The total of `nparticles INF` and `mass INF`: particles are inserted at the rate until
+/// the runs end.
+pub const UNLIMITED: i64 = i64::MAX;
+
 impl InsertStream {
     /// The setup line LIGGGHTS prints.
     pub fn setup_lines(&self, dist: &Distribution) -> Vec<String> {
         let (rate, mass_rate) = self.rates;
         let f = |spec: &str, v: f64| crate::util::format::with_spec(spec, v).unwrap_or_default();
+        if self.total == UNLIMITED {
+            // without a total LIGGGHTS prints the rates alone
+            return vec![format!(
+                "INFO: Particle insertion {}: {} particles every {} steps - particle rate {}  (mass rate {})",
+                self.id,
+                f("%f", self.per_insertion),
+                self.every,
+                f("%f", rate),
+                f("%e", mass_rate),
+            )];
+        }
         vec![format!(
             "INFO: Particle insertion {}: {} particles every {} steps - particle rate {}  (mass rate {})\n      {} particles (mass {}) within {} steps",
             self.id,

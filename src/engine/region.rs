@@ -353,39 +353,10 @@ impl Regions {
         self.inside(&r.shape, x) == r.interior
     }
 
-    /// [`Regions::matches`] for every point of `xs` (the same answers; the shape is looked
-    /// at once, so the tests of many points overlap).
+    /// [`Regions::matches`] for every point of `xs` (one call for a fix's particles instead
+    /// of one dynamic call per particle).
     pub fn matches_each(&self, index: usize, xs: &[[f64; 3]]) -> Vec<bool> {
-        let r = &self.list[index];
-        let interior = r.interior;
-        match (&r.shape, &r.motion) {
-            (
-                Shape::Cylinder {
-                    axis,
-                    c1,
-                    c2,
-                    radius,
-                    lo,
-                    hi,
-                },
-                None,
-            ) => {
-                let (a1, a2) = cross_axes(*axis);
-                let (axis, c1, c2, radius, lo, hi) = (*axis, *c1, *c2, *radius, *lo, *hi);
-                xs.iter()
-                    .map(|x| {
-                        let (d1, d2) = (x[a1] - c1, x[a2] - c2);
-                        let dist = (d1 * d1 + d2 * d2).sqrt();
-                        (dist <= radius && x[axis] >= lo && x[axis] <= hi) == interior
-                    })
-                    .collect()
-            }
-            (Shape::Block { lo, hi }, None) => xs
-                .iter()
-                .map(|x| (0..3).all(|d| x[d] >= lo[d] && x[d] <= hi[d]) == interior)
-                .collect(),
-            _ => xs.iter().map(|&x| self.matches(index, x)).collect(),
-        }
+        xs.iter().map(|&x| self.matches(index, x)).collect()
     }
 
     fn inside(&self, shape: &Shape, x: [f64; 3]) -> bool {

@@ -484,13 +484,18 @@ impl<'a> RunVariables<'a> {
         }
     }
 
-    /// A scope over `sim`, with the per-atom values held so far.
-    fn scope<'s>(&'s mut self, sim: &'s Simulation) -> Scope<'s> {
+    /// `f` in a scope over `sim` that starts from the per-atom values held so far and, while
+    /// holding, keeps what it evaluated for the next request.
+    fn in_scope<R>(&mut self, sim: &Simulation, f: impl FnOnce(&mut Scope) -> R) -> R {
         let mut scope = Scope::new(self.vars, self.sys, sim);
         if let Some(held) = self.held.as_mut() {
             scope.per_atom = std::mem::take(held);
         }
-        scope
+        let result = f(&mut scope);
+        if let Some(held) = self.held.as_mut() {
+            *held = std::mem::take(&mut scope.per_atom);
+        }
+        result
     }
 }
 
@@ -531,25 +536,12 @@ impl VariableSource for RunVariables<'_> {
     }
 
     fn equal(&mut self, sim: &Simulation, name: &str) -> Result<f64, EngineError> {
-        let holding = self.held.is_some();
-        let mut scope = self.scope(sim);
-        let value = scope.equal_variable(name);
-        let kept = std::mem::take(&mut scope.per_atom);
-        if holding {
-            self.held = Some(kept);
-        }
-        Ok(value?)
+        Ok(self.in_scope(sim, |scope| scope.equal_variable(name))?)
     }
 
     fn atom(&mut self, sim: &Simulation, name: &str) -> Result<Vec<f64>, EngineError> {
-        let holding = self.held.is_some();
-        let mut scope = self.scope(sim);
-        let values = scope.atom_variable(name);
-        let kept = std::mem::take(&mut scope.per_atom);
-        if holding {
-            self.held = Some(kept);
-        }
-        Ok(values?.as_ref().clone())
+        let values = self.in_scope(sim, |scope| scope.atom_variable(name))?;
+        Ok(values.as_ref().clone())
     }
 
     fn hold(&mut self, on: bool) {

@@ -174,6 +174,11 @@ pub fn push_g(out: &mut String, value: f64) {
 /// `sprintf(spec, value)` appended to `out`; `spec` must hold exactly one float conversion.
 /// Short specs and results go through buffers on the stack.
 fn push_c_f64(out: &mut String, spec: &str, value: f64) {
+    if let Some((width, precision)) = plain_g(spec) {
+        if push_g_digits(out, value, width, precision) {
+            return;
+        }
+    }
     let mut fmt = [0u8; 40];
     if spec.len() >= fmt.len() || spec.contains('\0') {
         out.push_str(&c_format_f64(spec, value));
@@ -197,6 +202,136 @@ fn push_c_f64(out: &mut String, spec: &str, value: f64) {
         Ok(text) if n < buf.len() => out.push_str(text),
         _ => out.push_str(&c_format_f64(spec, value)),
     }
+}
+
+/// Width and precision of a spec `%g`, `%.Pg`, `%Wg` or `%W.Pg` (no flags, no length
+/// modifier), the dumps' and thermo's usual conversions; None for any other spec.
+fn plain_g(spec: &str) -> Option<(usize, usize)> {
+    let body = spec.strip_prefix('%')?.strip_suffix('g')?;
+    let (width, precision) = match body.split_once('.') {
+        Some((w, p)) => (w, Some(p)),
+        None => (body, None),
+    };
+    let digits = |t: &str| t.len() <= 2 && t.bytes().all(|b| b.is_ascii_digit());
+    // a leading 0 is the zero-padding flag, not a width
+    if !digits(width) || width.starts_with('0') {
+        return None;
+    }
+    let width = width.parse().unwrap_or(0);
+    let precision = match precision {
+        None => 6,
+        Some(p) if digits(p) => p.parse().unwrap_or(0),
+        Some(_) => return None,
+    };
+    Some((width, precision))
+}
+
+/// A fixed buffer on the stack that `write!` fills (false once it is full).
+struct StackText {
+    buf: [u8; 48],
+    len: usize,
+}
+
+impl std::fmt::Write for StackText {
+    fn write_str(&mut self, s: &str) -> std::fmt::Result {
+        let end = self.len + s.len();
+        if end > self.buf.len() {
+            return Err(std::fmt::Error);
+        }
+        self.buf[self.len..end].copy_from_slice(s.as_bytes());
+        self.len = end;
+        Ok(())
+    }
+}
+
+/// C's `%W.Pg` of a finite `value` appended to `out`, from the correctly rounded decimal
+/// digits Rust's exponent formatting gives (C's printf rounds the exact binary value to
+/// nearest, ties to even, as Rust does): false, with nothing written, for values it leaves
+/// to the C library (infinities, NaN, more than 40 significant digits).
+fn push_g_digits(out: &mut String, value: f64, width: usize, precision: usize) -> bool {
+    use std::fmt::Write;
+    let p = precision.max(1);
+    if !value.is_finite() || p > 40 {
+        return false;
+    }
+    let mut text = StackText {
+        buf: [0; 48],
+        len: 0,
+    };
+    if write!(text, "{:.*e}", p - 1, value.abs()).is_err() {
+        return false;
+    }
+    let text = &text.buf[..text.len];
+    let Some(e_at) = text.iter().position(|&b| b == b'e') else {
+        return false;
+    };
+    let exponent: i32 = match std::str::from_utf8(&text[e_at + 1..]).map(str::parse) {
+        Ok(Ok(x)) => x,
+        _ => return false,
+    };
+    // the P significant digits, without the point
+    let mut digits = [0u8; 41];
+    let mut n = 0;
+    for &b in text[..e_at].iter().filter(|b| b.is_ascii_digit()) {
+        digits[n] = b;
+        n += 1;
+    }
+    let mut body = [0u8; 64];
+    let mut len = 0;
+    let mut put = |b: u8| {
+        body[len] = b;
+        len += 1;
+    };
+    if value.is_sign_negative() {
+        put(b'-');
+    }
+    if exponent < -4 || exponent >= p as i32 {
+        // d.ddd (trailing zeros dropped) then e+XX with at least two exponent digits
+        let kept = digits[1..n]
+            .iter()
+            .rposition(|&d| d != b'0')
+            .map_or(0, |k| k + 1);
+        put(digits[0]);
+        if kept > 0 {
+            put(b'.');
+            digits[1..=kept].iter().for_each(|&d| put(d));
+        }
+        put(b'e');
+        put(if exponent < 0 { b'-' } else { b'+' });
+        let x = exponent.unsigned_abs();
+        if x >= 100 {
+            put(b'0' + (x / 100) as u8);
+        }
+        put(b'0' + (x / 10 % 10) as u8);
+        put(b'0' + (x % 10) as u8);
+    } else {
+        // fixed: the same digits around the point, trailing zeros of the fraction dropped
+        let kept = digits[..n]
+            .iter()
+            .rposition(|&d| d != b'0')
+            .map_or(0, |k| k + 1);
+        if exponent >= 0 {
+            let int = exponent as usize + 1;
+            digits[..int].iter().for_each(|&d| put(d));
+            if kept > int {
+                put(b'.');
+                digits[int..kept].iter().for_each(|&d| put(d));
+            }
+        } else {
+            put(b'0');
+            if kept > 0 {
+                put(b'.');
+                (1..-exponent).for_each(|_| put(b'0'));
+                digits[..kept].iter().for_each(|&d| put(d));
+            }
+        }
+    }
+    for _ in len..width {
+        out.push(' ');
+    }
+    // every byte written above is ASCII
+    out.push_str(std::str::from_utf8(&body[..len]).unwrap_or_default());
+    true
 }
 
 /// `sprintf(spec, value)` for a double; `spec` must hold exactly one float conversion.
@@ -307,6 +442,90 @@ mod tests {
         let mut line = String::from("x ");
         push_g(&mut line, 2.0 / 3.0);
         assert_eq!(line, "x 0.666667");
+    }
+
+    /// C's own `snprintf` of one double (the reference for the digits path).
+    fn c_reference(spec: &str, value: f64) -> String {
+        c_format_f64(spec, value)
+    }
+
+    #[test]
+    fn g_digits_match_the_c_library() {
+        let specs = [
+            "%g", "%.1g", "%.2g", "%.3g", "%.8g", "%.10g", "%.15g", "%.16g", "%.17g", "%.20g",
+            "%.0g", "%14.8g", "%20.17g", "%12g", "%.25g", "%3.2g",
+        ];
+        // values at ties and rounding edges, powers of ten, extremes, subnormals, zeros
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.5,
+            1.5,
+            2.5,
+            0.125,
+            0.375,
+            1e-4,
+            9.99995e-5,
+            1e-5,
+            99999.95,
+            999999.5,
+            9999995.0,
+            1e15,
+            1e16,
+            1e17,
+            1e21,
+            1e22,
+            1e-300,
+            5e-324,
+            2.2250738585072014e-308,
+            1.7976931348623157e308,
+            123456.5,
+            1234567.5,
+            0.00012345,
+            1.0 / 3.0,
+            2.0 / 3.0,
+        ];
+        for e in -30..30 {
+            for m in [1.0, 2.5, 5.0, 9.5, 9.95, 9.995, 9.9999995, 1.25, 7.0] {
+                values.push(m * 10f64.powi(e));
+            }
+        }
+        // pseudo-random doubles over the whole range and near one (a fixed stream)
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        for k in 0..20_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let v = if k % 2 == 0 {
+                f64::from_bits(state)
+            } else {
+                (state >> 11) as f64 / (1u64 << 53) as f64 * 10f64.powi((k % 40) - 20)
+            };
+            if v.is_finite() {
+                values.push(v);
+            }
+        }
+        for &v in &values {
+            for value in [v, -v] {
+                for spec in specs {
+                    let mut fast = String::new();
+                    push_c_f64(&mut fast, spec, value);
+                    assert_eq!(fast, c_reference(spec, value), "{spec} of {value:e}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn only_plain_g_specs_take_the_digits_path() {
+        assert_eq!(plain_g("%g"), Some((0, 6)));
+        assert_eq!(plain_g("%14.8g"), Some((14, 8)));
+        assert_eq!(plain_g("%.0g"), Some((0, 0)));
+        for other in [
+            "%-14.8g", "%014g", "%+g", "%#g", "%G", "%e", "%.8f", "%lg", "%123g",
+        ] {
+            assert_eq!(plain_g(other), None, "{other}");
+        }
     }
 
     #[test]

@@ -206,6 +206,14 @@ impl Simulation {
         &mut self,
         vars: &mut dyn VariableSource,
     ) -> Result<(), EngineError> {
+        let dynamic = self.regions.list.iter().any(|r| r.is_dynamic());
+        let evaluating = self
+            .fixes
+            .iter()
+            .any(|f| matches!(&f.kind, FixKind::Style(s) if s.evaluates()));
+        if !dynamic && !evaluating {
+            return Ok(());
+        }
         // the particles stay put until the forcing fixes run: a variable read by several
         // fixes and regions here is evaluated once
         vars.hold(true);

@@ -258,6 +258,9 @@ impl Simulation {
         let (order, start) = self.accel.install(|| grid.sort(x));
         if order.iter().enumerate().any(|(k, &i)| k != i) {
             self.particles.permute(&order);
+            if let Some(removal) = &mut self.removal {
+                removal.permute(&order);
+            }
         }
         let chunk = n.div_ceil(self.accel.thread_count() * 8).max(512);
         let p = &self.particles;
@@ -344,6 +347,9 @@ impl Simulation {
     /// list, its history and every per-particle record of the last step follow them.
     pub(crate) fn permute_particles(&mut self, order: &[usize]) {
         self.particles.permute(order);
+        if let Some(removal) = &mut self.removal {
+            removal.permute(order);
+        }
         let mut new_of_old = vec![0u32; order.len()];
         for (new, &old) in order.iter().enumerate() {
             new_of_old[old] = new as u32;

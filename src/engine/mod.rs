@@ -44,6 +44,7 @@ pub mod rdf;
 pub mod region;
 pub mod region_motion;
 pub mod region_wedge;
+pub mod removal_history;
 pub mod restart_fixes;
 pub mod restart_state;
 pub mod rigid_body;

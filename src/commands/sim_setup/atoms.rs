@@ -425,7 +425,7 @@ pub(super) fn delete_atoms(a: &Args, ctx: &mut Ctx) -> Result {
     }
     let before = p.len();
     // as LIGGGHTS: each deleted particle's slot is taken by the last one
-    ctx.sim.particles.remove_filling_from_last(&remove);
+    ctx.sim.remove_between_runs(&remove);
     let p = &mut ctx.sim.particles;
     if compress {
         // IDs 1..N in memory order (LIGGGHTS's memory order also reflects its spatial sort

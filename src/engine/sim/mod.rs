@@ -280,6 +280,9 @@ pub struct Simulation {
     pub restart_output: [Option<RestartOutput>; 2],
     /// Pair contact history from `read_restart`, applied at the next neighbour build.
     pub pending_history: Option<crate::engine::restart_state::PendingHistory>,
+    /// Particles removed between runs since the last list build: how LIGGGHTS's partner
+    /// arrays will read the old list at the next build.
+    pub(crate) removal: Option<crate::engine::removal_history::Removal>,
     /// The energy guard's last look: (step, kinetic energy).
     pub energy_watch: Option<(i64, f64)>,
     /// What the guards have seen in this run that does not stop it (warned once, summed up
@@ -429,6 +432,7 @@ impl Default for Simulation {
             inserts_atoms: false,
             restart_output: [None, None],
             pending_history: None,
+            removal: None,
             restart_in_progress: false,
             restart_fixes: Vec::new(),
             restart_peratom: Vec::new(),

@@ -55,6 +55,60 @@ fn touches(p: &Particles, pair: &Pair, factor: f64) -> bool {
 }
 
 impl Simulation {
+    /// Remove the particles flagged in `remove` between runs, as LIGGGHTS's `delete_atoms`
+    /// does (each removed slot filled by the last particle), noting what the next list
+    /// build needs to carry contact history as LIGGGHTS does after such a removal.
+    pub fn remove_between_runs(&mut self, remove: &[bool]) {
+        let width = self.pair.as_ref().map_or(0, |p| p.history_width());
+        let listed = !self.list.pairs.is_empty() || !self.list.mirrors.is_empty();
+        if width > 0 && listed {
+            let factor = self.contact_factor();
+            let p = &self.particles;
+            // LIGGGHTS's contact flags: set when a pair touches and kept until the next
+            // build (a dry pair's flags are never cleared), so a pair counts if it touches
+            // now (the image's position first) or has history from an earlier touch
+            let touching = |pair: &Pair| {
+                let (i, j) = (pair.i as usize, pair.j as usize);
+                if i >= p.len() || j >= p.len() {
+                    return false;
+                }
+                let d = [0, 1, 2].map(|c| p.x[i][c] - (p.x[j][c] + pair.shift[c]));
+                let radsum = (p.radius[i] + p.radius[j]) * factor;
+                d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < radsum * radsum
+            };
+            let (pairs, mirrors) = (&self.list.pairs, &self.list.mirrors);
+            let old = crate::engine::mirror_history::Sides {
+                pairs,
+                mirrors,
+                mirrored: self.list.mirrored,
+                history: &self.history,
+                mirror_history: &self.mirror_history,
+            };
+            self.removal = Some(crate::engine::removal_history::Removal::record(
+                self.removal.take(),
+                &old,
+                &self.list_ids,
+                &p.id,
+                remove,
+                || {
+                    let touched = |pair: &Pair, history: &[f64], k: usize| {
+                        let h = history.get(k * width..(k + 1) * width).unwrap_or_default();
+                        touching(pair) || h.iter().any(|&v| v != 0.0)
+                    };
+                    (
+                        (pairs.iter().enumerate())
+                            .map(|(k, pair)| touched(pair, &self.history, k))
+                            .collect(),
+                        (mirrors.iter().enumerate())
+                            .map(|(k, m)| touched(&m.pair, &self.mirror_history, k))
+                            .collect(),
+                    )
+                },
+            ));
+        }
+        self.particles.remove_filling_from_last(remove);
+    }
+
     /// LIGGGHTS's spatial sort of the particle arrays (`Atom::sort`): bins of half the
     /// neighbour cutoff over the box, x fastest, particles in their previous order inside
     /// a bin. Without a pair style LIGGGHTS refuses to sort (bin size 0); regolith then
@@ -81,6 +135,9 @@ impl Simulation {
         order.sort_by_key(|&i| bins[i]);
         if order.iter().enumerate().any(|(k, &i)| k != i) {
             self.particles.permute(&order);
+            if let Some(removal) = &mut self.removal {
+                removal.permute(&order);
+            }
         }
     }
 
@@ -300,6 +357,34 @@ impl Simulation {
             Vec::new()
         };
         let old_mirrored = old.mirrored;
+        let removal = self.removal.take();
+        if let (Some(removal), false, false) = (
+            removal.as_ref(),
+            old_pairs.is_empty() && old.mirrors.is_empty(),
+            self.pending_history.is_some(),
+        ) {
+            let sides = crate::engine::mirror_history::Sides {
+                pairs: &old_pairs,
+                mirrors: &old.mirrors,
+                mirrored: old_mirrored,
+                history: &self.history,
+                mirror_history: &old.mirror_history,
+            };
+            let (h, m) = crate::engine::removal_history::carry_after_removal(
+                &sides,
+                removal,
+                &self.list.pairs,
+                &self.list.mirrors,
+                &self.particles.id,
+                &flips,
+            );
+            self.history = h;
+            self.mirror_history = m;
+            if width > 0 {
+                self.zero_separated(width, factor, false);
+            }
+            return;
+        }
         if self.list.mirrored || old_mirrored {
             let sides = crate::engine::mirror_history::Sides {
                 pairs: &old_pairs,

@@ -6,7 +6,6 @@ use crate::commands::{Args, Ctx};
 use crate::engine::error::EngineError;
 use crate::engine::fixes::FixKind;
 use crate::engine::sim::Dump;
-use crate::io::dump::Layout;
 use crate::lang::system::Mode;
 
 mod compute;
@@ -210,135 +209,25 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.error(3, "Illegal dump command"));
     }
     let file = a.word(4)?;
-    let mut dump_style = crate::engine::sim::DumpStyle::Text;
-    if style == "custom/vtk" {
-        check_vtk_file(a, file)?;
-    }
-    registry::require_style(a, "dump")?;
-    let layout = match style {
-        "atom" | "xyz" => {
-            a.count(5..=5, &format!("dump ID GROUP {style} N FILE"))?;
-            if style == "xyz" {
-                if file.ends_with(".bin") {
-                    // LAMMPS's xyz dumps have no binary format
-                    return Err(a.error(4, "Invalid dump xyz filename"));
-                }
-                dump_style = crate::engine::sim::DumpStyle::Xyz(Vec::new());
-                Layout::new(&[]).expect("no columns")
-            } else {
-                let mut l = Layout::new(&["id", "type", "xs", "ys", "zs"]).expect("known columns");
-                l.no_trailing_blank = true;
-                l
-            }
-        }
-        "mesh/vtk" | "mesh/gran/VTK" => {
-            if !file.ends_with(".vtk") {
-                return Err(a.unsupported(
-                    4,
-                    &format!(
-                        "dump {style} to XML or parallel VTK files (regolith writes legacy .vtk)"
-                    ),
-                ));
-            }
-            let words: Vec<&str> = (5..a.len())
-                .map(|i| a.word(i))
-                .collect::<std::result::Result<_, _>>()?;
-            let fixes = &ctx.sim.fixes;
-            let spec = crate::io::mesh_vtk::parse_keywords(
-                &words,
-                |w| {
-                    fixes
-                        .iter()
-                        .any(|f| f.id == w && matches!(f.kind, FixKind::Mesh(_)))
-                },
-                |_| false,
-            )
-            .map_err(|m| a.error(5, format!("dump {style}: {m}")))?;
-            dump_style = crate::engine::sim::DumpStyle::MeshVtk(spec);
-            Layout::new(&[]).expect("no columns")
-        }
-        "mesh/stl" | "stl" => {
-            let ids = stl_meshes(a, ctx)?;
-            dump_style = crate::engine::sim::DumpStyle::MeshStl(ids);
-            Layout::new(&[]).expect("no columns")
-        }
-        "custom" | "custom/vtk" => {
-            let names: Vec<&str> = (5..a.len())
-                .map(|i| a.word(i))
-                .collect::<std::result::Result<_, _>>()?;
-            if names.is_empty() {
-                return Err(a
-                    .error(4, "Illegal dump custom command")
-                    .with_help("list the columns to dump"));
-            }
-            check_custom_columns(a, ctx, &names)?;
-            let layout = Layout::new(&names).map_err(|e| {
-                let k = match &e {
-                    crate::io::dump::ColumnError::Attribute(w) => {
-                        names.iter().position(|n| n == w).unwrap_or(0)
-                    }
-                    _ => 0,
-                };
-                a.error(5 + k, &e)
-            })?;
-            // the molecule ID exists only with fix multisphere (its body tags)
-            if let Some(k) = names.iter().position(|n| *n == "mol") {
-                if ctx.sim.clumps().is_none() {
-                    return Err(a.error(5 + k, "Dumping an atom property that isn't allocated"));
-                }
-            }
-            if style == "custom/vtk" {
-                dump_style =
-                    crate::engine::sim::DumpStyle::Vtk(crate::io::vtk::fields(&layout.names));
-            }
-            layout
-        }
-        "local" => {
-            let names: Vec<&str> = (5..a.len())
-                .map(|i| a.word(i))
-                .collect::<std::result::Result<_, _>>()?;
-            if names.is_empty() {
-                return Err(a.error(4, "Illegal dump local command"));
-            }
-            let cols = local_columns(a, ctx, &names)?;
-            let mut layout = Layout::new(&[]).expect("no columns");
-            layout.names = names.iter().map(|s| s.to_string()).collect();
-            ctx.sim.dumps.push(Dump {
-                id: id.to_string(),
-                group: bit,
-                every,
-                file: ctx.sys.resolve(file).to_string_lossy().into_owned(),
-                layout,
-                local: Some(cols),
-                last_written: None,
-                handle: None,
-                first: false,
-                pad: 0,
-                style: crate::engine::sim::DumpStyle::Text,
-            });
-            return Ok(());
-        }
-        "euler/vtk" => {
-            if !file.contains('*') {
-                return Err(a.error(4, "You should use a filename like 'dump*.vtk' for the 'dump euler/vtk' command to produce one file per time-step"));
-            }
-            dump_style = crate::engine::sim::DumpStyle::EulerVtk;
-            Layout::new(&[]).expect("no columns")
-        }
-        "local/gran/vtk" => {
-            let cid = local_gran_vtk_compute(a, ctx, file)?;
-            dump_style = crate::engine::sim::DumpStyle::LocalGranVtk(cid);
-            Layout::new(&[]).expect("no columns")
-        }
-        other => return Err(a.unsupported(2, &format!("dump {other}"))),
+    let Some(row) = crate::commands::dump::module_row(style) else {
+        registry::require_style(a, "dump")?;
+        return Err(a.unsupported(2, &format!("dump {style}")));
     };
+    let def = crate::commands::dump::DumpDef {
+        id,
+        group,
+        bit,
+        style,
+        every,
+        file,
+    };
+    let (layout, dump_style) = (row.build)(a, ctx, &def)?;
     ctx.sim.dumps.push(Dump {
         id: id.to_string(),
         group: bit,
         every,
         file: ctx.sys.resolve(file).to_string_lossy().into_owned(),
         layout,
-        local: None,
         last_written: None,
         handle: None,
         first: false,
@@ -346,158 +235,6 @@ pub(super) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
         style: dump_style,
     });
     Ok(())
-}
-
-/// The file of `dump custom/vtk`: a serial VTK file regolith writes, not gzipped.
-fn check_vtk_file(a: &Args, file: &str) -> Result {
-    if file.ends_with(".gz") {
-        return Err(a.error(4, "dump custom/vtk files cannot be gzipped"));
-    }
-    if file.ends_with(".vtm") {
-        return Err(a.unsupported(4, "dump custom/vtk multiblock files (.vtm)"));
-    }
-    if crate::io::vtk::Flavor::of(file).is_none() {
-        return Err(a.error(
-            4,
-            "dump custom/vtk: the file name must end in .vtk, .vtp, .vtu, .pvtp or .pvtu",
-        ));
-    }
-    Ok(())
-}
-
-/// The `f_`, `v_` and `c_` columns of `dump custom`: fixes with per-atom values, atom-style
-/// variables and computes with per-atom values, checked as LIGGGHTS checks them.
-fn check_custom_columns(a: &Args, ctx: &Ctx, names: &[&str]) -> Result {
-    for (k, n) in names.iter().enumerate() {
-        if let Some(body) = n.strip_prefix("f_") {
-            let (fid, index) = crate::util::numbers::split_reference(body)
-                .ok_or_else(|| a.error(5 + k, "Invalid attribute in dump custom command"))?;
-            crate::engine::fix_columns::column(ctx.sim, fid, index)
-                .map_err(|m| a.error(5 + k, &m))?;
-        }
-    }
-    for (k, n) in names.iter().enumerate() {
-        if let Some(var) = n.strip_prefix("v_") {
-            match ctx.vars.get(var).map(|v| v.style) {
-                Some(crate::lang::variables::Style::Atom) => {}
-                Some(_) => {
-                    return Err(a.error(5 + k, "Dump custom variable is not atom-style variable"))
-                }
-                None => return Err(a.error(5 + k, "Could not find dump custom variable name")),
-            }
-        }
-    }
-    for (k, n) in names.iter().enumerate() {
-        if let Some(body) = n.strip_prefix("c_") {
-            let (cid, index) = crate::util::numbers::split_reference(body)
-                .ok_or_else(|| a.error(5 + k, "Invalid attribute in dump custom command"))?;
-            let c = ctx
-                .sim
-                .computes
-                .iter()
-                .find(|c| c.id == cid)
-                .ok_or_else(|| a.error(5 + k, "Could not find dump custom compute ID"))?;
-            crate::engine::computes::column_of(c, index)
-                .map_err(|m| a.error(5 + k, format!("Dump custom: {m}")))?;
-        }
-    }
-    Ok(())
-}
-
-/// The columns of `dump local`: each a local vector or array column of a compute, as
-/// (compute ID, 0-based column).
-fn local_columns(
-    a: &Args,
-    ctx: &Ctx,
-    names: &[&str],
-) -> std::result::Result<Vec<(String, usize)>, CommandError> {
-    let mut cols = Vec::new();
-    for (k, n) in names.iter().enumerate() {
-        let body = n
-            .strip_prefix("c_")
-            .ok_or_else(|| a.unsupported(5 + k, &format!("dump local column {n}")))?;
-        let (cid, index) = crate::util::numbers::split_reference(body)
-            .ok_or_else(|| a.error(5 + k, "Invalid attribute in dump local command"))?;
-        let c = ctx
-            .sim
-            .computes
-            .iter()
-            .find(|c| c.id == cid)
-            .ok_or_else(|| a.error(5 + k, "Could not find dump local compute ID"))?;
-        use crate::engine::computes::LocalRows;
-        match c.style().local_rows() {
-            Some(LocalRows::VectorOrArray) => {}
-            Some(LocalRows::Array) => {
-                if index.is_none() {
-                    return Err(
-                        a.error(5 + k, "Dump local compute does not calculate local vector")
-                    );
-                }
-            }
-            None => return Err(a.error(5 + k, "Dump local compute does not compute local info")),
-        }
-        cols.push((cid.to_string(), index.unwrap_or(1).max(1) - 1));
-    }
-    Ok(cols)
-}
-
-/// The compute `pair/gran/local` (with positions) that `dump local/gran/vtk` writes, and
-/// its file checked to be legacy VTK.
-fn local_gran_vtk_compute(
-    a: &Args,
-    ctx: &Ctx,
-    file: &str,
-) -> std::result::Result<String, CommandError> {
-    if a.len() < 6 {
-        return Err(a
-            .error(4, "dump local/gran/vtk requires 6 arguments")
-            .with_help("name a compute pair/gran/local after the file"));
-    }
-    let cid = a.word(5)?;
-    let fields = ctx
-        .sim
-        .computes
-        .iter()
-        .find(|c| c.id == cid)
-        .and_then(|c| c.style().local_fields())
-        .ok_or_else(|| {
-            a.error(
-                5,
-                "dump local/gran/vtk requires a valid ID of a compute pair/gran/local to be provided",
-            )
-        })?;
-    if !fields.contains(&crate::engine::computes::LocalField::Pos) {
-        return Err(a.error(
-            5,
-            "dump local/gran/vtk requires a valid ID of a compute pair/gran/local that writes the positions",
-        ));
-    }
-    if crate::io::vtk::is_parallel(file) {
-        // LIGGGHTS 3.8.0's parallel names set its old `%` flag, which the style then refuses
-        return Err(a.error(4, "dump local/gran/vtk no longer allow parallel writing by setting the % character. Instead use a filename with suffix .pvtX (X = {u, p})."));
-    }
-    Ok(cid.to_string())
-}
-
-/// The mesh IDs `dump mesh/stl` writes (words 5 on), each a `fix mesh/surface`.
-fn stl_meshes(a: &Args, ctx: &Ctx) -> std::result::Result<Vec<String>, CommandError> {
-    let ids: Vec<String> = (5..a.len())
-        .map(|i| a.word(i).map(str::to_string))
-        .collect::<std::result::Result<_, _>>()?;
-    for (k, id) in ids.iter().enumerate() {
-        let is_mesh = ctx
-            .sim
-            .fixes
-            .iter()
-            .any(|f| &f.id == id && matches!(f.kind, FixKind::Mesh(_)));
-        if !is_mesh {
-            return Err(a.error(
-                5 + k,
-                "Could not find fix mesh/surface ID for dump mesh/stl",
-            ));
-        }
-    }
-    Ok(ids)
 }
 
 pub(super) fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
@@ -548,23 +285,18 @@ pub(super) fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
                 let names: Vec<String> = (i + 1..=i + n)
                     .map(|k| a.word(k).map(str::to_string))
                     .collect::<std::result::Result<_, _>>()?;
-                if let crate::engine::sim::DumpStyle::Xyz(e) = &mut ctx.sim.dumps[k].style {
+                if let Some(e) = ctx.sim.dumps[k].style.elements() {
                     *e = names;
                 }
                 i += n + 1;
                 continue;
             }
-            "binary" if matches!(dump.style, crate::engine::sim::DumpStyle::Vtk(_)) => {
+            "binary" if dump.style.takes_binary() == Some(true) => {
                 dump.layout.binary = a.word_in(i + 1, &["yes", "no"])? == "yes";
             }
             // LIGGGHTS's text dumps take no `binary` keyword (a `.bin` file name makes
             // `dump custom` binary)
-            "binary"
-                if matches!(
-                    dump.style,
-                    crate::engine::sim::DumpStyle::Text | crate::engine::sim::DumpStyle::Xyz(_)
-                ) =>
-            {
+            "binary" if dump.style.takes_binary() == Some(false) => {
                 return Err(a
                     .error(i, "Illegal dump_modify command")
                     .with_help("dump custom writes LAMMPS's binary format to a file named *.bin"));

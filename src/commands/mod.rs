@@ -7,6 +7,7 @@ pub mod change_box;
 pub mod compute;
 pub mod compute_modify;
 pub mod diverged;
+pub mod dump;
 pub mod error;
 pub mod fix;
 pub mod fix_modify;

@@ -143,12 +143,13 @@ pub fn validate_names(cmd: &CommandLine) -> Result<(), CommandError> {
     Ok(())
 }
 
-/// Whether `style` is a module fix or compute style added at run time (its name need not
+/// Whether `style` is a module fix, compute or dump style added at run time (its name need not
 /// be one LIGGGHTS knows).
 fn is_registered_module(kind: NameKind, style: &str) -> bool {
     match kind {
         NameKind::FixStyle => crate::commands::fix::is_registered(style),
         NameKind::ComputeStyle => crate::commands::compute::is_registered(style),
+        NameKind::DumpStyle => crate::commands::dump::is_registered(style),
         _ => false,
     }
 }

@@ -206,17 +206,6 @@ pub const SPECS: &[Spec] = &[
     command("dimension 2|3", "the dimension (2: discs moving in the xy plane; z periodic)"),
     command("displace_atoms GROUP move|random ...", "move particles by a displacement or at random"),
     command("replicate NX NY NZ offset OX OY OZ shift SX SY SZ", "copy the particles NX x NY x NZ times, each copy moved by multiples of the offset (length), the box grown from its corner moved by the shift"),
-    style("dump", "atom", "dump ID GROUP atom N FILE", &[], "positions, scaled, every N steps (LAMMPS layout)"),
-    style("dump", "custom", "dump ID GROUP custom N FILE COLUMN ...", &[], "chosen per-particle columns every N steps (LAMMPS's binary format for a FILE named *.bin)"),
-    style("dump", "custom/vtk", "dump ID GROUP custom/vtk N FILE.vtk|vtp|vtu|pvtp|pvtu COLUMN ...", &[], "chosen per-particle columns as VTK files (.pvtp/.pvtu: a parallel master file and its one piece FILE_0.vtp/.vtu)"),
-    style("dump", "euler/vtk", "dump ID GROUP euler/vtk N FILE*.vtk", &[], "the cells of the first fix ave/euler as legacy VTK points (average velocity, volume fraction, radius, pressure)"),
-    style("dump", "local/gran/vtk", "dump ID GROUP local/gran/vtk N FILE.vtk|FILE.vtp|FILE.vtu COMPUTE", &[], "the contacts of a compute pair/gran/local or wall/gran/local as VTK lines (legacy .vtk, XML .vtp polydata or .vtu grid)"),
-    style("dump", "local", "dump ID GROUP local N FILE c_ID[N] ...", &[], "per-contact columns of local computes"),
-    style("dump", "mesh/gran/VTK", "dump ID GROUP mesh/gran/VTK N FILE [MESH ...]", &[], "meshes as legacy VTK"),
-    style("dump", "mesh/stl", "dump ID GROUP mesh/stl N FILE [MESH ...]", &[], "meshes as STL"),
-    style("dump", "mesh/vtk", "dump ID GROUP mesh/vtk N FILE [MESH ...]", &[], "meshes as VTK"),
-    style("dump", "stl", "dump ID GROUP stl N FILE [MESH ...]", &[], "the same as mesh/stl"),
-    style("dump", "xyz", "dump ID GROUP xyz N FILE", &[], "type and position every N steps"),
     with(command("dump_modify ID KEYWORD VALUE ...", "change a dump's settings"), &[
         kw("every", &[arg("N", Value::Int)], "steps between snapshots"),
         kw("first", &[arg("yes|no", YES_NO)], "write on the first step of the run"),
@@ -346,8 +335,9 @@ pub const SPECS: &[Spec] = &[
 ];
 
 /// Every declared spec: [`SPECS`], with the module fix styles' rows
-/// ([`crate::commands::fix::MODULES`]) after the last fix style there and the compute
-/// styles' rows ([`crate::commands::compute::MODULES`]) before `compute_modify`.
+/// ([`crate::commands::fix::MODULES`]) after the last fix style there, the compute styles'
+/// rows ([`crate::commands::compute::MODULES`]) before `compute_modify` and the dump
+/// styles' rows ([`crate::commands::dump::MODULES`]) before `dump_modify`.
 pub fn all() -> impl Iterator<Item = &'static Spec> {
     let after = |command: &str| {
         SPECS
@@ -359,19 +349,26 @@ pub fn all() -> impl Iterator<Item = &'static Spec> {
         .iter()
         .position(|s| s.command == "compute_modify")
         .unwrap_or(SPECS.len());
+    let dumps = SPECS
+        .iter()
+        .position(|s| s.command == "dump_modify")
+        .unwrap_or(SPECS.len());
     let fixes = after("fix");
     let fix_modules = crate::commands::fix::MODULES.iter().map(|row| &row.spec);
     let compute_modules = crate::commands::compute::MODULES
         .iter()
         .map(|row| &row.spec);
+    let dump_modules = crate::commands::dump::MODULES.iter().map(|row| &row.spec);
     debug_assert!(
-        computes <= fixes,
-        "compute styles come before fix styles in SPECS"
+        computes <= dumps && dumps <= fixes,
+        "compute styles come before dump styles, and those before fix styles, in SPECS"
     );
     SPECS[..computes]
         .iter()
         .chain(compute_modules)
-        .chain(SPECS[computes..fixes].iter())
+        .chain(SPECS[computes..dumps].iter())
+        .chain(dump_modules)
+        .chain(SPECS[dumps..fixes].iter())
         .chain(fix_modules)
         .chain(SPECS[fixes..].iter())
 }

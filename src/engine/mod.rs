@@ -15,6 +15,7 @@ pub mod contact;
 pub mod decomp;
 pub mod deform;
 pub mod displacement;
+pub mod dump_style;
 pub mod error;
 pub mod extras;
 pub mod fix_columns;

@@ -185,9 +185,6 @@ pub struct Dump {
     pub file: String,
     /// Columns and formats.
     pub layout: Layout,
-    /// `dump local`: (compute ID, 0-based column) per column instead of the layout's
-    /// per-atom columns.
-    pub local: Option<Vec<(String, usize)>>,
     /// Last step written (a step is never written twice).
     pub last_written: Option<i64>,
     /// The open file for single-file dumps.
@@ -196,8 +193,8 @@ pub struct Dump {
     pub first: bool,
     /// `dump_modify pad N`: the step in `*` file names padded with zeros to N digits.
     pub pad: usize,
-    /// The dump style.
-    pub style: DumpStyle,
+    /// The dump style: what a snapshot holds and how it reaches files.
+    pub style: Box<dyn crate::engine::dump_style::DumpStyle>,
 }
 
 /// The `restart` command's periodic restart files.
@@ -235,26 +232,6 @@ impl std::io::Write for DumpFile {
             DumpFile::Gzip(g) => g.flush(),
         }
     }
-}
-
-/// How a dump writes its snapshots.
-#[derive(Debug, Clone, PartialEq)]
-pub enum DumpStyle {
-    /// `custom` (and `atom`, whose columns are fixed): `ITEM:` text; `local` dumps too.
-    Text,
-    /// `xyz`: count, comment line, then `element x y z`; element names per type
-    /// (`dump_modify element`, else the type number).
-    Xyz(Vec<String>),
-    /// `custom/vtk`: legacy VTK polydata with these fields, plus a bounding-box file.
-    Vtk(Vec<crate::io::vtk::Field>),
-    /// `mesh/stl`: the triangles of these mesh fixes (all when empty) as ASCII STL.
-    MeshStl(Vec<String>),
-    /// `mesh/vtk` (`mesh/gran/VTK`): meshes with per-triangle data as legacy VTK.
-    MeshVtk(crate::io::mesh_vtk::MeshDumpSpec),
-    /// `local/gran/vtk`: the contacts of this local compute (ID) as VTK lines.
-    LocalGranVtk(String),
-    /// `euler/vtk`: the cells of the first `fix ave/euler` as VTK points.
-    EulerVtk,
 }
 
 /// When the stress module of `mesh/surface/stress` acts.

@@ -78,7 +78,7 @@ impl Simulation {
         text: &[u8],
     ) -> Result<(), EngineError> {
         use std::io::Write;
-        let dump = &mut self.dumps[k];
+        let dump = &self.dumps[k];
         let multi = dump.file.contains('*');
         let step_text = format!("{step:0width$}", width = dump.pad);
         let name = dump.file.replace('*', &step_text);
@@ -99,53 +99,18 @@ impl Simulation {
         } else {
             text
         };
-        if let DumpStyle::Vtk(_) = dump.style {
-            // one snapshot per file (overwritten without `*`), and the box beside it
-            let mut bbox = Vec::new();
-            match crate::io::vtk::Flavor::of(&dump.file) {
-                Some(crate::io::vtk::Flavor::Legacy) | None if dump.layout.binary => {
-                    crate::io::vtk::write_bounding_box_binary(&mut bbox, &self.domain)
-                }
-                Some(crate::io::vtk::Flavor::Legacy) | None => {
-                    crate::io::vtk::write_bounding_box(&mut bbox, &self.domain)
-                }
-                Some(_) => crate::io::vtk::write_bounding_box_xml(
-                    &mut bbox,
-                    &self.domain,
-                    dump.layout.binary,
-                ),
-            }
-            .map_err(|e| e.to_string())?;
-            if crate::io::vtk::is_parallel(&name) {
-                // the master file names its one piece (the process-0 file LIGGGHTS writes)
-                let piece = crate::io::vtk::piece_name(&name);
-                let source = piece.rsplit('/').next().unwrap_or(&piece);
-                let flavor = crate::io::vtk::Flavor::of(&name).expect("a parallel VTK name");
-                let master =
-                    crate::io::vtk::parallel_master(&String::from_utf8_lossy(text), source, flavor);
-                crate::io::write_atomically(&piece, text)
-                    .map_err(|e| format!("Cannot open dump file {piece}: {e}"))?;
-                crate::io::write_atomically(&name, master.as_bytes())
-                    .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
-            } else {
-                crate::io::write_atomically(&name, text)
-                    .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
-            }
-            let box_name = crate::io::vtk::bounding_box_name(&dump.file, &step_text);
-            crate::io::write_atomically(&box_name, &bbox)
-                .map_err(|e| format!("Cannot open dump file {box_name}: {e}"))?;
-        } else if multi
-            || matches!(
-                dump.style,
-                DumpStyle::MeshStl(_)
-                    | DumpStyle::MeshVtk(_)
-                    | DumpStyle::LocalGranVtk(_)
-                    | DumpStyle::EulerVtk
-            )
-        {
-            crate::io::write_atomically(&name, text)
-                .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
+        if multi || dump.style.whole_files() {
+            dump.style
+                .write_whole(&crate::engine::dump_style::WholeSnapshot {
+                    domain: &self.domain,
+                    file: &dump.file,
+                    name: &name,
+                    step_text: &step_text,
+                    binary: dump.layout.binary,
+                    text,
+                })?;
         } else {
+            let dump = &mut self.dumps[k];
             if dump.handle.is_none() {
                 let f = std::fs::File::create(&name)
                     .map_err(|e| format!("Cannot open dump file {name}: {e}"))?;
@@ -165,19 +130,5 @@ impl Simulation {
                 .map_err(|e| format!("{name}: {e}"))?;
         }
         Ok(())
-    }
-
-    /// The text of a `dump euler/vtk` snapshot: the first `fix ave/euler`'s cells.
-    pub(super) fn euler_vtk(&self) -> Result<String, EngineError> {
-        self.fixes
-            .iter()
-            .find_map(|f| match &f.kind {
-                FixKind::Style(s) if f.style == "ave/euler" => s
-                    .as_any()
-                    .and_then(|a| a.downcast_ref::<crate::engine::ave_euler::EulerGrid>())
-                    .map(|g| g.vtk()),
-                _ => None,
-            })
-            .ok_or_else(|| "Illegal dump euler/vtk command, need a fix ave/euler".into())
     }
 }

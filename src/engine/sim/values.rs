@@ -183,7 +183,7 @@ impl Simulation {
 
     /// The per-atom values behind a dump column `c_ID` / `c_ID[N]` / `v_name`, and its
     /// column.
-    pub(super) fn dump_reference(
+    pub(crate) fn dump_reference(
         &self,
         name: &str,
         vars: &mut dyn VariableSource,

@@ -1,0 +1,149 @@
+//! Dump styles written as modules: one file per style (or small family of styles) and one
+//! row per style name in [`MODULES`]. Adding a dump style is writing its file (its declared
+//! signature, its arguments, its state and its
+//! [`DumpStyle`](crate::engine::dump_style::DumpStyle) hooks) and adding its row.
+
+mod atom;
+mod custom;
+mod custom_vtk;
+mod euler_vtk;
+mod local;
+mod local_gran_vtk;
+mod mesh_stl;
+mod mesh_vtk;
+mod xyz;
+
+use crate::commands::specs::Spec;
+use crate::commands::{Args, CommandError, Ctx};
+use crate::engine::dump_style::DumpStyle;
+use crate::io::dump::Layout;
+
+/// What a style's builder is told about the dump being defined.
+#[derive(Debug, Clone, Copy)]
+pub struct DumpDef<'a> {
+    /// The dump ID.
+    pub id: &'a str,
+    /// The group ID as written.
+    pub group: &'a str,
+    /// The group's bit mask.
+    pub bit: u32,
+    /// The style name as written.
+    pub style: &'a str,
+    /// Steps between snapshots.
+    pub every: i64,
+    /// The file name as written (argument 4).
+    pub file: &'a str,
+}
+
+/// What a builder makes: the dump's columns and formats, and its style.
+pub type Built = (Layout, Box<dyn DumpStyle>);
+
+/// Builds a module dump style from the `dump` command's arguments (the style is argument 2,
+/// the file argument 4, the style's own arguments from 5 on).
+pub type Build = fn(&Args, &mut Ctx, &DumpDef) -> Result<Built, CommandError>;
+
+/// One row of the module dump styles: the style's declared signature (its name is the
+/// spec's style; `check`, `regolith help` and `compat/SUPPORT.md` read it) and its builder.
+#[derive(Debug, Clone, Copy)]
+pub struct DumpRow {
+    /// The declared signature.
+    pub spec: Spec,
+    /// Makes the dump's layout and style from the command's arguments.
+    pub build: Build,
+}
+
+impl DumpRow {
+    /// The style name the row defines.
+    pub fn name(&self) -> &'static str {
+        self.spec.style.unwrap_or("")
+    }
+}
+
+/// The dump styles: one file each in this folder, one row here (in the order `regolith
+/// help dump` lists them). The `dump` command looks a style up here (and in
+/// [`register`]ed rows).
+pub const MODULES: &[DumpRow] = &[
+    DumpRow {
+        spec: atom::SPEC,
+        build: atom::build,
+    },
+    DumpRow {
+        spec: custom::SPEC,
+        build: custom::build,
+    },
+    DumpRow {
+        spec: custom_vtk::SPEC,
+        build: custom_vtk::build,
+    },
+    DumpRow {
+        spec: euler_vtk::SPEC,
+        build: euler_vtk::build,
+    },
+    DumpRow {
+        spec: local_gran_vtk::SPEC,
+        build: local_gran_vtk::build,
+    },
+    DumpRow {
+        spec: local::SPEC,
+        build: local::build,
+    },
+    DumpRow {
+        spec: mesh_vtk::GRAN,
+        build: mesh_vtk::build,
+    },
+    DumpRow {
+        spec: mesh_stl::SPEC,
+        build: mesh_stl::build,
+    },
+    DumpRow {
+        spec: mesh_vtk::SPEC,
+        build: mesh_vtk::build,
+    },
+    DumpRow {
+        spec: mesh_stl::STL,
+        build: mesh_stl::build,
+    },
+    DumpRow {
+        spec: xyz::SPEC,
+        build: xyz::build,
+    },
+];
+
+/// Rows added while the program runs (a style defined outside this folder).
+static REGISTERED: std::sync::RwLock<Vec<DumpRow>> = std::sync::RwLock::new(Vec::new());
+
+/// Add a module dump style at run time: the `dump` command runs it from then on (a row of
+/// [`MODULES`] needs no registration). A row naming a style already registered replaces it.
+pub fn register(row: DumpRow) {
+    let mut rows = REGISTERED.write().unwrap_or_else(|e| e.into_inner());
+    rows.retain(|r| r.name() != row.name());
+    rows.push(row);
+}
+
+/// The module row of `style`: a [`MODULES`] row, else a [`register`]ed one.
+pub fn module_row(style: &str) -> Option<DumpRow> {
+    if let Some(row) = MODULES.iter().find(|r| r.name() == style) {
+        return Some(*row);
+    }
+    let rows = REGISTERED.read().unwrap_or_else(|e| e.into_inner());
+    rows.iter().find(|r| r.name() == style).copied()
+}
+
+/// Whether `style` was added with [`register`] (its name need not be one LIGGGHTS knows).
+pub fn is_registered(style: &str) -> bool {
+    let rows = REGISTERED.read().unwrap_or_else(|e| e.into_inner());
+    rows.iter().any(|r| r.name() == style)
+}
+
+/// The words from argument 5 on (a style's own arguments after the file).
+pub fn style_words<'a>(a: &'a Args) -> Result<Vec<&'a str>, CommandError> {
+    (5..a.len()).map(|i| a.word(i)).collect()
+}
+
+/// A layout without per-atom columns (styles that write meshes, cells or contacts).
+pub fn no_columns() -> Layout {
+    Layout::new(&[]).expect("no columns")
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,129 @@
+//! `regolith check` reports what a run stops at, at the same line: log, thermo log and print
+//! files in folders that do not exist.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-agree-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn regolith(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_regolith"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
+
+fn text(b: &[u8]) -> String {
+    String::from_utf8_lossy(b).into_owned()
+}
+
+/// The problems `check` lists (`in.t:LINE: message`).
+fn problems(dir: &Path) -> (Vec<String>, Option<i32>) {
+    let out = regolith(dir, &["check", "in.t"]);
+    let lines = text(&out.stdout)
+        .lines()
+        .filter(|l| l.starts_with("in.t:"))
+        .map(str::to_string)
+        .collect();
+    (lines, out.status.code())
+}
+
+/// The first error line of a run and its exit status.
+fn run_error(dir: &Path) -> (String, Option<i32>) {
+    let out = regolith(dir, &["-in", "in.t", "-log", "none"]);
+    let err = text(&out.stderr);
+    let first = err.lines().find(|l| l.starts_with("ERROR")).unwrap_or("");
+    (first.to_string(), out.status.code())
+}
+
+const HEAD: &str = "atom_style granular
+atom_modify map array
+boundary f f f
+newton off
+communicate single vel yes
+units si
+region reg block 0 0.1 0 0.1 0 0.1 units box
+create_box 1 reg
+neighbor 0.002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.3
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-5
+";
+
+#[test]
+fn a_log_in_a_missing_folder_is_reported_by_check_as_by_run() {
+    for (line, message) in [
+        (
+            "log nodir/log.txt",
+            "in.t:2: Cannot open logfile nodir/log.txt (No such file or directory (os error 2))",
+        ),
+        (
+            "log nodir/log.txt append",
+            "in.t:2: Cannot open logfile nodir/log.txt (No such file or directory (os error 2))",
+        ),
+        (
+            "thermo_log nodir/thermo.txt",
+            "in.t:2: Cannot open thermo log file nodir/thermo.txt: No such file or directory (os error 2)",
+        ),
+    ] {
+        let dir = scratch("log");
+        std::fs::write(dir.join("in.t"), format!("print hello\n{line}\nprint done\n")).unwrap();
+        let (found, code) = problems(&dir);
+        assert_eq!(found, [message], "{line}");
+        assert_eq!(code, Some(1), "{line}");
+        let (err, code) = run_error(&dir);
+        let cut = message.trim_start_matches("in.t:2: ");
+        let head = cut.split(" (No such").next().unwrap();
+        assert!(err.starts_with(&format!("ERROR: {head}")), "{line}: {err}");
+        assert_eq!(code, Some(1), "{line}");
+        assert!(!dir.join("nodir").exists());
+    }
+}
+
+#[test]
+fn a_log_in_a_folder_the_deck_makes_or_that_exists_passes_check() {
+    let dir = scratch("logok");
+    std::fs::create_dir(dir.join("there")).unwrap();
+    let deck = "shell mkdir made\nlog made/log.txt\nthermo_log there/thermo.txt\n\
+                shell mkdir made/inner\nprint hi file made/inner/p.txt\nlog none\n";
+    std::fs::write(dir.join("in.t"), deck).unwrap();
+    let (found, code) = problems(&dir);
+    assert!(found.is_empty(), "{found:?}");
+    assert_eq!(code, Some(0));
+    // the dry run made no folder
+    assert!(!dir.join("made").exists());
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(dir.join("made/inner/p.txt").exists());
+}
+
+#[test]
+fn a_print_file_in_a_missing_folder_is_reported_by_check() {
+    let dir = scratch("print");
+    std::fs::write(dir.join("in.t"), "print hi file nodir/p.txt\n").unwrap();
+    let (found, code) = problems(&dir);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(
+        found[0].starts_with("in.t:1: Cannot open print file nodir/p.txt"),
+        "{found:?}"
+    );
+    assert_eq!(code, Some(1));
+    let (err, code) = run_error(&dir);
+    assert!(
+        err.starts_with("ERROR: Cannot open print file nodir/p.txt"),
+        "{err}"
+    );
+    assert_eq!(code, Some(1));
+}

@@ -1,5 +1,5 @@
 //! `regolith check` reports what a run stops at, at the same line: log, thermo log and print
-//! files in folders that do not exist.
+//! files in folders that do not exist, meshes that fail LIGGGHTS's quality checks.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -125,5 +125,43 @@ fn a_print_file_in_a_missing_folder_is_reported_by_check() {
         err.starts_with("ERROR: Cannot open print file nodir/p.txt"),
         "{err}"
     );
+    assert_eq!(code, Some(1));
+}
+
+/// An ASCII STL of one good triangle and one with an angle far below LIGGGHTS's hard limit.
+const SKEWED_STL: &str = "solid skew
+facet normal 0 0 1
+outer loop
+vertex 0.01 0.01 0.05
+vertex 0.09 0.01 0.05
+vertex 0.01 0.09 0.05
+endloop
+endfacet
+facet normal 0 0 1
+outer loop
+vertex 0.01 0.01 0.02
+vertex 0.09 0.01 0.02
+vertex 0.05 0.0100001 0.02
+endloop
+endfacet
+endsolid skew
+";
+
+#[test]
+fn a_mesh_failing_the_quality_check_is_reported_by_check_at_the_run() {
+    let dir = scratch("mesh");
+    std::fs::write(dir.join("skew.stl"), SKEWED_STL).unwrap();
+    let deck = format!(
+        "{HEAD}fix cad all mesh/surface file skew.stl type 1\n\
+         fix walls all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad\n\
+         run 10\n"
+    );
+    std::fs::write(dir.join("in.t"), deck).unwrap();
+    let (found, code) = problems(&dir);
+    let message = "Mesh cad: element 1 has an angle below 0.0573 degrees; fix the mesh";
+    assert_eq!(found, [format!("in.t:20: {message}")]);
+    assert_eq!(code, Some(1));
+    let (err, code) = run_error(&dir);
+    assert_eq!(err, format!("ERROR: {message}"));
     assert_eq!(code, Some(1));
 }

@@ -1,5 +1,6 @@
 //! `regolith check` reports what a run stops at, at the same line: log, thermo log and print
-//! files in folders that do not exist, meshes that fail LIGGGHTS's quality checks.
+//! files in folders that do not exist, meshes that fail LIGGGHTS's quality checks, and
+//! `atom_style` argument errors in LIGGGHTS's words.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -164,4 +165,34 @@ fn a_mesh_failing_the_quality_check_is_reported_by_check_at_the_run() {
     let (err, code) = run_error(&dir);
     assert_eq!(err, format!("ERROR: {message}"));
     assert_eq!(code, Some(1));
+}
+
+#[test]
+fn atom_style_argument_errors_use_liggghts_words() {
+    for (style, message) in [
+        ("granular foo", "Invalid atom_style command"),
+        ("sphere 1", "Invalid atom_style command"),
+        (
+            "hybrid granular bond/gran n_bondtypes 1 bonds_per_atom 6",
+            "Invalid atom_style command",
+        ),
+        ("hybrid foo", "Invalid atom style"),
+        (
+            "hybrid granular granular",
+            "Atom style hybrid cannot use same atom style twice",
+        ),
+        ("bond/gran", "Invalid atom style"),
+    ] {
+        let dir = scratch("atomstyle");
+        std::fs::write(dir.join("in.t"), format!("atom_style {style}\n")).unwrap();
+        let (found, code) = problems(&dir);
+        assert_eq!(found.len(), 1, "{style}: {found:?}");
+        assert!(
+            found[0].starts_with(&format!("in.t:1: {message}")),
+            "{style}: {found:?}"
+        );
+        assert_eq!(code, Some(1), "{style}");
+        let (err, _) = run_error(&dir);
+        assert_eq!(err, format!("ERROR: {message}"), "{style}");
+    }
 }

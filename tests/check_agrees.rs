@@ -196,3 +196,17 @@ fn atom_style_argument_errors_use_liggghts_words() {
         assert_eq!(err, format!("ERROR: {message}"), "{style}");
     }
 }
+
+#[test]
+fn a_missing_mesh_file_is_named_as_the_deck_names_it() {
+    let dir = scratch("meshfile");
+    let deck = format!("{HEAD}fix cad all mesh/surface file meshes/none.stl type 1\n");
+    std::fs::write(dir.join("in.t"), deck).unwrap();
+    let message = "Cannot open mesh file meshes/none.stl: No such file or directory (os error 2)";
+    let (found, code) = problems(&dir);
+    assert_eq!(found, [format!("in.t:18: {message}")]);
+    assert_eq!(code, Some(1));
+    let (err, code) = run_error(&dir);
+    assert_eq!(err, format!("ERROR: {message}"));
+    assert_eq!(code, Some(1));
+}

@@ -210,3 +210,36 @@ fn a_missing_mesh_file_is_named_as_the_deck_names_it() {
     assert_eq!(err, format!("ERROR: {message}"));
     assert_eq!(code, Some(1));
 }
+
+/// An ASCII STL of one triangle.
+const FLAT_STL: &str = "solid flat
+facet normal 0 0 1
+outer loop
+vertex 0.01 0.01 0.05
+vertex 0.09 0.01 0.05
+vertex 0.01 0.09 0.05
+endloop
+endfacet
+endsolid flat
+";
+
+#[test]
+fn an_unknown_mesh_movement_is_reported_in_liggghts_words() {
+    let dir = scratch("movemesh");
+    std::fs::write(dir.join("flat.stl"), FLAT_STL).unwrap();
+    let deck = format!(
+        "{HEAD}fix cad all mesh/surface file flat.stl type 1\n\
+         fix spin all move/mesh mesh cad rotate/superposable origin 0 0 0 axis 0 0 1 period 1\n"
+    );
+    std::fs::write(dir.join("in.t"), deck).unwrap();
+    let (found, code) = problems(&dir);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(
+        found[0].starts_with("in.t:19: Mesh movement type not available"),
+        "{found:?}"
+    );
+    assert_eq!(code, Some(1));
+    let (err, code) = run_error(&dir);
+    assert_eq!(err, "ERROR: Mesh movement type not available");
+    assert_eq!(code, Some(1));
+}

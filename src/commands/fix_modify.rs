@@ -51,6 +51,11 @@ pub fn fix_modify(a: &Args, ctx: &mut Ctx) -> Result<(), CommandError> {
                 _ => return Err(a.error(i + 1, ILLEGAL)),
             }
             i += 2;
+        } else if style == "mesh/surface/stress/servo" {
+            match super::fix_modify_servo::servo_param(a, i, id, ctx)? {
+                0 => return Err(a.error(i, ILLEGAL)),
+                n => i += n,
+            }
         } else if STYLE_KEYWORDS.contains(&(style.as_str(), key))
             || (style.starts_with("mesh/surface") && key.contains('/'))
         {

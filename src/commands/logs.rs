@@ -20,8 +20,13 @@ pub fn thermo_log(a: &Args, ctx: &mut Ctx) -> Result {
     }
     let name = a.word(0)?;
     ctx.sim.extras.thermo_file = None;
-    if name == "none" || ctx.sys.mode != Mode::Run {
+    let open_error =
+        |e: std::io::Error| a.file_error(0, format!("Cannot open thermo log file {name}: {e}"));
+    if name == "none" {
         return Ok(());
+    }
+    if ctx.sys.mode != Mode::Run {
+        return ctx.sys.check_creatable(name).map_err(open_error);
     }
     let path = ctx.sys.resolve(name);
     let file = std::fs::OpenOptions::new()
@@ -30,7 +35,7 @@ pub fn thermo_log(a: &Args, ctx: &mut Ctx) -> Result {
         .append(append)
         .truncate(!append)
         .open(&path)
-        .map_err(|e| a.file_error(0, format!("Cannot open thermo log file {name}: {e}")))?;
+        .map_err(open_error)?;
     ctx.sim.extras.thermo_file = Some(file);
     Ok(())
 }

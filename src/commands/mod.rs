@@ -11,6 +11,7 @@ pub mod dump;
 pub mod error;
 pub mod fix;
 pub mod fix_modify;
+pub mod fix_modify_servo;
 pub mod fix_state;
 pub mod group_functions;
 pub mod group_variable;

@@ -59,8 +59,18 @@ pub const COMMANDS: &[(&str, Handler)] = &[
 ];
 
 fn atom_style(a: &Args, ctx: &mut Ctx) -> Result {
-    a.count(1..=1, "atom_style granular|sphere")?;
+    a.count(1..=usize::MAX, "atom_style granular|sphere")?;
+    if a.word(0)? == "hybrid" {
+        return hybrid_atom_style(a);
+    }
     registry::require_style(a, "atom_style")?;
+    match a.word(0)? {
+        _ if a.len() > 1 => {
+            // a style without arguments given some (LIGGGHTS's AtomVec::settings)
+            return Err(a.error(1, "Invalid atom_style command"));
+        }
+        _ => {}
+    }
     match a.word(0)? {
         "granular" | "sphere" => {
             if ctx.sim.domain.exists {
@@ -70,6 +80,27 @@ fn atom_style(a: &Args, ctx: &mut Ctx) -> Result {
         }
         other => Err(a.unsupported(0, &format!("atom_style {other}"))),
     }
+}
+
+/// `atom_style hybrid S1 S2 ...`: LIGGGHTS's errors (a first word that is no style, a style
+/// twice, words after a style that takes none); a valid one is not supported yet.
+fn hybrid_atom_style(a: &Args) -> Result {
+    use super::names::{is_known, NameKind};
+    let mut seen: Vec<&str> = Vec::new();
+    for i in 1..a.len() {
+        let w = a.word(i)?;
+        if is_known(NameKind::AtomStyle, w) && w != "hybrid" {
+            if seen.contains(&w) {
+                return Err(a.error(i, "Atom style hybrid cannot use same atom style twice"));
+            }
+            seen.push(w);
+        } else if seen.is_empty() {
+            return Err(a.error(i, "Invalid atom style"));
+        } else {
+            return Err(a.error(i, "Invalid atom_style command"));
+        }
+    }
+    Err(a.unsupported(0, "atom_style hybrid"))
 }
 
 fn atom_modify(a: &Args, ctx: &mut Ctx) -> Result {

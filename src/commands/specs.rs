@@ -244,6 +244,11 @@ pub const SPECS: &[Spec] = &[
     style("fix", "wall/gran", "fix ID GROUP wall/gran model M tangential T ... primitive type T xplane|yplane|zplane|xcylinder|ycylinder|zcylinder ARGS | mesh n_meshes N meshes MESH ...", &[kw("model", &[arg("M", Value::Word)], "normal contact model"), kw("tangential", &[arg("T", Value::Word)], "tangential contact model"), kw("cohesion", &[arg("C", Value::Word)], "cohesion model"), kw("rolling_friction", &[arg("R", Value::Word)], "rolling-friction model"), kw("primitive", &[arg("type T SHAPE ARGS", Value::Word)], "a plane or cylinder wall (positions in length)"), kw("mesh", &[arg("n_meshes N meshes MESH ...", Value::Id("fix"))], "walls made of meshes"), kw("shear", &[arg("x|y|z V", VELOCITY)], "the wall slides at velocity V"), kw("store_force", &[arg("yes|no", YES_NO)], "keep per-particle wall forces")], "granular walls: planes, cylinders or meshes"),
     with(command("fix_modify ID KEYWORD VALUE ...", "change the settings every fix shares"), &[
         kw("energy", &[arg("yes|no", YES_NO)], "the fix's energy in compute pe (granular fixes add none; yes on gravity or addforce: not supported yet)"),
+        kw("servo/integrate", &[arg("start|stop", Value::OneOf(&["start", "stop"]))], "mesh/surface/stress/servo: the servo moves or stays (without servo/: LIGGGHTS's deprecation warning)"),
+        kw("servo/vel_max", &[arg("V", VELOCITY)], "mesh/surface/stress/servo: the speed limit"),
+        kw("servo/target_val", &[arg("F", Value::Real("force"))], "mesh/surface/stress/servo: the force set point (resets the error integral)"),
+        kw("servo/ctrlParam", &[arg("KP KI KD", NUMBER)], "mesh/surface/stress/servo: the PID gains (resets the error integral)"),
+        kw("servo/ratio", &[arg("R", NUMBER)], "mesh/surface/stress/servo: the auto mode's slow speed in smallest radii per step"),
     ]),
     command("group ID region|type|id|subtract|union|intersect|variable|initialize|delete ...", "define a group of particles"),
     command("hard_particles yes|no", "refuse particles stiffer than LIGGGHTS's limit"),

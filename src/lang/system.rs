@@ -2,7 +2,7 @@
 //! variables. In check mode every effect goes to an in-memory overlay, so a dry run of a deck
 //! touches nothing on disk yet sees the files the deck itself would have written.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
@@ -30,6 +30,7 @@ pub struct System {
     series: Vec<(u64, KeptSeries)>,
     kept_count: u64,
     overlay_env: HashMap<String, String>,
+    overlay_dirs: HashSet<PathBuf>,
 }
 
 /// Check mode: a binary file (a restart) the deck would have written, and the step it would
@@ -88,6 +89,7 @@ impl System {
             series: Vec::new(),
             kept_count: 0,
             overlay_env: HashMap::new(),
+            overlay_dirs: HashSet::new(),
         }
     }
 
@@ -199,6 +201,10 @@ impl System {
                     .map_err(|e| file_error(name, e))
             }
             Mode::Check => {
+                if !self.overlay_files.contains_key(&path) {
+                    self.check_creatable(name)
+                        .map_err(|e| file_error(name, e))?;
+                }
                 let mut content = if append {
                     self.read(name).unwrap_or_default()
                 } else {
@@ -239,8 +245,35 @@ impl System {
         }
     }
 
+    /// Check mode: whether a file named `name` could be created, i.e. its folder exists on
+    /// disk or the deck made it earlier (`shell mkdir`); a missing folder gives the error
+    /// opening the file would give (no such file or directory). Run mode: always Ok, the
+    /// opening itself reports.
+    pub fn check_creatable(&self, name: &str) -> Result<(), std::io::Error> {
+        if self.mode == Mode::Run {
+            return Ok(());
+        }
+        let path = self.resolve(name);
+        match path.parent() {
+            Some(dir) if !self.dir_exists(dir) => Err(missing_entry()),
+            _ => Ok(()),
+        }
+    }
+
+    /// Whether a directory exists on disk or in the check-mode overlay.
+    fn dir_exists(&self, dir: &Path) -> bool {
+        dir.as_os_str().is_empty() || self.overlay_dirs.contains(dir) || dir.is_dir()
+    }
+
     /// `mkdir` with LIGGGHTS's permissions (rwxr-x---); failures are silent.
     pub fn mkdir(&mut self, name: &str) {
+        if self.mode == Mode::Check {
+            let path = self.resolve(name);
+            if path.parent().is_none_or(|p| self.dir_exists(p)) {
+                self.overlay_dirs.insert(path);
+            }
+            return;
+        }
         if self.mode == Mode::Run {
             let mut builder = std::fs::DirBuilder::new();
             #[cfg(unix)]
@@ -254,6 +287,11 @@ impl System {
 
     /// Create a directory and its parents (for output files); errors are reported.
     pub fn create_parent_dirs(&mut self, name: &str) -> Result<(), SystemError> {
+        if self.mode == Mode::Check {
+            let path = self.resolve(name);
+            self.overlay_dirs
+                .extend(path.ancestors().skip(1).map(Path::to_path_buf));
+        }
         if self.mode == Mode::Run {
             if let Some(parent) = self.resolve(name).parent() {
                 std::fs::create_dir_all(parent)
@@ -265,6 +303,9 @@ impl System {
 
     /// `rmdir`; failures are silent.
     pub fn rmdir(&mut self, name: &str) {
+        if self.mode == Mode::Check {
+            self.overlay_dirs.remove(&self.resolve(name));
+        }
         if self.mode == Mode::Run {
             let _ = std::fs::remove_dir(self.resolve(name));
         }
@@ -306,6 +347,11 @@ impl System {
             .ok()
             .and_then(|s| s.code())
     }
+}
+
+/// The error opening a file in a folder that does not exist gives (ENOENT).
+fn missing_entry() -> std::io::Error {
+    std::io::Error::from_raw_os_error(2)
 }
 
 fn file_error(name: &str, source: std::io::Error) -> SystemError {

@@ -515,6 +515,12 @@ impl Interpreter {
             _ => return Err(illegal("log", "log FILE [append], or log none")),
         };
         if self.sys.mode == Mode::Check {
+            if args[0] != "none" {
+                self.sys.check_creatable(&args[0]).map_err(|e| {
+                    Diagnostic::error(format!("Cannot open logfile {}", args[0]))
+                        .with_help(e.to_string())
+                })?;
+            }
             return Ok(());
         }
         if let Some(mut old) = self.out.log.take() {

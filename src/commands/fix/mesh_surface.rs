@@ -335,7 +335,13 @@ impl MeshArgs {
         ctx.say(&format!(
             "\nReading STL file '{file}' (mesh processing step 1/3) \n"
         ));
-        let (t, ids, ascii) = crate::io::stl::read_with_ids(&path).map_err(|m| a.error(4, &m))?;
+        let (t, ids, ascii) = crate::io::stl::read_with_ids(&path).map_err(|m| match m {
+            // the file as the deck names it, as LIGGGHTS says it
+            crate::io::error::StlError::Open { source, .. } => {
+                a.file_error(4, format!("Cannot open mesh file {file}: {source}"))
+            }
+            other => a.error(4, &other),
+        })?;
         let mut t = match &self.exclusion {
             Some(list) => crate::io::stl::exclude(t, &ids, list, ascii),
             None => t,

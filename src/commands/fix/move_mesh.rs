@@ -201,12 +201,9 @@ impl MotionWords<'_> {
                 return Err(a.unsupported(5, &format!("fix move/mesh {style}")))
             }
             _ => {
-                return Err(a
-                    .keyword_error(
-                        5,
-                        &["linear", "wiggle", "rotate", "riggle", "viblin", "vibrot"],
-                    )
-                    .with_help("LIGGGHTS: Mesh movement type not available"))
+                return Err(a.error(5, "Mesh movement type not available").with_help(
+                    "fix move/mesh knows linear, linear/variable, wiggle, rotate, rotate/variable, riggle, viblin and vibrot",
+                ))
             }
         })
     }

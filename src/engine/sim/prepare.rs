@@ -178,15 +178,17 @@ impl Simulation {
         atoms.max(templates)
     }
 
-    /// A dry run's `run`: LIGGGHTS's init checks of particles and neighbour bins, no step.
-    pub fn check_run(&self) -> Result<(), EngineError> {
+    /// A dry run's `run`: LIGGGHTS's init checks of particles, neighbour bins and mesh
+    /// quality, no step.
+    pub fn check_run(&mut self) -> Result<(), EngineError> {
         self.check_run_init()?;
         for f in &self.fixes {
             if let FixKind::InsertPack(ins) = &f.kind {
                 ins.check_tet_region(&self.regions, self.domain.lo, self.domain.hi)?;
             }
         }
-        Ok(())
+        // the meshes' quality checks of the run's setup
+        self.build_mesh_topology()
     }
 
     /// A fix changes particle radii during runs (`fix adapt ... atom diameter`).

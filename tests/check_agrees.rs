@@ -1,0 +1,245 @@
+//! `regolith check` reports what a run stops at, at the same line: log, thermo log and print
+//! files in folders that do not exist, meshes that fail LIGGGHTS's quality checks, and
+//! `atom_style` argument errors in LIGGGHTS's words.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-agree-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn regolith(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_regolith"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
+
+fn text(b: &[u8]) -> String {
+    String::from_utf8_lossy(b).into_owned()
+}
+
+/// The problems `check` lists (`in.t:LINE: message`).
+fn problems(dir: &Path) -> (Vec<String>, Option<i32>) {
+    let out = regolith(dir, &["check", "in.t"]);
+    let lines = text(&out.stdout)
+        .lines()
+        .filter(|l| l.starts_with("in.t:"))
+        .map(str::to_string)
+        .collect();
+    (lines, out.status.code())
+}
+
+/// The first error line of a run and its exit status.
+fn run_error(dir: &Path) -> (String, Option<i32>) {
+    let out = regolith(dir, &["-in", "in.t", "-log", "none"]);
+    let err = text(&out.stderr);
+    let first = err.lines().find(|l| l.starts_with("ERROR")).unwrap_or("");
+    (first.to_string(), out.status.code())
+}
+
+const HEAD: &str = "atom_style granular
+atom_modify map array
+boundary f f f
+newton off
+communicate single vel yes
+units si
+region reg block 0 0.1 0 0.1 0 0.1 units box
+create_box 1 reg
+neighbor 0.002 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.3
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-5
+";
+
+#[test]
+fn a_log_in_a_missing_folder_is_reported_by_check_as_by_run() {
+    for (line, message) in [
+        (
+            "log nodir/log.txt",
+            "in.t:2: Cannot open logfile nodir/log.txt (No such file or directory (os error 2))",
+        ),
+        (
+            "log nodir/log.txt append",
+            "in.t:2: Cannot open logfile nodir/log.txt (No such file or directory (os error 2))",
+        ),
+        (
+            "thermo_log nodir/thermo.txt",
+            "in.t:2: Cannot open thermo log file nodir/thermo.txt: No such file or directory (os error 2)",
+        ),
+    ] {
+        let dir = scratch("log");
+        std::fs::write(dir.join("in.t"), format!("print hello\n{line}\nprint done\n")).unwrap();
+        let (found, code) = problems(&dir);
+        assert_eq!(found, [message], "{line}");
+        assert_eq!(code, Some(1), "{line}");
+        let (err, code) = run_error(&dir);
+        let cut = message.trim_start_matches("in.t:2: ");
+        let head = cut.split(" (No such").next().unwrap();
+        assert!(err.starts_with(&format!("ERROR: {head}")), "{line}: {err}");
+        assert_eq!(code, Some(1), "{line}");
+        assert!(!dir.join("nodir").exists());
+    }
+}
+
+#[test]
+fn a_log_in_a_folder_the_deck_makes_or_that_exists_passes_check() {
+    let dir = scratch("logok");
+    std::fs::create_dir(dir.join("there")).unwrap();
+    let deck = "shell mkdir made\nlog made/log.txt\nthermo_log there/thermo.txt\n\
+                shell mkdir made/inner\nprint hi file made/inner/p.txt\nlog none\n";
+    std::fs::write(dir.join("in.t"), deck).unwrap();
+    let (found, code) = problems(&dir);
+    assert!(found.is_empty(), "{found:?}");
+    assert_eq!(code, Some(0));
+    // the dry run made no folder
+    assert!(!dir.join("made").exists());
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(dir.join("made/inner/p.txt").exists());
+}
+
+#[test]
+fn a_print_file_in_a_missing_folder_is_reported_by_check() {
+    let dir = scratch("print");
+    std::fs::write(dir.join("in.t"), "print hi file nodir/p.txt\n").unwrap();
+    let (found, code) = problems(&dir);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(
+        found[0].starts_with("in.t:1: Cannot open print file nodir/p.txt"),
+        "{found:?}"
+    );
+    assert_eq!(code, Some(1));
+    let (err, code) = run_error(&dir);
+    assert!(
+        err.starts_with("ERROR: Cannot open print file nodir/p.txt"),
+        "{err}"
+    );
+    assert_eq!(code, Some(1));
+}
+
+/// An ASCII STL of one good triangle and one with an angle far below LIGGGHTS's hard limit.
+const SKEWED_STL: &str = "solid skew
+facet normal 0 0 1
+outer loop
+vertex 0.01 0.01 0.05
+vertex 0.09 0.01 0.05
+vertex 0.01 0.09 0.05
+endloop
+endfacet
+facet normal 0 0 1
+outer loop
+vertex 0.01 0.01 0.02
+vertex 0.09 0.01 0.02
+vertex 0.05 0.0100001 0.02
+endloop
+endfacet
+endsolid skew
+";
+
+#[test]
+fn a_mesh_failing_the_quality_check_is_reported_by_check_at_the_run() {
+    let dir = scratch("mesh");
+    std::fs::write(dir.join("skew.stl"), SKEWED_STL).unwrap();
+    let deck = format!(
+        "{HEAD}fix cad all mesh/surface file skew.stl type 1\n\
+         fix walls all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad\n\
+         run 10\n"
+    );
+    std::fs::write(dir.join("in.t"), deck).unwrap();
+    let (found, code) = problems(&dir);
+    let message = "Mesh cad: element 1 has an angle below 0.0573 degrees; fix the mesh";
+    assert_eq!(found, [format!("in.t:20: {message}")]);
+    assert_eq!(code, Some(1));
+    let (err, code) = run_error(&dir);
+    assert_eq!(err, format!("ERROR: {message}"));
+    assert_eq!(code, Some(1));
+}
+
+#[test]
+fn atom_style_argument_errors_use_liggghts_words() {
+    for (style, message) in [
+        ("granular foo", "Invalid atom_style command"),
+        ("sphere 1", "Invalid atom_style command"),
+        (
+            "hybrid granular bond/gran n_bondtypes 1 bonds_per_atom 6",
+            "Invalid atom_style command",
+        ),
+        ("hybrid foo", "Invalid atom style"),
+        (
+            "hybrid granular granular",
+            "Atom style hybrid cannot use same atom style twice",
+        ),
+        ("bond/gran", "Invalid atom style"),
+    ] {
+        let dir = scratch("atomstyle");
+        std::fs::write(dir.join("in.t"), format!("atom_style {style}\n")).unwrap();
+        let (found, code) = problems(&dir);
+        assert_eq!(found.len(), 1, "{style}: {found:?}");
+        assert!(
+            found[0].starts_with(&format!("in.t:1: {message}")),
+            "{style}: {found:?}"
+        );
+        assert_eq!(code, Some(1), "{style}");
+        let (err, _) = run_error(&dir);
+        assert_eq!(err, format!("ERROR: {message}"), "{style}");
+    }
+}
+
+#[test]
+fn a_missing_mesh_file_is_named_as_the_deck_names_it() {
+    let dir = scratch("meshfile");
+    let deck = format!("{HEAD}fix cad all mesh/surface file meshes/none.stl type 1\n");
+    std::fs::write(dir.join("in.t"), deck).unwrap();
+    let message = "Cannot open mesh file meshes/none.stl: No such file or directory (os error 2)";
+    let (found, code) = problems(&dir);
+    assert_eq!(found, [format!("in.t:18: {message}")]);
+    assert_eq!(code, Some(1));
+    let (err, code) = run_error(&dir);
+    assert_eq!(err, format!("ERROR: {message}"));
+    assert_eq!(code, Some(1));
+}
+
+/// An ASCII STL of one triangle.
+const FLAT_STL: &str = "solid flat
+facet normal 0 0 1
+outer loop
+vertex 0.01 0.01 0.05
+vertex 0.09 0.01 0.05
+vertex 0.01 0.09 0.05
+endloop
+endfacet
+endsolid flat
+";
+
+#[test]
+fn an_unknown_mesh_movement_is_reported_in_liggghts_words() {
+    let dir = scratch("movemesh");
+    std::fs::write(dir.join("flat.stl"), FLAT_STL).unwrap();
+    let deck = format!(
+        "{HEAD}fix cad all mesh/surface file flat.stl type 1\n\
+         fix spin all move/mesh mesh cad rotate/superposable origin 0 0 0 axis 0 0 1 period 1\n"
+    );
+    std::fs::write(dir.join("in.t"), deck).unwrap();
+    let (found, code) = problems(&dir);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(
+        found[0].starts_with("in.t:19: Mesh movement type not available"),
+        "{found:?}"
+    );
+    assert_eq!(code, Some(1));
+    let (err, code) = run_error(&dir);
+    assert_eq!(err, "ERROR: Mesh movement type not available");
+    assert_eq!(code, Some(1));
+}

@@ -226,6 +226,77 @@ fn plain_g(spec: &str) -> Option<(usize, usize)> {
     Some((width, precision))
 }
 
+/// Exact powers of ten as doubles (10^0 ..= 10^22).
+const POWERS_OF_TEN: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
+
+/// The `p` (at most 9) correctly rounded significant digits of `a > 0` into `digits`, and
+/// the decimal exponent, from one correctly rounded scaling by an exact power of ten: the
+/// scaled value (below 10^9) is then within 1.2e-7 of the exact one, so its rounding is
+/// the exact value's unless it lies within 1e-6 of a tie, which is left to
+/// [`exact_digits`] (None), as are zero and values whose scaling needs a power beyond 10^22.
+fn scaled_digits(a: f64, p: usize, digits: &mut [u8; 41]) -> Option<i32> {
+    if p > 9 || a == 0.0 || !a.is_normal() {
+        return None;
+    }
+    let (lo, hi) = (POWERS_OF_TEN[p - 1], POWERS_OF_TEN[p]);
+    let mut exponent = a.log10().floor() as i32;
+    let mut scaled = 0.0;
+    for _ in 0..3 {
+        let k = p as i32 - 1 - exponent;
+        let power = *POWERS_OF_TEN.get(k.unsigned_abs() as usize)?;
+        // one correctly rounded operation either way
+        scaled = if k >= 0 { a * power } else { a / power };
+        if scaled < lo {
+            exponent -= 1;
+        } else if scaled >= hi {
+            exponent += 1;
+        } else {
+            break;
+        }
+    }
+    if !(lo..hi).contains(&scaled) {
+        return None;
+    }
+    let whole = scaled.floor();
+    let fraction = scaled - whole;
+    if (fraction - 0.5).abs() < 1e-6 {
+        return None;
+    }
+    let mut rounded = whole as u64 + u64::from(fraction > 0.5);
+    if rounded as f64 >= hi {
+        rounded /= 10;
+        exponent += 1;
+    }
+    for slot in digits[..p].iter_mut().rev() {
+        *slot = b'0' + (rounded % 10) as u8;
+        rounded /= 10;
+    }
+    Some(exponent)
+}
+
+/// The `p` significant digits of `a >= 0` into `digits` and the decimal exponent, from the
+/// correctly rounded exponent formatting of Rust's standard library.
+fn exact_digits(a: f64, p: usize, digits: &mut [u8; 41]) -> Option<i32> {
+    use std::fmt::Write;
+    let mut text = StackText {
+        buf: [0; 48],
+        len: 0,
+    };
+    write!(text, "{:.*e}", p - 1, a).ok()?;
+    let text = &text.buf[..text.len];
+    let e_at = text.iter().position(|&b| b == b'e')?;
+    let exponent: i32 = std::str::from_utf8(&text[e_at + 1..]).ok()?.parse().ok()?;
+    let mut n = 0;
+    for &b in text[..e_at].iter().filter(|b| b.is_ascii_digit()) {
+        *digits.get_mut(n)? = b;
+        n += 1;
+    }
+    (n == p).then_some(exponent)
+}
+
 /// A fixed buffer on the stack that `write!` fills (false once it is full).
 struct StackText {
     buf: [u8; 48],
@@ -249,33 +320,20 @@ impl std::fmt::Write for StackText {
 /// nearest, ties to even, as Rust does): false, with nothing written, for values it leaves
 /// to the C library (infinities, NaN, more than 40 significant digits).
 fn push_g_digits(out: &mut String, value: f64, width: usize, precision: usize) -> bool {
-    use std::fmt::Write;
     let p = precision.max(1);
     if !value.is_finite() || p > 40 {
         return false;
     }
-    let mut text = StackText {
-        buf: [0; 48],
-        len: 0,
-    };
-    if write!(text, "{:.*e}", p - 1, value.abs()).is_err() {
-        return false;
-    }
-    let text = &text.buf[..text.len];
-    let Some(e_at) = text.iter().position(|&b| b == b'e') else {
-        return false;
-    };
-    let exponent: i32 = match std::str::from_utf8(&text[e_at + 1..]).map(str::parse) {
-        Ok(Ok(x)) => x,
-        _ => return false,
-    };
-    // the P significant digits, without the point
+    // the P significant digits (ASCII, without the point) and the decimal exponent
     let mut digits = [0u8; 41];
-    let mut n = 0;
-    for &b in text[..e_at].iter().filter(|b| b.is_ascii_digit()) {
-        digits[n] = b;
-        n += 1;
-    }
+    let n = p;
+    let exponent = match scaled_digits(value.abs(), p, &mut digits) {
+        Some(x) => x,
+        None => match exact_digits(value.abs(), p, &mut digits) {
+            Some(x) => x,
+            None => return false,
+        },
+    };
     let mut body = [0u8; 64];
     let mut len = 0;
     let mut put = |b: u8| {
@@ -504,6 +562,16 @@ mod tests {
             if v.is_finite() {
                 values.push(v);
             }
+        }
+        // decimal ties of six and eight digits (1234565e-9 and the like), near and at
+        // which the scaled digits defer to the exact ones
+        for k in 0..4_000u64 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let digits = (state % 9_000_000 + 1_000_000) as f64 * 10.0 + 5.0;
+            values.push(digits * 10f64.powi((k % 30) as i32 - 20));
+            values.push(digits * 100.0 + 50.0);
         }
         for &v in &values {
             for value in [v, -v] {

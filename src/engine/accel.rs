@@ -295,6 +295,12 @@ impl Simulation {
         }
     }
 
+    /// Fast path during a run: each particle's place in the exact path's order (1-based).
+    pub(crate) fn exact_rank(&self) -> Option<&[f64]> {
+        let k = self.order_record_index()?;
+        Some(&self.particles.extra[k].data)
+    }
+
     /// Index of the order record among the per-particle arrays, if there is one.
     fn order_record_index(&self) -> Option<usize> {
         self.particles

@@ -87,23 +87,51 @@ impl Removal {
     }
 }
 
+/// The list a removal's history goes to.
+pub struct NewList<'a> {
+    /// Its pairs.
+    pub pairs: &'a [Pair],
+    /// Its mirrors (pairs across periodic faces seen from their second particle).
+    pub mirrors: &'a [Mirror],
+    /// Whether pairs across periodic faces have mirrors (the exact path's lists).
+    pub mirrored: bool,
+    /// Each particle's place in the exact path's order, where the particles are held in
+    /// another (the fast path's).
+    pub exact_rank: Option<&'a [f64]>,
+}
+
 /// The histories of the new entries and mirrors after a removal (`ids`: IDs by slot now;
 /// `flips`: which history values are vectors that flip sign seen from the other particle).
+///
+/// LIGGGHTS looks a pair inside the box up from its lower slot (its half list holds each
+/// such pair once, from the lower index). A list without mirrors (the fast path's) may hold
+/// a pair from either side: its pairs inside the box are looked up from the lower slot too,
+/// and the values turned to the entry's side, so both paths carry the same history
+/// (`exact_rank`: each particle's place in the exact path's order, where the particles are
+/// held in another).
 pub fn carry_after_removal(
     old: &Sides,
     removal: &Removal,
-    new_pairs: &[Pair],
-    new_mirrors: &[Mirror],
+    new: &NewList,
     ids: &[i64],
     flips: &[bool],
 ) -> (Vec<f64>, Vec<f64>) {
+    let (new_pairs, new_mirrors) = (new.pairs, new.mirrors);
+    let (new_mirrored, exact_rank) = (new.mirrored, new.exact_rank);
     let width = flips.len();
     let mut out = vec![0.0; new_pairs.len() * width];
     let mut out_m = vec![0.0; new_mirrors.len() * width];
     if width == 0 {
         return (out, out_m);
     }
-    let fill = |dst: &mut [f64], i: u32, j: u32| {
+    let fill = |dst: &mut [f64], i: u32, j: u32, from_lower: bool| {
+        // the lower slot in the exact path's order (the fast path keeps its rank)
+        let rank = |k: u32| exact_rank.map_or(k as f64, |r| r[k as usize]);
+        let (i, j, turned) = if from_lower && rank(j) < rank(i) {
+            (j, i, true)
+        } else {
+            (i, j, false)
+        };
         let Some(list) = removal.partners.get(i as usize) else {
             return;
         };
@@ -111,6 +139,7 @@ pub fn carry_after_removal(
         let Some(&(_, (mirror, k, negated))) = list.iter().find(|p| p.0 == key) else {
             return;
         };
+        let negated = negated != turned;
         let src = if mirror {
             &old.mirror_history[k * width..(k + 1) * width]
         } else {
@@ -121,10 +150,18 @@ pub fn carry_after_removal(
         }
     };
     for (dst, p) in out.chunks_mut(width).zip(new_pairs) {
-        fill(dst, p.i, p.j);
+        // the fast path holds one history for both sides of a pair across a periodic face
+        // too: it takes its lower side's
+        let inside = p.shift == [0.0; 3];
+        fill(
+            dst,
+            p.i,
+            p.j,
+            !new_mirrored && (inside || exact_rank.is_some()),
+        );
     }
     for (dst, m) in out_m.chunks_mut(width).zip(new_mirrors) {
-        fill(dst, m.pair.i, m.pair.j);
+        fill(dst, m.pair.i, m.pair.j, false);
     }
     (out, out_m)
 }
@@ -187,6 +224,23 @@ mod tests {
         }
     }
 
+    fn carry(
+        old: &Sides,
+        r: &Removal,
+        p: Pair,
+        mirrored: bool,
+        ids: &[i64],
+        flips: &[bool],
+    ) -> (Vec<f64>, Vec<f64>) {
+        let new = NewList {
+            pairs: &[p],
+            mirrors: &[],
+            mirrored,
+            exact_rank: None,
+        };
+        carry_after_removal(old, r, &new, ids, flips)
+    }
+
     fn sides<'a>(pairs: &'a [Pair], history: &'a [f64]) -> Sides<'a> {
         Sides {
             pairs,
@@ -212,16 +266,16 @@ mod tests {
             || (vec![true, true], vec![]),
         );
         // without compress: the new pair (ID 2, ID 3) finds ID 3's partner ID 2, negated
-        let (h, _) = carry_after_removal(&old, &r, &[pair(1, 0)], &[], &[3, 2], &[true]);
+        let (h, _) = carry(&old, &r, pair(1, 0), true, &[3, 2], &[true]);
         assert_eq!(h, vec![2.0], "seen from ID 2, as its own entry (1,2)");
-        let (h, _) = carry_after_removal(&old, &r, &[pair(0, 1)], &[], &[3, 2], &[true]);
+        let (h, _) = carry(&old, &r, pair(0, 1), true, &[3, 2], &[true]);
         assert_eq!(h, vec![-2.0], "seen from ID 3: negated");
         // compress renumbers ID 3 to 1: ID 2's partners are still recorded as 1 (the
         // deleted particle) and 3, so the pair takes the deleted particle's values
-        let (h, _) = carry_after_removal(&old, &r, &[pair(1, 0)], &[], &[1, 2], &[true]);
+        let (h, _) = carry(&old, &r, pair(1, 0), true, &[1, 2], &[true]);
         assert_eq!(h, vec![-1.0]);
         // and the particle now called 1 (formerly 3) recorded partner 2: found
-        let (h, _) = carry_after_removal(&old, &r, &[pair(0, 1)], &[], &[1, 2], &[true]);
+        let (h, _) = carry(&old, &r, pair(0, 1), true, &[1, 2], &[true]);
         assert_eq!(h, vec![-2.0]);
     }
 
@@ -239,10 +293,35 @@ mod tests {
         );
         // IDs 1 and 2 swap slots: the pair is found from ID 1, now in slot 1
         r.permute(&[1, 0]);
-        let (h, _) = carry_after_removal(&old, &r, &[pair(1, 0)], &[], &[2, 1], &[true]);
+        let (h, _) = carry(&old, &r, pair(1, 0), true, &[2, 1], &[true]);
         assert_eq!(h, vec![3.0]);
-        let (h, _) = carry_after_removal(&old, &r, &[pair(0, 1)], &[], &[2, 1], &[true]);
+        let (h, _) = carry(&old, &r, pair(0, 1), true, &[2, 1], &[true]);
         assert_eq!(h, vec![-3.0]);
+    }
+
+    #[test]
+    fn a_list_without_mirrors_looks_pairs_up_from_the_lower_slot() {
+        // (0,1) touching with value 1, recorded as ID 2 for slot 0 and negated as ID 1 for
+        // slot 1; compress renumbers so slot 1's partner key 1 now names slot 0's particle
+        // from both sides alike
+        let pairs = [pair(0, 1)];
+        let old = sides(&pairs, &[1.0]);
+        let r = Removal::record(
+            None,
+            &old,
+            &[1, 2, 3],
+            &[1, 2, 3],
+            &[false, false, true],
+            || (vec![true], vec![]),
+        );
+        let (h, _) = carry(&old, &r, pair(1, 0), false, &[1, 2], &[true]);
+        assert_eq!(
+            h,
+            vec![-1.0],
+            "looked up from slot 0, turned to slot 1's side"
+        );
+        let (h, _) = carry(&old, &r, pair(0, 1), false, &[1, 2], &[true]);
+        assert_eq!(h, vec![1.0]);
     }
 
     #[test]
@@ -257,7 +336,7 @@ mod tests {
             &[false, false, true],
             || (vec![false], vec![]),
         );
-        let (h, _) = carry_after_removal(&old, &r, &[pair(0, 1)], &[], &[1, 2], &[true]);
+        let (h, _) = carry(&old, &r, pair(0, 1), true, &[1, 2], &[true]);
         assert_eq!(h, vec![0.0]);
     }
 

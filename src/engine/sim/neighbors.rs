@@ -373,8 +373,12 @@ impl Simulation {
             let (h, m) = crate::engine::removal_history::carry_after_removal(
                 &sides,
                 removal,
-                &self.list.pairs,
-                &self.list.mirrors,
+                &crate::engine::removal_history::NewList {
+                    pairs: &self.list.pairs,
+                    mirrors: &self.list.mirrors,
+                    mirrored: self.list.mirrored,
+                    exact_rank: self.exact_rank(),
+                },
                 &self.particles.id,
                 &flips,
             );

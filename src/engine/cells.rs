@@ -75,6 +75,17 @@ impl CellGrid {
                 grid.wrap[d] = true;
             }
         }
+        // particles flung far apart would ask for up to 2^30 cells: coarsen the widest
+        // non-periodic dimensions to a few cells per particle
+        let limit = (8 * x.len()).max(1 << 15);
+        while grid.n.iter().product::<usize>() > limit {
+            let widest = (0..3)
+                .filter(|&d| !domain.periodic(d) && grid.n[d] > 1)
+                .max_by_key(|&d| grid.n[d]);
+            let Some(d) = widest else { break };
+            grid.n[d] = grid.n[d].div_ceil(2);
+            grid.inv[d] = grid.n[d] as f64 / (hi[d] - grid.lo[d]).max(0.0);
+        }
         grid.rank = grid.tile_ranks(TILE_EDGE);
         Some(grid)
     }

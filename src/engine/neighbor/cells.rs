@@ -51,6 +51,19 @@ impl Cells {
                 };
             }
         }
+        // particles flung far apart (a run blowing up, a huge time step) would ask for up
+        // to 2^30 cells: coarsen the widest non-periodic dimensions until there are at
+        // most a few cells per particle (cells only gather candidates; the pairs found do
+        // not depend on their size)
+        let limit = (8 * x.len()).max(1 << 15);
+        while nbins.iter().product::<usize>() > limit {
+            let widest = (0..3)
+                .filter(|&d| !domain.periodic(d) && nbins[d] > 1)
+                .max_by_key(|&d| nbins[d]);
+            let Some(d) = widest else { break };
+            nbins[d] = nbins[d].div_ceil(2);
+            size[d] = (hi[d] - lo[d]).max(0.0) / nbins[d] as f64;
+        }
         Cells { lo, size, nbins }
     }
 

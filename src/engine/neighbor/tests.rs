@@ -162,3 +162,30 @@ fn blocks_start_at_their_first_particles_entries() {
     assert_eq!(block_starts(&[pair(5, 6), pair(1, 2)], n), None);
     assert_eq!(block_starts(&[pair(n as u32, 1)], n), None);
 }
+
+#[test]
+fn particles_flung_far_apart_get_a_small_grid() {
+    // a blow-up leaves particles 1e22 m apart with a 1 mm cutoff: 1024 cells a side would
+    // be 2^30 cells (8 GB of cell starts); the grids are coarsened and the lists still right
+    let mut domain = Domain::default();
+    domain.boundary = parse_boundary(&["f", "f", "f"]).unwrap();
+    domain.create([0.0; 3], [1.0, 1.0, 1.0]);
+    let x = vec![
+        [0.0, 0.0, 0.0],
+        [0.0005, 0.0, 0.0],
+        [1e22, 1e22, 1e22],
+        [1e22, 1e22, 1e22 + 0.0004],
+    ];
+    let reach = vec![0.0003; x.len()];
+    let mut list = NeighborList::default();
+    list.build(&x, &reach, 0.0002, &domain, None);
+    let mut got: Vec<(u32, u32)> = list
+        .pairs
+        .iter()
+        .map(|p| (p.i.min(p.j), p.i.max(p.j)))
+        .collect();
+    got.sort();
+    assert_eq!(got, vec![(0, 1), (2, 3)]);
+    let grid = crate::engine::cells::CellGrid::new(&x, 0.0008, &domain).unwrap();
+    assert!(grid.len() <= 1 << 15, "{} cells", grid.len());
+}

@@ -57,18 +57,11 @@ impl Removal {
         }
         r.slot_ids[..ids.len()].copy_from_slice(ids);
         r.partners = partners(old, &r, ids.len(), old_ids);
-        let mut flags = remove.to_vec();
-        flags.resize(ids.len(), false);
-        let (mut i, mut n) = (0, ids.len());
-        while i < n {
-            if flags[i] {
-                r.slot_ids[i] = r.slot_ids[n - 1];
-                r.partners[i] = std::mem::take(&mut r.partners[n - 1]);
-                flags[i] = flags[n - 1];
-                n -= 1;
-            } else {
-                i += 1;
-            }
+        let mut n = ids.len();
+        for i in crate::state::particles::slots_filled_from_last(remove, n) {
+            r.slot_ids[i] = r.slot_ids[n - 1];
+            r.partners[i] = std::mem::take(&mut r.partners[n - 1]);
+            n -= 1;
         }
         r.partners.truncate(n);
         r

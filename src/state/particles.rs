@@ -183,15 +183,8 @@ impl Particles {
     /// walking up from the first, each removed particle's slot is filled by the last
     /// particle (which is examined next).
     pub fn remove_filling_from_last(&mut self, remove: &[bool]) {
-        let mut flags = remove.to_vec();
-        let mut i = 0;
-        while i < self.len() && i < flags.len() {
-            if flags[i] {
-                flags.swap_remove(i);
-                self.fill_from_last(i);
-            } else {
-                i += 1;
-            }
+        for i in slots_filled_from_last(remove, self.len()) {
+            self.fill_from_last(i);
         }
     }
 
@@ -394,6 +387,25 @@ impl AsRef<Particles> for Particles {
     fn as_ref(&self) -> &Particles {
         self
     }
+}
+
+/// The slots LIGGGHTS's `delete_atoms` fills, in order, when removing the flagged ones of
+/// `len` particles: walking up from the first, each removed slot takes the last particle
+/// (which is examined next), and the count shrinks by one each time.
+pub fn slots_filled_from_last(remove: &[bool], len: usize) -> Vec<usize> {
+    let mut flags = remove.to_vec();
+    flags.resize(len, false);
+    let (mut i, mut n, mut filled) = (0, len, Vec::new());
+    while i < n {
+        if flags[i] {
+            flags[i] = flags[n - 1];
+            filled.push(i);
+            n -= 1;
+        } else {
+            i += 1;
+        }
+    }
+    filled
 }
 
 #[cfg(test)]

@@ -326,7 +326,6 @@ fn push_g_digits(out: &mut String, value: f64, width: usize, precision: usize) -
     }
     // the P significant digits (ASCII, without the point) and the decimal exponent
     let mut digits = [0u8; 41];
-    let n = p;
     let exponent = match scaled_digits(value.abs(), p, &mut digits) {
         Some(x) => x,
         None => match exact_digits(value.abs(), p, &mut digits) {
@@ -345,7 +344,7 @@ fn push_g_digits(out: &mut String, value: f64, width: usize, precision: usize) -
     }
     if exponent < -4 || exponent >= p as i32 {
         // d.ddd (trailing zeros dropped) then e+XX with at least two exponent digits
-        let kept = digits[1..n]
+        let kept = digits[1..p]
             .iter()
             .rposition(|&d| d != b'0')
             .map_or(0, |k| k + 1);
@@ -364,7 +363,7 @@ fn push_g_digits(out: &mut String, value: f64, width: usize, precision: usize) -
         put(b'0' + (x % 10) as u8);
     } else {
         // fixed: the same digits around the point, trailing zeros of the fraction dropped
-        let kept = digits[..n]
+        let kept = digits[..p]
             .iter()
             .rposition(|&d| d != b'0')
             .map_or(0, |k| k + 1);

@@ -294,7 +294,7 @@ fn thermo_rows(deck: &str, n: usize, tag: &str) -> Vec<Vec<f64>> {
             inside = true;
         } else if line.starts_with("Loop time") {
             inside = false;
-        } else if inside {
+        } else if inside && !line.starts_with("WARNING") {
             rows.push(
                 line.split_whitespace()
                     .map(|w| w.parse().unwrap())
@@ -335,4 +335,102 @@ fn force_fixes_computes_and_variables_on_ranks_match_the_serial_fast_path() {
     // the values are not trivial: rotation, a largest force and the centre of mass moving
     assert!(serial.iter().all(|r| r[4] > 0.0 && r[6] != 0.0));
     assert!(serial[1..].iter().all(|r| r[3] > 0.0));
+}
+
+/// The log of `deck` on `n` ranks (0: serial).
+fn log_of(deck: &str, n: usize, tag: &str) -> String {
+    let dir = scratch(tag);
+    let path = dir.join("in.deck");
+    std::fs::write(&path, deck.replace("${dir}", &dir.to_string_lossy())).unwrap();
+    let (dump, log) = (dir.join("out.dump"), dir.join("log.txt"));
+    let opts = |size: usize, rank: usize| {
+        let mut o = options(&path, &dump, "processors * 1 1", size.max(1));
+        o.ranks.rank = rank;
+        o.log = Some(log.to_string_lossy().into_owned());
+        o
+    };
+    let status = if n == 0 {
+        vec![regolith::session::run_deck(&opts(0, 0))]
+    } else {
+        ThreadRanks::run_owned(n, |c| {
+            let o = opts(n, c.rank());
+            regolith::session::run_deck_on(&o, Some(Box::new(c)))
+        })
+    };
+    assert!(
+        status.iter().all(|s| *s == ExitStatus::Success),
+        "{tag}: {status:?}"
+    );
+    assert!(
+        dir.join("made").is_dir(),
+        "{tag}: shell mkdir made no folder"
+    );
+    let text = std::fs::read_to_string(&log).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    text
+}
+
+#[test]
+fn the_time_step_check_and_shell_run_on_ranks_as_on_one_process() {
+    let deck = BED
+        .replace(
+            "fix integr all nve/sphere",
+            "fix integr all nve/sphere
+shell mkdir ${dir}/made
+fix ts all check/timestep/gran 50 0.001 0.001",
+        )
+        .replace(
+            "thermo_style custom step atoms ke",
+            "thermo_style custom step atoms ke f_ts[1] f_ts[2] f_ts[3]
+thermo_modify format float %.16g",
+        )
+        .replace("${grid}", "processors * 1 1")
+        .replace("${out}", "${dir}/out.dump");
+    let serial = log_of(&deck, 0, "ts-serial");
+    let warnings = |log: &str| {
+        log.lines()
+            .filter(|l| l.starts_with("WARNING: time-step is"))
+            .map(String::from)
+            .collect::<Vec<_>>()
+    };
+    let rows = |log: &str| -> Vec<Vec<f64>> {
+        let mut inside = false;
+        let mut rows = Vec::new();
+        for line in log.lines() {
+            if line.trim_start().starts_with("Step") {
+                inside = true;
+            } else if line.starts_with("Loop time") {
+                inside = false;
+            } else if inside && !line.starts_with("WARNING") {
+                rows.push(
+                    line.split_whitespace()
+                        .map(|w| w.parse().unwrap())
+                        .collect(),
+                );
+            }
+        }
+        rows
+    };
+    // one check at each multiple of 50 steps, each over both limits (the Rayleigh and Hertz
+    // warnings), the values in thermo from step 50 on
+    let want = warnings(&serial);
+    assert_eq!(want.len(), 6, "{want:?}");
+    let serial_rows = rows(&serial);
+    assert_eq!(serial_rows.len(), 5);
+    assert!(serial_rows[1][3] > 0.001 && serial_rows[1][4] > 0.001 && serial_rows[1][5] > 0.0);
+    for n in [2, 3] {
+        let log = log_of(&deck, n, &format!("ts-{n}"));
+        assert_eq!(warnings(&log).len(), want.len(), "{n} ranks");
+        for (a, b) in serial_rows.iter().zip(rows(&log)) {
+            for k in 3..6 {
+                assert!(
+                    (a[k] - b[k]).abs() <= 1e-10 * a[k].abs(),
+                    "{n} ranks: f_ts[{}] {} against {}",
+                    k - 2,
+                    a[k],
+                    b[k]
+                );
+            }
+        }
+    }
 }

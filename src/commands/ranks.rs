@@ -1,7 +1,7 @@
 //! What runs on more than one MPI rank (the first slice of the domain decomposition): a box
 //! with periodic and fixed faces, particles from `create_atoms`, `read_data` or
 //! `read_restart` (set-up commands run identically on every rank), `pair_style gran`,
-//! `fix nve/sphere`, `nve`, `gravity`, primitive `wall/gran`, `property/global` and the
+//! `fix nve/sphere`, `nve`, `gravity`, primitive `wall/gran`, `check/timestep/gran`, `property/global` and the
 //! per-particle force fixes below, the computes below, `thermo` with the keywords below and
 //! `c_`/`v_` values, and `dump custom` with `c_`/`v_` columns, on the fast path. Everything
 //! else is refused by name before anything runs.
@@ -62,6 +62,8 @@ const COMMANDS: &[&str] = &[
     "boundary",
     "compute",
     "uncompute",
+    // files and commands by rank 0 alone, cd and putenv on every rank (as LIGGGHTS)
+    "shell",
 ];
 
 /// Fix styles that run on ranks: each acts on every owned particle alone, with no sum over
@@ -79,6 +81,8 @@ const FIXES: &[&str] = &[
     "viscous",
     "lineforce",
     "planeforce",
+    // its extremes are reduced over the ranks (f_ID[1..3] in thermo)
+    "check/timestep/gran",
 ];
 
 /// Compute styles that run on ranks: evaluated by rank 0 for thermo and dumps from every
@@ -127,7 +131,7 @@ const THERMO: &[&str] = &[
 /// What runs on more than one rank, as a refusal's help says it.
 pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic \
     and fixed faces, pair_style gran, fix nve/sphere, gravity, primitive wall/gran, freeze, \
-    setforce/addforce with constants and viscous, computes ke, erotate/sphere, reduce, com and \
+    setforce/addforce with constants, viscous and check/timestep/gran, shell, computes ke, erotate/sphere, reduce, com and \
     per-atom properties, thermo (step, atoms, ke, c_, v_, ...) and dump custom; or run it as \
     one process (with threads: -sf fast -pk fast N)";
 
@@ -184,7 +188,9 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
             // computes and variables are evaluated from the gathered particles
             // (not the pressure, which needs the pair virial)
             let gathered = |k: &str| {
-                (k.starts_with("c_") && !k.starts_with("c_thermo_press")) || k.starts_with("v_")
+                (k.starts_with("c_") && !k.starts_with("c_thermo_press"))
+                    || k.starts_with("v_")
+                    || fix_values_on_every_rank(sim, k)
             };
             keywords
                 .iter()
@@ -216,6 +222,18 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
         }
         _ => None,
     }
+}
+
+/// Is thermo keyword `k` a value `f_ID[i]` of a fix every rank holds whole (the extremes of
+/// `check/timestep/gran`, reduced over the ranks)?
+fn fix_values_on_every_rank(sim: &Simulation, k: &str) -> bool {
+    let Some(id) = k.strip_prefix("f_") else {
+        return false;
+    };
+    let id = id.split('[').next().unwrap_or(id);
+    sim.fixes
+        .iter()
+        .any(|f| f.id == id && f.style == "check/timestep/gran")
 }
 
 /// The full refusal message of what [`refusal`] names.

@@ -833,6 +833,10 @@ impl Interpreter {
             ));
         };
         let rest = &args[1..];
+        // on several MPI ranks, as LIGGGHTS: files and commands by rank 0 alone; cd and
+        // putenv on every rank
+        let root = self.sys.mode == Mode::Check
+            || self.engine.sim.comm.as_ref().is_none_or(|c| c.rank() == 0);
         let need = |ok: bool, usage: &str| {
             if ok {
                 Ok(())
@@ -848,24 +852,33 @@ impl Interpreter {
             }
             "mkdir" => {
                 need(!rest.is_empty(), "shell mkdir DIR ...")?;
-                rest.iter().for_each(|d| self.sys.mkdir(d));
+                if root {
+                    rest.iter().for_each(|d| self.sys.mkdir(d));
+                }
             }
             "mv" => {
                 need(rest.len() == 2, "shell mv OLD NEW")?;
-                self.sys.rename(&rest[0], &rest[1]);
+                if root {
+                    self.sys.rename(&rest[0], &rest[1]);
+                }
             }
             "rm" => {
                 need(!rest.is_empty(), "shell rm FILE ...")?;
-                rest.iter().for_each(|f| self.sys.remove_file(f));
+                if root {
+                    rest.iter().for_each(|f| self.sys.remove_file(f));
+                }
             }
             "rmdir" => {
                 need(!rest.is_empty(), "shell rmdir DIR ...")?;
-                rest.iter().for_each(|d| self.sys.rmdir(d));
+                if root {
+                    rest.iter().for_each(|d| self.sys.rmdir(d));
+                }
             }
             "putenv" => {
                 need(!rest.is_empty(), "shell putenv NAME=VALUE ...")?;
                 rest.iter().for_each(|a| self.sys.putenv(a));
             }
+            _ if !root => {}
             _ => {
                 self.out.flush();
                 if self.sys.system(&args.join(" ")).is_none() && self.sys.mode == Mode::Check {

@@ -47,6 +47,12 @@ impl FixStyle for CheckTimestep {
         }
     }
 
+    fn end_of_step_ranks(&mut self, p: &mut Particles, at: &FixStep, min: &dyn Fn(&mut [f64])) {
+        if at.step % self.every == 0 {
+            self.warnings = self.evaluate_over_ranks(p, at.group, at.dt, at.skin, min);
+        }
+    }
+
     fn outputs_at(&self, _step: i64) -> bool {
         !self.warnings.is_empty()
     }

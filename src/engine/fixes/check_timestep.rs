@@ -70,6 +70,20 @@ impl CheckTimestep {
 
     /// LIGGGHTS's estimates; returns the warnings to print.
     pub fn evaluate(&mut self, p: &Particles, group: u32, dt: f64, skin: f64) -> Vec<String> {
+        self.evaluate_over_ranks(p, group, dt, skin, &|_: &mut [f64]| {})
+    }
+
+    /// [`Self::evaluate`] over this rank's particles, the extremes taken over all ranks with
+    /// `min` (each value of a slice replaced by its minimum over the ranks), as LIGGGHTS
+    /// reduces them: the same values as one process over all particles.
+    pub fn evaluate_over_ranks(
+        &mut self,
+        p: &Particles,
+        group: u32,
+        dt: f64,
+        skin: f64,
+        min: &dyn Fn(&mut [f64]),
+    ) -> Vec<String> {
         const BIG: f64 = 1.0e20;
         let mut rayleigh = BIG;
         let mut r_min = BIG;
@@ -95,6 +109,11 @@ impl CheckTimestep {
                 r_min = rad;
             }
         }
+        // the largest squared speed as the smallest of its negatives (exact)
+        let mut extremes = [rayleigh, -vmax_sqr, r_min];
+        min(&mut extremes);
+        let (rayleigh, r_min) = (extremes[0], extremes[2]);
+        vmax_sqr = -extremes[1];
         if self.vmax_user * self.vmax_user > vmax_sqr {
             vmax_sqr = self.vmax_user * self.vmax_user;
         }
@@ -117,6 +136,9 @@ impl CheckTimestep {
                 }
             }
         }
+        let mut smallest = [hertz];
+        min(&mut smallest);
+        let hertz = smallest[0];
         self.values = [dt / rayleigh, dt / hertz, v_rel * dt / skin];
         let mut messages = Vec::new();
         if self.warn || self.error {

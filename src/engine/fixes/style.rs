@@ -227,6 +227,13 @@ pub trait FixStyle: Send {
     /// `end_of_step`: after the step, before output (the style decides its own interval).
     fn end_of_step(&mut self, _p: &mut Particles, _at: &FixStep) {}
 
+    /// `end_of_step` on several MPI ranks, over this rank's own particles: `min` replaces
+    /// each value of a slice by its minimum over all ranks (every rank gets the same). By
+    /// default [`FixStyle::end_of_step`] (styles that act on each particle alone).
+    fn end_of_step_ranks(&mut self, p: &mut Particles, at: &FixStep, _min: &dyn Fn(&mut [f64])) {
+        self.end_of_step(p, at)
+    }
+
     /// Whether the style writes output at the end of `step`: only then is its
     /// [`FixStyle::end_of_step_output`] called.
     fn outputs_at(&self, _step: i64) -> bool {

@@ -414,6 +414,7 @@ impl Simulation {
                 self.dt,
                 &self.domain,
             );
+            self.rank_end_of_step(comm, out, vars)?;
             let clock = std::time::Instant::now();
             self.rank_output(comm, &st, false, last, out, vars)?;
             self.stats.output += clock.elapsed().as_secs_f64();
@@ -433,6 +434,44 @@ impl Simulation {
             self.particles.len()
         ));
         out(&stats);
+        Ok(())
+    }
+
+    /// The `end_of_step` phase on ranks: each module fix style over this rank's particles,
+    /// extremes reduced over the ranks; rank 0 writes what the styles print.
+    fn rank_end_of_step(
+        &mut self,
+        comm: &RankComm,
+        out: Sink<'_>,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        let (step, dt, skin) = (self.step, self.dt, self.neighbor.skin);
+        let contact = self.neighbor.cutneighmax - skin;
+        let min = |values: &mut [f64]| comm.all_reduce_f64(values, Reduce::Min);
+        for k in 0..self.fixes.len() {
+            let fix = &mut self.fixes[k];
+            if let FixKind::Style(s) = &mut fix.kind {
+                let at = fixes::FixStep {
+                    group: fix.group,
+                    step,
+                    dt,
+                    domain: &self.domain,
+                    virial: &[],
+                    contact,
+                    skin,
+                    regions: Some(&self.regions),
+                };
+                s.end_of_step_ranks(&mut self.particles, &at, &min);
+                if s.outputs_at(step) {
+                    if comm.rank() == 0 {
+                        self.fix_style_output(k, out, vars)?;
+                    } else {
+                        // what rank 0 prints, the others drop
+                        self.fix_style_output(k, &mut |_: &str| {}, vars)?;
+                    }
+                }
+            }
+        }
         Ok(())
     }
 

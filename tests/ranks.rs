@@ -195,9 +195,9 @@ fn what_does_not_run_on_ranks_is_refused_by_name() {
     let before_run = |line: &str| (String::from("run 50\n"), format!("{line}\nrun 50\n"));
     for ((from, to), at, refused) in [
         (
-            before_run("compute c all stress/atom"),
+            before_run("compute c all pair/gran/local id force"),
             34,
-            "compute stress/atom",
+            "compute pair/gran/local",
         ),
         (
             before_run("fix push all addforce 0 0 v_f"),
@@ -433,4 +433,30 @@ thermo_modify format float %.16g",
             }
         }
     }
+}
+
+#[test]
+fn per_atom_stress_on_ranks_matches_the_serial_fast_path() {
+    // the pair virial of each particle (with the kinetic part) in the dump
+    let deck = BED
+        .replace(
+            "fix integr all nve/sphere",
+            "fix integr all nve/sphere\ncompute stress all stress/atom",
+        )
+        .replace(
+            "omegaz radius",
+            "omegaz radius c_stress[1] c_stress[3] c_stress[4]",
+        )
+        .replace("%.17g\"", "%.17g %.17g %.17g %.17g\"");
+    let grids = [(2, "processors 2 1 1"), (3, "processors 1 3 1")];
+    let (serial, _) = on_grids(&deck, &grids, "stress");
+    // the stresses are not trivial: the bed presses on its lower layers
+    let last = regolith::io::dump_compare::parse(&serial).unwrap();
+    let rows = &last.last().unwrap().rows;
+    let pressed = rows.values().filter(|r| r[15] < 0.0 && r[16] < 0.0).count();
+    assert!(
+        pressed > rows.len() / 2,
+        "{pressed} of {} compressed",
+        rows.len()
+    );
 }

@@ -100,6 +100,8 @@ const COMPUTES: &[&str] = &[
     "gyration",
     "pe",
     "pe/atom",
+    // the pair virial of each owned particle is whole on its rank, gathered with it
+    "stress/atom",
 ];
 
 /// Thermo keywords evaluated from the particles alone (gathered on rank 0).
@@ -131,9 +133,9 @@ const THERMO: &[&str] = &[
 /// What runs on more than one rank, as a refusal's help says it.
 pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic \
     and fixed faces, pair_style gran, fix nve/sphere, gravity, primitive wall/gran, freeze, \
-    setforce/addforce with constants, viscous and check/timestep/gran, shell, computes ke, erotate/sphere, reduce, com and \
-    per-atom properties, thermo (step, atoms, ke, c_, v_, ...) and dump custom; or run it as \
-    one process (with threads: -sf fast -pk fast N)";
+    setforce/addforce with constants, viscous and check/timestep/gran, shell, computes ke, \
+    erotate/sphere, reduce, com, stress/atom and per-atom properties, thermo (step, atoms, ke, \
+    c_, v_, ...) and dump custom; or run it as one process (with threads: -sf fast -pk fast N)";
 
 /// What of `cmd` does not run on more than one rank yet (None: it runs), as the words
 /// the refusal names: "<what> on more than one MPI rank: not supported yet".

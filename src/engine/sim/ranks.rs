@@ -361,7 +361,7 @@ impl Simulation {
         let (first, last, started) = self.begin_run(nsteps)?;
         self.setup_fix_styles();
         let mut st = self.rank_setup(comm)?;
-        self.rank_forces(&mut st, false);
+        self.rank_forces(&mut st, false, true);
         self.has_run = true;
         self.restart_in_progress = false;
         self.restart_fixes.clear();
@@ -405,7 +405,8 @@ impl Simulation {
                 self.stats.comm += clock.elapsed().as_secs_f64();
             }
             let clock = std::time::Instant::now();
-            self.rank_forces(&mut st, true);
+            let tally = self.virial_wanted(last);
+            self.rank_forces(&mut st, true, tally);
             self.stats.pair += clock.elapsed().as_secs_f64();
             fixes::final_integrate(
                 &mut self.fixes,
@@ -648,7 +649,15 @@ impl Simulation {
     /// Pair forces on owned particles and ghosts (the ghosts behind the owned particles;
     /// their forces are not used), then the ghosts set apart and the forcing fixes run on
     /// the owned particles; `update` false in the setup evaluation.
-    fn rank_forces(&mut self, st: &mut RankState, update: bool) {
+    /// `want_virial`: tally the per-atom pair virial if a `compute stress/atom` reads it (an
+    /// owned particle's is whole: every pair with an owned particle is computed on its rank).
+    fn rank_forces(&mut self, st: &mut RankState, update: bool, want_virial: bool) {
+        let tally = want_virial && self.computes.iter().any(|c| c.style().reads_virial());
+        self.virial.clear();
+        self.virial_step = tally.then_some(self.step);
+        if tally {
+            self.virial.resize(self.particles.len(), [0.0; 6]);
+        }
         match self.pair.as_mut() {
             Some(pair) => pair.compute(
                 &mut self.particles,
@@ -656,7 +665,7 @@ impl Simulation {
                 &mut st.history,
                 self.dt,
                 update,
-                None,
+                tally.then_some(&mut self.virial[..]),
                 &SumOrder::ListOrder,
                 None,
             ),
@@ -667,6 +676,7 @@ impl Simulation {
             st.fresh = false;
         }
         self.particles.truncate(st.nlocal);
+        self.virial.truncate(st.nlocal);
         fixes::post_force(
             &mut self.fixes,
             &mut self.particles,
@@ -708,6 +718,16 @@ impl Simulation {
         if !thermo && !dump {
             return Ok(());
         }
+        // the per-atom virials of a stress compute, in the order of the particles below
+        let virials = (self.virial_step == Some(step)).then(|| {
+            let bytes: Vec<u8> = self
+                .virial
+                .iter()
+                .flatten()
+                .flat_map(|v| v.to_le_bytes())
+                .collect();
+            comm.gather_bytes(&bytes)
+        });
         let Some(all) = comm.gather_bytes(&self.pack_owned(st, None)) else {
             return Ok(());
         };
@@ -718,7 +738,19 @@ impl Simulation {
                 unpack_particle(&mut r, &mut full, None)?;
             }
         }
+        let mut full_virial: Vec<[f64; 6]> = virials
+            .flatten()
+            .unwrap_or_default()
+            .concat()
+            .chunks_exact(48)
+            .map(|row| {
+                std::array::from_fn(|c| {
+                    f64::from_le_bytes(row[8 * c..8 * c + 8].try_into().unwrap_or([0; 8]))
+                })
+            })
+            .collect();
         std::mem::swap(&mut self.particles, &mut full);
+        std::mem::swap(&mut self.virial, &mut full_virial);
         let mut written = || -> Result<(), EngineError> {
             if thermo {
                 self.thermo_line(out, vars)?;
@@ -727,6 +759,7 @@ impl Simulation {
         };
         let result = written();
         std::mem::swap(&mut self.particles, &mut full);
+        std::mem::swap(&mut self.virial, &mut full_virial);
         result
     }
 

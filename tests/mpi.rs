@@ -798,13 +798,13 @@ fn a_check_on_many_ranks_reports_the_grid_and_refuses_what_does_not_run() {
     };
     // the set-up runs on ranks
     assert!(check(&text).is_empty());
-    let d = check(&format!("{text}compute c all stress/atom\n"));
+    let d = check(&format!("{text}compute c all contact/atom\n"));
     assert_eq!(d.len(), 1, "{d:?}");
     assert_eq!(d[0].severity, Severity::Unsupported);
     let line = d[0].one_line();
     assert!(
         line.starts_with(
-            "in.deck:10: compute stress/atom on more than one MPI rank: not supported yet"
+            "in.deck:10: compute contact/atom on more than one MPI rank: not supported yet"
         ),
         "{line}"
     );
@@ -995,7 +995,7 @@ fn a_build_with_mpi_runs_on_ranks_and_refuses_the_rest() {
     std::fs::write(
         dir.join("in.deck"),
         format!(
-            "{}compute c all stress/atom\n",
+            "{}compute c all contact/atom\n",
             deck([10.0, 1.0, 1.0], "processors 2 * *")
         ),
     )
@@ -1008,7 +1008,7 @@ fn a_build_with_mpi_runs_on_ranks_and_refuses_the_rest() {
     assert_ne!(out.status.code(), Some(0));
     assert_eq!(so, "  2 by 2 by 1 MPI processor grid\n");
     assert_eq!(
-        se.matches("compute stress/atom on more than one MPI rank: not supported yet")
+        se.matches("compute contact/atom on more than one MPI rank: not supported yet")
             .count(),
         1,
         "{se}"

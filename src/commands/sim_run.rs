@@ -1,6 +1,6 @@
 //! Commands that drive and observe the run: fixes regolith integrates, thermo, dumps, `run`.
 
-use crate::commands::registry::{self, Handler};
+use crate::commands::registry::Handler;
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
 use crate::engine::error::EngineError;

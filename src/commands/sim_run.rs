@@ -76,13 +76,9 @@ fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
                 }
                 // the mesh stays where it is, at rest
                 let mesh = mv.mesh.clone();
-                for f in ctx.sim.fixes.iter_mut() {
-                    if let FixKind::Mesh(m) = &mut f.kind {
-                        if f.id == mesh {
-                            if let Some(v) = &mut m.node_v {
-                                v.iter_mut().for_each(|t| *t = [[0.0; 3]; 3]);
-                            }
-                        }
+                if let Some(m) = crate::engine::fixes::mesh_named_mut(&mut ctx.sim.fixes, &mesh) {
+                    if let Some(v) = &mut m.node_v {
+                        v.iter_mut().for_each(|t| *t = [[0.0; 3]; 3]);
                     }
                 }
             }

@@ -399,7 +399,9 @@ impl Simulation {
             let part = match &f.kind {
                 FixKind::MeshWall(_) => "mesh walls (fix wall/gran ... mesh)",
                 FixKind::MoveMesh(_) => "moving meshes (fix move/mesh)",
-                FixKind::Mesh(m) if m.stress.is_some() => "mesh stresses (fix mesh/surface/stress)",
+                kind if kind.mesh().is_some_and(|m| m.stress.is_some()) => {
+                    "mesh stresses (fix mesh/surface/stress)"
+                }
                 FixKind::Style(s) => match s.unaccelerated() {
                     Some(part) => part,
                     None => continue,

@@ -72,6 +72,22 @@ pub enum FixKind {
 }
 
 impl FixKind {
+    /// The triangle mesh of a `fix mesh/surface...` (None: a fix of another style).
+    pub fn mesh(&self) -> Option<&MeshFix> {
+        match self {
+            FixKind::Mesh(m) => Some(m),
+            _ => None,
+        }
+    }
+
+    /// [`FixKind::mesh`], to change.
+    pub fn mesh_mut(&mut self) -> Option<&mut MeshFix> {
+        match self {
+            FixKind::Mesh(m) => Some(m),
+            _ => None,
+        }
+    }
+
     /// Can the fix evaluate variables or computes inside a step (so per-atom computes must
     /// be current on every step)? Kinds not listed answer yes.
     pub fn may_read_computes(&self) -> bool {
@@ -93,6 +109,22 @@ impl FixKind {
             _ => true,
         }
     }
+}
+
+/// The mesh of the `fix mesh/surface...` with ID `id` among `fixes` (None: no mesh fix has
+/// that ID).
+pub fn mesh_named<'a>(fixes: &'a [Fix], id: &str) -> Option<&'a MeshFix> {
+    fixes.iter().find(|f| f.id == id)?.kind.mesh()
+}
+
+/// [`mesh_named`], to change.
+pub fn mesh_named_mut<'a>(fixes: &'a mut [Fix], id: &str) -> Option<&'a mut MeshFix> {
+    fixes.iter_mut().find(|f| f.id == id)?.kind.mesh_mut()
+}
+
+/// Every `fix mesh/surface...` among `fixes`, in definition order, with its fix.
+pub fn meshes(fixes: &[Fix]) -> impl Iterator<Item = (&Fix, &MeshFix)> {
+    fixes.iter().filter_map(|f| Some((f, f.kind.mesh()?)))
 }
 
 /// One defined fix.

@@ -12,6 +12,7 @@ use std::io::Write;
 use std::sync::Mutex;
 
 use crate::engine::error::EngineError;
+use crate::engine::fixes::mesh_named;
 use crate::engine::mesh::TriMesh;
 use crate::engine::particles::Particles;
 
@@ -467,10 +468,7 @@ impl crate::engine::sim::Simulation {
                 } else {
                     0.5 * self.neighbor.skin
                 };
-                let mesh = self.fixes.iter().find_map(|f| match &f.kind {
-                    FixKind::Mesh(m) if f.id == mf.mesh => Some(&m.mesh),
-                    _ => None,
-                });
+                let mesh = mesh_named(&self.fixes, &mf.mesh).map(|m| &m.mesh);
                 if let Some(mesh) = mesh {
                     if setup && matches!(mf.side, Side::Vector(_)) && !Massflow::planar(mesh) {
                         result = Err(format!(
@@ -504,10 +502,7 @@ impl crate::engine::sim::Simulation {
                     .fixes
                     .iter()
                     .any(|g| matches!(&g.kind, FixKind::MoveMesh(mv) if mv.mesh == mf.mesh));
-                let mesh = self.fixes.iter().find_map(|f| match &f.kind {
-                    FixKind::Mesh(m) if f.id == mf.mesh => Some(&m.mesh),
-                    _ => None,
-                });
+                let mesh = mesh_named(&self.fixes, &mf.mesh).map(|m| &m.mesh);
                 if let Some(mesh) = mesh {
                     result = mf
                         .post_integrate(

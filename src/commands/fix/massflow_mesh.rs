@@ -40,10 +40,8 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                     return Err(fail(i, "not enough arguments for 'insert_stream'"));
                 }
                 let m = a.word(i + 1)?;
-                let found = ctx.sim.fixes.iter().find_map(|f| match &f.kind {
-                    FixKind::Mesh(mf) if f.id == m => Some(mf.mesh.clone()),
-                    _ => None,
-                });
+                let found =
+                    crate::engine::fixes::mesh_named(&ctx.sim.fixes, m).map(|mf| mf.mesh.clone());
                 mesh = Some((
                     m.to_string(),
                     found.ok_or_else(|| fail(i + 1, "fix mesh ID does not exist"))?,

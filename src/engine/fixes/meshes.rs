@@ -27,6 +27,13 @@ pub struct MeshFix {
 }
 
 impl MeshFix {
+    /// The global value `f_ID[i]` (1-based) of the servo module, else of the stress module
+    /// (None: neither has it).
+    pub fn value(&self, i: usize) -> Option<f64> {
+        let servo = self.servo.as_ref().and_then(|s| s.value(i));
+        servo.or_else(|| self.stress.as_ref().and_then(|s| s.value(i)))
+    }
+
     /// The triangles (nodes in STL order).
     pub fn triangles(&self) -> &[crate::io::stl::Triangle] {
         &self.mesh.nodes
@@ -67,11 +74,8 @@ pub fn move_meshes(fixes: &mut [Fix], dt: f64) {
         let first = !movers[..pos]
             .iter()
             .any(|&e| matches!(&fixes[e].kind, FixKind::MoveMesh(o) if o.mesh == mv.mesh));
-        let mesh_at = fixes
-            .iter()
-            .position(|f| f.id == mv.mesh && matches!(f.kind, FixKind::Mesh(_)));
         let mut shift = None;
-        if let Some(FixKind::Mesh(m)) = mesh_at.map(|i| &mut fixes[i].kind) {
+        if let Some(m) = super::mesh_named_mut(fixes, &mv.mesh) {
             let n = m.mesh.len();
             let v = m.node_v.get_or_insert_with(|| vec![[[0.0; 3]; 3]; n]);
             if first {

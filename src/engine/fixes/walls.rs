@@ -76,8 +76,8 @@ fn mesh_refs<'a>(
         .iter()
         .enumerate()
         .filter_map(|(k, id)| {
-            fixes.iter().find_map(|f| match &f.kind {
-                FixKind::Mesh(m) if &f.id == id => {
+            fixes.iter().find_map(|f| match f.kind.mesh() {
+                Some(m) if &f.id == id => {
                     let moving = m.servo.is_some()
                         || fixes
                             .iter()
@@ -172,7 +172,7 @@ pub(super) fn mesh_wall_force(
                 .filter_map(|id| {
                     fixes
                         .iter()
-                        .position(|f| &f.id == id && matches!(f.kind, FixKind::Mesh(_)))
+                        .position(|f| &f.id == id && f.kind.mesh().is_some())
                 })
                 .collect();
             refresh_trackers(fixes, w, p, list, moving_skin);
@@ -185,7 +185,7 @@ pub(super) fn mesh_wall_force(
             w.model = Some(model);
             // a servo mesh sums its force in LIGGGHTS's loop order (it feeds back on the motion)
             for (k, &at) in mesh_fix.iter().enumerate() {
-                if let FixKind::Mesh(m) = &fixes[at].kind {
+                if let Some(m) = fixes[at].kind.mesh() {
                     if let Some(s) = m.servo.as_ref() {
                         let mut own: Vec<_> =
                             records.iter().filter(|r| r.0 == k).map(|r| r.1).collect();
@@ -200,7 +200,7 @@ pub(super) fn mesh_wall_force(
                 if p.mask[c.particle] & f.group == 0 {
                     continue;
                 }
-                if let FixKind::Mesh(m) = &mut f.kind {
+                if let Some(m) = f.kind.mesh_mut() {
                     let t = c.tri as usize;
                     let (normal, area) = (m.mesh.normal[t], m.mesh.area[t]);
                     if let Some(st) = m.stress.as_mut() {

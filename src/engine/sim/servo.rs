@@ -2,13 +2,14 @@
 //! at a run's start, the motion at `initial_integrate` and the controller after the forces.
 
 use super::*;
+use crate::engine::fixes::mesh_named_mut;
 
 impl Simulation {
     /// IDs of the meshes a servo drives.
     pub(super) fn servo_meshes(&self) -> Vec<String> {
         self.fixes
             .iter()
-            .filter(|f| matches!(&f.kind, FixKind::Mesh(m) if m.servo.is_some()))
+            .filter(|f| f.kind.mesh().is_some_and(|m| m.servo.is_some()))
             .map(|f| f.id.clone())
             .collect()
     }
@@ -33,12 +34,7 @@ impl Simulation {
             {
                 return Err(format!("Fix mesh/surface/stress/servo (id {id}): this fix does not allow superposition with moving mesh fixes").into());
             }
-            let Some(FixKind::Mesh(m)) = self
-                .fixes
-                .iter_mut()
-                .find(|f| f.id == id)
-                .map(|f| &mut f.kind)
-            else {
+            let Some(m) = mesh_named_mut(&mut self.fixes, &id) else {
                 continue;
             };
             let Some(s) = m.servo.as_mut() else { continue };
@@ -67,7 +63,7 @@ impl Simulation {
         );
         let bins: Vec<[i64; 3]> = self.particles.x.iter().map(|x| order.bin(*x)).collect();
         for f in &mut self.fixes {
-            if let FixKind::Mesh(m) = &mut f.kind {
+            if let Some(m) = f.kind.mesh_mut() {
                 if let Some(s) = m.servo.as_mut() {
                     s.bins.clone_from(&bins);
                 }
@@ -80,7 +76,7 @@ impl Simulation {
     pub(super) fn servo_initial_integrate(&mut self) {
         let dt = self.dt;
         for f in &mut self.fixes {
-            let FixKind::Mesh(m) = &mut f.kind else {
+            let Some(m) = f.kind.mesh_mut() else {
                 continue;
             };
             let Some(s) = m.servo.as_mut() else { continue };
@@ -108,12 +104,7 @@ impl Simulation {
                     _ => None,
                 })
                 .unwrap_or(0);
-            let Some(FixKind::Mesh(m)) = self
-                .fixes
-                .iter_mut()
-                .find(|f| f.id == id)
-                .map(|f| &mut f.kind)
-            else {
+            let Some(m) = mesh_named_mut(&mut self.fixes, &id) else {
                 continue;
             };
             let f_total = m.stress.as_ref().map_or([0.0; 3], |st| st.f_total);

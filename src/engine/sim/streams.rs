@@ -2,6 +2,7 @@
 //! insertion fixes, and meshes that must stay inside the box.
 
 use super::*;
+use crate::engine::fixes::{mesh_named_mut, meshes};
 
 impl Simulation {
     pub(super) fn insert_world(&self) -> (Vec<[f64; 3]>, [bool; 3], bool) {
@@ -100,13 +101,9 @@ impl Simulation {
         let mut face = crate::engine::insert::Face::new(triangles);
         if all_in {
             let (lo, hi) = (self.domain.lo, self.domain.hi);
-            let mesh = self.fixes.iter_mut().find_map(|f| match &mut f.kind {
-                FixKind::Mesh(m) if f.id == face_id => Some((m, f.id.clone())),
-                _ => None,
-            });
-            if let Some((m, name)) = mesh {
+            if let Some(m) = mesh_named_mut(&mut self.fixes, face_id) {
                 if !m.mesh.has_topology {
-                    m.mesh.build_topology(lo, hi, &name)?;
+                    m.mesh.build_topology(lo, hi, face_id)?;
                 }
                 face.within = Some(crate::engine::insert::Within::new(&m.mesh));
             }
@@ -417,8 +414,7 @@ impl Simulation {
     /// directions with fixed or periodic faces; the faces padded by 1e-8 length) are an error.
     pub(super) fn check_meshes_in_box(&self) -> Result<(), EngineError> {
         let d = &self.domain;
-        for f in &self.fixes {
-            let FixKind::Mesh(m) = &f.kind else { continue };
+        for (f, m) in meshes(&self.fixes) {
             let lost = m
                 .triangles()
                 .iter()

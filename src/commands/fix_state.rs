@@ -116,7 +116,7 @@ pub fn restore_fix_state(
             ));
         }
     }
-    if let FixKind::MeshWall(w) = &mut fix.kind {
+    if let Some(w) = fix.kind.mesh_wall_mut() {
         restore_mesh_wall_trackers(a, ctx, w, &mut lines)?;
     }
     let first_stream = matches!(fix.kind, FixKind::InsertStream(_)) && !ctx.sim.stream_release;

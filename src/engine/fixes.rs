@@ -88,6 +88,32 @@ impl FixKind {
         }
     }
 
+    /// The granular mesh walls of a `fix wall/gran ... mesh` (None: a fix of another style).
+    pub fn mesh_wall(&self) -> Option<&MeshWallFix> {
+        match self {
+            FixKind::MeshWall(w) => Some(w),
+            _ => None,
+        }
+    }
+
+    /// [`FixKind::mesh_wall`], to change.
+    pub fn mesh_wall_mut(&mut self) -> Option<&mut MeshWallFix> {
+        match self {
+            FixKind::MeshWall(w) => Some(w),
+            _ => None,
+        }
+    }
+
+    /// The contact model a `fix wall/gran` names, of primitive or mesh walls (None: a fix of
+    /// another style).
+    pub fn wall_selection(&self) -> Option<&crate::engine::granular::Selection> {
+        match self {
+            FixKind::WallGran(w) => Some(&w.selection),
+            FixKind::MeshWall(w) => Some(&w.selection),
+            _ => None,
+        }
+    }
+
     /// Can the fix evaluate variables or computes inside a step (so per-atom computes must
     /// be current on every step)? Kinds not listed answer yes.
     pub fn may_read_computes(&self) -> bool {
@@ -125,6 +151,15 @@ pub fn mesh_named_mut<'a>(fixes: &'a mut [Fix], id: &str) -> Option<&'a mut Mesh
 /// Every `fix mesh/surface...` among `fixes`, in definition order, with its fix.
 pub fn meshes(fixes: &[Fix]) -> impl Iterator<Item = (&Fix, &MeshFix)> {
     fixes.iter().filter_map(|f| Some((f, f.kind.mesh()?)))
+}
+
+/// The first `fix wall/gran ... mesh` among `fixes` whose meshes include mesh `id`: its
+/// index among `fixes`, its walls, and the mesh's index among its meshes.
+pub fn first_wall_on<'a>(fixes: &'a [Fix], id: &str) -> Option<(usize, &'a MeshWallFix, usize)> {
+    fixes.iter().enumerate().find_map(|(k, f)| {
+        let w = f.kind.mesh_wall()?;
+        Some((k, w, w.meshes.iter().position(|m| m == id)?))
+    })
 }
 
 /// One defined fix.
@@ -201,7 +236,7 @@ pub fn post_force(
     moving_skin: bool,
 ) {
     for k in 0..fixes.len() {
-        if let FixKind::MeshWall(_) = fixes[k].kind {
+        if fixes[k].kind.mesh_wall().is_some() {
             walls::mesh_wall_force(fixes, k, p, dt, update, list, moving_skin);
             continue;
         }

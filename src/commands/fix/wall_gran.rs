@@ -128,12 +128,7 @@ fn mesh_wall(
         }
         meshes.push(id.to_string());
     }
-    if ctx
-        .sim
-        .fixes
-        .iter()
-        .any(|f| matches!(f.kind, FixKind::MeshWall(_)))
-    {
+    if ctx.sim.fixes.iter().any(|f| f.kind.mesh_wall().is_some()) {
         return Err(a.error(
             0,
             "More than one wall of type 'mesh' is not supported; list all meshes with n_meshes",

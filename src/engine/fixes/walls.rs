@@ -108,7 +108,7 @@ pub fn mesh_wall_contacts(
     p: &Particles,
     dt: f64,
 ) -> Vec<crate::engine::mesh_wall::WallContact> {
-    let FixKind::MeshWall(w) = &fixes[k].kind else {
+    let Some(w) = fixes[k].kind.mesh_wall() else {
         return Vec::new();
     };
     let Some(model) = w.model.as_ref() else {
@@ -164,7 +164,7 @@ pub(super) fn mesh_wall_force(
     moving_skin: bool,
 ) {
     let mut kind = std::mem::replace(&mut fixes[k].kind, FixKind::Settings);
-    if let FixKind::MeshWall(w) = &mut kind {
+    if let Some(w) = kind.mesh_wall_mut() {
         if let Some(model) = w.model.take() {
             let mesh_fix: Vec<usize> = w
                 .meshes

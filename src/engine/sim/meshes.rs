@@ -1,7 +1,7 @@
 //! Mesh walls during a run: topology, stress phases and moving meshes' velocities.
 
 use super::*;
-use crate::engine::fixes::mesh_named_mut;
+use crate::engine::fixes::{first_wall_on, mesh_named_mut};
 
 impl Simulation {
     /// LIGGGHTS's mesh setup at the first run: neighbours and active edges and corners of
@@ -114,9 +114,7 @@ impl Simulation {
     /// before every wall using their mesh; otherwise all of them.
     pub(super) fn zero_mesh_velocities(&mut self, before_force: bool) {
         for (id, first) in self.moving_meshes() {
-            let wall = self.fixes.iter().position(
-                |f| matches!(&f.kind, FixKind::MeshWall(w) if w.meshes.iter().any(|m| m == &id)),
-            );
+            let wall = first_wall_on(&self.fixes, &id).map(|(k, _, _)| k);
             let mover_first = wall.is_none_or(|w| first < w);
             if let Some(m) = mesh_named_mut(&mut self.fixes, &id) {
                 let n = m.mesh.len();

@@ -2,7 +2,7 @@
 //! at a run's start, the motion at `initial_integrate` and the controller after the forces.
 
 use super::*;
-use crate::engine::fixes::mesh_named_mut;
+use crate::engine::fixes::{first_wall_on, mesh_named_mut};
 
 impl Simulation {
     /// IDs of the meshes a servo drives.
@@ -21,9 +21,7 @@ impl Simulation {
         let r_min = self.particles.radius.iter().copied().reduce(f64::min);
         let (skin, dt) = (self.neighbor.skin, self.dt);
         for id in self.servo_meshes() {
-            let walled = self.fixes.iter().any(
-                |f| matches!(&f.kind, FixKind::MeshWall(w) if w.meshes.iter().any(|m| m == &id)),
-            );
+            let walled = first_wall_on(&self.fixes, &id).is_some();
             if !walled {
                 return Err(format!("Fix mesh/surface/stress/servo (id {id}): The servo-wall requires a contact model. Therefore, it has to be used for a fix wall/gran too.").into());
             }
@@ -93,17 +91,9 @@ impl Simulation {
         let dt = self.dt;
         for id in self.servo_meshes() {
             // entries in the mesh's contact lists (of the first wall that uses it)
-            let near = self
-                .fixes
-                .iter()
-                .find_map(|f| match &f.kind {
-                    FixKind::MeshWall(w) => {
-                        let k = w.meshes.iter().position(|m| m == &id)?;
-                        Some(w.trackers.get(k).map_or(0, |t| t.candidate_count()))
-                    }
-                    _ => None,
-                })
-                .unwrap_or(0);
+            let near = first_wall_on(&self.fixes, &id)
+                .and_then(|(_, w, k)| w.trackers.get(k))
+                .map_or(0, |t| t.candidate_count());
             let Some(m) = mesh_named_mut(&mut self.fixes, &id) else {
                 continue;
             };

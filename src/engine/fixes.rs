@@ -88,6 +88,22 @@ impl FixKind {
         }
     }
 
+    /// The insertion of a `fix insert/stream` (None: a fix of another style).
+    pub fn stream(&self) -> Option<&StreamFix> {
+        match self {
+            FixKind::InsertStream(s) => Some(s),
+            _ => None,
+        }
+    }
+
+    /// [`FixKind::stream`], to change.
+    pub fn stream_mut(&mut self) -> Option<&mut StreamFix> {
+        match self {
+            FixKind::InsertStream(s) => Some(s),
+            _ => None,
+        }
+    }
+
     /// The granular mesh walls of a `fix wall/gran ... mesh` (None: a fix of another style).
     pub fn mesh_wall(&self) -> Option<&MeshWallFix> {
         match self {
@@ -185,9 +201,7 @@ pub fn initial_integrate(
     domain: &Domain,
 ) {
     // clumps from an insertion face move at its velocity until released
-    let has_stream = fixes
-        .iter()
-        .any(|f| matches!(f.kind, FixKind::InsertStream(_)));
+    let has_stream = fixes.iter().any(|f| f.kind.stream().is_some());
     for fix in fixes {
         match &mut fix.kind {
             FixKind::Multisphere(ms) => ms.initial_integrate(p, dt, domain, step, has_stream),

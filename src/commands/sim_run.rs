@@ -61,7 +61,12 @@ fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
     }
     let movers = |mesh: &str| -> Vec<usize> {
         (0..ctx.sim.fixes.len())
-            .filter(|&k| matches!(&ctx.sim.fixes[k].kind, FixKind::MoveMesh(m) if m.mesh == mesh))
+            .filter(|&k| {
+                ctx.sim.fixes[k]
+                    .kind
+                    .mover()
+                    .is_some_and(|m| m.mesh == mesh)
+            })
             .collect()
     };
     if let Some(k) = ctx.sim.fixes.iter().position(|f| f.id == id) {

@@ -398,7 +398,7 @@ impl Simulation {
         for f in &self.fixes {
             let part = match &f.kind {
                 kind if kind.mesh_wall().is_some() => "mesh walls (fix wall/gran ... mesh)",
-                FixKind::MoveMesh(_) => "moving meshes (fix move/mesh)",
+                kind if kind.mover().is_some() => "moving meshes (fix move/mesh)",
                 kind if kind.mesh().is_some_and(|m| m.stress.is_some()) => {
                     "mesh stresses (fix mesh/surface/stress)"
                 }

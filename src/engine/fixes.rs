@@ -88,6 +88,22 @@ impl FixKind {
         }
     }
 
+    /// The motion of a `fix move/mesh` (None: a fix of another style).
+    pub fn mover(&self) -> Option<&crate::engine::mesh_motion::MoveMesh> {
+        match self {
+            FixKind::MoveMesh(mv) => Some(mv),
+            _ => None,
+        }
+    }
+
+    /// [`FixKind::mover`], to change.
+    pub fn mover_mut(&mut self) -> Option<&mut crate::engine::mesh_motion::MoveMesh> {
+        match self {
+            FixKind::MoveMesh(mv) => Some(mv),
+            _ => None,
+        }
+    }
+
     /// The insertion of a `fix insert/stream` (None: a fix of another style).
     pub fn stream(&self) -> Option<&StreamFix> {
         match self {
@@ -167,6 +183,13 @@ pub fn mesh_named_mut<'a>(fixes: &'a mut [Fix], id: &str) -> Option<&'a mut Mesh
 /// Every `fix mesh/surface...` among `fixes`, in definition order, with its fix.
 pub fn meshes(fixes: &[Fix]) -> impl Iterator<Item = (&Fix, &MeshFix)> {
     fixes.iter().filter_map(|f| Some((f, f.kind.mesh()?)))
+}
+
+/// Whether a `fix move/mesh` among `fixes` moves mesh `id`.
+pub fn moves_mesh(fixes: &[Fix], id: &str) -> bool {
+    fixes
+        .iter()
+        .any(|f| f.kind.mover().is_some_and(|mv| mv.mesh == id))
 }
 
 /// The first `fix wall/gran ... mesh` among `fixes` whose meshes include mesh `id`: its

@@ -64,7 +64,7 @@ impl MeshFix {
 /// centres of the movers after it follow the displacement.
 pub fn move_meshes(fixes: &mut [Fix], dt: f64) {
     let movers: Vec<usize> = (0..fixes.len())
-        .filter(|&k| matches!(fixes[k].kind, FixKind::MoveMesh(_)))
+        .filter(|&k| fixes[k].kind.mover().is_some())
         .collect();
     for (pos, &k) in movers.iter().enumerate() {
         let FixKind::MoveMesh(mut mv) = std::mem::replace(&mut fixes[k].kind, FixKind::Settings)
@@ -73,7 +73,7 @@ pub fn move_meshes(fixes: &mut [Fix], dt: f64) {
         };
         let first = !movers[..pos]
             .iter()
-            .any(|&e| matches!(&fixes[e].kind, FixKind::MoveMesh(o) if o.mesh == mv.mesh));
+            .any(|&e| fixes[e].kind.mover().is_some_and(|o| o.mesh == mv.mesh));
         let mut shift = None;
         if let Some(m) = super::mesh_named_mut(fixes, &mv.mesh) {
             let n = m.mesh.len();
@@ -92,7 +92,7 @@ pub fn move_meshes(fixes: &mut [Fix], dt: f64) {
         fixes[k].kind = FixKind::MoveMesh(mv);
         if let Some(d) = shift {
             for &later in &movers[pos + 1..] {
-                if let FixKind::MoveMesh(o) = &mut fixes[later].kind {
+                if let Some(o) = fixes[later].kind.mover_mut() {
                     if o.mesh == mesh {
                         o.follow(&d);
                     }

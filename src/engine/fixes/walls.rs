@@ -78,10 +78,7 @@ fn mesh_refs<'a>(
         .filter_map(|(k, id)| {
             fixes.iter().find_map(|f| match f.kind.mesh() {
                 Some(m) if &f.id == id => {
-                    let moving = m.servo.is_some()
-                        || fixes
-                            .iter()
-                            .any(|g| matches!(&g.kind, FixKind::MoveMesh(mv) if &mv.mesh == id));
+                    let moving = m.servo.is_some() || super::moves_mesh(fixes, id);
                     Some(crate::engine::mesh_wall::MeshRef {
                         moving,
                         stress: m.stress.is_some(),

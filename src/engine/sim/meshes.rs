@@ -72,7 +72,7 @@ impl Simulation {
     pub(super) fn moving_meshes(&self) -> Vec<(String, usize)> {
         let mut out: Vec<(String, usize)> = Vec::new();
         for (k, f) in self.fixes.iter().enumerate() {
-            if let FixKind::MoveMesh(mv) = &f.kind {
+            if let Some(mv) = f.kind.mover() {
                 if !out.iter().any(|(id, _)| id == &mv.mesh) {
                     out.push((mv.mesh.clone(), k));
                 }

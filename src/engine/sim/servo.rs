@@ -2,7 +2,7 @@
 //! at a run's start, the motion at `initial_integrate` and the controller after the forces.
 
 use super::*;
-use crate::engine::fixes::{first_wall_on, mesh_named_mut};
+use crate::engine::fixes::{first_wall_on, mesh_named_mut, moves_mesh};
 
 impl Simulation {
     /// IDs of the meshes a servo drives.
@@ -25,11 +25,7 @@ impl Simulation {
             if !walled {
                 return Err(format!("Fix mesh/surface/stress/servo (id {id}): The servo-wall requires a contact model. Therefore, it has to be used for a fix wall/gran too.").into());
             }
-            if self
-                .fixes
-                .iter()
-                .any(|f| matches!(&f.kind, FixKind::MoveMesh(mv) if mv.mesh == id))
-            {
+            if moves_mesh(&self.fixes, &id) {
                 return Err(format!("Fix mesh/surface/stress/servo (id {id}): this fix does not allow superposition with moving mesh fixes").into());
             }
             let Some(m) = mesh_named_mut(&mut self.fixes, &id) else {

@@ -88,6 +88,22 @@ impl FixKind {
         }
     }
 
+    /// The per-atom property of a `fix property/atom` (None: a fix of another style).
+    pub fn property_atom(&self) -> Option<&crate::engine::heat::PropertyAtom> {
+        match self {
+            FixKind::PropertyAtom(pa) => Some(pa),
+            _ => None,
+        }
+    }
+
+    /// [`FixKind::property_atom`], to change.
+    pub fn property_atom_mut(&mut self) -> Option<&mut crate::engine::heat::PropertyAtom> {
+        match self {
+            FixKind::PropertyAtom(pa) => Some(pa),
+            _ => None,
+        }
+    }
+
     /// The motion of a `fix move/mesh` (None: a fix of another style).
     pub fn mover(&self) -> Option<&crate::engine::mesh_motion::MoveMesh> {
         match self {
@@ -183,6 +199,17 @@ pub fn mesh_named_mut<'a>(fixes: &'a mut [Fix], id: &str) -> Option<&'a mut Mesh
 /// Every `fix mesh/surface...` among `fixes`, in definition order, with its fix.
 pub fn meshes(fixes: &[Fix]) -> impl Iterator<Item = (&Fix, &MeshFix)> {
     fixes.iter().filter_map(|f| Some((f, f.kind.mesh()?)))
+}
+
+/// The `fix property/atom` fixes among `fixes` whose property (variable name) is `name`, in
+/// definition order.
+pub fn properties_named<'a>(
+    fixes: &'a [Fix],
+    name: &'a str,
+) -> impl DoubleEndedIterator<Item = (&'a Fix, &'a crate::engine::heat::PropertyAtom)> {
+    fixes
+        .iter()
+        .filter_map(move |f| Some((f, f.kind.property_atom().filter(|pa| pa.name == name)?)))
 }
 
 /// Whether a `fix move/mesh` among `fixes` moves mesh `id`.

@@ -415,7 +415,7 @@ impl Simulation {
             .filter(|e| {
                 self.fixes.iter().any(|f| matches!(&f.kind, crate::engine::fixes::FixKind::WallGran(w) if w.history_name == e.name))
                     // property/atom fixes with restart `yes` (the heat fixes' Temp too)
-                    || self.fixes.iter().any(|f| matches!(&f.kind, crate::engine::fixes::FixKind::PropertyAtom(pa) if pa.restart && f.id == e.name && pa.defaults.len() == e.width))
+                    || self.fixes.iter().any(|f| f.kind.property_atom().is_some_and(|pa| pa.restart && f.id == e.name && pa.defaults.len() == e.width))
             })
             .collect();
         for w in &walls {

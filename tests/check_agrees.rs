@@ -2,27 +2,14 @@
 //! files in folders that do not exist, meshes that fail LIGGGHTS's quality checks, and
 //! `atom_style` argument errors in LIGGGHTS's words.
 
+use common::{regolith, text};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
+mod common;
+
+/// A fresh scratch folder for the test `name`.
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("regolith-agree-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn regolith(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_regolith"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
-}
-
-fn text(b: &[u8]) -> String {
-    String::from_utf8_lossy(b).into_owned()
+    common::scratch_dir(&format!("agree-{name}"))
 }
 
 /// The problems `check` lists (`in.t:LINE: message`).

@@ -4,9 +4,9 @@
 //! registers it with one row, and reads it through thermo, equal- and atom-style variables
 //! and `compute reduce`.
 
-use regolith::commands::compute::{register, ComputeDef, ComputeRow};
+use regolith::commands::compute::{ComputeDef, ComputeRow};
 use regolith::commands::specs::Spec;
-use regolith::commands::{Args, CommandError, Ctx};
+use regolith::commands::{compute, Args, CommandError, Ctx};
 use regolith::engine::computes::{ComputeAt, ComputeStyle};
 use regolith::engine::error::EngineError;
 use regolith::engine::sim::VariableSource;
@@ -136,7 +136,7 @@ fn a_compute_style_from_one_file_and_one_row_gives_its_values() {
     let mut interp = Interpreter::new(Mode::Run, Output::silent());
     let early = interp.run_source(Source::from_text("in.toy", &head(), false));
     assert!(early.is_err(), "not defined before its row is registered");
-    register(row());
+    compute::TABLE.register(row());
 
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join(format!("regolith-compute-toy-{}", std::process::id()));

@@ -4,9 +4,9 @@
 //! per snapshot for a `*` name, one file for the run otherwise, `dump_modify every`, and
 //! `dump_modify binary` refused as not supported yet.
 
-use regolith::commands::dump::{no_columns, register, Built, DumpDef, DumpRow};
+use regolith::commands::dump::{no_columns, Built, DumpDef, DumpRow};
 use regolith::commands::specs::Spec;
-use regolith::commands::{Args, CommandError, Ctx};
+use regolith::commands::{dump, Args, CommandError, Ctx};
 use regolith::engine::dump_style::{DumpAt, DumpStyle};
 use regolith::engine::error::EngineError;
 use regolith::engine::sim::VariableSource;
@@ -105,7 +105,7 @@ fn a_dump_style_from_one_file_and_one_row_writes_its_snapshots() {
     let mut interp = Interpreter::new(Mode::Run, Output::silent());
     let early = interp.run_source(Source::from_text("in.toy", &(head() + &dumps), false));
     assert!(early.is_err(), "not defined before its row is registered");
-    register(row());
+    dump::TABLE.register(row());
 
     let deck = format!("{}{dumps}dump_modify one every 10\nrun 10\n", head());
     let mut interp = Interpreter::new(Mode::Run, Output::silent());

@@ -5,9 +5,9 @@
 //! decks with it. The velocity must follow velocity Verlet's recurrence for a linear drag
 //! and, within the step's error, the analytic decay exp(-GAMMA t / m).
 
-use regolith::commands::fix::{register, FixDef, FixRow};
+use regolith::commands::fix::{FixDef, FixRow};
 use regolith::commands::specs::Spec;
-use regolith::commands::{Args, CommandError, Ctx};
+use regolith::commands::{fix, Args, CommandError, Ctx};
 use regolith::engine::error::EngineError;
 use regolith::engine::fixes::{FixStep, FixStyle, PerAtomShape};
 use regolith::engine::particles::Particles;
@@ -167,7 +167,7 @@ fn a_style_from_one_file_and_one_row_runs() {
     let mut interp = Interpreter::new(Mode::Run, Output::silent());
     let early = interp.run_source(Source::from_text("in.toy", &head(), false));
     assert!(early.is_err());
-    register(row());
+    fix::TABLE.register(row());
 
     let steps = 1000;
     let deck = format!(

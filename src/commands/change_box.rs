@@ -7,7 +7,7 @@
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
 use crate::engine::domain::Boundary;
-use crate::engine::sim::{FixKind, Simulation};
+use crate::engine::sim::Simulation;
 use crate::lang::system::Mode;
 use crate::util::format::g;
 
@@ -227,14 +227,8 @@ fn reset_box(sim: &mut Simulation) -> std::result::Result<(), String> {
     }
     let mut lo = [BIG; 3];
     let mut hi = [-BIG; 3];
-    let nodes = sim
-        .fixes
-        .iter()
-        .filter_map(|f| match &f.kind {
-            FixKind::Mesh(m) => Some(m),
-            _ => None,
-        })
-        .flat_map(|m| m.triangles().iter().flatten());
+    let nodes =
+        crate::engine::fixes::meshes(&sim.fixes).flat_map(|(_, m)| m.triangles().iter().flatten());
     let placed = sim
         .particles
         .x

@@ -5,7 +5,6 @@
 
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
-use crate::engine::fixes::FixKind;
 use crate::engine::mesh_servo::MeshServo;
 
 /// The mesh modules of a servo mesh, in LIGGGHTS's order.
@@ -106,9 +105,7 @@ pub fn servo_param(a: &Args, i: usize, id: &str, ctx: &mut Ctx) -> Result<usize,
 
 /// The controller of servo mesh `id`, if it has one.
 fn servo_of<'c>(ctx: &'c mut Ctx, id: &str) -> Option<&'c mut MeshServo> {
-    let fix = ctx.sim.fixes.iter_mut().find(|f| f.id == id)?;
-    match &mut fix.kind {
-        FixKind::Mesh(m) => m.servo.as_deref_mut(),
-        _ => None,
-    }
+    crate::engine::fixes::mesh_named_mut(&mut ctx.sim.fixes, id)?
+        .servo
+        .as_deref_mut()
 }

@@ -116,10 +116,10 @@ pub fn restore_fix_state(
             ));
         }
     }
-    if let FixKind::MeshWall(w) = &mut fix.kind {
+    if let Some(w) = fix.kind.mesh_wall_mut() {
         restore_mesh_wall_trackers(a, ctx, w, &mut lines)?;
     }
-    let first_stream = matches!(fix.kind, FixKind::InsertStream(_)) && !ctx.sim.stream_release;
+    let first_stream = fix.kind.stream().is_some() && !ctx.sim.stream_release;
     if first_stream {
         restore_release_data(a, ctx, &mut lines)?;
     }

@@ -5,7 +5,6 @@
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
 use crate::engine::extras::Origin;
-use crate::engine::fixes::FixKind;
 use crate::error::Diagnostic;
 
 /// `fix ID GROUP property/global NAME ...`: remember where NAME was set.
@@ -41,11 +40,7 @@ pub fn validate(a: &Args, ctx: &Ctx) -> Result<(), CommandError> {
     let mut selections: Vec<_> = sim
         .fixes
         .iter()
-        .filter_map(|f| match &f.kind {
-            FixKind::WallGran(w) => Some(&w.selection),
-            FixKind::MeshWall(w) => Some(&w.selection),
-            _ => None,
-        })
+        .filter_map(|f| f.kind.wall_selection())
         .map(|sel| {
             let mut dry = sel.clone();
             if dry.surface == "multicontact" {

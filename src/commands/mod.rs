@@ -29,6 +29,7 @@ pub mod set;
 pub mod sim_run;
 pub mod sim_setup;
 pub mod specs;
+pub mod style_table;
 pub mod suggest;
 pub mod velocity_vars;
 pub mod write_dump;

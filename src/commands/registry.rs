@@ -147,9 +147,9 @@ pub fn validate_names(cmd: &CommandLine) -> Result<(), CommandError> {
 /// be one LIGGGHTS knows).
 fn is_registered_module(kind: NameKind, style: &str) -> bool {
     match kind {
-        NameKind::FixStyle => crate::commands::fix::is_registered(style),
-        NameKind::ComputeStyle => crate::commands::compute::is_registered(style),
-        NameKind::DumpStyle => crate::commands::dump::is_registered(style),
+        NameKind::FixStyle => crate::commands::fix::TABLE.is_registered(style),
+        NameKind::ComputeStyle => crate::commands::compute::TABLE.is_registered(style),
+        NameKind::DumpStyle => crate::commands::dump::TABLE.is_registered(style),
         _ => false,
     }
 }

@@ -177,17 +177,14 @@ fn property_atom(
     atoms: &[usize],
     skip: bool,
 ) -> std::result::Result<usize, CommandError> {
-    use crate::engine::fixes::FixKind;
+    use crate::engine::fixes::properties_named;
     if i + 1 >= a.len() {
         return Err(a.error(i, "Illegal set command for property/atom"));
     }
     let name = a.word(i + 1)?;
-    let Some((id, width, fresh)) = ctx.sim.fixes.iter().rev().find_map(|f| match &f.kind {
-        FixKind::PropertyAtom(pa) if pa.name == name => {
-            Some((f.id.clone(), pa.defaults.len(), pa.fresh))
-        }
-        _ => None,
-    }) else {
+    let last = properties_named(&ctx.sim.fixes, name).next_back();
+    let Some((id, width, fresh)) = last.map(|(f, pa)| (f.id.clone(), pa.defaults.len(), pa.fresh))
+    else {
         return Err(a.error(
             i + 1,
             "Could not identify the per-atom property you want to set",

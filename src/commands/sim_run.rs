@@ -1,6 +1,6 @@
 //! Commands that drive and observe the run: fixes regolith integrates, thermo, dumps, `run`.
 
-use crate::commands::registry::{self, Handler};
+use crate::commands::registry::Handler;
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
 use crate::engine::error::EngineError;
@@ -61,7 +61,12 @@ fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
     }
     let movers = |mesh: &str| -> Vec<usize> {
         (0..ctx.sim.fixes.len())
-            .filter(|&k| matches!(&ctx.sim.fixes[k].kind, FixKind::MoveMesh(m) if m.mesh == mesh))
+            .filter(|&k| {
+                ctx.sim.fixes[k]
+                    .kind
+                    .mover()
+                    .is_some_and(|m| m.mesh == mesh)
+            })
             .collect()
     };
     if let Some(k) = ctx.sim.fixes.iter().position(|f| f.id == id) {
@@ -76,13 +81,9 @@ fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
                 }
                 // the mesh stays where it is, at rest
                 let mesh = mv.mesh.clone();
-                for f in ctx.sim.fixes.iter_mut() {
-                    if let FixKind::Mesh(m) = &mut f.kind {
-                        if f.id == mesh {
-                            if let Some(v) = &mut m.node_v {
-                                v.iter_mut().for_each(|t| *t = [[0.0; 3]; 3]);
-                            }
-                        }
+                if let Some(m) = crate::engine::fixes::mesh_named_mut(&mut ctx.sim.fixes, &mesh) {
+                    if let Some(v) = &mut m.node_v {
+                        v.iter_mut().for_each(|t| *t = [[0.0; 3]; 3]);
                     }
                 }
             }

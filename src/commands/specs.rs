@@ -340,9 +340,9 @@ pub const SPECS: &[Spec] = &[
 ];
 
 /// Every declared spec: [`SPECS`], with the module fix styles' rows
-/// ([`crate::commands::fix::MODULES`]) after the last fix style there, the compute styles'
-/// rows ([`crate::commands::compute::MODULES`]) before `compute_modify` and the dump
-/// styles' rows ([`crate::commands::dump::MODULES`]) before `dump_modify`.
+/// ([`crate::commands::fix::TABLE`]) after the last fix style there, the compute styles'
+/// rows ([`crate::commands::compute::TABLE`]) before `compute_modify` and the dump
+/// styles' rows ([`crate::commands::dump::TABLE`]) before `dump_modify`.
 pub fn all() -> impl Iterator<Item = &'static Spec> {
     let after = |command: &str| {
         SPECS
@@ -359,11 +359,9 @@ pub fn all() -> impl Iterator<Item = &'static Spec> {
         .position(|s| s.command == "dump_modify")
         .unwrap_or(SPECS.len());
     let fixes = after("fix");
-    let fix_modules = crate::commands::fix::MODULES.iter().map(|row| &row.spec);
-    let compute_modules = crate::commands::compute::MODULES
-        .iter()
-        .map(|row| &row.spec);
-    let dump_modules = crate::commands::dump::MODULES.iter().map(|row| &row.spec);
+    let fix_modules = crate::commands::fix::TABLE.specs();
+    let compute_modules = crate::commands::compute::TABLE.specs();
+    let dump_modules = crate::commands::dump::TABLE.specs();
     debug_assert!(
         computes <= dumps && dumps <= fixes,
         "compute styles come before dump styles, and those before fix styles, in SPECS"

@@ -381,7 +381,7 @@ impl Simulation {
         }
         self.sum_order = Default::default();
         for fix in &mut self.fixes {
-            if let crate::engine::fixes::FixKind::MeshWall(w) = &mut fix.kind {
+            if let Some(w) = fix.kind.mesh_wall_mut() {
                 for t in &mut w.trackers {
                     t.permute(order);
                 }
@@ -397,9 +397,11 @@ impl Simulation {
         let mut parts: Vec<&str> = Vec::new();
         for f in &self.fixes {
             let part = match &f.kind {
-                FixKind::MeshWall(_) => "mesh walls (fix wall/gran ... mesh)",
-                FixKind::MoveMesh(_) => "moving meshes (fix move/mesh)",
-                FixKind::Mesh(m) if m.stress.is_some() => "mesh stresses (fix mesh/surface/stress)",
+                kind if kind.mesh_wall().is_some() => "mesh walls (fix wall/gran ... mesh)",
+                kind if kind.mover().is_some() => "moving meshes (fix move/mesh)",
+                kind if kind.mesh().is_some_and(|m| m.stress.is_some()) => {
+                    "mesh stresses (fix mesh/surface/stress)"
+                }
                 FixKind::Style(s) => match s.unaccelerated() {
                     Some(part) => part,
                     None => continue,

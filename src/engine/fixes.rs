@@ -72,6 +72,96 @@ pub enum FixKind {
 }
 
 impl FixKind {
+    /// The triangle mesh of a `fix mesh/surface...` (None: a fix of another style).
+    pub fn mesh(&self) -> Option<&MeshFix> {
+        match self {
+            FixKind::Mesh(m) => Some(m),
+            _ => None,
+        }
+    }
+
+    /// [`FixKind::mesh`], to change.
+    pub fn mesh_mut(&mut self) -> Option<&mut MeshFix> {
+        match self {
+            FixKind::Mesh(m) => Some(m),
+            _ => None,
+        }
+    }
+
+    /// The per-atom property of a `fix property/atom` (None: a fix of another style).
+    pub fn property_atom(&self) -> Option<&crate::engine::heat::PropertyAtom> {
+        match self {
+            FixKind::PropertyAtom(pa) => Some(pa),
+            _ => None,
+        }
+    }
+
+    /// [`FixKind::property_atom`], to change.
+    pub fn property_atom_mut(&mut self) -> Option<&mut crate::engine::heat::PropertyAtom> {
+        match self {
+            FixKind::PropertyAtom(pa) => Some(pa),
+            _ => None,
+        }
+    }
+
+    /// The motion of a `fix move/mesh` (None: a fix of another style).
+    pub fn mover(&self) -> Option<&crate::engine::mesh_motion::MoveMesh> {
+        match self {
+            FixKind::MoveMesh(mv) => Some(mv),
+            _ => None,
+        }
+    }
+
+    /// [`FixKind::mover`], to change.
+    pub fn mover_mut(&mut self) -> Option<&mut crate::engine::mesh_motion::MoveMesh> {
+        match self {
+            FixKind::MoveMesh(mv) => Some(mv),
+            _ => None,
+        }
+    }
+
+    /// The insertion of a `fix insert/stream` (None: a fix of another style).
+    pub fn stream(&self) -> Option<&StreamFix> {
+        match self {
+            FixKind::InsertStream(s) => Some(s),
+            _ => None,
+        }
+    }
+
+    /// [`FixKind::stream`], to change.
+    pub fn stream_mut(&mut self) -> Option<&mut StreamFix> {
+        match self {
+            FixKind::InsertStream(s) => Some(s),
+            _ => None,
+        }
+    }
+
+    /// The granular mesh walls of a `fix wall/gran ... mesh` (None: a fix of another style).
+    pub fn mesh_wall(&self) -> Option<&MeshWallFix> {
+        match self {
+            FixKind::MeshWall(w) => Some(w),
+            _ => None,
+        }
+    }
+
+    /// [`FixKind::mesh_wall`], to change.
+    pub fn mesh_wall_mut(&mut self) -> Option<&mut MeshWallFix> {
+        match self {
+            FixKind::MeshWall(w) => Some(w),
+            _ => None,
+        }
+    }
+
+    /// The contact model a `fix wall/gran` names, of primitive or mesh walls (None: a fix of
+    /// another style).
+    pub fn wall_selection(&self) -> Option<&crate::engine::granular::Selection> {
+        match self {
+            FixKind::WallGran(w) => Some(&w.selection),
+            FixKind::MeshWall(w) => Some(&w.selection),
+            _ => None,
+        }
+    }
+
     /// Can the fix evaluate variables or computes inside a step (so per-atom computes must
     /// be current on every step)? Kinds not listed answer yes.
     pub fn may_read_computes(&self) -> bool {
@@ -93,6 +183,49 @@ impl FixKind {
             _ => true,
         }
     }
+}
+
+/// The mesh of the `fix mesh/surface...` with ID `id` among `fixes` (None: no mesh fix has
+/// that ID).
+pub fn mesh_named<'a>(fixes: &'a [Fix], id: &str) -> Option<&'a MeshFix> {
+    fixes.iter().find(|f| f.id == id)?.kind.mesh()
+}
+
+/// [`mesh_named`], to change.
+pub fn mesh_named_mut<'a>(fixes: &'a mut [Fix], id: &str) -> Option<&'a mut MeshFix> {
+    fixes.iter_mut().find(|f| f.id == id)?.kind.mesh_mut()
+}
+
+/// Every `fix mesh/surface...` among `fixes`, in definition order, with its fix.
+pub fn meshes(fixes: &[Fix]) -> impl Iterator<Item = (&Fix, &MeshFix)> {
+    fixes.iter().filter_map(|f| Some((f, f.kind.mesh()?)))
+}
+
+/// The `fix property/atom` fixes among `fixes` whose property (variable name) is `name`, in
+/// definition order.
+pub fn properties_named<'a>(
+    fixes: &'a [Fix],
+    name: &'a str,
+) -> impl DoubleEndedIterator<Item = (&'a Fix, &'a crate::engine::heat::PropertyAtom)> {
+    fixes
+        .iter()
+        .filter_map(move |f| Some((f, f.kind.property_atom().filter(|pa| pa.name == name)?)))
+}
+
+/// Whether a `fix move/mesh` among `fixes` moves mesh `id`.
+pub fn moves_mesh(fixes: &[Fix], id: &str) -> bool {
+    fixes
+        .iter()
+        .any(|f| f.kind.mover().is_some_and(|mv| mv.mesh == id))
+}
+
+/// The first `fix wall/gran ... mesh` among `fixes` whose meshes include mesh `id`: its
+/// index among `fixes`, its walls, and the mesh's index among its meshes.
+pub fn first_wall_on<'a>(fixes: &'a [Fix], id: &str) -> Option<(usize, &'a MeshWallFix, usize)> {
+    fixes.iter().enumerate().find_map(|(k, f)| {
+        let w = f.kind.mesh_wall()?;
+        Some((k, w, w.meshes.iter().position(|m| m == id)?))
+    })
 }
 
 /// One defined fix.
@@ -118,9 +251,7 @@ pub fn initial_integrate(
     domain: &Domain,
 ) {
     // clumps from an insertion face move at its velocity until released
-    let has_stream = fixes
-        .iter()
-        .any(|f| matches!(f.kind, FixKind::InsertStream(_)));
+    let has_stream = fixes.iter().any(|f| f.kind.stream().is_some());
     for fix in fixes {
         match &mut fix.kind {
             FixKind::Multisphere(ms) => ms.initial_integrate(p, dt, domain, step, has_stream),
@@ -169,7 +300,7 @@ pub fn post_force(
     moving_skin: bool,
 ) {
     for k in 0..fixes.len() {
-        if let FixKind::MeshWall(_) = fixes[k].kind {
+        if fixes[k].kind.mesh_wall().is_some() {
             walls::mesh_wall_force(fixes, k, p, dt, update, list, moving_skin);
             continue;
         }

@@ -334,7 +334,7 @@ impl crate::engine::sim::Simulation {
             }
         }
         for f in &mut self.fixes {
-            if let FixKind::PropertyAtom(pa) = &mut f.kind {
+            if let Some(pa) = f.kind.property_atom_mut() {
                 pa.fresh = false;
             }
         }

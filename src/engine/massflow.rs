@@ -12,6 +12,7 @@ use std::io::Write;
 use std::sync::Mutex;
 
 use crate::engine::error::EngineError;
+use crate::engine::fixes::{mesh_named, moves_mesh};
 use crate::engine::mesh::TriMesh;
 use crate::engine::particles::Particles;
 
@@ -458,19 +459,13 @@ impl crate::engine::sim::Simulation {
             let mut kind = std::mem::replace(&mut self.fixes[k].kind, FixKind::Settings);
             let mut result: Result<(), EngineError> = Ok(());
             if let FixKind::Massflow(mf) = &mut kind {
-                let moving = self
-                    .fixes
-                    .iter()
-                    .any(|g| matches!(&g.kind, FixKind::MoveMesh(mv) if mv.mesh == mf.mesh));
+                let moving = moves_mesh(&self.fixes, &mf.mesh);
                 let skin = if moving {
                     self.neighbor.skin
                 } else {
                     0.5 * self.neighbor.skin
                 };
-                let mesh = self.fixes.iter().find_map(|f| match &f.kind {
-                    FixKind::Mesh(m) if f.id == mf.mesh => Some(&m.mesh),
-                    _ => None,
-                });
+                let mesh = mesh_named(&self.fixes, &mf.mesh).map(|m| &m.mesh);
                 if let Some(mesh) = mesh {
                     if setup && matches!(mf.side, Side::Vector(_)) && !Massflow::planar(mesh) {
                         result = Err(format!(
@@ -500,14 +495,8 @@ impl crate::engine::sim::Simulation {
             let mut kind = std::mem::replace(&mut self.fixes[k].kind, FixKind::Settings);
             let mut result = Ok(());
             if let FixKind::Massflow(mf) = &mut kind {
-                let moving = self
-                    .fixes
-                    .iter()
-                    .any(|g| matches!(&g.kind, FixKind::MoveMesh(mv) if mv.mesh == mf.mesh));
-                let mesh = self.fixes.iter().find_map(|f| match &f.kind {
-                    FixKind::Mesh(m) if f.id == mf.mesh => Some(&m.mesh),
-                    _ => None,
-                });
+                let moving = moves_mesh(&self.fixes, &mf.mesh);
+                let mesh = mesh_named(&self.fixes, &mf.mesh).map(|m| &m.mesh);
                 if let Some(mesh) = mesh {
                     result = mf
                         .post_integrate(

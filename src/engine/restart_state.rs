@@ -336,9 +336,11 @@ impl Simulation {
     /// then encoded): LIGGGHTS's "Failed to allocate" if it does not.
     pub fn check_restart_size(&self) -> Result<(), EngineError> {
         // the servo module's state (centre, velocity, controller) is not written yet
-        if let Some(f) = self.fixes.iter().find(
-            |f| matches!(&f.kind, crate::engine::fixes::FixKind::Mesh(m) if m.servo.is_some()),
-        ) {
+        if let Some(f) = self
+            .fixes
+            .iter()
+            .find(|f| f.kind.mesh().is_some_and(|m| m.servo.is_some()))
+        {
             return Err(EngineError::Unsupported(format!(
                 "a restart file with fix mesh/surface/stress/servo (id {})",
                 f.id
@@ -413,7 +415,7 @@ impl Simulation {
             .filter(|e| {
                 self.fixes.iter().any(|f| matches!(&f.kind, crate::engine::fixes::FixKind::WallGran(w) if w.history_name == e.name))
                     // property/atom fixes with restart `yes` (the heat fixes' Temp too)
-                    || self.fixes.iter().any(|f| matches!(&f.kind, crate::engine::fixes::FixKind::PropertyAtom(pa) if pa.restart && f.id == e.name && pa.defaults.len() == e.width))
+                    || self.fixes.iter().any(|f| f.kind.property_atom().is_some_and(|pa| pa.restart && f.id == e.name && pa.defaults.len() == e.width))
             })
             .collect();
         for w in &walls {

@@ -11,7 +11,7 @@
 use crate::engine::contact::easo::Easo;
 use crate::engine::contact::ModelSelection;
 use crate::engine::error::EngineError;
-use crate::engine::fixes::{Fix, FixKind};
+use crate::engine::fixes::{properties_named, Fix, FixKind};
 use crate::engine::granular::wet::{WetInput, LIQUID_CONTENT, LIQUID_FLUX, LIQUID_SOURCE};
 use crate::engine::heat::PropertyAtom;
 use crate::engine::sim::Simulation;
@@ -128,10 +128,7 @@ impl Simulation {
             (LIQUID_FLUX, 0.0, true),
             (LIQUID_SOURCE, 0.0, true),
         ] {
-            let exists = self
-                .fixes
-                .iter()
-                .any(|f| matches!(&f.kind, FixKind::PropertyAtom(pa) if pa.name == name));
+            let exists = properties_named(&self.fixes, name).next().is_some();
             if exists {
                 continue;
             }

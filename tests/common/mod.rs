@@ -14,6 +14,20 @@ pub fn scratch_dir(tag: &str) -> PathBuf {
     dir
 }
 
+/// Run regolith in `dir` with `args` (stdin empty), its output captured.
+pub fn regolith(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_regolith"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
+
+/// Captured output bytes as text (invalid UTF-8 replaced).
+pub fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
 /// Run regolith in `dir` on `deck`, written there as `file`, with `-log none` and `args`.
 pub fn run_deck(dir: &Path, file: &str, deck: &str, args: &[&str]) -> Output {
     std::fs::write(dir.join(file), deck).unwrap();

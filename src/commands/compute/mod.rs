@@ -1,5 +1,5 @@
 //! Compute styles written as modules: one file per style (or small family of styles) and one
-//! row per style name in [`MODULES`]. Adding a compute style is writing its file (its
+//! row per style name in [`TABLE`]. Adding a compute style is writing its file (its
 //! declared signature, its arguments, its state and its
 //! [`ComputeStyle`](crate::engine::computes::ComputeStyle) hooks) and adding its row.
 
@@ -24,6 +24,7 @@ mod tracer_region;
 mod wall_gran_local;
 
 use crate::commands::specs::Spec;
+use crate::commands::style_table::{StyleRow, StyleTable};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::computes::ComputeStyle;
 
@@ -59,16 +60,15 @@ pub struct ComputeRow {
     pub build: Build,
 }
 
-impl ComputeRow {
-    /// The style name the row defines.
-    pub fn name(&self) -> &'static str {
-        self.spec.style.unwrap_or("")
+impl StyleRow for ComputeRow {
+    fn spec(&self) -> &Spec {
+        &self.spec
     }
 }
 
 /// The compute styles: one file each in this folder, one row here. The `compute` command
-/// looks a style up here (and in [`register`]ed rows).
-pub const MODULES: &[ComputeRow] = &[
+/// looks a style up here (rows registered at run time included).
+pub static TABLE: StyleTable<ComputeRow> = StyleTable::new(&[
     ComputeRow {
         spec: com::SPEC,
         build: com::build,
@@ -169,34 +169,7 @@ pub const MODULES: &[ComputeRow] = &[
         spec: wall_gran_local::SPEC,
         build: wall_gran_local::build,
     },
-];
-
-/// Rows added while the program runs (a style defined outside this folder).
-static REGISTERED: std::sync::RwLock<Vec<ComputeRow>> = std::sync::RwLock::new(Vec::new());
-
-/// Add a module compute style at run time: the `compute` command runs it from then on (a
-/// row of [`MODULES`] needs no registration). A row naming a style already registered
-/// replaces it.
-pub fn register(row: ComputeRow) {
-    let mut rows = REGISTERED.write().unwrap_or_else(|e| e.into_inner());
-    rows.retain(|r| r.name() != row.name());
-    rows.push(row);
-}
-
-/// The module row of `style`: a [`MODULES`] row, else a [`register`]ed one.
-pub fn module_row(style: &str) -> Option<ComputeRow> {
-    if let Some(row) = MODULES.iter().find(|r| r.name() == style) {
-        return Some(*row);
-    }
-    let rows = REGISTERED.read().unwrap_or_else(|e| e.into_inner());
-    rows.iter().find(|r| r.name() == style).copied()
-}
-
-/// Whether `style` was added with [`register`] (its name need not be one LIGGGHTS knows).
-pub fn is_registered(style: &str) -> bool {
-    let rows = REGISTERED.read().unwrap_or_else(|e| e.into_inner());
-    rows.iter().any(|r| r.name() == style)
-}
+]);
 
 /// LIGGGHTS's check of a style that takes no arguments after its name.
 pub(crate) fn no_arguments(a: &Args, style: &str) -> Result<(), CommandError> {
@@ -223,6 +196,3 @@ pub fn after_general_keyword(a: &Args, style: &str) -> Result<usize, CommandErro
         )),
     }
 }
-
-#[cfg(test)]
-mod tests;

@@ -8,7 +8,6 @@ use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::computes::{ComputeAt, ComputeStyle, LocalField, LocalRows};
 use crate::engine::error::EngineError;
-use crate::engine::fixes::FixKind;
 
 /// The declared signature.
 pub const SPEC: Spec = style(
@@ -63,10 +62,10 @@ fn rows(
         .iter()
         .position(|f| f.id == wall)
         .ok_or_else(|| format!("Compute wall/gran/local: wall fix {wall} is gone"))?;
-    let width = match &sim.fixes[k].kind {
-        FixKind::MeshWall(w) => w.history_width(),
-        _ => 0,
-    };
+    let width = sim.fixes[k]
+        .kind
+        .mesh_wall()
+        .map_or(0, |w| w.history_width());
     let ncols: usize = fields.iter().map(|f| f.width(width)).sum();
     let p = &sim.particles;
     let mut out = Vec::new();
@@ -182,10 +181,10 @@ pub fn build(
     let mut wall = None;
     let mut primitive = false;
     for f in &ctx.sim.fixes {
-        match &f.kind {
-            FixKind::MeshWall(w) => wall = Some((f.id.clone(), w.history_width())),
-            FixKind::WallGran(_) => primitive = true,
-            _ => {}
+        if let Some(w) = f.kind.mesh_wall() {
+            wall = Some((f.id.clone(), w.history_width()));
+        } else if f.kind.wall_selection().is_some() {
+            primitive = true;
         }
     }
     if primitive {

@@ -5,7 +5,7 @@ use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::dump_style::{DumpAt, DumpStyle};
 use crate::engine::error::EngineError;
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::{mesh_named, meshes};
 use crate::engine::sim::VariableSource;
 
 /// The declared signature of `mesh/stl`.
@@ -46,12 +46,10 @@ impl DumpStyle for MeshStl {
         _vars: &mut dyn VariableSource,
     ) -> Result<Vec<u8>, EngineError> {
         let (mut triangles, mut normals) = (Vec::new(), Vec::new());
-        for f in &at.sim.fixes {
-            if let FixKind::Mesh(m) = &f.kind {
-                if self.ids.is_empty() || self.ids.contains(&f.id) {
-                    triangles.extend_from_slice(m.triangles());
-                    normals.extend_from_slice(&m.mesh.normal);
-                }
+        for (f, m) in meshes(&at.sim.fixes) {
+            if self.ids.is_empty() || self.ids.contains(&f.id) {
+                triangles.extend_from_slice(m.triangles());
+                normals.extend_from_slice(&m.mesh.normal);
             }
         }
         Ok(crate::io::stl::write_ascii(&triangles, &normals).into_bytes())
@@ -66,12 +64,7 @@ impl DumpStyle for MeshStl {
 pub fn build(a: &Args, ctx: &mut Ctx, def: &DumpDef) -> Result<Built, CommandError> {
     let ids: Vec<String> = style_words(a)?.into_iter().map(str::to_string).collect();
     for (k, id) in ids.iter().enumerate() {
-        let is_mesh = ctx
-            .sim
-            .fixes
-            .iter()
-            .any(|f| &f.id == id && matches!(f.kind, FixKind::Mesh(_)));
-        if !is_mesh {
+        if mesh_named(&ctx.sim.fixes, id).is_none() {
             return Err(a.error(
                 5 + k,
                 "Could not find fix mesh/surface ID for dump mesh/stl",

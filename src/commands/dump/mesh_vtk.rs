@@ -6,7 +6,7 @@ use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::dump_style::{DumpAt, DumpStyle};
 use crate::engine::error::EngineError;
-use crate::engine::fixes::{FixKind, MeshFix};
+use crate::engine::fixes::{mesh_named, meshes, MeshFix};
 use crate::engine::sim::VariableSource;
 use crate::io::mesh_vtk::{MeshDumpSpec, MeshSnapshot};
 
@@ -49,21 +49,10 @@ impl DumpStyle for MeshVtk {
     ) -> Result<Vec<u8>, EngineError> {
         let fixes = &at.sim.fixes;
         let meshes: Vec<&MeshFix> = if self.spec.meshes.is_empty() {
-            fixes
-                .iter()
-                .filter_map(|f| match &f.kind {
-                    FixKind::Mesh(m) => Some(&**m),
-                    _ => None,
-                })
-                .collect()
+            meshes(fixes).map(|(_, m)| m).collect()
         } else {
             (self.spec.meshes.iter())
-                .filter_map(|id| {
-                    fixes.iter().find_map(|f| match &f.kind {
-                        FixKind::Mesh(m) if &f.id == id => Some(&**m),
-                        _ => None,
-                    })
-                })
+                .filter_map(|id| mesh_named(fixes, id))
                 .collect()
         };
         let counts: Vec<(Vec<i32>, Vec<i32>, Vec<i32>)> = meshes
@@ -120,16 +109,9 @@ pub fn build(a: &Args, ctx: &mut Ctx, def: &DumpDef) -> Result<Built, CommandErr
     }
     let words = style_words(a)?;
     let fixes = &ctx.sim.fixes;
-    let spec = crate::io::mesh_vtk::parse_keywords(
-        &words,
-        |w| {
-            fixes
-                .iter()
-                .any(|f| f.id == w && matches!(f.kind, FixKind::Mesh(_)))
-        },
-        |_| false,
-    )
-    .map_err(|m| a.error(5, format!("dump {style}: {m}")))?;
+    let spec =
+        crate::io::mesh_vtk::parse_keywords(&words, |w| mesh_named(fixes, w).is_some(), |_| false)
+            .map_err(|m| a.error(5, format!("dump {style}: {m}")))?;
     let name = style.to_string();
     Ok((super::no_columns(), Box::new(MeshVtk { name, spec })))
 }

@@ -1,5 +1,5 @@
 //! Dump styles written as modules: one file per style (or small family of styles) and one
-//! row per style name in [`MODULES`]. Adding a dump style is writing its file (its declared
+//! row per style name in [`TABLE`]. Adding a dump style is writing its file (its declared
 //! signature, its arguments, its state and its
 //! [`DumpStyle`](crate::engine::dump_style::DumpStyle) hooks) and adding its row.
 
@@ -14,6 +14,7 @@ mod mesh_vtk;
 mod xyz;
 
 use crate::commands::specs::Spec;
+use crate::commands::style_table::{StyleRow, StyleTable};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::dump_style::DumpStyle;
 use crate::io::dump::Layout;
@@ -52,17 +53,16 @@ pub struct DumpRow {
     pub build: Build,
 }
 
-impl DumpRow {
-    /// The style name the row defines.
-    pub fn name(&self) -> &'static str {
-        self.spec.style.unwrap_or("")
+impl StyleRow for DumpRow {
+    fn spec(&self) -> &Spec {
+        &self.spec
     }
 }
 
 /// The dump styles: one file each in this folder, one row here (in the order `regolith
-/// help dump` lists them). The `dump` command looks a style up here (and in
-/// [`register`]ed rows).
-pub const MODULES: &[DumpRow] = &[
+/// help dump` lists them). The `dump` command looks a style up here (rows registered at
+/// run time included).
+pub static TABLE: StyleTable<DumpRow> = StyleTable::new(&[
     DumpRow {
         spec: atom::SPEC,
         build: atom::build,
@@ -107,33 +107,7 @@ pub const MODULES: &[DumpRow] = &[
         spec: xyz::SPEC,
         build: xyz::build,
     },
-];
-
-/// Rows added while the program runs (a style defined outside this folder).
-static REGISTERED: std::sync::RwLock<Vec<DumpRow>> = std::sync::RwLock::new(Vec::new());
-
-/// Add a module dump style at run time: the `dump` command runs it from then on (a row of
-/// [`MODULES`] needs no registration). A row naming a style already registered replaces it.
-pub fn register(row: DumpRow) {
-    let mut rows = REGISTERED.write().unwrap_or_else(|e| e.into_inner());
-    rows.retain(|r| r.name() != row.name());
-    rows.push(row);
-}
-
-/// The module row of `style`: a [`MODULES`] row, else a [`register`]ed one.
-pub fn module_row(style: &str) -> Option<DumpRow> {
-    if let Some(row) = MODULES.iter().find(|r| r.name() == style) {
-        return Some(*row);
-    }
-    let rows = REGISTERED.read().unwrap_or_else(|e| e.into_inner());
-    rows.iter().find(|r| r.name() == style).copied()
-}
-
-/// Whether `style` was added with [`register`] (its name need not be one LIGGGHTS knows).
-pub fn is_registered(style: &str) -> bool {
-    let rows = REGISTERED.read().unwrap_or_else(|e| e.into_inner());
-    rows.iter().any(|r| r.name() == style)
-}
+]);
 
 /// The words from argument 5 on (a style's own arguments after the file).
 pub fn style_words<'a>(a: &'a Args) -> Result<Vec<&'a str>, CommandError> {
@@ -144,6 +118,3 @@ pub fn style_words<'a>(a: &'a Args) -> Result<Vec<&'a str>, CommandError> {
 pub fn no_columns() -> Layout {
     Layout::new(&[]).expect("no columns")
 }
-
-#[cfg(test)]
-mod tests;

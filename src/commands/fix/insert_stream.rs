@@ -149,12 +149,8 @@ impl StreamArgs {
         match w {
             "insertion_face" => {
                 let m = a.word(i + 1)?;
-                let tri = ctx.sim.fixes.iter().find_map(|f| match &f.kind {
-                    FixKind::Mesh(mesh) if f.id == m => {
-                        Some((mesh.triangles().to_vec(), mesh.planar))
-                    }
-                    _ => None,
-                });
+                let tri = crate::engine::fixes::mesh_named(&ctx.sim.fixes, m)
+                    .map(|mesh| (mesh.triangles().to_vec(), mesh.planar));
                 self.face_id = m.to_string();
                 self.face = Some(tri.ok_or_else(|| {
                     a.error(

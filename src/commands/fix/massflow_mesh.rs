@@ -40,10 +40,8 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                     return Err(fail(i, "not enough arguments for 'insert_stream'"));
                 }
                 let m = a.word(i + 1)?;
-                let found = ctx.sim.fixes.iter().find_map(|f| match &f.kind {
-                    FixKind::Mesh(mf) if f.id == m => Some(mf.mesh.clone()),
-                    _ => None,
-                });
+                let found =
+                    crate::engine::fixes::mesh_named(&ctx.sim.fixes, m).map(|mf| mf.mesh.clone());
                 mesh = Some((
                     m.to_string(),
                     found.ok_or_else(|| fail(i + 1, "fix mesh ID does not exist"))?,
@@ -180,10 +178,9 @@ fn open_output(
 /// name), whose sum crossing the mesh is counted.
 fn summed_property(a: &Args, ctx: &Ctx, i: usize) -> Result<String, CommandError> {
     let name = a.word(i)?;
-    let found = ctx.sim.fixes.iter().find_map(|f| match &f.kind {
-        FixKind::PropertyAtom(pa) if pa.name == name && !pa.vector => Some(f.id.clone()),
-        _ => None,
-    });
+    let found = crate::engine::fixes::properties_named(&ctx.sim.fixes, name)
+        .find(|(_, pa)| !pa.vector)
+        .map(|(f, _)| f.id.clone());
     found.ok_or_else(|| {
         a.error(
             i,

@@ -45,6 +45,7 @@ mod viscous;
 mod wall_gran;
 
 use crate::commands::specs::Spec;
+use crate::commands::style_table::{StyleRow, StyleTable};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::fixes::{Fix, FixKind, FixStyle};
 
@@ -120,16 +121,16 @@ pub struct FixRow {
     pub build: BuildStyle,
 }
 
-impl FixRow {
-    /// The style name the row defines.
-    pub fn name(&self) -> &'static str {
-        self.spec.style.unwrap_or("")
+impl StyleRow for FixRow {
+    fn spec(&self) -> &Spec {
+        &self.spec
     }
 }
 
 /// The fix styles written as modules: one file each in this folder, one row here. The
-/// `fix` command looks a style up here (and in [`register`]ed rows) before [`STYLES`].
-pub const MODULES: &[FixRow] = &[
+/// `fix` command looks a style up here (rows registered at run time included) before
+/// [`STYLES`].
+pub static TABLE: StyleTable<FixRow> = StyleTable::new(&[
     FixRow {
         spec: nve::SPHERE,
         planar: true,
@@ -255,33 +256,7 @@ pub const MODULES: &[FixRow] = &[
         planar: false,
         build: multicontact::build,
     },
-];
-
-/// Rows added while the program runs (a style defined outside this folder).
-static REGISTERED: std::sync::RwLock<Vec<FixRow>> = std::sync::RwLock::new(Vec::new());
-
-/// Add a module fix style at run time: the `fix` command runs it from then on (a row of
-/// [`MODULES`] needs no registration). A row naming a style already registered replaces it.
-pub fn register(row: FixRow) {
-    let mut rows = REGISTERED.write().unwrap_or_else(|e| e.into_inner());
-    rows.retain(|r| r.name() != row.name());
-    rows.push(row);
-}
-
-/// The module row of `style`: a [`MODULES`] row, else a [`register`]ed one.
-pub fn module_row(style: &str) -> Option<FixRow> {
-    if let Some(row) = MODULES.iter().find(|r| r.name() == style) {
-        return Some(*row);
-    }
-    let rows = REGISTERED.read().unwrap_or_else(|e| e.into_inner());
-    rows.iter().find(|r| r.name() == style).copied()
-}
-
-/// Whether `style` was added with [`register`] (its name need not be one LIGGGHTS knows).
-pub fn is_registered(style: &str) -> bool {
-    let rows = REGISTERED.read().unwrap_or_else(|e| e.into_inner());
-    rows.iter().any(|r| r.name() == style)
-}
+]);
 
 /// The state of a fix of `style`: a module style's builder boxed as [`FixKind::Style`], else
 /// the builder of `styles`; None when neither runs the style.
@@ -292,7 +267,7 @@ fn build_kind(
     styles: &[(&str, Build)],
 ) -> Option<Result<FixKind, CommandError>> {
     let style = def.style;
-    if let Some(row) = module_row(style) {
+    if let Some(row) = TABLE.row(style) {
         if ctx.sim.dimension == 2 && !row.planar {
             return Some(Err(
                 a.unsupported(2, &format!("fix {style} in a 2d simulation"))
@@ -445,7 +420,7 @@ mod tests {
     #[test]
     fn every_declared_fix_style_has_a_row_and_every_row_a_declaration() {
         let mut rows: Vec<&str> = STYLES.iter().map(|row| row.0).collect();
-        rows.extend(MODULES.iter().map(FixRow::name));
+        rows.extend(TABLE.modules().iter().map(StyleRow::name));
         rows.sort();
         let mut declared = crate::commands::specs::styles("fix");
         declared.sort();

@@ -19,10 +19,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandE
         return Err(a.error(3, "Illegal fix move/mesh command, expecting keyword 'mesh'"));
     }
     let mesh = a.word(4)?.to_string();
-    let Some(m) = ctx.sim.fixes.iter().find_map(|f| match &f.kind {
-        FixKind::Mesh(m) if f.id == mesh => Some(m),
-        _ => None,
-    }) else {
+    let Some(m) = crate::engine::fixes::mesh_named(&ctx.sim.fixes, &mesh) else {
         return Err(a.error(4, "Illegal fix move/mesh command, illegal mesh ID provided"));
     };
     if m.surface_vel.is_some() {

@@ -3,7 +3,7 @@
 
 use crate::commands::fix::FixDef;
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::{Fix, FixKind};
+use crate::engine::fixes::{properties_named, Fix, FixKind};
 use crate::engine::heat::PropertyAtom;
 
 /// `fix ID GROUP property/atom NAME scalar|vector|vector_one_entry RESTART COMM_GHOST
@@ -63,12 +63,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         }
         defaults.push(a.real(i)?);
     }
-    if ctx
-        .sim
-        .fixes
-        .iter()
-        .any(|f| matches!(&f.kind, FixKind::PropertyAtom(pa) if pa.name == name))
-    {
+    if properties_named(&ctx.sim.fixes, name).next().is_some() {
         return Err(a.error(
             3,
             format!(
@@ -119,12 +114,7 @@ pub fn ensure(
     restart: bool,
     lines: &mut Vec<String>,
 ) -> String {
-    if let Some(f) = ctx
-        .sim
-        .fixes
-        .iter()
-        .find(|f| matches!(&f.kind, FixKind::PropertyAtom(pa) if pa.name == name))
-    {
+    if let Some((f, _)) = properties_named(&ctx.sim.fixes, name).next() {
         return f.id.clone();
     }
     fill(ctx, name, defaults);

@@ -120,12 +120,7 @@ fn mesh_wall(
     let mut meshes = Vec::new();
     for k in 0..n as usize {
         let id = a.word(at + 4 + k)?;
-        if !ctx
-            .sim
-            .fixes
-            .iter()
-            .any(|f| f.id == id && matches!(f.kind, FixKind::Mesh(_)))
-        {
+        if crate::engine::fixes::mesh_named(&ctx.sim.fixes, id).is_none() {
             return Err(a.error(
                 at + 4 + k,
                 format!("Fix wall/gran: failed to find fix mesh/surface with ID {id}"),
@@ -133,12 +128,7 @@ fn mesh_wall(
         }
         meshes.push(id.to_string());
     }
-    if ctx
-        .sim
-        .fixes
-        .iter()
-        .any(|f| matches!(f.kind, FixKind::MeshWall(_)))
-    {
+    if ctx.sim.fixes.iter().any(|f| f.kind.mesh_wall().is_some()) {
         return Err(a.error(
             0,
             "More than one wall of type 'mesh' is not supported; list all meshes with n_meshes",

@@ -18,10 +18,7 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
     if ctx.sim.computes.iter().any(|c| c.id == id) {
         return Err(a.error(0, "Reuse of compute ID"));
     }
-    let Some(row) = crate::commands::compute::module_row(style) else {
-        registry::require_style(a, "compute")?;
-        return Err(a.unsupported(2, &format!("compute {style}")));
-    };
+    let row = crate::commands::compute::TABLE.row_for(a, "compute")?;
     let def = crate::commands::compute::ComputeDef {
         id,
         group,

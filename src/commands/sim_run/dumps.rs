@@ -20,10 +20,7 @@ pub(in crate::commands) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.error(3, "Illegal dump command"));
     }
     let file = a.word(4)?;
-    let Some(row) = crate::commands::dump::module_row(style) else {
-        registry::require_style(a, "dump")?;
-        return Err(a.unsupported(2, &format!("dump {style}")));
-    };
+    let row = crate::commands::dump::TABLE.row_for(a, "dump")?;
     let def = crate::commands::dump::DumpDef {
         id,
         group,

@@ -27,6 +27,13 @@ pub struct MeshFix {
 }
 
 impl MeshFix {
+    /// The global value `f_ID[i]` (1-based) of the servo module, else of the stress module
+    /// (None: neither has it).
+    pub fn value(&self, i: usize) -> Option<f64> {
+        let servo = self.servo.as_ref().and_then(|s| s.value(i));
+        servo.or_else(|| self.stress.as_ref().and_then(|s| s.value(i)))
+    }
+
     /// The triangles (nodes in STL order).
     pub fn triangles(&self) -> &[crate::io::stl::Triangle] {
         &self.mesh.nodes
@@ -57,7 +64,7 @@ impl MeshFix {
 /// centres of the movers after it follow the displacement.
 pub fn move_meshes(fixes: &mut [Fix], dt: f64) {
     let movers: Vec<usize> = (0..fixes.len())
-        .filter(|&k| matches!(fixes[k].kind, FixKind::MoveMesh(_)))
+        .filter(|&k| fixes[k].kind.mover().is_some())
         .collect();
     for (pos, &k) in movers.iter().enumerate() {
         let FixKind::MoveMesh(mut mv) = std::mem::replace(&mut fixes[k].kind, FixKind::Settings)
@@ -66,12 +73,9 @@ pub fn move_meshes(fixes: &mut [Fix], dt: f64) {
         };
         let first = !movers[..pos]
             .iter()
-            .any(|&e| matches!(&fixes[e].kind, FixKind::MoveMesh(o) if o.mesh == mv.mesh));
-        let mesh_at = fixes
-            .iter()
-            .position(|f| f.id == mv.mesh && matches!(f.kind, FixKind::Mesh(_)));
+            .any(|&e| fixes[e].kind.mover().is_some_and(|o| o.mesh == mv.mesh));
         let mut shift = None;
-        if let Some(FixKind::Mesh(m)) = mesh_at.map(|i| &mut fixes[i].kind) {
+        if let Some(m) = super::mesh_named_mut(fixes, &mv.mesh) {
             let n = m.mesh.len();
             let v = m.node_v.get_or_insert_with(|| vec![[[0.0; 3]; 3]; n]);
             if first {
@@ -88,7 +92,7 @@ pub fn move_meshes(fixes: &mut [Fix], dt: f64) {
         fixes[k].kind = FixKind::MoveMesh(mv);
         if let Some(d) = shift {
             for &later in &movers[pos + 1..] {
-                if let FixKind::MoveMesh(o) = &mut fixes[later].kind {
+                if let Some(o) = fixes[later].kind.mover_mut() {
                     if o.mesh == mesh {
                         o.follow(&d);
                     }

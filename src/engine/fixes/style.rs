@@ -468,11 +468,7 @@ impl Simulation {
         let walls: Vec<String> = self
             .fixes
             .iter()
-            .filter_map(|f| match &f.kind {
-                super::FixKind::WallGran(w) => Some(w.selection.surface.clone()),
-                super::FixKind::MeshWall(w) => Some(w.selection.surface.clone()),
-                _ => None,
-            })
+            .filter_map(|f| Some(f.kind.wall_selection()?.surface.clone()))
             .collect();
         let wall_surfaces: Vec<&str> = walls.iter().map(String::as_str).collect();
         let pair_surface = self.pair_selection.as_ref().map(|s| s.surface.clone());

@@ -76,12 +76,9 @@ fn mesh_refs<'a>(
         .iter()
         .enumerate()
         .filter_map(|(k, id)| {
-            fixes.iter().find_map(|f| match &f.kind {
-                FixKind::Mesh(m) if &f.id == id => {
-                    let moving = m.servo.is_some()
-                        || fixes
-                            .iter()
-                            .any(|g| matches!(&g.kind, FixKind::MoveMesh(mv) if &mv.mesh == id));
+            fixes.iter().find_map(|f| match f.kind.mesh() {
+                Some(m) if &f.id == id => {
+                    let moving = m.servo.is_some() || super::moves_mesh(fixes, id);
                     Some(crate::engine::mesh_wall::MeshRef {
                         moving,
                         stress: m.stress.is_some(),
@@ -108,7 +105,7 @@ pub fn mesh_wall_contacts(
     p: &Particles,
     dt: f64,
 ) -> Vec<crate::engine::mesh_wall::WallContact> {
-    let FixKind::MeshWall(w) = &fixes[k].kind else {
+    let Some(w) = fixes[k].kind.mesh_wall() else {
         return Vec::new();
     };
     let Some(model) = w.model.as_ref() else {
@@ -164,7 +161,7 @@ pub(super) fn mesh_wall_force(
     moving_skin: bool,
 ) {
     let mut kind = std::mem::replace(&mut fixes[k].kind, FixKind::Settings);
-    if let FixKind::MeshWall(w) = &mut kind {
+    if let Some(w) = kind.mesh_wall_mut() {
         if let Some(model) = w.model.take() {
             let mesh_fix: Vec<usize> = w
                 .meshes
@@ -172,7 +169,7 @@ pub(super) fn mesh_wall_force(
                 .filter_map(|id| {
                     fixes
                         .iter()
-                        .position(|f| &f.id == id && matches!(f.kind, FixKind::Mesh(_)))
+                        .position(|f| &f.id == id && f.kind.mesh().is_some())
                 })
                 .collect();
             refresh_trackers(fixes, w, p, list, moving_skin);
@@ -185,7 +182,7 @@ pub(super) fn mesh_wall_force(
             w.model = Some(model);
             // a servo mesh sums its force in LIGGGHTS's loop order (it feeds back on the motion)
             for (k, &at) in mesh_fix.iter().enumerate() {
-                if let FixKind::Mesh(m) = &fixes[at].kind {
+                if let Some(m) = fixes[at].kind.mesh() {
                     if let Some(s) = m.servo.as_ref() {
                         let mut own: Vec<_> =
                             records.iter().filter(|r| r.0 == k).map(|r| r.1).collect();
@@ -200,7 +197,7 @@ pub(super) fn mesh_wall_force(
                 if p.mask[c.particle] & f.group == 0 {
                     continue;
                 }
-                if let FixKind::Mesh(m) = &mut f.kind {
+                if let Some(m) = f.kind.mesh_mut() {
                     let t = c.tri as usize;
                     let (normal, area) = (m.mesh.normal[t], m.mesh.area[t]);
                     if let Some(st) = m.stress.as_mut() {

@@ -273,12 +273,12 @@ impl Simulation {
             // insert one overlapping a particle it had frozen (after reset_timestep)
             let carried = || {
                 let (ti, tj) = (p.id[i as usize], p.id[j as usize]);
-                self.fixes.iter().any(|f| match &f.kind {
-                    FixKind::InsertStream(sf) => sf
+                self.fixes.iter().any(|f| match f.kind.stream() {
+                    Some(sf) => sf
                         .state
                         .as_ref()
                         .is_some_and(|s| s.moving.iter().any(|r| r.id == ti || r.id == tj)),
-                    _ => false,
+                    None => false,
                 })
             };
             if ratio > MAX_OVERLAP && !carried() {

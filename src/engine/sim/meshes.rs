@@ -1,6 +1,7 @@
 //! Mesh walls during a run: topology, stress phases and moving meshes' velocities.
 
 use super::*;
+use crate::engine::fixes::{first_wall_on, mesh_named_mut};
 
 impl Simulation {
     /// LIGGGHTS's mesh setup at the first run: neighbours and active edges and corners of
@@ -8,7 +9,7 @@ impl Simulation {
     pub(super) fn build_mesh_topology(&mut self) -> Result<(), EngineError> {
         let (lo, hi) = (self.domain.lo, self.domain.hi);
         for f in &mut self.fixes {
-            if let FixKind::Mesh(m) = &mut f.kind {
+            if let Some(m) = f.kind.mesh_mut() {
                 if !m.mesh.has_topology {
                     m.mesh.build_topology(lo, hi, &f.id)?;
                 }
@@ -30,7 +31,7 @@ impl Simulation {
             _ => None,
         };
         for f in &mut self.fixes {
-            let FixKind::Mesh(m) = &mut f.kind else {
+            let Some(m) = f.kind.mesh_mut() else {
                 continue;
             };
             let Some(st) = m.stress.as_mut() else {
@@ -71,7 +72,7 @@ impl Simulation {
     pub(super) fn moving_meshes(&self) -> Vec<(String, usize)> {
         let mut out: Vec<(String, usize)> = Vec::new();
         for (k, f) in self.fixes.iter().enumerate() {
-            if let FixKind::MoveMesh(mv) = &f.kind {
+            if let Some(mv) = f.kind.mover() {
                 if !out.iter().any(|(id, _)| id == &mv.mesh) {
                     out.push((mv.mesh.clone(), k));
                 }
@@ -87,12 +88,7 @@ impl Simulation {
         let limit = 0.25 * self.neighbor.skin * self.neighbor.skin;
         let movers = self.moving_meshes().into_iter().map(|(id, _)| id);
         for id in movers.chain(self.servo_meshes()) {
-            let Some(FixKind::Mesh(m)) = self
-                .fixes
-                .iter_mut()
-                .find(|f| f.id == id && matches!(f.kind, FixKind::Mesh(_)))
-                .map(|f| &mut f.kind)
-            else {
+            let Some(m) = mesh_named_mut(&mut self.fixes, &id) else {
                 continue;
             };
             if rebuilt || m.nodes_at_refresh.len() != m.mesh.len() {
@@ -118,22 +114,16 @@ impl Simulation {
     /// before every wall using their mesh; otherwise all of them.
     pub(super) fn zero_mesh_velocities(&mut self, before_force: bool) {
         for (id, first) in self.moving_meshes() {
-            let wall = self.fixes.iter().position(
-                |f| matches!(&f.kind, FixKind::MeshWall(w) if w.meshes.iter().any(|m| m == &id)),
-            );
+            let wall = first_wall_on(&self.fixes, &id).map(|(k, _, _)| k);
             let mover_first = wall.is_none_or(|w| first < w);
-            for f in self.fixes.iter_mut() {
-                if let FixKind::Mesh(m) = &mut f.kind {
-                    if f.id == id {
-                        let n = m.mesh.len();
-                        match &mut m.node_v {
-                            Some(v) if !before_force || mover_first => {
-                                v.iter_mut().for_each(|t| *t = [[0.0; 3]; 3])
-                            }
-                            Some(_) => {}
-                            None => m.node_v = Some(vec![[[0.0; 3]; 3]; n]),
-                        }
+            if let Some(m) = mesh_named_mut(&mut self.fixes, &id) {
+                let n = m.mesh.len();
+                match &mut m.node_v {
+                    Some(v) if !before_force || mover_first => {
+                        v.iter_mut().for_each(|t| *t = [[0.0; 3]; 3])
                     }
+                    Some(_) => {}
+                    None => m.node_v = Some(vec![[[0.0; 3]; 3]; n]),
                 }
             }
         }

@@ -711,7 +711,7 @@ impl Simulation {
         // the integrating stream, once set up, carries what the rewritten data says
         if let Some(ki) = self.stream_integrator() {
             let pending = self.releases_pending(self.fixes[ki].group);
-            if let FixKind::InsertStream(sf) = &mut self.fixes[ki].kind {
+            if let Some(sf) = self.fixes[ki].kind.stream_mut() {
                 if let Some(st) = sf.state.as_mut() {
                     st.moving = pending;
                 }

@@ -188,10 +188,7 @@ impl Simulation {
         // as LIGGGHTS: the box shrink-wraps around every atom first (reset_box), then atoms
         // outside a fixed face are lost (exchange)
         // around every mesh node too (LIGGGHTS's FixMesh::box_extent)
-        let meshes = self.fixes.iter().filter_map(|f| match &f.kind {
-            FixKind::Mesh(m) => Some(m),
-            _ => None,
-        });
+        let meshes = self.fixes.iter().filter_map(|f| f.kind.mesh());
         let nodes = meshes.flat_map(|m| m.triangles().iter().flatten());
         if self.domain.shrinks() {
             let mut lo = [f64::INFINITY; 3];

@@ -52,15 +52,10 @@ impl Simulation {
             .iter()
             .any(|f| matches!(&f.kind, FixKind::Style(s) if s.multicontact_prefactor().is_some()));
         for k in 0..self.fixes.len() {
-            let (mut sel, multicontact) = match &self.fixes[k].kind {
-                FixKind::WallGran(w) => {
-                    (w.selection.clone(), w.selection.surface == "multicontact")
-                }
-                FixKind::MeshWall(w) => {
-                    (w.selection.clone(), w.selection.surface == "multicontact")
-                }
-                _ => continue,
+            let Some(selection) = self.fixes[k].kind.wall_selection() else {
+                continue;
             };
+            let (mut sel, multicontact) = (selection.clone(), selection.surface == "multicontact");
             if multicontact && !has_fix {
                 return Err("No suitable multicontact fix found.".into());
             }

@@ -2,13 +2,14 @@
 //! at a run's start, the motion at `initial_integrate` and the controller after the forces.
 
 use super::*;
+use crate::engine::fixes::{first_wall_on, mesh_named_mut, moves_mesh};
 
 impl Simulation {
     /// IDs of the meshes a servo drives.
     pub(super) fn servo_meshes(&self) -> Vec<String> {
         self.fixes
             .iter()
-            .filter(|f| matches!(&f.kind, FixKind::Mesh(m) if m.servo.is_some()))
+            .filter(|f| f.kind.mesh().is_some_and(|m| m.servo.is_some()))
             .map(|f| f.id.clone())
             .collect()
     }
@@ -20,25 +21,14 @@ impl Simulation {
         let r_min = self.particles.radius.iter().copied().reduce(f64::min);
         let (skin, dt) = (self.neighbor.skin, self.dt);
         for id in self.servo_meshes() {
-            let walled = self.fixes.iter().any(
-                |f| matches!(&f.kind, FixKind::MeshWall(w) if w.meshes.iter().any(|m| m == &id)),
-            );
+            let walled = first_wall_on(&self.fixes, &id).is_some();
             if !walled {
                 return Err(format!("Fix mesh/surface/stress/servo (id {id}): The servo-wall requires a contact model. Therefore, it has to be used for a fix wall/gran too.").into());
             }
-            if self
-                .fixes
-                .iter()
-                .any(|f| matches!(&f.kind, FixKind::MoveMesh(mv) if mv.mesh == id))
-            {
+            if moves_mesh(&self.fixes, &id) {
                 return Err(format!("Fix mesh/surface/stress/servo (id {id}): this fix does not allow superposition with moving mesh fixes").into());
             }
-            let Some(FixKind::Mesh(m)) = self
-                .fixes
-                .iter_mut()
-                .find(|f| f.id == id)
-                .map(|f| &mut f.kind)
-            else {
+            let Some(m) = mesh_named_mut(&mut self.fixes, &id) else {
                 continue;
             };
             let Some(s) = m.servo.as_mut() else { continue };
@@ -67,7 +57,7 @@ impl Simulation {
         );
         let bins: Vec<[i64; 3]> = self.particles.x.iter().map(|x| order.bin(*x)).collect();
         for f in &mut self.fixes {
-            if let FixKind::Mesh(m) = &mut f.kind {
+            if let Some(m) = f.kind.mesh_mut() {
                 if let Some(s) = m.servo.as_mut() {
                     s.bins.clone_from(&bins);
                 }
@@ -80,7 +70,7 @@ impl Simulation {
     pub(super) fn servo_initial_integrate(&mut self) {
         let dt = self.dt;
         for f in &mut self.fixes {
-            let FixKind::Mesh(m) = &mut f.kind else {
+            let Some(m) = f.kind.mesh_mut() else {
                 continue;
             };
             let Some(s) = m.servo.as_mut() else { continue };
@@ -97,23 +87,10 @@ impl Simulation {
         let dt = self.dt;
         for id in self.servo_meshes() {
             // entries in the mesh's contact lists (of the first wall that uses it)
-            let near = self
-                .fixes
-                .iter()
-                .find_map(|f| match &f.kind {
-                    FixKind::MeshWall(w) => {
-                        let k = w.meshes.iter().position(|m| m == &id)?;
-                        Some(w.trackers.get(k).map_or(0, |t| t.candidate_count()))
-                    }
-                    _ => None,
-                })
-                .unwrap_or(0);
-            let Some(FixKind::Mesh(m)) = self
-                .fixes
-                .iter_mut()
-                .find(|f| f.id == id)
-                .map(|f| &mut f.kind)
-            else {
+            let near = first_wall_on(&self.fixes, &id)
+                .and_then(|(_, w, k)| w.trackers.get(k))
+                .map_or(0, |t| t.candidate_count());
+            let Some(m) = mesh_named_mut(&mut self.fixes, &id) else {
                 continue;
             };
             let f_total = m.stress.as_ref().map_or([0.0; 3], |st| st.f_total);

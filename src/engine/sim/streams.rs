@@ -2,6 +2,7 @@
 //! insertion fixes, and meshes that must stay inside the box.
 
 use super::*;
+use crate::engine::fixes::{mesh_named_mut, meshes};
 
 impl Simulation {
     pub(super) fn insert_world(&self) -> (Vec<[f64; 3]>, [bool; 3], bool) {
@@ -14,7 +15,7 @@ impl Simulation {
     pub(super) fn setup_stream(&mut self, k: usize, out: Sink<'_>) -> Result<(), EngineError> {
         use crate::engine::insert::{InsertStream, Velocity};
         let dt = self.dt;
-        let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
+        let Some(sf) = self.fixes[k].kind.stream() else {
             return Ok(());
         };
         if self.clumps().is_some() && !matches!(sf.velocity, Velocity::Constant(_)) {
@@ -49,7 +50,7 @@ impl Simulation {
         } else {
             Vec::new()
         };
-        let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
+        let Some(sf) = self.fixes[k].kind.stream() else {
             return Ok(());
         };
         let restored = sf.restored;
@@ -83,7 +84,7 @@ impl Simulation {
         for l in state.setup_lines(&dist) {
             out(&format!("{l}\n"));
         }
-        if let FixKind::InsertStream(sf) = &mut self.fixes[k].kind {
+        if let Some(sf) = self.fixes[k].kind.stream_mut() {
             sf.state = Some(state);
         }
         Ok(())
@@ -100,13 +101,9 @@ impl Simulation {
         let mut face = crate::engine::insert::Face::new(triangles);
         if all_in {
             let (lo, hi) = (self.domain.lo, self.domain.hi);
-            let mesh = self.fixes.iter_mut().find_map(|f| match &mut f.kind {
-                FixKind::Mesh(m) if f.id == face_id => Some((m, f.id.clone())),
-                _ => None,
-            });
-            if let Some((m, name)) = mesh {
+            if let Some(m) = mesh_named_mut(&mut self.fixes, face_id) {
                 if !m.mesh.has_topology {
-                    m.mesh.build_topology(lo, hi, &name)?;
+                    m.mesh.build_topology(lo, hi, face_id)?;
                 }
                 face.within = Some(crate::engine::insert::Within::new(&m.mesh));
             }
@@ -118,14 +115,13 @@ impl Simulation {
     pub(super) fn insert_streams(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
         let step = self.step;
         for k in 0..self.fixes.len() {
-            let due = matches!(&self.fixes[k].kind, FixKind::InsertStream(sf) if sf.state.as_ref().is_some_and(|s| s.next == Some(step)));
-            if !due {
+            let Some(sf) = self.fixes[k].kind.stream() else {
+                continue;
+            };
+            if sf.state.as_ref().is_none_or(|s| s.next != Some(step)) {
                 continue;
             }
             let group = self.fixes[k].group;
-            let FixKind::InsertStream(sf) = &self.fixes[k].kind else {
-                unreachable!()
-            };
             let dist_id = sf.distribution.clone();
             let dk = self
                 .fixes
@@ -150,15 +146,9 @@ impl Simulation {
                     members: crate::engine::clumps::body_tags(&self.particles),
                     bodies: &bodies,
                 };
-                match &mut self.fixes[k].kind {
-                    FixKind::InsertStream(sf) => sf.state.as_mut().expect("set up").insert(
-                        step,
-                        &mut dist,
-                        &world,
-                        box_changes,
-                    ),
-                    _ => unreachable!(),
-                }
+                let sf = self.fixes[k].kind.stream_mut().expect("a stream");
+                let state = sf.state.as_mut().expect("set up");
+                state.insert(step, &mut dist, &world, box_changes)
             }?;
             if let FixKind::Distribution(d) = &mut self.fixes[dk].kind {
                 *d = dist.clone();
@@ -182,13 +172,9 @@ impl Simulation {
             }
             // the release step: a clump's from its centre of mass (LIGGGHTS's calc_n_steps)
             let dt = self.dt;
-            let (p_ref, normal, v_normal) = match &self.fixes[k].kind {
-                FixKind::InsertStream(sf) => {
-                    let st = sf.state.as_ref().expect("set up");
-                    (st.p_ref, st.normal, st.v_normal)
-                }
-                _ => unreachable!(),
-            };
+            let sf = self.fixes[k].kind.stream().expect("a stream");
+            let st = sf.state.as_ref().expect("set up");
+            let (p_ref, normal, v_normal) = (st.p_ref, st.normal, st.v_normal);
             let ba = crate::engine::clumps::body_array(&self.particles);
             let mut new = Vec::with_capacity(self.particles.len() - first_new);
             for i in first_new..self.particles.len() {
@@ -201,12 +187,8 @@ impl Simulation {
                 };
                 new.push((self.particles.id[i], self.particles.x[i], steps));
             }
-            let records = match &mut self.fixes[k].kind {
-                FixKind::InsertStream(sf) => {
-                    sf.state.as_mut().expect("set up").record(step, dt, &new)
-                }
-                _ => unreachable!(),
-            };
+            let sf = self.fixes[k].kind.stream_mut().expect("a stream");
+            let records = sf.state.as_mut().expect("set up").record(step, dt, &new);
             // the new atoms are the last ones, in the order of their records
             let first = self.particles.len() - records.len();
             self.store_releases(first, &records);
@@ -214,7 +196,7 @@ impl Simulation {
             if let Some(ki) = self.stream_integrator() {
                 let g = self.fixes[ki].group;
                 let mask = &self.particles.mask[first..];
-                if let FixKind::InsertStream(sf) = &mut self.fixes[ki].kind {
+                if let Some(sf) = self.fixes[ki].kind.stream_mut() {
                     if let Some(state) = sf.state.as_mut() {
                         state.moving.extend(
                             records
@@ -244,7 +226,7 @@ impl Simulation {
         let ba = crate::engine::clumps::body_array(&self.particles);
         let mut releases: Vec<(f64, [f64; 3], [f64; 3])> = Vec::new();
         for k in 0..self.fixes.len() {
-            let FixKind::InsertStream(sf) = &mut self.fixes[k].kind else {
+            let Some(sf) = self.fixes[k].kind.stream_mut() else {
                 continue;
             };
             let Some(state) = sf.state.as_mut() else {
@@ -299,7 +281,7 @@ impl Simulation {
     pub(super) fn setup_insertions(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
         // in the order of the fixes, as LIGGGHTS sets them up
         for k in 0..self.fixes.len() {
-            if matches!(self.fixes[k].kind, FixKind::InsertStream(_)) {
+            if self.fixes[k].kind.stream().is_some() {
                 self.setup_stream(k, out)?;
                 continue;
             }
@@ -417,8 +399,7 @@ impl Simulation {
     /// directions with fixed or periodic faces; the faces padded by 1e-8 length) are an error.
     pub(super) fn check_meshes_in_box(&self) -> Result<(), EngineError> {
         let d = &self.domain;
-        for f in &self.fixes {
-            let FixKind::Mesh(m) = &f.kind else { continue };
+        for (f, m) in meshes(&self.fixes) {
             let lost = m
                 .triangles()
                 .iter()
@@ -450,9 +431,7 @@ impl Simulation {
     /// The fix moving every stream's particles until release: the first insert/stream
     /// (LIGGGHTS's i_am_integrator).
     pub(super) fn stream_integrator(&self) -> Option<usize> {
-        self.fixes
-            .iter()
-            .position(|f| matches!(f.kind, FixKind::InsertStream(_)))
+        self.fixes.iter().position(|f| f.kind.stream().is_some())
     }
 }
 

@@ -142,11 +142,8 @@ impl Simulation {
             return v;
         }
         match (&fix.kind, index) {
-            (FixKind::Mesh(m), Some(i)) if m.servo.as_ref().and_then(|s| s.value(i)).is_some() => {
-                Ok(m.servo.as_ref().and_then(|s| s.value(i)).unwrap_or(0.0))
-            }
-            (FixKind::Mesh(m), Some(i)) if m.stress.as_ref().and_then(|s| s.value(i)).is_some() => {
-                Ok(m.stress.as_ref().and_then(|s| s.value(i)).unwrap_or(0.0))
+            (kind, Some(i)) if kind.mesh().and_then(|m| m.value(i)).is_some() => {
+                Ok(kind.mesh().and_then(|m| m.value(i)).unwrap_or(0.0))
             }
             (FixKind::AveTime(at), i) if at.value(i).is_some() => Ok(at.value(i).unwrap_or(0.0)),
             (FixKind::Massflow(m), Some(i)) if m.value(i).is_some() => {

@@ -727,3 +727,40 @@ fn write_restart_creates_its_folders_as_liggghts_does() {
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     assert!(dir.join("post/restart/liggghts.restart").is_file());
 }
+
+#[test]
+fn vtk_dump_file_names_as_liggghts_checks_them() {
+    // a silo deck dumped its wear mesh with `mesh/vtk ... post/Container*.stl`
+    let dir = scratch("vtkfiles");
+    let particle = "Allowed file extensions for this dump style are: .vtk .vtu .pvtu .vtp .pvtp";
+    let pair = "pair_style gran model hertz tangential history\npair_coeff * *\n\
+                compute fc all pair/gran/local pos force\n";
+    for (dump, needle) in [
+        (
+            "dump d all custom/vtk 10 post/a_*.txt id x",
+            format!("dump custom/vtk: Could not find allowed filetype for serial writing. {particle}"),
+        ),
+        (
+            "dump d all custom/vtk 10 post/a_*.vtk.gz id x",
+            format!("dump custom/vtk: Could not find allowed filetype for writing of VTK file. {particle}"),
+        ),
+        (
+            "dump d all custom/vtk 10 post/a_*.pvtx id x",
+            format!("dump custom/vtk: Could not find allowed filetype for parallel writing. {particle}"),
+        ),
+        (
+            "dump d all local/gran/vtk 10 post/l_*.dat fc",
+            format!("dump local/gran/vtk: Could not find allowed filetype for serial writing. {particle}"),
+        ),
+        (
+            "dump d all local/gran/vtk 10 post/l%_*.vtp fc",
+            format!("dump local/gran/vtk: It is no longer allowed to enable parallel writing by setting the % character, please see the documentation for help. {particle}"),
+        ),
+        (
+            "dump d all mesh/vtk 10 post/m_*.stl stress",
+            "dump mesh/vtk: Could not find allowed filetype for serial writing. Allowed file extensions for this dump style are: .vtk .vtp .pvtp".to_string(),
+        ),
+    ] {
+        fails_alike(&dir, &format!("{pair}{dump}"), &needle, 14);
+    }
+}

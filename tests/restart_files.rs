@@ -109,3 +109,31 @@ fn a_deck_that_writes_then_reads_a_restart_checks_and_runs() {
     assert!(dir.join("mid.restart").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A primitive wall without a tangential history (LIGGGHTS's default `tangential off`, or
+/// `no_history`) keeps no per-atom history, so a restart file names none for it, as
+/// LIGGGHTS's; one with `tangential history` does.
+#[test]
+fn history_free_walls_leave_no_history_in_restart_files() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-restart-walls-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let deck = format!(
+        "{HEAD}region reg block 0 0.02 0 0.02 0 0.04 units box\ncreate_box 1 reg\n\
+         create_atoms 1 single 0.01 0.01 0.002 units box\nset atom 1 diameter 0.004 density 2500\n\
+         {SETUP}fix plain all wall/gran model hertz primitive type 1 zplane 0.04\n\
+         fix damped all wall/gran model hertz tangential no_history primitive type 1 xplane 0.0\n\
+         run 10\nwrite_restart walls.restart\n"
+    );
+    run(&dir, "in.walls", &deck);
+    let r = regolith::io::restart::read(&dir.join("walls.restart").to_string_lossy()).unwrap();
+    let ids: Vec<&str> = r.peratom_fixes.iter().map(|f| f.id.as_str()).collect();
+    assert!(ids.contains(&"history_floor"), "{ids:?}");
+    assert!(
+        !ids.iter()
+            .any(|id| *id == "history_plain" || *id == "history_damped"),
+        "{ids:?}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -290,8 +290,8 @@ pub fn is_supported(cmd: &CommandLine) -> bool {
         return false;
     }
     match (name, style) {
-        ("pair_style", "gran") => contact_models_run(cmd, 1, "no_history", true),
-        ("fix", "wall/gran") => contact_models_run(cmd, 3, "history", false),
+        ("pair_style", "gran") => contact_models_run(cmd, 1, true),
+        ("fix", "wall/gran") => contact_models_run(cmd, 3, false),
         _ => true,
     }
 }
@@ -300,19 +300,11 @@ pub fn is_supported(cmd: &CommandLine) -> bool {
 /// engine's own constructor decides); a malformed selection is an error, not unsupported.
 /// With `wet`, cohesion easo/capillary/viscous runs (the pair loop's liquid bridges) when
 /// the rest of the selection does.
-fn contact_models_run(
-    cmd: &CommandLine,
-    start: usize,
-    default_tangential: &str,
-    wet: bool,
-) -> bool {
+fn contact_models_run(cmd: &CommandLine, start: usize, wet: bool) -> bool {
     let words: Vec<&str> = (start..cmd.nargs()).filter_map(|i| cmd.arg(i)).collect();
-    let Ok((mut selection, used)) = ModelSelection::select(&words) else {
+    let Ok((mut selection, _)) = ModelSelection::select(&words) else {
         return true;
     };
-    if !words[..used].contains(&"tangential") {
-        selection.tangential = default_tangential.into();
-    }
     if wet {
         selection = crate::engine::wet::dry(&selection);
     }

@@ -350,12 +350,12 @@ fn keep_periodic_restarts(ctx: &mut Ctx, nsteps: i64) {
 
 /// Parse `model M tangential T ... [option on|off ...]` starting at argument `start` in
 /// LIGGGHTS's fixed keyword order; returns the selection and the index after the on/off
-/// settings. Without a `tangential` keyword the model is `default_tangential`.
+/// settings. Without a `tangential` keyword there is no tangential force (LIGGGHTS's
+/// default `tangential off`, for pair styles and walls alike).
 #[allow(clippy::type_complexity)]
 pub(super) fn gran_models(
     a: &Args,
     start: usize,
-    default_tangential: &str,
     what: &str,
 ) -> std::result::Result<
     (
@@ -382,9 +382,6 @@ pub(super) fn gran_models(
             _ => err,
         }
     })?;
-    if !words[..used].contains(&"tangential") {
-        sel.tangential = default_tangential.into();
-    }
     if sel.normal == "off" {
         return Err(a.error(
             start,
@@ -446,7 +443,7 @@ fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
     if a.word(0)? != "gran" {
         return Err(a.unsupported(0, &format!("pair_style {}", a.word(0)?)));
     }
-    let (sel, next, pending) = gran_models(a, 1, "no_history", "pair_style gran")?;
+    let (sel, next, pending) = gran_models(a, 1, "pair_style gran")?;
     if next < a.len() {
         return Err(a.unsupported(next, &format!("pair_style gran option {}", a.word(next)?)));
     }

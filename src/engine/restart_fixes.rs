@@ -270,7 +270,7 @@ impl Simulation {
                     let state = crate::engine::insert::InsertRestart {
                         rng_state: ins.rng.state(),
                         inserted: ins.inserted,
-                        first_step: 0,
+                        first_step: ins.first_step,
                         next: ins.next.unwrap_or(0),
                         mass: ins.inserted_mass,
                     };

@@ -48,7 +48,11 @@ pub fn shortest(v: f64) -> String {
         }
         .to_string();
     }
-    let sci = format!("{:e}", v.abs());
+    // the shortest digit count; of the numbers with that many digits the nearest, a tie
+    // going to the even digit as double-conversion rounds (Rust's shortest form rounds it up)
+    let short = format!("{:e}", v.abs());
+    let count = short.split('e').next().unwrap_or("").replace('.', "").len();
+    let sci = format!("{:.*e}", count.saturating_sub(1), v.abs());
     let (mantissa, exp) = sci.split_once('e').unwrap_or((&sci, "0"));
     let exp: i32 = exp.parse().unwrap_or(0);
     let digits: String = mantissa.chars().filter(|c| *c != '.').collect();
@@ -192,17 +196,22 @@ pub fn write_contacts_xml(
 ) -> std::io::Result<()> {
     let n = rows.len().checked_div(ncols).unwrap_or(0);
     let at = |r: usize, c: usize| rows[r * ncols + c];
+    // single-precision points, written as the doubles they widen to
+    let points: Vec<f64> = (layout.points(n, at).into_iter())
+        .map(|v| v as f32 as f64)
+        .collect();
+    let lines = layout.lines(n);
+    let (npoints, cells, per) = (points.len() / 3, lines.len(), layout.lines_per_contact());
     let (tag, piece) = match kind {
         XmlKind::PolyData => (
             "PolyData",
             format!(
-                "<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{n}\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">",
-                2 * n
+                "<Piece NumberOfPoints=\"{npoints}\" NumberOfVerts=\"0\" NumberOfLines=\"{cells}\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">"
             ),
         ),
         XmlKind::Unstructured => (
             "UnstructuredGrid",
-            format!("<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{n}\">", 2 * n),
+            format!("<Piece NumberOfPoints=\"{npoints}\" NumberOfCells=\"{cells}\">"),
         ),
     };
     writeln!(
@@ -210,8 +219,8 @@ pub fn write_contacts_xml(
         "<?xml version=\"1.0\"?>\n<VTKFile type=\"{tag}\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n  <{tag}>\n    {piece}\n      <PointData>\n      </PointData>\n      <CellData>"
     )?;
     for &(name, first, width) in &layout.fields {
-        let numbers: Vec<f64> = (0..n * width)
-            .map(|k| at(k / width, first + k % width))
+        let numbers: Vec<f64> = (0..cells * width)
+            .map(|k| at(k / width / per, first + k % width))
             .collect();
         let text: Vec<String> = numbers.iter().map(|&v| shortest(v)).collect();
         data_array(
@@ -225,10 +234,6 @@ pub fn write_contacts_xml(
         )?;
     }
     writeln!(out, "      </CellData>\n      <Points>")?;
-    // single-precision points, written as the doubles they widen to
-    let points: Vec<f64> = (0..6 * n)
-        .map(|k| at(k / 6, layout.pos + k % 6) as f32 as f64)
-        .collect();
     let text: Vec<String> = points.iter().map(|&v| shortest(v)).collect();
     data_array(
         out,
@@ -240,8 +245,8 @@ pub fn write_contacts_xml(
         &Encoding::Ascii,
     )?;
     writeln!(out, "      </Points>")?;
-    let connectivity: Vec<u64> = (0..2 * n as u64).collect();
-    let offsets: Vec<u64> = (1..=n as u64).map(|k| 2 * k).collect();
+    let connectivity: Vec<u64> = lines.iter().flatten().copied().collect();
+    let offsets: Vec<u64> = (1..=cells as u64).map(|k| 2 * k).collect();
     let sections: &[(&str, bool)] = match kind {
         XmlKind::PolyData => &[
             ("Verts", false),
@@ -261,7 +266,7 @@ pub fn write_contacts_xml(
         int_array(out, "Int64", "connectivity", c)?;
         int_array(out, "Int64", "offsets", o)?;
         if kind == XmlKind::Unstructured {
-            int_array(out, "UInt8", "types", &vec![3; n])?;
+            int_array(out, "UInt8", "types", &vec![3; cells])?;
         }
         writeln!(out, "      </{section}>")?;
     }
@@ -294,5 +299,7 @@ mod tests {
         assert_eq!(shortest(1e21), "1e+21");
         assert_eq!(shortest(1e20), "100000000000000000000");
         assert_eq!(shortest(-0.0), "0");
+        // a float's exact value halfway between two 17-digit numbers: the even one, as VTK
+        assert_eq!(shortest(-0.150_272_37_f32 as f64), "-0.15027236938476562");
     }
 }

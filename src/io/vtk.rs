@@ -159,6 +159,10 @@ pub fn write_particles(
     write_array(out, 3 * n, |k| {
         g(position(atoms[k / 3])[k % 3] as f32 as f64)
     })?;
+    if n == 0 {
+        // VTK writes no cells and no point data for an empty set (LIGGGHTS before insertion)
+        return Ok(());
+    }
     writeln!(out, "VERTICES {} {n}\nOFFSETS vtktypeint64", n + 1)?;
     write_array(out, n + 1, |k| k.to_string())?;
     writeln!(out, "CONNECTIVITY vtktypeint64")?;
@@ -200,6 +204,11 @@ pub fn write_particles_binary(
         for x in position(i) {
             b.extend_from_slice(&(x as f32).to_be_bytes());
         }
+    }
+    if n == 0 {
+        // as the ASCII file: no cells and no point data for an empty set
+        b.push(b'\n');
+        return out.write_all(&b);
     }
     b.extend_from_slice(format!("\nVERTICES {} {n}\nOFFSETS vtktypeint64\n", n + 1).as_bytes());
     for k in 0..=n as i64 {

@@ -125,19 +125,11 @@ pub fn build(a: &Args, ctx: &mut Ctx, def: &DumpDef) -> Result<Built, CommandErr
     Ok((layout, Box::new(CustomVtk { fields })))
 }
 
-/// The file of `dump custom/vtk`: a serial VTK file regolith writes, not gzipped.
+/// The file of `dump custom/vtk`: a VTK file name LIGGGHTS accepts.
 fn check_vtk_file(a: &Args, file: &str) -> Result<(), CommandError> {
-    if file.ends_with(".gz") {
-        return Err(a.error(4, "dump custom/vtk files cannot be gzipped"));
-    }
-    if file.ends_with(".vtm") {
-        return Err(a.unsupported(4, "dump custom/vtk multiblock files (.vtm)"));
-    }
-    if Flavor::of(file).is_none() {
-        return Err(a.error(
-            4,
-            "dump custom/vtk: the file name must end in .vtk, .vtp, .vtu, .pvtp or .pvtu",
-        ));
-    }
+    super::vtk_file_type(file, "custom/vtk", &super::PARTICLE_VTK_SUFFIXES)
+        .map_err(|m| a.error(4, m))?;
+    // the suffixes allowed are the ones regolith writes
+    debug_assert!(Flavor::of(file).is_some());
     Ok(())
 }

@@ -50,6 +50,8 @@ pub fn build(a: &Args, ctx: &mut Ctx, def: &DumpDef) -> Result<Built, CommandErr
             .error(4, "dump local/gran/vtk requires 6 arguments")
             .with_help("name a compute pair/gran/local after the file"));
     }
+    super::vtk_file_type(def.file, "local/gran/vtk", &super::PARTICLE_VTK_SUFFIXES)
+        .map_err(|m| a.error(4, m))?;
     let cid = a.word(5)?;
     let fields = ctx
         .sim

@@ -101,17 +101,19 @@ impl DumpStyle for MeshVtk {
 /// `dump ID GROUP mesh/vtk N FILE.vtk [MESH ...] [KEYWORD ...]`.
 pub fn build(a: &Args, ctx: &mut Ctx, def: &DumpDef) -> Result<Built, CommandError> {
     let style = def.style;
+    let words = style_words(a)?;
+    let fixes = &ctx.sim.fixes;
+    let spec =
+        crate::io::mesh_vtk::parse_keywords(&words, |w| mesh_named(fixes, w).is_some(), |_| false)
+            .map_err(|m| a.error(5, format!("dump {style}: {m}")))?;
+    // LIGGGHTS checks the file name after the keywords
+    super::vtk_file_type(def.file, style, &[".vtk", ".vtp", ".pvtp"]).map_err(|m| a.error(4, m))?;
     if !def.file.ends_with(".vtk") {
         return Err(a.unsupported(
             4,
             &format!("dump {style} to XML or parallel VTK files (regolith writes legacy .vtk)"),
         ));
     }
-    let words = style_words(a)?;
-    let fixes = &ctx.sim.fixes;
-    let spec =
-        crate::io::mesh_vtk::parse_keywords(&words, |w| mesh_named(fixes, w).is_some(), |_| false)
-            .map_err(|m| a.error(5, format!("dump {style}: {m}")))?;
     let name = style.to_string();
     Ok((super::no_columns(), Box::new(MeshVtk { name, spec })))
 }

@@ -118,3 +118,35 @@ pub fn style_words<'a>(a: &'a Args) -> Result<Vec<&'a str>, CommandError> {
 pub fn no_columns() -> Layout {
     Layout::new(&[]).expect("no columns")
 }
+
+/// LIGGGHTS's VTK file suffixes; from `.pvtp` on they are parallel (master) files.
+const VTK_SUFFIXES: [&str; 10] = [
+    ".vtk", ".vtp", ".vtu", ".vti", ".vtr", ".vtm", ".pvtp", ".pvtu", ".pvti", ".pvtr",
+];
+
+/// LIGGGHTS's check of a VTK dump's file name (`DumpVTK::identify_file_type`): no `%`, and
+/// the suffix after the last dot one of `allowed` (four characters a serial file, five a
+/// parallel one). The error names the allowed suffixes in `allowed`'s order.
+pub fn vtk_file_type(file: &str, style: &str, allowed: &[&str]) -> Result<(), String> {
+    let fail = |what: &str| {
+        Err(format!(
+            "dump {style}: {what} Allowed file extensions for this dump style are: {}",
+            allowed.join(" ")
+        ))
+    };
+    if file.contains('%') {
+        return fail("It is no longer allowed to enable parallel writing by setting the % character, please see the documentation for help.");
+    }
+    let suffix = file.rfind('.').map_or("", |k| &file[k..]);
+    let parallel = |s: &str| VTK_SUFFIXES[6..].contains(&s);
+    match suffix.len() {
+        5 if allowed.contains(&suffix) && parallel(suffix) => Ok(()),
+        5 => fail("Could not find allowed filetype for parallel writing."),
+        4 if allowed.contains(&suffix) && VTK_SUFFIXES[..6].contains(&suffix) => Ok(()),
+        4 => fail("Could not find allowed filetype for serial writing."),
+        _ => fail("Could not find allowed filetype for writing of VTK file."),
+    }
+}
+
+/// The suffixes `dump custom/vtk` and `dump local/gran/vtk` accept, in LIGGGHTS's order.
+pub const PARTICLE_VTK_SUFFIXES: [&str; 5] = [".vtk", ".vtu", ".pvtu", ".vtp", ".pvtp"];

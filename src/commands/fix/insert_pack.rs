@@ -357,6 +357,7 @@ impl PackArgs {
             target,
             every,
             next: Some(self.schedule.start),
+            first_step: self.schedule.start,
             overlapcheck: common.overlapcheck,
             all_in,
             maxattempt: common.maxattempt,

@@ -8,7 +8,7 @@ use crate::engine::fixes::FixKind;
 /// `fix ID GROUP wall/gran model ... primitive type T SHAPE ARGS | mesh n_meshes N meshes ...`.
 pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
     let FixDef { id, group, .. } = *fix;
-    let (selection, next, pending) = gran_models(a, 3, "history", "fix wall/gran")?;
+    let (selection, next, pending) = gran_models(a, 3, "fix wall/gran")?;
     if let Some(d) = pending {
         return Err(d);
     }

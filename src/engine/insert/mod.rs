@@ -255,6 +255,9 @@ pub struct InsertPack {
     pub every: i64,
     /// The next insertion step (None: no more).
     pub next: Option<i64>,
+    /// The first insertion step (`start`, else the step after the definition), which
+    /// LIGGGHTS keeps in restart files.
+    pub first_step: i64,
     /// `overlapcheck`.
     pub overlapcheck: bool,
     /// `all_in`.

@@ -81,6 +81,17 @@ impl Simulation {
         out
     }
 
+    /// LIGGGHTS's setup of every mesh at a run's start (`pbcExchangeBorders` with its setup
+    /// flag): the surface vectors of every mesh, moving or not, recomputed from its nodes, so
+    /// a mesh that moved in an earlier run gets vectors from where its nodes are now.
+    pub(super) fn refresh_all_mesh_surfaces(&mut self) {
+        for f in self.fixes.iter_mut() {
+            if let FixKind::Mesh(m) = &mut f.kind {
+                m.mesh.recompute_surface();
+            }
+        }
+    }
+
     /// LIGGGHTS's FixMesh::pre_force for moving meshes: after a re-neighbouring, recompute
     /// the surface vectors from the nodes and remember the nodes; otherwise ask for a
     /// re-neighbouring at the next step once a node has moved more than half the skin.

@@ -548,6 +548,7 @@ impl Simulation {
     pub(super) fn decide(&mut self) -> bool {
         // a rebuild a fix or a changed atom count forces is never dangerous
         let forced = self.mesh_rebuild_at == Some(self.step)
+            || self.restart_due()
             || self.list.built_positions().len() != self.particles.len();
         let rebuild = self.decide_by_rules();
         // LIGGGHTS's dangerous build: a distance-triggered rebuild at the first step the
@@ -559,10 +560,17 @@ impl Simulation {
         rebuild
     }
 
+    /// A `restart` file is written at this step: LIGGGHTS's `Neighbor::decide` then rebuilds
+    /// the lists (and sorts the atoms when due) before the file is written.
+    fn restart_due(&self) -> bool {
+        (self.restart_output.iter().flatten())
+            .any(|out| self.step % out.every == 0 && out.last != Some(self.step))
+    }
+
     /// The rebuild decision itself (see [`Self::decide`]).
     pub(super) fn decide_by_rules(&mut self) -> bool {
         self.ago += 1;
-        if self.mesh_rebuild_at == Some(self.step) {
+        if self.mesh_rebuild_at == Some(self.step) || self.restart_due() {
             return true;
         }
         if self.list.built_positions().len() != self.particles.len() {

@@ -116,6 +116,7 @@ impl Simulation {
         }
         self.build_neighbors();
         self.servo_bins();
+        self.refresh_all_mesh_surfaces();
         self.refresh_moving_meshes(true);
         self.zero_mesh_velocities(true);
         self.mesh_stress_phase(StressPhase::Setup)?;

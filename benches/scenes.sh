@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Times the study scenes end to end in Debian's LIGGGHTS, regolith's exact path (one thread)
-# and its fast path (one thread), interleaved, and writes docs/scenes.md:
+# and its fast path (one and two threads), interleaved, and writes docs/scenes.md:
 #   struck chain (1 001 soft beads, 300 000 steps), lunar channel bed (pour, trim, settle),
 #   P-wave shock on that bed, radial blast in a granular ring.
 #   apt-get install -y liggghts          (for the LIGGGHTS column)
@@ -27,7 +27,7 @@ mkdir -p docs
         echo
         echo "## $deck"
         echo
-        report=$("$bin" bench "$work/$deck" --exact --fast "${ligg[@]}" --repeat "$REPEAT")
+        report=$("$bin" bench "$work/$deck" --exact --fast --threads 1,2 "${ligg[@]}" --repeat "$REPEAT")
         echo '```'
         sed '/^$/,$d' <<<"$report"
         echo '```'

@@ -377,7 +377,8 @@ impl Regions {
                     .map(|x| {
                         let (d1, d2) = (x[a1] - c1, x[a2] - c2);
                         let dist = (d1 * d1 + d2 * d2).sqrt();
-                        (dist <= radius && x[axis] >= lo && x[axis] <= hi) == r.interior
+                        // all three tests, no early exit (a loop without branches)
+                        ((dist <= radius) & (x[axis] >= lo) & (x[axis] <= hi)) == r.interior
                     })
                     .collect()
             }

@@ -83,6 +83,8 @@ const FIXES: &[&str] = &[
     "planeforce",
     // its extremes are reduced over the ranks (f_ID[1..3] in thermo)
     "check/timestep/gran",
+    // prescribed motion from each atom's start position, which every rank keeps by ID
+    "move",
 ];
 
 /// Compute styles that run on ranks: evaluated by rank 0 for thermo and dumps from every
@@ -133,7 +135,7 @@ const THERMO: &[&str] = &[
 /// What runs on more than one rank, as a refusal's help says it.
 pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic \
     and fixed faces, pair_style gran, fix nve/sphere, gravity, primitive wall/gran, freeze, \
-    setforce/addforce with constants, viscous and check/timestep/gran, shell, computes ke, \
+    setforce/addforce with constants, viscous, move and check/timestep/gran, shell, computes ke, \
     erotate/sphere, reduce, com, stress/atom and per-atom properties, thermo (step, atoms, ke, \
     c_, v_, ...) and dump custom; or run it as one process (with threads: -sf fast -pk fast N)";
 

@@ -287,9 +287,14 @@ fn thermo_rows(deck: &str, n: usize, tag: &str) -> Vec<Vec<f64>> {
     );
     let text = std::fs::read_to_string(&log).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
+    thermo_table(&text)
+}
+
+/// The thermo rows (numbers) of a log, warnings between them left out.
+fn thermo_table(log: &str) -> Vec<Vec<f64>> {
     let mut rows = Vec::new();
     let mut inside = false;
-    for line in text.lines() {
+    for line in log.lines() {
         if line.trim_start().starts_with("Step") {
             inside = true;
         } else if line.starts_with("Loop time") {
@@ -393,35 +398,17 @@ thermo_modify format float %.16g",
             .map(String::from)
             .collect::<Vec<_>>()
     };
-    let rows = |log: &str| -> Vec<Vec<f64>> {
-        let mut inside = false;
-        let mut rows = Vec::new();
-        for line in log.lines() {
-            if line.trim_start().starts_with("Step") {
-                inside = true;
-            } else if line.starts_with("Loop time") {
-                inside = false;
-            } else if inside && !line.starts_with("WARNING") {
-                rows.push(
-                    line.split_whitespace()
-                        .map(|w| w.parse().unwrap())
-                        .collect(),
-                );
-            }
-        }
-        rows
-    };
     // one check at each multiple of 50 steps, each over both limits (the Rayleigh and Hertz
     // warnings), the values in thermo from step 50 on
     let want = warnings(&serial);
     assert_eq!(want.len(), 6, "{want:?}");
-    let serial_rows = rows(&serial);
+    let serial_rows = thermo_table(&serial);
     assert_eq!(serial_rows.len(), 5);
     assert!(serial_rows[1][3] > 0.001 && serial_rows[1][4] > 0.001 && serial_rows[1][5] > 0.0);
     for n in [2, 3] {
         let log = log_of(&deck, n, &format!("ts-{n}"));
         assert_eq!(warnings(&log).len(), want.len(), "{n} ranks");
-        for (a, b) in serial_rows.iter().zip(rows(&log)) {
+        for (a, b) in serial_rows.iter().zip(thermo_table(&log)) {
             for k in 3..6 {
                 assert!(
                     (a[k] - b[k]).abs() <= 1e-10 * a[k].abs(),

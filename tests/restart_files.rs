@@ -3,6 +3,8 @@
 //! file per interval with the step in the name, `restart N a b` alternates two files, and
 //! every file written reads back.
 
+mod common;
+
 use std::path::Path;
 use std::process::Command;
 
@@ -95,10 +97,7 @@ fn split_runs_continue_and_restart_files_rotate() {
 
 #[test]
 fn a_deck_that_writes_then_reads_a_restart_checks_and_runs() {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("regolith-restart-check-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch_dir("restart-check");
     let deck = format!(
         "{HEAD}region reg block 0 0.02 0 0.02 0 0.04 units box\ncreate_box 1 reg\n\
          create_atoms 1 single 0.01 0.01 0.01\nset group all diameter 0.002 density 2500\n\
@@ -115,10 +114,7 @@ fn a_deck_that_writes_then_reads_a_restart_checks_and_runs() {
 /// LIGGGHTS's; one with `tangential history` does.
 #[test]
 fn history_free_walls_leave_no_history_in_restart_files() {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("regolith-restart-walls-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch_dir("restart-walls");
     let deck = format!(
         "{HEAD}region reg block 0 0.02 0 0.02 0 0.04 units box\ncreate_box 1 reg\n\
          create_atoms 1 single 0.01 0.01 0.002 units box\nset atom 1 diameter 0.004 density 2500\n\

@@ -118,6 +118,27 @@ fn cross_axes(axis: usize) -> (usize, usize) {
     }
 }
 
+/// Is `x` inside `shape`, a cylinder (false for any other shape)? All three tests without
+/// early exit, so a loop over particles has no branches.
+#[inline(always)]
+fn in_cylinder(shape: &Shape, x: [f64; 3]) -> bool {
+    let Shape::Cylinder {
+        axis,
+        c1,
+        c2,
+        radius,
+        lo,
+        hi,
+    } = *shape
+    else {
+        return false;
+    };
+    let (a1, a2) = cross_axes(axis);
+    let (d1, d2) = (x[a1] - c1, x[a2] - c2);
+    let dist = (d1 * d1 + d2 * d2).sqrt();
+    (dist <= radius) & (x[axis] >= lo) & (x[axis] <= hi)
+}
+
 /// Bounds of a body of revolution along `axis`: radius `r` around (c1, c2), from lo to hi.
 fn axial_box(axis: usize, c1: f64, c2: f64, r: f64, lo: f64, hi: f64) -> ([f64; 3], [f64; 3]) {
     let (a1, a2) = cross_axes(axis);
@@ -359,29 +380,11 @@ impl Regions {
         let r = &self.list[index];
         match (&r.shape, &r.motion) {
             // the commonest dynamic region: a still cylinder whose radius follows a
-            // variable; the same test as `inside`, in one tight loop
-            (
-                Shape::Cylinder {
-                    axis,
-                    c1,
-                    c2,
-                    radius,
-                    lo,
-                    hi,
-                },
-                None,
-            ) => {
-                let (a1, a2) = cross_axes(*axis);
-                let (c1, c2, radius, lo, hi, axis) = (*c1, *c2, *radius, *lo, *hi, *axis);
-                xs.iter()
-                    .map(|x| {
-                        let (d1, d2) = (x[a1] - c1, x[a2] - c2);
-                        let dist = (d1 * d1 + d2 * d2).sqrt();
-                        // all three tests, no early exit (a loop without branches)
-                        ((dist <= radius) & (x[axis] >= lo) & (x[axis] <= hi)) == r.interior
-                    })
-                    .collect()
-            }
+            // variable, in one tight loop
+            (cylinder @ Shape::Cylinder { .. }, None) => xs
+                .iter()
+                .map(|&x| in_cylinder(cylinder, x) == r.interior)
+                .collect(),
             _ => xs.iter().map(|&x| self.matches(index, x)).collect(),
         }
     }
@@ -389,19 +392,7 @@ impl Regions {
     fn inside(&self, shape: &Shape, x: [f64; 3]) -> bool {
         match shape {
             Shape::Block { lo, hi } => (0..3).all(|d| x[d] >= lo[d] && x[d] <= hi[d]),
-            Shape::Cylinder {
-                axis,
-                c1,
-                c2,
-                radius,
-                lo,
-                hi,
-            } => {
-                let (a1, a2) = cross_axes(*axis);
-                let (d1, d2) = (x[a1] - c1, x[a2] - c2);
-                let dist = (d1 * d1 + d2 * d2).sqrt();
-                dist <= *radius && x[*axis] >= *lo && x[*axis] <= *hi
-            }
+            Shape::Cylinder { .. } => in_cylinder(shape, x),
             Shape::Sphere { centre, radius } => {
                 let d = [x[0] - centre[0], x[1] - centre[1], x[2] - centre[2]];
                 (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() <= *radius

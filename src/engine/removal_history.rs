@@ -276,20 +276,26 @@ mod tests {
     fn partners_follow_a_sort_of_the_particles() {
         let pairs = [pair(0, 1)];
         let old = sides(&pairs, &[3.0]);
-        let mut r = Removal::record(
-            None,
-            &old,
-            &[1, 2, 3],
-            &[1, 2, 3],
-            &[false, false, true],
-            || (vec![true], vec![]),
-        );
+        let mut r = remove_third(&old, true);
         // IDs 1 and 2 swap slots: the pair is found from ID 1, now in slot 1
         r.permute(&[1, 0]);
         let (h, _) = carry(&old, &r, pair(1, 0), true, &[2, 1], &[true]);
         assert_eq!(h, vec![3.0]);
         let (h, _) = carry(&old, &r, pair(0, 1), true, &[2, 1], &[true]);
         assert_eq!(h, vec![-3.0]);
+    }
+
+    /// IDs 1, 2, 3 in slots 0, 1, 2; the third removed; `touching`: whether the pair (0, 1)
+    /// touched at the last evaluation.
+    fn remove_third(old: &Sides, touching: bool) -> Removal {
+        Removal::record(
+            None,
+            old,
+            &[1, 2, 3],
+            &[1, 2, 3],
+            &[false, false, true],
+            || (vec![touching], vec![]),
+        )
     }
 
     #[test]
@@ -299,14 +305,7 @@ mod tests {
         // from both sides alike
         let pairs = [pair(0, 1)];
         let old = sides(&pairs, &[1.0]);
-        let r = Removal::record(
-            None,
-            &old,
-            &[1, 2, 3],
-            &[1, 2, 3],
-            &[false, false, true],
-            || (vec![true], vec![]),
-        );
+        let r = remove_third(&old, true);
         let (h, _) = carry(&old, &r, pair(1, 0), false, &[1, 2], &[true]);
         assert_eq!(
             h,
@@ -321,14 +320,7 @@ mod tests {
     fn only_pairs_touching_at_the_last_evaluation_are_recorded() {
         let pairs = [pair(0, 1)];
         let old = sides(&pairs, &[4.0]);
-        let r = Removal::record(
-            None,
-            &old,
-            &[1, 2, 3],
-            &[1, 2, 3],
-            &[false, false, true],
-            || (vec![false], vec![]),
-        );
+        let r = remove_third(&old, false);
         let (h, _) = carry(&old, &r, pair(0, 1), true, &[1, 2], &[true]);
         assert_eq!(h, vec![0.0]);
     }

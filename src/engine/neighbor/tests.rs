@@ -28,12 +28,7 @@ fn matches_brute_force_with_periodic_faces() {
     let reach = vec![0.04; x.len()];
     let mut list = NeighborList::default();
     list.build(&x, &reach, 0.02, &domain, None);
-    let mut got: Vec<(u32, u32)> = list
-        .pairs
-        .iter()
-        .map(|p| (p.i.min(p.j), p.i.max(p.j)))
-        .collect();
-    got.sort();
+    let got = unordered_pairs(&list);
     assert_eq!(got, brute(&x, 0.1, &domain));
     for p in &list.pairs {
         let (i, j) = (p.i as usize, p.j as usize);
@@ -179,13 +174,19 @@ fn particles_flung_far_apart_get_a_small_grid() {
     let reach = vec![0.0003; x.len()];
     let mut list = NeighborList::default();
     list.build(&x, &reach, 0.0002, &domain, None);
+    let got = unordered_pairs(&list);
+    assert_eq!(got, vec![(0, 1), (2, 3)]);
+    let grid = crate::engine::cells::CellGrid::new(&x, 0.0008, &domain).unwrap();
+    assert!(grid.len() <= 1 << 15, "{} cells", grid.len());
+}
+
+/// The list's pairs as (smaller, larger) particle index, sorted.
+fn unordered_pairs(list: &NeighborList) -> Vec<(u32, u32)> {
     let mut got: Vec<(u32, u32)> = list
         .pairs
         .iter()
         .map(|p| (p.i.min(p.j), p.i.max(p.j)))
         .collect();
     got.sort();
-    assert_eq!(got, vec![(0, 1), (2, 3)]);
-    let grid = crate::engine::cells::CellGrid::new(&x, 0.0008, &domain).unwrap();
-    assert!(grid.len() <= 1 << 15, "{} cells", grid.len());
+    got
 }

@@ -54,9 +54,43 @@ pub struct Force {
     pub values: [ForceValue; 3],
     /// `region ID`: only particles inside (region index).
     pub region: Option<usize>,
-    /// Per-particle components of this force evaluation when variables or a region are
-    /// involved (None: leave alone / add nothing), filled by [`FixStyle::evaluate`].
-    pub resolved: Vec<[Option<f64>; 3]>,
+    /// This force evaluation's components and region test when variables or a region are
+    /// involved, filled by [`FixStyle::evaluate`] (kept between steps, so the step loop
+    /// allocates nothing here); None: the constant components everywhere.
+    pub evaluated: Option<Evaluated>,
+}
+
+/// One force evaluation of a [`Force`] with variables or a region.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Evaluated {
+    /// x, y, z components (N).
+    components: [Component; 3],
+    /// Each particle is inside the region (None: no region).
+    inside: Option<Vec<bool>>,
+}
+
+/// One component of a force evaluation (N).
+#[derive(Debug, Clone, PartialEq, Default)]
+enum Component {
+    /// `NULL`: left alone.
+    #[default]
+    Null,
+    /// The same value for every particle (a number or an equal-style variable).
+    All(f64),
+    /// One value per particle (an atom-style variable).
+    Each(Vec<f64>),
+}
+
+impl Component {
+    /// Particle `i`'s value (None: NULL).
+    #[inline]
+    fn at(&self, i: usize) -> Option<f64> {
+        match self {
+            Component::Null => None,
+            Component::All(v) => Some(*v),
+            Component::Each(c) => Some(c[i]),
+        }
+    }
 }
 
 impl Force {
@@ -67,7 +101,7 @@ impl Force {
             action,
             values: values.map(|v| v.map_or(ForceValue::Null, ForceValue::Constant)),
             region: None,
-            resolved: Vec::new(),
+            evaluated: None,
         }
     }
 
@@ -78,12 +112,17 @@ impl Force {
             .any(|v| matches!(v, ForceValue::Equal(_) | ForceValue::Atom(_)))
     }
 
-    /// The constant components (None for NULL); only used without variables or region.
-    fn constants(&self) -> [Option<f64>; 3] {
-        self.values.clone().map(|v| match v {
-            ForceValue::Constant(c) => Some(c),
-            _ => None,
-        })
+    /// The constant components (NULL for any other); only used without variables or region.
+    fn constants(&self) -> [Component; 3] {
+        let constant = |v: &ForceValue| match v {
+            ForceValue::Constant(c) => Component::All(*c),
+            _ => Component::Null,
+        };
+        [
+            constant(&self.values[0]),
+            constant(&self.values[1]),
+            constant(&self.values[2]),
+        ]
     }
 }
 
@@ -106,39 +145,35 @@ impl FixStyle for Force {
         inputs: &mut dyn StepInputs,
     ) -> Result<(), EngineError> {
         let n = p.len();
-        let mut columns: Vec<Option<Vec<f64>>> = Vec::with_capacity(3);
-        for v in &self.values {
-            columns.push(match v {
-                ForceValue::Null => None,
-                ForceValue::Constant(c) => Some(vec![*c; n]),
-                ForceValue::Equal(name) => Some(vec![inputs.equal(name)?; n]),
-                ForceValue::Atom(name) => Some(inputs.atom(name)?),
-            });
+        let mut e = self.evaluated.take().unwrap_or_default();
+        for (v, c) in self.values.iter().zip(&mut e.components) {
+            *c = match v {
+                ForceValue::Null => Component::Null,
+                ForceValue::Constant(v) => Component::All(*v),
+                ForceValue::Equal(name) => Component::All(inputs.equal(name)?),
+                ForceValue::Atom(name) => Component::Each(inputs.atom(name)?),
+            };
         }
-        let inside = self.region.map(|g| inputs.in_region_each(g, &p.x[..n]));
-        let mut resolved = vec![[None; 3]; n];
-        for (i, r) in resolved.iter_mut().enumerate() {
-            if inside.as_ref().is_some_and(|inside| !inside[i]) {
-                continue;
-            }
-            for d in 0..3 {
-                r[d] = columns[d].as_ref().map(|c| c[i]);
-            }
-        }
-        self.resolved = resolved;
+        e.inside = self.region.map(|g| inputs.in_region_each(g, &p.x[..n]));
+        self.evaluated = Some(e);
         Ok(())
     }
 
     fn post_force(&mut self, p: &mut Particles, at: &FixStep) {
-        let constants = self.constants();
-        for i in (0..p.len()).filter(|&i| p.mask[i] & at.group != 0) {
-            let v = if self.resolved.is_empty() {
-                constants
-            } else {
-                self.resolved[i]
-            };
-            for d in 0..3 {
-                if let Some(v) = v[d] {
+        let constants;
+        let (components, inside) = match &self.evaluated {
+            Some(e) => (&e.components, e.inside.as_deref()),
+            None => {
+                constants = self.constants();
+                (&constants, None)
+            }
+        };
+        for i in 0..p.len() {
+            if p.mask[i] & at.group == 0 || inside.is_some_and(|inside| !inside[i]) {
+                continue;
+            }
+            for (d, c) in components.iter().enumerate() {
+                if let Some(v) = c.at(i) {
                     match self.action {
                         Action::Set => p.f[i][d] = v,
                         Action::Add => p.f[i][d] += v,
@@ -196,7 +231,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>,
         action,
         values,
         region,
-        resolved: Vec::new(),
+        evaluated: None,
     }))
 }
 
@@ -236,7 +271,7 @@ mod tests {
                 ForceValue::Atom("a".into()),
             ],
             region: None,
-            resolved: Vec::new(),
+            evaluated: None,
         };
         assert!(set.evaluates() && set.reads_computes());
         set.evaluate(&p, &at, &mut Fixed).unwrap();

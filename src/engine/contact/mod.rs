@@ -256,6 +256,30 @@ pub struct PairLanes {
     pub update_history: bool,
 }
 
+/// Four particles touching one wall at once, one per lane (the fields of [`WallInput`]
+/// that the force needs; every lane's gap is <= 0).
+#[derive(Debug, Clone, Copy)]
+pub struct WallLanes {
+    /// Signed gaps, distance to the wall minus the radius (m, <= 0).
+    pub gap: F64x4,
+    /// Vectors from the centres to the closest wall points (m).
+    pub to_wall: [F64x4; 3],
+    /// Radii (m).
+    pub radius: F64x4,
+    /// Masses (kg); meff = mass.
+    pub mass: F64x4,
+    /// Velocities (m/s).
+    pub v: [F64x4; 3],
+    /// Angular velocities (rad/s).
+    pub omega: [F64x4; 3],
+    /// Velocities of the wall at the contacts (m/s).
+    pub v_wall: [F64x4; 3],
+    /// Time step (s).
+    pub dt: f64,
+    /// Advance and store history (false during setup).
+    pub update_history: bool,
+}
+
 /// What four touching pairs contribute, one per lane (see [`PairOutput`]).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct PairLanesOutput {
@@ -658,6 +682,43 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
             en: c.en,
             contact_point: [w.x[0] - delta[0], w.x[1] - delta[1], w.x[2] - delta[2]],
         }
+    }
+
+    /// Forces (N) and torques (N m) of a wall on four touching particles at once: lane k
+    /// is what [`Self::wall_force`] computes from the k-th inputs, bit for bit; `history`
+    /// holds each lane's values for this wall (`history_len()` entries).
+    #[inline(always)]
+    pub fn wall_force_lanes(
+        &self,
+        w: &WallLanes,
+        m: &impl Coeffs<F64x4>,
+        history: &mut [F64x4],
+    ) -> ([F64x4; 3], [F64x4; 3]) {
+        let deltan = -w.gap;
+        let delta = [-w.to_wall[0], -w.to_wall[1], -w.to_wall[2]];
+        let r = w.radius - deltan;
+        let rinv = F64x4::splat(1.0) / r;
+        let en = [delta[0] * rinv, delta[1] * rinv, delta[2] * rinv];
+        let mut c = Contact {
+            is_wall: true,
+            radi: w.radius,
+            radsum: w.radius,
+            r,
+            rinv,
+            delta,
+            en,
+            deltan,
+            mi: w.mass,
+            meff: w.mass,
+            vi: w.v,
+            vj: w.v_wall,
+            omegai: w.omega,
+            dt: F64x4::splat(w.dt),
+            update_history: w.update_history,
+            ..Contact::default()
+        };
+        self.intersect(&mut c, m, history);
+        (c.fi, c.ti)
     }
 
     /// LIGGGHTS's `surfacesClose`: the surfaces no longer touch but are within the contact

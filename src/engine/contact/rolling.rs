@@ -120,7 +120,16 @@ impl RollingModel for Cdt {
         }
         // no rolling, no torque
         let rolling = wmag.gt(S::default());
-        apply(c, rt.map(|x| S::select(rolling, x, S::default())));
+        // written out, not `map`: an out-of-line closure would lose the caller's vector code
+        let zero = S::default();
+        apply(
+            c,
+            [
+                S::select(rolling, rt[0], zero),
+                S::select(rolling, rt[1], zero),
+                S::select(rolling, rt[2], zero),
+            ],
+        );
     }
 
     fn properties(&self, out: &mut Vec<(Property, &'static str)>) {

@@ -417,3 +417,110 @@ mod props {
         }
     }
 }
+
+/// Each lane of [`ContactModel::wall_force_lanes`] is [`ContactModel::wall_force`] of its
+/// own inputs, force, torque and updated history bit for bit, over several steps.
+fn wall_lanes_equal_one_at_a_time<N, T, C, R>(model: ContactModel<N, T, C, R>)
+where
+    N: NormalModel,
+    T: TangentialModel,
+    C: CohesionModel,
+    R: RollingModel,
+{
+    let input = MaterialInput {
+        ntypes: 1,
+        youngs_modulus: Some(vec![5e6]),
+        poissons_ratio: Some(vec![0.25]),
+        coefficient_restitution: Some(vec![0.5]),
+        coefficient_friction: Some(vec![0.6]),
+        coefficient_rolling_friction: Some(vec![0.3]),
+        coefficient_rolling_viscous_damping: Some(vec![1.5]),
+        cohesion_energy_density: Some(vec![2e3]),
+        ..MaterialInput::default()
+    };
+    let material = Material::new(&input, &model.properties()).unwrap();
+    let coeffs = *material.pair(1, 1);
+    let lanes_coeffs = CoeffLanes([&coeffs; LANES]);
+    let width = model.history_len();
+    let mut rng = crate::util::random::RanPark::new(8191).unwrap();
+    let mut u = |lo: f64, hi: f64| lo + (hi - lo) * rng.uniform();
+    let mut one = vec![0.0; LANES * width];
+    let mut four = vec![F64x4::default(); width];
+    for step in 0..6 {
+        let inputs: [WallInput; LANES] = std::array::from_fn(|_| {
+            let radius = u(0.8e-3, 1.5e-3);
+            let x = [u(-1.0, 1.0), u(-1.0, 1.0), radius - u(1e-7, 2e-5)];
+            let (gap, to_wall) = plane_contact(2, 0.0, &x, radius);
+            WallInput {
+                x,
+                gap,
+                to_wall,
+                radius,
+                mass: u(1e-5, 3e-5),
+                v: [u(-0.3, 0.3), u(-0.3, 0.3), u(-0.3, 0.1)],
+                omega: [u(-50.0, 50.0), u(-50.0, 50.0), u(-50.0, 50.0)],
+                v_wall: [u(-0.1, 0.1), 0.0, 0.0],
+                dt: 1e-6,
+                update_history: step > 0,
+                coeffs: &coeffs,
+            }
+        });
+        let lanes = WallLanes {
+            gap: F64x4(inputs.map(|w| w.gap)),
+            to_wall: std::array::from_fn(|d| F64x4(inputs.map(|w| w.to_wall[d]))),
+            radius: F64x4(inputs.map(|w| w.radius)),
+            mass: F64x4(inputs.map(|w| w.mass)),
+            v: std::array::from_fn(|d| F64x4(inputs.map(|w| w.v[d]))),
+            omega: std::array::from_fn(|d| F64x4(inputs.map(|w| w.omega[d]))),
+            v_wall: std::array::from_fn(|d| F64x4(inputs.map(|w| w.v_wall[d]))),
+            dt: 1e-6,
+            update_history: step > 0,
+        };
+        let (f, t) = model.wall_force_lanes(&lanes, &lanes_coeffs, &mut four);
+        for (k, w) in inputs.iter().enumerate() {
+            let h = &mut one[k * width..(k + 1) * width];
+            let out = model.wall_force(w, h);
+            assert!(out.touching);
+            for d in 0..3 {
+                assert_eq!(
+                    out.f[d].to_bits(),
+                    f[d].0[k].to_bits(),
+                    "force {d} lane {k}"
+                );
+                assert_eq!(
+                    out.t[d].to_bits(),
+                    t[d].0[k].to_bits(),
+                    "torque {d} lane {k}"
+                );
+            }
+            for (s, slot) in four.iter().enumerate() {
+                assert_eq!(h[s].to_bits(), slot.0[k].to_bits(), "history {s} lane {k}");
+            }
+            assert!(out.f[2] != 0.0);
+        }
+    }
+    // the tangential history was built up (the test compares more than zeros)
+    if width > 0 {
+        assert!(one.iter().any(|h| *h != 0.0));
+    }
+}
+
+#[test]
+fn a_wall_four_particles_at_a_time_equals_one_at_a_time() {
+    let hertz = Hertz::default();
+    wall_lanes_equal_one_at_a_time(ContactModel::new(hertz, History, NoCohesion, NoRolling));
+    wall_lanes_equal_one_at_a_time(ContactModel::new(
+        hertz,
+        History,
+        NoCohesion,
+        Cdt {
+            torsion_torque: false,
+        },
+    ));
+    wall_lanes_equal_one_at_a_time(ContactModel::new(
+        hertz,
+        History,
+        Sjkr::default(),
+        Epsd::default(),
+    ));
+}

@@ -62,24 +62,14 @@ impl Packed {
         // every record is overwritten below: keep the old values rather than clear
         self.records.resize(n, Record::default());
         self.spheres.resize(n, Sphere::default());
-        let write = |start: usize, (out, spheres): (&mut [Record], &mut [Sphere])| {
-            let end = start + out.len();
-            let cols = (
-                &p.x[start..end],
-                &p.v[start..end],
-                &p.omega[start..end],
-                &p.radius[start..end],
-                &p.mass[start..end],
-                &p.mask[start..end],
-            );
-            for (k, (rec, sphere)) in out.iter_mut().zip(spheres.iter_mut()).enumerate() {
-                let (x, v, w) = (cols.0[k], cols.1[k], cols.2[k]);
-                let fz = if cols.5[k] & frozen != 0 { 1.0 } else { 0.0 };
-                rec.0 = [
-                    x[0], x[1], x[2], cols.3[k], v[0], v[1], v[2], cols.4[k], w[0], w[1], w[2], fz,
-                ];
-                sphere.0 = [x[0], x[1], x[2], cols.3[k]];
+        let write = |start: usize, out: (&mut [Record], &mut [Sphere])| {
+            #[cfg(target_arch = "x86_64")]
+            if crate::engine::contact::real::lanes_supported() {
+                // SAFETY: the processor has AVX2 (checked at run time)
+                unsafe { fill_range_avx2(p, frozen, start, out) };
+                return;
             }
+            fill_range(p, frozen, start, out);
         };
         if crate::engine::integrate::parallel(n) {
             const PART: usize = 2048;
@@ -93,6 +83,45 @@ impl Packed {
         } else {
             write(0, (&mut self.records, &mut self.spheres));
         }
+    }
+}
+
+/// [`fill_range`] with 256-bit moves.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn fill_range_avx2(
+    p: &Particles,
+    frozen: u32,
+    start: usize,
+    out: (&mut [Record], &mut [Sphere]),
+) {
+    fill_range(p, frozen, start, out);
+}
+
+/// The records and spheres of the particles from `start` on, as many as `out` holds.
+#[inline(always)]
+fn fill_range(
+    p: &Particles,
+    frozen: u32,
+    start: usize,
+    (out, spheres): (&mut [Record], &mut [Sphere]),
+) {
+    let end = start + out.len();
+    let cols = (
+        &p.x[start..end],
+        &p.v[start..end],
+        &p.omega[start..end],
+        &p.radius[start..end],
+        &p.mass[start..end],
+        &p.mask[start..end],
+    );
+    for (k, (rec, sphere)) in out.iter_mut().zip(spheres.iter_mut()).enumerate() {
+        let (x, v, w) = (cols.0[k], cols.1[k], cols.2[k]);
+        let fz = if cols.5[k] & frozen != 0 { 1.0 } else { 0.0 };
+        rec.0 = [
+            x[0], x[1], x[2], cols.3[k], v[0], v[1], v[2], cols.4[k], w[0], w[1], w[2], fz,
+        ];
+        sphere.0 = [x[0], x[1], x[2], cols.3[k]];
     }
 }
 
@@ -294,9 +323,9 @@ impl CoeffSource for ByType {
         i: [usize; LANES],
         j: [usize; LANES],
     ) -> CoeffLanes<'b> {
-        CoeffLanes(std::array::from_fn(|k| {
-            material.pair(kinds[i[k]] as usize, kinds[j[k]] as usize)
-        }))
+        // written out, not `from_fn`: an out-of-line closure would lose the kernel's vector code
+        let pair = |k: usize| material.pair(kinds[i[k]] as usize, kinds[j[k]] as usize);
+        CoeffLanes([pair(0), pair(1), pair(2), pair(3)])
     }
 }
 
@@ -406,7 +435,8 @@ fn any_shift(pr: &[&Pair; LANES]) -> bool {
         // SAFETY: a Pair is 32 bytes (i, j, then the three shift doubles); lanes code runs
         // only where the processor has AVX2 (see F64x4)
         unsafe {
-            let q = pr.map(|p| _mm256_loadu_si256(std::ptr::from_ref(p).cast()));
+            let load = |p: &Pair| _mm256_loadu_si256(std::ptr::from_ref(p).cast());
+            let q = [load(pr[0]), load(pr[1]), load(pr[2]), load(pr[3])];
             let all = _mm256_or_si256(_mm256_or_si256(q[0], q[1]), _mm256_or_si256(q[2], q[3]));
             let bits = i64::MAX;
             let mask = _mm256_set_epi64x(bits, bits, bits, 0);
@@ -450,8 +480,10 @@ unsafe fn transpose_avx(r: [&[f64; 12]; LANES]) -> [F64x4; 12] {
     use std::arch::x86_64::*;
     let mut out = [F64x4::default(); 12];
     for g in 0..3 {
-        // SAFETY: a Record is 32-byte aligned and 96 bytes long: three aligned quads
-        let q = r.map(|rec| unsafe { _mm256_load_pd(rec.as_ptr().add(4 * g)) });
+        // SAFETY: a Record is 32-byte aligned and 96 bytes long: three aligned quads (loads
+        // written out, not `map`: an out-of-line closure would lose the vector code)
+        let load = |rec: &[f64; 12]| unsafe { _mm256_load_pd(rec.as_ptr().add(4 * g)) };
+        let q = [load(r[0]), load(r[1]), load(r[2]), load(r[3])];
         let t0 = _mm256_unpacklo_pd(q[0], q[1]);
         let t1 = _mm256_unpackhi_pd(q[0], q[1]);
         let t2 = _mm256_unpacklo_pd(q[2], q[3]);

@@ -2,6 +2,7 @@
 //! monomorphised per contact model like the pair loop.
 
 use super::*;
+use crate::engine::contact::{CoeffLanes, WallLanes};
 
 /// A primitive wall (`primitive type T xplane|...|zcylinder ...`), lengths in box units.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -210,57 +211,26 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Wall
         // threads when there are many, each writing only its own force and history
         let mut results = std::mem::take(&mut self.results);
         let this = &*self;
-        let (x, v, omega, radius, mass, kind) = (&p.x, &p.v, &p.omega, &p.radius, &p.mass, &p.kind);
-        let contact = |i: usize, h: &mut [f64]| -> Option<([f64; 3], [f64; 3])> {
-            let (gap, to_wall) = this.shape.resolve(x[i], radius[i]);
-            // a NaN gap is no contact
-            #[allow(clippy::neg_cmp_op_on_partial_ord)]
-            if !(gap <= 0.0) {
-                // apart: the history is reset (written only if it holds something)
-                if h.iter().any(|v| *v != 0.0) {
-                    h.iter_mut().for_each(|v| *v = 0.0);
-                }
-                return None;
-            }
-            let input = WallInput {
-                x: x[i],
-                gap,
-                to_wall,
-                radius: radius[i],
-                mass: mass[i],
-                v: v[i],
-                omega: omega[i],
-                v_wall: this.shape.surface_velocity(this.shear, x[i]),
-                dt,
-                update_history: update,
-                coeffs: this.material.pair(kind[i] as usize, this.wall_type),
-            };
-            let out = this.model.wall_force(&input, h);
-            out.touching.then_some((out.f, out.t))
-        };
         let near = &this.near;
         results.clear();
         results.resize(near.len(), None);
+        let hist = SharedSlice(history.as_mut_ptr(), history.len());
+        let step = WallStep { dt, update, w };
         // a fast-path team splits even a few hundred contacts; rayon only many
         let many = near.len() >= 256 && crate::util::team::is_active();
         if many || crate::engine::integrate::parallel(near.len()) {
-            let hist = SharedSlice(history.as_mut_ptr(), history.len());
             let out = crate::util::team::Shards::new(&mut results);
+            let parts = &*p;
             crate::util::team::stage_chunks(near.len(), 128, true, |_, r| {
                 // SAFETY: the chunks of a stage are disjoint
                 let out = unsafe { out.range(r.clone()) };
-                for (o, &i) in out.iter_mut().zip(&near[r]) {
-                    let i = i as usize;
-                    // SAFETY: `near` holds distinct indices, so each call writes its own
-                    // disjoint w-wide piece of the history
-                    *o = contact(i, unsafe { hist.piece(i * w, w) });
-                }
+                // SAFETY: `near` holds distinct indices, so each chunk writes its own
+                // particles' pieces of the history
+                unsafe { this.contacts(parts, &near[r], out, hist, step) };
             });
         } else {
-            for (o, &i) in results.iter_mut().zip(near) {
-                let i = i as usize;
-                *o = contact(i, &mut history[i * w..(i + 1) * w]);
-            }
+            // SAFETY: as above, on one thread
+            unsafe { this.contacts(p, near, &mut results, hist, step) };
         }
         for (&i, r) in self.near.iter().zip(&results) {
             if let Some((f, t)) = r {
@@ -272,6 +242,179 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Wall
             }
         }
         self.results = results;
+    }
+}
+
+/// Four lanes from a function of the lane number.
+#[inline(always)]
+fn lane(f: impl Fn(usize) -> f64) -> F64x4 {
+    F64x4([f(0), f(1), f(2), f(3)])
+}
+
+/// What every contact of one wall pass shares.
+#[derive(Clone, Copy)]
+struct WallStep {
+    /// Time step (s).
+    dt: f64,
+    /// Advance and store history.
+    update: bool,
+    /// History doubles per particle.
+    w: usize,
+}
+
+/// Particles resolved against the wall at a time, before their touching ones are computed.
+const WALL_CHUNK: usize = 128;
+
+impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> WallGran<N, T, C, R> {
+    /// The contacts of the particles `ids` with the wall: each one's force and torque into
+    /// `out` (None: apart, its history reset), touching ones four at a time where the
+    /// processor has the vector unit (the same values, bit for bit).
+    ///
+    /// # Safety
+    /// `ids` are distinct, and no other thread touches their pieces of `hist`.
+    unsafe fn contacts(
+        &self,
+        p: &Particles,
+        ids: &[u32],
+        out: &mut [Option<([f64; 3], [f64; 3])>],
+        hist: SharedSlice,
+        step: WallStep,
+    ) {
+        let w = step.w;
+        let lanes = crate::engine::contact::real::lanes_supported() && w <= batch::MAX_HISTORY;
+        for (ids, out) in ids.chunks(WALL_CHUNK).zip(out.chunks_mut(WALL_CHUNK)) {
+            // resolve every particle; the apart ones are done here
+            let mut touching = [(0usize, 0.0f64, [0.0f64; 3]); WALL_CHUNK];
+            let mut n = 0;
+            for (k, (&i, o)) in ids.iter().zip(out.iter_mut()).enumerate() {
+                let i = i as usize;
+                let (gap, to_wall) = self.shape.resolve(p.x[i], p.radius[i]);
+                // a NaN gap is no contact
+                if gap <= 0.0 {
+                    touching[n] = (k, gap, to_wall);
+                    n += 1;
+                } else {
+                    // apart: the history is reset (written only if it holds something)
+                    // SAFETY: the caller's guarantee
+                    let h = unsafe { hist.piece(i * w, w) };
+                    if h.iter().any(|v| *v != 0.0) {
+                        h.fill(0.0);
+                    }
+                    *o = None;
+                }
+            }
+            let touching = &touching[..n];
+            let quads = if lanes { n / LANES } else { 0 };
+            #[cfg(target_arch = "x86_64")]
+            for q in touching.chunks_exact(LANES).take(quads) {
+                let q: &[_; LANES] = q.try_into().expect("four lanes");
+                // SAFETY: the processor has AVX2 (checked above); the caller's guarantee
+                unsafe { self.four_avx2(p, ids, q, out, hist, step) };
+            }
+            for &(k, gap, to_wall) in &touching[LANES * quads..] {
+                let i = ids[k] as usize;
+                let input = WallInput {
+                    x: p.x[i],
+                    gap,
+                    to_wall,
+                    radius: p.radius[i],
+                    mass: p.mass[i],
+                    v: p.v[i],
+                    omega: p.omega[i],
+                    v_wall: self.shape.surface_velocity(self.shear, p.x[i]),
+                    dt: step.dt,
+                    update_history: step.update,
+                    coeffs: self.material.pair(p.kind[i] as usize, self.wall_type),
+                };
+                // SAFETY: the caller's guarantee
+                let res = self
+                    .model
+                    .wall_force(&input, unsafe { hist.piece(i * w, w) });
+                out[k] = res.touching.then_some((res.f, res.t));
+            }
+        }
+    }
+
+    /// Four touching particles of [`Self::contacts`] (`quad`: their places in `ids` with
+    /// gap and vector to the wall) in one lane batch.
+    ///
+    /// # Safety
+    /// The processor has AVX2; as [`Self::contacts`].
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn four_avx2(
+        &self,
+        p: &Particles,
+        ids: &[u32],
+        quad: &[(usize, f64, [f64; 3]); LANES],
+        out: &mut [Option<([f64; 3], [f64; 3])>],
+        hist: SharedSlice,
+        step: WallStep,
+    ) {
+        let w = step.w;
+        let i = [
+            ids[quad[0].0] as usize,
+            ids[quad[1].0] as usize,
+            ids[quad[2].0] as usize,
+            ids[quad[3].0] as usize,
+        ];
+        let vec3 = |a: &[[f64; 3]]| {
+            [
+                lane(|k| a[i[k]][0]),
+                lane(|k| a[i[k]][1]),
+                lane(|k| a[i[k]][2]),
+            ]
+        };
+        let v_wall: [[f64; 3]; LANES] = [
+            self.shape.surface_velocity(self.shear, p.x[i[0]]),
+            self.shape.surface_velocity(self.shear, p.x[i[1]]),
+            self.shape.surface_velocity(self.shear, p.x[i[2]]),
+            self.shape.surface_velocity(self.shear, p.x[i[3]]),
+        ];
+        let input = WallLanes {
+            gap: lane(|k| quad[k].1),
+            to_wall: [
+                lane(|k| quad[k].2[0]),
+                lane(|k| quad[k].2[1]),
+                lane(|k| quad[k].2[2]),
+            ],
+            radius: lane(|k| p.radius[i[k]]),
+            mass: lane(|k| p.mass[i[k]]),
+            v: vec3(&p.v),
+            omega: vec3(&p.omega),
+            v_wall: [
+                lane(|k| v_wall[k][0]),
+                lane(|k| v_wall[k][1]),
+                lane(|k| v_wall[k][2]),
+            ],
+            dt: step.dt,
+            update_history: step.update,
+        };
+        let pair = |k: usize| self.material.pair(p.kind[i[k]] as usize, self.wall_type);
+        let coeffs = CoeffLanes([pair(0), pair(1), pair(2), pair(3)]);
+        // SAFETY: the caller's guarantee (distinct particles, their own pieces)
+        let pieces = unsafe {
+            [
+                hist.piece(i[0] * w, w),
+                hist.piece(i[1] * w, w),
+                hist.piece(i[2] * w, w),
+                hist.piece(i[3] * w, w),
+            ]
+        };
+        let mut h = [F64x4::default(); batch::MAX_HISTORY];
+        for (d, slot) in h.iter_mut().enumerate().take(w) {
+            *slot = lane(|k| pieces[k][d]);
+        }
+        let (f, t) = self.model.wall_force_lanes(&input, &coeffs, &mut h[..w]);
+        for (k, piece) in pieces.into_iter().enumerate() {
+            for (d, v) in piece.iter_mut().enumerate() {
+                *v = h[d].0[k];
+            }
+            out[quad[k].0] = Some((
+                [f[0].0[k], f[1].0[k], f[2].0[k]],
+                [t[0].0[k], t[1].0[k], t[2].0[k]],
+            ));
+        }
     }
 }
 

@@ -225,6 +225,11 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
             if args.contains(&"every") {
                 return Some("run every".into());
             }
+            // faces shrink-wrapped by a restart or data file (a boundary command with them
+            // is refused itself): the box would not follow the particles between builds
+            if sim.domain.exists && sim.domain.shrinks() {
+                return Some("run with shrink-wrapped faces (boundary s or m)".into());
+            }
             let pre_no = args.windows(2).any(|w| w == ["pre", "no"]);
             pre_no.then(|| "run pre no".to_string())
         }

@@ -661,3 +661,49 @@ fn pair_contacts_on_ranks_are_those_of_one_process() {
         }
     }
 }
+
+#[test]
+fn a_restart_with_shrink_wrapped_faces_is_refused_on_ranks() {
+    // a bed written with a shrink-wrapped top, as the lunar channel's bed is: on ranks the
+    // box would not follow the particles, so the run is refused by name
+    let dir = scratch("shrink");
+    let write = BED
+        .replace("boundary p p f", "boundary p p fm")
+        .replace("${grid}", "")
+        .replace("${out}", &dir.join("out.dump").to_string_lossy())
+        .replace(
+            "run 50\n",
+            &format!("write_restart {}\n", dir.join("bed.restart").display()),
+        );
+    let path = dir.join("in.write");
+    std::fs::write(&path, write).unwrap();
+    let opts = options(&path, &dir.join("out.dump"), "", 1);
+    assert_eq!(regolith::session::run_deck(&opts), ExitStatus::Success);
+    // the settings a restart file does not hold, from the bed's deck
+    let settings = BED
+        .split_once("neighbor 0.0005 bin")
+        .and_then(|(_, rest)| rest.split_once("lattice"))
+        .unwrap()
+        .0;
+    let deck = format!(
+        "atom_style granular\natom_modify map array\nnewton off\ncommunicate single vel yes\n\
+         units si\nread_restart {}\nneighbor 0.0005 bin{settings}\
+         fix integr all nve/sphere\ntimestep 2e-6\nrun 10\n",
+        dir.join("bed.restart").display()
+    );
+    let path = dir.join("in.read");
+    std::fs::write(&path, &deck).unwrap();
+    // one process runs it
+    let one = options(&path, &dir.join("out.dump"), "", 1);
+    assert_eq!(regolith::session::run_deck(&one), ExitStatus::Success);
+    let status = ThreadRanks::run_owned(2, |c| {
+        let mut o = options(&path, &dir.join("out.dump"), "", 2);
+        o.ranks.rank = c.rank();
+        regolith::session::run_deck_on(&o, Some(Box::new(c)))
+    });
+    assert!(
+        status.iter().all(|s| *s == ExitStatus::Unsupported),
+        "{status:?}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

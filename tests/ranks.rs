@@ -195,9 +195,9 @@ fn what_does_not_run_on_ranks_is_refused_by_name() {
     let before_run = |line: &str| (String::from("run 50\n"), format!("{line}\nrun 50\n"));
     for ((from, to), at, refused) in [
         (
-            before_run("compute c all pair/gran/local id force"),
+            before_run("compute c all contact/atom"),
             34,
-            "compute pair/gran/local",
+            "compute contact/atom",
         ),
         (
             before_run("fix push all addforce 0 0 v_f"),
@@ -479,4 +479,231 @@ run 50
         );
     }
     assert!(last.rows[&105][6] == 0.01);
+}
+
+/// Every field `compute pair/gran/local` reports (LIGGGHTS's column order: positions,
+/// velocities, IDs and periodic flag, force and its parts, torque and its parts, the
+/// tangential history, contact area, overlap, contact point).
+const LOCAL_FIELDS: &str = "pos vel id force force_normal force_tangential torque \
+    torque_normal torque_tangential history contactArea delta contactPoint";
+
+/// Columns of [`LOCAL_FIELDS`] with a three-value history.
+const LOCAL_COLUMNS: usize = 41;
+
+/// The bed with every contact in a `dump local` at full precision, the list rebuilt every
+/// step and LIGGGHTS's spatial sort every 40 steps (the pairs are reported from the atom
+/// first in its order).
+fn bed_with_contacts() -> String {
+    let columns: Vec<String> = (1..=LOCAL_COLUMNS).map(|k| format!("c_pl[{k}]")).collect();
+    let format = vec!["%.17g"; LOCAL_COLUMNS].join(" ");
+    BED.replace(
+        "create_box 1 reg",
+        "create_box 1 reg\natom_modify sort 40 0.0",
+    )
+    .replace(
+        "neigh_modify delay 0",
+        "neigh_modify delay 0 every 1 check no",
+    )
+    .replace(
+        "dump d all custom 25 ${out}",
+        "dump d all custom 25 ${out}.atoms",
+    )
+    .replace(
+        "fix integr all nve/sphere",
+        &format!(
+            "fix integr all nve/sphere
+compute pl all pair/gran/local {LOCAL_FIELDS}
+dump dl all local 25 ${{out}} {}
+dump_modify dl format \"{format}\"",
+            columns.join(" ")
+        ),
+    )
+}
+
+/// The snapshots of a `dump local` file: (step, the header's entry count, the rows).
+fn local_snapshots(text: &str) -> Vec<(i64, usize, Vec<Vec<f64>>)> {
+    let mut out = Vec::new();
+    let mut lines = text.lines();
+    while let Some(line) = lines.next() {
+        if line != "ITEM: TIMESTEP" {
+            continue;
+        }
+        let step = lines.next().unwrap().trim().parse().unwrap();
+        assert_eq!(lines.next(), Some("ITEM: NUMBER OF ENTRIES"));
+        let count: usize = lines.next().unwrap().trim().parse().unwrap();
+        let header = lines.by_ref().find(|l| l.starts_with("ITEM: ENTRIES"));
+        assert!(header.is_some(), "step {step}: no entries line");
+        let rows = lines
+            .by_ref()
+            .take(count)
+            .map(|l| l.split_whitespace().map(|w| w.parse().unwrap()).collect())
+            .collect();
+        out.push((step, count, rows));
+    }
+    out
+}
+
+/// Largest difference of the rows of `b` from those of `a` in units of each column's scale
+/// (its largest magnitude over all of `a`; the normal and tangential parts of the force and
+/// torque at least the whole's, since the torque's normal part is round-off alone), rows
+/// matched by the reporting atom's and its partner's IDs (columns 13, 14): the same pairs
+/// reported from the same side, the headers' counts equal.
+fn local_deviation(a: &str, b: &str) -> f64 {
+    let (a, b) = (local_snapshots(a), local_snapshots(b));
+    assert_eq!(a.len(), b.len(), "snapshot counts");
+    let mut scale: Vec<f64> = (0..LOCAL_COLUMNS)
+        .map(|c| {
+            a.iter()
+                .flat_map(|s| &s.2)
+                .map(|r| r[c].abs())
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    // force 16-18 with its parts 19-24, torque 25-27 with its parts 28-33 (1-based)
+    for whole in [15, 24] {
+        let s = scale[whole..whole + 3].iter().copied().fold(0.0, f64::max);
+        for part in &mut scale[whole + 3..whole + 9] {
+            *part = part.max(s);
+        }
+    }
+    let mut worst: f64 = 0.0;
+    for (sa, sb) in a.iter().zip(&b) {
+        assert_eq!((sa.0, sa.1), (sb.0, sb.1), "step and entry count");
+        assert_eq!(sb.2.len(), sb.1, "step {}: rows against the count", sb.0);
+        let by_ids = |rows: &[Vec<f64>]| -> std::collections::BTreeMap<(i64, i64), Vec<f64>> {
+            rows.iter()
+                .map(|r| ((r[12] as i64, r[13] as i64), r.clone()))
+                .collect()
+        };
+        let (ra, rb) = (by_ids(&sa.2), by_ids(&sb.2));
+        assert_eq!(ra.len(), sa.1, "step {}: a pair reported twice", sa.0);
+        assert!(
+            ra.keys().eq(rb.keys()),
+            "step {}: other pairs or other sides",
+            sa.0
+        );
+        for (k, r) in &ra {
+            for c in 0..LOCAL_COLUMNS {
+                if scale[c] > 0.0 {
+                    worst = worst.max((r[c] - rb[k][c]).abs() / scale[c]);
+                }
+            }
+        }
+    }
+    worst
+}
+
+/// The `dump local` of `deck` on `n` ranks (0: one process), on the fast path or not.
+fn local_dump_of(deck: &str, n: usize, fast: bool, tag: &str) -> String {
+    let dir = scratch(tag);
+    let path = dir.join("in.deck");
+    std::fs::write(&path, deck).unwrap();
+    let dump = dir.join("local.dump");
+    let grid = if n == 3 {
+        "processors 1 3 1"
+    } else {
+        "processors * 1 1"
+    };
+    let opts = |size: usize, rank: usize| {
+        let mut o = options(&path, &dump, grid, size.max(1));
+        o.ranks.rank = rank;
+        o.fast = fast;
+        o
+    };
+    let status = if n == 0 {
+        vec![regolith::session::run_deck(&opts(0, 0))]
+    } else {
+        ThreadRanks::run_owned(n, |c| {
+            let o = opts(n, c.rank());
+            regolith::session::run_deck_on(&o, Some(Box::new(c)))
+        })
+    };
+    assert!(
+        status.iter().all(|s| *s == ExitStatus::Success),
+        "{tag}: {status:?}"
+    );
+    let text = std::fs::read_to_string(&dump).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    text
+}
+
+#[test]
+fn pair_contacts_on_ranks_are_those_of_one_process() {
+    let deck = bed_with_contacts();
+    let exact = local_dump_of(&deck, 0, false, "local-exact");
+    let serial = local_dump_of(&deck, 0, true, "local-serial");
+    // the fast path reports each pair from the side the exact path (LIGGGHTS) does
+    let d = local_deviation(&exact, &serial);
+    assert!(
+        d < 1e-10,
+        "the fast path differs from the exact path by {d:e}"
+    );
+    let snaps = local_snapshots(&serial);
+    assert_eq!(snaps.len(), 7, "steps 0..150 every 25 (the run's end once)");
+    // contacts in the bed, some across the periodic faces (flag in column 15), with
+    // friction (tangential history) and overlap
+    for (step, count, rows) in &snaps {
+        assert!(*count > 300, "step {step}: {count} contacts");
+        assert!(rows.iter().any(|r| r[14] == 1.0), "step {step}");
+        assert!(rows.iter().all(|r| r[37] > 0.0), "step {step}: overlaps");
+        assert!(
+            *step == 0 || rows.iter().any(|r| r[33] != 0.0),
+            "step {step}: history"
+        );
+    }
+    for n in [2, 3] {
+        let ranks = local_dump_of(&deck, n, true, &format!("local-{n}"));
+        let d = local_deviation(&serial, &ranks);
+        assert!(d < 1e-10, "{n} ranks differ from one process by {d:e}");
+        if n == 2 {
+            let again = local_dump_of(&deck, n, true, "local-again");
+            assert!(again == ranks, "2 ranks run twice gave different dumps");
+        }
+    }
+}
+
+#[test]
+fn a_restart_with_shrink_wrapped_faces_is_refused_on_ranks() {
+    // a bed written with a shrink-wrapped top, as the lunar channel's bed is: on ranks the
+    // box would not follow the particles, so the run is refused by name
+    let dir = scratch("shrink");
+    let write = BED
+        .replace("boundary p p f", "boundary p p fm")
+        .replace("${grid}", "")
+        .replace("${out}", &dir.join("out.dump").to_string_lossy())
+        .replace(
+            "run 50\n",
+            &format!("write_restart {}\n", dir.join("bed.restart").display()),
+        );
+    let path = dir.join("in.write");
+    std::fs::write(&path, write).unwrap();
+    let opts = options(&path, &dir.join("out.dump"), "", 1);
+    assert_eq!(regolith::session::run_deck(&opts), ExitStatus::Success);
+    // the settings a restart file does not hold, from the bed's deck
+    let settings = BED
+        .split_once("neighbor 0.0005 bin")
+        .and_then(|(_, rest)| rest.split_once("lattice"))
+        .unwrap()
+        .0;
+    let deck = format!(
+        "atom_style granular\natom_modify map array\nnewton off\ncommunicate single vel yes\n\
+         units si\nread_restart {}\nneighbor 0.0005 bin{settings}\
+         fix integr all nve/sphere\ntimestep 2e-6\nrun 10\n",
+        dir.join("bed.restart").display()
+    );
+    let path = dir.join("in.read");
+    std::fs::write(&path, &deck).unwrap();
+    // one process runs it
+    let one = options(&path, &dir.join("out.dump"), "", 1);
+    assert_eq!(regolith::session::run_deck(&one), ExitStatus::Success);
+    let status = ThreadRanks::run_owned(2, |c| {
+        let mut o = options(&path, &dir.join("out.dump"), "", 2);
+        o.ranks.rank = c.rank();
+        regolith::session::run_deck_on(&o, Some(Box::new(c)))
+    });
+    assert!(
+        status.iter().all(|s| *s == ExitStatus::Unsupported),
+        "{status:?}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }

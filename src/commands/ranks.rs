@@ -3,7 +3,7 @@
 //! `read_restart` (set-up commands run identically on every rank), `pair_style gran`,
 //! `fix nve/sphere`, `nve`, `gravity`, primitive `wall/gran`, `check/timestep/gran`, `property/global` and the
 //! per-particle force fixes below, the computes below, `thermo` with the keywords below and
-//! `c_`/`v_` values, and `dump custom` with `c_`/`v_` columns, on the fast path. Everything
+//! `c_`/`v_` values, `dump custom` with `c_`/`v_` columns and `dump local`, on the fast path. Everything
 //! else is refused by name before anything runs.
 
 use crate::commands::CommandLine;
@@ -104,6 +104,8 @@ const COMPUTES: &[&str] = &[
     "pe/atom",
     // the pair virial of each owned particle is whole on its rank, gathered with it
     "stress/atom",
+    // each rank reports its own contacts (a pair across ranks from one side), gathered
+    "pair/gran/local",
 ];
 
 /// Thermo keywords evaluated from the particles alone (gathered on rank 0).
@@ -136,8 +138,8 @@ const THERMO: &[&str] = &[
 pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic \
     and fixed faces, pair_style gran, fix nve/sphere, gravity, primitive wall/gran, freeze, \
     setforce/addforce with constants, viscous, move and check/timestep/gran, shell, computes ke, \
-    erotate/sphere, reduce, com, stress/atom and per-atom properties, thermo (step, atoms, ke, \
-    c_, v_, ...) and dump custom; or run it as one process (with threads: -sf fast -pk fast N)";
+    erotate/sphere, reduce, com, stress/atom, pair/gran/local and per-atom properties, thermo \
+    (step, atoms, ke, c_, v_, ...), dump custom and dump local; or run it as one process (with threads: -sf fast -pk fast N)";
 
 /// What of `cmd` does not run on more than one rank yet (None: it runs), as the words
 /// the refusal names: "<what> on more than one MPI rank: not supported yet".
@@ -179,6 +181,8 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
                 let derived = columns.iter().find(|c| c.starts_with("f_"));
                 derived.map(|c| format!("dump custom column {c}"))
             }
+            // the rows of local computes, every rank's gathered
+            Some(&"local") => None,
             Some(s) => Some(format!("dump {s}")),
             None => None,
         },
@@ -220,6 +224,11 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
             }
             if args.contains(&"every") {
                 return Some("run every".into());
+            }
+            // faces shrink-wrapped by a restart or data file (a boundary command with them
+            // is refused itself): the box would not follow the particles between builds
+            if sim.domain.exists && sim.domain.shrinks() {
+                return Some("run with shrink-wrapped faces (boundary s or m)".into());
             }
             let pre_no = args.windows(2).any(|w| w == ["pre", "no"]);
             pre_no.then(|| "run pre no".to_string())

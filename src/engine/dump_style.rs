@@ -91,6 +91,11 @@ pub trait DumpStyle: Send + std::fmt::Debug {
         vars: &mut dyn VariableSource,
     ) -> Result<Vec<u8>, EngineError>;
 
+    /// IDs of the local computes whose rows the snapshots write (none by default).
+    fn local_computes(&self) -> Vec<String> {
+        Vec::new()
+    }
+
     /// Whether each snapshot is a whole file (overwritten unless the name has a `*`); else
     /// snapshots are appended to one file for the run (one file per snapshot for `*` names).
     fn whole_files(&self) -> bool {

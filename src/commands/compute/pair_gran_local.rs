@@ -87,6 +87,10 @@ fn rows(at: &ComputeAt, fields: &[LocalField]) -> Result<(usize, Vec<f64>), Engi
         sim.extras.neigh_binsize,
     );
     let built = sim.list.built_positions();
+    // the fast path keeps its own order and records the exact path's: pairs are reported
+    // and their rows ordered as the exact path (LIGGGHTS) does, by that order
+    let exact = sim.exact_rank().filter(|r| r.len() == p.len());
+    let place = |k: usize| exact.map_or(k, |r| r[k] as usize);
     // (reporting atom, partner's bin, partner) and the row's index in `out`
     type RowKey = (usize, [i64; 3], usize);
     let mut keyed: Vec<(RowKey, usize)> = Vec::new();
@@ -104,10 +108,16 @@ fn rows(at: &ComputeAt, fields: &[LocalField]) -> Result<(usize, Vec<f64>), Engi
         }
         let periodic = pr.shift != [0.0; 3];
         // across a periodic face LIGGGHTS reports the pair from the atom with the
-        // larger ID (its ghost partner carries the shift)
+        // larger ID (its ghost partner carries the shift); other pairs from the atom
+        // first in its order
         let mut shift = pr.shift;
         let (mut f, mut t, mut sign) = (fi, ti, 1.0);
-        if periodic && p.id[i] < p.id[j] {
+        let from_j = if periodic {
+            p.id[i] < p.id[j]
+        } else {
+            place(i) > place(j)
+        };
+        if from_j {
             std::mem::swap(&mut i, &mut j);
             shift = shift.map(|v| -v);
             f = fj;
@@ -116,7 +126,11 @@ fn rows(at: &ComputeAt, fields: &[LocalField]) -> Result<(usize, Vec<f64>), Engi
         }
         let xb = built.get(j).copied().unwrap_or(p.x[j]);
         keyed.push((
-            (i, order.bin([0, 1, 2].map(|d| xb[d] + shift[d])), j),
+            (
+                place(i),
+                order.bin([0, 1, 2].map(|d| xb[d] + shift[d])),
+                place(j),
+            ),
             out.len(),
         ));
         let xi = p.x[i];

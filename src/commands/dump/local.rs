@@ -67,6 +67,16 @@ impl DumpStyle for Local {
     fn takes_binary(&self) -> Option<bool> {
         Some(false)
     }
+
+    fn local_computes(&self) -> Vec<String> {
+        let mut ids: Vec<String> = Vec::new();
+        for (cid, _) in &self.cols {
+            if !ids.contains(cid) {
+                ids.push(cid.clone());
+            }
+        }
+        ids
+    }
 }
 
 /// `dump ID GROUP local N FILE c_ID[N] ...`.

@@ -12,8 +12,18 @@ impl Simulation {
         setup: bool,
         vars: &mut dyn VariableSource,
     ) -> Result<(), EngineError> {
+        self.write_dumps_with(setup, vars, SharedLocalRows::new())
+    }
+
+    /// [`Self::write_dumps`] with the rows of local computes already evaluated at this
+    /// step (on several ranks: every rank's rows gathered).
+    pub(crate) fn write_dumps_with(
+        &mut self,
+        setup: bool,
+        vars: &mut dyn VariableSource,
+        mut local_rows: SharedLocalRows,
+    ) -> Result<(), EngineError> {
         let step = self.step;
-        let mut local_rows = SharedLocalRows::new();
         for k in 0..self.dumps.len() {
             if !self.dump_due(k, setup) {
                 continue;
@@ -33,7 +43,7 @@ impl Simulation {
 
     /// Whether dump `k` writes at this step: on its interval, or at the first setup with
     /// `dump_modify first yes`, and never twice at one step.
-    fn dump_due(&self, k: usize, setup: bool) -> bool {
+    pub(super) fn dump_due(&self, k: usize, setup: bool) -> bool {
         let d = &self.dumps[k];
         (self.step % d.every == 0 || (setup && d.first && d.last_written.is_none()))
             && d.last_written != Some(self.step)

@@ -15,8 +15,13 @@
 //! at each neighbour-list build particles are wrapped into the box, migrate with their
 //! contact history and per-atom fix state, and the ghosts are made again. Thermo and dumps
 //! see every rank's particles gathered on rank 0 (in rank order, as LIGGGHTS gathers a
-//! dump); at the end of a run every rank gets the whole set back in the exact path's order
-//! with the contact history, so the commands between runs act identically on every rank.
+//! dump); a local compute's rows are each rank's own contacts, gathered likewise (a pair
+//! across ranks reported from one side: across a periodic face from the particle with the
+//! larger ID, as LIGGGHTS does, otherwise from the particle first in the exact path's
+//! order, as one process does; LIGGGHTS's spatial sort is recorded in that order as on one
+//! process, so the pairs are reported from the same side whatever the rank count). At the
+//! end of a run every rank gets the whole set back in the exact path's order with the
+//! contact history, so the commands between runs act identically on every rank.
 
 use super::*;
 use crate::engine::accel::ORDER_ARRAY;
@@ -24,6 +29,7 @@ use crate::engine::decomp::pack::{pack_particle, unpack_particle, Reader, Writer
 use crate::engine::decomp::SwapBuffers;
 use crate::engine::decomp::{borders, forward_with, migrate, Decomposition, GhostPlan, Halo};
 use crate::engine::decomp::{DecompError, PartnerHistory};
+use crate::engine::dump_style::SharedLocalRows;
 use crate::engine::neighbor::SumOrder;
 use crate::engine::particles::PerAtom;
 use crate::engine::restart_state::PendingHistory;
@@ -59,6 +65,9 @@ struct RankState {
     /// The ghosts behind the owned particles were made by the last build (not copied
     /// from `ghosts`), so they are copied there when set apart.
     fresh: bool,
+    /// The ghosts' velocities (length/time) and angular velocities (1/time) at the last
+    /// force evaluation, kept while a `compute pair/gran/local` reads them.
+    ghost_motion: (Vec<[f64; 3]>, Vec<[f64; 3]>),
 }
 
 impl RankState {
@@ -193,6 +202,9 @@ fn rank_pairs(p: &Particles, nlocal: usize, skin: f64, cells: &[u64]) -> Vec<Pai
     out.extend(rest.map(pair));
     out
 }
+
+/// Velocities (length/time) and angular velocities (1/time) of particles.
+type Motion = (Vec<[f64; 3]>, Vec<[f64; 3]>);
 
 /// A listed pair as the search finds it: the sum keys of its first and second particle
 /// (cell, ID) and their indices.
@@ -376,7 +388,7 @@ impl Simulation {
         }
         self.loop_clock = Some(std::time::Instant::now());
         self.stats = RunStats::default();
-        self.rank_output(comm, &st, true, last, out, vars)?;
+        self.rank_output(comm, &mut st, true, last, out, vars)?;
         for _ in 0..nsteps {
             self.step += 1;
             fixes::initial_integrate(
@@ -417,7 +429,7 @@ impl Simulation {
             );
             self.rank_end_of_step(comm, out, vars)?;
             let clock = std::time::Instant::now();
-            self.rank_output(comm, &st, false, last, out, vars)?;
+            self.rank_output(comm, &mut st, false, last, out, vars)?;
             self.stats.output += clock.elapsed().as_secs_f64();
         }
         self.run_bounds = None;
@@ -485,6 +497,11 @@ impl Simulation {
         for (i, r) in self.particles.extra[k].data.iter_mut().enumerate() {
             *r = (i + 1) as f64;
         }
+        // LIGGGHTS's spatial sort at the setup, recorded in the exact order as one process
+        // records it (every rank holds the whole set here)
+        if self.sort_every > 0 {
+            self.sort_particles();
+        }
         let flips = self.pair.as_ref().map_or(Vec::new(), |p| p.history_flips());
         let mut hist = self.history_rows(flips.len());
         let prd = [0, 1, 2].map(|d| self.domain.length(d));
@@ -524,6 +541,7 @@ impl Simulation {
             builds: self.list.builds,
             ghosts: empty_like(&self.particles),
             fresh: false,
+            ghost_motion: (Vec::new(), Vec::new()),
         };
         self.rank_build(comm, &mut st, hist)?;
         Ok(st)
@@ -573,6 +591,10 @@ impl Simulation {
             }
         }
         migrate(comm, &st.dec, p, Some(&mut hist))?;
+        if self.sort_every > 0 && self.step >= self.next_sort {
+            self.rank_sort_order(comm)?;
+        }
+        let p = &mut self.particles;
         // owned particles stored by sum key, as the pair list runs: the pass over the list
         // reads the first particles of its pairs in memory order, their partners nearby
         let grid = KeyGrid::new(self.domain.lo, self.domain.hi, self.neighbor.cutneighmax);
@@ -619,6 +641,57 @@ impl Simulation {
         st.ago = 0;
         st.builds += 1;
         st.fresh = true;
+        Ok(())
+    }
+
+    /// LIGGGHTS's spatial sort when due at a rebuild, applied to the record of the exact
+    /// order as one process applies it: the whole set ordered by sort bin, then by its
+    /// place in the exact order, each particle's place gathered from every rank.
+    fn rank_sort_order(&mut self, comm: &RankComm) -> Result<(), EngineError> {
+        self.next_sort = (self.step / self.sort_every) * self.sort_every + self.sort_every;
+        let binsize = if self.sort_binsize > 0.0 {
+            self.sort_binsize
+        } else {
+            0.5 * self.neighbor_cutoff()
+        };
+        let (lo, hi) = (self.domain.lo, self.domain.hi);
+        let p = &mut self.particles;
+        // the bins depend on the box alone: every rank sorts or none
+        let Some(bins) = super::neighbors::sort_bins(&p.x, lo, hi, binsize, self.dimension == 2)
+        else {
+            return Ok(());
+        };
+        let k = p.extra_index(ORDER_ARRAY, 1);
+        let mut w = Writer::default();
+        for (&b, &r) in bins.iter().zip(&p.extra[k].data) {
+            w.u32(b);
+            w.f64(r);
+        }
+        let mut all = comm
+            .gather_bytes(&w.bytes)
+            .map(|v| v.concat())
+            .unwrap_or_default();
+        comm.broadcast_bytes(0, &mut all);
+        let mut keyed = Vec::with_capacity(all.len() / 12);
+        let mut r = Reader::new(&all);
+        while !r.done() {
+            let bin = r.u32()?;
+            keyed.push((bin, r.f64()?));
+        }
+        keyed.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        // each old place's new one, looked up by the old place
+        let mut moved: Vec<(f64, f64)> = keyed
+            .iter()
+            .enumerate()
+            .map(|(new, &(_, old))| (old, (new + 1) as f64))
+            .collect();
+        moved.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for r in p.extra[k].data.iter_mut() {
+            if let Ok(at) = moved.binary_search_by(|m| m.0.total_cmp(r)) {
+                *r = moved[at].1;
+            }
+        }
+        self.accel.next_rank = (keyed.len() + 1) as f64;
         Ok(())
     }
 
@@ -675,6 +748,17 @@ impl Simulation {
             self.particles.copy_tail_into(st.nlocal, &mut st.ghosts);
             st.fresh = false;
         }
+        if self
+            .computes
+            .iter()
+            .any(|c| c.style().reads_pair_contacts())
+        {
+            let (v, omega) = &mut st.ghost_motion;
+            v.clear();
+            v.extend_from_slice(&self.particles.v[st.nlocal..]);
+            omega.clear();
+            omega.extend_from_slice(&self.particles.omega[st.nlocal..]);
+        }
         self.particles.truncate(st.nlocal);
         self.virial.truncate(st.nlocal);
         fixes::post_force(
@@ -702,7 +786,7 @@ impl Simulation {
     fn rank_output(
         &mut self,
         comm: &RankComm,
-        st: &RankState,
+        st: &mut RankState,
         setup: bool,
         last: i64,
         out: Sink<'_>,
@@ -718,6 +802,8 @@ impl Simulation {
         if !thermo && !dump {
             return Ok(());
         }
+        // the rows of the local computes the due dumps write, every rank's gathered
+        let local_rows = self.rank_local_rows(comm, st, setup)?;
         // the per-atom virials of a stress compute, in the order of the particles below
         let virials = (self.virial_step == Some(step)).then(|| {
             let bytes: Vec<u8> = self
@@ -729,6 +815,12 @@ impl Simulation {
             comm.gather_bytes(&bytes)
         });
         let Some(all) = comm.gather_bytes(&self.pack_owned(st, None)) else {
+            // what rank 0 writes is written: the dumps' records agree on every rank
+            for k in 0..self.dumps.len() {
+                if self.dump_due(k, setup) {
+                    self.dumps[k].last_written = Some(step);
+                }
+            }
             return Ok(());
         };
         let mut full = empty_like(&self.particles);
@@ -751,16 +843,155 @@ impl Simulation {
             .collect();
         std::mem::swap(&mut self.particles, &mut full);
         std::mem::swap(&mut self.virial, &mut full_virial);
-        let mut written = || -> Result<(), EngineError> {
+        let written = || -> Result<(), EngineError> {
             if thermo {
                 self.thermo_line(out, vars)?;
             }
-            self.write_dumps(setup, vars)
+            self.write_dumps_with(setup, vars, local_rows)
         };
         let result = written();
         std::mem::swap(&mut self.particles, &mut full);
         std::mem::swap(&mut self.virial, &mut full_virial);
         result
+    }
+
+    /// The rows of the local computes that the dumps due at this step write: each rank
+    /// evaluates its own contacts ([`Self::rank_contact_view`]) and rank 0 gets every
+    /// rank's rows, in rank order (as LIGGGHTS's parallel `dump local` writes them; empty
+    /// on the other ranks).
+    fn rank_local_rows(
+        &mut self,
+        comm: &RankComm,
+        st: &mut RankState,
+        setup: bool,
+    ) -> Result<SharedLocalRows, EngineError> {
+        let mut wanted: Vec<String> = Vec::new();
+        for k in 0..self.dumps.len() {
+            if self.dump_due(k, setup) {
+                for id in self.dumps[k].style.local_computes() {
+                    if !wanted.contains(&id) {
+                        wanted.push(id);
+                    }
+                }
+            }
+        }
+        let mut shared = SharedLocalRows::new();
+        if wanted.is_empty() {
+            return Ok(shared);
+        }
+        // the ghosts behind the owned particles with this moment's positions and motion
+        self.particles.extend_from(&st.ghosts);
+        let p = &mut self.particles;
+        if let Err(e) = forward_with(comm, &st.dec, &st.plan, p, false, &mut st.swap) {
+            self.particles.truncate(st.nlocal);
+            return Err(e.into());
+        }
+        let (pairs, history, motion) = self.rank_contact_view(st);
+        let list_pairs = std::mem::replace(&mut self.list.pairs, pairs);
+        let list_history = std::mem::replace(&mut self.history, history);
+        let force_time = std::mem::replace(&mut self.force_time_state, motion);
+        let mut failed = None;
+        let mut mine = Vec::new();
+        for id in &wanted {
+            // every rank takes part in the gather, whatever its evaluation gave
+            let rows = match self.computes.iter().find(|c| &c.id == id) {
+                Some(c) => c.local(self),
+                None => Err(format!("Could not find dump local compute ID {id}").into()),
+            };
+            let (ncols, values) = rows.unwrap_or_else(|e| {
+                failed.get_or_insert(e);
+                (0, Vec::new())
+            });
+            mine.push((ncols, values));
+        }
+        self.list.pairs = list_pairs;
+        self.history = list_history;
+        self.force_time_state = force_time;
+        self.particles.truncate(st.nlocal);
+        for (id, (ncols, values)) in wanted.iter().zip(mine) {
+            let mut w = Writer::default();
+            w.u32(ncols as u32);
+            values.iter().for_each(|&v| w.f64(v));
+            if let Some(all) = comm.gather_bytes(&w.bytes) {
+                let (mut ncols, mut rows) = (0, Vec::new());
+                for bytes in &all {
+                    let mut r = Reader::new(bytes);
+                    if r.done() {
+                        continue;
+                    }
+                    ncols = ncols.max(r.u32()? as usize);
+                    while !r.done() {
+                        rows.push(r.f64()?);
+                    }
+                }
+                shared.insert(id.clone(), std::rc::Rc::new((ncols, rows)));
+            }
+        }
+        match failed {
+            Some(e) => Err(e),
+            None => Ok(shared),
+        }
+    }
+
+    /// This rank's contacts as a local compute reads them on one process, for the owned
+    /// particles and the ghosts behind them (refreshed): the ghosts moved back by their
+    /// periodic images, with the pairs' shifts instead; only the pairs this rank reports
+    /// (from an owned particle, as one process reports them: across a periodic face from
+    /// the particle with the larger ID, otherwise from the one first in the exact path's
+    /// order), with their contact history; the motion at the last force evaluation (the
+    /// ghosts', which one process uses for the partner across a periodic face).
+    fn rank_contact_view(&mut self, st: &RankState) -> (Vec<Pair>, Vec<f64>, Motion) {
+        let n = st.nlocal;
+        let length = [0, 1, 2].map(|d| self.domain.length(d));
+        let p = &mut self.particles;
+        let image = |i: usize| {
+            i.checked_sub(n)
+                .and_then(|g| st.plan.ghost_image.get(g).copied())
+                .unwrap_or([0; 3])
+        };
+        for i in n..p.len() {
+            let m = image(i);
+            for d in 0..3 {
+                if m[d] != 0 {
+                    p.x[i][d] -= f64::from(m[d]) * length[d];
+                }
+            }
+        }
+        let k = p.extra.iter().position(|e| e.name == ORDER_ARRAY);
+        let place = |i: usize| k.map_or(i as f64, |k| p.extra[k].data[i]);
+        let width = st.flips.len();
+        let (mut pairs, mut history) = (Vec::new(), Vec::new());
+        for (k, pr) in st.pairs.iter().enumerate() {
+            let (a, b) = (pr.i as usize, pr.j as usize);
+            let (ma, mb) = (image(a), image(b));
+            let reporter = if ma != [0; 3] || mb != [0; 3] {
+                if p.id[a] > p.id[b] {
+                    a
+                } else {
+                    b
+                }
+            } else if place(a) < place(b) {
+                a
+            } else {
+                b
+            };
+            if reporter >= n {
+                continue;
+            }
+            pairs.push(Pair {
+                i: pr.i,
+                j: pr.j,
+                shift: [0, 1, 2].map(|d| f64::from(mb[d] - ma[d]) * length[d]),
+            });
+            history.extend_from_slice(&st.history[k * width..(k + 1) * width]);
+        }
+        let mut v = p.v[..n].to_vec();
+        let mut omega = p.omega[..n].to_vec();
+        if st.ghost_motion.0.len() == p.len() - n {
+            v.extend_from_slice(&st.ghost_motion.0);
+            omega.extend_from_slice(&st.ghost_motion.1);
+        }
+        (pairs, history, (v, omega))
     }
 
     /// The end of a run: every rank's particles and contact history on every rank, in

@@ -20,7 +20,7 @@ pub use check_timestep::CheckTimestep;
 pub use meshes::{move_meshes, MeshFix};
 pub use motion::{Motion, Move};
 pub use stream::StreamFix;
-pub use style::{FixInit, FixStep, FixStyle, PairInit, PerAtomShape, StepInputs};
+pub use style::{FixInit, FixStep, FixStyle, PairInit, PerAtomShape, SetupPass, StepInputs};
 pub use walls::{mesh_wall_contacts, refresh_trackers, MeshWallFix, WallFix};
 
 /// What a fix does.
@@ -59,8 +59,6 @@ pub enum FixKind {
     Multisphere(Box<crate::engine::clumps::Clumps>),
     /// `fix ave/atom`: per-particle time averages.
     AveAtom(Box<crate::engine::ave_atom::AveAtom>),
-    /// `ave/histo`: histograms of per-atom values written to a file.
-    AveHisto(Box<crate::engine::ave_histo::AveHisto>),
     /// `ave/spatial`: per-bin averages written to a file.
     AveSpatial(Box<crate::engine::ave_spatial::AveSpatial>),
     /// `store/state`: per-particle snapshots (f_ID, f_ID[N]).
@@ -84,6 +82,23 @@ impl FixKind {
     pub fn mesh_mut(&mut self) -> Option<&mut MeshFix> {
         match self {
             FixKind::Mesh(m) => Some(m),
+            _ => None,
+        }
+    }
+
+    /// The state of a module fix style (see [`FixStyle::as_any`]) as type `T` (None: a fix
+    /// of another style or kind).
+    pub fn style_as<T: 'static>(&self) -> Option<&T> {
+        match self {
+            FixKind::Style(s) => s.as_any()?.downcast_ref(),
+            _ => None,
+        }
+    }
+
+    /// [`FixKind::style_as`], to change.
+    pub fn style_as_mut<T: 'static>(&mut self) -> Option<&mut T> {
+        match self {
+            FixKind::Style(s) => s.as_any_mut()?.downcast_mut(),
             _ => None,
         }
     }

@@ -156,7 +156,7 @@ impl Simulation {
         self.setup_store_state(vars)?;
         self.setup_ave_atom(vars)?;
         self.setup_ave_spatial(vars)?;
-        self.setup_ave_histo(vars)?;
+        self.setup_fix_style_passes(vars)?;
         self.setup_averages(vars)
     }
 

@@ -59,8 +59,6 @@ pub enum FixKind {
     Multisphere(Box<crate::engine::clumps::Clumps>),
     /// `fix ave/atom`: per-particle time averages.
     AveAtom(Box<crate::engine::ave_atom::AveAtom>),
-    /// `ave/spatial`: per-bin averages written to a file.
-    AveSpatial(Box<crate::engine::ave_spatial::AveSpatial>),
     /// `store/state`: per-particle snapshots (f_ID, f_ID[N]).
     StoreState(Box<crate::engine::store_state::StoreState>),
     /// A style written as a module (see [`FixStyle`]): its hooks run in each phase.

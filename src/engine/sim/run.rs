@@ -155,7 +155,6 @@ impl Simulation {
         self.setup_insertions(out)?;
         self.setup_store_state(vars)?;
         self.setup_ave_atom(vars)?;
-        self.setup_ave_spatial(vars)?;
         self.setup_fix_style_passes(vars)?;
         self.setup_averages(vars)
     }

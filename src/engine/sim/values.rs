@@ -43,7 +43,6 @@ impl Simulation {
                     }
                 }
                 FixKind::AveAtom(_) => self.ave_atom_step(k, vars)?,
-                FixKind::AveSpatial(_) => self.ave_spatial_step(k, vars)?,
                 FixKind::StoreState(s) if s.every > 0 && step % s.every == 0 => {
                     use crate::engine::store_state::Snapshot;
                     self.store_state(k, Snapshot::All, vars)?

@@ -57,10 +57,6 @@ pub enum FixKind {
     HeatGran(crate::engine::heat::HeatGran),
     /// `fix multisphere`: the rigid clumps and their integration.
     Multisphere(Box<crate::engine::clumps::Clumps>),
-    /// `fix ave/atom`: per-particle time averages.
-    AveAtom(Box<crate::engine::ave_atom::AveAtom>),
-    /// `store/state`: per-particle snapshots (f_ID, f_ID[N]).
-    StoreState(Box<crate::engine::store_state::StoreState>),
     /// A style written as a module (see [`FixStyle`]): its hooks run in each phase.
     Style(Box<dyn FixStyle>),
     /// `fix deform`: the box changes every N steps.

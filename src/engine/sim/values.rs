@@ -42,11 +42,6 @@ impl Simulation {
                         at.sample(step, &values)?;
                     }
                 }
-                FixKind::AveAtom(_) => self.ave_atom_step(k, vars)?,
-                FixKind::StoreState(s) if s.every > 0 && step % s.every == 0 => {
-                    use crate::engine::store_state::Snapshot;
-                    self.store_state(k, Snapshot::All, vars)?
-                }
                 FixKind::Deform(d) if step % d.every == 0 => self.deform_step(k, vars)?,
                 _ => {}
             }

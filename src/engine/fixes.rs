@@ -59,8 +59,6 @@ pub enum FixKind {
     Multisphere(Box<crate::engine::clumps::Clumps>),
     /// A style written as a module (see [`FixStyle`]): its hooks run in each phase.
     Style(Box<dyn FixStyle>),
-    /// `fix deform`: the box changes every N steps.
-    Deform(Box<crate::engine::deform::Deform>),
 }
 
 impl FixKind {

@@ -42,7 +42,6 @@ impl Simulation {
                         at.sample(step, &values)?;
                     }
                 }
-                FixKind::Deform(d) if step % d.every == 0 => self.deform_step(k, vars)?,
                 _ => {}
             }
         }

@@ -35,8 +35,6 @@ pub enum FixKind {
     Mesh(Box<MeshFix>),
     /// `fix particletemplate/sphere`.
     Template(crate::engine::insert::Template),
-    /// `fix particletemplate/multisphere`: a rigid clump of spheres.
-    ClumpTemplate(Box<crate::engine::multisphere::ClumpTemplate>),
     /// `fix particledistribution/discrete...`.
     Distribution(crate::engine::insert::Distribution),
     /// `fix insert/pack`.
@@ -47,8 +45,6 @@ pub enum FixKind {
     MeshWall(MeshWallFix),
     /// `fix move/mesh`: prescribed motion of a mesh.
     MoveMesh(crate::engine::mesh_motion::MoveMesh),
-    /// `fix massflow/mesh`: particles and mass crossing a mesh face.
-    Massflow(Box<crate::engine::massflow::Massflow>),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
     /// `fix property/atom`: a per-atom property (values in the particle array of the fix ID).
@@ -176,12 +172,10 @@ impl FixKind {
             FixKind::WallGran(_)
             | FixKind::Mesh(_)
             | FixKind::Template(_)
-            | FixKind::ClumpTemplate(_)
             | FixKind::Distribution(_)
             | FixKind::InsertPack(_)
             | FixKind::InsertStream(_)
             | FixKind::MeshWall(_)
-            | FixKind::Massflow(_)
             | FixKind::Settings
             | FixKind::PropertyAtom(_)
             | FixKind::HeatGran(_) => false,

@@ -141,9 +141,6 @@ impl Simulation {
                 Ok(kind.mesh().and_then(|m| m.value(i)).unwrap_or(0.0))
             }
             (FixKind::AveTime(at), i) if at.value(i).is_some() => Ok(at.value(i).unwrap_or(0.0)),
-            (FixKind::Massflow(m), Some(i)) if m.value(i).is_some() => {
-                Ok(m.value(i).unwrap_or(0.0))
-            }
             (FixKind::Style(s), _) if s.global_freq() == 0 && self.run_bounds.is_some() => {
                 Err(crate::engine::global_values::zero_freq(id))
             }

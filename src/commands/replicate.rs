@@ -23,9 +23,6 @@ fn unsupported_state(ctx: &Ctx) -> Option<String> {
         let keeps_state = match &f.kind {
             FixKind::Move(_)
             | FixKind::Multisphere(_)
-            | FixKind::AveAtom(_)
-            | FixKind::StoreState(_)
-            | FixKind::Massflow(_)
             | FixKind::InsertStream(_)
             | FixKind::HeatGran(_) => true,
             FixKind::Style(s) => s.keeps_per_atom_state(),

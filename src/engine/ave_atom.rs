@@ -4,7 +4,8 @@
 //! array that follows the particles.
 
 use crate::engine::error::EngineError;
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::{FixStyle, PerAtomShape, SetupPass};
+use crate::engine::particles::Particles;
 use crate::engine::sim::{Simulation, VariableSource};
 use crate::io::dump::Column;
 
@@ -84,29 +85,29 @@ impl Simulation {
             AtomInput::Variable(name) => vars.atom(self, name)?,
         })
     }
+}
 
-    /// LIGGGHTS's `end_of_step` of the `fix ave/atom` at `fixes[k]` (also run at setup).
-    pub(crate) fn ave_atom_step(
+impl AveAtom {
+    /// LIGGGHTS's `end_of_step`: one sample of the inputs of the particles in `group` added
+    /// to the per-particle sums, which become averages when the sample completes them.
+    fn sample(
         &mut self,
-        k: usize,
+        sim: &mut Simulation,
+        group: u32,
         vars: &mut dyn VariableSource,
     ) -> Result<(), EngineError> {
-        let step = self.step;
-        let (group, ave) = match &self.fixes[k].kind {
-            FixKind::AveAtom(a) if a.nvalid == step => (self.fixes[k].group, a.clone()),
-            _ => return Ok(()),
-        };
-        let n = ave.inputs.len();
-        let columns = ave
+        let step = sim.step;
+        let n = self.inputs.len();
+        let columns = self
             .inputs
             .iter()
-            .map(|input| self.ave_atom_input(input, vars))
+            .map(|input| sim.ave_atom_input(input, vars))
             .collect::<Result<Vec<_>, _>>()?;
-        let p = &mut self.particles;
-        let a = p.extra_index(&ave.array, n);
+        let p = &mut sim.particles;
+        let a = p.extra_index(&self.array, n);
         let mask = &p.mask;
         let data = &mut p.extra[a].data;
-        if ave.irepeat == 0 {
+        if self.irepeat == 0 {
             data.fill(0.0);
         }
         for (m, column) in columns.iter().enumerate() {
@@ -116,40 +117,110 @@ impl Simulation {
                 }
             }
         }
-        let FixKind::AveAtom(state) = &mut self.fixes[k].kind else {
-            unreachable!("matched above")
-        };
-        state.irepeat += 1;
-        if state.irepeat < state.repeat {
-            state.nvalid += state.every;
+        self.irepeat += 1;
+        if self.irepeat < self.repeat {
+            self.nvalid += self.every;
         } else {
-            state.irepeat = 0;
-            state.nvalid = step + state.freq - (state.repeat - 1) * state.every;
-            let repeat = state.repeat as f64;
+            self.irepeat = 0;
+            self.nvalid = step + self.freq - (self.repeat - 1) * self.every;
+            let repeat = self.repeat as f64;
             for v in data.iter_mut() {
                 *v /= repeat;
             }
         }
         Ok(())
     }
+}
 
-    /// At a run's setup: reschedule averages left behind (LIGGGHTS's `init`), then sample
-    /// those due now (its `setup`).
-    pub(crate) fn setup_ave_atom(
+/// The per-atom shape of a fix whose values are `n` columns of a per-particle array: a
+/// vector for one column.
+pub(crate) fn columns_shape(n: usize) -> PerAtomShape {
+    if n == 1 {
+        PerAtomShape::Vector
+    } else {
+        PerAtomShape::Array(n)
+    }
+}
+
+/// The `n` columns of per-particle array `name`, row by row in particle order (zeros when
+/// the array is missing).
+pub(crate) fn array_values(p: &Particles, name: &str, n: usize) -> Vec<f64> {
+    p.extra
+        .iter()
+        .find(|e| e.name == name && e.width == n)
+        .map_or_else(|| vec![0.0; n * p.len()], |e| e.data.clone())
+}
+
+impl FixStyle for AveAtom {
+    fn name(&self) -> &str {
+        "ave/atom"
+    }
+
+    fn reads_computes(&self) -> bool {
+        true
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn per_atom_shape(&self) -> PerAtomShape {
+        columns_shape(self.inputs.len())
+    }
+
+    fn per_atom(&self, p: &Particles) -> Vec<f64> {
+        array_values(p, &self.array, self.inputs.len())
+    }
+
+    fn end_of_step_sim_due(&self, step: i64) -> bool {
+        self.nvalid == step
+    }
+
+    fn end_of_step_sim(
         &mut self,
+        sim: &mut Simulation,
+        k: usize,
         vars: &mut dyn VariableSource,
     ) -> Result<(), EngineError> {
-        let step = self.step;
-        for k in 0..self.fixes.len() {
-            if let FixKind::AveAtom(a) = &mut self.fixes[k].kind {
-                if a.nvalid < step {
-                    a.irepeat = 0;
-                    a.nvalid = a.next_valid(step);
-                }
-                self.ave_atom_step(k, vars)?;
-            }
+        let group = sim.fixes[k].group;
+        self.sample(sim, group, vars)
+    }
+
+    fn setup_pass(&self) -> Option<SetupPass> {
+        Some(SetupPass::AtomAverages)
+    }
+
+    /// Averages left behind rescheduled (LIGGGHTS's `init`), then a sample if one is due
+    /// now (its `setup`).
+    fn setup_sim(
+        &mut self,
+        sim: &mut Simulation,
+        k: usize,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        let step = sim.step;
+        if self.nvalid < step {
+            self.irepeat = 0;
+            self.nvalid = self.next_valid(step);
         }
-        Ok(())
+        if self.nvalid != step {
+            return Ok(());
+        }
+        let group = sim.fixes[k].group;
+        self.sample(sim, group, vars)
+    }
+
+    /// The averages as they stand (others may read them while the fix samples).
+    fn stand_in(&self) -> Option<Box<dyn FixStyle>> {
+        Some(Box::new(self.clone()))
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
     }
 }
 

@@ -5,7 +5,7 @@
 
 use crate::engine::ave_atom::AtomInput;
 use crate::engine::error::EngineError;
-use crate::engine::fixes::{AveMode, FixKind};
+use crate::engine::fixes::{AveMode, FixStyle, SetupPass};
 use crate::engine::sim::{Simulation, VariableSource};
 use std::io::{Seek, Write};
 
@@ -260,67 +260,93 @@ pub(crate) fn write_block(
     Ok(())
 }
 
-impl Simulation {
-    /// LIGGGHTS's `end_of_step` of the `fix ave/histo` at `fixes[k]` (also at setup).
-    pub(crate) fn ave_histo_step(
+impl AveHisto {
+    /// LIGGGHTS's `end_of_step`: one sample of the inputs of the particles in `group`, and
+    /// the histogram combined and written when the sample completes it.
+    fn sample(
         &mut self,
-        k: usize,
+        sim: &Simulation,
+        group: u32,
         vars: &mut dyn VariableSource,
     ) -> Result<(), EngineError> {
-        let group = self.fixes[k].group;
-        let inputs = match &self.fixes[k].kind {
-            FixKind::AveHisto(h) if h.nvalid == self.step => h.inputs.clone(),
-            _ => return Ok(()),
-        };
-        let columns = inputs
+        let columns = self
+            .inputs
             .iter()
-            .map(|input| self.ave_atom_input(input, vars))
+            .map(|input| sim.ave_atom_input(input, vars))
             .collect::<Result<Vec<_>, _>>()?;
-        let mask = self.particles.mask.clone();
-        let step = self.step;
-        let FixKind::AveHisto(h) = &mut self.fixes[k].kind else {
-            return Ok(());
-        };
-        if h.irepeat == 0 {
-            h.stats = [0.0, 0.0, BIG, -BIG];
-            h.bin.fill(0.0);
+        let mask = &sim.particles.mask;
+        let step = sim.step;
+        if self.irepeat == 0 {
+            self.stats = [0.0, 0.0, BIG, -BIG];
+            self.bin.fill(0.0);
         }
         for column in &columns {
             for (i, v) in column.iter().enumerate() {
                 if mask[i] & group != 0 {
-                    h.bin_one(*v);
+                    self.bin_one(*v);
                 }
             }
         }
-        let (every, repeat, freq) = h.schedule;
-        h.irepeat += 1;
-        if h.irepeat < repeat {
-            h.nvalid += every;
+        let (every, repeat, freq) = self.schedule;
+        self.irepeat += 1;
+        if self.irepeat < repeat {
+            self.nvalid += every;
             return Ok(());
         }
-        h.irepeat = 0;
-        h.nvalid = step + freq - (repeat - 1) * every;
-        h.combine();
-        h.write(step)
+        self.irepeat = 0;
+        self.nvalid = step + freq - (repeat - 1) * every;
+        self.combine();
+        self.write(step)
+    }
+}
+
+impl FixStyle for AveHisto {
+    fn name(&self) -> &str {
+        "ave/histo"
     }
 
-    /// At a run's setup (LIGGGHTS's `init` and `setup`): a schedule left behind restarts,
-    /// then a sample if one is due now.
-    pub(crate) fn setup_ave_histo(
+    fn reads_computes(&self) -> bool {
+        true
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn end_of_step_sim_due(&self, step: i64) -> bool {
+        self.nvalid == step
+    }
+
+    fn end_of_step_sim(
         &mut self,
+        sim: &mut Simulation,
+        k: usize,
         vars: &mut dyn VariableSource,
     ) -> Result<(), EngineError> {
-        let step = self.step;
-        for k in 0..self.fixes.len() {
-            if let FixKind::AveHisto(h) = &mut self.fixes[k].kind {
-                if h.nvalid < step {
-                    h.irepeat = 0;
-                    h.nvalid = h.next_valid(step);
-                }
-                self.ave_histo_step(k, vars)?;
-            }
+        self.sample(sim, sim.fixes[k].group, vars)
+    }
+
+    fn setup_pass(&self) -> Option<SetupPass> {
+        Some(SetupPass::Histograms)
+    }
+
+    /// A schedule left behind restarts (LIGGGHTS's `init`), then a sample if one is due
+    /// now (its `setup`).
+    fn setup_sim(
+        &mut self,
+        sim: &mut Simulation,
+        k: usize,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        let step = sim.step;
+        if self.nvalid < step {
+            self.irepeat = 0;
+            self.nvalid = self.next_valid(step);
         }
-        Ok(())
+        if self.nvalid != step {
+            return Ok(());
+        }
+        self.sample(sim, sim.fixes[k].group, vars)
     }
 }
 

@@ -4,7 +4,7 @@
 //! writes it.
 
 use crate::engine::error::EngineError;
-use crate::engine::fixes::{AveMode, FixKind};
+use crate::engine::fixes::{AveMode, FixStyle, SetupPass};
 use crate::engine::sim::{Simulation, VariableSource};
 
 /// One binned value.
@@ -316,28 +316,6 @@ impl Simulation {
         })
     }
 
-    /// LIGGGHTS's `end_of_step` of the `fix ave/spatial` at `fixes[k]` (also at setup).
-    pub(crate) fn ave_spatial_step(
-        &mut self,
-        k: usize,
-        vars: &mut dyn VariableSource,
-    ) -> Result<(), EngineError> {
-        let group = self.fixes[k].group;
-        let FixKind::AveSpatial(a) = &mut self.fixes[k].kind else {
-            return Ok(());
-        };
-        if a.nvalid != self.step {
-            return Ok(());
-        }
-        let placeholder = Box::new(AveSpatial::new(a.set.clone(), 0));
-        let mut a = std::mem::replace(a, placeholder);
-        let result = self.ave_spatial_sample(&mut a, group, vars);
-        if let FixKind::AveSpatial(slot) = &mut self.fixes[k].kind {
-            *slot = a;
-        }
-        result
-    }
-
     fn ave_spatial_sample(
         &mut self,
         a: &mut AveSpatial,
@@ -494,35 +472,59 @@ impl AveSpatial {
     }
 }
 
-impl Simulation {
-    /// At a run's setup (LIGGGHTS's `init` and `setup`): the box check of running and
-    /// window averages, a schedule left behind restarted, the bins set up, then a sample
-    /// if one is due now.
-    pub(crate) fn setup_ave_spatial(
+impl FixStyle for AveSpatial {
+    fn name(&self) -> &str {
+        "ave/spatial"
+    }
+
+    fn reads_computes(&self) -> bool {
+        true
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn end_of_step_sim_due(&self, step: i64) -> bool {
+        self.nvalid == step
+    }
+
+    fn end_of_step_sim(
         &mut self,
+        sim: &mut Simulation,
+        k: usize,
         vars: &mut dyn VariableSource,
     ) -> Result<(), EngineError> {
-        let (step, box_changes) = (self.step, self.domain.shrinks());
-        for k in 0..self.fixes.len() {
-            let FixKind::AveSpatial(a) = &mut self.fixes[k].kind else {
-                continue;
-            };
-            if !a.set.reduced && box_changes && a.set.mode != AveMode::One {
-                return Err("Fix ave/spatial settings invalid with changing box size".into());
-            }
-            if a.nvalid < step {
-                a.irepeat = 0;
-                a.nvalid = a.next_valid(step);
-            }
-            let placeholder = Box::new(AveSpatial::new(a.set.clone(), 0));
-            let mut a = std::mem::replace(a, placeholder);
-            a.setup_bins(self);
-            if let FixKind::AveSpatial(slot) = &mut self.fixes[k].kind {
-                *slot = a;
-            }
-            self.ave_spatial_step(k, vars)?;
+        let group = sim.fixes[k].group;
+        sim.ave_spatial_sample(self, group, vars)
+    }
+
+    fn setup_pass(&self) -> Option<SetupPass> {
+        Some(SetupPass::SpatialAverages)
+    }
+
+    /// The box check of running and window averages, a schedule left behind restarted
+    /// (LIGGGHTS's `init`), the bins set up, then a sample if one is due now (its `setup`).
+    fn setup_sim(
+        &mut self,
+        sim: &mut Simulation,
+        k: usize,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        let (step, box_changes) = (sim.step, sim.domain.shrinks());
+        if !self.set.reduced && box_changes && self.set.mode != AveMode::One {
+            return Err("Fix ave/spatial settings invalid with changing box size".into());
         }
-        Ok(())
+        if self.nvalid < step {
+            self.irepeat = 0;
+            self.nvalid = self.next_valid(step);
+        }
+        self.setup_bins(sim);
+        if self.nvalid != step {
+            return Ok(());
+        }
+        let group = sim.fixes[k].group;
+        sim.ave_spatial_sample(self, group, vars)
     }
 }
 

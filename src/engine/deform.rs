@@ -367,13 +367,47 @@ pub fn rescale_shift(shift: &mut [f64; 3], old: [f64; 3], new: [f64; 3]) {
     }
 }
 
+impl crate::engine::fixes::FixStyle for Deform {
+    fn name(&self) -> &str {
+        "deform"
+    }
+
+    fn reads_computes(&self) -> bool {
+        true
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn end_of_step_sim_due(&self, step: i64) -> bool {
+        step % self.every == 0
+    }
+
+    fn end_of_step_sim(
+        &mut self,
+        sim: &mut crate::engine::sim::Simulation,
+        k: usize,
+        vars: &mut dyn crate::engine::sim::VariableSource,
+    ) -> Result<(), EngineError> {
+        sim.deform_apply(k, self, vars)
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
+    }
+}
+
 impl crate::engine::sim::Simulation {
     /// The `fix deform` (LIGGGHTS allows one per run), as its index in the fix list.
     pub fn deform_fix(&self) -> Option<usize> {
-        use crate::engine::fixes::FixKind;
         self.fixes
             .iter()
-            .position(|f| matches!(f.kind, FixKind::Deform(_)))
+            .position(|f| f.kind.style_as::<Deform>().is_some())
     }
 
     /// Can the box change during a run (LIGGGHTS's `box_change`: a shrink-wrapped face or a
@@ -388,7 +422,7 @@ impl crate::engine::sim::Simulation {
         let deforms = self
             .fixes
             .iter()
-            .filter(|f| matches!(f.kind, FixKind::Deform(_)));
+            .filter(|f| f.kind.style_as::<Deform>().is_some());
         let Some(first) = deforms.clone().next() else {
             return Ok(());
         };
@@ -414,7 +448,7 @@ impl crate::engine::sim::Simulation {
     pub fn setup_deform(&mut self, first: i64) -> Result<(), EngineError> {
         let bounds = self.run_bounds.unwrap_or((first, first));
         if let Some((k, f)) = self.deform_ramp(first, bounds)? {
-            self.fixes[k].kind = crate::engine::fixes::FixKind::Deform(Box::new(f));
+            self.fixes[k].kind = crate::engine::fixes::FixKind::Style(Box::new(f));
         }
         Ok(())
     }
@@ -430,10 +464,10 @@ impl crate::engine::sim::Simulation {
         let Some(k) = self.deform_fix() else {
             return Ok(None);
         };
-        let crate::engine::fixes::FixKind::Deform(f) = &self.fixes[k].kind else {
+        let Some(f) = self.fixes[k].kind.style_as::<Deform>() else {
             return Ok(None);
         };
-        let mut f = (**f).clone();
+        let mut f = f.clone();
         let delt = (end - begin) as f64 * self.dt;
         let now = BoxNow {
             lo: self.domain.lo,
@@ -446,21 +480,6 @@ impl crate::engine::sim::Simulation {
     /// `fix deform`'s end of step (fix `k`, due at this step): move the box, carry the
     /// group's atoms along with `remap x`, and keep the neighbour list's periodic shifts
     /// whole box lengths.
-    pub fn deform_step(
-        &mut self,
-        k: usize,
-        vars: &mut dyn crate::engine::sim::VariableSource,
-    ) -> Result<(), EngineError> {
-        use crate::engine::fixes::FixKind;
-        let FixKind::Deform(mut f) = std::mem::replace(&mut self.fixes[k].kind, FixKind::Settings)
-        else {
-            unreachable!("deform_step is called for a fix deform");
-        };
-        let result = self.deform_apply(k, &mut f, vars);
-        self.fixes[k].kind = FixKind::Deform(f);
-        result
-    }
-
     fn deform_apply(
         &mut self,
         k: usize,

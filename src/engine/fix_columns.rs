@@ -17,8 +17,6 @@ fn width(kind: &FixKind) -> (usize, bool) {
         FixKind::Move(_) => (3, false),
         FixKind::PropertyAtom(pa) => (pa.defaults.len(), !pa.vector),
         FixKind::HeatGran(_) => (1, true),
-        FixKind::AveAtom(a) => (a.inputs.len(), a.inputs.len() == 1),
-        FixKind::StoreState(s) => (s.inputs.len(), s.inputs.len() == 1),
         FixKind::Style(s) => shape_width(s.per_atom_shape()),
         _ => (0, false),
     }
@@ -77,24 +75,6 @@ pub fn per_atom(
         Some(FixKind::PropertyAtom(pa)) => {
             let columns = pa.defaults.len();
             let values = crate::engine::heat::property_values(p, id, columns);
-            return Ok((PerAtom { columns, values }, col));
-        }
-        Some(FixKind::AveAtom(a)) => {
-            let columns = a.inputs.len();
-            let values = p
-                .extra
-                .iter()
-                .find(|e| e.name == a.array && e.width == columns)
-                .map_or_else(|| vec![0.0; columns * p.len()], |e| e.data.clone());
-            return Ok((PerAtom { columns, values }, col));
-        }
-        Some(FixKind::StoreState(s)) => {
-            let columns = s.inputs.len();
-            let values = p
-                .extra
-                .iter()
-                .find(|e| e.name == s.array && e.width == columns)
-                .map_or_else(|| vec![0.0; columns * p.len()], |e| e.data.clone());
             return Ok((PerAtom { columns, values }, col));
         }
         Some(FixKind::Style(s)) => {

@@ -20,7 +20,7 @@ pub use check_timestep::CheckTimestep;
 pub use meshes::{move_meshes, MeshFix};
 pub use motion::{Motion, Move};
 pub use stream::StreamFix;
-pub use style::{FixInit, FixStep, FixStyle, PairInit, PerAtomShape, StepInputs};
+pub use style::{FixInit, FixStep, FixStyle, PairInit, PerAtomShape, SetupPass, StepInputs};
 pub use walls::{mesh_wall_contacts, refresh_trackers, MeshWallFix, WallFix};
 
 /// What a fix does.
@@ -35,8 +35,6 @@ pub enum FixKind {
     Mesh(Box<MeshFix>),
     /// `fix particletemplate/sphere`.
     Template(crate::engine::insert::Template),
-    /// `fix particletemplate/multisphere`: a rigid clump of spheres.
-    ClumpTemplate(Box<crate::engine::multisphere::ClumpTemplate>),
     /// `fix particledistribution/discrete...`.
     Distribution(crate::engine::insert::Distribution),
     /// `fix insert/pack`.
@@ -47,8 +45,6 @@ pub enum FixKind {
     MeshWall(MeshWallFix),
     /// `fix move/mesh`: prescribed motion of a mesh.
     MoveMesh(crate::engine::mesh_motion::MoveMesh),
-    /// `fix massflow/mesh`: particles and mass crossing a mesh face.
-    Massflow(Box<crate::engine::massflow::Massflow>),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
     /// `fix property/atom`: a per-atom property (values in the particle array of the fix ID).
@@ -57,18 +53,8 @@ pub enum FixKind {
     HeatGran(crate::engine::heat::HeatGran),
     /// `fix multisphere`: the rigid clumps and their integration.
     Multisphere(Box<crate::engine::clumps::Clumps>),
-    /// `fix ave/atom`: per-particle time averages.
-    AveAtom(Box<crate::engine::ave_atom::AveAtom>),
-    /// `ave/histo`: histograms of per-atom values written to a file.
-    AveHisto(Box<crate::engine::ave_histo::AveHisto>),
-    /// `ave/spatial`: per-bin averages written to a file.
-    AveSpatial(Box<crate::engine::ave_spatial::AveSpatial>),
-    /// `store/state`: per-particle snapshots (f_ID, f_ID[N]).
-    StoreState(Box<crate::engine::store_state::StoreState>),
     /// A style written as a module (see [`FixStyle`]): its hooks run in each phase.
     Style(Box<dyn FixStyle>),
-    /// `fix deform`: the box changes every N steps.
-    Deform(Box<crate::engine::deform::Deform>),
 }
 
 impl FixKind {
@@ -84,6 +70,23 @@ impl FixKind {
     pub fn mesh_mut(&mut self) -> Option<&mut MeshFix> {
         match self {
             FixKind::Mesh(m) => Some(m),
+            _ => None,
+        }
+    }
+
+    /// The state of a module fix style (see [`FixStyle::as_any`]) as type `T` (None: a fix
+    /// of another style or kind).
+    pub fn style_as<T: 'static>(&self) -> Option<&T> {
+        match self {
+            FixKind::Style(s) => s.as_any()?.downcast_ref(),
+            _ => None,
+        }
+    }
+
+    /// [`FixKind::style_as`], to change.
+    pub fn style_as_mut<T: 'static>(&mut self) -> Option<&mut T> {
+        match self {
+            FixKind::Style(s) => s.as_any_mut()?.downcast_mut(),
             _ => None,
         }
     }
@@ -169,12 +172,10 @@ impl FixKind {
             FixKind::WallGran(_)
             | FixKind::Mesh(_)
             | FixKind::Template(_)
-            | FixKind::ClumpTemplate(_)
             | FixKind::Distribution(_)
             | FixKind::InsertPack(_)
             | FixKind::InsertStream(_)
             | FixKind::MeshWall(_)
-            | FixKind::Massflow(_)
             | FixKind::Settings
             | FixKind::PropertyAtom(_)
             | FixKind::HeatGran(_) => false,

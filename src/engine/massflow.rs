@@ -392,16 +392,41 @@ impl Massflow {
     }
 }
 
+impl crate::engine::fixes::FixStyle for Massflow {
+    fn name(&self) -> &str {
+        "massflow/mesh"
+    }
+
+    fn value(&self, index: Option<usize>) -> Option<f64> {
+        Massflow::value(self, index?)
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn keeps_per_atom_state(&self) -> bool {
+        true
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
+    }
+}
+
 impl crate::engine::sim::Simulation {
     /// LIGGGHTS's `pre_exchange` of `fix massflow/mesh ... delete_atoms yes` (at a
     /// re-neighbouring, before atoms are wrapped): each particle counted since is removed,
     /// in counting order, its slot filled by the last particle.
     pub(crate) fn massflow_delete(&mut self) {
-        use crate::engine::fixes::FixKind;
         if !self
             .fixes
             .iter()
-            .any(|f| matches!(&f.kind, FixKind::Massflow(m) if !m.doomed.is_empty()))
+            .any(|f| (f.kind.style_as::<Massflow>()).is_some_and(|m| !m.doomed.is_empty()))
         {
             return;
         }
@@ -413,7 +438,7 @@ impl crate::engine::sim::Simulation {
             .iter()
             .position(|e| e.name == crate::engine::accel::ORDER_ARRAY);
         for f in &mut self.fixes {
-            let FixKind::Massflow(mf) = &mut f.kind else {
+            let Some(mf) = f.kind.style_as_mut::<Massflow>() else {
                 continue;
             };
             let p = &mut self.particles;
@@ -442,7 +467,7 @@ impl crate::engine::sim::Simulation {
         if !self
             .fixes
             .iter()
-            .any(|f| matches!(f.kind, FixKind::Massflow(_)))
+            .any(|f| f.kind.style_as::<Massflow>().is_some())
         {
             return Ok(());
         }
@@ -453,12 +478,12 @@ impl crate::engine::sim::Simulation {
             self.extras.neigh_binsize,
         );
         for k in 0..self.fixes.len() {
-            if !matches!(self.fixes[k].kind, FixKind::Massflow(_)) {
+            if self.fixes[k].kind.style_as::<Massflow>().is_none() {
                 continue;
             }
             let mut kind = std::mem::replace(&mut self.fixes[k].kind, FixKind::Settings);
             let mut result: Result<(), EngineError> = Ok(());
-            if let FixKind::Massflow(mf) = &mut kind {
+            if let Some(mf) = kind.style_as_mut::<Massflow>() {
                 let moving = moves_mesh(&self.fixes, &mf.mesh);
                 let skin = if moving {
                     self.neighbor.skin
@@ -489,12 +514,12 @@ impl crate::engine::sim::Simulation {
         use crate::engine::fixes::FixKind;
         let (dt, time) = (self.dt, self.dt * self.step as f64);
         for k in 0..self.fixes.len() {
-            if !matches!(self.fixes[k].kind, FixKind::Massflow(_)) {
+            if self.fixes[k].kind.style_as::<Massflow>().is_none() {
                 continue;
             }
             let mut kind = std::mem::replace(&mut self.fixes[k].kind, FixKind::Settings);
             let mut result = Ok(());
-            if let FixKind::Massflow(mf) = &mut kind {
+            if let Some(mf) = kind.style_as_mut::<Massflow>() {
                 let moving = moves_mesh(&self.fixes, &mf.mesh);
                 let mesh = mesh_named(&self.fixes, &mf.mesh).map(|m| &m.mesh);
                 if let Some(mesh) = mesh {

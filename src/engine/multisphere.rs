@@ -251,6 +251,34 @@ fn inside(p: &[f64; 3], centres: &[[f64; 3]], radii: &[f64]) -> bool {
     })
 }
 
+impl crate::engine::fixes::FixStyle for ClumpTemplate {
+    fn name(&self) -> &str {
+        "particletemplate/multisphere"
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    /// The insertion generator (untouched: clumps are not inserted yet) and the Monte Carlo
+    /// generator after the mass-property sampling.
+    fn restart_state(&self) -> Option<Vec<u8>> {
+        Some(crate::engine::restart_fixes::to_bytes(&[
+            1.0,
+            self.spec.seed as f64,
+            self.mc_state as f64,
+        ]))
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
+    }
+}
+
 impl ClumpTemplate {
     /// Builds the template: bounding sphere, then (unless mass and inertia are given with
     /// `use_density`) centre of mass and volume by sampling, then the inertia tensor by

@@ -212,13 +212,6 @@ impl Simulation {
                     &f.style,
                     to_bytes(&[1.0, t.rng_state.0 as f64, t.rng_state.1 as f64]),
                 )),
-                // the insertion generator (untouched: clumps are not inserted yet) and the
-                // Monte Carlo generator after the mass-property sampling
-                FixKind::ClumpTemplate(t) => globals.push(entry(
-                    &f.id,
-                    &f.style,
-                    to_bytes(&[1.0, t.spec.seed as f64, t.mc_state as f64]),
-                )),
                 FixKind::Distribution(d) => {
                     globals.push(entry(&f.id, &f.style, to_bytes(&[d.rng.state() as f64])))
                 }

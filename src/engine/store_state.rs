@@ -4,8 +4,10 @@
 //! fix_store_state.cpp). The values live in a per-particle array that follows the particles.
 
 use crate::engine::ave_atom::AtomInput;
+use crate::engine::ave_atom::{array_values, columns_shape};
 use crate::engine::error::EngineError;
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::{FixStyle, PerAtomShape, SetupPass};
+use crate::engine::particles::Particles;
 use crate::engine::sim::{Simulation, VariableSource};
 use crate::io::dump::Column;
 
@@ -87,21 +89,6 @@ impl Simulation {
         })
     }
 
-    /// Store the inputs `which` selects of the `fix store/state` at `fixes[k]`.
-    pub(crate) fn store_state(
-        &mut self,
-        k: usize,
-        which: Snapshot,
-        vars: &mut dyn VariableSource,
-    ) -> Result<(), EngineError> {
-        let group = self.fixes[k].group;
-        let FixKind::StoreState(s) = &self.fixes[k].kind else {
-            return Ok(());
-        };
-        let s = s.clone();
-        self.store_snapshot(&s, group, which, vars)
-    }
-
     /// Store the inputs `which` selects of `s` for the particles of `group`.
     pub(crate) fn store_snapshot(
         &mut self,
@@ -140,20 +127,65 @@ impl Simulation {
         }
         Ok(())
     }
+}
 
-    /// At a run's setup: the first run stores the computes, fixes and variables.
-    pub(crate) fn setup_store_state(
+impl FixStyle for StoreState {
+    fn name(&self) -> &str {
+        "store/state"
+    }
+
+    fn reads_computes(&self) -> bool {
+        true
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn per_atom_shape(&self) -> PerAtomShape {
+        columns_shape(self.inputs.len())
+    }
+
+    fn per_atom(&self, p: &Particles) -> Vec<f64> {
+        array_values(p, &self.array, self.inputs.len())
+    }
+
+    fn end_of_step_sim_due(&self, step: i64) -> bool {
+        self.every > 0 && step % self.every == 0
+    }
+
+    fn end_of_step_sim(
         &mut self,
+        sim: &mut Simulation,
+        k: usize,
         vars: &mut dyn VariableSource,
     ) -> Result<(), EngineError> {
-        for k in 0..self.fixes.len() {
-            if matches!(&self.fixes[k].kind, FixKind::StoreState(s) if s.first) {
-                self.store_state(k, Snapshot::References, vars)?;
-                if let FixKind::StoreState(s) = &mut self.fixes[k].kind {
-                    s.first = false;
-                }
-            }
+        let group = sim.fixes[k].group;
+        sim.store_snapshot(self, group, Snapshot::All, vars)
+    }
+
+    fn setup_pass(&self) -> Option<SetupPass> {
+        Some(SetupPass::Snapshots)
+    }
+
+    /// The first run stores the computes, fixes and variables.
+    fn setup_sim(
+        &mut self,
+        sim: &mut Simulation,
+        k: usize,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        if !self.first {
+            return Ok(());
         }
+        let group = sim.fixes[k].group;
+        sim.store_snapshot(self, group, Snapshot::References, vars)?;
+        self.first = false;
         Ok(())
+    }
+
+    /// The values as they stand (others may read them while the fix stores).
+    fn stand_in(&self) -> Option<Box<dyn FixStyle>> {
+        Some(Box::new(self.clone()))
     }
 }

@@ -55,7 +55,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     let n = ave.inputs.len();
     let k = ctx.sim.particles.extra_index(&ave.array, n);
     ctx.sim.particles.extra[k].data.fill(0.0);
-    Ok(FixKind::AveAtom(Box::new(ave)))
+    Ok(FixKind::Style(Box::new(ave)))
 }
 
 /// A `c_`, `f_` or `v_` input, checked as LIGGGHTS checks it when the fix is defined.

@@ -109,7 +109,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     if let (Some(name), Mode::Run) = (file, ctx.sys.mode) {
         h.file = Some(open_file(a, &name, fix.id, &titles)?);
     }
-    Ok(FixKind::AveHisto(Box::new(h)))
+    Ok(FixKind::Style(Box::new(h)))
 }
 
 /// The file with LIGGGHTS's three comment lines (or the titles given), and where they end.

@@ -71,7 +71,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     if let (Some(name), Mode::Run) = (file, ctx.sys.mode) {
         fix_state.file = Some(open_file(a, &name, fix, &names, &titles, &fix_state.set)?);
     }
-    Ok(FixKind::AveSpatial(Box::new(fix_state)))
+    Ok(FixKind::Style(Box::new(fix_state)))
 }
 
 /// The file with LIGGGHTS's three comment lines (or the titles given; a title of one

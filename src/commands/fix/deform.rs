@@ -71,7 +71,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandE
             "fix deform remap v on a periodic dimension it changes",
         ));
     }
-    Ok(FixKind::Deform(Box::new(fix)))
+    Ok(FixKind::Style(Box::new(fix)))
 }
 
 /// The style after parameter word `i`, and how many words the parameter took.
@@ -211,7 +211,7 @@ fn scaled(style: Style, s: f64) -> Style {
 /// LIGGGHTS's init check of the `variable` styles' variables (at every `run`).
 pub fn check_variables(ctx: &Ctx) -> Result<(), EngineError> {
     for f in &ctx.sim.fixes {
-        let FixKind::Deform(d) = &f.kind else {
+        let Some(d) = f.kind.style_as::<Deform>() else {
             continue;
         };
         for (disp, rate) in d.variables() {

@@ -30,9 +30,9 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
             .iter()
             .find_map(|f| match &f.kind {
                 FixKind::Template(t) if f.id == tid => Some(t.clone()),
-                FixKind::ClumpTemplate(c) if f.id == tid => {
-                    Some(crate::engine::insert::Template::clump(c))
-                }
+                kind if f.id == tid => Some(crate::engine::insert::Template::clump(
+                    kind.style_as::<crate::engine::multisphere::ClumpTemplate>()?,
+                )),
                 _ => None,
             })
             .ok_or_else(|| {

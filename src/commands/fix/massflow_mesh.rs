@@ -143,7 +143,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     m.property = property;
     m.write_header()
         .map_err(|e| a.error(0, format!("fix massflow/mesh: {e}")))?;
-    Ok(FixKind::Massflow(Box::new(m)))
+    Ok(FixKind::Style(Box::new(m)))
 }
 
 /// The output file of `file F` (`append` false) or `append F` at word `i` (the file name

@@ -55,7 +55,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     if ctx.sys.mode == Mode::Run {
         ctx.out.log(&template.report());
     }
-    Ok(FixKind::ClumpTemplate(Box::new(template)))
+    Ok(FixKind::Style(Box::new(template)))
 }
 
 /// LIGGGHTS's error of fix `id` at word `i`.

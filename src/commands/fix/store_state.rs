@@ -79,7 +79,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     ctx.sim
         .store_snapshot(&state, fix.bit, Snapshot::Attributes, none)
         .map_err(|e| a.engine_error(2, e))?;
-    Ok(FixKind::StoreState(Box::new(state)))
+    Ok(FixKind::Style(Box::new(state)))
 }
 
 /// A `c_`, `f_` or `v_` input at word `i`, checked as LIGGGHTS checks it when the fix is
@@ -110,7 +110,7 @@ fn reference(
                 .ok_or_else(|| a.error(i, "Fix ID for fix store/state does not exist"))?;
             crate::engine::fix_columns::column(ctx.sim, id, index)
                 .map_err(|e| a.error(i, format!("Fix store/state: {e}")))?;
-            if let FixKind::AveAtom(ave) = &fix.kind {
+            if let Some(ave) = fix.kind.style_as::<crate::engine::ave_atom::AveAtom>() {
                 if every % ave.freq != 0 {
                     return Err(
                         a.error(i, "Fix for fix store/state not computed at compatible time")

@@ -335,6 +335,84 @@ pub trait FixStyle: Send {
     fn as_any(&self) -> Option<&dyn std::any::Any> {
         None
     }
+
+    /// [`FixStyle::as_any`], to change.
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        None
+    }
+
+    /// Whether `f_ID[i][j]` of the style is refused as not supported yet rather than with
+    /// LIGGGHTS's "Mismatched fix in variable formula".
+    fn array_unsupported(&self) -> bool {
+        false
+    }
+
+    /// Whether the style has `end_of_step` work on the whole simulation at `step` (a step
+    /// count): only then is [`FixStyle::end_of_step_sim`] called.
+    fn end_of_step_sim_due(&self, _step: i64) -> bool {
+        false
+    }
+
+    /// `end_of_step` of a style that reads or changes the whole simulation (averages of
+    /// computes, fixes and variables; the box of `fix deform`), after
+    /// [`FixStyle::end_of_step`]. `k` is the fix's index in `sim.fixes`, where
+    /// [`FixStyle::stand_in`] holds its place meanwhile.
+    fn end_of_step_sim(
+        &mut self,
+        _sim: &mut Simulation,
+        _k: usize,
+        _vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        Ok(())
+    }
+
+    /// The pass of a run's setup, after the insertions, in which [`FixStyle::setup_sim`]
+    /// runs (None: the style has no such setup).
+    fn setup_pass(&self) -> Option<SetupPass> {
+        None
+    }
+
+    /// LIGGGHTS's `init` and `setup` of a style that reads the whole simulation (a schedule
+    /// left behind restarted, a sample due now), in its [`FixStyle::setup_pass`]; `k` as in
+    /// [`FixStyle::end_of_step_sim`].
+    fn setup_sim(
+        &mut self,
+        _sim: &mut Simulation,
+        _k: usize,
+        _vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        Ok(())
+    }
+
+    /// What the fix list holds in the fix's place while [`FixStyle::end_of_step_sim`] or
+    /// [`FixStyle::setup_sim`] runs (None: a placeholder whose values cannot be read).
+    fn stand_in(&self) -> Option<Box<dyn FixStyle>> {
+        None
+    }
+}
+
+/// The passes of a run's setup in which styles sample with the whole simulation
+/// ([`FixStyle::setup_sim`]): the passes in this order, each over the fixes in fix order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum SetupPass {
+    /// Snapshots of computes, fixes and variables (`fix store/state`).
+    Snapshots,
+    /// Per-atom time averages (`fix ave/atom`).
+    AtomAverages,
+    /// Per-bin averages (`fix ave/spatial`).
+    SpatialAverages,
+    /// Histograms (`fix ave/histo`).
+    Histograms,
+}
+
+impl SetupPass {
+    /// Every pass, in the order a run's setup makes them.
+    pub const ALL: [SetupPass; 4] = [
+        SetupPass::Snapshots,
+        SetupPass::AtomAverages,
+        SetupPass::SpatialAverages,
+        SetupPass::Histograms,
+    ];
 }
 
 /// The deck's variables and regions as a running simulation answers [`StepInputs`].
@@ -483,6 +561,59 @@ impl Simulation {
         for fix in &mut self.fixes {
             if let super::FixKind::Style(s) = &mut fix.kind {
                 s.init_pair(&pair)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Run `hook` on module fix style `k` with the whole simulation at hand, the style's
+    /// [`FixStyle::stand_in`] in its place in the fix list meanwhile (nothing for a fix of
+    /// another kind).
+    pub(crate) fn with_fix_style(
+        &mut self,
+        k: usize,
+        hook: impl FnOnce(&mut dyn FixStyle, &mut Simulation) -> Result<(), EngineError>,
+    ) -> Result<(), EngineError> {
+        let super::FixKind::Style(s) = &self.fixes[k].kind else {
+            return Ok(());
+        };
+        let stand_in = s
+            .stand_in()
+            .map_or(super::FixKind::Settings, super::FixKind::Style);
+        let super::FixKind::Style(mut style) = std::mem::replace(&mut self.fixes[k].kind, stand_in)
+        else {
+            unreachable!("checked above")
+        };
+        let result = hook(&mut *style, self);
+        self.fixes[k].kind = super::FixKind::Style(style);
+        result
+    }
+
+    /// The `end_of_step_sim` hook of module fix style `k` when it is due at this step.
+    pub(crate) fn fix_style_end_of_step_sim(
+        &mut self,
+        k: usize,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        let step = self.step;
+        if !matches!(&self.fixes[k].kind, super::FixKind::Style(s) if s.end_of_step_sim_due(step)) {
+            return Ok(());
+        }
+        self.with_fix_style(k, |s, sim| s.end_of_step_sim(sim, k, vars))
+    }
+
+    /// The `setup_sim` hooks of the module fix styles, pass by pass, each pass in fix order.
+    pub(crate) fn setup_fix_style_passes(
+        &mut self,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        for pass in SetupPass::ALL {
+            for k in 0..self.fixes.len() {
+                if !matches!(&self.fixes[k].kind, super::FixKind::Style(s) if s.setup_pass() == Some(pass))
+                {
+                    continue;
+                }
+                self.with_fix_style(k, |s, sim| s.setup_sim(sim, k, vars))?;
             }
         }
         Ok(())

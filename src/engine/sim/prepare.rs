@@ -166,8 +166,14 @@ impl Simulation {
             .filter_map(|f| match &f.kind {
                 FixKind::Template(t) => Some(t.radius),
                 // a clump template's largest sphere (LIGGGHTS's max_rad), not its bounding radius
-                FixKind::ClumpTemplate(t) => Some(t.radii.iter().copied().fold(0.0, f64::max)),
-                _ => None,
+                kind => Some(
+                    (kind
+                        .style_as::<crate::engine::multisphere::ClumpTemplate>()?
+                        .radii
+                        .iter())
+                    .copied()
+                    .fold(0.0, f64::max),
+                ),
             })
             .fold(0.0, f64::max);
         atoms.max(templates)

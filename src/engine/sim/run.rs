@@ -153,10 +153,7 @@ impl Simulation {
         self.restart_mesh_history.clear();
         self.say_clump_energy(out);
         self.setup_insertions(out)?;
-        self.setup_store_state(vars)?;
-        self.setup_ave_atom(vars)?;
-        self.setup_ave_spatial(vars)?;
-        self.setup_ave_histo(vars)?;
+        self.setup_fix_style_passes(vars)?;
         self.setup_averages(vars)
     }
 

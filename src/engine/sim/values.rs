@@ -34,6 +34,7 @@ impl Simulation {
                     if s.outputs_at(step) {
                         self.fix_style_output(k, out, vars)?;
                     }
+                    self.fix_style_end_of_step_sim(k, vars)?;
                 }
                 FixKind::AveTime(at) if at.next == step => {
                     let values = self.ave_time_values(k, vars)?;
@@ -41,14 +42,6 @@ impl Simulation {
                         at.sample(step, &values)?;
                     }
                 }
-                FixKind::AveAtom(_) => self.ave_atom_step(k, vars)?,
-                FixKind::AveSpatial(_) => self.ave_spatial_step(k, vars)?,
-                FixKind::AveHisto(_) => self.ave_histo_step(k, vars)?,
-                FixKind::StoreState(s) if s.every > 0 && step % s.every == 0 => {
-                    use crate::engine::store_state::Snapshot;
-                    self.store_state(k, Snapshot::All, vars)?
-                }
-                FixKind::Deform(d) if step % d.every == 0 => self.deform_step(k, vars)?,
                 _ => {}
             }
         }
@@ -120,10 +113,12 @@ impl Simulation {
             .find(|f| f.id == id)
             .ok_or_else(|| format!("Could not find fix ID {id}"))?;
         match &fix.kind {
-            FixKind::Style(s) => match s.array_value(i, j, self.run_bounds.is_some()) {
-                Some(v) => v,
-                None => Err("Mismatched fix in variable formula".into()),
-            },
+            FixKind::Style(s) if !s.array_unsupported() => {
+                match s.array_value(i, j, self.run_bounds.is_some()) {
+                    Some(v) => v,
+                    None => Err("Mismatched fix in variable formula".into()),
+                }
+            }
             _ => Err(EngineError::Unsupported(format!(
                 "f_{id}[i][j] of fix {}",
                 fix.style
@@ -146,9 +141,6 @@ impl Simulation {
                 Ok(kind.mesh().and_then(|m| m.value(i)).unwrap_or(0.0))
             }
             (FixKind::AveTime(at), i) if at.value(i).is_some() => Ok(at.value(i).unwrap_or(0.0)),
-            (FixKind::Massflow(m), Some(i)) if m.value(i).is_some() => {
-                Ok(m.value(i).unwrap_or(0.0))
-            }
             (FixKind::Style(s), _) if s.global_freq() == 0 && self.run_bounds.is_some() => {
                 Err(crate::engine::global_values::zero_freq(id))
             }

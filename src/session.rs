@@ -227,6 +227,7 @@ pub fn run_deck_on(opts: &DeckOptions, comm: Option<crate::util::comm::RankComm>
         echo_screen,
         echo_log,
         write_errors: [None, None],
+        stdout_apart: !quiet && opts.screen.is_some(),
     };
     out.both(&banner());
     let mut interp = Interpreter::new(Mode::Run, out);

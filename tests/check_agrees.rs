@@ -230,3 +230,109 @@ fn an_unknown_mesh_movement_is_reported_in_liggghts_words() {
     assert_eq!(err, "ERROR: Mesh movement type not available");
     assert_eq!(code, Some(1));
 }
+
+#[test]
+fn a_pair_local_compute_needs_a_pair_style_with_history_in_check_and_run() {
+    // LIGGGHTS registers compute pair/gran/local with the pair style as it is created
+    let before = HEAD.replace(
+        "pair_style gran model hertz tangential history\n",
+        "compute pl all pair/gran/local pos id force\n\
+         pair_style gran model hertz tangential history\n",
+    );
+    let no_history = HEAD.replace("tangential history", "tangential no_history")
+        + "compute pl all pair/gran/local\n";
+    let history_fields = "Compute pair/gran/local or wall/gran/local can not calculate history \
+                          values since pair or wall style does not compute them";
+    for (deck, line, message) in [
+        (
+            before,
+            15,
+            "No pair style is defined for compute pair/gran/local",
+        ),
+        (no_history, 18, history_fields),
+    ] {
+        let dir = scratch("pairlocal");
+        std::fs::write(dir.join("in.t"), &deck).unwrap();
+        let (found, code) = problems(&dir);
+        assert_eq!(found, [format!("in.t:{line}: {message}")]);
+        assert_eq!(code, Some(1));
+        let (err, code) = run_error(&dir);
+        assert_eq!(err, format!("ERROR: {message}"));
+        assert_eq!(code, Some(1));
+    }
+    // with the pair style's tangential history the default fields are accepted
+    let dir = scratch("pairlocal-ok");
+    std::fs::write(
+        dir.join("in.t"),
+        format!("{HEAD}compute pl all pair/gran/local\n"),
+    )
+    .unwrap();
+    assert_eq!(problems(&dir), (vec![], Some(0)));
+}
+
+#[test]
+fn fix_wall_gran_errors_name_the_fix_in_check_and_run() {
+    // LIGGGHTS 3.8.0's messages (fix_wall_gran.cpp's fix_error)
+    let w = "fix w all wall/gran model hertz tangential history";
+    let cases = [
+        (format!("{w} primitive type 1 zplane 0.0 shear q 1"), "illegal 'shear' dim"),
+        (format!("{w} primitive type 0 zplane 0.0"), "1 <= type <= max type as defined in create_box'"),
+        (format!("{w} primitive typ 1 zplane 0.0"), "expecting keyword 'type'"),
+        (format!("{w} primitive type 1 zplanee 0.0"), "unknown primitive wall style"),
+        (format!("{w} primitive type 1 xcylinder 0.05 0.05"), "not enough arguments for primitive wall"),
+        (format!("{w} primitive type 1 zplane 0.0 store_force maybe"), "expecting 'yes' or 'no' after keyword 'store_force'"),
+        (format!("{w} primitive type 1 zplane 0.0 store_force"), " not enough arguments"),
+        (format!("{w} primitive type 1 zplane 0.0 shear z"), "not enough arguments for 'shear'"),
+        (format!("{w} primitive type 1 zplane 0.0 store_force_contact_every 0"), "store_force_contact_every must be > 0"),
+        (format!("{w} primitive type 1 zplane 0.0 contact_area constant 0"), "'contact_area constant' value must be > 0"),
+        (format!("{w} primitive type 1 zplane 0.0 contact_area bogus"), "expecting 'overlap', 'projection' or 'constant' after 'contact_area'"),
+        (format!("{w} primitive type 1 zplane 0.0 bogus 1"), "Unknown argument or wrong keyword order: 'bogus'"),
+        (format!("{w} limitForce on primitive type 1 zplane 0.0"), "Unknown argument or wrong keyword order: 'primitive'"),
+        (format!("{w} mesh n_meshes 0 meshes cad"), "'n_meshes' > 0 required"),
+        (format!("{w} mesh n_meshes 1 meshes nope"), "could not find fix mesh id you provided"),
+        (format!("{w} mesh meshes cad"), "have to define 'n_meshes' before 'meshes'"),
+        (format!("{w} mesh n_meshes 1 meshes m1"), "the fix belonging to the id you provided is not of type mesh"),
+        (format!("{w} mesh n_meshes 2 meshes cad"), "not enough arguments"),
+        (format!("{w} mesh n_meshes 1 meshes cad shear z 1"), "have to define primitive wall before 'shear'. For mehs walls, please use fix move/mesh"),
+        (format!("{w} n_meshes 1 meshes cad"), "have to use keyword 'mesh' before using 'n_meshes'"),
+        (w.to_string(), "Need to use define style 'mesh' or 'primitive'"),
+        (format!("{w} mesh"), "Need to provide the number and a list of meshes by using 'n_meshes' and 'meshes'"),
+        (
+            "fix w all wall/gran model hertzz primitive type 1 zplane 0.0".to_string(),
+            "Invalid model specified (check for typos and enable at least one model)",
+        ),
+    ];
+    for (line, message) in cases {
+        let dir = scratch("wallgran");
+        std::fs::write(dir.join("flat.stl"), FLAT_STL).unwrap();
+        let deck = format!("{HEAD}fix cad all mesh/surface file flat.stl type 1\n{line}\n");
+        std::fs::write(dir.join("in.t"), deck).unwrap();
+        let message = format!("Fix wall/gran (id w): {message}");
+        let (found, code) = problems(&dir);
+        assert_eq!(found.len(), 1, "{line}: {found:?}");
+        assert!(
+            found[0].starts_with(&format!("in.t:19: {message}")),
+            "{line}: {found:?}"
+        );
+        assert_eq!(code, Some(1), "{line}");
+        let (err, code) = run_error(&dir);
+        assert_eq!(err, format!("ERROR: {message}"), "{line}");
+        assert_eq!(code, Some(1), "{line}");
+    }
+    // a second mesh wall: refused at the run, by the first
+    let dir = scratch("wallgran-two");
+    std::fs::write(dir.join("flat.stl"), FLAT_STL).unwrap();
+    let deck = format!(
+        "{HEAD}fix cad all mesh/surface file flat.stl type 1\n\
+         {w} mesh n_meshes 1 meshes cad\n\
+         fix w2 all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad\n\
+         run 1\n"
+    );
+    std::fs::write(dir.join("in.t"), deck).unwrap();
+    let message = "Fix wall/gran (id w): More than one wall of type 'mesh' is not supported";
+    assert_eq!(
+        problems(&dir),
+        (vec![format!("in.t:21: {message}")], Some(1))
+    );
+    assert_eq!(run_error(&dir), (format!("ERROR: {message}"), Some(1)));
+}

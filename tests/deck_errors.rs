@@ -128,7 +128,7 @@ fix ins all pour 1000 1 1 vol 0.7 1000 diam 0.003 0.003 dens 2500 2500 vel 0. 0.
         &[
             "ERROR: Invalid pair style",
             "`pair_style gran model hertz tangential history`",
-            "ERROR: Invalid model specified (check for typos and enable at least one model)",
+            "ERROR: Fix wall/gran (id zwalls): Invalid model specified (check for typos and enable at least one model)",
             "`fix ID group wall/gran model hertz",
             "ERROR: Invalid fix style: \"pour\"",
             "`insert/stream`",

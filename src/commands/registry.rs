@@ -193,7 +193,14 @@ fn validate_gran_models(cmd: &CommandLine, start: usize) -> Result<(), CommandEr
             });
         };
         if value != crate::lang::UNKNOWN_VALUE && !names::names(kind).contains(&value) {
-            return Err(unknown(kind, value, i + 1));
+            let mut e = unknown(kind, value, i + 1);
+            // `fix wall/gran` raises it as a fix error, naming the fix
+            if let (CommandError::UnknownName { message, .. }, "fix", Some(id)) =
+                (&mut e, cmd.name(), cmd.arg(0))
+            {
+                *message = names::liggghts_wall_gran_model_message(id);
+            }
+            return Err(e);
         }
         i += 2;
     }

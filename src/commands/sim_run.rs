@@ -355,6 +355,7 @@ fn keep_periodic_restarts(ctx: &mut Ctx, nsteps: i64) {
 #[allow(clippy::type_complexity)]
 pub(super) fn gran_models(
     a: &Args,
+    ctx: &mut Ctx,
     start: usize,
     what: &str,
 ) -> std::result::Result<
@@ -370,8 +371,17 @@ pub(super) fn gran_models(
     let words: Vec<&str> = (start..a.len())
         .map(|i| a.word(i))
         .collect::<std::result::Result<_, _>>()?;
+    let wall = what == "fix wall/gran";
+    // a wall's errors name the fix (LIGGGHTS's `fix_error`)
+    let named = |m: &dyn std::fmt::Display| {
+        if wall {
+            format!("Fix wall/gran (id {}): {m}", a.word(0).unwrap_or(""))
+        } else {
+            m.to_string()
+        }
+    };
     let (mut sel, used) = Selection::select(&words).map_err(|m| {
-        let err = a.error(start, &m);
+        let err = a.error(start, named(&m));
         match words.first() {
             // LIGGGHTS 2.x: `wall/gran kn kt gamman gammat xmu dampflag wallstyle ...`
             Some(w) if what.contains("wall") && w.parse::<f64>().is_ok() => err.with_help(
@@ -382,15 +392,14 @@ pub(super) fn gran_models(
             _ => err,
         }
     })?;
-    if sel.normal == "off" {
-        return Err(a.error(
-            start,
-            "Invalid model specified (check for typos and enable at least one model)",
-        ));
+    // LIGGGHTS creates the model now, before reading its settings
+    if !crate::engine::contact::whitelist::whitelisted(&sel) {
+        ctx.say(crate::engine::contact::whitelist::WARNING);
     }
-    // on/off settings follow until the first word that is not a setting name
+    // on/off settings follow until the first word that is not a setting name (a wall's
+    // come after its own keywords)
     let mut end = used;
-    while end + 1 < words.len() && matches!(words[end + 1], "on" | "off" | "yes" | "no") {
+    while !wall && end + 1 < words.len() && matches!(words[end + 1], "on" | "off" | "yes" | "no") {
         end += 2;
     }
     let settings: Vec<&str> = words[used..end]
@@ -443,7 +452,7 @@ fn pair_style(a: &Args, ctx: &mut Ctx) -> Result {
     if a.word(0)? != "gran" {
         return Err(a.unsupported(0, &format!("pair_style {}", a.word(0)?)));
     }
-    let (sel, next, pending) = gran_models(a, 1, "pair_style gran")?;
+    let (sel, next, pending) = gran_models(a, ctx, 1, "pair_style gran")?;
     if next < a.len() {
         return Err(a.unsupported(next, &format!("pair_style gran option {}", a.word(next)?)));
     }

@@ -94,9 +94,23 @@ impl Simulation {
     /// the module fix styles, in fix order) and of the neighbour bins.
     pub fn check_run_init(&self) -> Result<(), EngineError> {
         let p = &self.particles;
-        for fix in &self.fixes {
+        for (k, fix) in self.fixes.iter().enumerate() {
             if let FixKind::Style(s) = &fix.kind {
                 s.check(p, fix.group, self.dimension)?;
+            }
+            // LIGGGHTS runs one mesh wall fix (which lists all meshes)
+            let other_mesh_wall = || {
+                self.fixes
+                    .iter()
+                    .enumerate()
+                    .any(|(j, f)| j != k && f.kind.mesh_wall().is_some())
+            };
+            if fix.kind.mesh_wall().is_some() && other_mesh_wall() {
+                return Err(format!(
+                    "Fix wall/gran (id {}): More than one wall of type 'mesh' is not supported",
+                    fix.id
+                )
+                .into());
             }
         }
         if self.sort_every > 0 {

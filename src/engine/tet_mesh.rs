@@ -106,21 +106,6 @@ pub enum TetMeshError {
     NoCells,
 }
 
-/// A leading integer as C's `atoi` reads it (0 when there is none).
-fn atoi(w: &str) -> i64 {
-    let t = w.trim_start();
-    let (sign, digits) = match t.as_bytes().first() {
-        Some(b'-') => (-1, &t[1..]),
-        Some(b'+') => (1, &t[1..]),
-        _ => (1, t),
-    };
-    let end = digits
-        .bytes()
-        .position(|b| !b.is_ascii_digit())
-        .unwrap_or(digits.len());
-    sign * digits[..end].parse::<i64>().unwrap_or(0)
-}
-
 /// The words of a line before its comment (a `#` outside quotes; the VTK header line is
 /// one).
 fn words_of(raw: &str) -> Vec<&str> {
@@ -186,7 +171,10 @@ impl VtkReader<'_> {
             if words[0] != "CELLS" {
                 return Err(TetMeshError::Section("CELLS"));
             }
-            self.ncells = words.get(1).map_or(0, |w| atoi(w)).max(0) as usize;
+            self.ncells = words
+                .get(1)
+                .map_or(0, |w| crate::util::numbers::c_atoi(w))
+                .max(0) as usize;
             if self.ncells == 0 {
                 self.cells_done = true;
                 self.last_cell_line = line_no;
@@ -200,7 +188,7 @@ impl VtkReader<'_> {
             if words[0] != "CELL_TYPES" {
                 return Err(TetMeshError::Section("CELL_TYPES"));
             }
-            if words.get(1).map_or(0, |w| atoi(w)) != self.ncells as i64 {
+            if words.get(1).map_or(0, |w| crate::util::numbers::c_atoi(w)) != self.ncells as i64 {
                 return Err(TetMeshError::CellTypes);
             }
             return Ok(());
@@ -226,7 +214,10 @@ impl VtkReader<'_> {
                 if words[0] != "POINTS" {
                     return Err(TetMeshError::Section("POINTS"));
                 }
-                self.npoints = words.get(1).map_or(0, |w| atoi(w)).max(0) as usize;
+                self.npoints = words
+                    .get(1)
+                    .map_or(0, |w| crate::util::numbers::c_atoi(w))
+                    .max(0) as usize;
                 if self.npoints == 0 {
                     self.points_done = true;
                     self.last_point_line = self.line_no;
@@ -266,7 +257,7 @@ impl VtkReader<'_> {
         let cell = if words.len() == 5 {
             let mut c = [0usize; 4];
             for k in 0..4 {
-                let n = atoi(words[1 + k]);
+                let n = crate::util::numbers::c_atoi(words[1 + k]);
                 if n < 0 || n as usize >= self.npoints.min(self.points.len()) {
                     return Err(TetMeshError::CellPoint {
                         cell: self.cells.len(),

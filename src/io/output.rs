@@ -16,6 +16,9 @@ pub struct Output {
     /// The first failed write to the screen and to the log (a full disk, a closed pipe):
     /// reported once on standard error when it happens, and again at the end.
     pub write_errors: [Option<String>; 2],
+    /// Text LIGGGHTS prints with `printf` goes to standard output itself, not through the
+    /// screen (set when the screen is a file or `none`).
+    pub stdout_apart: bool,
 }
 
 impl Output {
@@ -27,6 +30,7 @@ impl Output {
             echo_screen: false,
             echo_log: false,
             write_errors: [None, None],
+            stdout_apart: false,
         }
     }
 
@@ -57,6 +61,17 @@ impl Output {
             if let Err(e) = l.write_all(text.as_bytes()) {
                 self.failed(1, e);
             }
+        }
+    }
+
+    /// Write `text` to standard output, as LIGGGHTS's `printf` does: through the screen
+    /// when the screen is standard output, else directly (neither to a screen file nor to
+    /// the log).
+    pub fn stdout(&mut self, text: &str) {
+        if self.stdout_apart {
+            let _ = std::io::stdout().write_all(text.as_bytes());
+        } else {
+            self.screen(text);
         }
     }
 

@@ -332,6 +332,19 @@ impl Restart {
         }
     }
 
+    /// The major and minor version LIGGGHTS reads from the version string: the numbers
+    /// before the first two dots after its second blank (as `atoi` reads them), if both
+    /// dots are there.
+    pub fn version_numbers(&self) -> Option<(i64, i64)> {
+        let v = self.text(flag::VERSION)?;
+        let space1 = v.find(' ')?;
+        let space2 = space1 + 1 + v[space1 + 1..].find(' ')?;
+        let dot1 = space2 + 1 + v[space2 + 1..].find('.')?;
+        let dot2 = dot1 + 1 + v[dot1 + 1..].find('.')?;
+        let atoi = crate::util::numbers::c_atoi;
+        Some((atoi(&v[space2 + 1..dot1]), atoi(&v[dot1 + 1..dot2])))
+    }
+
     /// The timestep count.
     pub fn step(&self) -> i64 {
         self.int(flag::NTIMESTEP).unwrap_or(0)

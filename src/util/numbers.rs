@@ -61,6 +61,21 @@ pub fn inumeric(word: &str) -> Result<i64, NumberError> {
     Ok(x as i64)
 }
 
+/// A leading integer as C's `atoi` reads it after leading blanks (0 when there is none).
+pub fn c_atoi(w: &str) -> i64 {
+    let t = w.trim_start_matches(is_c_space);
+    let (sign, digits) = match t.as_bytes().first() {
+        Some(b'-') => (-1, &t[1..]),
+        Some(b'+') => (1, &t[1..]),
+        _ => (1, t),
+    };
+    let end = digits
+        .bytes()
+        .position(|b| !b.is_ascii_digit())
+        .unwrap_or(digits.len());
+    sign * digits[..end].parse::<i64>().unwrap_or(0)
+}
+
 /// The blanks C's `isspace` knows (space, tab, newline, vertical tab, form feed, return).
 pub fn is_c_space(c: char) -> bool {
     matches!(c, ' ' | '\t' | '\n' | '\u{0b}' | '\u{0c}' | '\r')

@@ -240,6 +240,10 @@ pub fn build(
     if a.len() == 3 {
         fields = LocalField::defaults();
     }
+    // LIGGGHTS registers the compute with the pair style when it is created
+    let Some(sel) = &ctx.sim.pair_selection else {
+        return Err(a.error(2, "No pair style is defined for compute pair/gran/local"));
+    };
     if ctx
         .sim
         .computes
@@ -248,7 +252,23 @@ pub fn build(
     {
         return Err(a.error(2, "Pair gran allows only one compute of type pair/local"));
     }
+    if fields.contains(&LocalField::History) && pair_history_width(sel) == 0 {
+        return Err(a.error(2, "Compute pair/gran/local or wall/gran/local can not calculate history values since pair or wall style does not compute them"));
+    }
     fields.sort();
     fields.dedup();
     Ok(Box::new(PairGranLocal { fields }))
+}
+
+/// Doubles of history per neighbour pair the pair style `sel` keeps: the wet bridge and
+/// multicontact loops keep their own besides the dry model's.
+fn pair_history_width(sel: &crate::engine::granular::Selection) -> usize {
+    let own = usize::from(sel.cohesion == crate::engine::wet::EASO)
+        + if sel.surface == "multicontact" {
+            crate::engine::contact::multicontact::PAIR_HISTORY
+        } else {
+            0
+        };
+    own + crate::engine::contact::AnyContactModel::new(&crate::engine::wet::dry(sel))
+        .map_or(0, |m| m.history_len())
 }

@@ -1,165 +1,261 @@
 //! `fix wall/gran`: granular walls, primitive planes and cylinders or triangle meshes.
+//!
+//! The arguments are read as LIGGGHTS 3.8.0 reads them (fix_wall_gran.cpp): the contact
+//! model keywords, then its own keywords in any order until a word that is none of them,
+//! then the model's on/off settings; its errors name the fix (`Fix wall/gran (id ID): ...`).
 
 use crate::commands::fix::FixDef;
 use crate::commands::sim_run::gran_models;
 use crate::commands::{Args, CommandError, Ctx};
+use crate::engine::contact::ModelError;
 use crate::engine::fixes::FixKind;
+use crate::engine::granular::Primitive;
+use crate::util::numbers::c_atoi;
 
-/// `fix ID GROUP wall/gran model ... primitive type T SHAPE ARGS | mesh n_meshes N meshes ...`.
+/// `fix ID GROUP wall/gran model ... primitive type T SHAPE ARGS | mesh n_meshes N meshes ...`
+/// with keywords and model settings after them.
 pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
     let FixDef { id, group, .. } = *fix;
-    let (selection, next, pending) = gran_models(a, 3, "fix wall/gran")?;
+    let fail = |k: usize, m: &str| a.error(k, format!("Fix wall/gran (id {id}): {m}"));
+    let (mut selection, mut k, pending) = gran_models(a, ctx, 3, "fix wall/gran")?;
     if let Some(d) = pending {
         return Err(d);
     }
-    if a.word(next)? == "mesh" {
-        return mesh_wall(a, ctx, group, selection, next);
-    }
-    if a.word(next)? != "primitive" {
-        return Err(a.keyword_error(next, &["primitive", "mesh"]));
-    }
-    if a.word(next + 1)? != "type" {
-        return Err(a
-            .error(next + 1, "Illegal fix wall/gran command")
-            .with_help("expected: primitive type T xplane|yplane|zplane POS"));
-    }
-    let wall_type = a.int(next + 2)?;
-    if wall_type < 1 || wall_type > ctx.sim.ntypes as i64 {
-        return Err(a.error(
-            next + 2,
-            "Illegal fix wall/gran command: wall type out of range",
-        ));
-    }
-    use crate::engine::granular::Primitive;
-    let shape_word = a.word(next + 3)?;
-    let axis = |c: char| (c as usize) - ('x' as usize);
-    let (shape, used) = match shape_word {
-        "xplane" | "yplane" | "zplane" => (
-            Primitive::Plane {
-                axis: axis(shape_word.chars().next().unwrap()),
-                position: a.real(next + 4)?,
-            },
-            5,
-        ),
-        "xcylinder" | "ycylinder" | "zcylinder" => (
-            Primitive::Cylinder {
-                axis: axis(shape_word.chars().next().unwrap()),
-                radius: a.real(next + 4)?,
-                c1: a.real(next + 5)?,
-                c2: a.real(next + 6)?,
-            },
-            7,
-        ),
-        other => return Err(a.unsupported(next + 3, &format!("fix wall/gran primitive {other}"))),
-    };
-    // general keywords, then on/off model settings in any order
-    let mut selection = selection;
+    // LIGGGHTS's meshwall_: unset, primitive (false) or mesh (true), whichever came last
+    let mut mesh_style: Option<bool> = None;
+    let mut primitive: Option<(usize, Primitive)> = None;
+    let mut n_meshes = 0usize;
+    let mut meshes: Option<Vec<String>> = None;
     let mut shear = None;
-    let mut k = next + used;
+    let yes_no = |k: usize, what: &str| -> Result<bool, CommandError> {
+        if k + 2 > a.len() {
+            return Err(fail(k, " not enough arguments"));
+        }
+        match a.word(k + 1)? {
+            "yes" => Ok(true),
+            "no" => Ok(false),
+            _ => Err(fail(
+                k + 1,
+                &format!("expecting 'yes' or 'no' after keyword '{what}'"),
+            )),
+        }
+    };
     while k < a.len() {
         match a.word(k)? {
-            "shear" => {
-                let dim = match a.word(k + 1)? {
-                    "x" => 0,
-                    "y" => 1,
-                    "z" => 2,
-                    _ => return Err(a.error(k + 1, "Fix wall/gran: illegal 'shear' dim")),
-                };
-                shear = Some((dim, a.real(k + 2)?));
-                k += 3;
-            }
-            "store_force" | "store_force_contact" | "store_force_contact_stress" => {
-                if a.word_in(k + 1, &["yes", "no"])? == "yes" {
-                    return Err(a.unsupported(k, &format!("fix wall/gran {} yes", a.word(k)?)));
+            "primitive" => {
+                mesh_style = Some(false);
+                if a.word(k + 1)? != "type" {
+                    return Err(fail(k + 1, "expecting keyword 'type'"));
                 }
+                let wall_type = a.int(k + 2)?;
+                if wall_type < 1 || wall_type > ctx.sim.ntypes as i64 {
+                    return Err(fail(
+                        k + 2,
+                        "1 <= type <= max type as defined in create_box'",
+                    ));
+                }
+                let shape_word = a.word(k + 3)?;
+                let nargs = match shape_word {
+                    "xplane" | "yplane" | "zplane" => 1,
+                    "xcylinder" | "ycylinder" | "zcylinder" => 3,
+                    _ => 0,
+                };
+                let first = k + 4;
+                if a.len() - first < nargs {
+                    return Err(fail(k + 3, "not enough arguments for primitive wall"));
+                }
+                let values = (first..first + nargs)
+                    .map(|i| a.real(i))
+                    .collect::<Result<Vec<f64>, _>>()?;
+                let axis = (shape_word.as_bytes()[0] - b'x') as usize;
+                let shape = match nargs {
+                    1 => Primitive::Plane {
+                        axis,
+                        position: values[0],
+                    },
+                    3 => Primitive::Cylinder {
+                        axis,
+                        radius: values[0],
+                        c1: values[1],
+                        c2: values[2],
+                    },
+                    _ => return Err(fail(k + 3, "unknown primitive wall style")),
+                };
+                primitive = Some((wall_type as usize, shape));
+                k = first + nargs;
+            }
+            "mesh" => {
+                mesh_style = Some(true);
+                k += 1;
+            }
+            // LIGGGHTS 3.8.0 sets a flag nothing reads
+            "track_energy" => k += 1,
+            // only relaxes a check of triclinic and wedge domains, which regolith has not
+            "allow_special_domain_periodic" => {
+                yes_no(k, "allow_special_domain_periodic")?;
                 k += 2;
             }
-            "temperature" => {
-                return Err(a.unsupported(k, "fix wall/gran temperature (heat transfer with walls)"))
-            }
-            _ => break,
-        }
-    }
-    let rest: Vec<&str> = (k..a.len())
-        .map(|i| a.word(i))
-        .collect::<std::result::Result<_, _>>()?;
-    selection
-        .apply_settings(&rest)
-        .map_err(|m| a.error(k, format!("Fix wall/gran: {m}")))?;
-    Ok(FixKind::WallGran(crate::engine::fixes::WallFix {
-        selection,
-        plane: shape,
-        wall_type: wall_type as usize,
-        shear,
-        model: None,
-        history_name: format!("history_{id}"),
-        multicontact: None,
-    }))
-}
-
-/// `fix ID GROUP wall/gran model ... mesh n_meshes N meshes M1 .. MN [model settings]`.
-fn mesh_wall(
-    a: &Args,
-    ctx: &Ctx,
-    group: &str,
-    mut selection: crate::engine::granular::Selection,
-    at: usize,
-) -> Result<FixKind, CommandError> {
-    if a.word(at + 1)? != "n_meshes" {
-        return Err(a
-            .error(at + 1, "Fix wall/gran: expecting keyword 'n_meshes'")
-            .with_help("expected: mesh n_meshes N meshes ID1 ... IDN"));
-    }
-    let n = a.int(at + 2)?;
-    if n < 1 {
-        return Err(a.error(at + 2, "Fix wall/gran: 'n_meshes' must be > 0"));
-    }
-    if a.word(at + 3)? != "meshes" {
-        return Err(a.error(at + 3, "Fix wall/gran: expecting keyword 'meshes'"));
-    }
-    let mut meshes = Vec::new();
-    for k in 0..n as usize {
-        let id = a.word(at + 4 + k)?;
-        if crate::engine::fixes::mesh_named(&ctx.sim.fixes, id).is_none() {
-            return Err(a.error(
-                at + 4 + k,
-                format!("Fix wall/gran: failed to find fix mesh/surface with ID {id}"),
-            ));
-        }
-        meshes.push(id.to_string());
-    }
-    if ctx.sim.fixes.iter().any(|f| f.kind.mesh_wall().is_some()) {
-        return Err(a.error(
-            0,
-            "More than one wall of type 'mesh' is not supported; list all meshes with n_meshes",
-        ));
-    }
-    let mut k = at + 4 + n as usize;
-    while k < a.len() {
-        match a.word(k)? {
             w @ ("store_force" | "store_force_contact" | "store_force_contact_stress") => {
-                if a.word_in(k + 1, &["yes", "no"])? == "yes" {
+                let named = match w {
+                    "store_force" => "store_force",
+                    "store_force_contact" => "store_force_contact_",
+                    _ => "store_force_contact_stress_",
+                };
+                if yes_no(k, named)? {
                     return Err(a.unsupported(k, &format!("fix wall/gran {w} yes")));
                 }
                 k += 2;
             }
+            "store_force_contact_every" => {
+                if k + 2 > a.len() {
+                    return Err(fail(k, " not enough arguments"));
+                }
+                if c_atoi(a.word(k + 1)?) <= 0 {
+                    return Err(fail(k + 1, "store_force_contact_every must be > 0"));
+                }
+                return Err(a.unsupported(k, "fix wall/gran store_force_contact_every"));
+            }
+            "n_meshes" => {
+                if mesh_style != Some(true) {
+                    return Err(fail(
+                        k,
+                        "have to use keyword 'mesh' before using 'n_meshes'",
+                    ));
+                }
+                if k + 2 > a.len() {
+                    return Err(fail(k, "not enough arguments"));
+                }
+                let n = c_atoi(a.word(k + 1)?);
+                if n < 1 {
+                    return Err(fail(k + 1, "'n_meshes' > 0 required"));
+                }
+                n_meshes = n as usize;
+                k += 2;
+            }
+            "meshes" => {
+                if mesh_style != Some(true) {
+                    return Err(fail(k, "have to use keyword 'mesh' before using 'meshes'"));
+                }
+                if n_meshes == 0 {
+                    return Err(fail(k, "have to define 'n_meshes' before 'meshes'"));
+                }
+                if a.len() < k + 1 + n_meshes {
+                    return Err(fail(k, "not enough arguments"));
+                }
+                let mut list = Vec::with_capacity(n_meshes);
+                for i in k + 1..k + 1 + n_meshes {
+                    let mesh_id = a.word(i)?;
+                    let Some(f) = ctx.sim.fixes.iter().find(|f| f.id == mesh_id) else {
+                        return Err(fail(i, "could not find fix mesh id you provided"));
+                    };
+                    if f.kind.mesh().is_none() {
+                        return Err(fail(
+                            i,
+                            "the fix belonging to the id you provided is not of type mesh",
+                        ));
+                    }
+                    list.push(mesh_id.to_string());
+                }
+                meshes = Some(list);
+                k += 1 + n_meshes;
+            }
+            "shear" => {
+                if k + 3 > a.len() {
+                    return Err(fail(k, "not enough arguments for 'shear'"));
+                }
+                if primitive.is_none() {
+                    return Err(fail(k, "have to define primitive wall before 'shear'. For mehs walls, please use fix move/mesh"));
+                }
+                let dim = match a.word(k + 1)? {
+                    "x" => 0,
+                    "y" => 1,
+                    "z" => 2,
+                    _ => return Err(fail(k + 1, "illegal 'shear' dim")),
+                };
+                shear = Some((dim, a.real(k + 2)?));
+                k += 3;
+            }
+            "temperature" => {
+                if k + 1 >= a.len() {
+                    return Err(fail(k, "not enough arguments for 'temperature'"));
+                }
+                a.real(k + 1)?;
+                return Err(
+                    a.unsupported(k, "fix wall/gran temperature (heat transfer with walls)")
+                );
+            }
+            "contact_area" => {
+                match a.word(k + 1)? {
+                    // the default
+                    "overlap" => {}
+                    "projection" => {
+                        return Err(a.unsupported(k, "fix wall/gran contact_area projection"))
+                    }
+                    "constant" => {
+                        if k + 3 > a.len() {
+                            return Err(fail(
+                                k,
+                                "not enough arguments for keyword 'contact_area constant'",
+                            ));
+                        }
+                        if a.real(k + 2)? <= 0.0 {
+                            return Err(fail(k + 2, "'contact_area constant' value must be > 0"));
+                        }
+                        return Err(a.unsupported(k, "fix wall/gran contact_area constant"));
+                    }
+                    _ => {
+                        return Err(fail(
+                            k + 1,
+                            "expecting 'overlap', 'projection' or 'constant' after 'contact_area'",
+                        ))
+                    }
+                }
+                k += 2;
+            }
             _ => break,
         }
     }
+    // the rest are the contact model's on/off settings
     let rest: Vec<&str> = (k..a.len())
         .map(|i| a.word(i))
         .collect::<std::result::Result<_, _>>()?;
-    selection
-        .apply_settings(&rest)
-        .map_err(|m| a.error(k, format!("Fix wall/gran: {m}")))?;
-    let group_index = ctx.sim.groups.iter().position(|g| g == group).unwrap_or(0) as u32;
-    Ok(FixKind::MeshWall(crate::engine::fixes::MeshWallFix {
-        selection,
-        meshes,
-        group_index,
-        model: None,
-        trackers: Vec::new(),
-        built: None,
-        multicontact: Vec::new(),
-    }))
+    if let Err(e) = selection.apply_settings(&rest) {
+        return Err(match e {
+            ModelError::Invalid(m) => fail(k, &m),
+            ModelError::Unsupported(setting) => a.unsupported(
+                k,
+                &format!("fix wall/gran setting {}", setting.trim_matches('\'')),
+            ),
+        });
+    }
+    match (mesh_style, primitive) {
+        (Some(true), _) => {
+            let Some(meshes) = meshes else {
+                return Err(fail(
+                    2,
+                    "Need to provide the number and a list of meshes by using 'n_meshes' and 'meshes'",
+                ));
+            };
+            let group_index = ctx.sim.groups.iter().position(|g| g == group).unwrap_or(0) as u32;
+            Ok(FixKind::MeshWall(crate::engine::fixes::MeshWallFix {
+                selection,
+                meshes,
+                group_index,
+                model: None,
+                trackers: Vec::new(),
+                built: None,
+                multicontact: Vec::new(),
+            }))
+        }
+        (_, Some((wall_type, plane))) => Ok(FixKind::WallGran(crate::engine::fixes::WallFix {
+            selection,
+            plane,
+            wall_type,
+            shear,
+            model: None,
+            history_name: format!("history_{id}"),
+            multicontact: None,
+        })),
+        _ => Err(fail(2, "Need to use define style 'mesh' or 'primitive'")),
+    }
 }

@@ -139,6 +139,10 @@ pub(super) fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
     // the file as the deck names it (not the folder it was resolved against)
     .map_err(|e| a.error(0, e.to_string().replace(&path, name)))?;
     ctx.say("Reading restart file ...\n");
+    if let (Some((major, minor)), Mode::Run) = (r.version_numbers(), ctx.sys.mode) {
+        // LIGGGHTS prints the version it parsed with printf: on standard output only
+        ctx.out.stdout(&format!("version {major} {minor}\n"));
+    }
     let pair = ctx.sim.load_restart(&r).map_err(|m| a.error(0, &m))?;
     ctx.sim.restart_in_progress = !r.global_fixes.is_empty() || !r.peratom_fixes.is_empty();
     ctx.sim.extras.restart_peratom_fixes = r.peratom_fixes.len();
@@ -152,12 +156,12 @@ pub(super) fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
     let grid =
         crate::commands::processors::grid_lines(a, ctx, [0, 1, 2].map(|d| hi[d] - lo[d]), 0)?;
     let line = format!(
-        "{}{grid}  {} atoms\n",
+        "{}{grid}",
         crate::commands::change_box::orthogonal_box_line(lo, hi),
-        ctx.sim.particles.len()
     );
     ctx.say(&line);
     // the pair style stored in the file, as LIGGGHTS recreates it (decks usually repeat it)
+    // before it reads the atoms
     if let Some(words) = pair {
         for text in [format!("pair_style {words}"), "pair_coeff * *".to_string()] {
             let words = crate::lang::line::split_words(&text)
@@ -173,6 +177,8 @@ pub(super) fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
             }
         }
     }
+    let atoms = format!("  {} atoms\n", ctx.sim.particles.len());
+    ctx.say(&atoms);
     Ok(())
 }
 

@@ -45,6 +45,7 @@ pub mod rolling;
 mod selection;
 pub mod surface;
 pub mod tangential;
+pub mod whitelist;
 
 use std::f64::consts::PI;
 

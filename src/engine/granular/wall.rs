@@ -304,7 +304,12 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Wall
                 }
             }
             let touching = &touching[..n];
-            let quads = if lanes { n / LANES } else { 0 };
+            // (elsewhere than x86-64 every touching particle goes one at a time below)
+            let quads = if lanes && cfg!(target_arch = "x86_64") {
+                n / LANES
+            } else {
+                0
+            };
             #[cfg(target_arch = "x86_64")]
             for q in touching.chunks_exact(LANES).take(quads) {
                 let q: &[_; LANES] = q.try_into().expect("four lanes");

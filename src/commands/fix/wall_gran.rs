@@ -67,14 +67,15 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 let values = (first..first + nargs)
                     .map(|i| a.real(i))
                     .collect::<Result<Vec<f64>, _>>()?;
-                let axis = (shape_word.as_bytes()[0] - b'x') as usize;
+                // only the named shapes (x/y/z first) have an axis
+                let axis = || usize::from(shape_word.as_bytes()[0] - b'x');
                 let shape = match nargs {
                     1 => Primitive::Plane {
-                        axis,
+                        axis: axis(),
                         position: values[0],
                     },
                     3 => Primitive::Cylinder {
-                        axis,
+                        axis: axis(),
                         radius: values[0],
                         c1: values[1],
                         c2: values[2],

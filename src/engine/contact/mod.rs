@@ -649,29 +649,13 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
             }
             return WallOutput::default();
         }
-        let deltan = -w.gap;
-        let delta = [-w.to_wall[0], -w.to_wall[1], -w.to_wall[2]];
-        let r = w.radius - deltan;
-        let rinv = 1.0 / r;
-        let en = [delta[0] * rinv, delta[1] * rinv, delta[2] * rinv];
-        let mut c = Contact {
-            is_wall: true,
-            radi: w.radius,
-            radsum: w.radius,
-            r,
-            rinv,
-            delta,
-            en,
-            deltan,
-            mi: w.mass,
-            meff: w.mass,
-            vi: w.v,
-            vj: w.v_wall,
-            omegai: w.omega,
-            dt: w.dt,
-            update_history: w.update_history,
-            ..Contact::default()
-        };
+        let mut c = wall_contact(
+            (w.gap, w.to_wall, w.radius, w.mass),
+            (w.v, w.omega, w.v_wall),
+            w.dt,
+            w.update_history,
+        );
+        let delta = c.delta;
         self.intersect(&mut c, w.coeffs, history);
         WallOutput {
             touching: true,
@@ -695,29 +679,12 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
         m: &impl Coeffs<F64x4>,
         history: &mut [F64x4],
     ) -> ([F64x4; 3], [F64x4; 3]) {
-        let deltan = -w.gap;
-        let delta = [-w.to_wall[0], -w.to_wall[1], -w.to_wall[2]];
-        let r = w.radius - deltan;
-        let rinv = F64x4::splat(1.0) / r;
-        let en = [delta[0] * rinv, delta[1] * rinv, delta[2] * rinv];
-        let mut c = Contact {
-            is_wall: true,
-            radi: w.radius,
-            radsum: w.radius,
-            r,
-            rinv,
-            delta,
-            en,
-            deltan,
-            mi: w.mass,
-            meff: w.mass,
-            vi: w.v,
-            vj: w.v_wall,
-            omegai: w.omega,
-            dt: F64x4::splat(w.dt),
-            update_history: w.update_history,
-            ..Contact::default()
-        };
+        let mut c = wall_contact(
+            (w.gap, w.to_wall, w.radius, w.mass),
+            (w.v, w.omega, w.v_wall),
+            F64x4::splat(w.dt),
+            w.update_history,
+        );
         self.intersect(&mut c, m, history);
         (c.fi, c.ti)
     }
@@ -731,6 +698,41 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
         let (ht, hr) = history.split_at_mut(self.tangential.history_len());
         self.tangential.surfaces_close(ht);
         self.rolling.surfaces_close(hr);
+    }
+}
+
+/// A particle touching a wall before any sub-model runs, for one particle or four lanes:
+/// from its gap and vector to the wall (m), radius (m) and mass (kg, meff = mass), its
+/// velocity, spin and the wall's velocity (m/s, rad/s), and the step (s).
+#[inline(always)]
+fn wall_contact<S: Real>(
+    (gap, to_wall, radius, mass): (S, [S; 3], S, S),
+    (v, omega, v_wall): ([S; 3], [S; 3], [S; 3]),
+    dt: S,
+    update_history: bool,
+) -> Contact<S> {
+    let deltan = -gap;
+    let delta = [-to_wall[0], -to_wall[1], -to_wall[2]];
+    let r = radius - deltan;
+    let rinv = S::splat(1.0) / r;
+    let en = [delta[0] * rinv, delta[1] * rinv, delta[2] * rinv];
+    Contact {
+        is_wall: true,
+        radi: radius,
+        radsum: radius,
+        r,
+        rinv,
+        delta,
+        en,
+        deltan,
+        mi: mass,
+        meff: mass,
+        vi: v,
+        vj: v_wall,
+        omegai: omega,
+        dt,
+        update_history,
+        ..Contact::default()
     }
 }
 

@@ -221,7 +221,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Wall
         if many || crate::engine::integrate::parallel(near.len()) {
             let out = crate::util::team::Shards::new(&mut results);
             let parts = &*p;
-            crate::util::team::stage_chunks(near.len(), 128, true, |_, r| {
+            crate::util::team::stage_chunks(near.len(), WALL_CHUNK, true, |_, r| {
                 // SAFETY: the chunks of a stage are disjoint
                 let out = unsafe { out.range(r.clone()) };
                 // SAFETY: `near` holds distinct indices, so each chunk writes its own

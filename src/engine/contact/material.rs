@@ -210,6 +210,27 @@ impl Coeffs<super::real::F64x4> for CoeffLanes<'_> {
     }
 }
 
+/// The coefficients of the eight contacts of a wide batch.
+#[derive(Debug, Clone, Copy)]
+pub struct CoeffWideLanes<'a>(pub [&'a PairCoeffs; super::real::WIDE_LANES]);
+
+impl Coeffs<super::real::F64x8> for CoeffWideLanes<'_> {
+    #[inline(always)]
+    fn get<F: Fn(&PairCoeffs) -> f64>(&self, f: F) -> super::real::F64x8 {
+        let c = &self.0;
+        super::real::F64x8([
+            f(c[0]),
+            f(c[1]),
+            f(c[2]),
+            f(c[3]),
+            f(c[4]),
+            f(c[5]),
+            f(c[6]),
+            f(c[7]),
+        ])
+    }
+}
+
 /// Per-type-pair coefficient tables, indexed by 1-based atom types.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Material {

@@ -50,11 +50,13 @@ pub mod whitelist;
 use std::f64::consts::PI;
 
 pub use cohesion::{AnyCohesion, CohesionModel, NoCohesion, Sjkr, Sjkr2};
-pub use material::{CoeffLanes, Coeffs, Material, MaterialInput, PairCoeffs, Property, UnitStyle};
+pub use material::{
+    CoeffLanes, CoeffWideLanes, Coeffs, Material, MaterialInput, PairCoeffs, Property, UnitStyle,
+};
 pub use normal::{
     AnyNormal, Hertz, HertzStiffness, Hooke, HookeHysteresis, HookeStiffness, NormalModel,
 };
-pub use real::{F64x4, Real, LANES};
+pub use real::{F64x4, F64x8, Real, LANES, WIDE_LANES};
 pub use rolling::{AnyRolling, Cdt, Epsd, Epsd2, Epsd3, NoRolling, RollingModel};
 pub use selection::{ModelError, ModelOptions, ModelSelection};
 pub use surface::{DefaultSurface, SurfaceModel};
@@ -223,34 +225,35 @@ pub struct PairInput<'a> {
     pub coeffs: &'a PairCoeffs,
 }
 
-/// Four particle pairs side by side, one per lane, as the batched pair loop gathers them
-/// (the fields of [`PairInput`]; j already shifted to the image nearest i).
+/// Particle pairs side by side, one per lane of `S` ([`F64x4`] or [`real::F64x8`]), as the
+/// batched pair loop gathers them (the fields of [`PairInput`]; j already shifted to the
+/// image nearest i).
 #[derive(Debug, Clone, Copy)]
-pub struct PairLanes {
+pub struct PairLanes<S: Real = F64x4> {
     /// Positions of i (m).
-    pub xi: [F64x4; 3],
+    pub xi: [S; 3],
     /// Positions of j (m).
-    pub xj: [F64x4; 3],
+    pub xj: [S; 3],
     /// Radii of i (m).
-    pub radi: F64x4,
+    pub radi: S,
     /// Radii of j (m).
-    pub radj: F64x4,
+    pub radj: S,
     /// Masses of i (kg).
-    pub mi: F64x4,
+    pub mi: S,
     /// Masses of j (kg).
-    pub mj: F64x4,
+    pub mj: S,
     /// i is frozen (infinite mass in the damping).
-    pub frozen_i: real::M4,
+    pub frozen_i: S::Mask,
     /// j is frozen.
-    pub frozen_j: real::M4,
+    pub frozen_j: S::Mask,
     /// Velocities of i (m/s).
-    pub vi: [F64x4; 3],
+    pub vi: [S; 3],
     /// Velocities of j (m/s).
-    pub vj: [F64x4; 3],
+    pub vj: [S; 3],
     /// Angular velocities of i (rad/s).
-    pub omegai: [F64x4; 3],
+    pub omegai: [S; 3],
     /// Angular velocities of j (rad/s).
-    pub omegaj: [F64x4; 3],
+    pub omegaj: [S; 3],
     /// Time step (s).
     pub dt: f64,
     /// Advance and store history (false during setup).
@@ -281,19 +284,19 @@ pub struct WallLanes {
     pub update_history: bool,
 }
 
-/// What four touching pairs contribute, one per lane (see [`PairOutput`]).
+/// What a batch of touching pairs contributes, one per lane of `S` (see [`PairOutput`]).
 #[derive(Debug, Clone, Copy, Default)]
-pub struct PairLanesOutput {
+pub struct PairLanesOutput<S = F64x4> {
     /// Forces on i (N).
-    pub fi: [F64x4; 3],
+    pub fi: [S; 3],
     /// Forces on j (N).
-    pub fj: [F64x4; 3],
+    pub fj: [S; 3],
     /// Torques on i (N m).
-    pub ti: [F64x4; 3],
+    pub ti: [S; 3],
     /// Torques on j (N m).
-    pub tj: [F64x4; 3],
+    pub tj: [S; 3],
     /// Overlaps (m).
-    pub deltan: F64x4,
+    pub deltan: S,
 }
 
 /// What one pair contributes (all zero and `touching == false` if the spheres do not
@@ -586,27 +589,27 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
         }
     }
 
-    /// Forces and torques of four touching particle pairs at once (lane k is the pair
+    /// Forces and torques of a batch of touching particle pairs at once (lane k is the pair
     /// [`Self::pair_force`] would compute from the k-th inputs, bit for bit); `history`
     /// holds each lane's values (`history_len()` entries).
     #[inline(always)]
-    pub fn pair_force_lanes(
+    pub fn pair_force_lanes<S: Real>(
         &self,
-        p: &PairLanes,
-        m: &impl Coeffs<F64x4>,
-        history: &mut [F64x4],
-    ) -> PairLanesOutput {
+        p: &PairLanes<S>,
+        m: &impl Coeffs<S>,
+        history: &mut [S],
+    ) -> PairLanesOutput<S> {
         let delx = p.xi[0] - p.xj[0];
         let dely = p.xi[1] - p.xj[1];
         let delz = p.xi[2] - p.xj[2];
         let rsq = delx * delx + dely * dely + delz * delz;
         let radsum = p.radi + p.radj;
         let r = rsq.sqrt();
-        let rinv = F64x4::splat(1.0) / r;
+        let rinv = S::splat(1.0) / r;
         let en = [delx * rinv, dely * rinv, delz * rinv];
         let mut meff = p.mi * p.mj / (p.mi + p.mj);
-        meff = F64x4::select(p.frozen_i, p.mj, meff);
-        meff = F64x4::select(p.frozen_j, p.mi, meff);
+        meff = S::select(p.frozen_i, p.mj, meff);
+        meff = S::select(p.frozen_j, p.mi, meff);
         let mut c = Contact {
             is_wall: false,
             radi: p.radi,
@@ -623,7 +626,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
             vj: p.vj,
             omegai: p.omegai,
             omegaj: p.omegaj,
-            dt: F64x4::splat(p.dt),
+            dt: S::splat(p.dt),
             update_history: p.update_history,
             ..Contact::default()
         };

@@ -10,8 +10,9 @@
 
 use crate::engine::contact::real::Real;
 use crate::engine::contact::{
-    CoeffLanes, Coeffs, CohesionModel, ContactModel, F64x4, Material, NormalModel, PairCoeffs,
-    PairLanes, PairLanesOutput, RollingModel, TangentialModel, LANES,
+    CoeffLanes, CoeffWideLanes, Coeffs, CohesionModel, ContactModel, F64x4, F64x8, Material,
+    NormalModel, PairCoeffs, PairLanes, PairLanesOutput, RollingModel, TangentialModel, LANES,
+    WIDE_LANES,
 };
 use crate::engine::neighbor::Pair;
 use crate::engine::particles::Particles;
@@ -275,9 +276,19 @@ impl Coeffs<F64x4> for CoeffSplat<'_> {
     }
 }
 
+impl Coeffs<F64x8> for CoeffSplat<'_> {
+    #[inline(always)]
+    fn get<F: Fn(&PairCoeffs) -> f64>(&self, f: F) -> F64x8 {
+        F64x8([f(self.0); WIDE_LANES])
+    }
+}
+
 /// Where a batch's coefficients come from.
 trait CoeffSource {
     type Lanes<'b>: Coeffs<F64x4>
+    where
+        Self: 'b;
+    type WideLanes<'b>: Coeffs<F64x8>
     where
         Self: 'b;
     /// The coefficients of the pairs (i\[k\], j\[k\]); `kinds` are the particles' atom types.
@@ -288,6 +299,14 @@ trait CoeffSource {
         i: [usize; LANES],
         j: [usize; LANES],
     ) -> Self::Lanes<'b>;
+    /// The same for a wide batch of eight pairs.
+    fn wide_lanes<'b>(
+        &'b self,
+        material: &'b Material,
+        kinds: &[u32],
+        i: [usize; WIDE_LANES],
+        j: [usize; WIDE_LANES],
+    ) -> Self::WideLanes<'b>;
 }
 
 /// One atom type: every pair has the same coefficients.
@@ -295,6 +314,10 @@ struct OneType<'a>(&'a PairCoeffs);
 
 impl CoeffSource for OneType<'_> {
     type Lanes<'b>
+        = CoeffSplat<'b>
+    where
+        Self: 'b;
+    type WideLanes<'b>
         = CoeffSplat<'b>
     where
         Self: 'b;
@@ -308,6 +331,16 @@ impl CoeffSource for OneType<'_> {
     ) -> CoeffSplat<'b> {
         CoeffSplat(self.0)
     }
+    #[inline(always)]
+    fn wide_lanes<'b>(
+        &'b self,
+        _: &'b Material,
+        _: &[u32],
+        _: [usize; WIDE_LANES],
+        _: [usize; WIDE_LANES],
+    ) -> CoeffSplat<'b> {
+        CoeffSplat(self.0)
+    }
 }
 
 /// Several atom types: each lane looks its pair up.
@@ -315,6 +348,28 @@ struct ByType;
 
 impl CoeffSource for ByType {
     type Lanes<'b> = CoeffLanes<'b>;
+    type WideLanes<'b> = CoeffWideLanes<'b>;
+    #[inline(always)]
+    fn wide_lanes<'b>(
+        &'b self,
+        material: &'b Material,
+        kinds: &[u32],
+        i: [usize; WIDE_LANES],
+        j: [usize; WIDE_LANES],
+    ) -> CoeffWideLanes<'b> {
+        // written out, not `from_fn`: an out-of-line closure would lose the kernel's vector code
+        let pair = |k: usize| material.pair(kinds[i[k]] as usize, kinds[j[k]] as usize);
+        CoeffWideLanes([
+            pair(0),
+            pair(1),
+            pair(2),
+            pair(3),
+            pair(4),
+            pair(5),
+            pair(6),
+            pair(7),
+        ])
+    }
     #[inline(always)]
     fn lanes<'b>(
         &'b self,
@@ -502,6 +557,33 @@ unsafe fn transpose_avx(r: [&[f64; 12]; LANES]) -> [F64x4; 12] {
     out
 }
 
+/// The two halves of a wide batch's pairs.
+#[inline(always)]
+fn split_pairs<'p>(pr: &[&'p Pair; WIDE_LANES]) -> ([&'p Pair; LANES], [&'p Pair; LANES]) {
+    ([pr[0], pr[1], pr[2], pr[3]], [pr[4], pr[5], pr[6], pr[7]])
+}
+
+/// The two halves of a wide batch's particle indices.
+#[inline(always)]
+fn split_indices(i: &[usize; WIDE_LANES]) -> ([usize; LANES], [usize; LANES]) {
+    ([i[0], i[1], i[2], i[3]], [i[4], i[5], i[6], i[7]])
+}
+
+/// The two halves of a wide batch's results, as two batches of four.
+#[inline(always)]
+fn split_output(out: &PairLanesOutput<F64x8>) -> (PairLanesOutput, PairLanesOutput) {
+    let mut lo = PairLanesOutput::default();
+    let mut hi = PairLanesOutput::default();
+    for d in 0..3 {
+        (lo.fi[d], hi.fi[d]) = out.fi[d].halves();
+        (lo.fj[d], hi.fj[d]) = out.fj[d].halves();
+        (lo.ti[d], hi.ti[d]) = out.ti[d].halves();
+        (lo.tj[d], hi.tj[d]) = out.tj[d].halves();
+    }
+    (lo.deltan, hi.deltan) = out.deltan.halves();
+    (lo, hi)
+}
+
 impl<'a, N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
     Kernel<'a, N, T, C, R>
 {
@@ -562,6 +644,11 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
         }
         #[cfg(target_arch = "x86_64")]
         {
+            if crate::engine::contact::real::wide_lanes_supported() {
+                // SAFETY: the processor supports AVX2 and AVX-512F (checked at run time).
+                unsafe { self.run_avx512(coeffs, packed, kinds, pairs, entries, history, sink) };
+                return;
+            }
             // SAFETY: the processor supports AVX2 (checked at run time).
             unsafe { self.run_avx2(coeffs, packed, kinds, pairs, entries, history, sink) };
         }
@@ -636,6 +723,155 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
         sink: &mut S,
     ) {
         self.run_lanes(coeffs, packed, kinds, pairs, entries, history, sink);
+    }
+
+    /// Eight pairs at a time while eight are left, then four at a time.
+    #[cfg(target_arch = "x86_64")]
+    #[allow(clippy::too_many_arguments)]
+    #[target_feature(enable = "avx2,avx512f")]
+    unsafe fn run_avx512<Q: CoeffSource, S: Sink>(
+        &self,
+        coeffs: &Q,
+        packed: &Packed,
+        kinds: &[u32],
+        pairs: &[Pair],
+        entries: &[u32],
+        history: &mut [f64],
+        sink: &mut S,
+    ) {
+        let wide = entries.len() / WIDE_LANES * WIDE_LANES;
+        self.run_wide(
+            coeffs,
+            packed,
+            kinds,
+            pairs,
+            &entries[..wide],
+            history,
+            sink,
+        );
+        self.run_lanes(
+            coeffs,
+            packed,
+            kinds,
+            pairs,
+            &entries[wide..],
+            history,
+            sink,
+        );
+    }
+
+    /// The pairs `entries` eight at a time (`entries.len()` a multiple of eight), each
+    /// half of a wide batch handed to `sink` as a batch of four.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn run_wide<Q: CoeffSource, S: Sink>(
+        &self,
+        coeffs: &Q,
+        packed: &Packed,
+        kinds: &[u32],
+        pairs: &[Pair],
+        entries: &[u32],
+        history: &mut [f64],
+        sink: &mut S,
+    ) {
+        let width = self.model.history_len();
+        let rec = &packed.records;
+        assert!(width <= MAX_HISTORY);
+        if entries.is_empty() {
+            return;
+        }
+        assert!(!rec.is_empty());
+        let last = rec.len() - 1;
+        let mut hist = [F64x8::default(); MAX_HISTORY];
+        let top = entries.iter().copied().max().unwrap_or(0) as usize;
+        assert!(top < pairs.len() && (top + 1) * width <= history.len());
+        for batch in entries.chunks_exact(WIDE_LANES) {
+            let Ok(full) = <&[u32; WIDE_LANES]>::try_from(batch) else {
+                continue;
+            };
+            let e: [usize; WIDE_LANES] = full.map(|k| k as usize);
+            // SAFETY: e[k] <= top < pairs.len()
+            let pr: [&Pair; WIDE_LANES] = e.map(|k| unsafe { pairs.get_unchecked(k) });
+            let i: [usize; WIDE_LANES] = pr.map(|q| (q.i as usize).min(last));
+            let j: [usize; WIDE_LANES] = pr.map(|q| (q.j as usize).min(last));
+            let (pr_lo, pr_hi) = split_pairs(&pr);
+            let (i_lo, i_hi) = split_indices(&i);
+            let (j_lo, j_hi) = split_indices(&j);
+            // SAFETY: i[k], j[k] <= last < rec.len()
+            let (a_lo, a_hi, b_lo, b_hi) = unsafe {
+                (
+                    transpose(rec, i_lo),
+                    transpose(rec, i_hi),
+                    transpose(rec, j_lo),
+                    transpose(rec, j_hi),
+                )
+            };
+            let mut a = [F64x8::default(); 12];
+            let mut b = [F64x8::default(); 12];
+            for f in 0..12 {
+                a[f] = F64x8::from_halves(a_lo[f], a_hi[f]);
+                b[f] = F64x8::from_halves(b_lo[f], b_hi[f]);
+            }
+            let mut xj = [b[0], b[1], b[2]];
+            let (s_lo, s_hi) = (shifts(&pr_lo), shifts(&pr_hi));
+            if s_lo.is_some() || s_hi.is_some() {
+                let zero = [F64x4::default(); 3];
+                let (s_lo, s_hi) = (s_lo.unwrap_or(zero), s_hi.unwrap_or(zero));
+                for d in 0..3 {
+                    xj[d] += F64x8::from_halves(s_lo[d], s_hi[d]);
+                }
+            }
+            let lanes = PairLanes {
+                xi: [a[0], a[1], a[2]],
+                xj,
+                radi: a[3],
+                radj: b[3],
+                vi: [a[4], a[5], a[6]],
+                vj: [b[4], b[5], b[6]],
+                mi: a[7],
+                mj: b[7],
+                omegai: [a[8], a[9], a[10]],
+                omegaj: [b[8], b[9], b[10]],
+                frozen_i: a[11].ne(F64x8::default()),
+                frozen_j: b[11].ne(F64x8::default()),
+                dt: self.dt,
+                update_history: self.update,
+            };
+            let c = coeffs.wide_lanes(self.material, kinds, i, j);
+            for (h, slot) in hist.iter_mut().enumerate().take(width) {
+                // SAFETY: e[k] <= top and h < width (checked above)
+                *slot = F64x8(e.map(|k| unsafe { *history.get_unchecked(k * width + h) }));
+            }
+            let out = self.model.pair_force_lanes(&lanes, &c, &mut hist[..width]);
+            for (k, &entry) in e.iter().enumerate() {
+                for (h, slot) in hist.iter().enumerate().take(width) {
+                    // SAFETY: as above
+                    unsafe { *history.get_unchecked_mut(entry * width + h) = slot.0[k] };
+                }
+            }
+            let smaller = F64x8::select(a[3].lt(b[3]), a[3], b[3]);
+            let (out_lo, out_hi) = split_output(&out);
+            let (sm_lo, sm_hi) = smaller.halves();
+            let (dn_lo, dn_hi) = out.deltan.halves();
+            sink.take_batch(
+                &batch[..LANES],
+                &pr_lo,
+                &out_lo,
+                &Overlaps {
+                    deltan: dn_lo,
+                    smaller: sm_lo,
+                },
+            );
+            sink.take_batch(
+                &batch[LANES..],
+                &pr_hi,
+                &out_hi,
+                &Overlaps {
+                    deltan: dn_hi,
+                    smaller: sm_hi,
+                },
+            );
+        }
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -768,5 +1004,122 @@ mod tests {
         );
         assert_eq!(fast[0], 7);
         assert_eq!(&fast[1..], &slow[..]);
+    }
+
+    /// Collects every result in the order the kernel hands them over.
+    #[derive(Default)]
+    struct Collect(Vec<(usize, PairResult)>);
+
+    impl Sink for Collect {
+        fn take(&mut self, entry: usize, _: &Pair, result: &PairResult) {
+            self.0.push((entry, *result));
+        }
+    }
+
+    /// The batched kernel (eight, then four pairs at a time where the processor allows)
+    /// gives every pair the forces, torques, overlap and history the one-pair kernel gives,
+    /// bit for bit, with one atom type and with two.
+    #[test]
+    fn batched_pairs_equal_one_at_a_time() {
+        use crate::engine::contact::tangential::History;
+        use crate::engine::contact::{Epsd, Hertz, MaterialInput, Sjkr};
+        let model = ContactModel::new(Hertz::default(), History, Sjkr::default(), Epsd::default());
+        for ntypes in [1usize, 2] {
+            let input = MaterialInput {
+                ntypes,
+                youngs_modulus: Some(vec![5e6, 7e6][..ntypes].to_vec()),
+                poissons_ratio: Some(vec![0.25, 0.3][..ntypes].to_vec()),
+                coefficient_restitution: Some(vec![0.5; ntypes * ntypes]),
+                coefficient_friction: Some(vec![0.6; ntypes * ntypes]),
+                coefficient_rolling_friction: Some(vec![0.3; ntypes * ntypes]),
+                coefficient_rolling_viscous_damping: Some(vec![1.5; ntypes * ntypes]),
+                cohesion_energy_density: Some(vec![2e3; ntypes * ntypes]),
+                ..MaterialInput::default()
+            };
+            let material = Material::new(&input, &model.properties()).unwrap();
+            let mut r = crate::util::random::RanPark::new(104729).unwrap();
+            let mut u = |lo: f64, hi: f64| lo + (hi - lo) * r.uniform();
+            let n = 80;
+            let records: Vec<Record> = (0..n)
+                .map(|k| {
+                    let frozen = if k % 17 == 3 { 1.0 } else { 0.0 };
+                    Record([
+                        u(0.0, 6e-3),
+                        u(0.0, 6e-3),
+                        u(0.0, 6e-3),
+                        u(0.8e-3, 1.2e-3),
+                        u(-0.2, 0.2),
+                        u(-0.2, 0.2),
+                        u(-0.2, 0.2),
+                        u(1e-5, 3e-5),
+                        u(-40.0, 40.0),
+                        u(-40.0, 40.0),
+                        u(-40.0, 40.0),
+                        frozen,
+                    ])
+                })
+                .collect();
+            let kinds: Vec<u32> = (0..n).map(|k| 1 + (k % ntypes) as u32).collect();
+            let mut pairs = Vec::new();
+            for i in 0..n {
+                for j in i + 1..n {
+                    let (a, b) = (&records[i].0, &records[j].0);
+                    let d2: f64 = (0..3).map(|d| (a[d] - b[d]).powi(2)).sum();
+                    if d2 < (a[3] + b[3]).powi(2) {
+                        pairs.push(Pair {
+                            i: i as u32,
+                            j: j as u32,
+                            shift: [0.0; 3],
+                        });
+                    }
+                }
+            }
+            assert!(pairs.len() > 8 * 6 + 3, "{} touching pairs", pairs.len());
+            let packed = Packed {
+                records,
+                spheres: Vec::new(),
+            };
+            // every pair but a few, so the last batches are short
+            let entries: Vec<u32> = (0..pairs.len() as u32).filter(|e| e % 11 != 5).collect();
+            let width = model.history_len();
+            let mut h_batched = vec![0.0; pairs.len() * width];
+            let mut h_single = h_batched.clone();
+            let kernel = Kernel::new(&model, &material, 1e-6, true);
+            for _ in 0..3 {
+                let (mut batched, mut single) = (Collect::default(), Collect::default());
+                kernel.run(
+                    &packed,
+                    &kinds,
+                    &pairs,
+                    &entries,
+                    &mut h_batched,
+                    &mut batched,
+                );
+                kernel.run_scalar(
+                    &packed,
+                    &kinds,
+                    &pairs,
+                    &entries,
+                    &mut h_single,
+                    &mut single,
+                );
+                assert_eq!(batched.0.len(), entries.len());
+                for ((e1, r1), (e2, r2)) in batched.0.iter().zip(&single.0) {
+                    assert_eq!(e1, e2);
+                    let bits = |r: &PairResult| {
+                        [r.fi, r.fj, r.ti, r.tj]
+                            .concat()
+                            .iter()
+                            .map(|x| x.to_bits())
+                            .chain([r.overlap_ratio.to_bits()])
+                            .collect::<Vec<_>>()
+                    };
+                    assert_eq!(bits(r1), bits(r2), "entry {e1}, {ntypes} types");
+                }
+            }
+            let bits = |h: &[f64]| h.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&h_batched), bits(&h_single));
+            assert!(h_single.iter().any(|&x| x != 0.0));
+        }
     }
 }

@@ -284,6 +284,18 @@ struct Stencil {
     len: usize,
 }
 
+/// Values past the last particle in each [`Columns`] column (NaN), so a vector of four
+/// starting at any particle stays inside the column.
+const PAD: usize = 3;
+
+/// The `n` values of `v` followed by [`PAD`] NaNs.
+fn padded(n: usize, v: impl Iterator<Item = f64>) -> Vec<f64> {
+    let mut c = Vec::with_capacity(n + PAD);
+    c.extend(v);
+    c.resize(n + PAD, f64::NAN);
+    c
+}
+
 /// Positions (m) and reaches (m) of the particles as separate columns, so four
 /// consecutive particles load as one vector each.
 struct Columns {
@@ -296,11 +308,16 @@ struct Columns {
 impl Columns {
     fn new(x: &[[f64; 3]], reach: &[f64]) -> Columns {
         Columns {
-            x: x.iter().map(|p| p[0]).collect(),
-            y: x.iter().map(|p| p[1]).collect(),
-            z: x.iter().map(|p| p[2]).collect(),
-            reach: reach[..x.len()].to_vec(),
+            x: padded(x.len(), x.iter().map(|p| p[0])),
+            y: padded(x.len(), x.iter().map(|p| p[1])),
+            z: padded(x.len(), x.iter().map(|p| p[2])),
+            reach: padded(x.len(), reach[..x.len()].iter().copied()),
         }
+    }
+
+    /// Number of particles (the columns hold [`PAD`] more values).
+    fn len(&self) -> usize {
+        self.x.len() - PAD
     }
 
     /// Is j within `reach[i] + reach[j] + skin` of i, j moved by `shift`? (The arithmetic
@@ -353,8 +370,15 @@ unsafe fn partners_avx2(
     out: &mut Vec<Pair>,
 ) {
     use std::arch::x86_64::*;
-    let n = cols.x.len();
-    assert!(i < n && cols.y.len() == n && cols.z.len() == n && cols.reach.len() == n);
+    let n = cols.len();
+    let padded = n + PAD;
+    assert!(
+        i < n
+            && cols.x.len() == padded
+            && cols.y.len() == padded
+            && cols.z.len() == padded
+            && cols.reach.len() == padded
+    );
     let (xi, yi, zi) = (
         _mm256_set1_pd(cols.x[i]),
         _mm256_set1_pd(cols.y[i]),
@@ -402,11 +426,35 @@ unsafe fn partners_avx2(
             }
             j += 4;
         }
-        for j in j..end {
-            if cols.near(i, j, shift, skin) {
+        if j < end {
+            // the last one to three candidates: a whole vector read past them (the columns
+            // are padded), the lanes beyond `end` masked off
+            // SAFETY: j < end <= n and the columns hold n + PAD values
+            let (x, y, z, r) = unsafe {
+                (
+                    _mm256_loadu_pd(cols.x.as_ptr().add(j)),
+                    _mm256_loadu_pd(cols.y.as_ptr().add(j)),
+                    _mm256_loadu_pd(cols.z.as_ptr().add(j)),
+                    _mm256_loadu_pd(cols.reach.as_ptr().add(j)),
+                )
+            };
+            let dx = _mm256_sub_pd(_mm256_add_pd(x, sx), xi);
+            let dy = _mm256_sub_pd(_mm256_add_pd(y, sy), yi);
+            let dz = _mm256_sub_pd(_mm256_add_pd(z, sz), zi);
+            let cut = _mm256_add_pd(_mm256_add_pd(base, r), skin4);
+            let rsq = _mm256_add_pd(
+                _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)),
+                _mm256_mul_pd(dz, dz),
+            );
+            let near =
+                _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(rsq, _mm256_mul_pd(cut, cut)));
+            let mut mask = near & ((1 << (end - j)) - 1);
+            while mask != 0 {
+                let k = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
                 out.push(Pair {
                     i: i as u32,
-                    j: j as u32,
+                    j: (j + k) as u32,
                     shift,
                 });
             }

@@ -1017,6 +1017,11 @@ fn a_build_with_mpi_runs_on_ranks_and_refuses_the_rest() {
         want.sort_unstable();
         assert_eq!(ids, want, "{np} ranks: the % files");
     }
+    // a check that finds nothing ends MPI properly on every rank
+    let out = mpirun("2", &["check", "in.bed", "-sf", "fast"]);
+    let se = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{se}");
+    assert!(!se.contains("improperly"), "{se}");
     // a command that does not run on ranks
     std::fs::write(
         dir.join("in.deck"),

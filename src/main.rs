@@ -271,7 +271,10 @@ fn main() -> ExitCode {
         *c = launch.take_comm();
     }
     // `launch` lives until `dispatch` has returned
-    dispatch()
+    let code = dispatch();
+    // a communicator no run took (`check` on ranks) ends MPI here, on every rank
+    drop(COMM.lock().ok().and_then(|mut c| c.take()));
+    code
 }
 
 fn dispatch() -> ExitCode {

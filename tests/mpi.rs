@@ -929,7 +929,16 @@ dump d all custom 25 out.dump id type x y z vx vy vz fx fy fz omegax omegay omeg
 dump_modify d sort id format \"%d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"
 run 100
 run 50
+write_restart bed.restart
+write_restart bed.%.restart
 ";
+
+/// The IDs of a restart file's atoms, in the file's order.
+#[cfg(feature = "mpi")]
+fn restart_ids(path: &std::path::Path) -> Vec<i64> {
+    let r = regolith::io::restart::read(&path.to_string_lossy()).unwrap();
+    r.atoms.iter().map(|a| a.id).collect()
+}
 
 /// With MPI built in: `mpirun -np N` runs what runs on ranks (the same dump as one process,
 /// within 1e-10 of each column's scale), reports LIGGGHTS's grid and refuses on every rank
@@ -971,6 +980,8 @@ fn a_build_with_mpi_runs_on_ranks_and_refuses_the_rest() {
         String::from_utf8_lossy(&out.stderr)
     );
     let serial = std::fs::read_to_string(dir.join("out.dump")).unwrap();
+    let serial_ids = restart_ids(&dir.join("bed.restart"));
+    assert_eq!(serial_ids.len(), 252);
     let snapshots = regolith::io::dump_compare::parse(&serial).unwrap();
     assert_eq!(snapshots.len(), 7);
     assert!(snapshots.iter().all(|s| s.rows.len() == 252));
@@ -990,7 +1001,27 @@ fn a_build_with_mpi_runs_on_ranks_and_refuses_the_rest() {
         let ranks = std::fs::read_to_string(dir.join("out.dump")).unwrap();
         let d = common::scale_deviation(&serial, &ranks);
         assert!(d <= 1e-10, "{np} ranks differ from one process by {d:e}");
+        // one restart file in the serial order; the % form: a base file with the rank
+        // count and one file per rank, the same atoms
+        assert_eq!(restart_ids(&dir.join("bed.restart")), serial_ids);
+        let split = regolith::io::restart::read(
+            "bed.%.restart"
+                .replace("bed", &dir.join("bed").to_string_lossy())
+                .as_str(),
+        )
+        .unwrap();
+        assert_eq!(split.int(7), Some(np.parse::<i64>().unwrap()));
+        let mut ids: Vec<i64> = split.atoms.iter().map(|a| a.id).collect();
+        ids.sort_unstable();
+        let mut want = serial_ids.clone();
+        want.sort_unstable();
+        assert_eq!(ids, want, "{np} ranks: the % files");
     }
+    // a check that finds nothing ends MPI properly on every rank
+    let out = mpirun("2", &["check", "in.bed", "-sf", "fast"]);
+    let se = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{se}");
+    assert!(!se.contains("improperly"), "{se}");
     // a command that does not run on ranks
     std::fs::write(
         dir.join("in.deck"),

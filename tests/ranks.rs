@@ -80,26 +80,45 @@ fn options(deck: &std::path::Path, dump: &std::path::Path, grid: &str, size: usi
 /// The dump of `deck` run on `n` ranks (0: the serial fast path) with `processors` line
 /// `grid` (may be empty).
 fn dump_of(deck: &str, n: usize, grid: &str, tag: &str) -> String {
+    outputs_of(deck, n, grid, tag).0
+}
+
+/// The dump and the log of `deck` run on `n` ranks (0: the serial fast path) with
+/// `processors` line `grid` (may be empty).
+fn outputs_of(deck: &str, n: usize, grid: &str, tag: &str) -> (String, String) {
     let dir = scratch(tag);
+    let log = run_in(&dir, deck, n, grid);
+    let text = std::fs::read_to_string(dir.join("out.dump")).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    (text, log)
+}
+
+/// Run `deck` in folder `dir` (`${dir}` in it names the folder, `${out}` is `dir/out.dump`)
+/// on `n` ranks (0: the serial fast path) with `processors` line `grid`; its log.
+fn run_in(dir: &std::path::Path, deck: &str, n: usize, grid: &str) -> String {
     let path = dir.join("in.deck");
-    std::fs::write(&path, deck).unwrap();
-    let dump = dir.join("out.dump");
+    std::fs::write(&path, deck.replace("${dir}", &dir.to_string_lossy())).unwrap();
+    let (dump, log) = (dir.join("out.dump"), dir.join("log.txt"));
+    let opts = |size: usize, rank: usize| {
+        let mut o = options(&path, &dump, grid, size.max(1));
+        o.ranks.rank = rank;
+        o.log = Some(log.to_string_lossy().into_owned());
+        o
+    };
     let status = if n == 0 {
-        vec![regolith::session::run_deck(&options(&path, &dump, grid, 1))]
+        vec![regolith::session::run_deck(&opts(0, 0))]
     } else {
         ThreadRanks::run_owned(n, |c| {
-            let mut o = options(&path, &dump, grid, n);
-            o.ranks.rank = c.rank();
+            let o = opts(n, c.rank());
             regolith::session::run_deck_on(&o, Some(Box::new(c)))
         })
     };
     assert!(
         status.iter().all(|s| *s == ExitStatus::Success),
-        "{tag}: {status:?}"
+        "{} on {n} ranks: {status:?}",
+        dir.display()
     );
-    let text = std::fs::read_to_string(&dump).unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
-    text
+    std::fs::read_to_string(&log).unwrap()
 }
 
 /// `deck` on the serial fast path and on the rank grids `grids` ((ranks, processors line)):
@@ -209,7 +228,7 @@ fn what_does_not_run_on_ranks_is_refused_by_name() {
             34,
             "fix insert/pack",
         ),
-        (before_run("write_restart r.restart"), 34, "write_restart"),
+        (before_run("restart 10 r.restart"), 34, "restart"),
         (
             before_run("thermo_style custom step c_thermo_press"),
             34,
@@ -217,11 +236,6 @@ fn what_does_not_run_on_ranks_is_refused_by_name() {
         ),
         (before_run("dump d2 all xyz 10 out.xyz"), 34, "dump xyz"),
         (before_run("run 10 every 5 NULL"), 34, "run every"),
-        (
-            ("boundary p p f".into(), "boundary p p m".into()),
-            3,
-            "boundary m (shrink-wrapped faces)",
-        ),
     ] {
         let text = deck.replace(&from, &to);
         let got = check_on_two(&text, true);
@@ -662,48 +676,395 @@ fn pair_contacts_on_ranks_are_those_of_one_process() {
     }
 }
 
-#[test]
-fn a_restart_with_shrink_wrapped_faces_is_refused_on_ranks() {
-    // a bed written with a shrink-wrapped top, as the lunar channel's bed is: on ranks the
-    // box would not follow the particles, so the run is refused by name
-    let dir = scratch("shrink");
-    let write = BED
-        .replace("boundary p p f", "boundary p p fm")
-        .replace("${grid}", "")
-        .replace("${out}", &dir.join("out.dump").to_string_lossy())
+/// The bed with the faces `faces` (some shrink-wrapped), its list rebuilt every step (the
+/// box follows the particles at every step) and the box in thermo at full precision.
+fn shrink_bed(faces: &str) -> String {
+    BED.replace("boundary p p f", &format!("boundary {faces}"))
         .replace(
-            "run 50\n",
-            &format!("write_restart {}\n", dir.join("bed.restart").display()),
+            "neigh_modify delay 0",
+            "neigh_modify delay 0 every 1 check no",
+        )
+        .replace(
+            "thermo_style custom step atoms ke",
+            "thermo_style custom step atoms ke vol lx ly lz xlo xhi zlo zhi
+thermo_modify format float %.16g",
+        )
+        .replace("thermo 50", "thermo 10")
+}
+
+/// Largest difference of thermo table `b` from `a` in units of each column's scale (its
+/// largest magnitude in `a`); the tables have the same rows.
+fn thermo_deviation(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
+    assert_eq!(a.len(), b.len(), "thermo rows");
+    let mut worst: f64 = 0.0;
+    for (ra, rb) in a.iter().zip(b) {
+        assert_eq!(ra.len(), rb.len(), "thermo columns");
+        for (k, (x, y)) in ra.iter().zip(rb).enumerate() {
+            let scale = a.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
+            if scale > 0.0 {
+                worst = worst.max((x - y).abs() / scale);
+            }
+        }
+    }
+    worst
+}
+
+/// Largest difference of the box bounds of dump `b`'s snapshots from `a`'s, in units of
+/// the largest bound of `a`.
+fn box_deviation(a: &str, b: &str) -> f64 {
+    let (a, b) = (
+        regolith::io::dump_compare::parse(a).unwrap(),
+        regolith::io::dump_compare::parse(b).unwrap(),
+    );
+    assert_eq!(a.len(), b.len(), "snapshot counts");
+    let scale = a
+        .iter()
+        .flat_map(|s| s.bounds.iter().flatten())
+        .map(|v| v.abs())
+        .fold(0.0, f64::max);
+    let mut worst: f64 = 0.0;
+    for (sa, sb) in a.iter().zip(&b) {
+        for (x, y) in sa.bounds.iter().flatten().zip(sb.bounds.iter().flatten()) {
+            worst = worst.max((x - y).abs() / scale);
+        }
+    }
+    worst
+}
+
+#[test]
+fn shrink_wrapped_faces_on_ranks_follow_the_particles_of_every_rank() {
+    // split along the shrink-wrapped direction (the bricks follow the box) and across it
+    let cases: [(&str, &[(usize, &str)]); 2] = [
+        (
+            "p p s",
+            &[
+                (2, "processors 1 1 2"),
+                (3, "processors 1 1 3"),
+                (1, "processors 1 1 1"),
+            ],
+        ),
+        ("f f s", &[(2, "processors 2 1 1"), (3, "processors 1 3 1")]),
+    ];
+    for (faces, grids) in cases {
+        let deck = shrink_bed(faces);
+        let tag = format!("shrink-{}", faces.replace(' ', ""));
+        let (serial, _) = on_grids(&deck, grids, &tag);
+        let (_, log) = outputs_of(&deck, 0, "", &format!("{tag}-log"));
+        let want = thermo_table(&log);
+        // steps 0..100 every 10, then 100..150: the box's bottom and top follow the bed at
+        // every step (the bottom layer settles, the top spreads)
+        assert_eq!(want.len(), 17, "{faces}");
+        let (first, last) = (&want[0], &want[want.len() - 1]);
+        assert!(
+            last[9] < first[9] && last[10] != first[10],
+            "{faces}: {first:?} {last:?}"
         );
-    let path = dir.join("in.write");
-    std::fs::write(&path, write).unwrap();
-    let opts = options(&path, &dir.join("out.dump"), "", 1);
-    assert_eq!(regolith::session::run_deck(&opts), ExitStatus::Success);
-    // the settings a restart file does not hold, from the bed's deck
-    let settings = BED
-        .split_once("neighbor 0.0005 bin")
+        // through a shrink-wrapped face no particle is lost (through the fixed ones some are)
+        assert!(faces != "p p s" || want.iter().all(|r| r[1] == first[1]));
+        for &(n, grid) in grids {
+            let (dump, log) = outputs_of(&deck, n, grid, &format!("{tag}-log-{n}"));
+            let got = thermo_table(&log);
+            let d = thermo_deviation(&want, &got);
+            assert!(d < 1e-10, "{faces}, {grid}: thermo differs by {d:e}");
+            let d = box_deviation(&serial, &dump);
+            assert!(d < 1e-10, "{faces}, {grid}: dump box differs by {d:e}");
+        }
+    }
+}
+
+/// The settings a restart file does not hold, from the bed's deck.
+fn bed_settings() -> &'static str {
+    BED.split_once("neighbor 0.0005 bin")
         .and_then(|(_, rest)| rest.split_once("lattice"))
         .unwrap()
-        .0;
-    let deck = format!(
+        .0
+}
+
+/// A deck that reads restart file `file` on the processor grid `${grid}` with the bed's
+/// settings, its box in thermo every 10 steps, then `rest`.
+fn read_deck(file: &str, rest: &str) -> String {
+    format!(
         "atom_style granular\natom_modify map array\nnewton off\ncommunicate single vel yes\n\
-         units si\nread_restart {}\nneighbor 0.0005 bin{settings}\
-         fix integr all nve/sphere\ntimestep 2e-6\nrun 10\n",
-        dir.join("bed.restart").display()
+         units si\n${{grid}}\nread_restart {file}\nneighbor 0.0005 bin{}\
+         fix gr all gravity 9.81 vector 0 0 -1\nfix integr all nve/sphere\ntimestep 2e-6\n\
+         thermo_style custom step atoms ke vol lz zlo zhi\nthermo_modify format float %.16g\n\
+         thermo 10\n{rest}",
+        bed_settings()
+    )
+}
+
+/// The atoms of a restart file by ID, each as its numbers (position, ID, type, mask, image,
+/// velocity, radius, mass, density, angular velocity, then its fixes' blocks).
+fn restart_atoms(path: &std::path::Path) -> std::collections::BTreeMap<i64, Vec<f64>> {
+    let r = regolith::io::restart::read(&path.to_string_lossy()).unwrap();
+    r.atoms
+        .iter()
+        .map(|a| {
+            let mut v = a.x.to_vec();
+            v.extend([a.id, a.kind, a.mask, a.image].map(|k| k as f64));
+            v.extend(a.v);
+            v.extend([a.radius, a.mass, a.density]);
+            v.extend(a.omega);
+            v.extend(a.extra.iter().flatten());
+            (a.id, v)
+        })
+        .collect()
+}
+
+/// Largest difference of restart file `b`'s atoms from `a`'s in units of each number's
+/// scale (its largest magnitude over `a`'s atoms); the same atoms with the same contacts
+/// (a contact's partner ID and the counts are stored as the bits of small integers and
+/// must be equal).
+fn restart_deviation(a: &std::path::Path, b: &std::path::Path) -> f64 {
+    let (a, b) = (restart_atoms(a), restart_atoms(b));
+    assert!(a.keys().eq(b.keys()), "other atoms");
+    let width = a.values().map(Vec::len).max().unwrap_or(0);
+    let scale: Vec<f64> = (0..width)
+        .map(|k| {
+            a.values()
+                .filter_map(|v| v.get(k))
+                .map(|x| x.abs())
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    let mut worst: f64 = 0.0;
+    for (id, va) in &a {
+        let vb = &b[id];
+        assert_eq!(va.len(), vb.len(), "atom {id}: other contacts");
+        for (k, (x, y)) in va.iter().zip(vb).enumerate() {
+            if x.to_bits() < 1 << 32 || y.to_bits() < 1 << 32 {
+                assert_eq!(x.to_bits(), y.to_bits(), "atom {id}, number {k}");
+            } else if scale[k] > 0.0 {
+                worst = worst.max((x - y).abs() / scale[k]);
+            }
+        }
+    }
+    worst
+}
+
+#[test]
+fn a_restart_with_a_shrink_wrapped_top_runs_and_is_written_on_ranks() {
+    // a bed written with a shrink-wrapped top reaching the top of its box, as the lunar
+    // channel's bed is; read back, thrown up (the shock) so the box follows it up
+    let dir = scratch("lunar");
+    let write = BED
+        .replace("boundary p p f", "boundary p p fm")
+        .replace("0 0.01488 0 0.01488 0 0.02", "0 0.01488 0 0.01488 0 0.0176")
+        .replace("run 50\n", "write_restart ${dir}/bed.restart\n");
+    run_in(&dir, &write, 0, "");
+    let bed = dir.join("bed.restart");
+    let read = read_deck(
+        &bed.to_string_lossy(),
+        "dump d all custom 25 ${out} id type x y z vx vy vz fx fy fz omegax omegay omegaz radius
+dump_modify d sort id format \"%d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"
+run 0
+write_restart ${dir}/zero.restart
+neigh_modify delay 0 every 1 check no
+velocity all set 0.0 0.0 2.0
+run 100
+write_restart ${dir}/after.restart
+write_restart ${dir}/after.%.restart
+",
     );
-    let path = dir.join("in.read");
-    std::fs::write(&path, &deck).unwrap();
-    // one process runs it
-    let one = options(&path, &dir.join("out.dump"), "", 1);
-    assert_eq!(regolith::session::run_deck(&one), ExitStatus::Success);
-    let status = ThreadRanks::run_owned(2, |c| {
-        let mut o = options(&path, &dir.join("out.dump"), "", 2);
-        o.ranks.rank = c.rank();
-        regolith::session::run_deck_on(&o, Some(Box::new(c)))
-    });
-    assert!(
-        status.iter().all(|s| *s == ExitStatus::Unsupported),
-        "{status:?}"
-    );
+    let runs: Vec<(usize, &str, std::path::PathBuf)> = [
+        (0, "", "serial"),
+        (1, "processors 1 1 1", "one"),
+        (2, "processors 1 1 2", "two"),
+        (3, "processors 1 3 1", "three"),
+        (2, "processors 1 1 2", "again"),
+    ]
+    .into_iter()
+    .map(|(n, grid, tag)| {
+        let d = dir.join(tag);
+        std::fs::create_dir_all(&d).unwrap();
+        (n, grid, d)
+    })
+    .collect();
+    let logs: Vec<String> = runs
+        .iter()
+        .map(|(n, grid, d)| run_in(d, &read, *n, grid))
+        .collect();
+    let serial_dir = &runs[0].2;
+    let serial_dump = std::fs::read_to_string(serial_dir.join("out.dump")).unwrap();
+    let want = thermo_table(&logs[0]);
+    // the box: the top at the file's m face (its box top), then above it with the bed
+    let (zhi, top) = (0.0176, want.last().unwrap()[6]);
+    assert_eq!(want.len(), 1 + 11, "run 0, then steps 0..100 every 10");
+    assert!((want[0][6] - zhi).abs() < 1e-12, "{:?}", want[0]);
+    assert!(top > zhi + 1e-4, "the top {top}");
+    let restored = |log: &str| {
+        log.lines()
+            .filter(|l| l.starts_with("Resetting") && l.contains("Fix contacthistory"))
+            .count()
+    };
+    assert_eq!(restored(&logs[0]), 2, "global and per-atom state");
+    for ((n, grid, d), log) in runs.iter().zip(&logs).skip(1) {
+        assert_eq!(restored(log), 2, "{n} ranks: {log}");
+        let dump = std::fs::read_to_string(d.join("out.dump")).unwrap();
+        let dev = [
+            common::scale_deviation(&serial_dump, &dump),
+            box_deviation(&serial_dump, &dump),
+            thermo_deviation(&want, &thermo_table(log)),
+            restart_deviation(&serial_dir.join("after.restart"), &d.join("after.restart")),
+        ];
+        assert!(
+            dev.iter().all(|&v| v < 1e-10),
+            "{n} ranks ({grid}): dump, box, thermo, restart differ by {dev:?}"
+        );
+        // nothing has moved after run 0: the file one process writes, byte for byte
+        let bytes = |d: &std::path::Path, f: &str| std::fs::read(d.join(f)).unwrap();
+        assert!(
+            bytes(d, "zero.restart") == bytes(serial_dir, "zero.restart"),
+            "{n} ranks: zero.restart differs from one process's"
+        );
+        // one file per rank, read back as the same atoms as the single file
+        let r = regolith::io::restart::read(&d.join("after.%.restart").to_string_lossy()).unwrap();
+        assert_eq!(
+            r.int(7),
+            Some(*n.max(&1) as i64),
+            "processor count in the base file"
+        );
+        assert!(!d.join(format!("after.{}.restart", n.max(&1))).exists());
+        let single = restart_atoms(&d.join("after.restart"));
+        let split = restart_atoms(&d.join("after.%.restart"));
+        assert!(single == split, "{n} ranks: the % files hold other atoms");
+        // the order one process writes: by the IDs the serial file lists
+        let order = |d: &std::path::Path| -> Vec<i64> {
+            let r = regolith::io::restart::read(&d.join("after.restart").to_string_lossy());
+            r.unwrap().atoms.iter().map(|a| a.id).collect()
+        };
+        assert_eq!(order(d), order(serial_dir), "{n} ranks: atom order");
+    }
+    // the contacts are in the files (the bed is touching): 16 numbers, the floor's history
+    // (3), the contact count and 4 numbers per contact
+    for f in ["zero.restart", "after.restart"] {
+        let atoms = restart_atoms(&serial_dir.join(f));
+        let touching = atoms.values().filter(|v| v.len() >= 24).count();
+        assert!(
+            touching > atoms.len() / 2,
+            "{f}: {touching} of {}",
+            atoms.len()
+        );
+    }
+    // run to run on 2 ranks: the same bytes
+    let (two, again) = (&runs[2].2, &runs[4].2);
+    for f in [
+        "after.restart",
+        "after.0.restart",
+        "after.1.restart",
+        "after.base.restart",
+    ] {
+        assert!(
+            std::fs::read(two.join(f)).unwrap() == std::fs::read(again.join(f)).unwrap(),
+            "{f} differs run to run"
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn restart_files_written_on_any_grid_without_periodic_faces_are_the_same_bytes() {
+    // fixed and shrink-wrapped faces: any grid gives the same bits, so the same file
+    let deck =
+        shrink_bed("f f s").replace("run 50\n", "run 50\nwrite_restart ${dir}/end.restart\n");
+    let dir = scratch("restart-grids");
+    let mut files = Vec::new();
+    for (n, grid) in [
+        (2, "processors 2 1 1"),
+        (3, "processors 1 1 3"),
+        (4, "processors 2 2 1"),
+    ] {
+        let d = dir.join(n.to_string());
+        std::fs::create_dir_all(&d).unwrap();
+        run_in(&d, &deck, n, grid);
+        files.push(std::fs::read(d.join("end.restart")).unwrap());
+    }
+    assert!(
+        files.iter().all(|f| *f == files[0]),
+        "restart files differ between grids"
+    );
+    // the serial file holds the same atoms in the same order, within round-off
+    let d = dir.join("serial");
+    std::fs::create_dir_all(&d).unwrap();
+    run_in(&d, &deck, 0, "");
+    let dev = restart_deviation(&d.join("end.restart"), &dir.join("2/end.restart"));
+    assert!(dev < 1e-10, "2 ranks differ from one process by {dev:e}");
+    let ids = |f: &std::path::Path| -> Vec<i64> {
+        let r = regolith::io::restart::read(&f.to_string_lossy()).unwrap();
+        r.atoms.iter().map(|a| a.id).collect()
+    };
+    let serial_ids = ids(&d.join("end.restart"));
+    assert!(serial_ids.len() > 150);
+    assert_eq!(ids(&dir.join("3/end.restart")), serial_ids);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Thermo of Debian's LIGGGHTS 3.8.0 reading `ranks_inputs/liggghts_np2.restart` (written by
+/// `mpirun -np 2 liggghts -in in.liggghts_np2`) or its `%` form, on one process and on 2 and
+/// 3: step, atoms, ke, vol, lz, zlo, zhi (the kinetic energy's last digit differs between
+/// its processor counts).
+const LIGGGHTS_READS_NP2: [[f64; 7]; 3] = [
+    [
+        100.0,
+        252.0,
+        0.0002674241035887983,
+        3.344550958948044e-06,
+        0.01510539043055937,
+        0.002353491419140677,
+        0.01745888184970004,
+    ],
+    [
+        110.0,
+        252.0,
+        0.000240916426068446,
+        3.346280351833156e-06,
+        0.01511320109185832,
+        0.002347579548812927,
+        0.01746078064067125,
+    ],
+    [
+        120.0,
+        252.0,
+        0.0002188339773479873,
+        3.34812995881553e-06,
+        0.01512155469027999,
+        0.002341306302017337,
+        0.01746286099229732,
+    ],
+];
+
+#[test]
+fn restart_files_liggghts_wrote_on_two_processors_are_read_on_any_rank_count() {
+    let inputs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/ranks_inputs");
+    let want: Vec<Vec<f64>> = LIGGGHTS_READS_NP2.iter().map(|r| r.to_vec()).collect();
+    for file in ["liggghts_np2.restart", "liggghts_np2.%.restart"] {
+        let deck = read_deck(
+            &inputs.join(file).to_string_lossy(),
+            "neigh_modify delay 0 every 1 check no\nrun 20\n",
+        );
+        for (n, grid) in [(0, ""), (2, "processors 1 1 2"), (3, "processors 1 3 1")] {
+            let dir = scratch(&format!("liggghts-np2-{n}-{}", file.len()));
+            let log = run_in(&dir, &deck, n, grid);
+            let _ = std::fs::remove_dir_all(&dir);
+            let d = thermo_deviation(&want, &thermo_table(&log));
+            assert!(
+                d < 1e-10,
+                "{file} on {n} ranks differs from LIGGGHTS by {d:e}"
+            );
+            // LIGGGHTS's warnings: another processor count; another grid than the deck's
+            let said = |w: &str| log.lines().filter(|l| l.contains(w)).count();
+            let other_count = usize::from(n != 2);
+            assert_eq!(
+                said("Restart file used different # of processors"),
+                other_count,
+                "{log}"
+            );
+            let other_grid = usize::from(n == 3);
+            assert_eq!(
+                said("Restart file used different 3d processor grid"),
+                other_grid,
+                "{log}"
+            );
+        }
+    }
 }

@@ -1,6 +1,6 @@
 //! What runs on more than one MPI rank (the first slice of the domain decomposition): a box
-//! with periodic and fixed faces, particles from `create_atoms`, `read_data` or
-//! `read_restart` (set-up commands run identically on every rank), `pair_style gran`,
+//! with periodic, fixed and shrink-wrapped faces, particles from `create_atoms`, `read_data`
+//! or `read_restart` (set-up commands run identically on every rank), `write_restart`, `pair_style gran`,
 //! `fix nve/sphere`, `nve`, `gravity`, primitive `wall/gran`, `check/timestep/gran`, `property/global` and the
 //! per-particle force fixes below, the computes below, `thermo` with the keywords below and
 //! `c_`/`v_` values, `dump custom` with `c_`/`v_` columns and `dump local`, on the fast path. Everything
@@ -23,6 +23,8 @@ const COMMANDS: &[&str] = &[
     "create_atoms",
     "read_data",
     "read_restart",
+    // one file by rank 0 as one process writes it, or a `%` file per rank
+    "write_restart",
     "lattice",
     "mass",
     "set",
@@ -135,8 +137,8 @@ const THERMO: &[&str] = &[
 ];
 
 /// What runs on more than one rank, as a refusal's help says it.
-pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic \
-    and fixed faces, pair_style gran, fix nve/sphere, gravity, primitive wall/gran, freeze, \
+pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic, \
+    fixed and shrink-wrapped faces, write_restart, pair_style gran, fix nve/sphere, gravity, primitive wall/gran, freeze, \
     setforce/addforce with constants, viscous, move and check/timestep/gran, shell, computes ke, \
     erotate/sphere, reduce, com, stress/atom, pair/gran/local and per-atom properties, thermo \
     (step, atoms, ke, c_, v_, ...), dump custom and dump local; or run it as one process (with threads: -sf fast -pk fast N)";
@@ -205,10 +207,6 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
                 .find(|k| !THERMO.contains(k) && !gathered(k))
                 .map(|k| format!("thermo keyword {k}"))
         }
-        "boundary" => args
-            .iter()
-            .find(|b| b.contains(['s', 'm']))
-            .map(|b| format!("boundary {b} (shrink-wrapped faces)")),
         "dimension" => (args.first() != Some(&"3")).then(|| "dimension 2".to_string()),
         "neigh_modify" => args
             .iter()
@@ -224,11 +222,6 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
             }
             if args.contains(&"every") {
                 return Some("run every".into());
-            }
-            // faces shrink-wrapped by a restart or data file (a boundary command with them
-            // is refused itself): the box would not follow the particles between builds
-            if sim.domain.exists && sim.domain.shrinks() {
-                return Some("run with shrink-wrapped faces (boundary s or m)".into());
             }
             let pre_no = args.windows(2).any(|w| w == ["pre", "no"]);
             pre_no.then(|| "run pre no".to_string())

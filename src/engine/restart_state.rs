@@ -19,6 +19,9 @@ pub struct PendingHistory {
     pub width: usize,
     /// Per atom ID: (partner ID, values).
     pub partners: HashMap<i64, Vec<(i64, Vec<f64>)>>,
+    /// The contacts a run on several ranks left (the list of one process holds them after
+    /// a run, so a restart file written now holds them), not those of a file just read.
+    pub live: bool,
 }
 
 /// LIGGGHTS's numeric IDs of contact sub-models (for the pair style's hash code).
@@ -273,10 +276,29 @@ impl Simulation {
 
     /// Pair history per atom ID for every listed pair that has touched (non-zero history):
     /// the pair's first atom holds the values, the second the negated copy (LIGGGHTS's
-    /// pre_exchange). Uses the current list, so call it before the list is rebuilt.
+    /// pre_exchange). Uses the current list, so call it before the list is rebuilt; after a
+    /// run on several ranks, the contacts every rank got back. On the fast path each atom's
+    /// contacts are listed by partner ID (its list's order depends on how it was built; this
+    /// one is the same for any rank and thread count).
     pub fn contact_partners(&self) -> HashMap<i64, Vec<(i64, Vec<f64>)>> {
+        let mut out = self.listed_partners();
+        if self.accel.fast {
+            for contacts in out.values_mut() {
+                contacts.sort_by_key(|c| c.0);
+            }
+        }
+        out
+    }
+
+    /// [`Self::contact_partners`] in the order of the list (or of the ranks' partner lists).
+    fn listed_partners(&self) -> HashMap<i64, Vec<(i64, Vec<f64>)>> {
         let mut out: HashMap<i64, Vec<(i64, Vec<f64>)>> = HashMap::new();
         let width = self.pair.as_ref().map_or(0, |p| p.history_width());
+        if let Some(pending) = self.pending_history.as_ref().filter(|h| h.live) {
+            if width > 0 && pending.width == width && self.list.pairs.is_empty() {
+                return pending.partners.clone();
+            }
+        }
         let p = &self.particles;
         if width == 0 || self.history.len() != self.list.pairs.len() * width {
             return out;

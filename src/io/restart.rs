@@ -636,6 +636,12 @@ impl Restart {
 
     /// Sections 1-5 (the base file of a `%` restart). The processor count is written as 1.
     pub fn write_base(&self, b: &mut Vec<u8>) {
+        self.write_base_for(b, [1, 1, 1]);
+    }
+
+    /// Sections 1-5 with the processor grid `grid` (and the product as the processor
+    /// count) in the header, as a base file written on that grid holds them.
+    pub fn write_base_for(&self, b: &mut Vec<u8>, grid: [i32; 3]) {
         let int = |b: &mut Vec<u8>, i: i32| b.extend_from_slice(&i.to_le_bytes());
         let string = |b: &mut Vec<u8>, s: &str| {
             b.extend_from_slice(&((s.len() + 1) as i32).to_le_bytes());
@@ -645,7 +651,8 @@ impl Restart {
         for (f, v) in &self.header {
             int(b, *f);
             match (f, v) {
-                (7..=10, Value::Int(_)) => int(b, 1), // one processor, grid 1 1 1
+                (7, Value::Int(_)) => int(b, grid.iter().product()),
+                (8..=10, Value::Int(_)) => int(b, grid[(f - 8) as usize]),
                 (_, Value::Int(i)) => int(b, *i),
                 (_, Value::Big(i)) => b.extend_from_slice(&i.to_le_bytes()),
                 (_, Value::Double(d)) => b.extend_from_slice(&d.to_le_bytes()),
@@ -699,8 +706,15 @@ impl Restart {
 
     /// All atom records as one chunk of doubles.
     pub fn atom_chunk(&self) -> Vec<f64> {
+        let all: Vec<usize> = (0..self.atoms.len()).collect();
+        self.atom_chunk_of(&all)
+    }
+
+    /// The records of the atoms `which` (indices into [`Self::atoms`], in that order) as one
+    /// chunk of doubles.
+    pub fn atom_chunk_of(&self, which: &[usize]) -> Vec<f64> {
         let mut out = Vec::new();
-        for a in &self.atoms {
+        for a in which.iter().filter_map(|&k| self.atoms.get(k)) {
             let len = 17 + a.extra.iter().map(|e| e.len() + 1).sum::<usize>();
             out.push(len as f64);
             out.extend_from_slice(&a.x);
@@ -746,21 +760,47 @@ fn open_error(path: &str, source: std::io::Error) -> RestartError {
 
 /// Write a restart file atomically (a `%` name gives the base file and one processor file).
 pub fn write(restart: &Restart, path: &str) -> Result<(), RestartError> {
-    if let Some(k) = path.find('%') {
-        let base = format!("{}base{}", &path[..k], &path[k + 1..]);
-        let proc0 = format!("{}0{}", &path[..k], &path[k + 1..]);
-        let mut b = Vec::new();
-        restart.write_base(&mut b);
-        let chunk = restart.atom_chunk();
-        let mut c = Vec::with_capacity(4 + 8 * chunk.len());
-        c.extend_from_slice(&(chunk.len() as i32).to_le_bytes());
-        for d in chunk {
-            c.extend_from_slice(&d.to_le_bytes());
-        }
-        crate::io::write_atomically(&proc0, &c).map_err(|e| open_error(&proc0, e))?;
-        return crate::io::write_atomically(&base, &b).map_err(|e| open_error(&base, e));
+    if path.contains('%') {
+        let all: Vec<usize> = (0..restart.atoms.len()).collect();
+        return write_processor_files(restart, path, [1, 1, 1], 0, &all);
     }
     crate::io::write_atomically(path, &restart.to_bytes()).map_err(|e| open_error(path, e))
+}
+
+/// Processor `me`'s part of a `%` restart written by the processor grid `grid` (as LIGGGHTS
+/// writes one in parallel): processor 0 writes the base file (`%` replaced by `base`, the
+/// processor count and grid in its header) and every processor the file of its own number
+/// with its atoms, `mine` (indices into the file's atoms, in that order). A name without
+/// `%` is written whole by processor 0.
+pub fn write_processor_files(
+    restart: &Restart,
+    path: &str,
+    grid: [i32; 3],
+    me: usize,
+    mine: &[usize],
+) -> Result<(), RestartError> {
+    let Some(k) = path.find('%') else {
+        if me == 0 {
+            return write(restart, path);
+        }
+        return Ok(());
+    };
+    let named = |what: &str| format!("{}{what}{}", &path[..k], &path[k + 1..]);
+    let chunk = restart.atom_chunk_of(mine);
+    let mut c = Vec::with_capacity(4 + 8 * chunk.len());
+    c.extend_from_slice(&(chunk.len() as i32).to_le_bytes());
+    for d in chunk {
+        c.extend_from_slice(&d.to_le_bytes());
+    }
+    let own = named(&me.to_string());
+    crate::io::write_atomically(&own, &c).map_err(|e| open_error(&own, e))?;
+    if me == 0 {
+        let base = named("base");
+        let mut b = Vec::new();
+        restart.write_base_for(&mut b, grid);
+        crate::io::write_atomically(&base, &b).map_err(|e| open_error(&base, e))?;
+    }
+    Ok(())
 }
 
 /// The particles and box of a restart file.

@@ -143,6 +143,20 @@ pub(super) fn read_restart(a: &Args, ctx: &mut Ctx) -> Result {
         // LIGGGHTS prints the version it parsed with printf: on standard output only
         ctx.out.stdout(&format!("version {major} {minor}\n"));
     }
+    // as LIGGGHTS's header reading: a file written by another processor count or (for a
+    // grid the deck gave) another grid is read all the same, with its warnings
+    let (nprocs, user) = (ctx.sim.procs.nprocs, ctx.sim.procs.user);
+    if r.int(7).is_some_and(|n| n != nprocs) {
+        ctx.say(
+            "WARNING: Restart file used different # of processors (./src/read_restart.cpp:574)\n",
+        );
+    }
+    let file_grid = [8, 9, 10].map(|f| r.int(f).unwrap_or(1));
+    if user[0] != 0 && file_grid != user {
+        ctx.say(
+            "WARNING: Restart file used different 3d processor grid (./src/read_restart.cpp:587)\n",
+        );
+    }
     let pair = ctx.sim.load_restart(&r).map_err(|m| a.error(0, &m))?;
     ctx.sim.restart_in_progress = !r.global_fixes.is_empty() || !r.peratom_fixes.is_empty();
     ctx.sim.extras.restart_peratom_fixes = r.peratom_fixes.len();

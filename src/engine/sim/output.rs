@@ -11,7 +11,52 @@ impl Simulation {
         let partners = self.contact_partners();
         self.pbc_and_box()?;
         let r = self.to_restart(&partners);
-        crate::io::restart::write(&r, path).map_err(|e| EngineError::Invalid(e.to_string()))
+        match self.comm.as_ref().filter(|c| c.size() > 1) {
+            Some(comm) => self.save_restart_on_ranks(comm, &r, path),
+            None => {
+                crate::io::restart::write(&r, path).map_err(|e| EngineError::Invalid(e.to_string()))
+            }
+        }
+    }
+
+    /// A restart file written on several ranks, every rank holding the whole set (between
+    /// runs) in the order one process holds it: one file written by rank 0, the same bytes
+    /// as one process writes; a `%` name gives LIGGGHTS's base file (rank 0, with the
+    /// processor count and grid) and one file per rank with the particles of its brick of
+    /// the box. Any rank's failure stops every rank.
+    fn save_restart_on_ranks(
+        &self,
+        comm: &crate::util::comm::RankComm,
+        r: &crate::io::restart::Restart,
+        path: &str,
+    ) -> Result<(), EngineError> {
+        use crate::engine::decomp::Decomposition;
+        let me = comm.rank();
+        let (grid, mine) = if path.contains('%') {
+            let prd = [0, 1, 2].map(|d| self.domain.length(d));
+            let grid = crate::engine::procmap::choose_grid(&self.procs, prd)?;
+            let periodic = [0, 1, 2].map(|d| self.domain.periodic(d));
+            let (lo, hi) = (self.domain.lo, self.domain.hi);
+            let dec = Decomposition::new(&self.procs, &grid, me, lo, hi, periodic);
+            // a particle on no brick (on an upper face) goes to the last rank
+            let last = dec.size().saturating_sub(1);
+            let mine: Vec<usize> = (0..self.particles.len())
+                .filter(|&i| dec.owner_of(self.particles.x[i]).unwrap_or(last) == me)
+                .collect();
+            (grid.procs.map(|v| v as i32), mine)
+        } else {
+            ([1, 1, 1], Vec::new())
+        };
+        let written = crate::io::restart::write_processor_files(r, path, grid, me, &mine);
+        let failed =
+            comm.all_reduce_i64(i64::from(written.is_err()), crate::util::comm::Reduce::Max);
+        match written {
+            Err(e) => Err(EngineError::Invalid(e.to_string())),
+            Ok(()) if failed > 0 => Err(EngineError::Invalid(format!(
+                "Cannot write restart file {path}: another rank could not write its part"
+            ))),
+            Ok(()) => Ok(()),
+        }
     }
 
     /// The `restart` command's files, due at multiples of its interval (not at setup).

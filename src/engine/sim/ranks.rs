@@ -12,8 +12,9 @@
 //! the list reads its particles in memory order and their partners nearby.
 //!
 //! Every step the ghosts' positions and velocities are refreshed (forward communication);
-//! at each neighbour-list build particles are wrapped into the box, migrate with their
-//! contact history and per-atom fix state, and the ghosts are made again. Thermo and dumps
+//! at each neighbour-list build particles are wrapped into the box, the shrink-wrapped faces
+//! move to the extent of every rank's particles (the bricks follow the box), particles
+//! migrate with their contact history and per-atom fix state, and the ghosts are made again. Thermo and dumps
 //! see every rank's particles gathered on rank 0 (in rank order, as LIGGGHTS gathers a
 //! dump); a local compute's rows are each rank's own contacts, gathered likewise (a pair
 //! across ranks reported from one side: across a periodic face from the particle with the
@@ -374,6 +375,10 @@ impl Simulation {
         self.setup_fix_styles();
         let mut st = self.rank_setup(comm)?;
         self.rank_forces(&mut st, false, true);
+        if comm.rank() == 0 {
+            // LIGGGHTS's proc 0 says the history fix took its state from a restart file
+            self.say_history_restored(out);
+        }
         self.has_run = true;
         self.restart_in_progress = false;
         self.restart_fixes.clear();
@@ -580,12 +585,35 @@ impl Simulation {
         mut hist: PartnerHistory,
     ) -> Result<(), EngineError> {
         let p = &mut self.particles;
+        // as LIGGGHTS's pbc, reset_box and exchange: periodic coordinates wrapped, the
+        // shrink-wrapped faces moved to the extent of every rank's particles (the bricks
+        // follow the new box), then the particles outside a fixed face lost
+        let mut placed: Vec<bool> = (0..p.len())
+            .map(|i| self.domain.remap(&mut p.x[i], &mut p.image[i]))
+            .collect();
+        if self.domain.shrinks() {
+            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+            // a particle without a finite position is lost below; it does not stretch the box
+            for x in p.x.iter().filter(|x| x.iter().all(|c| c.is_finite())) {
+                for d in 0..3 {
+                    lo[d] = lo[d].min(x[d]);
+                    hi[d] = hi[d].max(x[d]);
+                }
+            }
+            comm.all_reduce_f64(&mut lo, Reduce::Min);
+            comm.all_reduce_f64(&mut hi, Reduce::Max);
+            // no particle on any rank: the box stays (as one process leaves it)
+            if lo[0] <= hi[0] {
+                self.domain.shrink_wrap(lo, hi)?;
+                st.dec.set_box(self.domain.lo, self.domain.hi);
+            }
+        }
         let mut i = 0;
         while i < p.len() {
-            let placed = self.domain.remap(&mut p.x[i], &mut p.image[i]);
-            if !placed || !self.domain.contains(p.x[i]) {
+            if !placed[i] || !self.domain.contains(p.x[i]) {
                 p.fill_from_last(i);
                 hist.fill_from_last(i);
+                placed.swap_remove(i);
             } else {
                 i += 1;
             }
@@ -1030,7 +1058,11 @@ impl Simulation {
                     partners.insert(*id, contacts);
                 }
             }
-            self.pending_history = Some(PendingHistory { width, partners });
+            self.pending_history = Some(PendingHistory {
+                width,
+                partners,
+                live: true,
+            });
         }
         if let Some(k) = full.extra.iter().position(|e| e.name == ORDER_ARRAY) {
             let ranks = full.extra[k].data.clone();

@@ -159,7 +159,7 @@ impl Simulation {
 
     /// LIGGGHTS's note that the pair style's history fix, created at the first run, takes
     /// its state from the restart file.
-    fn say_history_restored(&self, out: Sink<'_>) {
+    pub(super) fn say_history_restored(&self, out: Sink<'_>) {
         if self.pair.as_ref().is_some_and(|p| p.history_width() > 0) {
             // the pair style's history fix is created (and restored) at the first run
             let id = ("contacthistory".to_string(), "contacthistory".to_string());

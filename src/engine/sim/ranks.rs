@@ -372,6 +372,8 @@ impl Simulation {
         }
         let (first, last, started) = self.begin_run(nsteps)?;
         self.setup_fix_styles();
+        // every rank holds the whole set here: the computes' run-start state is global
+        self.setup_compute_styles();
         let mut st = self.rank_setup(comm)?;
         self.rank_forces(&mut st, false, true);
         self.has_run = true;

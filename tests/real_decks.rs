@@ -576,13 +576,15 @@ fn dump_columns_of_fixes_as_liggghts_checks_them() {
         let line = 11 + body.matches('\n').count();
         fails_alike(&dir, body, needle, line);
     }
-    // fix move's start positions, 0 outside its group
+    // fix move's start positions, 0 outside its group (without a pair style LIGGGHTS can
+    // only run with the atom sort off)
     std::fs::write(
         dir.join("in.t"),
         format!(
             "{HEAD}create_atoms 1 single 0.05 0.05 0.05\ncreate_atoms 1 single 0.02 0.03 0.04\n\
              group one id 2\nfix mv one move linear 1 0 0\ntimestep 1e-3\n\
-             dump d all custom 1 d.dump id f_mv[1] f_mv[2] f_mv[3]\ndump_modify d sort id\nrun 2\n"
+             dump d all custom 1 d.dump id f_mv[1] f_mv[2] f_mv[3]\ndump_modify d sort id\n\
+             atom_modify sort 0 0\nrun 2\n"
         ),
     )
     .unwrap();

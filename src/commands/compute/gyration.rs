@@ -6,8 +6,8 @@ use crate::commands::compute::ComputeDef;
 use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::computes::{center_from_moment, mass_moment, ComputeAt, ComputeStyle};
-use crate::engine::particles::Particles;
 use crate::engine::error::EngineError;
+use crate::engine::particles::Particles;
 use crate::engine::sim::{Simulation, VariableSource};
 
 /// The declared signature.

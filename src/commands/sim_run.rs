@@ -356,6 +356,19 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         return Ok(());
     }
     ctx.sim.ramp_bounds = (start, stop);
+    // LIGGGHTS's line of each mesh's first setup (screen only)
+    for f in &mut ctx.sim.fixes {
+        if let FixKind::Mesh(m) = &mut f.kind {
+            if !m.announced {
+                m.announced = true;
+                ctx.out.screen(&format!(
+                    "Import and parallelization of mesh {} containing {} triangle(s) successful\n",
+                    f.id,
+                    m.mesh.len()
+                ));
+            }
+        }
+    }
     let out = &mut *ctx.out;
     let mut sink = |s: &str| out.both(s);
     let mut vars = crate::lang::scope::RunVariables::new(&mut *ctx.vars, &mut *ctx.sys);

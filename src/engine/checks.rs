@@ -154,12 +154,6 @@ impl Simulation {
                 .into());
             }
         }
-        // LIGGGHTS's neighbour cutoff is 0 without a pair style, and without any particle
-        // size (no particles, no templates): it cannot bin the atoms for sorting then
-        let no_cutoff = self.pair_selection.is_none() || self.largest_radius() == 0.0;
-        if self.sort_every > 0 && self.sort_binsize <= 0.0 && no_cutoff {
-            return Err("Atom sorting has bin size = 0.0".into());
-        }
         if self.sort_every > 0 {
             // LIGGGHTS's atom sort bins (half the neighbour cutoff, or the user's size)
             // (LIGGGHTS's cutoff knows the particle templates' sizes before any particle
@@ -196,6 +190,13 @@ impl Simulation {
                 0.0
             };
             neighbor_bins_sized(bbox, cut, self.extras.neigh_binsize)?;
+        }
+        // the run's setup, after the init checks above: LIGGGHTS's neighbour cutoff is 0
+        // without a pair style, and without any particle size (no particles, no
+        // templates); it cannot bin the atoms for sorting then
+        let no_cutoff = self.pair_selection.is_none() || self.largest_radius() == 0.0;
+        if self.sort_every > 0 && self.sort_binsize <= 0.0 && no_cutoff {
+            return Err("Atom sorting has bin size = 0.0".into());
         }
         Ok(())
     }

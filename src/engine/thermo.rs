@@ -364,7 +364,14 @@ pub fn keyword_value(
                 None => (body, None),
             };
             return if k.starts_with('c') {
-                sim.compute_value(id, index, vars).ok()
+                // LIGGGHTS's norm divides extensive compute values by the atom count
+                let value = sim.compute_value(id, index, vars).ok()?;
+                let c = sim.computes.iter().find(|c| c.id == id)?;
+                let extensive = match index {
+                    None => c.style().extensive_scalar(),
+                    Some(_) => c.style().extensive(sim, None) == Some(1),
+                };
+                Some(if extensive { norm(value) } else { value })
             } else {
                 sim.fix_value(id, index).ok()
             };

@@ -462,6 +462,7 @@ impl Simulation {
     ) -> Result<(), EngineError> {
         let (step, dt, skin) = (self.step, self.dt, self.neighbor.skin);
         let contact = self.neighbor.cutneighmax - skin;
+        let mesh_vmax_sqr = self.moving_mesh_vmax_sqr();
         let min = |values: &mut [f64]| comm.all_reduce_f64(values, Reduce::Min);
         for k in 0..self.fixes.len() {
             let fix = &mut self.fixes[k];
@@ -475,6 +476,7 @@ impl Simulation {
                     contact,
                     skin,
                     regions: Some(&self.regions),
+                    mesh_vmax_sqr,
                 };
                 s.end_of_step_ranks(&mut self.particles, &at, &min);
                 if s.outputs_at(step) {

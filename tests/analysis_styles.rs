@@ -222,6 +222,7 @@ thermo 100
     let cont = format!(
         "read_restart r.bin
 communicate single vel yes
+newton off
 neighbor 0.002 bin
 neigh_modify delay 0
 fix m1 all property/global youngsModulus peratomtype 5e6 5e6

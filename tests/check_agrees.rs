@@ -142,12 +142,14 @@ fn a_mesh_failing_the_quality_check_is_reported_by_check_at_the_run() {
     let deck = format!(
         "{HEAD}fix cad all mesh/surface file skew.stl type 1\n\
          fix walls all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad\n\
+         create_atoms 1 single 0.05 0.05 0.05 units box\n\
+         set atom 1 diameter 0.002 density 2500\n\
          run 10\n"
     );
     std::fs::write(dir.join("in.t"), deck).unwrap();
     let (found, code) = problems(&dir);
     let message = "Mesh cad: element 1 has an angle below 0.0573 degrees; fix the mesh";
-    assert_eq!(found, [format!("in.t:20: {message}")]);
+    assert_eq!(found, [format!("in.t:22: {message}")]);
     assert_eq!(code, Some(1));
     let (err, code) = run_error(&dir);
     assert_eq!(err, format!("ERROR: {message}"));

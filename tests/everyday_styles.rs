@@ -318,6 +318,7 @@ velocity all set 0.1 0 0
 fix f all nve/sphere
 fix_modify f energy yes energy no
 thermo_style custom step ke
+atom_modify sort 0 0
 run 10
 ";
     std::fs::write(dir.join("in.t"), format!("{HEAD}{body}")).unwrap();

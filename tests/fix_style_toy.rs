@@ -220,6 +220,7 @@ write_restart {}
 atom_modify map array
 communicate single vel yes
 read_restart {}
+newton off
 neighbor 0.002 bin
 fix m1 all property/global youngsModulus peratomtype 5e6
 fix m2 all property/global poissonsRatio peratomtype 0.2

@@ -213,7 +213,7 @@ fn clump_decks_regolith_cannot_run_yet_are_refused_and_misuse_is_an_error() {
     // multisphere are not supported yet
     let rate = "region r block -0.02 0.02 -0.02 0.02 0.3 0.32 units box\n\
          fix ins all insert/rate/region seed 32452843 distributiontemplate d nparticles 5 \
-         particlerate 1000 insert_every 100 overlapcheck yes region r vel constant 0 0 0\n";
+         particlerate 1000 insert_every 100 overlapcheck yes vel constant 0 0 0 region r\n";
     let (code, text) = failing("rate", &format!("{HEADER}{CROSS}{rate}"));
     assert_eq!(code, Some(3), "{text}");
     assert!(

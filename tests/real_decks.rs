@@ -576,13 +576,15 @@ fn dump_columns_of_fixes_as_liggghts_checks_them() {
         let line = 11 + body.matches('\n').count();
         fails_alike(&dir, body, needle, line);
     }
-    // fix move's start positions, 0 outside its group
+    // fix move's start positions, 0 outside its group (without a pair style LIGGGHTS can
+    // only run with the atom sort off)
     std::fs::write(
         dir.join("in.t"),
         format!(
             "{HEAD}create_atoms 1 single 0.05 0.05 0.05\ncreate_atoms 1 single 0.02 0.03 0.04\n\
              group one id 2\nfix mv one move linear 1 0 0\ntimestep 1e-3\n\
-             dump d all custom 1 d.dump id f_mv[1] f_mv[2] f_mv[3]\ndump_modify d sort id\nrun 2\n"
+             dump d all custom 1 d.dump id f_mv[1] f_mv[2] f_mv[3]\ndump_modify d sort id\n\
+             atom_modify sort 0 0\nrun 2\n"
         ),
     )
     .unwrap();
@@ -763,4 +765,38 @@ fn vtk_dump_file_names_as_liggghts_checks_them() {
     ] {
         fails_alike(&dir, &format!("{pair}{dump}"), &needle, 14);
     }
+}
+
+/// LIGGGHTS prints "Import and parallelization of mesh ID containing N triangle(s)
+/// successful" at a mesh's first run setup only, before the thermo header (4 triangles in
+/// this file, as Debian's LIGGGHTS 3.8.0 reports for this deck).
+#[test]
+fn a_mesh_is_announced_at_its_first_setup() {
+    let dir = scratch("mesh-announce");
+    let stl = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("compat/engine/wall_gran_local.inputs/left.stl");
+    std::fs::copy(stl, dir.join("left.stl")).unwrap();
+    std::fs::write(
+        dir.join("in.t"),
+        format!(
+            "{HEAD}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n\
+             fix cad all mesh/surface file left.stl type 1 move 0.07 0.05 0.02\n\
+             fix wall all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad\n\
+             create_atoms 1 single 0.05 0.05 0.05\nset atom 1 diameter 0.01 density 2500\n\
+             fix integr all nve/sphere\ntimestep 1e-5\nrun 5\nrun 5\n"
+        ),
+    )
+    .unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    let line = "Import and parallelization of mesh cad containing 4 triangle(s) successful";
+    let lines: Vec<&str> = stdout.lines().collect();
+    let at: Vec<usize> = (0..lines.len()).filter(|&k| lines[k] == line).collect();
+    assert_eq!(at.len(), 1, "{stdout}");
+    let header = lines
+        .iter()
+        .position(|l| l.trim_start().starts_with("Step"))
+        .unwrap();
+    assert!(at[0] < header, "{stdout}");
 }

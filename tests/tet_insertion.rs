@@ -100,9 +100,10 @@ fn check_and_run_agree_on_the_compat_decks() {
 fn what_is_not_reproduced_is_refused_by_check_and_run() {
     let base = std::fs::read_to_string(compat("engine").join("in.insert_pack_tet")).unwrap();
     let inputs = compat("engine").join("insert_pack_tet.inputs");
+    // all_in is a general insertion keyword: before insert/pack's own (region ...)
     let all_in = base.replace(
-        "volumefraction_region 0.3 region mesh",
-        "volumefraction_region 0.3 all_in yes region mesh",
+        "overlapcheck yes volumefraction_region 0.3 region mesh",
+        "overlapcheck yes all_in yes volumefraction_region 0.3 region mesh",
     );
     assert_ne!(all_in, base);
     // a side-in mesh with a flat tetrahedron (LIGGGHTS stops in its surface mesh checks)

@@ -18,7 +18,9 @@ fn periodic_boxes_and_local_contacts_are_not_supported_yet_with_bridges() {
     let deck = |boundary: &str, extra: &str| {
         format!(
             "atom_style granular\nboundary {boundary}\nregion r block 0 0.01 0 0.01 0 0.01\n\
-             create_box 1 r\ncommunicate single vel yes\n\
+             create_box 1 r\ncommunicate single vel yes\nnewton off\n\
+             create_atoms 1 single 0.005 0.005 0.005 units box\n\
+             set atom 1 diameter 0.001 density 2500\n\
              fix m1 all property/global youngsModulus peratomtype 5e6\n\
              fix m2 all property/global poissonsRatio peratomtype 0.3\n\
              fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5\n\

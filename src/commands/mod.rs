@@ -31,6 +31,7 @@ pub mod sim_setup;
 pub mod specs;
 pub mod style_table;
 pub mod suggest;
+pub mod system_init;
 pub mod velocity_vars;
 pub mod write_dump;
 

@@ -115,6 +115,13 @@ fn thermo(a: &Args, ctx: &mut Ctx) -> Result {
 
 fn thermo_style(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(1..=usize::MAX, "thermo_style one|custom KEYWORDS...")?;
+    if !ctx.sim.domain.exists {
+        return Err(a.error(0, "Thermo_style command before simulation box is defined"));
+    }
+    if ctx.sim.thermo.modified {
+        ctx.say("WARNING: New thermo_style command, previous thermo_modify settings will be lost (./src/output.cpp:725)\n");
+        ctx.sim.thermo.modified = false;
+    }
     let words: Vec<&str> = match a.word(0)? {
         "one" => vec!["step", "atoms", "ke", "cpu"],
         "custom" => (1..a.len())
@@ -138,6 +145,9 @@ fn thermo_style(a: &Args, ctx: &mut Ctx) -> Result {
             other => a.error(at, other.to_string()),
         }
     })?;
+    if a.word(0)? == "custom" {
+        check_thermo_references(a, ctx)?;
+    }
     // LIGGGHTS: a new thermo_style resets thermo_modify settings
     let t = &mut ctx.sim.thermo;
     t.multi = a.word(0)? == "multi";
@@ -149,7 +159,66 @@ fn thermo_style(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
+/// LIGGGHTS's checks of `thermo_style custom`'s `c_ID`, `f_ID` and `v_name` fields when the
+/// command is read: the compute, fix or equal-style variable must exist by then, and a fix
+/// without global values (walls, motion, templates) cannot be printed.
+fn check_thermo_references(a: &Args, ctx: &Ctx) -> Result {
+    for k in 1..a.len() {
+        let word = a.word(k)?;
+        let Some(body) = word
+            .strip_prefix("c_")
+            .or_else(|| word.strip_prefix("f_"))
+            .or_else(|| word.strip_prefix("v_"))
+        else {
+            continue;
+        };
+        let (id, indexed) = match body.split_once('[') {
+            Some((id, _)) => (id, true),
+            None => (body, false),
+        };
+        match &word[..1] {
+            "c" => {
+                let own = crate::commands::system_init::LIGGGHTS_OWN.contains(&id);
+                if !ctx.sim.computes.iter().any(|c| c.id == id) && !own {
+                    return Err(a.error(k, "Could not find thermo custom compute ID"));
+                }
+            }
+            "f" => {
+                let fix = ctx.sim.fixes.iter().find(|f| f.id == id);
+                let Some(fix) = fix else {
+                    return Err(a.error(k, "Could not find thermo custom fix ID"));
+                };
+                let silent = matches!(
+                    fix.kind,
+                    FixKind::WallGran(_)
+                        | FixKind::MeshWall(_)
+                        | FixKind::Move(_)
+                        | FixKind::MoveMesh(_)
+                        | FixKind::Template(_)
+                        | FixKind::Distribution(_)
+                );
+                if silent {
+                    let what = if indexed { "vector" } else { "scalar" };
+                    return Err(a.error(k, format!("Thermo fix does not compute {what}")));
+                }
+            }
+            _ => match ctx.vars.get(id) {
+                None => return Err(a.error(k, "Could not find thermo custom variable name")),
+                Some(v) if v.style != crate::lang::variables::Style::Equal => {
+                    return Err(a.error(k, "Thermo custom variable is not equal-style variable"));
+                }
+                Some(_) if indexed => {
+                    return Err(a.error(k, "Thermo custom variable cannot be indexed"));
+                }
+                Some(_) => {}
+            },
+        }
+    }
+    Ok(())
+}
+
 fn thermo_modify(a: &Args, ctx: &mut Ctx) -> Result {
+    ctx.sim.thermo.modified = true;
     let mut i = 0;
     while i < a.len() {
         match a.word(i)? {
@@ -262,11 +331,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     if stop.is_some_and(|s| s < ctx.sim.step + nsteps) {
         return Err(a.error(0, "Run command stop value is before end of run"));
     }
-    // LIGGGHTS's Pair::init checks every I,I type pair before the style's own init
-    if ctx.sim.pair_selection.is_some() && !ctx.sim.pair_coeff_set {
-        return Err(a.error(0, "All pair coeffs are not set"));
-    }
-    super::material_check::validate(a, ctx)?;
+    super::system_init::system_init(a, ctx, None)?;
     super::fix::check_deform_variables(ctx).map_err(|e| a.engine_error(0, e))?;
     crate::engine::temperature::setup_counts(ctx.sim);
     if ctx.sys.mode == Mode::Check {
@@ -291,6 +356,19 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         return Ok(());
     }
     ctx.sim.ramp_bounds = (start, stop);
+    // LIGGGHTS's line of each mesh's first setup (screen only)
+    for f in &mut ctx.sim.fixes {
+        if let FixKind::Mesh(m) = &mut f.kind {
+            if !m.announced {
+                m.announced = true;
+                ctx.out.screen(&format!(
+                    "Import and parallelization of mesh {} containing {} triangle(s) successful\n",
+                    f.id,
+                    m.mesh.len()
+                ));
+            }
+        }
+    }
     let out = &mut *ctx.out;
     let mut sink = |s: &str| out.both(s);
     let mut vars = crate::lang::scope::RunVariables::new(&mut *ctx.vars, &mut *ctx.sys);

@@ -27,7 +27,11 @@ pub const COMMANDS: &[(&str, Handler)] = &[
     ("boundary", boundary),
     ("units", units),
     ("dimension", dimension),
-    ("newton", |a, _| one_of(a, "newton", &["on", "off"], 1..=2)),
+    ("newton", |a, ctx| {
+        one_of(a, "newton", &["on", "off"], 1..=2)?;
+        ctx.sim.newton_pair = a.word(0)? == "on";
+        Ok(())
+    }),
     ("suffix", suffix),
     ("package", package),
     ("communicate", communicate),

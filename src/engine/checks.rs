@@ -90,9 +90,50 @@ fn g(x: f64) -> String {
 }
 
 impl Simulation {
+    /// LIGGGHTS's check of the atom types in use when the contact models read their
+    /// materials (a granular pair style or wall): the smallest type among the particles,
+    /// walls, meshes and particle distributions must be 1 (so a run with no particles and
+    /// nothing that will insert any fails), the largest at most the box's type count.
+    pub fn check_types(&self) -> Result<(), EngineError> {
+        let walls = self
+            .fixes
+            .iter()
+            .any(|f| matches!(f.kind, FixKind::WallGran(_) | FixKind::MeshWall(_)));
+        if self.pair_selection.is_none() && !walls {
+            return Ok(());
+        }
+        let (mut lo, mut hi) = (100_000_u64, 1_u64);
+        for &t in &self.particles.kind {
+            lo = lo.min(t as u64);
+            hi = hi.max(t as u64);
+        }
+        for f in &self.fixes {
+            let types: Vec<u64> = match &f.kind {
+                FixKind::WallGran(w) => vec![w.wall_type as u64],
+                FixKind::Mesh(m) => vec![m.wall_type as u64],
+                FixKind::Distribution(d) => {
+                    d.templates.iter().map(|t| t.atom_type as u64).collect()
+                }
+                _ => Vec::new(),
+            };
+            for t in types.into_iter().filter(|&t| t > 0) {
+                lo = lo.min(t);
+                hi = hi.max(t);
+            }
+        }
+        if lo != 1 {
+            return Err("Atom types must start from 1 for granular simulations".into());
+        }
+        if hi > self.ntypes as u64 {
+            return Err("Please increase the number of atom types in the 'create_box' command to match the number of atom types you use in the simulation".into());
+        }
+        Ok(())
+    }
+
     /// At a run's init: LIGGGHTS's own checks of the integrated particles (and the checks of
     /// the module fix styles, in fix order) and of the neighbour bins.
     pub fn check_run_init(&self) -> Result<(), EngineError> {
+        self.check_types()?;
         let p = &self.particles;
         for (k, fix) in self.fixes.iter().enumerate() {
             if let FixKind::Style(s) = &fix.kind {
@@ -149,6 +190,13 @@ impl Simulation {
                 0.0
             };
             neighbor_bins_sized(bbox, cut, self.extras.neigh_binsize)?;
+        }
+        // the run's setup, after the init checks above: LIGGGHTS's neighbour cutoff is 0
+        // without a pair style, and without any particle size (no particles, no
+        // templates); it cannot bin the atoms for sorting then
+        let no_cutoff = self.pair_selection.is_none() || self.largest_radius() == 0.0;
+        if self.sort_every > 0 && self.sort_binsize <= 0.0 && no_cutoff {
+            return Err("Atom sorting has bin size = 0.0".into());
         }
         Ok(())
     }

@@ -203,25 +203,39 @@ pub fn column_of(c: &Compute, index: Option<usize>) -> Result<usize, EngineError
 
 /// Centre of mass of `group` with unwrapped positions (length), as LIGGGHTS's `xcm`.
 pub fn center_of_mass(p: &Particles, domain: &Domain, group: u32) -> [f64; 3] {
-    let mut cm = [0.0; 3];
+    let (moment, mass) = mass_moment(p, domain, group);
+    center_from_moment(moment, mass)
+}
+
+/// The first mass moment of `group`, sum of m x with unwrapped positions (mass x length), and
+/// the group's mass (mass).
+pub fn mass_moment(p: &Particles, domain: &Domain, group: u32) -> ([f64; 3], f64) {
+    let mut moment = [0.0; 3];
     let mut mass = 0.0;
     for i in 0..p.len() {
         if p.mask[i] & group == 0 {
             continue;
         }
         let m = p.mass[i];
-        for (d, c) in cm.iter_mut().enumerate() {
+        for (d, c) in moment.iter_mut().enumerate() {
             let xu = p.x[i][d] + p.image[i][d] as f64 * domain.length(d);
             *c += xu * m;
         }
         mass += m;
     }
+    (moment, mass)
+}
+
+/// A mass moment divided by `mass` (length), left as it is when `mass` is not positive: LIGGGHTS's
+/// `xcm` divides by the mass it is given, which `compute com`/`gyration` take at a run's
+/// start (so a group that was empty then gives the raw moment).
+pub fn center_from_moment(mut moment: [f64; 3], mass: f64) -> [f64; 3] {
     if mass > 0.0 {
-        for c in &mut cm {
+        for c in &mut moment {
             *c /= mass;
         }
     }
-    cm
+    moment
 }
 
 /// A per-atom keyword of particle `i` (`x`, `vx`, `fx`, `mass`, `r`, ...).

@@ -315,7 +315,13 @@ impl TriMesh {
             for dx in -1..=1 {
                 for dy in -1..=1 {
                     for dz in -1..=1 {
-                        if let Some(list) = grid.get(&[k[0] + dx, k[1] + dy, k[2] + dz]) {
+                        // saturating: a degenerate mesh (scale 1e-30) puts centroids at the i64 ends
+                        let cell = [
+                            k[0].saturating_add(dx),
+                            k[1].saturating_add(dy),
+                            k[2].saturating_add(dz),
+                        ];
+                        if let Some(list) = grid.get(&cell) {
                             near.extend_from_slice(list);
                         }
                     }

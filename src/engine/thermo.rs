@@ -130,6 +130,9 @@ pub struct Thermo {
     pub float_format: Option<String>,
     /// `thermo_modify format N` per column (index N-1).
     pub column_formats: Vec<Option<String>>,
+    /// A `thermo_modify` changed these settings since the last `thermo_style` (LIGGGHTS
+    /// warns that a new `thermo_style` drops them).
+    pub modified: bool,
     /// Style `custom` (styles `one` and `multi` gain a Volume column when the box changes).
     pub custom: bool,
     /// The last column is the Volume column added at run start.
@@ -152,6 +155,7 @@ impl Default for Thermo {
             multi: false,
             int_format: None,
             float_format: None,
+            modified: false,
             column_formats: Vec::new(),
             custom: false,
             auto_volume: false,
@@ -360,7 +364,14 @@ pub fn keyword_value(
                 None => (body, None),
             };
             return if k.starts_with('c') {
-                sim.compute_value(id, index, vars).ok()
+                // LIGGGHTS's norm divides extensive compute values by the atom count
+                let value = sim.compute_value(id, index, vars).ok()?;
+                let c = sim.computes.iter().find(|c| c.id == id)?;
+                let extensive = match index {
+                    None => c.style().extensive_scalar(),
+                    Some(_) => c.style().extensive(sim, None) == Some(1),
+                };
+                Some(if extensive { norm(value) } else { value })
             } else {
                 sim.fix_value(id, index).ok()
             };

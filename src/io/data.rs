@@ -245,6 +245,22 @@ fn section_row(
     Ok((line_at(path, k + r + 1), strip(text)))
 }
 
+/// The density LIGGGHTS writes for a particle (mass/length^3): recomputed from its mass and
+/// radius as `mass / (4 pi/3 r^3)` (so it can differ from the set density in the last
+/// digits), the mass itself for a radius of 0; the kept `density` where the quotient
+/// overflows (a radius near the smallest double).
+fn written_density(mass: f64, radius: f64, density: f64) -> f64 {
+    if radius == 0.0 {
+        return mass;
+    }
+    let d = mass / (4.0 * std::f64::consts::PI / 3.0 * radius * radius * radius);
+    if d.is_finite() {
+        d
+    } else {
+        density
+    }
+}
+
 /// One row of the `Atoms` section (`id type diameter density x y z [ix iy iz]`), checked.
 fn atom_row(text: &str, at: Line, ntypes: u32) -> Result<DataAtom, DataError> {
     let w: Vec<&str> = text.split_whitespace().collect();
@@ -314,7 +330,7 @@ pub fn write(p: &Particles, domain: &Domain, ntypes: u32, step: i64, version: &s
             p.id[i],
             p.kind[i],
             e16(2.0 * p.radius[i]),
-            e16(p.density[i]),
+            e16(written_density(p.mass[i], p.radius[i], p.density[i])),
             e16(x[0]),
             e16(x[1]),
             e16(x[2]),

@@ -260,6 +260,13 @@ impl Interpreter {
                             .map_err(Some)
                     }
                 };
+                // a formula whose value only a run knows may still be wrong in its syntax
+                let value = match (value, r) {
+                    (Err(e), VarRef::Immediate(text)) if check => {
+                        expr::Expr::parse(text).map_err(Some).and(Err(e))
+                    }
+                    (value, _) => value,
+                };
                 match value {
                     Err(e)
                         if check
@@ -755,7 +762,40 @@ impl Interpreter {
         let Ok(words) = line::split_words(&stripped) else {
             return;
         };
-        if words.is_empty() || SCRIPT_COMMANDS.contains(&words[0].text.as_str()) {
+        if words.is_empty() {
+            return;
+        }
+        // the formulas of `$(...)` read when the command runs: their syntax is known now
+        // (a print substitutes its own quoted text, other commands their line)
+        let mut pieces = vec![stripped.clone()];
+        if words[0].text == "print" {
+            pieces.extend(words.get(1).map(|w| w.text.clone()));
+        }
+        for piece in &pieces {
+            let mut bad = None;
+            let _ = line::substitute(
+                piece,
+                |r| {
+                    if let VarRef::Immediate(e) = r {
+                        if let Err(err) = expr::Expr::parse(e) {
+                            bad.get_or_insert(err);
+                        }
+                    }
+                    Ok(String::new())
+                },
+                |_| {},
+            );
+            if let Some(err) = bad {
+                let d = Diagnostic::error(err.to_string()).at(&self.location.clone());
+                let seen = (self.diagnostics.iter())
+                    .any(|e| e.location == d.location && e.message == d.message);
+                if !seen {
+                    self.diagnostics.push(d);
+                }
+                return;
+            }
+        }
+        if SCRIPT_COMMANDS.contains(&words[0].text.as_str()) {
             return; // the interpreter's own commands: nothing for the engine to check
         }
         let cmd = CommandLine {

@@ -3,8 +3,9 @@
 use crate::commands::compute::{no_arguments, ComputeDef};
 use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::computes::{center_of_mass, ComputeAt, ComputeStyle};
+use crate::engine::computes::{center_from_moment, mass_moment, ComputeAt, ComputeStyle};
 use crate::engine::error::EngineError;
+use crate::engine::particles::Particles;
 use crate::engine::sim::{Simulation, VariableSource};
 
 /// The declared signature.
@@ -17,12 +18,20 @@ pub const SPEC: Spec = style(
 );
 
 /// `compute com`: x, y, z of the group's centre of mass (length, `c_ID[1..3]`).
-#[derive(Debug)]
-pub struct Com;
+#[derive(Debug, Default)]
+pub struct Com {
+    /// The group's mass at the start of the run (mass): LIGGGHTS divides by the mass its
+    /// `init` took, so particles inserted or deleted during the run do not change it.
+    mass: f64,
+}
 
 impl ComputeStyle for Com {
     fn name(&self) -> &str {
         "com"
+    }
+
+    fn setup(&mut self, p: &Particles, group: u32) {
+        self.mass = crate::engine::momentum::group_mass(p, group);
     }
 
     fn vector_len(&self) -> usize {
@@ -36,7 +45,8 @@ impl ComputeStyle for Com {
         _vars: &mut dyn VariableSource,
     ) -> Result<f64, EngineError> {
         let sim = at.sim;
-        Ok(center_of_mass(&sim.particles, &sim.domain, at.group)[index - 1])
+        let (moment, _) = mass_moment(&sim.particles, &sim.domain, at.group);
+        Ok(center_from_moment(moment, self.mass)[index - 1])
     }
 
     fn extensive(&self, _sim: &Simulation, column: Option<usize>) -> Option<i8> {
@@ -51,5 +61,5 @@ pub fn build(
     _def: &ComputeDef,
 ) -> Result<Box<dyn ComputeStyle>, CommandError> {
     no_arguments(a, "com")?;
-    Ok(Box::new(Com))
+    Ok(Box::new(Com::default()))
 }

@@ -53,6 +53,10 @@ impl ComputeStyle for ErotateSphere {
         true
     }
 
+    fn extensive_scalar(&self) -> bool {
+        true
+    }
+
     fn scalar(&self, at: &ComputeAt, _vars: &mut dyn VariableSource) -> Result<f64, EngineError> {
         Ok(rotational_energy(&at.sim.particles, at.group))
     }

@@ -5,8 +5,9 @@ use crate::commands::compute::after_general_keyword;
 use crate::commands::compute::ComputeDef;
 use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::computes::{center_of_mass, ComputeAt, ComputeStyle};
+use crate::engine::computes::{center_from_moment, mass_moment, ComputeAt, ComputeStyle};
 use crate::engine::error::EngineError;
+use crate::engine::particles::Particles;
 use crate::engine::sim::{Simulation, VariableSource};
 
 /// The declared signature.
@@ -19,23 +20,25 @@ pub const SPEC: Spec = style(
 );
 
 /// `compute gyration`: Rg (length) as the scalar, the tensor (area) as `c_ID[1..6]`.
-#[derive(Debug)]
-pub struct Gyration;
+#[derive(Debug, Default)]
+pub struct Gyration {
+    /// The group's mass at the start of the run (mass): LIGGGHTS divides by the mass its
+    /// `init` took, so particles inserted or deleted during the run do not change it.
+    mass: f64,
+}
 
-/// The group's mass and each member's unwrapped arm from the centre of mass (length) with
-/// its mass, summed as LIGGGHTS's group->xcm.
-fn arms(at: &ComputeAt) -> (f64, Vec<([f64; 3], f64)>) {
+/// Each member's unwrapped arm (length) with its mass, from the centre LIGGGHTS's group->xcm
+/// gives for the run-start `mass`.
+fn arms(at: &ComputeAt, mass: f64) -> Vec<([f64; 3], f64)> {
     let (p, domain) = (&at.sim.particles, &at.sim.domain);
-    let mass = crate::engine::momentum::group_mass(p, at.group);
-    let cm = center_of_mass(p, domain, at.group);
-    let arms = (0..p.len())
+    let cm = center_from_moment(mass_moment(p, domain, at.group).0, mass);
+    (0..p.len())
         .filter(|&i| at.in_group(i))
         .map(|i| {
             let d = [0, 1, 2].map(|k| p.x[i][k] + p.image[i][k] as f64 * domain.length(k) - cm[k]);
             (d, p.mass[i])
         })
-        .collect();
-    (mass, arms)
+        .collect()
 }
 
 impl ComputeStyle for Gyration {
@@ -43,12 +46,16 @@ impl ComputeStyle for Gyration {
         "gyration"
     }
 
+    fn setup(&mut self, p: &Particles, group: u32) {
+        self.mass = crate::engine::momentum::group_mass(p, group);
+    }
+
     fn has_scalar(&self) -> bool {
         true
     }
 
     fn scalar(&self, at: &ComputeAt, _vars: &mut dyn VariableSource) -> Result<f64, EngineError> {
-        let (mass, arms) = arms(at);
+        let (mass, arms) = (self.mass, arms(at, self.mass));
         let rg: f64 = arms
             .iter()
             .map(|([dx, dy, dz], m)| (dx * dx + dy * dy + dz * dz) * m)
@@ -66,7 +73,7 @@ impl ComputeStyle for Gyration {
         index: usize,
         _vars: &mut dyn VariableSource,
     ) -> Result<f64, EngineError> {
-        let (mass, arms) = arms(at);
+        let (mass, arms) = (self.mass, arms(at, self.mass));
         let mut rg = [0.0; 6];
         for ([dx, dy, dz], m) in arms {
             let t = [dx * dx, dy * dy, dz * dz, dx * dy, dx * dz, dy * dz];
@@ -93,5 +100,5 @@ pub fn build(
     if a.len() != i {
         return Err(a.error(i, "Illegal compute gyration command"));
     }
-    Ok(Box::new(Gyration))
+    Ok(Box::new(Gyration::default()))
 }

@@ -40,6 +40,10 @@ impl ComputeStyle for Ke {
         true
     }
 
+    fn extensive_scalar(&self) -> bool {
+        true
+    }
+
     fn scalar(&self, at: &ComputeAt, _vars: &mut dyn VariableSource) -> Result<f64, EngineError> {
         let sim = at.sim;
         Ok(kinetic_energy(&sim.particles, at.group)

@@ -30,6 +30,7 @@ use crate::engine::computes::ComputeStyle;
 
 pub(crate) use coord_atom::type_range;
 pub use ke::thermo_kin_eng;
+pub use pair_gran_local::pair_history_width;
 pub use stress_atom::StressAtom;
 pub use temp::thermo_temp;
 

@@ -262,7 +262,7 @@ pub fn build(
 
 /// Doubles of history per neighbour pair the pair style `sel` keeps: the wet bridge and
 /// multicontact loops keep their own besides the dry model's.
-fn pair_history_width(sel: &crate::engine::granular::Selection) -> usize {
+pub fn pair_history_width(sel: &crate::engine::granular::Selection) -> usize {
     let own = usize::from(sel.cohesion == crate::engine::wet::EASO)
         + if sel.surface == "multicontact" {
             crate::engine::contact::multicontact::PAIR_HISTORY

@@ -43,6 +43,10 @@ impl ComputeStyle for Pe {
         true
     }
 
+    fn extensive_scalar(&self) -> bool {
+        true
+    }
+
     fn scalar(&self, _at: &ComputeAt, _vars: &mut dyn VariableSource) -> Result<f64, EngineError> {
         Ok(0.0)
     }

@@ -133,6 +133,10 @@ impl ComputeStyle for Reduce {
         self.inputs.len() == 1
     }
 
+    fn extensive_scalar(&self) -> bool {
+        self.mode == ReduceMode::Sum
+    }
+
     fn scalar(&self, at: &ComputeAt, vars: &mut dyn VariableSource) -> Result<f64, EngineError> {
         self.reduce(at, &self.inputs[0], vars)
     }

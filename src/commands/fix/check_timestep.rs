@@ -43,13 +43,14 @@ impl FixStyle for CheckTimestep {
 
     fn end_of_step(&mut self, p: &mut Particles, at: &FixStep) {
         if at.step % self.every == 0 {
-            self.warnings = self.evaluate(p, at.group, at.dt, at.skin);
+            self.warnings = self.evaluate(p, at.group, at.dt, at.skin, at.mesh_vmax_sqr);
         }
     }
 
     fn end_of_step_ranks(&mut self, p: &mut Particles, at: &FixStep, min: &dyn Fn(&mut [f64])) {
         if at.step % self.every == 0 {
-            self.warnings = self.evaluate_over_ranks(p, at.group, at.dt, at.skin, min);
+            self.warnings =
+                self.evaluate_over_ranks(p, at.group, at.dt, at.skin, at.mesh_vmax_sqr, min);
         }
     }
 

@@ -59,7 +59,53 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         ));
     }
     let number_based = style.ends_with("numberbased");
-    crate::engine::insert::Distribution::new(seed, templates, &weights, number_based)
-        .map(FixKind::Distribution)
-        .map_err(|m| a.error(3, &m))
+    let names: Vec<&str> = (0..n as usize)
+        .map(|k| a.word(5 + 2 * k))
+        .collect::<Result<_, _>>()?;
+    let d = crate::engine::insert::Distribution::new(seed, templates, &weights, number_based)
+        .map_err(|m| a.error(3, &m))?;
+    report(ctx, fix.id, &names, &weights, &d, number_based);
+    Ok(FixKind::Distribution(d))
+}
+
+/// LIGGGHTS's printout of a distribution when it is defined (screen only): the weight-sum
+/// warning, the mass fractions as given (mass-based styles), then the number fractions.
+fn report(
+    ctx: &mut Ctx,
+    id: &str,
+    names: &[&str],
+    weights: &[f64],
+    d: &crate::engine::insert::Distribution,
+    number_based: bool,
+) {
+    let mut sum = 0.0;
+    for w in weights {
+        sum += w;
+    }
+    if (sum - 1.0).abs() > 0.00001 {
+        ctx.say("WARNING: particledistribution/discrete: sum of distribution weights != 1, normalizing distribution (./src/fix_particledistribution_discrete.cpp:135)\n");
+    }
+    if ctx.sys.mode != crate::lang::system::Mode::Run {
+        return;
+    }
+    let e = |x: f64| crate::util::format::with_spec("%e", x).unwrap_or_default();
+    let f = |x: f64| crate::util::format::with_spec("%f", x).unwrap_or_default();
+    let mut text = String::new();
+    let mut block = |what: &str, fractions: &mut dyn Iterator<Item = f64>| {
+        text.push_str(&format!(
+            "Fix particledistribution/discrete (id {id}): distribution based on {what}%:\n"
+        ));
+        for ((name, t), w) in names.iter().zip(&d.templates).zip(fractions) {
+            text.push_str(&format!(
+                "    {name}: d={} (max. bounding sphere) {what}%={}%\n",
+                e(2. * t.radius),
+                f(100. * w)
+            ));
+        }
+    };
+    if !number_based {
+        block("mass", &mut weights.iter().map(|w| w / sum));
+    }
+    block("number", &mut d.weights.iter().copied());
+    ctx.out.screen(&text);
 }

@@ -22,9 +22,22 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         PackArgs::switches,
         PackArgs::rate_keyword,
     ];
+    // LIGGGHTS reads the general insertion keywords first, then the region keywords of
+    // insert/pack; a general one after those ends insert/pack's parsing, an error there
+    let mut own_part = false;
     let mut i = 3;
     while i < a.len() {
         let w = a.word(i)?;
+        if OWN.contains(&w) {
+            own_part = true;
+        } else if own_part {
+            let what = if pack.rate_style {
+                "unknown keyword or wrong keyword order"
+            } else {
+                "unknown keyword"
+            };
+            return Err(a.error(i, format!("Fix {} (id {}): {what}", fix.style, fix.id)));
+        }
         match keyword(&mut pack, &families, a, ctx, i, w)? {
             Some(used) => i += used,
             None => return Err(unknown(a, i, w, fix.style)),
@@ -32,6 +45,17 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     }
     pack.finish(a, ctx, fix)
 }
+
+/// insert/pack's own keywords (after the general insertion keywords).
+const OWN: &[&str] = &[
+    "region",
+    "volumefraction_region",
+    "particles_in_region",
+    "mass_in_region",
+    "ntry_mc",
+    "warn_region",
+    "check_dist_from_subdomain_border",
+];
 
 /// The keywords of `fix insert/pack` and `insert/rate/region` as given.
 struct PackArgs {

@@ -201,7 +201,7 @@ impl StreamArgs {
                 if self.total.is_some() {
                     return Err(a.error(
                         i,
-                        "Fix insert/stream: must not define both 'nparticles' and 'mass'",
+                        format!("Fix insert/stream (id {}): must not define both 'nparticles' and 'mass'", a.word(0)?),
                     ));
                 }
                 // INF: no total, insertion at the rate until the runs end
@@ -217,7 +217,7 @@ impl StreamArgs {
                 if self.rate.is_some() {
                     return Err(a.error(
                         i,
-                        "Fix insert/stream: must not define both 'particlerate' and 'massrate'",
+                        format!("Fix insert/stream (id {}): must not define both 'particlerate' and 'massrate'", a.word(0)?),
                     ));
                 }
                 let r = a.real(i + 1)?;
@@ -262,20 +262,24 @@ impl StreamArgs {
         let total = self.total.ok_or_else(|| {
             a.error(
                 2,
-                "Fix insert/stream: must define either 'nparticles' or 'mass'",
+                format!("Fix insert/stream (id {id}): must define either 'nparticles' or 'mass'"),
             )
         })?;
         let rate = self.rate.ok_or_else(|| {
             a.error(
                 2,
-                "Fix insert/stream: must define either 'massrate' or 'particlerate'",
+                format!(
+                    "Fix insert/stream (id {id}): must define either 'massrate' or 'particlerate'"
+                ),
             )
         })?;
         if self.extrude.is_some() == self.schedule.every.is_some() {
-            return Err(a.error(
-                2,
-                "Fix insert/stream: must define either 'insert_every' or 'extrude_length'",
-            ));
+            let what = if self.extrude.is_some() {
+                "must not provide both 'insert_every' and 'extrude_length'"
+            } else {
+                "must define either 'insert_every' or 'extrude_length'"
+            };
+            return Err(a.error(2, format!("Fix insert/stream (id {id}): {what}")));
         }
         if self.extrude.is_some() && self.duration.is_some() {
             return Err(a.error(

@@ -408,6 +408,7 @@ impl MeshArgs {
             nodes_at_refresh: Vec::new(),
             stress: None,
             servo: None,
+            announced: false,
         };
         if self.stress_style {
             let mut st = crate::engine::mesh_stress::MeshStress::new(

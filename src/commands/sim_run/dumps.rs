@@ -56,6 +56,9 @@ pub(in crate::commands) fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
         .iter()
         .position(|d| d.id == id)
         .ok_or_else(|| a.error(0, "Could not find dump_modify ID"))?;
+    // LIGGGHTS takes any format string here and checks it when the run starts: a bad one
+    // is reported after the other keywords (whose errors LIGGGHTS raises first)
+    let mut bad_format = None;
     let mut i = 1;
     while i < a.len() {
         let dump = &mut ctx.sim.dumps[k];
@@ -65,10 +68,13 @@ pub(in crate::commands) fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
                 "off" => dump.layout.sort_by_id = false,
                 _ => return Err(a.unsupported(i + 1, "dump_modify sort by column")),
             },
-            "format" => dump
-                .layout
-                .set_format(a.word(i + 1)?)
-                .map_err(|m| a.error(i + 1, &m))?,
+            // `none` goes back to the default formats
+            "format" if a.word(i + 1)? == "none" => dump.layout.format = None,
+            "format" => {
+                if let Err(m) = dump.layout.set_format(a.word(i + 1)?) {
+                    bad_format.get_or_insert(a.error(i + 1, &m));
+                }
+            }
             "first" => dump.first = a.word_in(i + 1, &["yes", "no"])? == "yes",
             "pad" => {
                 let n = a.int(i + 1)?;
@@ -111,11 +117,15 @@ pub(in crate::commands) fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
                     .error(i, "Illegal dump_modify command")
                     .with_help("dump custom writes LAMMPS's binary format to a file named *.bin"));
             }
+            // a value where a keyword belongs (`format float %.10g`, the newer LAMMPS syntax)
+            other if !other.starts_with(|c: char| c.is_ascii_alphabetic()) => {
+                return Err(a.error(i, "Illegal dump_modify command"));
+            }
             other => return Err(a.unsupported(i, &format!("dump_modify {other}"))),
         }
         i += 2;
     }
-    Ok(())
+    bad_format.map_or(Ok(()), Err)
 }
 
 /// `undump ID`.

@@ -397,9 +397,7 @@ pub(super) fn delete_atoms(a: &Args, ctx: &mut Ctx) -> Result {
                     .group_bit(a.word(2 + k)?)
                     .ok_or_else(|| a.error(2 + k, "Could not find delete_atoms group ID"))?;
             }
-            if ctx.sys.mode == Mode::Run {
-                ctx.out.screen("System init for delete_atoms ...\n");
-            }
+            crate::commands::system_init::system_init(a, ctx, Some("delete_atoms"))?;
             if ctx.sim.pair_selection.is_none() {
                 return Err(a.error(0, "Delete_atoms requires a pair style be defined"));
             }

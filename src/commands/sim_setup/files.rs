@@ -78,6 +78,7 @@ pub(super) fn write_data(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.error(0, "Write_data command before simulation box is defined"));
     }
     let name = a.word(0)?;
+    crate::commands::system_init::system_init(a, ctx, Some("write_data"))?;
     if ctx.sys.mode != Mode::Run {
         return Ok(());
     }
@@ -217,6 +218,7 @@ pub(super) fn write_restart(a: &Args, ctx: &mut Ctx) -> Result {
     }
     let path = ctx.sys.resolve(a.word(0)?).to_string_lossy().into_owned();
     let path = path.replace('*', &ctx.sim.step.to_string());
+    crate::commands::system_init::system_init(a, ctx, Some("write_restart"))?;
     ctx.sim.check_restart_size().map_err(|m| a.error(0, &m))?;
     if ctx.sys.mode != Mode::Run {
         // check mode: keep the file in memory for a later read_restart of the same deck

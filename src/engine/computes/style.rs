@@ -109,6 +109,12 @@ pub trait ComputeStyle: Send + std::fmt::Debug {
         None
     }
 
+    /// Whether the global scalar is extensive (LIGGGHTS's extscalar: `thermo_modify norm yes`
+    /// divides it by the atom count).
+    fn extensive_scalar(&self) -> bool {
+        false
+    }
+
     /// Whether the style is a temperature compute (`compute_modify`'s settings apply to
     /// it, `compute pressure` reads it).
     fn is_temperature(&self) -> bool {

@@ -68,9 +68,17 @@ impl CheckTimestep {
         Ok(())
     }
 
-    /// LIGGGHTS's estimates; returns the warnings to print.
-    pub fn evaluate(&mut self, p: &Particles, group: u32, dt: f64, skin: f64) -> Vec<String> {
-        self.evaluate_over_ranks(p, group, dt, skin, &|_: &mut [f64]| {})
+    /// LIGGGHTS's estimates, with `mesh_vmax_sqr` the largest squared speed of a moving
+    /// mesh's nodes (length^2/time^2); returns the warnings to print.
+    pub fn evaluate(
+        &mut self,
+        p: &Particles,
+        group: u32,
+        dt: f64,
+        skin: f64,
+        mesh_vmax_sqr: f64,
+    ) -> Vec<String> {
+        self.evaluate_over_ranks(p, group, dt, skin, mesh_vmax_sqr, &|_: &mut [f64]| {})
     }
 
     /// [`Self::evaluate`] over this rank's particles, the extremes taken over all ranks with
@@ -82,6 +90,7 @@ impl CheckTimestep {
         group: u32,
         dt: f64,
         skin: f64,
+        mesh_vmax_sqr: f64,
         min: &dyn Fn(&mut [f64]),
     ) -> Vec<String> {
         const BIG: f64 = 1.0e20;
@@ -117,7 +126,8 @@ impl CheckTimestep {
         if self.vmax_user * self.vmax_user > vmax_sqr {
             vmax_sqr = self.vmax_user * self.vmax_user;
         }
-        let v_rel = (2. * vmax_sqr.sqrt()).max(vmax_sqr.sqrt() + 0.0);
+        // particle-particle or particle-mesh contact, whichever is faster
+        let v_rel = (2. * vmax_sqr.sqrt()).max(vmax_sqr.sqrt() + mesh_vmax_sqr.sqrt());
         let mut hertz: f64 = 1000000.;
         if (v_rel - 0.0).abs() >= 1e-13 {
             for ti in 1..=self.materials.len() {

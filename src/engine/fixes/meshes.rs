@@ -24,6 +24,9 @@ pub struct MeshFix {
     pub stress: Option<crate::engine::mesh_stress::MeshStress>,
     /// `mesh/surface/stress/servo`: the controller that moves the mesh.
     pub servo: Option<Box<crate::engine::mesh_servo::MeshServo>>,
+    /// LIGGGHTS's line of the mesh's first run setup ("Import and parallelization of mesh
+    /// ... successful") has been printed.
+    pub announced: bool,
 }
 
 impl MeshFix {

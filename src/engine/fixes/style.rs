@@ -36,6 +36,9 @@ pub struct FixStep<'a> {
     pub skin: f64,
     /// The deck's regions (given at `end_of_step` and `setup_values`, else None).
     pub regions: Option<&'a Regions>,
+    /// The largest squared node speed of the moving meshes of the last mesh wall
+    /// (length^2/time^2; given at `end_of_step` and `setup_values`, else 0).
+    pub mesh_vmax_sqr: f64,
 }
 
 impl<'a> FixStep<'a> {
@@ -52,6 +55,7 @@ impl<'a> FixStep<'a> {
             contact: 0.0,
             skin: 0.0,
             regions: None,
+            mesh_vmax_sqr: 0.0,
         }
     }
 }

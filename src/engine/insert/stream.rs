@@ -480,6 +480,9 @@ impl InsertStream {
         box_changes: bool,
     ) -> Result<(Vec<NewParticle>, Vec<String>), EngineError> {
         let mut lines = Vec::new();
+        if self.extrusion_leaves(w.lo, w.hi) {
+            lines.push("WARNING: Fix insert/stream: Extruded insertion face extends outside domain, may not insert all particles correctly (./src/fix_insert_stream.cpp:561)".into());
+        }
         let mut n = (self.per_insertion + self.rng.uniform()) as i64;
         if self.inserted + n > self.total {
             n = self.total - self.inserted;
@@ -604,6 +607,26 @@ impl InsertStream {
             lines.push("WARNING: Particle insertion: Less insertions than requested (./src/fix_insert.cpp:814)".into());
         }
         Ok((placed, lines))
+    }
+
+    /// Whether the bounding box of the face and its extrusion reaches outside the box `lo`..`hi`
+    /// (length), as LIGGGHTS checks before each insertion (a corner exactly on the box
+    /// surface is inside; the extruded corner is the face's plus -extrude times the normal,
+    /// rounded as LIGGGHTS rounds it).
+    fn extrusion_leaves(&self, lo: [f64; 3], hi: [f64; 3]) -> bool {
+        let mut min = [f64::INFINITY; 3];
+        let mut max = [f64::NEG_INFINITY; 3];
+        for v in self.face.triangles.iter().flatten() {
+            for k in 0..3 {
+                min[k] = min[k].min(v[k]);
+                max[k] = max[k].max(v[k]);
+            }
+        }
+        let shift = self.normal.map(|n| n * -self.extrude);
+        let low = [0, 1, 2].map(|k| min[k].min(min[k] + shift[k]));
+        let high = [0, 1, 2].map(|k| max[k].max(max[k] + shift[k]));
+        let inside = |p: [f64; 3]| (0..3).all(|k| p[k] >= lo[k] && p[k] <= hi[k]);
+        !(inside(low) && inside(high))
     }
 
     /// The state a restart file keeps (LIGGGHTS's FixInsert::write_restart).

@@ -299,6 +299,9 @@ pub struct Simulation {
     /// A moving mesh's nodes went more than half the skin since its last refresh: the
     /// neighbour lists are rebuilt at this step (LIGGGHTS's FixMesh next_reneighbor).
     pub mesh_rebuild_at: Option<i64>,
+    /// An insertion fix was due at this step: LIGGGHTS rebuilds the neighbour lists (and
+    /// sorts the atoms when due) at every insertion step, also when nothing was inserted.
+    pub insert_rebuild_at: Option<i64>,
     /// The particles.
     pub particles: Particles,
     /// The box.
@@ -349,6 +352,9 @@ pub struct Simulation {
     pub soft_hard: (bool, bool),
     /// `communicate ... vel yes` (LIGGGHTS's pair gran requires it).
     pub comm_vel: bool,
+    /// `newton` for pairs (on by default, as in LIGGGHTS): a pair style with contact history
+    /// requires it off.
+    pub newton_pair: bool,
     /// `-seedtolerant`: random seeds need not be primes above 10000.
     pub seed_tolerant: bool,
     /// regolith extension `-zero_restitution`: restitution may go down to 0.
@@ -417,6 +423,7 @@ impl Default for Simulation {
             restart_mesh_history: std::collections::HashMap::new(),
             stream_release: false,
             mesh_rebuild_at: None,
+            insert_rebuild_at: None,
             energy_watch: None,
             guard_notes: GuardNotes::default(),
             margin_said: None,
@@ -448,6 +455,7 @@ impl Default for Simulation {
             pair_coeff_types: Vec::new(),
             soft_hard: (false, false),
             comm_vel: false,
+            newton_pair: true,
             seed_tolerant: false,
             zero_restitution: false,
             fixes: Vec::new(),

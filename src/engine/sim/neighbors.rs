@@ -548,6 +548,7 @@ impl Simulation {
     pub(super) fn decide(&mut self) -> bool {
         // a rebuild a fix or a changed atom count forces is never dangerous
         let forced = self.mesh_rebuild_at == Some(self.step)
+            || self.insert_rebuild_at == Some(self.step)
             || self.restart_due()
             || self.list.built_positions().len() != self.particles.len();
         let rebuild = self.decide_by_rules();
@@ -570,7 +571,10 @@ impl Simulation {
     /// The rebuild decision itself (see [`Self::decide`]).
     pub(super) fn decide_by_rules(&mut self) -> bool {
         self.ago += 1;
-        if self.mesh_rebuild_at == Some(self.step) || self.restart_due() {
+        if self.mesh_rebuild_at == Some(self.step)
+            || self.insert_rebuild_at == Some(self.step)
+            || self.restart_due()
+        {
             return true;
         }
         if self.list.built_positions().len() != self.particles.len() {

@@ -373,6 +373,8 @@ impl Simulation {
         }
         let (first, last, started) = self.begin_run(nsteps)?;
         self.setup_fix_styles();
+        // every rank holds the whole set here: the computes' run-start state is global
+        self.setup_compute_styles();
         let mut st = self.rank_setup(comm)?;
         self.rank_forces(&mut st, false, true);
         if comm.rank() == 0 {
@@ -465,6 +467,7 @@ impl Simulation {
     ) -> Result<(), EngineError> {
         let (step, dt, skin) = (self.step, self.dt, self.neighbor.skin);
         let contact = self.neighbor.cutneighmax - skin;
+        let mesh_vmax_sqr = self.moving_mesh_vmax_sqr();
         let min = |values: &mut [f64]| comm.all_reduce_f64(values, Reduce::Min);
         for k in 0..self.fixes.len() {
             let fix = &mut self.fixes[k];
@@ -478,6 +481,7 @@ impl Simulation {
                     contact,
                     skin,
                     regions: Some(&self.regions),
+                    mesh_vmax_sqr,
                 };
                 s.end_of_step_ranks(&mut self.particles, &at, &min);
                 if s.outputs_at(step) {

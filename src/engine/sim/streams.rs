@@ -121,6 +121,7 @@ impl Simulation {
             if sf.state.as_ref().is_none_or(|s| s.next != Some(step)) {
                 continue;
             }
+            self.insert_rebuild_at = Some(step);
             let group = self.fixes[k].group;
             let dist_id = sf.distribution.clone();
             let dk = self
@@ -330,6 +331,7 @@ impl Simulation {
             if !due {
                 continue;
             }
+            self.insert_rebuild_at = Some(step);
             let FixKind::InsertPack(ins) = &self.fixes[k].kind else {
                 unreachable!()
             };

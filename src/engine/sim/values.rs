@@ -4,6 +4,40 @@
 use super::*;
 
 impl Simulation {
+    /// The largest squared node speed (length^2/time^2) of the moving meshes (a fix
+    /// move/mesh or a servo on them) of the last mesh wall, as LIGGGHTS's fix
+    /// check/timestep/gran takes it; 0 without one.
+    pub(crate) fn moving_mesh_vmax_sqr(&self) -> f64 {
+        let Some(wall) = self.fixes.iter().rev().find_map(|f| f.kind.mesh_wall()) else {
+            return 0.0;
+        };
+        let mut vmax_sqr: f64 = 0.0;
+        for id in &wall.meshes {
+            let Some(mesh) = self
+                .fixes
+                .iter()
+                .find(|f| &f.id == id)
+                .and_then(|f| f.kind.mesh())
+            else {
+                continue;
+            };
+            let moved = self
+                .fixes
+                .iter()
+                .any(|f| f.kind.mover().is_some_and(|m| &m.mesh == id));
+            if !(moved || mesh.servo.is_some()) {
+                continue;
+            }
+            for v in mesh.node_v.iter().flatten().flatten() {
+                let sq = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+                if sq > vmax_sqr {
+                    vmax_sqr = sq;
+                }
+            }
+        }
+        vmax_sqr
+    }
+
     /// The `end_of_step` phase: fixes that check or report every N steps.
     pub(super) fn end_of_step(
         &mut self,
@@ -14,6 +48,7 @@ impl Simulation {
         let (step, dt, skin) = (self.step, self.dt, self.neighbor.skin);
         let contact = self.neighbor.cutneighmax - skin;
         let tallied = self.virial_step == Some(step);
+        let mesh_vmax_sqr = self.moving_mesh_vmax_sqr();
         for k in 0..self.fixes.len() {
             let fix = &mut self.fixes[k];
             match &mut fix.kind {
@@ -29,6 +64,7 @@ impl Simulation {
                             contact,
                             skin,
                             regions: Some(&self.regions),
+                            mesh_vmax_sqr,
                         },
                     );
                     if s.outputs_at(step) {
@@ -86,6 +122,7 @@ impl Simulation {
         let step = self.step;
         let tallied = self.virial_step == Some(step);
         let contact = self.neighbor.cutneighmax - self.neighbor.skin;
+        let mesh_vmax_sqr = self.moving_mesh_vmax_sqr();
         for fix in &mut self.fixes {
             if let FixKind::Style(s) = &mut fix.kind {
                 s.setup_values(
@@ -99,6 +136,7 @@ impl Simulation {
                         contact,
                         skin: self.neighbor.skin,
                         regions: Some(&self.regions),
+                        mesh_vmax_sqr,
                     },
                 );
             }

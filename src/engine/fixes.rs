@@ -29,8 +29,6 @@ pub enum FixKind {
     Move(Move),
     /// `fix wall/gran ... primitive`: a granular plane wall.
     WallGran(WallFix),
-    /// `fix ave/time` (scalar mode).
-    AveTime(AveTime),
     /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
     Mesh(Box<MeshFix>),
     /// `fix particletemplate/sphere`.

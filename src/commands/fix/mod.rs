@@ -91,7 +91,6 @@ pub const STYLES: &[(&str, Build)] = &[
     ("insert/rate/region", insert_pack::build),
     ("insert/stream", insert_stream::build),
     ("wall/gran", wall_gran::build),
-    ("ave/time", ave_time::build),
     ("move", move_atoms::build),
     ("massflow/mesh", massflow_mesh::build),
     ("property/atom", property_atom::build),
@@ -255,6 +254,11 @@ pub static TABLE: StyleTable<FixRow> = StyleTable::new(&[
         spec: multicontact::SPEC,
         planar: false,
         build: multicontact::build,
+    },
+    FixRow {
+        spec: ave_time::SPEC,
+        planar: true,
+        build: ave_time::build,
     },
 ]);
 

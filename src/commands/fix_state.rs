@@ -44,9 +44,10 @@ pub fn restore_fix_state(
                 dist.rng.reset(state as i32).map_err(|m| a.error(2, &m))?;
             }
             FixKind::Mesh(_) => {} // its nodes were taken from the file when it was built
-            FixKind::PropertyAtom(pa) => {
+            kind if kind.property_atom().is_some() => {
                 // the number of values; the builder kept the restart's per-atom values
-                if d.first().map(|&n| n as usize) != Some(pa.defaults.len()) {
+                let columns = kind.property_atom().map(|pa| pa.defaults.len());
+                if d.first().map(|&n| n as usize) != columns {
                     return Err(a.error(
                         2,
                         format!(
@@ -107,7 +108,7 @@ pub fn restore_fix_state(
             "Resetting global state of Fix {} Style {} from restart file info",
             fix.id, fix.style
         ));
-        if matches!(fix.kind, FixKind::Move(_) | FixKind::PropertyAtom(_))
+        if (matches!(fix.kind, FixKind::Move(_)) || fix.kind.property_atom().is_some())
             && ctx.sim.held_peratom(&fix.id, &fix.style)
         {
             lines.push(format!(

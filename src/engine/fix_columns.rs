@@ -15,8 +15,6 @@ use crate::engine::sim::Simulation;
 fn width(kind: &FixKind) -> (usize, bool) {
     match kind {
         FixKind::Move(_) => (3, false),
-        FixKind::PropertyAtom(pa) => (pa.defaults.len(), !pa.vector),
-        FixKind::HeatGran(_) => (1, true),
         FixKind::Style(s) => shape_width(s.per_atom_shape()),
         _ => (0, false),
     }
@@ -72,19 +70,10 @@ pub fn per_atom(
     let col = column(sim, id, index)?;
     let p = &sim.particles;
     match sim.fixes.iter().find(|f| f.id == id).map(|f| &f.kind) {
-        Some(FixKind::PropertyAtom(pa)) => {
-            let columns = pa.defaults.len();
-            let values = crate::engine::heat::property_values(p, id, columns);
-            return Ok((PerAtom { columns, values }, col));
-        }
         Some(FixKind::Style(s)) => {
             let columns = shape_width(s.per_atom_shape()).0;
             let values = s.per_atom(p);
             return Ok((PerAtom { columns, values }, col));
-        }
-        Some(FixKind::HeatGran(h)) => {
-            let values = crate::engine::heat::property_values(p, &h.arrays[0], 1);
-            return Ok((PerAtom { columns: 1, values }, col));
         }
         _ => {}
     }

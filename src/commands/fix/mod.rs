@@ -88,9 +88,6 @@ pub const STYLES: &[(&str, Build)] = &[
     ("insert/stream", insert_stream::build),
     ("wall/gran", wall_gran::build),
     ("move", move_atoms::build),
-    ("property/atom", property_atom::build),
-    ("heat/gran", heat_gran::build),
-    ("heat/gran/conduction", heat_gran::build),
     ("multisphere", multisphere::build),
 ];
 
@@ -249,6 +246,21 @@ pub static TABLE: StyleTable<FixRow> = StyleTable::new(&[
         spec: ave_time::SPEC,
         planar: true,
         build: ave_time::build,
+    },
+    FixRow {
+        spec: property_atom::SPEC,
+        planar: false,
+        build: property_atom::build,
+    },
+    FixRow {
+        spec: heat_gran::SPEC,
+        planar: false,
+        build: heat_gran::build,
+    },
+    FixRow {
+        spec: heat_gran::CONDUCTION,
+        planar: false,
+        build: heat_gran::build,
     },
     FixRow {
         spec: ave_histo::SPEC,

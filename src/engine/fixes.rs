@@ -25,8 +25,6 @@ pub use walls::{mesh_wall_contacts, refresh_trackers, MeshWallFix, WallFix};
 
 /// What a fix does.
 pub enum FixKind {
-    /// `fix move`.
-    Move(Move),
     /// `fix wall/gran ... primitive`: a granular plane wall.
     WallGran(WallFix),
     /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
@@ -165,7 +163,6 @@ impl FixKind {
             | FixKind::InsertStream(_)
             | FixKind::MeshWall(_)
             | FixKind::Settings => false,
-            FixKind::Move(m) => matches!(m.motion, Motion::Variable { .. }),
             FixKind::Style(s) => s.reads_computes(),
             _ => true,
         }
@@ -242,7 +239,6 @@ pub fn initial_integrate(
     for fix in fixes {
         match &mut fix.kind {
             FixKind::Multisphere(ms) => ms.initial_integrate(p, dt, domain, step, has_stream),
-            FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt, domain),
             FixKind::Style(s) => {
                 s.initial_integrate(p, &FixStep::plain(fix.group, step, dt, domain))
             }
@@ -322,7 +318,6 @@ pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, step: i64, dt: f64,
                 ms.calc_force(p, domain, gravity);
                 ms.final_integrate(p, dt);
             }
-            FixKind::Move(m) => m.final_integrate(p, fix.group, dt),
             FixKind::Style(s) => s.final_integrate(p, &FixStep::plain(fix.group, step, dt, domain)),
             _ => {}
         }

@@ -87,7 +87,6 @@ pub const STYLES: &[(&str, Build)] = &[
     ("insert/rate/region", insert_pack::build),
     ("insert/stream", insert_stream::build),
     ("wall/gran", wall_gran::build),
-    ("move", move_atoms::build),
     ("multisphere", multisphere::build),
 ];
 
@@ -246,6 +245,11 @@ pub static TABLE: StyleTable<FixRow> = StyleTable::new(&[
         spec: ave_time::SPEC,
         planar: true,
         build: ave_time::build,
+    },
+    FixRow {
+        spec: move_atoms::SPEC,
+        planar: false,
+        build: move_atoms::build,
     },
     FixRow {
         spec: property_atom::SPEC,

@@ -57,10 +57,6 @@ pub fn restore_fix_state(
                     ));
                 }
             }
-            FixKind::MoveMesh(mv) => {
-                // the mover's clock; the mesh took its moved nodes from the file
-                mv.time = *d.first().ok_or_else(|| bad("empty"))?;
-            }
             kind if kind.style_as::<Move>().is_some() => {
                 // the time origin, and each atom's start position (LIGGGHTS's xoriginal)
                 let start = *d.first().ok_or_else(|| bad("empty"))? as i32 as i64;

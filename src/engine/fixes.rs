@@ -39,8 +39,6 @@ pub enum FixKind {
     InsertStream(Box<StreamFix>),
     /// `fix wall/gran ... mesh`: granular walls of triangle meshes.
     MeshWall(MeshWallFix),
-    /// `fix move/mesh`: prescribed motion of a mesh.
-    MoveMesh(crate::engine::mesh_motion::MoveMesh),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
     /// `fix multisphere`: the rigid clumps and their integration.
@@ -95,18 +93,12 @@ impl FixKind {
 
     /// The motion of a `fix move/mesh` (None: a fix of another style).
     pub fn mover(&self) -> Option<&crate::engine::mesh_motion::MoveMesh> {
-        match self {
-            FixKind::MoveMesh(mv) => Some(mv),
-            _ => None,
-        }
+        self.style_as()
     }
 
     /// [`FixKind::mover`], to change.
     pub fn mover_mut(&mut self) -> Option<&mut crate::engine::mesh_motion::MoveMesh> {
-        match self {
-            FixKind::MoveMesh(mv) => Some(mv),
-            _ => None,
-        }
+        self.style_as_mut()
     }
 
     /// The insertion of a `fix insert/stream` (None: a fix of another style).

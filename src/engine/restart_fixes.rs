@@ -242,7 +242,6 @@ impl Simulation {
                         peratom.push((PeratomFix { id, style, maxsize }, rows));
                     }
                 }
-                FixKind::MoveMesh(mv) => globals.push(entry(&f.id, &f.style, to_bytes(&[mv.time]))),
                 FixKind::InsertPack(ins) => {
                     let state = crate::engine::insert::InsertRestart {
                         rng_state: ins.rng.state(),

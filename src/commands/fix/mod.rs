@@ -72,7 +72,6 @@ pub const STYLES: &[(&str, Build)] = &[
     ("mesh/surface/planar", mesh_surface::build),
     ("mesh/surface/stress", mesh_surface::build),
     ("mesh/surface/stress/servo", mesh_surface::build),
-    ("move/mesh", move_mesh::build),
     ("particletemplate/sphere", particle_template::build),
     ("particledistribution/discrete", distribution::build),
     (
@@ -245,6 +244,11 @@ pub static TABLE: StyleTable<FixRow> = StyleTable::new(&[
         spec: ave_time::SPEC,
         planar: true,
         build: ave_time::build,
+    },
+    FixRow {
+        spec: move_mesh::SPEC,
+        planar: false,
+        build: move_mesh::build,
     },
     FixRow {
         spec: move_atoms::SPEC,

@@ -16,27 +16,24 @@ impl Simulation {
         let tallied = self.virial_step == Some(step);
         for k in 0..self.fixes.len() {
             let fix = &mut self.fixes[k];
-            match &mut fix.kind {
-                FixKind::Style(s) => {
-                    s.end_of_step(
-                        &mut self.particles,
-                        &fixes::FixStep {
-                            group: fix.group,
-                            step,
-                            dt,
-                            domain: &self.domain,
-                            virial: if tallied { &self.virial } else { &[] },
-                            contact,
-                            skin,
-                            regions: Some(&self.regions),
-                        },
-                    );
-                    if s.outputs_at(step) {
-                        self.fix_style_output(k, out, vars)?;
-                    }
-                    self.fix_style_end_of_step_sim(k, vars)?;
+            if let FixKind::Style(s) = &mut fix.kind {
+                s.end_of_step(
+                    &mut self.particles,
+                    &fixes::FixStep {
+                        group: fix.group,
+                        step,
+                        dt,
+                        domain: &self.domain,
+                        virial: if tallied { &self.virial } else { &[] },
+                        contact,
+                        skin,
+                        regions: Some(&self.regions),
+                    },
+                );
+                if s.outputs_at(step) {
+                    self.fix_style_output(k, out, vars)?;
                 }
-                _ => {}
+                self.fix_style_end_of_step_sim(k, vars)?;
             }
         }
         Ok(())

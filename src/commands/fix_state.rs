@@ -3,7 +3,7 @@
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
 use crate::engine::error::EngineError;
-use crate::engine::fixes::{Fix, FixKind};
+use crate::engine::fixes::{Fix, FixKind, Move};
 
 /// A fix defined while a restart file's fix states are held takes the state stored under
 /// its ID and style (LIGGGHTS's Modify::add_fix); returns the lines LIGGGHTS prints. The
@@ -44,9 +44,10 @@ pub fn restore_fix_state(
                 dist.rng.reset(state as i32).map_err(|m| a.error(2, &m))?;
             }
             FixKind::Mesh(_) => {} // its nodes were taken from the file when it was built
-            FixKind::PropertyAtom(pa) => {
+            kind if kind.property_atom().is_some() => {
                 // the number of values; the builder kept the restart's per-atom values
-                if d.first().map(|&n| n as usize) != Some(pa.defaults.len()) {
+                let columns = kind.property_atom().map(|pa| pa.defaults.len());
+                if d.first().map(|&n| n as usize) != columns {
                     return Err(a.error(
                         2,
                         format!(
@@ -56,17 +57,16 @@ pub fn restore_fix_state(
                     ));
                 }
             }
-            FixKind::MoveMesh(mv) => {
-                // the mover's clock; the mesh took its moved nodes from the file
-                mv.time = *d.first().ok_or_else(|| bad("empty"))?;
-            }
-            FixKind::Move(mv) => {
+            kind if kind.style_as::<Move>().is_some() => {
                 // the time origin, and each atom's start position (LIGGGHTS's xoriginal)
-                mv.start_step = *d.first().ok_or_else(|| bad("empty"))? as i32 as i64;
-                if let Some(stored) = ctx.sim.restart_move_origins.get(&fix.id) {
-                    for (id, x) in mv.origin.iter_mut() {
-                        if let Some(s) = stored.get(id) {
-                            *x = *s;
+                let start = *d.first().ok_or_else(|| bad("empty"))? as i32 as i64;
+                if let Some(mv) = kind.style_as_mut::<Move>() {
+                    mv.start_step = start;
+                    if let Some(stored) = ctx.sim.restart_move_origins.get(&fix.id) {
+                        for (id, x) in mv.origin.iter_mut() {
+                            if let Some(s) = stored.get(id) {
+                                *x = *s;
+                            }
                         }
                     }
                 }
@@ -107,7 +107,7 @@ pub fn restore_fix_state(
             "Resetting global state of Fix {} Style {} from restart file info",
             fix.id, fix.style
         ));
-        if matches!(fix.kind, FixKind::Move(_) | FixKind::PropertyAtom(_))
+        if (fix.kind.style_as::<Move>().is_some() || fix.kind.property_atom().is_some())
             && ctx.sim.held_peratom(&fix.id, &fix.style)
         {
             lines.push(format!(

@@ -21,10 +21,7 @@ fn unsupported_state(ctx: &Ctx) -> Option<String> {
     }
     for f in &sim.fixes {
         let keeps_state = match &f.kind {
-            FixKind::Move(_)
-            | FixKind::Multisphere(_)
-            | FixKind::InsertStream(_)
-            | FixKind::HeatGran(_) => true,
+            FixKind::Multisphere(_) | FixKind::InsertStream(_) => true,
             FixKind::Style(s) => s.keeps_per_atom_state(),
             _ => false,
         };

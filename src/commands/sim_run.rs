@@ -74,13 +74,13 @@ fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
             FixKind::Multisphere(_) => {
                 return Err(a.error(0, format!("Fix multisphere (id {id}): this fix may not be unfixed as it holds all the internal data for multi-spheres")));
             }
-            FixKind::MoveMesh(mv) => {
-                let on_mesh = movers(&mv.mesh);
+            kind if kind.mover().is_some() => {
+                let mesh = kind.mover().map_or(String::new(), |mv| mv.mesh.clone());
+                let on_mesh = movers(&mesh);
                 if on_mesh.len() > 1 && on_mesh[0] == k {
                     return Err(a.error(0, "Illegal deletion of a fix move/mesh. There is another fix move/mesh command active on the same mesh. Superposed fix move/mesh commands must be unfixed in reverse order of creation"));
                 }
                 // the mesh stays where it is, at rest
-                let mesh = mv.mesh.clone();
                 if let Some(m) = crate::engine::fixes::mesh_named_mut(&mut ctx.sim.fixes, &mesh) {
                     if let Some(v) = &mut m.node_v {
                         v.iter_mut().for_each(|t| *t = [[0.0; 3]; 3]);
@@ -192,11 +192,10 @@ fn check_thermo_references(a: &Args, ctx: &Ctx) -> Result {
                     fix.kind,
                     FixKind::WallGran(_)
                         | FixKind::MeshWall(_)
-                        | FixKind::Move(_)
-                        | FixKind::MoveMesh(_)
                         | FixKind::Template(_)
                         | FixKind::Distribution(_)
-                );
+                ) || fix.kind.style_as::<crate::engine::fixes::Move>().is_some()
+                    || fix.kind.mover().is_some();
                 if silent {
                     let what = if indexed { "vector" } else { "scalar" };
                     return Err(a.error(k, format!("Thermo fix does not compute {what}")));

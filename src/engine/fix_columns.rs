@@ -14,9 +14,6 @@ use crate::engine::sim::Simulation;
 /// (one value per atom, LIGGGHTS's `size_peratom_cols` 0) rather than an array.
 fn width(kind: &FixKind) -> (usize, bool) {
     match kind {
-        FixKind::Move(_) => (3, false),
-        FixKind::PropertyAtom(pa) => (pa.defaults.len(), !pa.vector),
-        FixKind::HeatGran(_) => (1, true),
         FixKind::Style(s) => shape_width(s.per_atom_shape()),
         _ => (0, false),
     }
@@ -72,27 +69,11 @@ pub fn per_atom(
     let col = column(sim, id, index)?;
     let p = &sim.particles;
     match sim.fixes.iter().find(|f| f.id == id).map(|f| &f.kind) {
-        Some(FixKind::PropertyAtom(pa)) => {
-            let columns = pa.defaults.len();
-            let values = crate::engine::heat::property_values(p, id, columns);
-            return Ok((PerAtom { columns, values }, col));
-        }
         Some(FixKind::Style(s)) => {
             let columns = shape_width(s.per_atom_shape()).0;
             let values = s.per_atom(p);
-            return Ok((PerAtom { columns, values }, col));
+            Ok((PerAtom { columns, values }, col))
         }
-        Some(FixKind::HeatGran(h)) => {
-            let values = crate::engine::heat::property_values(p, &h.arrays[0], 1);
-            return Ok((PerAtom { columns: 1, values }, col));
-        }
-        _ => {}
+        _ => Err("Dump custom fix does not compute per-atom info".into()),
     }
-    let mut values = Vec::with_capacity(3 * p.len());
-    if let Some(FixKind::Move(m)) = sim.fixes.iter().find(|f| f.id == id).map(|f| &f.kind) {
-        for i in 0..p.len() {
-            values.extend(m.origin.get(&p.id[i]).copied().unwrap_or([0.0; 3]));
-        }
-    }
-    Ok((PerAtom { columns: 3, values }, col))
 }

@@ -25,12 +25,8 @@ pub use walls::{mesh_wall_contacts, refresh_trackers, MeshWallFix, WallFix};
 
 /// What a fix does.
 pub enum FixKind {
-    /// `fix move`.
-    Move(Move),
     /// `fix wall/gran ... primitive`: a granular plane wall.
     WallGran(WallFix),
-    /// `fix ave/time` (scalar mode).
-    AveTime(AveTime),
     /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
     Mesh(Box<MeshFix>),
     /// `fix particletemplate/sphere`.
@@ -43,14 +39,8 @@ pub enum FixKind {
     InsertStream(Box<StreamFix>),
     /// `fix wall/gran ... mesh`: granular walls of triangle meshes.
     MeshWall(MeshWallFix),
-    /// `fix move/mesh`: prescribed motion of a mesh.
-    MoveMesh(crate::engine::mesh_motion::MoveMesh),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
     Settings,
-    /// `fix property/atom`: a per-atom property (values in the particle array of the fix ID).
-    PropertyAtom(crate::engine::heat::PropertyAtom),
-    /// `fix heat/gran`, `heat/gran/conduction`: heat conduction between touching particles.
-    HeatGran(crate::engine::heat::HeatGran),
     /// `fix multisphere`: the rigid clumps and their integration.
     Multisphere(Box<crate::engine::clumps::Clumps>),
     /// A style written as a module (see [`FixStyle`]): its hooks run in each phase.
@@ -93,34 +83,22 @@ impl FixKind {
 
     /// The per-atom property of a `fix property/atom` (None: a fix of another style).
     pub fn property_atom(&self) -> Option<&crate::engine::heat::PropertyAtom> {
-        match self {
-            FixKind::PropertyAtom(pa) => Some(pa),
-            _ => None,
-        }
+        self.style_as()
     }
 
     /// [`FixKind::property_atom`], to change.
     pub fn property_atom_mut(&mut self) -> Option<&mut crate::engine::heat::PropertyAtom> {
-        match self {
-            FixKind::PropertyAtom(pa) => Some(pa),
-            _ => None,
-        }
+        self.style_as_mut()
     }
 
     /// The motion of a `fix move/mesh` (None: a fix of another style).
     pub fn mover(&self) -> Option<&crate::engine::mesh_motion::MoveMesh> {
-        match self {
-            FixKind::MoveMesh(mv) => Some(mv),
-            _ => None,
-        }
+        self.style_as()
     }
 
     /// [`FixKind::mover`], to change.
     pub fn mover_mut(&mut self) -> Option<&mut crate::engine::mesh_motion::MoveMesh> {
-        match self {
-            FixKind::MoveMesh(mv) => Some(mv),
-            _ => None,
-        }
+        self.style_as_mut()
     }
 
     /// The insertion of a `fix insert/stream` (None: a fix of another style).
@@ -176,10 +154,7 @@ impl FixKind {
             | FixKind::InsertPack(_)
             | FixKind::InsertStream(_)
             | FixKind::MeshWall(_)
-            | FixKind::Settings
-            | FixKind::PropertyAtom(_)
-            | FixKind::HeatGran(_) => false,
-            FixKind::Move(m) => matches!(m.motion, Motion::Variable { .. }),
+            | FixKind::Settings => false,
             FixKind::Style(s) => s.reads_computes(),
             _ => true,
         }
@@ -256,8 +231,6 @@ pub fn initial_integrate(
     for fix in fixes {
         match &mut fix.kind {
             FixKind::Multisphere(ms) => ms.initial_integrate(p, dt, domain, step, has_stream),
-            FixKind::Move(m) => m.initial_integrate(p, fix.group, step, dt, domain),
-            FixKind::HeatGran(h) => h.initial_integrate(p),
             FixKind::Style(s) => {
                 s.initial_integrate(p, &FixStep::plain(fix.group, step, dt, domain))
             }
@@ -337,8 +310,6 @@ pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, step: i64, dt: f64,
                 ms.calc_force(p, domain, gravity);
                 ms.final_integrate(p, dt);
             }
-            FixKind::Move(m) => m.final_integrate(p, fix.group, dt),
-            FixKind::HeatGran(h) => h.final_integrate(p, fix.group, dt),
             FixKind::Style(s) => s.final_integrate(p, &FixStep::plain(fix.group, step, dt, domain)),
             _ => {}
         }

@@ -3,7 +3,7 @@
 
 use crate::engine::computes::Compute;
 use crate::engine::error::EngineError;
-use crate::engine::fixes::{AveInput, FixKind};
+use crate::engine::fixes::{AveInput, AveTime, FixKind};
 use crate::engine::sim::{Simulation, VariableSource};
 
 /// What a compute or fix offers as global output, as LIGGGHTS's flags say.
@@ -42,7 +42,7 @@ impl Compute {
 /// The global outputs of the fix `id` (None if there is no such fix).
 pub fn fix_shape(sim: &Simulation, id: &str) -> Option<GlobalShape> {
     let fix = sim.fixes.iter().find(|f| f.id == id)?;
-    if let FixKind::AveTime(at) = &fix.kind {
+    if let Some(at) = fix.kind.style_as::<AveTime>() {
         return Some(GlobalShape {
             scalar: at.value(None).is_some(),
             vector: at.vector_len(),
@@ -74,22 +74,18 @@ pub fn zero_freq(id: &str) -> EngineError {
 pub fn fix_global_freq(sim: &Simulation, id: &str) -> i64 {
     match sim.fixes.iter().find(|f| f.id == id).map(|f| &f.kind) {
         Some(FixKind::Style(s)) => s.global_freq(),
-        Some(FixKind::AveTime(at)) => at.freq,
         _ => 1,
     }
 }
 
 impl Simulation {
-    /// The values `fix ave/time` (the fix at index `k`) samples now: one per input in
-    /// scalar mode, `rows` rows of one value per input (row-major) in vector mode.
+    /// The values `fix ave/time` `at` samples now: one per input in scalar mode, `rows`
+    /// rows of one value per input (row-major) in vector mode.
     pub(crate) fn ave_time_values(
         &self,
-        k: usize,
+        at: &AveTime,
         vars: &mut dyn VariableSource,
     ) -> Result<Vec<f64>, EngineError> {
-        let FixKind::AveTime(at) = &self.fixes[k].kind else {
-            return Ok(Vec::new());
-        };
         let Some(rows) = at.rows else {
             return at
                 .inputs
@@ -120,10 +116,11 @@ impl Simulation {
                     .map(|r| self.fix_value(id, Some(r)))
                     .collect::<Result<_, _>>()?,
                 AveInput::Fix(id, Some(col)) => {
-                    let array = self.fixes.iter().find_map(|f| match &f.kind {
-                        FixKind::AveTime(at) if f.id == *id => Some(at),
-                        _ => None,
-                    });
+                    let array = self
+                        .fixes
+                        .iter()
+                        .find(|f| f.id == *id)
+                        .and_then(|f| f.kind.style_as::<AveTime>());
                     let array = array.ok_or_else(|| format!("Could not find fix ID {id}"))?;
                     (1..=rows)
                         .map(|r| array.array(r, *col).unwrap_or(0.0))
@@ -163,9 +160,12 @@ pub fn compute_ext(sim: &Simulation, c: &Compute, column: Option<usize>) -> Opti
 
 /// As [`compute_ext`], for a fix's global vector or array (fix ave/time only).
 pub fn fix_ext(sim: &Simulation, id: &str, column: Option<usize>) -> Option<i8> {
-    let FixKind::AveTime(at) = &sim.fixes.iter().find(|f| f.id == id)?.kind else {
-        return None;
-    };
+    let at = sim
+        .fixes
+        .iter()
+        .find(|f| f.id == id)?
+        .kind
+        .style_as::<AveTime>()?;
     if at.rows.is_none() {
         return (column.is_none() && at.inputs.len() > 1).then_some(-1);
     }

@@ -10,6 +10,7 @@
 //! `sum c m T` (J) of all particles.
 
 use crate::engine::error::EngineError;
+use crate::engine::fixes::{FixStep, FixStyle, PerAtomShape};
 use crate::engine::neighbor::Pair;
 use crate::engine::particles::Particles;
 
@@ -26,6 +27,8 @@ pub const DIRECTIONAL: &str = "directionalHeatFlux";
 /// a per-atom property, its values held in the particle array named by the fix ID.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PropertyAtom {
+    /// The fix ID, which names the particle array holding the values.
+    pub id: String,
     /// The variable name (`set ... property/atom NAME` and other fixes find it by it).
     pub name: String,
     /// The default values, one per column (one for a scalar); new particles start with them.
@@ -52,6 +55,8 @@ pub enum ContactArea {
 /// `fix ID GROUP heat/gran[/conduction] initial_temperature T0 [contact_area ...]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HeatGran {
+    /// The style name as written (`heat/gran` or `heat/gran/conduction`).
+    pub style: String,
     /// The initial temperature (K) as LIGGGHTS passes it on (rounded through `%f`, `%e`).
     pub t0: f64,
     /// The contact-area model.
@@ -106,7 +111,7 @@ pub fn add_property(p: &mut Particles, id: &str, defaults: &[f64]) {
 
 impl HeatGran {
     /// Start of a step: heat flows (W) and directional flows (W m) back to zero.
-    pub fn initial_integrate(&self, p: &mut Particles) {
+    pub fn zero_flows(&self, p: &mut Particles) {
         if let Some(k) = array(p, &self.arrays[1], 1) {
             p.extra[k].data.fill(0.0);
         }
@@ -222,7 +227,7 @@ impl HeatGran {
 
     /// End of a step: the temperatures (K) of the group's particles advance by
     /// `(heatFlux + heatSource) dt / (m c)` (dt in s).
-    pub fn final_integrate(&self, p: &mut Particles, group: u32, dt: f64) {
+    pub fn advance_temperatures(&self, p: &mut Particles, group: u32, dt: f64) {
         let (Some(kt), Some(kf), Some(ks)) = (
             array(p, &self.arrays[0], 1),
             array(p, &self.arrays[1], 1),
@@ -242,6 +247,77 @@ impl HeatGran {
             }
         }
         p.extra[kt].data = temp;
+    }
+}
+
+impl FixStyle for HeatGran {
+    fn name(&self) -> &str {
+        &self.style
+    }
+
+    fn initial_integrate(&mut self, p: &mut Particles, _at: &FixStep) {
+        self.zero_flows(p);
+    }
+
+    fn final_integrate(&mut self, p: &mut Particles, at: &FixStep) {
+        self.advance_temperatures(p, at.group, at.dt);
+    }
+
+    /// The temperature (K), one per particle.
+    fn per_atom_shape(&self) -> PerAtomShape {
+        PerAtomShape::Vector
+    }
+
+    fn per_atom(&self, p: &Particles) -> Vec<f64> {
+        property_values(p, &self.arrays[0], 1)
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
+    }
+}
+
+impl FixStyle for PropertyAtom {
+    fn name(&self) -> &str {
+        "property/atom"
+    }
+
+    /// A per-atom vector for a scalar property, an array of its columns for a vector one.
+    fn per_atom_shape(&self) -> PerAtomShape {
+        if self.vector {
+            PerAtomShape::Array(self.defaults.len())
+        } else {
+            PerAtomShape::Vector
+        }
+    }
+
+    fn per_atom(&self, p: &Particles) -> Vec<f64> {
+        property_values(p, &self.id, self.defaults.len())
+    }
+
+    /// Its values are in the particle arrays, which copies take over.
+    fn keeps_per_atom_state(&self) -> bool {
+        false
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
     }
 }
 
@@ -273,14 +349,13 @@ impl crate::engine::sim::Simulation {
     /// At each run's start (LIGGGHTS's `init`): the heat fixes read the conductivities and
     /// capacities per type, and new property/atom fixes are no longer fresh.
     pub(crate) fn init_heat(&mut self) -> Result<(), EngineError> {
-        use crate::engine::fixes::FixKind;
         let ntypes = self.ntypes as usize;
         let mut heat_styles: Vec<&str> = Vec::new();
         let mut resolved = Vec::new();
         for (k, f) in self.fixes.iter().enumerate() {
-            if !matches!(f.kind, FixKind::HeatGran(_)) {
+            let Some(h) = f.kind.style_as::<HeatGran>() else {
                 continue;
-            }
+            };
             if heat_styles.contains(&f.style.as_str()) {
                 return Err(format!(
                     "Fix {} (id {}): cannot have more than one fix of this style",
@@ -316,9 +391,6 @@ impl crate::engine::sim::Simulation {
                 );
             }
             let capacity = per_type("thermalCapacity")?;
-            let FixKind::HeatGran(h) = &f.kind else {
-                continue;
-            };
             let ratio = if h.area_correction {
                 self.overlap_ratios(&f.style, &per_type)?
             } else {
@@ -327,7 +399,7 @@ impl crate::engine::sim::Simulation {
             resolved.push((k, conductivity, capacity, ratio));
         }
         for (k, conductivity, capacity, ratio) in resolved {
-            if let FixKind::HeatGran(h) = &mut self.fixes[k].kind {
+            if let Some(h) = self.fixes[k].kind.style_as_mut::<HeatGran>() {
                 h.conductivity = conductivity;
                 h.capacity = capacity;
                 h.overlap_ratio = ratio;
@@ -382,9 +454,8 @@ impl crate::engine::sim::Simulation {
 
     /// After the forces: conduction of every heat fix through the pair list.
     pub(crate) fn conduct_heat(&mut self) {
-        use crate::engine::fixes::FixKind;
         for f in &self.fixes {
-            if let FixKind::HeatGran(h) = &f.kind {
+            if let Some(h) = f.kind.style_as::<HeatGran>() {
                 h.conduct(&mut self.particles, &self.list.pairs, f.group);
             }
         }
@@ -398,10 +469,15 @@ impl crate::engine::sim::Simulation {
         id: &str,
         index: Option<usize>,
     ) -> Option<Result<f64, EngineError>> {
-        use crate::engine::fixes::FixKind;
         let f = self.fixes.iter().find(|f| f.id == id)?;
-        match (&f.kind, index) {
-            (FixKind::HeatGran(h), None) => {
+        if f.kind.property_atom().is_some() {
+            return Some(Err(match index {
+                None => "Thermo fix does not compute scalar".into(),
+                Some(_) => "Thermo fix does not compute vector".into(),
+            }));
+        }
+        match (f.kind.style_as::<HeatGran>()?, index) {
+            (h, None) => {
                 let capacity = if h.capacity.is_empty() {
                     self.property("thermalCapacity")
                         .map(|(_, _, v)| v)
@@ -411,16 +487,7 @@ impl crate::engine::sim::Simulation {
                 };
                 Some(Ok(thermal_energy(&self.particles, &h.arrays[0], &capacity)))
             }
-            (FixKind::HeatGran(_), Some(_)) => {
-                Some(Err("Thermo fix does not compute vector".into()))
-            }
-            (FixKind::PropertyAtom(_), None) => {
-                Some(Err("Thermo fix does not compute scalar".into()))
-            }
-            (FixKind::PropertyAtom(_), Some(_)) => {
-                Some(Err("Thermo fix does not compute vector".into()))
-            }
-            _ => None,
+            (_, Some(_)) => Some(Err("Thermo fix does not compute vector".into())),
         }
     }
 }
@@ -452,6 +519,7 @@ mod tests {
         let k = array(&p, TEMP, 1).unwrap();
         p.extra[k].data[1] = 400.0;
         let h = HeatGran {
+            style: "heat/gran".into(),
             t0: 300.0,
             area: ContactArea::Overlap,
             conductivity: vec![2.0],
@@ -467,14 +535,14 @@ mod tests {
             j: 1,
             shift: [0.0; 3],
         }];
-        h.initial_integrate(&mut p);
+        h.zero_flows(&mut p);
         h.conduct(&mut p, &pairs, 1);
         let kf = array(&p, HEAT_FLUX, 1).unwrap();
         // contact radius^2 = 0.25 - 0.45^2 = 0.0475; h = 4 * 1 * sqrt(pi 0.0475)
         let hc = 4.0 * (std::f64::consts::PI * 0.0475f64).sqrt();
         assert!((p.extra[kf].data[0] - 100.0 * hc).abs() < 1e-9);
         assert_eq!(p.extra[kf].data[1], -p.extra[kf].data[0]);
-        h.final_integrate(&mut p, 1, 1e-3);
+        h.advance_temperatures(&mut p, 1, 1e-3);
         assert!((thermal_energy(&p, TEMP, &h.capacity) - before).abs() < 1e-9 * before);
         assert!(p.extra[k].data[0] > 300.0 && p.extra[k].data[1] < 400.0);
     }

@@ -4,7 +4,7 @@
 //! error (the screen and log keep LIGGGHTS's lines). LIGGGHTS says nothing of this unless the
 //! deck asks (`fix check/timestep/gran`).
 
-use crate::engine::fixes::{FixKind, Motion};
+use crate::engine::fixes::{FixKind, Motion, Move};
 use crate::engine::insert::Velocity;
 use crate::engine::sim::Simulation;
 use std::f64::consts::PI;
@@ -399,6 +399,15 @@ impl Simulation {
             Velocity::Uniform(v, d) | Velocity::Gaussian(v, d) => norm(*v) + norm(*d),
         };
         for f in &self.fixes {
+            if let Some(m) = f.kind.style_as::<Move>() {
+                if let Motion::Linear(v) = &m.motion {
+                    offer(
+                        norm(v.map(|c| c.unwrap_or(0.0))),
+                        format!("fix {} (move linear)", f.id),
+                    );
+                }
+                continue;
+            }
             match &f.kind {
                 FixKind::Style(s) => {
                     // free fall under `fix gravity`
@@ -413,14 +422,6 @@ impl Simulation {
                         offer(
                             (2.0 * a * h).sqrt(),
                             format!("free fall over the box height ({} at {})", g(h), g(a)),
-                        );
-                    }
-                }
-                FixKind::Move(m) => {
-                    if let Motion::Linear(v) = &m.motion {
-                        offer(
-                            norm(v.map(|c| c.unwrap_or(0.0))),
-                            format!("fix {} (move linear)", f.id),
                         );
                     }
                 }

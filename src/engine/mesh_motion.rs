@@ -183,6 +183,41 @@ pub fn unit_axis(a: V3) -> V3 {
     a.map(|c| c * inv)
 }
 
+impl crate::engine::fixes::FixStyle for MoveMesh {
+    fn name(&self) -> &str {
+        "move/mesh"
+    }
+
+    /// Its mesh moves in [`crate::engine::fixes::move_meshes`], in `initial_integrate`.
+    fn reads_computes(&self) -> bool {
+        true
+    }
+
+    /// Its clock (time).
+    fn restart_state(&self) -> Option<Vec<u8>> {
+        Some(crate::engine::restart_fixes::to_bytes(&[self.time]))
+    }
+
+    /// The clock from the file; the mesh took its moved nodes from the file.
+    fn restore_state(&mut self, state: &[u8]) -> Result<(), crate::engine::error::EngineError> {
+        let d = crate::engine::restart_fixes::doubles(state);
+        self.time = *d.first().ok_or("empty")?;
+        Ok(())
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -9,7 +9,7 @@ pub const DISC_INERTIA: f64 = 0.5;
 
 /// The fix styles regolith runs in 2d (the others, insertion among them, are refused there);
 /// a module fix style says so in its row instead.
-pub const PLANAR_FIXES: &[&str] = &["property/global", "wall/gran", "ave/time"];
+pub const PLANAR_FIXES: &[&str] = &["property/global", "wall/gran"];
 
 /// Mass of a disc of radius `r` (length) and density `rho` (mass per area), in LIGGGHTS's
 /// operation order.

@@ -242,23 +242,6 @@ impl Simulation {
                         peratom.push((PeratomFix { id, style, maxsize }, rows));
                     }
                 }
-                FixKind::MoveMesh(mv) => globals.push(entry(&f.id, &f.style, to_bytes(&[mv.time]))),
-                FixKind::Move(mv) => {
-                    globals.push(entry(&f.id, &f.style, to_bytes(&[mv.start_step as f64])));
-                    let p = &self.particles;
-                    let rows =
-                        p.id.iter()
-                            .map(|id| mv.origin.get(id).map_or(vec![0.0; 3], |x| x.to_vec()))
-                            .collect();
-                    peratom.push((
-                        PeratomFix {
-                            id: f.id.clone(),
-                            style: f.style.clone(),
-                            maxsize: 4,
-                        },
-                        rows,
-                    ));
-                }
                 FixKind::InsertPack(ins) => {
                     let state = crate::engine::insert::InsertRestart {
                         rng_state: ins.rng.state(),

@@ -156,13 +156,14 @@ impl Simulation {
                 id: name.to_string(),
                 style: "property/atom".to_string(),
                 group: 1,
-                kind: FixKind::PropertyAtom(PropertyAtom {
+                kind: FixKind::Style(Box::new(PropertyAtom {
+                    id: name.to_string(),
                     name: name.to_string(),
                     defaults: vec![default],
                     vector: false,
                     restart,
                     fresh: false,
-                }),
+                })),
                 args,
             });
         }

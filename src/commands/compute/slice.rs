@@ -77,10 +77,11 @@ impl ComputeStyle for Slice {
         match col {
             None => sim.fix_value(id, Some(at)),
             Some(col) => {
-                let at_fix = sim.fixes.iter().find_map(|f| match &f.kind {
-                    crate::engine::fixes::FixKind::AveTime(a) if &f.id == id => Some(a),
-                    _ => None,
-                });
+                let at_fix = sim
+                    .fixes
+                    .iter()
+                    .find(|f| &f.id == id)
+                    .and_then(|f| f.kind.style_as::<crate::engine::fixes::AveTime>());
                 Ok(at_fix.and_then(|a| a.array(at, *col)).unwrap_or(0.0))
             }
         }

@@ -1,14 +1,24 @@
 //! `fix ave/atom`: per-particle time averages (f_ID, or f_ID[N] with several inputs).
 
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::ave_atom::{AtomInput, AveAtom};
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::FixStyle;
 use crate::io::dump::Column;
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "fix",
+    "ave/atom",
+    "fix ID GROUP ave/atom NEVERY NREPEAT NFREQ x|y|z|vx|vy|vz|fx|fy|fz|c_ID|c_ID[N]|f_ID|f_ID[N]|v_NAME ...",
+    &[],
+    "per-particle time averages of NREPEAT samples every NEVERY steps, ending on multiples of NFREQ (f_ID or f_ID[N] in dumps)",
+);
 
 /// `fix ID GROUP ave/atom NEVERY NREPEAT NFREQ input ...` with inputs x y z vx vy vz fx fy
 /// fz, c_ID, c_ID[N], f_ID, f_ID[N], v_name.
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     if a.len() < 7 {
         return Err(a.error(3, "Illegal fix ave/atom command"));
     }
@@ -55,7 +65,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     let n = ave.inputs.len();
     let k = ctx.sim.particles.extra_index(&ave.array, n);
     ctx.sim.particles.extra[k].data.fill(0.0);
-    Ok(FixKind::Style(Box::new(ave)))
+    Ok(Box::new(ave))
 }
 
 /// A `c_`, `f_` or `v_` input, checked as LIGGGHTS checks it when the fix is defined.

@@ -2,19 +2,47 @@
 //! global and local inputs are not run yet.
 
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{arg, kw, style, Spec, Value};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::ave_atom::AtomInput;
 use crate::engine::ave_histo::{AveHisto, Beyond};
-use crate::engine::fixes::{AveMode, FixKind};
+use crate::engine::fixes::{AveMode, FixStyle};
 use crate::io::dump::Column;
 use crate::lang::system::Mode;
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "fix",
+    "ave/histo",
+    "fix ID GROUP ave/histo NEVERY NREPEAT NFREQ LO HI NBIN x|y|z|vx|vy|vz|fx|fy|fz|c_ID|c_ID[N]|f_ID|v_NAME ... mode vector",
+    &[
+        kw(
+            "mode",
+            &[arg("scalar|vector", Value::OneOf(&["scalar", "vector"]))],
+            "vector for per-atom inputs (the only ones run yet)",
+        ),
+        kw("file", &[arg("FILE", Value::Word)], "write the histograms to this file"),
+        kw("ave", &[arg("one|running|window M", Value::Word)], "combine histograms"),
+        kw("start", &[arg("N", Value::Word)], "no histogram before step N"),
+        kw(
+            "beyond",
+            &[arg("ignore|end|extra", Value::OneOf(&["ignore", "end", "extra"]))],
+            "values outside LO..HI",
+        ),
+        kw("overwrite", &[], "keep only the last histogram (ave running)"),
+        kw("title1", &[arg("TEXT", Value::Word)], "first comment line"),
+        kw("title2", &[arg("TEXT", Value::Word)], "second comment line"),
+        kw("title3", &[arg("TEXT", Value::Word)], "third comment line"),
+    ],
+    "histograms of the group's per-atom values in NBIN bins from LO to HI, every NFREQ steps, written to a file",
+);
 
 const ILLEGAL: &str = "Illegal fix ave/histo command";
 
 /// `fix ID GROUP ave/histo Nevery Nrepeat Nfreq lo hi Nbin input ... keyword value ...`
 /// with inputs x y z vx vy vz fx fy fz, per-atom c_ID, c_ID[N], f_ID, atom-style v_name and
 /// keywords mode, file, ave, start, beyond, overwrite, title1/2/3.
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     if a.len() < 10 {
         return Err(a.error(2, ILLEGAL));
     }
@@ -109,7 +137,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     if let (Some(name), Mode::Run) = (file, ctx.sys.mode) {
         h.file = Some(open_file(a, &name, fix.id, &titles)?);
     }
-    Ok(FixKind::Style(Box::new(h)))
+    Ok(Box::new(h))
 }
 
 /// The file with LIGGGHTS's three comment lines (or the titles given), and where they end.

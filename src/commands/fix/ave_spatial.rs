@@ -1,10 +1,39 @@
 //! `fix ave/spatial`: per-bin averages of per-atom quantities, written to a file.
 
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{arg, kw, style, Spec, Value, YES_NO};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::ave_spatial::{AveSpatial, Origin, SpatialSettings, SpatialValue};
-use crate::engine::fixes::{AveMode, FixKind};
+use crate::engine::fixes::{AveMode, FixStyle};
 use crate::lang::system::Mode;
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "fix",
+    "ave/spatial",
+    "fix ID GROUP ave/spatial NEVERY NREPEAT NFREQ x|y|z lower|center|upper|COORD DELTA ... vx|vy|vz|fx|fy|fz|density/number|density/mass|c_ID|c_ID[N]|f_ID|f_ID[N]|v_NAME ...",
+    &[
+        kw(
+            "norm",
+            &[arg("all|sample", Value::OneOf(&["all", "sample"]))],
+            "normalise by all samples' atoms or each sample's",
+        ),
+        kw(
+            "units",
+            &[arg("box|lattice|reduced", Value::OneOf(&["box", "lattice", "reduced"]))],
+            "units of origins and widths",
+        ),
+        kw("region", &[arg("ID", Value::Word)], "only atoms in this region"),
+        kw("file", &[arg("FILE", Value::Word)], "write the averages to this file"),
+        kw("write_ts", &[arg("yes|no", YES_NO)], "a step line before each output"),
+        kw("ave", &[arg("one|running|window M", Value::Word)], "combine outputs"),
+        kw("overwrite", &[], "keep only the last output (ave running)"),
+        kw("title1", &[arg("TEXT", Value::Word)], "first comment line"),
+        kw("title2", &[arg("TEXT", Value::Word)], "second comment line"),
+        kw("title3", &[arg("TEXT", Value::Word)], "third comment line"),
+    ],
+    "per-bin averages of per-atom values in 1d, 2d or 3d bins, every NFREQ steps, written to a file",
+);
 
 const ILLEGAL: &str = "Illegal fix ave/spatial command";
 
@@ -12,7 +41,7 @@ const ILLEGAL: &str = "Illegal fix ave/spatial command";
 /// value ...` with up to three `x|y|z lower|center|upper|COORD DELTA` triples, values vx vy
 /// vz fx fy fz density/number density/mass c_ID c_ID[N] f_ID f_ID[N] v_name, and keywords
 /// norm, units, region, file, write_ts, ave, overwrite, title1/2/3.
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     if a.len() < 6 {
         return Err(a.error(2, ILLEGAL));
     }
@@ -71,7 +100,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     if let (Some(name), Mode::Run) = (file, ctx.sys.mode) {
         fix_state.file = Some(open_file(a, &name, fix, &names, &titles, &fix_state.set)?);
     }
-    Ok(FixKind::Style(Box::new(fix_state)))
+    Ok(Box::new(fix_state))
 }
 
 /// The file with LIGGGHTS's three comment lines (or the titles given; a title of one

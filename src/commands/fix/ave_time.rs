@@ -1,12 +1,53 @@
 //! `fix ave/time`: time averages of global values, in scalar or vector mode.
 
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{arg, kw, style, Spec, Value};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::{AveInput, AveMode, AveSchedule, AveTime, FixKind};
+use crate::engine::fixes::{AveInput, AveMode, AveSchedule, AveTime, FixStyle};
 use crate::engine::global_values::{fix_global_freq, fix_shape, input_ext, zero_freq};
 use crate::lang::system::Mode;
 
 const ILLEGAL: &str = "Illegal fix ave/time command";
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "fix",
+    "ave/time",
+    "fix ID GROUP ave/time NEVERY NREPEAT NFREQ VALUE ...",
+    &[
+        kw(
+            "mode",
+            &[arg("scalar|vector", Value::OneOf(&["scalar", "vector"]))],
+            "average global scalars, or global vectors and array columns (rows written per output)",
+        ),
+        kw(
+            "ave",
+            &[arg(
+                "one|running|window",
+                Value::OneOf(&["one", "running", "window"]),
+            )],
+            "averaging window (window M: the last M outputs)",
+        ),
+        kw(
+            "overwrite",
+            &[],
+            "keep only the last output in the file (with ave running)",
+        ),
+        kw(
+            "title3",
+            &[arg("T", Value::Word)],
+            "third comment line of a vector-mode file",
+        ),
+        kw("start", &[arg("STEP", Value::Int)], "first step averaged"),
+        kw(
+            "file",
+            &[arg("F", Value::File)],
+            "write averages to this file",
+        ),
+        kw("off", &[arg("M", Value::Int)], "leave value M out"),
+    ],
+    "time averages of global values",
+);
 
 /// The keywords after the values.
 struct Options {
@@ -20,7 +61,7 @@ struct Options {
 }
 
 /// `fix ID GROUP ave/time Nevery Nrepeat Nfreq value ... [keyword value ...]`.
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     a.count(
         7..=usize::MAX,
         "fix ID GROUP ave/time Nevery Nrepeat Nfreq value ...",
@@ -114,7 +155,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         at.overwrite = opts.overwrite.then_some(header_len(&f));
         at.file = Some(f);
     }
-    Ok(FixKind::AveTime(at))
+    Ok(Box::new(at))
 }
 
 /// Bytes written to a freshly created file.

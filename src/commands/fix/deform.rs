@@ -2,17 +2,43 @@
 //! 3.8.0's arguments and errors.
 
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{arg, kw, style, Spec, Value};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::deform::{BoxNow, Deform, Remap, Style};
 use crate::engine::domain::Boundary;
 use crate::engine::error::EngineError;
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::FixStyle;
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "fix",
+    "deform",
+    "fix ID GROUP deform N x|y|z final|delta|scale|vel|erate|trate|volume|wiggle|variable ARGS ...",
+    &[
+        kw(
+            "remap",
+            &[arg("x|v|none", Value::OneOf(&["x", "v", "none"]))],
+            "move the group's atoms with the box (x), or add the box edges' velocity to atoms crossing a periodic face (v; only on non-periodic changed dimensions yet)",
+        ),
+        kw(
+            "flip",
+            &[arg("yes|no", Value::OneOf(&["yes", "no"]))],
+            "box flips of tilted boxes (accepted; tilts need a triclinic box)",
+        ),
+        kw(
+            "units",
+            &[arg("box|lattice", Value::OneOf(&["box", "lattice"]))],
+            "lengths in box or lattice units",
+        ),
+    ],
+    "change the box bounds every N steps (orthogonal boxes: x, y, z; lengths, rates per time)",
+);
 
 const ILLEGAL: &str = "Illegal fix deform command";
 
 /// `fix ID GROUP deform N x|y|z STYLE ARGS ... [remap x|v|none] [flip yes|no] [units
 /// box|lattice]`.
-pub fn build(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     if a.len() < 4 {
         return Err(a.error(a.len() - 1, ILLEGAL));
     }
@@ -71,7 +97,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandE
             "fix deform remap v on a periodic dimension it changes",
         ));
     }
-    Ok(FixKind::Style(Box::new(fix)))
+    Ok(Box::new(fix))
 }
 
 /// The style after parameter word `i`, and how many words the parameter took.

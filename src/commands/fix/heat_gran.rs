@@ -2,14 +2,52 @@
 //! conduction between touching particles, with the per-atom properties it creates.
 
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{arg, kw, style, Keyword, Spec, Value, YES_NO};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::FixStyle;
 use crate::engine::heat::{self, ContactArea, HeatGran};
+
+/// The keywords both names take.
+const KEYWORDS: &[Keyword] = &[
+    kw(
+        "contact_area",
+        &[arg("overlap|projection|constant A", Value::Word)],
+        "conduction area: the spheres' intersection, the larger sphere's cross-section, or A (length^2)",
+    ),
+    kw(
+        "area_correction",
+        &[arg("yes|no", YES_NO)],
+        "scale overlaps by the Young's moduli over youngsModulusOriginal before the area is taken",
+    ),
+    kw(
+        "store_contact_data",
+        &[arg("yes|no", YES_NO)],
+        "per-particle mean contact area and contact count (contactAreaConduction, nContactsConduction)",
+    ),
+];
+
+/// The declared signature of `heat/gran`.
+pub const SPEC: Spec = style(
+    "fix",
+    "heat/gran",
+    "fix ID GROUP heat/gran initial_temperature T0",
+    KEYWORDS,
+    "heat conduction between touching particles: per-particle Temp (K), heatFlux and heatSource (W), thermalConductivity and thermalCapacity per type from fix property/global; f_ID is the thermal energy (J)",
+);
+
+/// The declared signature of `heat/gran/conduction`.
+pub const CONDUCTION: Spec = style(
+    "fix",
+    "heat/gran/conduction",
+    "fix ID GROUP heat/gran/conduction initial_temperature T0",
+    KEYWORDS,
+    "the same as heat/gran",
+);
 
 /// `fix ID GROUP heat/gran[/conduction] initial_temperature T0 [contact_area overlap|
 /// projection|constant A] [area_correction yes|no] [store_contact_data yes|no]` (T0 in K,
 /// A in length^2).
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     let fail = |i: usize, m: &str| a.error(i, format!("Fix {} (id {}): {m}", fix.style, fix.id));
     if a.len() < 5 {
         return Err(fail(a.len() - 1, "not enough arguments")
@@ -96,7 +134,8 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     for line in lines {
         ctx.say(&format!("{line}\n"));
     }
-    Ok(FixKind::HeatGran(HeatGran {
+    Ok(Box::new(HeatGran {
+        style: fix.style.to_string(),
         t0,
         area,
         conductivity: Vec::new(),

@@ -1,15 +1,51 @@
 //! `fix massflow/mesh`: particles and mass crossing a mesh face.
 
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{arg, kw, style, Spec, Value, LENGTH, YES_NO};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::FixStyle;
 use crate::engine::massflow::{Massflow, Side};
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "fix",
+    "massflow/mesh",
+    "fix ID GROUP massflow/mesh mesh MESH vec_side VX VY VZ",
+    &[
+        kw(
+            "count",
+            &[arg("once|multiple", Value::OneOf(&["once", "multiple"]))],
+            "count a particle once or at every crossing",
+        ),
+        kw(
+            "point_at_outlet",
+            &[arg("X", LENGTH), arg("Y", LENGTH), arg("Z", LENGTH)],
+            "the outer side is away from this point (curved faces)",
+        ),
+        kw("inside_out", &[], "with point_at_outlet: count toward the point"),
+        kw("file", &[arg("F", Value::File)], "write each counted particle to this file"),
+        kw("append", &[arg("F", Value::File)], "append each counted particle to this file"),
+        kw("writeTime", &[], "file lines start with the time"),
+        kw("screen", &[arg("yes|no", YES_NO)], "print each counted particle"),
+        kw(
+            "delete_atoms",
+            &[arg("yes|no", YES_NO)],
+            "delete counted particles at the next re-neighbouring (needs count once)",
+        ),
+        kw(
+            "sum_property",
+            &[arg("NAME", Value::Word)],
+            "sum a fix property/atom scalar over the counted particles (f_ID[7])",
+        ),
+    ],
+    "count particles and mass crossing a mesh face (f_ID[1..6]: mass, count, their rates, deleted mass and count)",
+);
 
 /// `fix ID GROUP massflow/mesh mesh MESH vec_side VX VY VZ [count once|multiple]
 /// [point_at_outlet X Y Z [inside_out]] [file|append F] [writeTime] [screen yes|no]
 /// [delete_atoms yes|no] [sum_property NAME]`,
 /// keywords read in LIGGGHTS's order and checks.
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     let id = fix.id;
     let fail = |i: usize, m: &str| a.error(i, format!("Fix massflow/mesh (id {id}): {m}"));
     let mut side = [0.0; 3];
@@ -143,7 +179,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     m.property = property;
     m.write_header()
         .map_err(|e| a.error(0, format!("fix massflow/mesh: {e}")))?;
-    Ok(FixKind::Style(Box::new(m)))
+    Ok(Box::new(m))
 }
 
 /// The output file of `file F` (`append` false) or `append F` at word `i` (the file name

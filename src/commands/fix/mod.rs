@@ -72,12 +72,7 @@ pub const STYLES: &[(&str, Build)] = &[
     ("mesh/surface/planar", mesh_surface::build),
     ("mesh/surface/stress", mesh_surface::build),
     ("mesh/surface/stress/servo", mesh_surface::build),
-    ("move/mesh", move_mesh::build),
     ("particletemplate/sphere", particle_template::build),
-    (
-        "particletemplate/multisphere",
-        particle_template_multisphere::build,
-    ),
     ("particledistribution/discrete", distribution::build),
     (
         "particledistribution/discrete/numberbased",
@@ -91,18 +86,7 @@ pub const STYLES: &[(&str, Build)] = &[
     ("insert/rate/region", insert_pack::build),
     ("insert/stream", insert_stream::build),
     ("wall/gran", wall_gran::build),
-    ("ave/time", ave_time::build),
-    ("move", move_atoms::build),
-    ("massflow/mesh", massflow_mesh::build),
-    ("property/atom", property_atom::build),
-    ("heat/gran", heat_gran::build),
-    ("heat/gran/conduction", heat_gran::build),
     ("multisphere", multisphere::build),
-    ("ave/atom", ave_atom::build),
-    ("store/state", store_state::build),
-    ("ave/spatial", ave_spatial::build),
-    ("ave/histo", ave_histo::build),
-    ("deform", deform::build),
 ];
 
 /// Builds a module fix style (see [`FixStyle`]) from the `fix` command's arguments.
@@ -255,6 +239,71 @@ pub static TABLE: StyleTable<FixRow> = StyleTable::new(&[
         spec: multicontact::SPEC,
         planar: false,
         build: multicontact::build,
+    },
+    FixRow {
+        spec: ave_time::SPEC,
+        planar: true,
+        build: ave_time::build,
+    },
+    FixRow {
+        spec: move_mesh::SPEC,
+        planar: false,
+        build: move_mesh::build,
+    },
+    FixRow {
+        spec: move_atoms::SPEC,
+        planar: false,
+        build: move_atoms::build,
+    },
+    FixRow {
+        spec: property_atom::SPEC,
+        planar: false,
+        build: property_atom::build,
+    },
+    FixRow {
+        spec: heat_gran::SPEC,
+        planar: false,
+        build: heat_gran::build,
+    },
+    FixRow {
+        spec: heat_gran::CONDUCTION,
+        planar: false,
+        build: heat_gran::build,
+    },
+    FixRow {
+        spec: ave_histo::SPEC,
+        planar: false,
+        build: ave_histo::build,
+    },
+    FixRow {
+        spec: ave_spatial::SPEC,
+        planar: false,
+        build: ave_spatial::build,
+    },
+    FixRow {
+        spec: store_state::SPEC,
+        planar: false,
+        build: store_state::build,
+    },
+    FixRow {
+        spec: ave_atom::SPEC,
+        planar: false,
+        build: ave_atom::build,
+    },
+    FixRow {
+        spec: deform::SPEC,
+        planar: false,
+        build: deform::build,
+    },
+    FixRow {
+        spec: massflow_mesh::SPEC,
+        planar: false,
+        build: massflow_mesh::build,
+    },
+    FixRow {
+        spec: particle_template_multisphere::SPEC,
+        planar: false,
+        build: particle_template_multisphere::build,
     },
 ]);
 

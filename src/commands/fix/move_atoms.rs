@@ -2,13 +2,25 @@
 
 use super::variable_value;
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{arg, kw, style, Spec, Value};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::FixKind;
-use crate::engine::fixes::Motion;
-use crate::engine::fixes::Move;
+use crate::engine::fixes::{FixStyle, Motion, Move};
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "fix",
+    "move",
+    "fix ID GROUP move linear|wiggle|rotate|variable ...",
+    &[kw(
+        "units",
+        &[arg("box|lattice", Value::OneOf(&["box", "lattice"]))],
+        "lengths in box or lattice units",
+    )],
+    "prescribed particle motion",
+);
 
 /// `fix ID GROUP move linear|wiggle|rotate|variable ... [units box|lattice]`.
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     let FixDef { bit, .. } = *fix;
     let components = |from: usize| -> std::result::Result<[Option<f64>; 3], CommandError> {
         let mut v = [None; 3];
@@ -114,7 +126,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         }
     }
     let sim = &ctx.sim;
-    Ok(FixKind::Move(Move::new(
+    Ok(Box::new(Move::new(
         motion,
         &sim.particles,
         bit,

@@ -1,13 +1,23 @@
 //! `fix move/mesh`: prescribed motion of a mesh.
 
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::FixStyle;
 use crate::engine::mesh_motion::{unit_axis, Motion};
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "fix",
+    "move/mesh",
+    "fix ID GROUP move/mesh mesh MESH linear|wiggle|rotate|riggle|viblin|vibrot ...",
+    &[],
+    "prescribed mesh motion",
+);
 
 /// `fix ID group move/mesh mesh MESH STYLE args...` (linear, wiggle, rotate, riggle, viblin,
 /// vibrot), with LIGGGHTS's messages.
-pub fn build(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     use crate::engine::mesh_motion::MoveMesh;
     if a.len() < 6 {
         return Err(a.error(
@@ -32,7 +42,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandE
     };
     let (motion, reference) = words.motion()?;
     words.warn_excess(ctx, &motion);
-    Ok(FixKind::MoveMesh(MoveMesh {
+    Ok(Box::new(MoveMesh {
         mesh,
         motion,
         time: 0.0,

@@ -2,17 +2,50 @@
 
 use super::seed_arg;
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{arg, kw, style, Spec, Value, NUMBER};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::FixStyle;
 use crate::engine::multisphere::{ClumpSpec, ClumpTemplate, GivenMass};
 use crate::lang::system::Mode;
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "fix",
+    "particletemplate/multisphere",
+    "fix ID GROUP particletemplate/multisphere SEED atom_type T density constant D nspheres N ntry N spheres file F scale S | spheres X Y Z R ... type MT",
+    &[
+        kw(
+            "mass",
+            &[arg("M", Value::Real("mass"))],
+            "clump mass instead of the sampled one (with inertia_tensor)",
+        ),
+        kw(
+            "inertia_tensor",
+            &[arg("IXX IXY IXZ IYY IYZ IZZ", NUMBER)],
+            "inertia tensor about the centre of mass (mass*length^2)",
+        ),
+        kw("use_volume", &[], "density from the given mass and the sampled volume"),
+        kw("use_density", &[], "volume from the given mass and the density"),
+        kw(
+            "fflag",
+            &[arg("on|off on|off on|off", Value::Word)],
+            "translations integrated along x, y, z",
+        ),
+        kw(
+            "tflag",
+            &[arg("on|off on|off on|off", Value::Word)],
+            "rotations integrated about x, y, z",
+        ),
+    ],
+    "a rigid clump of spheres (length); volume, centre of mass and inertia by Monte Carlo with NTRY samples",
+);
 
 const USAGE: &str = "fix ID GROUP particletemplate/multisphere SEED atom_type T density constant D nspheres N ntry N spheres file F scale S type MT";
 
 /// `fix ID GROUP particletemplate/multisphere SEED [atom_type T] density constant D
 /// nspheres N ntry N spheres (file F scale S | x y z r ...) type MT [mass M inertia_tensor
 /// Ixx Ixy Ixz Iyy Iyz Izz use_volume|use_density] [fflag f f f] [tflag f f f]`.
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     let id = fix.id;
     let fail = |i: usize, m: &str| failure(a, id, i, m);
     a.count(4..=usize::MAX, USAGE)?;
@@ -55,7 +88,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     if ctx.sys.mode == Mode::Run {
         ctx.out.log(&template.report());
     }
-    Ok(FixKind::Style(Box::new(template)))
+    Ok(Box::new(template))
 }
 
 /// LIGGGHTS's error of fix `id` at word `i`.

@@ -2,14 +2,24 @@
 //! particle), and the properties other fixes create through it (the heat fixes' `Temp`).
 
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::{properties_named, Fix, FixKind};
+use crate::engine::fixes::{properties_named, Fix, FixKind, FixStyle};
 use crate::engine::heat::PropertyAtom;
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "fix",
+    "property/atom",
+    "fix ID GROUP property/atom NAME scalar|vector RESTART COMM_GHOST COMM_REV VALUE ...",
+    &[],
+    "a user per-particle property (flags yes|no; one default value, or one per column); f_ID or f_ID[N] in dumps, set ... property/atom NAME VALUE ...",
+);
 
 /// `fix ID GROUP property/atom NAME scalar|vector|vector_one_entry RESTART COMM_GHOST
 /// COMM_REV VALUE...` (flags `yes|no`; one default value for a scalar, the defaults of each
 /// column for a vector).
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     if a.len() < 9 {
         return Err(a
             .error(
@@ -73,7 +83,8 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         ));
     }
     fill(ctx, fix.id, &defaults);
-    Ok(FixKind::PropertyAtom(PropertyAtom {
+    Ok(Box::new(PropertyAtom {
+        id: fix.id.to_string(),
         name: name.to_string(),
         defaults,
         vector,
@@ -152,13 +163,14 @@ pub fn ensure(
         id: name.to_string(),
         style: "property/atom".to_string(),
         group: 1,
-        kind: FixKind::PropertyAtom(PropertyAtom {
+        kind: FixKind::Style(Box::new(PropertyAtom {
+            id: name.to_string(),
             name: name.to_string(),
             defaults: defaults.to_vec(),
             vector: defaults.len() > 1,
             restart,
             fresh: true,
-        }),
+        })),
         args,
     });
     name.to_string()

@@ -1,11 +1,27 @@
 //! `fix store/state`: per-particle snapshots (f_ID, or f_ID[N] with several inputs).
 
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{arg, kw, style, Spec, YES_NO};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::ave_atom::AtomInput;
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::FixStyle;
 use crate::engine::store_state::{Snapshot, StoreState};
 use crate::io::dump::Column;
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "fix",
+    "store/state",
+    "fix ID GROUP store/state N ATTRIBUTE|c_ID|c_ID[N]|f_ID|f_ID[N]|v_NAME ...",
+    &[
+        kw(
+            "com",
+            &[arg("yes|no", YES_NO)],
+            "unwrapped positions xu yu zu relative to the group's centre of mass",
+        ),
+    ],
+    "per-particle snapshot when defined (attributes) and at the first run (computes, fixes, variables), then every N steps if N > 0 (f_ID or f_ID[N] in dumps and variables)",
+);
 
 const ILLEGAL: &str = "Illegal fix store/state command";
 
@@ -23,7 +39,7 @@ const NOT_ALLOCATED: &[&str] = &[
 
 /// `fix ID GROUP store/state N input ... [com yes|no]`: inputs are atom attributes,
 /// c_ID, c_ID[N], f_ID, f_ID[N], v_name; the attributes are stored now.
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     if a.len() < 5 {
         return Err(a.error(2, ILLEGAL));
     }
@@ -79,7 +95,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     ctx.sim
         .store_snapshot(&state, fix.bit, Snapshot::Attributes, none)
         .map_err(|e| a.engine_error(2, e))?;
-    Ok(FixKind::Style(Box::new(state)))
+    Ok(Box::new(state))
 }
 
 /// A `c_`, `f_` or `v_` input at word `i`, checked as LIGGGHTS checks it when the fix is

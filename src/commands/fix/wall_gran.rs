@@ -44,46 +44,9 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
         match a.word(k)? {
             "primitive" => {
                 mesh_style = Some(false);
-                if a.word(k + 1)? != "type" {
-                    return Err(fail(k + 1, "expecting keyword 'type'"));
-                }
-                let wall_type = a.int(k + 2)?;
-                if wall_type < 1 || wall_type > ctx.sim.ntypes as i64 {
-                    return Err(fail(
-                        k + 2,
-                        "1 <= type <= max type as defined in create_box'",
-                    ));
-                }
-                let shape_word = a.word(k + 3)?;
-                let nargs = match shape_word {
-                    "xplane" | "yplane" | "zplane" => 1,
-                    "xcylinder" | "ycylinder" | "zcylinder" => 3,
-                    _ => 0,
-                };
-                let first = k + 4;
-                if a.len() - first < nargs {
-                    return Err(fail(k + 3, "not enough arguments for primitive wall"));
-                }
-                let values = (first..first + nargs)
-                    .map(|i| a.real(i))
-                    .collect::<Result<Vec<f64>, _>>()?;
-                // only the named shapes (x/y/z first) have an axis
-                let axis = || usize::from(shape_word.as_bytes()[0] - b'x');
-                let shape = match nargs {
-                    1 => Primitive::Plane {
-                        axis: axis(),
-                        position: values[0],
-                    },
-                    3 => Primitive::Cylinder {
-                        axis: axis(),
-                        radius: values[0],
-                        c1: values[1],
-                        c2: values[2],
-                    },
-                    _ => return Err(fail(k + 3, "unknown primitive wall style")),
-                };
-                primitive = Some((wall_type as usize, shape));
-                k = first + nargs;
+                let (wall, next) = primitive_wall(a, ctx, k, &fail)?;
+                primitive = Some(wall);
+                k = next;
             }
             "mesh" => {
                 mesh_style = Some(true);
@@ -134,30 +97,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 k += 2;
             }
             "meshes" => {
-                if mesh_style != Some(true) {
-                    return Err(fail(k, "have to use keyword 'mesh' before using 'meshes'"));
-                }
-                if n_meshes == 0 {
-                    return Err(fail(k, "have to define 'n_meshes' before 'meshes'"));
-                }
-                if a.len() < k + 1 + n_meshes {
-                    return Err(fail(k, "not enough arguments"));
-                }
-                let mut list = Vec::with_capacity(n_meshes);
-                for i in k + 1..k + 1 + n_meshes {
-                    let mesh_id = a.word(i)?;
-                    let Some(f) = ctx.sim.fixes.iter().find(|f| f.id == mesh_id) else {
-                        return Err(fail(i, "could not find fix mesh id you provided"));
-                    };
-                    if f.kind.mesh().is_none() {
-                        return Err(fail(
-                            i,
-                            "the fix belonging to the id you provided is not of type mesh",
-                        ));
-                    }
-                    list.push(mesh_id.to_string());
-                }
-                meshes = Some(list);
+                meshes = Some(mesh_list(a, ctx, k, (mesh_style, n_meshes), &fail)?);
                 k += 1 + n_meshes;
             }
             "shear" => {
@@ -186,31 +126,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                 );
             }
             "contact_area" => {
-                match a.word(k + 1)? {
-                    // the default
-                    "overlap" => {}
-                    "projection" => {
-                        return Err(a.unsupported(k, "fix wall/gran contact_area projection"))
-                    }
-                    "constant" => {
-                        if k + 3 > a.len() {
-                            return Err(fail(
-                                k,
-                                "not enough arguments for keyword 'contact_area constant'",
-                            ));
-                        }
-                        if a.real(k + 2)? <= 0.0 {
-                            return Err(fail(k + 2, "'contact_area constant' value must be > 0"));
-                        }
-                        return Err(a.unsupported(k, "fix wall/gran contact_area constant"));
-                    }
-                    _ => {
-                        return Err(fail(
-                            k + 1,
-                            "expecting 'overlap', 'projection' or 'constant' after 'contact_area'",
-                        ))
-                    }
-                }
+                contact_area(a, k, &fail)?;
                 k += 2;
             }
             _ => break,
@@ -229,6 +145,155 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
             ),
         });
     }
+    let group_index = ctx.sim.groups.iter().position(|g| g == group).unwrap_or(0) as u32;
+    let wall = Wall {
+        mesh_style,
+        primitive,
+        meshes,
+        shear,
+    };
+    wall_kind(selection, wall, id, group_index, &fail)
+}
+
+/// The wall of `primitive type T SHAPE ARGS` at word `k` and the word after it.
+fn primitive_wall(
+    a: &Args,
+    ctx: &Ctx,
+    k: usize,
+    fail: &dyn Fn(usize, &str) -> CommandError,
+) -> Result<((usize, Primitive), usize), CommandError> {
+    if a.word(k + 1)? != "type" {
+        return Err(fail(k + 1, "expecting keyword 'type'"));
+    }
+    let wall_type = a.int(k + 2)?;
+    if wall_type < 1 || wall_type > ctx.sim.ntypes as i64 {
+        return Err(fail(
+            k + 2,
+            "1 <= type <= max type as defined in create_box'",
+        ));
+    }
+    let shape_word = a.word(k + 3)?;
+    let nargs = match shape_word {
+        "xplane" | "yplane" | "zplane" => 1,
+        "xcylinder" | "ycylinder" | "zcylinder" => 3,
+        _ => 0,
+    };
+    let first = k + 4;
+    if a.len() - first < nargs {
+        return Err(fail(k + 3, "not enough arguments for primitive wall"));
+    }
+    let values = (first..first + nargs)
+        .map(|i| a.real(i))
+        .collect::<Result<Vec<f64>, _>>()?;
+    // only the named shapes (x/y/z first) have an axis
+    let axis = || usize::from(shape_word.as_bytes()[0] - b'x');
+    let shape = match nargs {
+        1 => Primitive::Plane {
+            axis: axis(),
+            position: values[0],
+        },
+        3 => Primitive::Cylinder {
+            axis: axis(),
+            radius: values[0],
+            c1: values[1],
+            c2: values[2],
+        },
+        _ => return Err(fail(k + 3, "unknown primitive wall style")),
+    };
+    Ok(((wall_type as usize, shape), first + nargs))
+}
+
+/// `contact_area overlap|projection|constant A` at word `k`: the default (overlap) passes,
+/// the others are refused.
+fn contact_area(
+    a: &Args,
+    k: usize,
+    fail: &dyn Fn(usize, &str) -> CommandError,
+) -> Result<(), CommandError> {
+    match a.word(k + 1)? {
+        // the default
+        "overlap" => {}
+        "projection" => return Err(a.unsupported(k, "fix wall/gran contact_area projection")),
+        "constant" => {
+            if k + 3 > a.len() {
+                return Err(fail(
+                    k,
+                    "not enough arguments for keyword 'contact_area constant'",
+                ));
+            }
+            if a.real(k + 2)? <= 0.0 {
+                return Err(fail(k + 2, "'contact_area constant' value must be > 0"));
+            }
+            return Err(a.unsupported(k, "fix wall/gran contact_area constant"));
+        }
+        _ => {
+            return Err(fail(
+                k + 1,
+                "expecting 'overlap', 'projection' or 'constant' after 'contact_area'",
+            ))
+        }
+    }
+    Ok(())
+}
+
+/// The mesh IDs of `meshes ID ...` at word `k` (`style`: LIGGGHTS's meshwall_ and the
+/// `n_meshes` count read before it).
+fn mesh_list(
+    a: &Args,
+    ctx: &Ctx,
+    k: usize,
+    (mesh_style, n_meshes): (Option<bool>, usize),
+    fail: &dyn Fn(usize, &str) -> CommandError,
+) -> Result<Vec<String>, CommandError> {
+    if mesh_style != Some(true) {
+        return Err(fail(k, "have to use keyword 'mesh' before using 'meshes'"));
+    }
+    if n_meshes == 0 {
+        return Err(fail(k, "have to define 'n_meshes' before 'meshes'"));
+    }
+    if a.len() < k + 1 + n_meshes {
+        return Err(fail(k, "not enough arguments"));
+    }
+    let mut list = Vec::with_capacity(n_meshes);
+    for i in k + 1..k + 1 + n_meshes {
+        let mesh_id = a.word(i)?;
+        let Some(f) = ctx.sim.fixes.iter().find(|f| f.id == mesh_id) else {
+            return Err(fail(i, "could not find fix mesh id you provided"));
+        };
+        if f.kind.mesh().is_none() {
+            return Err(fail(
+                i,
+                "the fix belonging to the id you provided is not of type mesh",
+            ));
+        }
+        list.push(mesh_id.to_string());
+    }
+    Ok(list)
+}
+
+/// What the arguments of a wall say besides its contact model.
+struct Wall {
+    mesh_style: Option<bool>,
+    primitive: Option<(usize, Primitive)>,
+    meshes: Option<Vec<String>>,
+    shear: Option<(usize, f64)>,
+}
+
+/// The fix of a primitive or mesh wall with contact model `selection` (fix `id`; its
+/// group's index `group_index`).
+fn wall_kind(
+    selection: crate::engine::granular::Selection,
+    wall: Wall,
+    id: &str,
+    group_index: u32,
+    fail: &dyn Fn(usize, &str) -> CommandError,
+) -> Result<FixKind, CommandError> {
+    let Wall {
+        mesh_style,
+        primitive,
+        meshes,
+        shear,
+    } = wall;
     match (mesh_style, primitive) {
         (Some(true), _) => {
             let Some(meshes) = meshes else {
@@ -237,7 +302,6 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
                     "Need to provide the number and a list of meshes by using 'n_meshes' and 'meshes'",
                 ));
             };
-            let group_index = ctx.sim.groups.iter().position(|g| g == group).unwrap_or(0) as u32;
             Ok(FixKind::MeshWall(crate::engine::fixes::MeshWallFix {
                 selection,
                 meshes,

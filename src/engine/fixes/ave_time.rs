@@ -1,6 +1,7 @@
 //! `fix ave/time`: its inputs, how it combines them, and its sampling schedule.
 
 use super::*;
+use crate::engine::sim::{Simulation, VariableSource};
 
 /// One input of `fix ave/time`.
 #[derive(Debug, Clone, PartialEq)]
@@ -279,6 +280,33 @@ impl AveTime {
         (n > 1).then_some((rows, n))
     }
 
+    /// A copy of the averages without the file (what stands in the fix list while the fix
+    /// samples: its values and array stay readable).
+    fn snapshot(&self) -> AveTime {
+        AveTime {
+            inputs: self.inputs.clone(),
+            off: self.off.clone(),
+            file: None,
+            sum: self.sum.clone(),
+            total: self.total.clone(),
+            window: Vec::new(),
+            ..*self
+        }
+    }
+
+    /// Take a sample if one is due at the simulation's step (values read with `vars`).
+    fn sample_due(
+        &mut self,
+        sim: &Simulation,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        if self.next != sim.step {
+            return Ok(());
+        }
+        let values = sim.ave_time_values(self, vars)?;
+        self.sample(sim.step, &values)
+    }
+
     /// Length of the fix's global vector: its inputs in scalar mode (more than one), its
     /// rows in vector mode (one input); 0 without one.
     pub fn vector_len(&self) -> usize {
@@ -287,5 +315,66 @@ impl AveTime {
             None if self.inputs.len() > 1 => self.inputs.len(),
             _ => 0,
         }
+    }
+}
+
+impl FixStyle for AveTime {
+    fn name(&self) -> &str {
+        "ave/time"
+    }
+
+    fn global_freq(&self) -> i64 {
+        self.freq
+    }
+
+    fn value(&self, index: Option<usize>) -> Option<f64> {
+        AveTime::value(self, index)
+    }
+
+    fn reads_computes(&self) -> bool {
+        true
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn end_of_step_sim_due(&self, step: i64) -> bool {
+        self.next == step
+    }
+
+    fn end_of_step_sim(
+        &mut self,
+        sim: &mut Simulation,
+        _k: usize,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        self.sample_due(sim, vars)
+    }
+
+    fn setup_pass(&self) -> Option<SetupPass> {
+        Some(SetupPass::TimeAverages)
+    }
+
+    /// A sample due at the run's setup (LIGGGHTS runs `end_of_step` there too).
+    fn setup_sim(
+        &mut self,
+        sim: &mut Simulation,
+        _k: usize,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        self.sample_due(sim, vars)
+    }
+
+    fn stand_in(&self) -> Option<Box<dyn FixStyle>> {
+        Some(Box::new(self.snapshot()))
     }
 }

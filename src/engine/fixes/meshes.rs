@@ -70,9 +70,10 @@ pub fn move_meshes(fixes: &mut [Fix], dt: f64) {
         .filter(|&k| fixes[k].kind.mover().is_some())
         .collect();
     for (pos, &k) in movers.iter().enumerate() {
-        let FixKind::MoveMesh(mut mv) = std::mem::replace(&mut fixes[k].kind, FixKind::Settings)
-        else {
-            unreachable!("listed as a mover")
+        let mut kind = std::mem::replace(&mut fixes[k].kind, FixKind::Settings);
+        let Some(mv) = kind.mover_mut() else {
+            fixes[k].kind = kind;
+            continue;
         };
         let first = !movers[..pos]
             .iter()
@@ -92,7 +93,7 @@ pub fn move_meshes(fixes: &mut [Fix], dt: f64) {
             shift = Some(d);
         }
         let mesh = mv.mesh.clone();
-        fixes[k].kind = FixKind::MoveMesh(mv);
+        fixes[k].kind = kind;
         if let Some(d) = shift {
             for &later in &movers[pos + 1..] {
                 if let Some(o) = fixes[later].kind.mover_mut() {

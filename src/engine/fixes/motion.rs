@@ -3,9 +3,10 @@
 
 use std::collections::HashMap;
 
-use super::ForceValue;
+use super::{FixStep, FixStyle, ForceValue, PerAtomShape};
 use crate::engine::domain::Domain;
 use crate::engine::particles::Particles;
+use crate::engine::restart_fixes::to_bytes;
 
 /// Prescribed motion of `fix move` (length and time units).
 #[derive(Debug, Clone, PartialEq)]
@@ -119,14 +120,7 @@ impl Move {
     /// Prescribe (or integrate) the group's positions and velocities for `step`; positions
     /// set from the unwrapped start point are brought back to the image nearest the old
     /// position, as LIGGGHTS's `remap_near` does.
-    pub(super) fn initial_integrate(
-        &self,
-        p: &mut Particles,
-        group: u32,
-        step: i64,
-        dt: f64,
-        domain: &Domain,
-    ) {
+    fn prescribe(&self, p: &mut Particles, group: u32, step: i64, dt: f64, domain: &Domain) {
         if matches!(self.motion, Motion::Variable { .. }) {
             return self.variable_integrate(p, group, dt, domain);
         }
@@ -207,7 +201,7 @@ impl Move {
         }
     }
 
-    pub(super) fn final_integrate(&self, p: &mut Particles, group: u32, dt: f64) {
+    fn integrate_free(&self, p: &mut Particles, group: u32, dt: f64) {
         let free = self.prescribed().map(|s| !s);
         let dtf = 0.5 * dt;
         for i in 0..p.len() {
@@ -221,5 +215,63 @@ impl Move {
                 }
             }
         }
+    }
+}
+
+impl FixStyle for Move {
+    fn name(&self) -> &str {
+        "move"
+    }
+
+    fn initial_integrate(&mut self, p: &mut Particles, at: &FixStep) {
+        self.prescribe(p, at.group, at.step, at.dt, at.domain);
+    }
+
+    fn final_integrate(&mut self, p: &mut Particles, at: &FixStep) {
+        self.integrate_free(p, at.group, at.dt);
+    }
+
+    /// `move variable` evaluates its variables every step.
+    fn reads_computes(&self) -> bool {
+        matches!(self.motion, Motion::Variable { .. })
+    }
+
+    /// Each atom's unwrapped start position (length; 0 for atoms not in the group then).
+    fn per_atom_shape(&self) -> PerAtomShape {
+        PerAtomShape::Array(3)
+    }
+
+    fn per_atom(&self, p: &Particles) -> Vec<f64> {
+        let mut values = Vec::with_capacity(3 * p.len());
+        for id in &p.id {
+            values.extend(self.origin.get(id).copied().unwrap_or([0.0; 3]));
+        }
+        values
+    }
+
+    /// The time origin (the start step).
+    fn restart_state(&self) -> Option<Vec<u8>> {
+        Some(to_bytes(&[self.start_step as f64]))
+    }
+
+    /// Each atom's start position (LIGGGHTS's `xoriginal`), three values and the count.
+    fn restart_per_atom(&self, p: &Particles) -> Option<(i32, Vec<Vec<f64>>)> {
+        let rows =
+            p.id.iter()
+                .map(|id| self.origin.get(id).map_or(vec![0.0; 3], |x| x.to_vec()))
+                .collect();
+        Some((4, rows))
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
     }
 }

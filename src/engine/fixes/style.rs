@@ -407,11 +407,13 @@ pub enum SetupPass {
     SpatialAverages,
     /// Histograms (`fix ave/histo`).
     Histograms,
+    /// Time averages of global values (`fix ave/time`), after the styles' `setup_values`.
+    TimeAverages,
 }
 
 impl SetupPass {
-    /// Every pass, in the order a run's setup makes them.
-    pub const ALL: [SetupPass; 4] = [
+    /// The passes before the styles' `setup_values`, in the order a run's setup makes them.
+    pub const BEFORE_VALUES: [SetupPass; 4] = [
         SetupPass::Snapshots,
         SetupPass::AtomAverages,
         SetupPass::SpatialAverages,
@@ -606,12 +608,14 @@ impl Simulation {
         self.with_fix_style(k, |s, sim| s.end_of_step_sim(sim, k, vars))
     }
 
-    /// The `setup_sim` hooks of the module fix styles, pass by pass, each pass in fix order.
+    /// The `setup_sim` hooks of the module fix styles, pass by pass (of `passes`), each
+    /// pass in fix order.
     pub(crate) fn setup_fix_style_passes(
         &mut self,
+        passes: &[SetupPass],
         vars: &mut dyn VariableSource,
     ) -> Result<(), EngineError> {
-        for pass in SetupPass::ALL {
+        for &pass in passes {
             for k in 0..self.fixes.len() {
                 if !matches!(&self.fixes[k].kind, super::FixKind::Style(s) if s.setup_pass() == Some(pass))
                 {

@@ -22,7 +22,7 @@ fn wiggle_velocity_after_one_period_is_a_omega() {
         id: "m".into(),
         style: "move".into(),
         group: 1,
-        kind: FixKind::Move(m),
+        kind: FixKind::Style(Box::new(m)),
         args: vec![],
     }];
     let dt = 1e-4;
@@ -69,7 +69,7 @@ fn a_moved_atom_stays_at_the_image_nearest_its_old_position() {
         id: "m".into(),
         style: "move".into(),
         group: 1,
-        kind: FixKind::Move(m),
+        kind: FixKind::Style(Box::new(m)),
         args: vec![],
     }];
     initial_integrate(&mut fixes, &mut p, 1, 1e-3, &domain);

@@ -242,13 +242,11 @@ impl Simulation {
     ) -> Result<(), EngineError> {
         use crate::engine::fixes::ForceValue;
         for k in 0..self.fixes.len() {
-            let values: Vec<ForceValue> = match &self.fixes[k].kind {
-                FixKind::Move(m) => match &m.motion {
-                    fixes::Motion::Variable { displace, velocity } => {
-                        displace.iter().chain(velocity.iter()).cloned().collect()
-                    }
-                    _ => continue,
-                },
+            let values: Vec<ForceValue> = match self.fixes[k].kind.style_as::<fixes::Move>() {
+                Some(fixes::Move {
+                    motion: fixes::Motion::Variable { displace, velocity },
+                    ..
+                }) => displace.iter().chain(velocity.iter()).cloned().collect(),
                 _ => continue,
             };
             let n = self.particles.len();
@@ -264,7 +262,7 @@ impl Simulation {
             let resolved: Vec<[Option<f64>; 6]> = (0..n)
                 .map(|i| std::array::from_fn(|c| columns[c].as_ref().map(|col| col[i])))
                 .collect();
-            if let FixKind::Move(m) = &mut self.fixes[k].kind {
+            if let Some(m) = self.fixes[k].kind.style_as_mut::<fixes::Move>() {
                 m.resolved = resolved;
             }
         }

@@ -153,8 +153,9 @@ impl Simulation {
         self.restart_mesh_history.clear();
         self.say_clump_energy(out);
         self.setup_insertions(out)?;
-        self.setup_fix_style_passes(vars)?;
-        self.setup_averages(vars)
+        self.setup_fix_style_passes(&fixes::SetupPass::BEFORE_VALUES, vars)?;
+        self.setup_fix_values();
+        self.setup_fix_style_passes(&[fixes::SetupPass::TimeAverages], vars)
     }
 
     /// LIGGGHTS's note that the pair style's history fix, created at the first run, takes

@@ -51,34 +51,25 @@ impl Simulation {
         let mesh_vmax_sqr = self.moving_mesh_vmax_sqr();
         for k in 0..self.fixes.len() {
             let fix = &mut self.fixes[k];
-            match &mut fix.kind {
-                FixKind::Style(s) => {
-                    s.end_of_step(
-                        &mut self.particles,
-                        &fixes::FixStep {
-                            group: fix.group,
-                            step,
-                            dt,
-                            domain: &self.domain,
-                            virial: if tallied { &self.virial } else { &[] },
-                            contact,
-                            skin,
-                            regions: Some(&self.regions),
-                            mesh_vmax_sqr,
-                        },
-                    );
-                    if s.outputs_at(step) {
-                        self.fix_style_output(k, out, vars)?;
-                    }
-                    self.fix_style_end_of_step_sim(k, vars)?;
+            if let FixKind::Style(s) = &mut fix.kind {
+                s.end_of_step(
+                    &mut self.particles,
+                    &fixes::FixStep {
+                        group: fix.group,
+                        step,
+                        dt,
+                        domain: &self.domain,
+                        virial: if tallied { &self.virial } else { &[] },
+                        contact,
+                        skin,
+                        regions: Some(&self.regions),
+                        mesh_vmax_sqr,
+                    },
+                );
+                if s.outputs_at(step) {
+                    self.fix_style_output(k, out, vars)?;
                 }
-                FixKind::AveTime(at) if at.next == step => {
-                    let values = self.ave_time_values(k, vars)?;
-                    if let FixKind::AveTime(at) = &mut self.fixes[k].kind {
-                        at.sample(step, &values)?;
-                    }
-                }
-                _ => {}
+                self.fix_style_end_of_step_sim(k, vars)?;
             }
         }
         Ok(())
@@ -97,28 +88,9 @@ impl Simulation {
         }
     }
 
-    /// `fix ave/time` samples due at setup (LIGGGHTS runs end_of_step there too).
-    pub(super) fn setup_averages(
-        &mut self,
-        vars: &mut dyn VariableSource,
-    ) -> Result<(), EngineError> {
-        let step = self.step;
-        self.setup_fix_values();
-        for k in 0..self.fixes.len() {
-            if !matches!(&self.fixes[k].kind, FixKind::AveTime(at) if at.next == step) {
-                continue;
-            }
-            let values = self.ave_time_values(k, vars)?;
-            if let FixKind::AveTime(at) = &mut self.fixes[k].kind {
-                at.sample(step, &values)?;
-            }
-        }
-        Ok(())
-    }
-
     /// The `setup_values` hook of every module fix style, in fix order, after the setup
     /// force evaluation.
-    fn setup_fix_values(&mut self) {
+    pub(super) fn setup_fix_values(&mut self) {
         let step = self.step;
         let tallied = self.virial_step == Some(step);
         let contact = self.neighbor.cutneighmax - self.neighbor.skin;
@@ -178,7 +150,6 @@ impl Simulation {
             (kind, Some(i)) if kind.mesh().and_then(|m| m.value(i)).is_some() => {
                 Ok(kind.mesh().and_then(|m| m.value(i)).unwrap_or(0.0))
             }
-            (FixKind::AveTime(at), i) if at.value(i).is_some() => Ok(at.value(i).unwrap_or(0.0)),
             (FixKind::Style(s), _) if s.global_freq() == 0 && self.run_bounds.is_some() => {
                 Err(crate::engine::global_values::zero_freq(id))
             }

@@ -519,6 +519,7 @@ mod tests {
             "region reg block 0 0.1 0 0.1 0 0.1 units box",
             "create_box 1 reg",
             "neighbor 0.002 bin",
+            "newton off",
             "communicate single vel yes",
             "fix m1 all property/global youngsModulus peratomtype 5e6",
             "fix m2 all property/global poissonsRatio peratomtype 0.2",

@@ -395,40 +395,9 @@ unsafe fn partners_avx2(
             _mm256_set1_pd(shift[2]),
         );
         let mut j = range.start;
-        while j + 4 <= end {
-            // SAFETY: j + 3 < end <= n, the columns' length
-            let (x, y, z, r) = unsafe {
-                (
-                    _mm256_loadu_pd(cols.x.as_ptr().add(j)),
-                    _mm256_loadu_pd(cols.y.as_ptr().add(j)),
-                    _mm256_loadu_pd(cols.z.as_ptr().add(j)),
-                    _mm256_loadu_pd(cols.reach.as_ptr().add(j)),
-                )
-            };
-            let dx = _mm256_sub_pd(_mm256_add_pd(x, sx), xi);
-            let dy = _mm256_sub_pd(_mm256_add_pd(y, sy), yi);
-            let dz = _mm256_sub_pd(_mm256_add_pd(z, sz), zi);
-            let cut = _mm256_add_pd(_mm256_add_pd(base, r), skin4);
-            let rsq = _mm256_add_pd(
-                _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)),
-                _mm256_mul_pd(dz, dz),
-            );
-            let mut mask =
-                _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(rsq, _mm256_mul_pd(cut, cut)));
-            while mask != 0 {
-                let k = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                out.push(Pair {
-                    i: i as u32,
-                    j: (j + k) as u32,
-                    shift,
-                });
-            }
-            j += 4;
-        }
-        if j < end {
-            // the last one to three candidates: a whole vector read past them (the columns
-            // are padded), the lanes beyond `end` masked off
+        while j < end {
+            // four candidates at a time; the last one to three read a whole vector past
+            // them (the columns are padded) with the lanes beyond `end` masked off
             // SAFETY: j < end <= n and the columns hold n + PAD values
             let (x, y, z, r) = unsafe {
                 (
@@ -448,7 +417,7 @@ unsafe fn partners_avx2(
             );
             let near =
                 _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(rsq, _mm256_mul_pd(cut, cut)));
-            let mut mask = near & ((1 << (end - j)) - 1);
+            let mut mask = near & ((1 << (end - j).min(4)) - 1);
             while mask != 0 {
                 let k = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
@@ -458,6 +427,7 @@ unsafe fn partners_avx2(
                     shift,
                 });
             }
+            j += 4;
         }
     }
 }

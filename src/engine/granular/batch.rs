@@ -557,6 +557,34 @@ unsafe fn transpose_avx(r: [&[f64; 12]; LANES]) -> [F64x4; 12] {
     out
 }
 
+/// The two records' fields of a batch's pairs as the contact model's input (`xj` already
+/// shifted to the image nearest i).
+#[inline(always)]
+fn pair_lanes_of<S: Real>(
+    a: &[S; 12],
+    b: &[S; 12],
+    xj: [S; 3],
+    dt: f64,
+    update_history: bool,
+) -> PairLanes<S> {
+    PairLanes {
+        xi: [a[0], a[1], a[2]],
+        xj,
+        radi: a[3],
+        radj: b[3],
+        vi: [a[4], a[5], a[6]],
+        vj: [b[4], b[5], b[6]],
+        mi: a[7],
+        mj: b[7],
+        omegai: [a[8], a[9], a[10]],
+        omegaj: [b[8], b[9], b[10]],
+        frozen_i: a[11].ne(S::default()),
+        frozen_j: b[11].ne(S::default()),
+        dt,
+        update_history,
+    }
+}
+
 /// The two halves of a wide batch's pairs.
 #[inline(always)]
 fn split_pairs<'p>(pr: &[&'p Pair; WIDE_LANES]) -> ([&'p Pair; LANES], [&'p Pair; LANES]) {
@@ -821,22 +849,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
                     xj[d] += F64x8::from_halves(s_lo[d], s_hi[d]);
                 }
             }
-            let lanes = PairLanes {
-                xi: [a[0], a[1], a[2]],
-                xj,
-                radi: a[3],
-                radj: b[3],
-                vi: [a[4], a[5], a[6]],
-                vj: [b[4], b[5], b[6]],
-                mi: a[7],
-                mj: b[7],
-                omegai: [a[8], a[9], a[10]],
-                omegaj: [b[8], b[9], b[10]],
-                frozen_i: a[11].ne(F64x8::default()),
-                frozen_j: b[11].ne(F64x8::default()),
-                dt: self.dt,
-                update_history: self.update,
-            };
+            let lanes = pair_lanes_of(&a, &b, xj, self.dt, self.update);
             let c = coeffs.wide_lanes(self.material, kinds, i, j);
             for (h, slot) in hist.iter_mut().enumerate().take(width) {
                 // SAFETY: e[k] <= top and h < width (checked above)
@@ -919,22 +932,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Kern
                     *x += s;
                 }
             }
-            let lanes = PairLanes {
-                xi: [a[0], a[1], a[2]],
-                xj,
-                radi: a[3],
-                radj: b[3],
-                vi: [a[4], a[5], a[6]],
-                vj: [b[4], b[5], b[6]],
-                mi: a[7],
-                mj: b[7],
-                omegai: [a[8], a[9], a[10]],
-                omegaj: [b[8], b[9], b[10]],
-                frozen_i: a[11].ne(F64x4::default()),
-                frozen_j: b[11].ne(F64x4::default()),
-                dt: self.dt,
-                update_history: self.update,
-            };
+            let lanes = pair_lanes_of(&a, &b, xj, self.dt, self.update);
             let c = coeffs.lanes(self.material, kinds, i, j);
             for (h, slot) in hist.iter_mut().enumerate().take(width) {
                 // SAFETY: e[k] <= top and h < width (checked above)

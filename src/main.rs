@@ -9,6 +9,10 @@ use regolith::session;
 use regolith::util::comm::Ranks;
 use std::path::PathBuf;
 
+/// Large arrays (particles, neighbour lists, contact history) on huge pages where Linux allows.
+#[global_allocator]
+static ALLOCATOR: regolith::util::huge_pages::HugePages = regolith::util::huge_pages::HugePages;
+
 #[derive(Parser)]
 #[command(
     name = "regolith",

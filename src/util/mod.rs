@@ -7,6 +7,7 @@ pub mod comm;
 pub mod comm_mpi;
 pub mod comm_threads;
 pub mod format;
+pub mod huge_pages;
 pub mod numbers;
 pub mod random;
 pub mod team;

@@ -9,6 +9,22 @@ use crate::engine::contact::{CohesionModel, NormalModel, RollingModel, Tangentia
 use crate::engine::neighbor::{Mirrored, Pair};
 use crate::engine::particles::Particles;
 
+/// Touching entries computed before their forces are added (a buffer that stays in cache).
+const ROUND: usize = 1024;
+
+/// The worst overlap `(ratio, i, j)` of two parts in order: the second only where larger,
+/// so the first in order among equals is kept.
+fn later_worst(
+    first: Option<(f64, u32, u32)>,
+    second: Option<(f64, u32, u32)>,
+) -> Option<(f64, u32, u32)> {
+    match (first, second) {
+        (Some(a), Some(b)) if b.0 > a.0 => Some(b),
+        (None, b) => b,
+        (a, _) => a,
+    }
+}
+
 /// Buffers of the mirrors' pass, reused between steps.
 #[derive(Debug, Clone, Default)]
 pub struct Scratch {
@@ -61,7 +77,9 @@ fn add_pair(
 impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> PairGran<N, T, C, R> {
     /// The pass: entries inside the box add to both atoms, entries across a periodic face
     /// to their first atom, each mirror to its own first atom, in list order with each
-    /// mirror just before the entry it is placed at.
+    /// mirror just before the entry it is placed at. Contacts are computed a round of
+    /// [`ROUND`] touching entries (and the mirrors placed among them) at a time and added
+    /// right away, so the results wait in a small buffer rather than one of every contact.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn compute_mirrored(
         &mut self,
@@ -75,60 +93,67 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
     ) {
         let kernel = batch::Kernel::new(&self.model, &self.material, dt, update);
         let packed = &self.packed;
-        // the list's touching entries
+        // the list's and the mirrors' touching entries
         let mut touching = std::mem::take(&mut self.touching);
         touching.clear();
         batch::touching_entries(packed, pairs, 0, &mut touching);
-        let mut results = std::mem::take(&mut self.results);
-        results.resize(touching.len(), PairResult::default());
-        let mut main = Collect {
-            out: &mut results,
-            n: 0,
-            worst: None,
-        };
-        kernel.run(packed, &p.kind, pairs, &touching, history, &mut main);
-        let mut worst = main.worst;
-        // the mirrors' touching entries
         let mut sc = std::mem::take(&mut self.mirror_scratch);
         sc.pairs.clear();
         sc.pairs.extend(m.mirrors.iter().map(|x| x.pair));
         sc.touching.clear();
         batch::touching_entries(packed, &sc.pairs, 0, &mut sc.touching);
-        sc.results.resize(sc.touching.len(), PairResult::default());
-        let mut side = Collect {
-            out: &mut sc.results,
-            n: 0,
-            worst: None,
-        };
-        kernel.run(
-            packed,
-            &p.kind,
-            &sc.pairs,
-            &sc.touching,
-            m.history,
-            &mut side,
-        );
-        if let Some(w) = side.worst {
-            if worst.is_none_or(|b| w.0 > b.0) {
-                worst = Some(w);
-            }
-        }
-        // add in LIGGGHTS's order: each touching mirror just before the entry it is placed at
-        let mut b = 0usize;
+        let mut results = std::mem::take(&mut self.results);
+        let (mut worst, mut worst_side) = (None, None);
         let mirror_at = |b: usize| m.mirrors[sc.touching[b] as usize].at;
-        for (a, &e) in touching.iter().enumerate() {
-            while b < sc.touching.len() && mirror_at(b) <= e {
-                let q = &sc.pairs[sc.touching[b] as usize];
-                add_pair(p, q, &sc.results[b], &mut virial, false);
-                b += 1;
+        // the next touching mirror to add
+        let mut b = 0usize;
+        let mut rounds = touching.chunks(ROUND);
+        loop {
+            let round = rounds.next().unwrap_or_default();
+            // the mirrors placed up to this round's last entry (all of them after the last)
+            let mut b_end = b;
+            while b_end < sc.touching.len()
+                && round.last().is_none_or(|&last| mirror_at(b_end) <= last)
+            {
+                b_end += 1;
             }
-            add_pair(p, &pairs[e as usize], &results[a], &mut virial, true);
+            results.resize(round.len(), PairResult::default());
+            let mut main = Collect {
+                out: &mut results,
+                n: 0,
+                worst: None,
+            };
+            kernel.run(packed, &p.kind, pairs, round, history, &mut main);
+            worst = later_worst(worst, main.worst);
+            sc.results.resize(b_end - b, PairResult::default());
+            let mut side = Collect {
+                out: &mut sc.results,
+                n: 0,
+                worst: None,
+            };
+            let placed = &sc.touching[b..b_end];
+            kernel.run(packed, &p.kind, &sc.pairs, placed, m.history, &mut side);
+            worst_side = later_worst(worst_side, side.worst);
+            // add in LIGGGHTS's order: each touching mirror just before its entry
+            let b0 = b;
+            for (a, &e) in round.iter().enumerate() {
+                while b < b_end && mirror_at(b) <= e {
+                    let q = &sc.pairs[sc.touching[b] as usize];
+                    add_pair(p, q, &sc.results[b - b0], &mut virial, false);
+                    b += 1;
+                }
+                add_pair(p, &pairs[e as usize], &results[a], &mut virial, true);
+            }
+            for b in b..b_end {
+                let q = &sc.pairs[sc.touching[b] as usize];
+                add_pair(p, q, &sc.results[b - b0], &mut virial, false);
+            }
+            b = b_end;
+            if round.is_empty() {
+                break;
+            }
         }
-        for b in b..sc.touching.len() {
-            let q = &sc.pairs[sc.touching[b] as usize];
-            add_pair(p, q, &sc.results[b], &mut virial, false);
-        }
-        self.worst = worst;
+        self.worst = later_worst(worst, worst_side);
         self.results = results;
         self.touching = touching;
         self.mirror_scratch = sc;

@@ -27,10 +27,8 @@ impl Simulation {
         let dist = self
             .fixes
             .iter()
-            .find_map(|f| match &f.kind {
-                FixKind::Distribution(d) if f.id == sf.distribution => Some(d.clone()),
-                _ => None,
-            })
+            .filter(|f| f.id == sf.distribution)
+            .find_map(|f| f.kind.distribution().cloned())
             .ok_or_else(|| {
                 format!(
                     "Fix insert: could not find distribution {}",
@@ -124,15 +122,7 @@ impl Simulation {
             self.insert_rebuild_at = Some(step);
             let group = self.fixes[k].group;
             let dist_id = sf.distribution.clone();
-            let dk = self
-                .fixes
-                .iter()
-                .position(|f| f.id == dist_id)
-                .ok_or_else(|| format!("Fix insert: could not find distribution {dist_id}"))?;
-            let FixKind::Distribution(dist) = &self.fixes[dk].kind else {
-                return Err(format!("Fix insert: {dist_id} is not a particle distribution").into());
-            };
-            let mut dist = dist.clone();
+            let (dk, mut dist) = self.distribution_of(&dist_id)?;
             let (x, periodic, box_changes) = self.insert_world();
             let bodies = self.clumps().map(|c| c.bounds()).unwrap_or_default();
             let (placed, lines) = {
@@ -151,7 +141,7 @@ impl Simulation {
                 let state = sf.state.as_mut().expect("set up");
                 state.insert(step, &mut dist, &world, box_changes)
             }?;
-            if let FixKind::Distribution(d) = &mut self.fixes[dk].kind {
+            if let Some(d) = self.fixes[dk].kind.distribution_mut() {
                 *d = dist.clone();
             }
             let mut tag = self.particles.max_id();
@@ -286,17 +276,11 @@ impl Simulation {
                 self.setup_stream(k, out)?;
                 continue;
             }
-            let FixKind::InsertPack(ins) = &self.fixes[k].kind else {
+            let Some(ins) = self.fixes[k].kind.insert_pack() else {
                 continue;
             };
             let dist_id = ins.distribution.clone();
-            let Some(dk) = self.fixes.iter().position(|f| f.id == dist_id) else {
-                return Err(format!("Fix insert: could not find distribution {dist_id}").into());
-            };
-            let FixKind::Distribution(dist) = &self.fixes[dk].kind else {
-                return Err(format!("Fix insert: {dist_id} is not a particle distribution").into());
-            };
-            let dist = dist.clone();
+            let (_, dist) = self.distribution_of(&dist_id)?;
             let (x, periodic, box_changes) = self.insert_world();
             let bodies = self.clumps().map(|c| c.bounds()).unwrap_or_default();
             let world = crate::engine::insert::World {
@@ -311,10 +295,11 @@ impl Simulation {
                 bodies: &bodies,
             };
             let regions = self.regions.clone();
-            let lines = match &mut self.fixes[k].kind {
-                FixKind::InsertPack(ins) => ins.setup(&regions, &dist, &world, self.dt)?,
-                _ => unreachable!(),
+            let dt = self.dt;
+            let Some(ins) = self.fixes[k].kind.insert_pack_mut() else {
+                continue;
             };
+            let lines = ins.setup(&regions, &dist, &world, dt)?;
             for l in lines {
                 out(&format!("{l}\n"));
             }
@@ -326,26 +311,16 @@ impl Simulation {
     pub(super) fn insert_particles(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
         let step = self.step;
         for k in 0..self.fixes.len() {
-            let due =
-                matches!(&self.fixes[k].kind, FixKind::InsertPack(ins) if ins.next == Some(step));
-            if !due {
+            let Some(ins) = self.fixes[k].kind.insert_pack() else {
+                continue;
+            };
+            if ins.next != Some(step) {
                 continue;
             }
             self.insert_rebuild_at = Some(step);
-            let FixKind::InsertPack(ins) = &self.fixes[k].kind else {
-                unreachable!()
-            };
             let dist_id = ins.distribution.clone();
             let group = self.fixes[k].group;
-            let dk = self
-                .fixes
-                .iter()
-                .position(|f| f.id == dist_id)
-                .ok_or_else(|| format!("Fix insert: could not find distribution {dist_id}"))?;
-            let FixKind::Distribution(dist) = &self.fixes[dk].kind else {
-                return Err(format!("Fix insert: {dist_id} is not a particle distribution").into());
-            };
-            let mut dist = dist.clone();
+            let (dk, mut dist) = self.distribution_of(&dist_id)?;
             let (x, periodic, box_changes) = self.insert_world();
             let bodies = self.clumps().map(|c| c.bounds()).unwrap_or_default();
             let regions = self.regions.clone();
@@ -361,16 +336,17 @@ impl Simulation {
                     members: crate::engine::clumps::body_tags(&self.particles),
                     bodies: &bodies,
                 };
-                match &mut self.fixes[k].kind {
-                    FixKind::InsertPack(ins) => ins.insert(step, &regions, &mut dist, &world),
-                    _ => unreachable!(),
-                }
+                let ins = self.fixes[k]
+                    .kind
+                    .insert_pack_mut()
+                    .expect("an insert/pack");
+                ins.insert(step, &regions, &mut dist, &world)
             }?;
-            let omega = match &self.fixes[k].kind {
-                FixKind::InsertPack(ins) => ins.omega,
-                _ => [0.0; 3],
-            };
-            if let FixKind::Distribution(d) = &mut self.fixes[dk].kind {
+            let omega = self.fixes[k]
+                .kind
+                .insert_pack()
+                .map_or([0.0; 3], |ins| ins.omega);
+            if let Some(d) = self.fixes[dk].kind.distribution_mut() {
                 *d = dist.clone();
             }
             let mut tag = self.particles.max_id();
@@ -428,6 +404,21 @@ impl Simulation {
             }
         }
         Ok(())
+    }
+
+    /// The index of the insertion fixes' distribution `id` among the fixes and a copy of it
+    /// (the insertion draws from the copy, which then replaces it), or LIGGGHTS's error.
+    fn distribution_of(
+        &self,
+        id: &str,
+    ) -> Result<(usize, crate::engine::insert::Distribution), EngineError> {
+        match crate::engine::fixes::distribution_named(&self.fixes, id) {
+            None => Err(format!("Fix insert: could not find distribution {id}").into()),
+            Some((_, None)) => {
+                Err(format!("Fix insert: {id} is not a particle distribution").into())
+            }
+            Some((k, Some(d))) => Ok((k, d.clone())),
+        }
     }
 
     /// The fix moving every stream's particles until release: the first insert/stream

@@ -124,8 +124,6 @@ struct StreamArgs {
     ntry_mc: i64,
     /// `all_in yes|no`.
     all_in: bool,
-    /// The word `all_in` was given at.
-    all_in_at: usize,
 }
 
 impl StreamArgs {
@@ -143,7 +141,6 @@ impl StreamArgs {
             rate: None,
             ntry_mc: 100000,
             all_in: false,
-            all_in_at: 0,
         }
     }
 
@@ -250,11 +247,12 @@ impl StreamArgs {
             return Ok(None);
         }
         self.all_in = yes(a, i + 1)?;
-        self.all_in_at = i;
         Ok(Some(2))
     }
 
-    /// The fix from the keywords, after LIGGGHTS's checks of what they must define.
+    /// The fix from the keywords, after LIGGGHTS's checks of the fix line; what the
+    /// keywords must define together LIGGGHTS checks at the run (the first run's setup
+    /// checks them here too, see `Simulation::stream_plan`).
     fn finish(self, a: &Args, id: &str) -> Result<Box<dyn FixStyle>, CommandError> {
         let need = |what: &str| a.error(2, format!("Fix insert/stream: have to define '{what}'"));
         let common = self.common;
@@ -262,53 +260,20 @@ impl StreamArgs {
         let distribution = common
             .distribution
             .ok_or_else(|| need("distributiontemplate"))?;
-        let (triangles, planar) = self.face.ok_or_else(|| need("insertion_face"))?;
-        if self.all_in && !planar {
-            return Err(a.error(
-                self.all_in_at,
-                format!("Fix insert/stream (id {id}): using all_in yes requires you to use a fix mesh/surface/planar"),
-            ));
-        }
-        let total = self.total.ok_or_else(|| {
-            a.error(
-                2,
-                format!("Fix insert/stream (id {id}): must define either 'nparticles' or 'mass'"),
-            )
-        })?;
-        let rate = self.rate.ok_or_else(|| {
-            a.error(
-                2,
-                format!(
-                    "Fix insert/stream (id {id}): must define either 'massrate' or 'particlerate'"
-                ),
-            )
-        })?;
-        if self.extrude.is_some() == self.schedule.every.is_some() {
-            let what = if self.extrude.is_some() {
-                "must not provide both 'insert_every' and 'extrude_length'"
-            } else {
-                "must define either 'insert_every' or 'extrude_length'"
-            };
-            return Err(a.error(2, format!("Fix insert/stream (id {id}): {what}")));
-        }
-        if self.extrude.is_some() && self.duration.is_some() {
-            return Err(a.error(
-                2,
-                format!("Fix insert/stream (id {id}): must not provide both 'extrude_length' and 'duration'"),
-            ));
-        }
+        let (triangles, planar) = self.face.unwrap_or_default();
         Ok(Box::new(StreamFix {
             id: id.to_string(),
             seed,
             distribution,
             triangles,
             face_id: self.face_id,
+            planar,
             all_in: self.all_in,
             extrude: self.extrude,
             every: self.schedule.every,
             duration: self.duration,
-            total,
-            rate,
+            total: self.total,
+            rate: self.rate,
             velocity: common.velocity,
             omega: common.omega,
             overlapcheck: common.overlapcheck,

@@ -183,6 +183,7 @@ impl Simulation {
     /// quality, no step.
     pub fn check_run(&mut self) -> Result<(), EngineError> {
         self.check_run_init()?;
+        self.check_streams()?;
         for f in &self.fixes {
             if let Some(ins) = f.kind.insert_pack() {
                 ins.check_tet_region(&self.regions, self.domain.lo, self.domain.hi)?;

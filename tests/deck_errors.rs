@@ -229,3 +229,70 @@ fn an_insertion_region_outside_the_box_stops_as_liggghts_does() {
         "{err}"
     );
 }
+
+/// LIGGGHTS checks what an insert/stream's keywords must define together at the run (its
+/// `init` and first `setup`), not at the fix line: the fix is defined, the `run` line fails
+/// with LIGGGHTS's message (as Debian's LIGGGHTS 3.8.0 prints after the lines before `run`).
+#[test]
+fn insert_stream_settings_are_refused_at_the_run_as_liggghts_does() {
+    let face = "solid face\n\
+        facet normal 0 0 1\nouter loop\nvertex -0.02 -0.02 0.03\nvertex 0.02 -0.02 0.03\n\
+        vertex 0.02 0.02 0.03\nendloop\nendfacet\n\
+        facet normal 0 0 1\nouter loop\nvertex -0.02 -0.02 0.03\nvertex 0.02 0.02 0.03\n\
+        vertex -0.02 0.02 0.03\nendloop\nendfacet\nendsolid face\n";
+    let cases = [
+        (
+            "nparticles 100 massrate 0.1 insert_every 1000 insertion_face ins_mesh extrude_length 0.01",
+            "must not provide both 'insert_every' and 'extrude_length'",
+        ),
+        (
+            "nparticles 100 massrate 0.1 extrude_length 0.01",
+            "must define an insertion face",
+        ),
+        (
+            "massrate 0.1 insertion_face ins_mesh extrude_length 0.01",
+            "must define either 'nparticles' or 'mass'",
+        ),
+        (
+            "nparticles 100 insertion_face ins_mesh extrude_length 0.01",
+            "must define either 'massrate' or 'particlerate'",
+        ),
+        (
+            "nparticles 100 massrate 0.1 insertion_face ins_mesh",
+            "must define either 'insert_every' or 'extrude_length'",
+        ),
+        (
+            "nparticles 100 massrate 0.1 insertion_face ins_mesh extrude_length 0.01 duration 5",
+            "must not provide both 'extrude_length' and 'duration'",
+        ),
+        (
+            "nparticles 100 massrate 0.1 all_in yes insertion_face ins_mesh extrude_length 0.01",
+            "using all_in yes requires you to use a fix mesh/surface/planar",
+        ),
+    ];
+    for (k, (keywords, message)) in cases.iter().enumerate() {
+        let deck = with(&format!(
+            "timestep 1e-5\n\
+             fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.002\n\
+             fix pdd all particledistribution/discrete 32452843 1 pts 1.0\n\
+             fix ins_mesh all mesh/surface file face.stl type 1\n\
+             fix ins all insert/stream seed 49979693 distributiontemplate pdd overlapcheck yes \
+             vel constant 0. 0. -1.0 {keywords}\n\
+             fix integr all nve/sphere\nrun 10\n"
+        ));
+        let run_line = deck.lines().count();
+        let dir = common::scratch_dir(&format!("deckerr-stream{k}"));
+        std::fs::write(dir.join("face.stl"), face).unwrap();
+        let out = common::run_deck(&dir, "in.t", &deck, &[]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{keywords}: {err}");
+        assert!(
+            err.contains(&format!("ERROR: Fix insert/stream (id ins): {message}")),
+            "{keywords}: {err}"
+        );
+        assert!(
+            err.contains(&format!("--> in.t:{run_line}\n")),
+            "{keywords}: not at the run line {run_line}: {err}"
+        );
+    }
+}

@@ -8,8 +8,7 @@
 use regolith::commands::fix::{FixDef, FixRow};
 use regolith::commands::specs::Spec;
 use regolith::commands::{fix, Args, CommandError, Ctx};
-use regolith::engine::error::EngineError;
-use regolith::engine::fixes::{FixStep, FixStyle, PerAtomShape};
+use regolith::engine::fixes::{FixStep, FixStyle, PerAtomShape, RestoreError};
 use regolith::engine::particles::Particles;
 use regolith::io::output::Output;
 use regolith::lang::system::Mode;
@@ -63,11 +62,11 @@ impl FixStyle for ToyDrag {
         Some((self.calls as f64).to_le_bytes().to_vec())
     }
 
-    fn restore_state(&mut self, state: &[u8]) -> Result<(), EngineError> {
+    fn restore_state(&mut self, state: &[u8]) -> Result<(), RestoreError> {
         let bytes: [u8; 8] = state
             .get(..8)
             .and_then(|b| b.try_into().ok())
-            .ok_or("toy/drag: short state")?;
+            .ok_or_else(|| RestoreError::Malformed("toy/drag: short state".into()))?;
         self.calls = f64::from_le_bytes(bytes) as i64;
         Ok(())
     }

@@ -2,8 +2,7 @@
 
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
-use crate::engine::error::EngineError;
-use crate::engine::fixes::{Fix, FixKind, Move};
+use crate::engine::fixes::{Fix, FixKind, Move, RestoreError};
 
 /// A fix defined while a restart file's fix states are held takes the state stored under
 /// its ID and style (LIGGGHTS's Modify::add_fix); returns the lines LIGGGHTS prints. The
@@ -13,7 +12,6 @@ pub fn restore_fix_state(
     ctx: &mut Ctx,
     fix: &mut Fix,
 ) -> std::result::Result<Vec<String>, CommandError> {
-    use crate::engine::insert::InsertRestart;
     use crate::engine::restart_fixes::doubles;
     let mut lines = Vec::new();
     let held = ctx
@@ -32,17 +30,6 @@ pub fn restore_fix_state(
             )
         };
         match &mut fix.kind {
-            FixKind::Template(t) => {
-                // [ranks, insertion generator state per rank, Monte Carlo state]
-                if d.len() < 3 {
-                    return Err(bad("too short"));
-                }
-                t.rng_state.0 = d[1] as i32;
-            }
-            FixKind::Distribution(dist) => {
-                let state = *d.first().ok_or_else(|| bad("empty"))?;
-                dist.rng.reset(state as i32).map_err(|m| a.error(2, &m))?;
-            }
             FixKind::Mesh(_) => {} // its nodes were taken from the file when it was built
             kind if kind.property_atom().is_some() => {
                 // the number of values; the builder kept the restart's per-atom values
@@ -72,27 +59,12 @@ pub fn restore_fix_state(
                 }
             }
             FixKind::Style(s) => s.restore_state(&bytes).map_err(|e| match e {
-                EngineError::Unsupported(what) => {
+                RestoreError::Unsupported(what) => {
                     a.unsupported(2, &format!("{what} (fix {} is stored there)", fix.id))
                 }
-                e => bad(&e.to_string()),
+                RestoreError::Malformed(what) => bad(&what),
+                RestoreError::Refused(message) => a.error(2, message),
             })?,
-            FixKind::InsertStream(sf) => {
-                let r = InsertRestart::parse(&bytes).map_err(|e| bad(&e.to_string()))?;
-                if r.next != 0 {
-                    sf.start = r.next;
-                }
-                sf.restored = Some(r);
-            }
-            FixKind::InsertPack(ins) => {
-                let r = InsertRestart::parse(&bytes).map_err(|e| bad(&e.to_string()))?;
-                ins.rng.reset(r.rng_state).map_err(|m| a.error(2, &m))?;
-                ins.inserted = r.inserted;
-                ins.inserted_mass = r.mass;
-                if r.next != 0 {
-                    ins.next = Some(r.next);
-                }
-            }
             _ => {
                 return Err(a.unsupported(
                     2,

@@ -188,14 +188,11 @@ fn check_thermo_references(a: &Args, ctx: &Ctx) -> Result {
                 let Some(fix) = fix else {
                     return Err(a.error(k, "Could not find thermo custom fix ID"));
                 };
-                let silent = matches!(
-                    fix.kind,
-                    FixKind::WallGran(_)
-                        | FixKind::MeshWall(_)
-                        | FixKind::Template(_)
-                        | FixKind::Distribution(_)
-                ) || fix.kind.style_as::<crate::engine::fixes::Move>().is_some()
-                    || fix.kind.mover().is_some();
+                let silent = match &fix.kind {
+                    FixKind::WallGran(_) | FixKind::MeshWall(_) => true,
+                    FixKind::Style(s) => s.refuses_thermo(),
+                    _ => false,
+                };
                 if silent {
                     let what = if indexed { "vector" } else { "scalar" };
                     return Err(a.error(k, format!("Thermo fix does not compute {what}")));

@@ -111,10 +111,9 @@ impl Simulation {
             let types: Vec<u64> = match &f.kind {
                 FixKind::WallGran(w) => vec![w.wall_type as u64],
                 FixKind::Mesh(m) => vec![m.wall_type as u64],
-                FixKind::Distribution(d) => {
+                kind => kind.distribution().map_or(Vec::new(), |d| {
                     d.templates.iter().map(|t| t.atom_type as u64).collect()
-                }
-                _ => Vec::new(),
+                }),
             };
             for t in types.into_iter().filter(|&t| t > 0) {
                 lo = lo.min(t);

@@ -20,7 +20,9 @@ pub use check_timestep::CheckTimestep;
 pub use meshes::{move_meshes, MeshFix};
 pub use motion::{Motion, Move};
 pub use stream::StreamFix;
-pub use style::{FixInit, FixStep, FixStyle, PairInit, PerAtomShape, SetupPass, StepInputs};
+pub use style::{
+    FixInit, FixStep, FixStyle, PairInit, PerAtomShape, RestoreError, SetupPass, StepInputs,
+};
 pub use walls::{mesh_wall_contacts, refresh_trackers, MeshWallFix, WallFix};
 
 /// What a fix does.
@@ -29,14 +31,6 @@ pub enum FixKind {
     WallGran(WallFix),
     /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
     Mesh(Box<MeshFix>),
-    /// `fix particletemplate/sphere`.
-    Template(crate::engine::insert::Template),
-    /// `fix particledistribution/discrete...`.
-    Distribution(crate::engine::insert::Distribution),
-    /// `fix insert/pack`.
-    InsertPack(Box<crate::engine::insert::InsertPack>),
-    /// `fix insert/stream` (None until its first setup computes the face geometry).
-    InsertStream(Box<StreamFix>),
     /// `fix wall/gran ... mesh`: granular walls of triangle meshes.
     MeshWall(MeshWallFix),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
@@ -103,18 +97,38 @@ impl FixKind {
 
     /// The insertion of a `fix insert/stream` (None: a fix of another style).
     pub fn stream(&self) -> Option<&StreamFix> {
-        match self {
-            FixKind::InsertStream(s) => Some(s),
-            _ => None,
-        }
+        self.style_as()
     }
 
     /// [`FixKind::stream`], to change.
     pub fn stream_mut(&mut self) -> Option<&mut StreamFix> {
-        match self {
-            FixKind::InsertStream(s) => Some(s),
-            _ => None,
-        }
+        self.style_as_mut()
+    }
+
+    /// The insertion of a `fix insert/pack` or `insert/rate/region` (None: a fix of another
+    /// style).
+    pub fn insert_pack(&self) -> Option<&crate::engine::insert::InsertPack> {
+        self.style_as()
+    }
+
+    /// [`FixKind::insert_pack`], to change.
+    pub fn insert_pack_mut(&mut self) -> Option<&mut crate::engine::insert::InsertPack> {
+        self.style_as_mut()
+    }
+
+    /// The sphere of a `fix particletemplate/sphere` (None: a fix of another style).
+    pub fn template(&self) -> Option<&crate::engine::insert::Template> {
+        self.style_as()
+    }
+
+    /// The mix of a `fix particledistribution/discrete...` (None: a fix of another style).
+    pub fn distribution(&self) -> Option<&crate::engine::insert::Distribution> {
+        self.style_as()
+    }
+
+    /// [`FixKind::distribution`], to change.
+    pub fn distribution_mut(&mut self) -> Option<&mut crate::engine::insert::Distribution> {
+        self.style_as_mut()
     }
 
     /// The granular mesh walls of a `fix wall/gran ... mesh` (None: a fix of another style).
@@ -147,14 +161,9 @@ impl FixKind {
     /// be current on every step)? Kinds not listed answer yes.
     pub fn may_read_computes(&self) -> bool {
         match self {
-            FixKind::WallGran(_)
-            | FixKind::Mesh(_)
-            | FixKind::Template(_)
-            | FixKind::Distribution(_)
-            | FixKind::InsertPack(_)
-            | FixKind::InsertStream(_)
-            | FixKind::MeshWall(_)
-            | FixKind::Settings => false,
+            FixKind::WallGran(_) | FixKind::Mesh(_) | FixKind::MeshWall(_) | FixKind::Settings => {
+                false
+            }
             FixKind::Style(s) => s.reads_computes(),
             _ => true,
         }
@@ -186,6 +195,16 @@ pub fn properties_named<'a>(
     fixes
         .iter()
         .filter_map(move |f| Some((f, f.kind.property_atom().filter(|pa| pa.name == name)?)))
+}
+
+/// The index among `fixes` of the fix with ID `id`, and its particle distribution (None:
+/// no fix has that ID; Some((k, None)): fix `k` is not a `particledistribution/discrete...`).
+pub fn distribution_named<'a>(
+    fixes: &'a [Fix],
+    id: &str,
+) -> Option<(usize, Option<&'a crate::engine::insert::Distribution>)> {
+    let k = fixes.iter().position(|f| f.id == id)?;
+    Some((k, fixes[k].kind.distribution()))
 }
 
 /// Whether a `fix move/mesh` among `fixes` moves mesh `id`.
@@ -332,9 +351,6 @@ mod tests;
 pub fn first_distribution_bound(fixes: &[Fix]) -> f64 {
     fixes
         .iter()
-        .find_map(|f| match &f.kind {
-            FixKind::Distribution(d) => Some(d.max_radius),
-            _ => None,
-        })
+        .find_map(|f| Some(f.kind.distribution()?.max_radius))
         .unwrap_or(0.0)
 }

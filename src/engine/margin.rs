@@ -366,7 +366,7 @@ impl Simulation {
             offer(p.kind[i] as usize, p.radius[i], p.density[i]);
         }
         for f in &self.fixes {
-            if let FixKind::Template(t) = &f.kind {
+            if let Some(t) = f.kind.template() {
                 offer(t.atom_type as usize, t.radius, t.density);
             }
         }
@@ -408,6 +408,20 @@ impl Simulation {
                 }
                 continue;
             }
+            if let Some(ins) = f.kind.insert_pack() {
+                offer(
+                    insertion(&ins.velocity),
+                    format!("fix {} (insertion velocity)", f.id),
+                );
+                continue;
+            }
+            if let Some(s) = f.kind.stream() {
+                offer(
+                    insertion(&s.velocity),
+                    format!("fix {} (insertion velocity)", f.id),
+                );
+                continue;
+            }
             match &f.kind {
                 FixKind::Style(s) => {
                     // free fall under `fix gravity`
@@ -424,18 +438,6 @@ impl Simulation {
                             format!("free fall over the box height ({} at {})", g(h), g(a)),
                         );
                     }
-                }
-                FixKind::InsertPack(ins) => {
-                    offer(
-                        insertion(&ins.velocity),
-                        format!("fix {} (insertion velocity)", f.id),
-                    );
-                }
-                FixKind::InsertStream(s) => {
-                    offer(
-                        insertion(&s.velocity),
-                        format!("fix {} (insertion velocity)", f.id),
-                    );
                 }
                 FixKind::WallGran(w) => {
                     if let Some((_, v)) = w.shear {

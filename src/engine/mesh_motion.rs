@@ -199,13 +199,19 @@ impl crate::engine::fixes::FixStyle for MoveMesh {
     }
 
     /// The clock from the file; the mesh took its moved nodes from the file.
-    fn restore_state(&mut self, state: &[u8]) -> Result<(), crate::engine::error::EngineError> {
+    fn restore_state(&mut self, state: &[u8]) -> Result<(), crate::engine::fixes::RestoreError> {
         let d = crate::engine::restart_fixes::doubles(state);
-        self.time = *d.first().ok_or("empty")?;
+        self.time = *d
+            .first()
+            .ok_or_else(|| crate::engine::fixes::RestoreError::Malformed("empty".into()))?;
         Ok(())
     }
 
     fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn refuses_thermo(&self) -> bool {
         true
     }
 

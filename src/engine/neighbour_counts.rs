@@ -2,7 +2,6 @@
 //! coord/atom` (partners within a cutoff, by type), counted over the pairs LIGGGHTS's lists
 //! hold (LIGGGHTS 3.8.0's compute_contact_atom.cpp and compute_coord_atom.cpp).
 
-use crate::engine::fixes::FixKind;
 use crate::engine::neighbor::NeighborList;
 use crate::engine::sim::Simulation;
 
@@ -94,7 +93,7 @@ impl CoordAtom {
             }
         }
         for f in &sim.fixes {
-            if let FixKind::Template(t) = &f.kind {
+            if let Some(t) = f.kind.template() {
                 if let Some(r) = radii.get_mut(t.atom_type as usize) {
                     *r = r.max(t.radius);
                 }

@@ -207,14 +207,6 @@ impl Simulation {
         let mut release_written = false;
         for f in &self.fixes {
             match &f.kind {
-                FixKind::Template(t) => globals.push(entry(
-                    &f.id,
-                    &f.style,
-                    to_bytes(&[1.0, t.rng_state.0 as f64, t.rng_state.1 as f64]),
-                )),
-                FixKind::Distribution(d) => {
-                    globals.push(entry(&f.id, &f.style, to_bytes(&[d.rng.state() as f64])))
-                }
                 FixKind::Mesh(m) => {
                     // the stress module keeps each triangle's wear (when on) and p_ref
                     let extras = match &m.stress {
@@ -241,59 +233,45 @@ impl Simulation {
                         let (id, style) = (f.id.clone(), f.style.clone());
                         peratom.push((PeratomFix { id, style, maxsize }, rows));
                     }
-                }
-                FixKind::InsertPack(ins) => {
-                    let state = crate::engine::insert::InsertRestart {
-                        rng_state: ins.rng.state(),
-                        inserted: ins.inserted,
-                        first_step: ins.first_step,
-                        next: ins.next.unwrap_or(0),
-                        mass: ins.inserted_mass,
-                    };
-                    globals.push(entry(&f.id, &f.style, state.bytes()));
-                }
-                FixKind::InsertStream(sf) => {
-                    let state = match &sf.state {
-                        Some(s) => s.restart_state(),
-                        None => crate::engine::insert::InsertRestart {
-                            rng_state: sf.restored.map_or(sf.seed, |r| r.rng_state),
-                            inserted: sf.restored.map_or(0, |r| r.inserted),
-                            first_step: sf.restored.map_or(sf.start, |r| r.first_step),
-                            next: sf.start,
-                            mass: sf.restored.map_or(0.0, |r| r.mass),
-                        },
-                    };
-                    globals.push(entry(&f.id, &f.style, state.bytes()));
-                    if self.stream_release && !release_written {
+                    // the first stream's entry is followed by the release data
+                    if f.kind.stream().is_some() && self.stream_release && !release_written {
                         release_written = true;
-                        globals.push(entry(
-                            RELEASE_NAME,
-                            "property/atom",
-                            to_bytes(&[RELEASE_WIDTH as f64]),
-                        ));
-                        let p = &self.particles;
-                        let rows = match self.release_rows() {
-                            Some(k) => p.extra[k]
-                                .data
-                                .chunks(RELEASE_WIDTH)
-                                .map(<[f64]>::to_vec)
-                                .collect(),
-                            None => vec![vec![0.0; RELEASE_WIDTH]; p.len()],
-                        };
-                        peratom.push((
-                            PeratomFix {
-                                id: RELEASE_NAME.into(),
-                                style: "property/atom".into(),
-                                maxsize: RELEASE_WIDTH as i32 + 1,
-                            },
-                            rows,
-                        ));
+                        self.release_entries(&mut globals, &mut peratom);
                     }
                 }
                 _ => {}
             }
         }
         (globals, peratom)
+    }
+}
+
+impl Simulation {
+    /// The per-atom release data of the insertion streams as a `property/atom` fix of the
+    /// restart file (LIGGGHTS's): its global entry and its rows (zeros without data).
+    fn release_entries(&self, globals: &mut Vec<GlobalFix>, peratom: &mut Vec<PeratomBlock>) {
+        globals.push(entry(
+            RELEASE_NAME,
+            "property/atom",
+            to_bytes(&[RELEASE_WIDTH as f64]),
+        ));
+        let p = &self.particles;
+        let rows = match self.release_rows() {
+            Some(k) => p.extra[k]
+                .data
+                .chunks(RELEASE_WIDTH)
+                .map(<[f64]>::to_vec)
+                .collect(),
+            None => vec![vec![0.0; RELEASE_WIDTH]; p.len()],
+        };
+        peratom.push((
+            PeratomFix {
+                id: RELEASE_NAME.into(),
+                style: "property/atom".into(),
+                maxsize: RELEASE_WIDTH as i32 + 1,
+            },
+            rows,
+        ));
     }
 }
 

@@ -2,11 +2,41 @@
 
 use super::seed_arg;
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::{FixStyle, RestoreError};
+use crate::engine::insert::{Distribution, Template};
+use crate::engine::restart_fixes::{doubles, to_bytes};
+
+/// The declared signature (mass fractions).
+pub const SPEC: Spec = style(
+    "fix",
+    "particledistribution/discrete",
+    "fix ID GROUP particledistribution/discrete SEED N TEMPLATE FRACTION ...",
+    &[],
+    "a mix of particle templates by mass fraction",
+);
+
+/// The declared signature of the explicitly mass-based style.
+pub const MASSBASED: Spec = style(
+    "fix",
+    "particledistribution/discrete/massbased",
+    "fix ID GROUP particledistribution/discrete/massbased SEED N TEMPLATE FRACTION ...",
+    &[],
+    "a mix of particle templates by mass fraction",
+);
+
+/// The declared signature of the number-based style.
+pub const NUMBERBASED: Spec = style(
+    "fix",
+    "particledistribution/discrete/numberbased",
+    "fix ID GROUP particledistribution/discrete/numberbased SEED N TEMPLATE FRACTION ...",
+    &[],
+    "a mix of particle templates by number fraction",
+);
 
 /// `fix ID GROUP particledistribution/discrete SEED N T1 W1 ... TN WN`.
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     let style = fix.style;
     a.count(
         7..=usize::MAX,
@@ -28,12 +58,13 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
             .sim
             .fixes
             .iter()
-            .find_map(|f| match &f.kind {
-                FixKind::Template(t) if f.id == tid => Some(t.clone()),
-                kind if f.id == tid => Some(crate::engine::insert::Template::clump(
-                    kind.style_as::<crate::engine::multisphere::ClumpTemplate>()?,
+            .filter(|f| f.id == tid)
+            .find_map(|f| match f.kind.template() {
+                Some(t) => Some(t.clone()),
+                None => Some(Template::clump(
+                    f.kind
+                        .style_as::<crate::engine::multisphere::ClumpTemplate>()?,
                 )),
-                _ => None,
             })
             .ok_or_else(|| {
                 a.error(
@@ -62,10 +93,50 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
     let names: Vec<&str> = (0..n as usize)
         .map(|k| a.word(5 + 2 * k))
         .collect::<Result<_, _>>()?;
-    let d = crate::engine::insert::Distribution::new(seed, templates, &weights, number_based)
-        .map_err(|m| a.error(3, &m))?;
+    let d =
+        Distribution::new(seed, templates, &weights, number_based).map_err(|m| a.error(3, &m))?;
     report(ctx, fix.id, &names, &weights, &d, number_based);
-    Ok(FixKind::Distribution(d))
+    Ok(Box::new(d))
+}
+
+/// A distribution acts in no phase: the insertion fixes draw from it, found by type
+/// ([`FixKind::distribution`]).
+///
+/// [`FixKind::distribution`]: crate::engine::fixes::FixKind::distribution
+impl FixStyle for Distribution {
+    /// The family's name (the three styles differ only in how weights are read).
+    fn name(&self) -> &str {
+        "particledistribution/discrete"
+    }
+
+    /// The generator's state (leftover particles).
+    fn restart_state(&self) -> Option<Vec<u8>> {
+        Some(to_bytes(&[self.rng.state() as f64]))
+    }
+
+    fn restore_state(&mut self, state: &[u8]) -> Result<(), RestoreError> {
+        let state = *doubles(state)
+            .first()
+            .ok_or_else(|| RestoreError::Malformed("empty".into()))?;
+        self.rng.reset(state as i32)?;
+        Ok(())
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn refuses_thermo(&self) -> bool {
+        true
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
+    }
 }
 
 /// LIGGGHTS's printout of a distribution when it is defined (screen only): the weight-sum

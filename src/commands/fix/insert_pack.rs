@@ -2,13 +2,32 @@
 
 use super::insertion::{keyword, yes, Family, Insertion, Schedule};
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{style, Spec, INSERT_KEYWORDS};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::FixKind;
-use crate::engine::insert::{InsertPack, Target};
+use crate::engine::fixes::{FixStyle, RestoreError};
+use crate::engine::insert::{InsertPack, InsertRestart, Target};
 use crate::engine::region::Shape;
 
+/// The declared signature of `insert/pack`.
+pub const SPEC: Spec = style(
+    "fix",
+    "insert/pack",
+    "fix ID GROUP insert/pack seed SEED distributiontemplate D region R ...",
+    INSERT_KEYWORDS,
+    "fill a region with particles to a count, mass or volume fraction",
+);
+
+/// The declared signature of `insert/rate/region`.
+pub const RATE_REGION: Spec = style(
+    "fix",
+    "insert/rate/region",
+    "fix ID GROUP insert/rate/region seed SEED distributiontemplate D nparticles N particlerate R insert_every N region R",
+    INSERT_KEYWORDS,
+    "insert particles into a region at a rate",
+);
+
 /// `fix ID GROUP insert/pack seed S distributiontemplate D [keywords]`.
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     ctx.sim.inserts_atoms = true;
     a.count(
         5..=usize::MAX,
@@ -292,10 +311,8 @@ impl PackArgs {
             .sim
             .fixes
             .iter()
-            .find_map(|f| match &f.kind {
-                FixKind::Distribution(d) if f.id == distribution => Some(d.mass_expect),
-                _ => None,
-            })
+            .filter(|f| f.id == distribution)
+            .find_map(|f| Some(f.kind.distribution()?.mass_expect))
             .unwrap_or(1.0);
         let (nparticles, mass) = (self.nparticles, self.mass);
         let (particlerate, massrate) = (self.particlerate, self.massrate);
@@ -333,7 +350,7 @@ impl PackArgs {
     }
 
     /// The fix from the keywords, after LIGGGHTS's checks of what they must define.
-    fn finish(self, a: &Args, ctx: &Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+    fn finish(self, a: &Args, ctx: &Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
         let FixDef { id, style, .. } = *fix;
         let seed = self
             .common
@@ -366,14 +383,16 @@ impl PackArgs {
             .every
             .ok_or_else(|| a.error(2, "Fix insert/pack: must define 'insert_every'"))?;
         let clumps = ctx.sim.fixes.iter().any(|f| {
-            matches!(&f.kind, FixKind::Distribution(d)
-                if f.id == distribution && d.templates.iter().any(|t| t.clump.is_some()))
+            f.id == distribution
+                && f.kind
+                    .distribution()
+                    .is_some_and(|d| d.templates.iter().any(|t| t.clump.is_some()))
         });
         if clumps && rate.is_some() {
             return Err(a.unsupported(2, &format!("fix {style} of multisphere clumps")));
         }
         let common = self.common;
-        Ok(FixKind::InsertPack(Box::new(InsertPack {
+        Ok(Box::new(InsertPack {
             id: id.to_string(),
             distribution,
             region,
@@ -401,6 +420,55 @@ impl PackArgs {
             mass_rate,
             per_insertion: 0.0,
             random_orientation: common.random_orientation,
-        })))
+        }))
+    }
+}
+
+/// `insert/pack` and `insert/rate/region` insert at their steps in the run's insertion
+/// pass, which finds them by type ([`FixKind::insert_pack`]).
+///
+/// [`FixKind::insert_pack`]: crate::engine::fixes::FixKind::insert_pack
+impl FixStyle for InsertPack {
+    fn name(&self) -> &str {
+        if self.rate.is_some() {
+            "insert/rate/region"
+        } else {
+            "insert/pack"
+        }
+    }
+
+    /// The fix generator, the counts so far, the first and the next insertion step.
+    fn restart_state(&self) -> Option<Vec<u8>> {
+        let state = InsertRestart {
+            rng_state: self.rng.state(),
+            inserted: self.inserted,
+            first_step: self.first_step,
+            next: self.next.unwrap_or(0),
+            mass: self.inserted_mass,
+        };
+        Some(state.bytes())
+    }
+
+    fn restore_state(&mut self, state: &[u8]) -> Result<(), RestoreError> {
+        let r = InsertRestart::parse(state).map_err(|e| RestoreError::Malformed(e.to_string()))?;
+        self.rng.reset(r.rng_state)?;
+        self.inserted = r.inserted;
+        self.inserted_mass = r.mass;
+        if r.next != 0 {
+            self.next = Some(r.next);
+        }
+        Ok(())
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
     }
 }

@@ -2,14 +2,24 @@
 
 use super::insertion::{keyword, yes, Family, Insertion, Schedule};
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{style, Spec, INSERT_KEYWORDS};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::{FixKind, StreamFix};
-use crate::engine::insert::UNLIMITED;
+use crate::engine::fixes::{FixStyle, RestoreError, StreamFix};
+use crate::engine::insert::{InsertRestart, UNLIMITED};
 use crate::io::stl::Triangle;
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "fix",
+    "insert/stream",
+    "fix ID GROUP insert/stream seed SEED distributiontemplate D nparticles N particlerate R insertion_face MESH extrude_length L",
+    INSERT_KEYWORDS,
+    "stream particles through a mesh face",
+);
 
 /// `fix ID GROUP insert/stream seed S distributiontemplate D nparticles N particlerate R
 /// insertion_face MESH extrude_length L|insert_every N vel ... [overlapcheck ...]`.
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     let id = fix.id;
     ctx.sim.inserts_atoms = true;
     a.count(5..=usize::MAX, "fix ID GROUP insert/stream seed S distributiontemplate D nparticles N particlerate R insertion_face MESH extrude_length L ...")?;
@@ -114,8 +124,6 @@ struct StreamArgs {
     ntry_mc: i64,
     /// `all_in yes|no`.
     all_in: bool,
-    /// The word `all_in` was given at.
-    all_in_at: usize,
 }
 
 impl StreamArgs {
@@ -133,7 +141,6 @@ impl StreamArgs {
             rate: None,
             ntry_mc: 100000,
             all_in: false,
-            all_in_at: 0,
         }
     }
 
@@ -240,65 +247,33 @@ impl StreamArgs {
             return Ok(None);
         }
         self.all_in = yes(a, i + 1)?;
-        self.all_in_at = i;
         Ok(Some(2))
     }
 
-    /// The fix from the keywords, after LIGGGHTS's checks of what they must define.
-    fn finish(self, a: &Args, id: &str) -> Result<FixKind, CommandError> {
+    /// The fix from the keywords, after LIGGGHTS's checks of the fix line; what the
+    /// keywords must define together LIGGGHTS checks at the run (the first run's setup
+    /// checks them here too, see `Simulation::stream_plan`).
+    fn finish(self, a: &Args, id: &str) -> Result<Box<dyn FixStyle>, CommandError> {
         let need = |what: &str| a.error(2, format!("Fix insert/stream: have to define '{what}'"));
         let common = self.common;
         let seed = common.seed.ok_or_else(|| need("seed"))?;
         let distribution = common
             .distribution
             .ok_or_else(|| need("distributiontemplate"))?;
-        let (triangles, planar) = self.face.ok_or_else(|| need("insertion_face"))?;
-        if self.all_in && !planar {
-            return Err(a.error(
-                self.all_in_at,
-                format!("Fix insert/stream (id {id}): using all_in yes requires you to use a fix mesh/surface/planar"),
-            ));
-        }
-        let total = self.total.ok_or_else(|| {
-            a.error(
-                2,
-                format!("Fix insert/stream (id {id}): must define either 'nparticles' or 'mass'"),
-            )
-        })?;
-        let rate = self.rate.ok_or_else(|| {
-            a.error(
-                2,
-                format!(
-                    "Fix insert/stream (id {id}): must define either 'massrate' or 'particlerate'"
-                ),
-            )
-        })?;
-        if self.extrude.is_some() == self.schedule.every.is_some() {
-            let what = if self.extrude.is_some() {
-                "must not provide both 'insert_every' and 'extrude_length'"
-            } else {
-                "must define either 'insert_every' or 'extrude_length'"
-            };
-            return Err(a.error(2, format!("Fix insert/stream (id {id}): {what}")));
-        }
-        if self.extrude.is_some() && self.duration.is_some() {
-            return Err(a.error(
-                2,
-                format!("Fix insert/stream (id {id}): must not provide both 'extrude_length' and 'duration'"),
-            ));
-        }
-        Ok(FixKind::InsertStream(Box::new(StreamFix {
+        let (triangles, planar) = self.face.unwrap_or_default();
+        Ok(Box::new(StreamFix {
             id: id.to_string(),
             seed,
             distribution,
             triangles,
             face_id: self.face_id,
+            planar,
             all_in: self.all_in,
             extrude: self.extrude,
             every: self.schedule.every,
             duration: self.duration,
-            total,
-            rate,
+            total: self.total,
+            rate: self.rate,
             velocity: common.velocity,
             omega: common.omega,
             overlapcheck: common.overlapcheck,
@@ -309,6 +284,59 @@ impl StreamArgs {
             state: None,
             restored: None,
             random_orientation: common.random_orientation,
-        })))
+        }))
+    }
+}
+
+/// A stream sets itself up, inserts and carries its particles to their release in the
+/// run's insertion passes, which find it by type ([`FixKind::stream`]).
+///
+/// [`FixKind::stream`]: crate::engine::fixes::FixKind::stream
+impl FixStyle for StreamFix {
+    fn name(&self) -> &str {
+        "insert/stream"
+    }
+
+    /// The running insertion's state; before its first setup, the state it was defined
+    /// with (or took from a restart file).
+    fn restart_state(&self) -> Option<Vec<u8>> {
+        let state = match &self.state {
+            Some(s) => s.restart_state(),
+            None => InsertRestart {
+                rng_state: self.restored.map_or(self.seed, |r| r.rng_state),
+                inserted: self.restored.map_or(0, |r| r.inserted),
+                first_step: self.restored.map_or(self.start, |r| r.first_step),
+                next: self.start,
+                mass: self.restored.map_or(0.0, |r| r.mass),
+            },
+        };
+        Some(state.bytes())
+    }
+
+    /// Taken over at the first setup; the next insertion step at once.
+    fn restore_state(&mut self, state: &[u8]) -> Result<(), RestoreError> {
+        let r = InsertRestart::parse(state).map_err(|e| RestoreError::Malformed(e.to_string()))?;
+        if r.next != 0 {
+            self.start = r.next;
+        }
+        self.restored = Some(r);
+        Ok(())
+    }
+
+    /// Each particle's release data, which copies could not take over.
+    fn keeps_per_atom_state(&self) -> bool {
+        true
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
     }
 }

@@ -3,7 +3,6 @@
 
 use super::seed_arg;
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::FixKind;
 use crate::engine::insert::Velocity;
 
 /// One family of a style's keywords: reads the keyword `w` at word `i` into the parser's
@@ -182,7 +181,7 @@ fn distribution_arg(a: &Args, ctx: &Ctx, i: usize) -> Result<String, CommandErro
         .sim
         .fixes
         .iter()
-        .any(|f| f.id == d && matches!(f.kind, FixKind::Distribution(_)))
+        .any(|f| f.id == d && f.kind.distribution().is_some())
     {
         return Err(a.error(
             i,

@@ -72,19 +72,6 @@ pub const STYLES: &[(&str, Build)] = &[
     ("mesh/surface/planar", mesh_surface::build),
     ("mesh/surface/stress", mesh_surface::build),
     ("mesh/surface/stress/servo", mesh_surface::build),
-    ("particletemplate/sphere", particle_template::build),
-    ("particledistribution/discrete", distribution::build),
-    (
-        "particledistribution/discrete/numberbased",
-        distribution::build,
-    ),
-    (
-        "particledistribution/discrete/massbased",
-        distribution::build,
-    ),
-    ("insert/pack", insert_pack::build),
-    ("insert/rate/region", insert_pack::build),
-    ("insert/stream", insert_stream::build),
     ("wall/gran", wall_gran::build),
     ("multisphere", multisphere::build),
 ];
@@ -304,6 +291,41 @@ pub static TABLE: StyleTable<FixRow> = StyleTable::new(&[
         spec: particle_template_multisphere::SPEC,
         planar: false,
         build: particle_template_multisphere::build,
+    },
+    FixRow {
+        spec: particle_template::SPEC,
+        planar: false,
+        build: particle_template::build,
+    },
+    FixRow {
+        spec: distribution::SPEC,
+        planar: false,
+        build: distribution::build,
+    },
+    FixRow {
+        spec: distribution::MASSBASED,
+        planar: false,
+        build: distribution::build,
+    },
+    FixRow {
+        spec: distribution::NUMBERBASED,
+        planar: false,
+        build: distribution::build,
+    },
+    FixRow {
+        spec: insert_pack::SPEC,
+        planar: false,
+        build: insert_pack::build,
+    },
+    FixRow {
+        spec: insert_pack::RATE_REGION,
+        planar: false,
+        build: insert_pack::build,
+    },
+    FixRow {
+        spec: insert_stream::SPEC,
+        planar: false,
+        build: insert_stream::build,
     },
 ]);
 

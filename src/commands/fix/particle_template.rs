@@ -2,11 +2,27 @@
 
 use super::seed_arg;
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{arg, kw, style, Spec, Value};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::{FixStyle, RestoreError};
+use crate::engine::insert::Template;
+use crate::engine::restart_fixes::{doubles, to_bytes};
+
+/// The declared signature.
+pub const SPEC: Spec = style(
+    "fix",
+    "particletemplate/sphere",
+    "fix ID GROUP particletemplate/sphere SEED atom_type T density constant D radius constant|gaussian|lognormal|uniform ...",
+    &[kw(
+        "volume_limit",
+        &[arg("V", Value::Real("volume"))],
+        "smallest particle volume",
+    )],
+    "one kind of sphere: type, density (density), radius (length)",
+);
 
 /// `fix ID GROUP particletemplate/sphere SEED atom_type T density constant D radius constant R`.
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     let id = fix.id;
     a.count(4..=usize::MAX, "fix ID GROUP particletemplate/sphere SEED atom_type T density constant D radius constant R")?;
     let seed = seed_arg(a, ctx, 3)?;
@@ -103,10 +119,56 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandEr
             ),
         ));
     }
-    let mut template = crate::engine::insert::Template::new(id, atom_type, radius, density);
+    let mut template = Template::new(id, atom_type, radius, density);
     template.rng_state = (seed, seed);
     if template.volume < volume_limit {
         return Err(a.error(2, "Fix particletemplate/sphere: Volume expectancy too small. Change 'volume_limit' or particle size in the simulation"));
     }
-    Ok(FixKind::Template(template))
+    Ok(Box::new(template))
+}
+
+/// A template acts in no phase: insertion fixes read it through their distributions, the
+/// neighbour cutoffs and the time-step checks by type ([`FixKind::template`]).
+///
+/// [`FixKind::template`]: crate::engine::fixes::FixKind::template
+impl FixStyle for Template {
+    fn name(&self) -> &str {
+        "particletemplate/sphere"
+    }
+
+    /// LIGGGHTS's layout: the number of ranks (1), the insertion generator's state, the
+    /// Monte Carlo generator's state.
+    fn restart_state(&self) -> Option<Vec<u8>> {
+        Some(to_bytes(&[
+            1.0,
+            self.rng_state.0 as f64,
+            self.rng_state.1 as f64,
+        ]))
+    }
+
+    /// The insertion generator's state; the Monte Carlo seed stays the deck's.
+    fn restore_state(&mut self, state: &[u8]) -> Result<(), RestoreError> {
+        let d = doubles(state);
+        if d.len() < 3 {
+            return Err(RestoreError::Malformed("too short".into()));
+        }
+        self.rng_state.0 = d[1] as i32;
+        Ok(())
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn refuses_thermo(&self) -> bool {
+        true
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
+    }
 }

@@ -267,6 +267,10 @@ impl FixStyle for Move {
         true
     }
 
+    fn refuses_thermo(&self) -> bool {
+        true
+    }
+
     fn as_any(&self) -> Option<&dyn std::any::Any> {
         Some(self)
     }

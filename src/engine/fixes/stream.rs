@@ -9,10 +9,13 @@ pub struct StreamFix {
     pub seed: i32,
     /// The distribution fix's ID.
     pub distribution: String,
-    /// The insertion face's triangles.
+    /// The insertion face's triangles (empty without `insertion_face`, which LIGGGHTS
+    /// refuses at the run's init).
     pub triangles: Vec<crate::io::stl::Triangle>,
     /// The insertion face's mesh fix ID.
     pub face_id: String,
+    /// The insertion face is a `fix mesh/surface/planar` (which `all_in yes` needs).
+    pub planar: bool,
     /// `all_in yes`: whole particles inside the extruded face (planar faces only).
     pub all_in: bool,
     /// `extrude_length` (length), if given.
@@ -21,10 +24,11 @@ pub struct StreamFix {
     pub every: Option<i64>,
     /// `duration` (steps a particle travels in the extrusion zone), if given.
     pub duration: Option<i64>,
-    /// `nparticles N` (Ok) or `mass M` (Err, mass units).
-    pub total: Result<i64, f64>,
-    /// `particlerate R` (Ok, 1/time) or `massrate R` (Err, mass/time).
-    pub rate: Result<f64, f64>,
+    /// `nparticles N` (Ok) or `mass M` (Err, mass units); None when neither was given,
+    /// which LIGGGHTS refuses at the first run's setup.
+    pub total: Option<Result<i64, f64>>,
+    /// `particlerate R` (Ok, 1/time) or `massrate R` (Err, mass/time); None as for `total`.
+    pub rate: Option<Result<f64, f64>>,
     /// `vel`.
     pub velocity: crate::engine::insert::Velocity,
     /// `omega constant`.

@@ -279,8 +279,8 @@ pub trait FixStyle: Send {
     }
 
     /// Take the state a restart file holds for this fix (its ID and style matched).
-    fn restore_state(&mut self, _state: &[u8]) -> Result<(), EngineError> {
-        Err(EngineError::Unsupported(format!(
+    fn restore_state(&mut self, _state: &[u8]) -> Result<(), RestoreError> {
+        Err(RestoreError::Unsupported(format!(
             "fix {} taking its state from a restart file",
             self.name()
         )))
@@ -351,6 +351,13 @@ pub trait FixStyle: Send {
         false
     }
 
+    /// Whether `thermo_style` refuses `f_ID` / `f_ID[i]` of the style when the keyword is
+    /// given (LIGGGHTS's "Thermo fix does not compute scalar|vector": the style computes
+    /// neither); styles answering no are checked when the value is read.
+    fn refuses_thermo(&self) -> bool {
+        false
+    }
+
     /// Whether the style has `end_of_step` work on the whole simulation at `step` (a step
     /// count): only then is [`FixStyle::end_of_step_sim`] called.
     fn end_of_step_sim_due(&self, _step: i64) -> bool {
@@ -392,6 +399,30 @@ pub trait FixStyle: Send {
     /// [`FixStyle::setup_sim`] runs (None: a placeholder whose values cannot be read).
     fn stand_in(&self) -> Option<Box<dyn FixStyle>> {
         None
+    }
+}
+
+/// Why a style cannot take the state a restart file holds for it
+/// ([`FixStyle::restore_state`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum RestoreError {
+    /// The stored state is malformed; what is wrong with it (`empty`, `too short`). The
+    /// caller names the fix and the file.
+    #[error("{0}")]
+    Malformed(String),
+    /// A stored value LIGGGHTS refuses, in LIGGGHTS's words (a generator state it cannot
+    /// seed from).
+    #[error("{0}")]
+    Refused(String),
+    /// The style does not take its state from restart files yet; the feature as the deck
+    /// names it.
+    #[error("{0}: not supported yet")]
+    Unsupported(String),
+}
+
+impl From<crate::util::random::SeedError> for RestoreError {
+    fn from(e: crate::util::random::SeedError) -> RestoreError {
+        RestoreError::Refused(e.to_string())
     }
 }
 

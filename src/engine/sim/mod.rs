@@ -682,24 +682,21 @@ impl Simulation {
         let old = self.step;
         let mut v_normal = None;
         for f in &mut self.fixes {
-            match &mut f.kind {
-                FixKind::InsertPack(ins) => {
-                    if let Some(next) = &mut ins.next {
-                        *next += n - old;
-                    }
+            if let Some(ins) = f.kind.insert_pack_mut() {
+                if let Some(next) = &mut ins.next {
+                    *next += n - old;
                 }
-                FixKind::InsertStream(sf) => {
-                    match &mut sf.state {
-                        Some(st) => {
-                            if let Some(next) = &mut st.next {
-                                *next += n - old;
-                            }
+            }
+            if let Some(sf) = f.kind.stream_mut() {
+                match &mut sf.state {
+                    Some(st) => {
+                        if let Some(next) = &mut st.next {
+                            *next += n - old;
                         }
-                        None => sf.start += n - old,
                     }
-                    v_normal = Some(sf.state.as_ref().map_or([0.0; 3], |s| s.v_normal));
+                    None => sf.start += n - old,
                 }
-                _ => {}
+                v_normal = Some(sf.state.as_ref().map_or([0.0; 3], |s| s.v_normal));
             }
         }
         if let Some(v_normal) = v_normal {

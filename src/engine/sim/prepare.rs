@@ -163,11 +163,11 @@ impl Simulation {
         let templates = self
             .fixes
             .iter()
-            .filter_map(|f| match &f.kind {
-                FixKind::Template(t) => Some(t.radius),
+            .filter_map(|f| match f.kind.template() {
+                Some(t) => Some(t.radius),
                 // a clump template's largest sphere (LIGGGHTS's max_rad), not its bounding radius
-                kind => Some(
-                    (kind
+                None => Some(
+                    (f.kind
                         .style_as::<crate::engine::multisphere::ClumpTemplate>()?
                         .radii
                         .iter())
@@ -183,8 +183,9 @@ impl Simulation {
     /// quality, no step.
     pub fn check_run(&mut self) -> Result<(), EngineError> {
         self.check_run_init()?;
+        self.check_streams()?;
         for f in &self.fixes {
-            if let FixKind::InsertPack(ins) = &f.kind {
+            if let Some(ins) = f.kind.insert_pack() {
                 ins.check_tet_region(&self.regions, self.domain.lo, self.domain.hi)?;
             }
         }

@@ -10,38 +10,104 @@ impl Simulation {
         (self.particles.x.clone(), periodic, self.box_changes())
     }
 
-    /// First run's setup of the `fix insert/stream` at `k`: face normal, normal velocity,
-    /// interval.
-    pub(super) fn setup_stream(&mut self, k: usize, out: Sink<'_>) -> Result<(), EngineError> {
-        use crate::engine::insert::{InsertStream, Velocity};
-        let dt = self.dt;
+    /// LIGGGHTS's init checks of the `fix insert/stream` at `k` (every run; nothing for a
+    /// fix of another style).
+    fn stream_init_checks(&self, k: usize) -> Result<(), EngineError> {
+        use crate::engine::insert::Velocity;
         let Some(sf) = self.fixes[k].kind.stream() else {
             return Ok(());
         };
         if self.clumps().is_some() && !matches!(sf.velocity, Velocity::Constant(_)) {
             return Err(format!("Fix insert/stream (id {}): Currently only fix insert/stream with multisphere particles only supports constant velocity", sf.id).into());
         }
-        if sf.state.is_some() {
-            return Ok(());
+        if sf.triangles.is_empty() {
+            return Err(format!(
+                "Fix insert/stream (id {}): must define an insertion face",
+                sf.id
+            )
+            .into());
         }
+        Ok(())
+    }
+
+    /// What the first setup of the `fix insert/stream` at `k` computes, with LIGGGHTS's
+    /// checks in its order (its `calc_insertion_properties`): the face's normal along the
+    /// velocity, the normal velocity (length/time), the steps between insertions and the
+    /// extrusion length (length), the particles in all and the rates, and its distribution.
+    fn stream_plan(&self, k: usize) -> Result<Option<StreamPlan>, EngineError> {
+        let Some(sf) = self.fixes[k].kind.stream() else {
+            return Ok(None);
+        };
         let dist = self
             .fixes
             .iter()
-            .find_map(|f| match &f.kind {
-                FixKind::Distribution(d) if f.id == sf.distribution => Some(d.clone()),
-                _ => None,
-            })
+            .filter(|f| f.id == sf.distribution)
+            .find_map(|f| f.kind.distribution().cloned())
             .ok_or_else(|| {
                 format!(
                     "Fix insert: could not find distribution {}",
                     sf.distribution
                 )
             })?;
-        let t = sf.triangles[0];
-        let (n, v_normal, vn) = normal_velocity(sf, face_normal(&t))?;
-        let (every, extrude) = stream_interval(sf, dist.max_radius, dt, vn)?;
+        if sf.all_in && !sf.planar {
+            return Err(format!("Fix insert/stream (id {}): using all_in yes requires you to use a fix mesh/surface/planar", sf.id).into());
+        }
+        let (normal, v_normal, vn) = normal_velocity(sf, face_normal(&sf.triangles[0]))?;
+        let (every, extrude) = stream_interval(sf, dist.max_radius, self.dt, vn)?;
         // nparticles from mass, and the other rate, from the expected particle mass
         let (total, rates) = stream_amounts(sf, dist.mass_expect)?;
+        Ok(Some(StreamPlan {
+            normal,
+            v_normal,
+            every,
+            extrude,
+            total,
+            rates,
+            dist,
+        }))
+    }
+
+    /// A dry run's checks of every `fix insert/stream`, those LIGGGHTS makes at the run's
+    /// init and at its first setup.
+    pub(super) fn check_streams(&self) -> Result<(), EngineError> {
+        for k in 0..self.fixes.len() {
+            self.stream_init_checks(k)?;
+            if self.fixes[k]
+                .kind
+                .stream()
+                .is_some_and(|sf| sf.state.is_none())
+            {
+                self.stream_plan(k)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// First run's setup of the `fix insert/stream` at `k`: face normal, normal velocity,
+    /// interval.
+    pub(super) fn setup_stream(&mut self, k: usize, out: Sink<'_>) -> Result<(), EngineError> {
+        use crate::engine::insert::InsertStream;
+        let dt = self.dt;
+        self.stream_init_checks(k)?;
+        let Some(sf) = self.fixes[k].kind.stream() else {
+            return Ok(());
+        };
+        if sf.state.is_some() {
+            return Ok(());
+        }
+        let Some(plan) = self.stream_plan(k)? else {
+            return Ok(());
+        };
+        let StreamPlan {
+            normal: n,
+            v_normal,
+            every,
+            extrude,
+            total,
+            rates,
+            dist,
+        } = plan;
+        let t = sf.triangles[0];
         let triangles = sf.triangles.clone();
         let (all_in, face_id) = (sf.all_in, sf.face_id.clone());
         let face = self.stream_face(triangles, all_in, &face_id)?;
@@ -124,15 +190,7 @@ impl Simulation {
             self.insert_rebuild_at = Some(step);
             let group = self.fixes[k].group;
             let dist_id = sf.distribution.clone();
-            let dk = self
-                .fixes
-                .iter()
-                .position(|f| f.id == dist_id)
-                .ok_or_else(|| format!("Fix insert: could not find distribution {dist_id}"))?;
-            let FixKind::Distribution(dist) = &self.fixes[dk].kind else {
-                return Err(format!("Fix insert: {dist_id} is not a particle distribution").into());
-            };
-            let mut dist = dist.clone();
+            let (dk, mut dist) = self.distribution_of(&dist_id)?;
             let (x, periodic, box_changes) = self.insert_world();
             let bodies = self.clumps().map(|c| c.bounds()).unwrap_or_default();
             let (placed, lines) = {
@@ -151,7 +209,7 @@ impl Simulation {
                 let state = sf.state.as_mut().expect("set up");
                 state.insert(step, &mut dist, &world, box_changes)
             }?;
-            if let FixKind::Distribution(d) = &mut self.fixes[dk].kind {
+            if let Some(d) = self.fixes[dk].kind.distribution_mut() {
                 *d = dist.clone();
             }
             let mut tag = self.particles.max_id();
@@ -286,17 +344,11 @@ impl Simulation {
                 self.setup_stream(k, out)?;
                 continue;
             }
-            let FixKind::InsertPack(ins) = &self.fixes[k].kind else {
+            let Some(ins) = self.fixes[k].kind.insert_pack() else {
                 continue;
             };
             let dist_id = ins.distribution.clone();
-            let Some(dk) = self.fixes.iter().position(|f| f.id == dist_id) else {
-                return Err(format!("Fix insert: could not find distribution {dist_id}").into());
-            };
-            let FixKind::Distribution(dist) = &self.fixes[dk].kind else {
-                return Err(format!("Fix insert: {dist_id} is not a particle distribution").into());
-            };
-            let dist = dist.clone();
+            let (_, dist) = self.distribution_of(&dist_id)?;
             let (x, periodic, box_changes) = self.insert_world();
             let bodies = self.clumps().map(|c| c.bounds()).unwrap_or_default();
             let world = crate::engine::insert::World {
@@ -311,10 +363,11 @@ impl Simulation {
                 bodies: &bodies,
             };
             let regions = self.regions.clone();
-            let lines = match &mut self.fixes[k].kind {
-                FixKind::InsertPack(ins) => ins.setup(&regions, &dist, &world, self.dt)?,
-                _ => unreachable!(),
+            let dt = self.dt;
+            let Some(ins) = self.fixes[k].kind.insert_pack_mut() else {
+                continue;
             };
+            let lines = ins.setup(&regions, &dist, &world, dt)?;
             for l in lines {
                 out(&format!("{l}\n"));
             }
@@ -326,26 +379,16 @@ impl Simulation {
     pub(super) fn insert_particles(&mut self, out: Sink<'_>) -> Result<(), EngineError> {
         let step = self.step;
         for k in 0..self.fixes.len() {
-            let due =
-                matches!(&self.fixes[k].kind, FixKind::InsertPack(ins) if ins.next == Some(step));
-            if !due {
+            let Some(ins) = self.fixes[k].kind.insert_pack() else {
+                continue;
+            };
+            if ins.next != Some(step) {
                 continue;
             }
             self.insert_rebuild_at = Some(step);
-            let FixKind::InsertPack(ins) = &self.fixes[k].kind else {
-                unreachable!()
-            };
             let dist_id = ins.distribution.clone();
             let group = self.fixes[k].group;
-            let dk = self
-                .fixes
-                .iter()
-                .position(|f| f.id == dist_id)
-                .ok_or_else(|| format!("Fix insert: could not find distribution {dist_id}"))?;
-            let FixKind::Distribution(dist) = &self.fixes[dk].kind else {
-                return Err(format!("Fix insert: {dist_id} is not a particle distribution").into());
-            };
-            let mut dist = dist.clone();
+            let (dk, mut dist) = self.distribution_of(&dist_id)?;
             let (x, periodic, box_changes) = self.insert_world();
             let bodies = self.clumps().map(|c| c.bounds()).unwrap_or_default();
             let regions = self.regions.clone();
@@ -361,16 +404,17 @@ impl Simulation {
                     members: crate::engine::clumps::body_tags(&self.particles),
                     bodies: &bodies,
                 };
-                match &mut self.fixes[k].kind {
-                    FixKind::InsertPack(ins) => ins.insert(step, &regions, &mut dist, &world),
-                    _ => unreachable!(),
-                }
+                let ins = self.fixes[k]
+                    .kind
+                    .insert_pack_mut()
+                    .expect("an insert/pack");
+                ins.insert(step, &regions, &mut dist, &world)
             }?;
-            let omega = match &self.fixes[k].kind {
-                FixKind::InsertPack(ins) => ins.omega,
-                _ => [0.0; 3],
-            };
-            if let FixKind::Distribution(d) = &mut self.fixes[dk].kind {
+            let omega = self.fixes[k]
+                .kind
+                .insert_pack()
+                .map_or([0.0; 3], |ins| ins.omega);
+            if let Some(d) = self.fixes[dk].kind.distribution_mut() {
                 *d = dist.clone();
             }
             let mut tag = self.particles.max_id();
@@ -430,11 +474,44 @@ impl Simulation {
         Ok(())
     }
 
+    /// The index of the insertion fixes' distribution `id` among the fixes and a copy of it
+    /// (the insertion draws from the copy, which then replaces it), or LIGGGHTS's error.
+    fn distribution_of(
+        &self,
+        id: &str,
+    ) -> Result<(usize, crate::engine::insert::Distribution), EngineError> {
+        match crate::engine::fixes::distribution_named(&self.fixes, id) {
+            None => Err(format!("Fix insert: could not find distribution {id}").into()),
+            Some((_, None)) => {
+                Err(format!("Fix insert: {id} is not a particle distribution").into())
+            }
+            Some((k, Some(d))) => Ok((k, d.clone())),
+        }
+    }
+
     /// The fix moving every stream's particles until release: the first insert/stream
     /// (LIGGGHTS's i_am_integrator).
     pub(super) fn stream_integrator(&self) -> Option<usize> {
         self.fixes.iter().position(|f| f.kind.stream().is_some())
     }
+}
+
+/// What a stream's first setup computes ([`Simulation::stream_plan`]).
+struct StreamPlan {
+    /// The face's unit normal, turned along the insertion velocity.
+    normal: [f64; 3],
+    /// The insertion velocity's part along the normal (length/time).
+    v_normal: [f64; 3],
+    /// Steps between insertions.
+    every: i64,
+    /// The extrusion length (length).
+    extrude: f64,
+    /// The particles to insert in all.
+    total: i64,
+    /// Particles and mass per time.
+    rates: (f64, f64),
+    /// A copy of the stream's distribution.
+    dist: crate::engine::insert::Distribution,
 }
 
 /// The unit normal of triangle `t`, as LIGGGHTS computes it from its first two edges.
@@ -490,7 +567,29 @@ fn stream_interval(
     dt: f64,
     vn: f64,
 ) -> Result<(i64, f64), EngineError> {
-    match (sf.extrude, sf.every) {
+    // an extrude_length of 0 is none (LIGGGHTS's default)
+    let given = sf.extrude.filter(|&l| l > 0.0);
+    let refuse =
+        |what: &str| -> EngineError { format!("Fix insert/stream (id {}): {what}", sf.id).into() };
+    match (given, sf.every) {
+        (None, None) => {
+            return Err(refuse(
+                "must define either 'insert_every' or 'extrude_length'",
+            ))
+        }
+        (Some(_), Some(_)) => {
+            return Err(refuse(
+                "must not provide both 'insert_every' and 'extrude_length'",
+            ))
+        }
+        (Some(_), None) if sf.duration.is_some() => {
+            return Err(refuse(
+                "must not provide both 'extrude_length' and 'duration'",
+            ))
+        }
+        _ => {}
+    }
+    match (given, sf.every) {
         (Some(l), _) => {
             if l < 3.0 * rbound && (sf.all_in || sf.overlapcheck) {
                 return Err(format!(
@@ -528,7 +627,7 @@ fn stream_interval(
             }
             Ok((e, l))
         }
-        _ => unreachable!("checked when the fix was defined"),
+        (None, None) => unreachable!("refused above"),
     }
 }
 
@@ -539,9 +638,12 @@ fn stream_amounts(
     sf: &crate::engine::fixes::StreamFix,
     me: f64,
 ) -> Result<(i64, (f64, f64)), EngineError> {
+    let refuse =
+        |what: &str| -> EngineError { format!("Fix insert/stream (id {}): {what}", sf.id).into() };
     let total = match sf.total {
-        Ok(n) => n,
-        Err(mass) => {
+        None => return Err(refuse("must define either 'nparticles' or 'mass'")),
+        Some(Ok(n)) => n,
+        Some(Err(mass)) => {
             if mass / me > 2.0e9 {
                 return Err(format!("Fix insert/stream (id {}): you are attempting to insert more than 2e9 particles. Reduce the mass to be inserted or increase the particle diameter", sf.id).into());
             }
@@ -549,8 +651,9 @@ fn stream_amounts(
         }
     };
     let rates = match sf.rate {
-        Ok(n) => (n, n * me),
-        Err(m) => (m / me, m),
+        None => return Err(refuse("must define either 'massrate' or 'particlerate'")),
+        Some(Ok(n)) => (n, n * me),
+        Some(Err(m)) => (m / me, m),
     };
     Ok((total, rates))
 }

@@ -8,6 +8,7 @@ mod ave_histo;
 mod ave_spatial;
 mod ave_time;
 mod aveforce;
+mod balance;
 mod buoyancy;
 mod check_timestep;
 mod deform;
@@ -304,6 +305,11 @@ pub static TABLE: StyleTable<FixRow> = StyleTable::new(&[
         spec: particle_template_multisphere::SPEC,
         planar: false,
         build: particle_template_multisphere::build,
+    },
+    FixRow {
+        spec: balance::SPEC,
+        planar: true,
+        build: balance::build,
     },
 ]);
 

@@ -1058,3 +1058,78 @@ fn a_build_with_mpi_runs_on_ranks_and_refuses_the_rest() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// With MPI built in: the balancing deck (`inputs/balance/in.heap_balance`, a heap against
+/// one side of the box) under `mpirun -np 2` and `3`: `balance` brings the largest count
+/// within 5 % of the average, `fix balance` keeps it there, and the dumps are one process's
+/// (within 1e-10 of each column's scale).
+#[cfg(feature = "mpi")]
+#[test]
+fn balancing_under_mpirun_evens_the_counts_and_keeps_the_dumps() {
+    if std::process::Command::new("mpirun")
+        .arg("--version")
+        .output()
+        .is_err()
+    {
+        eprintln!("no mpirun: skipped");
+        return;
+    }
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("regolith-mpi-balance-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("post")).unwrap();
+    let deck = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/inputs/balance/in.heap_balance"
+    );
+    std::fs::copy(deck, dir.join("in.heap_balance")).unwrap();
+    let bin = env!("CARGO_BIN_EXE_regolith");
+    let args = ["-sf", "fast", "-in", "in.heap_balance", "-log", "none"];
+    let out = std::process::Command::new(bin)
+        .args(args)
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let so = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{so}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        so.contains("  initial/final imbalance factor  = 1 1\n"),
+        "{so}"
+    );
+    let serial = std::fs::read_to_string(dir.join("post/heap.dump")).unwrap();
+    for (np, n) in [("2", 2.0), ("3", 3.0)] {
+        let out = std::process::Command::new("mpirun")
+            .args(["--allow-run-as-root", "--oversubscribe", "-np", np, bin])
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .expect("mpirun runs");
+        let so = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{so}{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let after = |label: &str| -> Vec<f64> {
+            let line = so.lines().find(|l| l.starts_with(label)).expect(label);
+            line[label.len()..]
+                .split_whitespace()
+                .filter_map(|w| w.parse().ok())
+                .collect()
+        };
+        let loads = after("  initial/final maximal load/proc = ");
+        let factors = after("  initial/final imbalance factor  = ");
+        assert!(factors[0] > 1.4 && factors[1] <= 1.05, "{np} ranks: {so}");
+        assert!(loads[1] <= 1.05 * 108.0 / n, "{np} ranks: {so}");
+        let nlocal = after("Nlocal:");
+        // ave, max, min: the largest count at the end of the run
+        assert!(nlocal[1] <= 1.05 * 108.0 / n + 1.0, "{np} ranks: {so}");
+        let ranks = std::fs::read_to_string(dir.join("post/heap.dump")).unwrap();
+        let d = common::scale_deviation(&serial, &ranks);
+        assert!(d <= 1e-10, "{np} ranks differ from one process by {d:e}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -3,6 +3,7 @@
 //! ([`crate::script::interp`]); everything else arrives here as a [`CommandLine`].
 
 pub mod args;
+pub mod balance;
 pub mod change_box;
 pub mod compute;
 pub mod compute_modify;

@@ -18,6 +18,8 @@ const COMMANDS: &[&str] = &[
     "communicate",
     "comm_modify",
     "processors",
+    // the grid's cuts moved for the next run (every rank holds the whole set between runs)
+    "balance",
     "region",
     "create_box",
     "create_atoms",
@@ -87,6 +89,8 @@ const FIXES: &[&str] = &[
     "check/timestep/gran",
     // prescribed motion from each atom's start position, which every rank keeps by ID
     "move",
+    // the grid's cuts moved at builds, particles migrating to any rank
+    "balance",
 ];
 
 /// Compute styles that run on ranks: evaluated by rank 0 for thermo and dumps from every
@@ -239,7 +243,7 @@ fn fix_values_on_every_rank(sim: &Simulation, k: &str) -> bool {
     let id = id.split('[').next().unwrap_or(id);
     sim.fixes
         .iter()
-        .any(|f| f.id == id && f.style == "check/timestep/gran")
+        .any(|f| f.id == id && matches!(f.style.as_str(), "check/timestep/gran" | "balance"))
 }
 
 /// The full refusal message of what [`refusal`] names.

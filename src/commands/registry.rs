@@ -7,7 +7,10 @@ use crate::commands::{sim_run, sim_setup, specs, Args, At, CommandError, Command
 use crate::engine::contact::{AnyContactModel, ModelSelection};
 
 /// Commands LIGGGHTS 3.8.0 lacks that regolith accepts (newer LAMMPS spellings users type).
-pub const EXTENSION_COMMANDS: &[&str] = &["comm_modify"];
+pub const EXTENSION_COMMANDS: &[&str] = &["comm_modify", "balance"];
+
+/// Fix styles Debian's LIGGGHTS 3.8.0 build lacks that regolith runs (LAMMPS's load balancing).
+pub const EXTENSION_FIX_STYLES: &[&str] = &["balance"];
 
 /// Dump styles Debian's LIGGGHTS 3.8.0 build lacks that regolith writes (LAMMPS's layout).
 pub const EXTENSION_DUMP_STYLES: &[&str] = &["atom"];
@@ -125,7 +128,9 @@ pub fn validate_names(cmd: &CommandLine) -> Result<(), CommandError> {
     }
     if kind == NameKind::FixStyle && style.starts_with("mesh/surface") {
         validate_mesh_modules(style, index)?;
-    } else if kind == NameKind::DumpStyle && EXTENSION_DUMP_STYLES.contains(&style) {
+    } else if (kind == NameKind::DumpStyle && EXTENSION_DUMP_STYLES.contains(&style))
+        || (kind == NameKind::FixStyle && EXTENSION_FIX_STYLES.contains(&style))
+    {
         // accepted beyond LIGGGHTS
     } else if is_registered_module(kind, style) {
         // a module style added at run time

@@ -37,6 +37,7 @@ pub const COMMANDS: &[(&str, Handler)] = &[
     ("communicate", communicate),
     ("comm_modify", communicate),
     ("processors", super::processors::processors),
+    ("balance", super::balance::balance),
     ("region", region),
     ("create_box", create_box),
     ("change_box", super::change_box::change_box),

@@ -263,6 +263,9 @@ pub const SPECS: &[Spec] = &[
     command("pair_coeff I J", "set the type pairs I,J (N, *, N*, *N or M*N; coefficients come from fix property/global); a run needs every I,I set"),
     style("pair_style", "gran", "pair_style gran model M tangential T [cohesion C] [rolling_friction R] [surface S] [SETTING on|off ...]", &[kw("model", &[arg("M", Value::Word)], "normal contact model"), kw("tangential", &[arg("T", Value::Word)], "tangential contact model"), kw("cohesion", &[arg("C", Value::Word)], "cohesion model"), kw("rolling_friction", &[arg("R", Value::Word)], "rolling-friction model"), kw("surface", &[arg("S", Value::Word)], "surface model")], "granular contact forces between particles"),
     command("processors Px Py Pz", "processor grid (accepted; one process)"),
+    with(command("balance THRESH shift DIMS NITER STOPTHRESH | balance THRESH x uniform|C1 ... [y ...] [z ...]", "move the processor grid's cuts so that each MPI rank holds an even share of the particles (LAMMPS's static balancing; one process: imbalance 1)"), &[
+        kw("weight", &[arg("time", Value::OneOf(&["time"])), arg("FACTOR", NUMBER)], "weigh each rank's particles by its time per particle in the last run, stretched by FACTOR"),
+    ]),
     command("read_data FILE", "read particles and box from a data file"),
     with(command("read_dump FILE NSTEP FIELD ... (x y z vx vy vz omegax omegay omegaz radius mass density ix iy iz fx fy fz; radius required)", "overwrite particles from the snapshot of step NSTEP in a native text dump (plain or .gz); the step becomes NSTEP"), &[
         kw("box", &[arg("yes|no", YES_NO)], "take the snapshot's box (default yes)"),

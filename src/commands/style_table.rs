@@ -117,7 +117,8 @@ mod tests {
 
     #[test]
     fn every_row_is_declared_once_and_a_liggghts_style() {
-        rows_agree(&fix::TABLE, "fix", names::FIX_STYLES, &[], false);
+        let fixes = registry::EXTENSION_FIX_STYLES;
+        rows_agree(&fix::TABLE, "fix", names::FIX_STYLES, fixes, false);
         rows_agree(&compute::TABLE, "compute", names::COMPUTE_STYLES, &[], true);
         let extensions = registry::EXTENSION_DUMP_STYLES;
         rows_agree(&dump::TABLE, "dump", names::DUMP_STYLES, extensions, true);

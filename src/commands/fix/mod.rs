@@ -8,6 +8,7 @@ mod ave_histo;
 mod ave_spatial;
 mod ave_time;
 mod aveforce;
+mod balance;
 mod buoyancy;
 mod check_timestep;
 mod deform;
@@ -326,6 +327,11 @@ pub static TABLE: StyleTable<FixRow> = StyleTable::new(&[
         spec: insert_stream::SPEC,
         planar: false,
         build: insert_stream::build,
+    },
+    FixRow {
+        spec: balance::SPEC,
+        planar: true,
+        build: balance::build,
     },
 ]);
 

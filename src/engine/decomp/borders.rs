@@ -86,9 +86,13 @@ impl GhostPlan {
 /// The most swaps made each way along one axis.
 const MAX_NEED: usize = 1 << 16;
 
-/// How many swaps each way along each axis (LIGGGHTS's `maxneed`, uniform bricks) and how
-/// many of them this rank sends on (`sendneed`, low and high side).
+/// How many swaps each way along each axis (LIGGGHTS's `maxneed`) and how many of them this
+/// rank sends on (`sendneed`, low and high side): LIGGGHTS's count for uniform bricks, the
+/// bricks walked one by one for cuts a balance moved.
 fn needs(dec: &Decomposition, halo: &Halo) -> ([usize; 3], [[usize; 2]; 3]) {
+    if !dec.is_uniform() {
+        return needs_nonuniform(dec, halo);
+    }
     let mut maxneed = [0; 3];
     let mut sendneed = [[0; 2]; 3];
     let at = dec.at();
@@ -106,6 +110,72 @@ fn needs(dec: &Decomposition, halo: &Halo) -> ([usize; 3], [[usize; 2]; 3]) {
             sendneed[d] = [need; 2];
         }
         maxneed[d] = need;
+    }
+    (maxneed, sendneed)
+}
+
+/// How many bricks along `dim`, walking from brick `at` towards the low side (`up` false)
+/// or the high side, it takes to cover the ghost cutoff (wrapping around a periodic axis;
+/// a fixed one ends at the box).
+fn bricks_to_cover(dec: &Decomposition, halo: &Halo, dim: usize, at: usize, up: bool) -> usize {
+    let p = dec.procs[dim];
+    let width = |k: usize| dec.splits[dim][k + 1] - dec.splits[dim][k];
+    let reach = halo.cutghost / dec.length(dim);
+    let (mut covered, mut count, mut k) = (0.0, 0, at);
+    while covered < reach && count < MAX_NEED {
+        k = match (up, dec.periodic[dim]) {
+            (false, _) if k > 0 => k - 1,
+            (false, true) => p - 1,
+            (true, _) if k + 1 < p => k + 1,
+            (true, true) => 0,
+            _ => break,
+        };
+        count += 1;
+        covered += width(k);
+    }
+    count
+}
+
+/// [`needs`] for cuts a balance moved: each brick receives from as many bricks on either
+/// side as it takes to cover the ghost cutoff; every rank makes the most swaps any brick
+/// needs, and sends on as many as its neighbour on that side receives.
+fn needs_nonuniform(dec: &Decomposition, halo: &Halo) -> ([usize; 3], [[usize; 2]; 3]) {
+    let mut maxneed = [0; 3];
+    let mut sendneed = [[0; 2]; 3];
+    let at = dec.at();
+    for d in 0..3 {
+        let p = dec.procs[d];
+        if p == 1 {
+            // one brick: its own periodic images, as for uniform bricks
+            let reach = (halo.cutghost / dec.length(d)) as usize;
+            let need = if dec.periodic[d] {
+                reach.saturating_add(1).min(MAX_NEED)
+            } else {
+                0
+            };
+            maxneed[d] = need;
+            sendneed[d] = [need; 2];
+            continue;
+        }
+        let from_low = |k: usize| bricks_to_cover(dec, halo, d, k, false);
+        let from_high = |k: usize| bricks_to_cover(dec, halo, d, k, true);
+        maxneed[d] = (0..p)
+            .map(|k| from_low(k).max(from_high(k)))
+            .max()
+            .unwrap_or(0);
+        // the low neighbour receives from its high side what this rank sends down
+        let left = (at[d] + p - 1) % p;
+        let right = (at[d] + 1) % p;
+        sendneed[d] = [from_high(left), from_low(right)];
+        if !dec.periodic[d] {
+            // no brick below the first nor above the last
+            if at[d] == 0 {
+                sendneed[d][0] = 0;
+            }
+            if at[d] == p - 1 {
+                sendneed[d][1] = 0;
+            }
+        }
     }
     (maxneed, sendneed)
 }

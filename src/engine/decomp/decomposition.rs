@@ -1,6 +1,7 @@
 //! Which part of the box each rank owns: LIGGGHTS's uniform brick split of the box over the
-//! processor grid (`processors Px Py Pz`), the neighbouring ranks along each axis and the
-//! periodic flags. Lengths are in box units.
+//! processor grid (`processors Px Py Pz`), or the cuts a `balance` moved (LAMMPS's
+//! non-uniform bricks, still one logical grid), the neighbouring ranks along each axis and
+//! the periodic flags. Lengths are in box units.
 
 use crate::engine::procmap::{self, ProcGrid, Processors};
 use crate::util::comm::{Comm, Reduce};
@@ -43,6 +44,16 @@ pub struct Decomposition {
     /// The ranks next to this one along each axis, `[low side, high side]`; the grid wraps
     /// around in every direction, periodic or not, as LIGGGHTS's Cartesian map does.
     pub neighbors: [[usize; 2]; 3],
+    /// The cutting planes along each axis as fractions of the box length (dimensionless):
+    /// `procs[d] + 1` values from 0 to 1, `i / procs[d]` for the uniform split.
+    pub splits: [Vec<f64>; 3],
+}
+
+/// The uniform cuts of `p` bricks along an axis (fractions of the box length): `i / p`.
+pub fn uniform_splits(p: usize) -> Vec<f64> {
+    (0..=p)
+        .map(|i| if i == p { 1.0 } else { i as f64 / p as f64 })
+        .collect()
 }
 
 impl Decomposition {
@@ -82,6 +93,7 @@ impl Decomposition {
             sub_lo: lo,
             sub_hi: hi,
             neighbors: [[me; 2]; 3],
+            splits: procs.map(uniform_splits),
         };
         d.set_box(lo, hi);
         let at = d.at();
@@ -146,12 +158,55 @@ impl Decomposition {
         self.sub_hi = sub_hi;
     }
 
-    /// Rank `rank`'s sub-domain corners (length): the box split evenly along each axis by
-    /// the fractions i/P, the last brick ending exactly at the box's upper side.
+    /// Whether the cuts are the uniform split (no `balance` moved them).
+    pub fn is_uniform(&self) -> bool {
+        (0..3).all(|d| self.splits[d] == uniform_splits(self.procs[d]))
+    }
+
+    /// Move the cutting planes to `splits` (fractions of the box length, `procs[d] + 1`
+    /// ascending values from 0 to 1 per axis); this rank's brick follows. Cuts of the wrong
+    /// count are ignored (the axis keeps its cuts).
+    pub fn set_splits(&mut self, splits: &[Vec<f64>; 3]) {
+        for (d, cuts) in splits.iter().enumerate() {
+            if cuts.len() == self.procs[d] + 1 {
+                self.splits[d] = cuts.clone();
+            }
+        }
+        self.set_box(self.box_lo, self.box_hi);
+    }
+
+    /// The plane of cut `i` along `dim` (length): the box's lower side plus the fraction of
+    /// its length, the last cut exactly at the box's upper side.
+    pub fn plane(&self, dim: usize, i: usize) -> f64 {
+        if i >= self.procs[dim] {
+            self.box_hi[dim]
+        } else {
+            self.box_lo[dim] + self.length(dim) * self.splits[dim][i]
+        }
+    }
+
+    /// Rank `rank`'s sub-domain corners (length): the box cut along each axis at the
+    /// fractions of [`Decomposition::splits`] (i/P unless balanced), the last brick ending
+    /// exactly at the box's upper side.
     pub fn bounds_of(&self, rank: usize) -> ([f64; 3], [f64; 3]) {
-        let at = self.locations[rank].map(|v| v as i64);
-        let procs = self.procs.map(|v| v as i64);
-        procmap::brick(self.box_lo, self.box_hi, procs, at)
+        let at = self.locations[rank];
+        let lo = [0, 1, 2].map(|d| self.plane(d, at[d]));
+        let hi = [0, 1, 2].map(|d| self.plane(d, at[d] + 1));
+        (lo, hi)
+    }
+
+    /// The grid location of the brick holding `x` (None outside the box).
+    pub fn location_of(&self, x: [f64; 3]) -> Option<[usize; 3]> {
+        let mut at = [0; 3];
+        for d in 0..3 {
+            let p = self.procs[d];
+            if !(x[d] >= self.plane(d, 0) && x[d] < self.plane(d, p)) {
+                return None;
+            }
+            // the first cut above x, less one
+            at[d] = (1..p).take_while(|&i| self.plane(d, i) <= x[d]).count();
+        }
+        Some(at)
     }
 
     /// Whether `x` lies in this rank's sub-domain (lower faces in, upper faces out, as
@@ -162,10 +217,7 @@ impl Decomposition {
 
     /// The rank whose sub-domain holds `x` (None outside the box).
     pub fn owner_of(&self, x: [f64; 3]) -> Option<usize> {
-        (0..self.size()).find(|&r| {
-            let (lo, hi) = self.bounds_of(r);
-            (0..3).all(|d| x[d] >= lo[d] && x[d] < hi[d])
-        })
+        self.location_of(x).and_then(|at| self.rank_at(at))
     }
 }
 

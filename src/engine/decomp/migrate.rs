@@ -64,6 +64,48 @@ pub fn migrate(
     Ok(received)
 }
 
+/// Move every owned particle of `p` that left this rank's sub-domain straight to the rank
+/// whose sub-domain holds it, however far (after a `balance` moved the cuts, LAMMPS's
+/// irregular communication), with its contact history `hist`. One exchange with every
+/// other rank, in rounds (round k: to rank `me + k`, from rank `me - k`), so arrivals come
+/// in rank order; a particle outside every sub-domain is lost, as in [`migrate`]. Returns
+/// the number of particles this rank received.
+pub fn migrate_anywhere(
+    comm: &impl Comm,
+    dec: &Decomposition,
+    p: &mut Particles,
+    mut hist: Option<&mut PartnerHistory>,
+) -> Result<usize, DecompError> {
+    let n = dec.size();
+    let mut out: Vec<Writer> = (0..n).map(|_| Writer::default()).collect();
+    let mut i = 0;
+    while i < p.len() {
+        if dec.owns(p.x[i]) {
+            i += 1;
+            continue;
+        }
+        if let Some(r) = dec.owner_of(p.x[i]).filter(|&r| r != dec.me) {
+            pack_particle(&mut out[r], p, i, [0.0; 3], hist.as_deref());
+        }
+        p.fill_from_last(i);
+        if let Some(h) = hist.as_deref_mut() {
+            h.fill_from_last(i);
+        }
+    }
+    let mut received = 0;
+    for k in 1..n {
+        let to = (dec.me + k) % n;
+        let from = (dec.me + n - k) % n;
+        let incoming = comm.send_recv_bytes(to, from, &out[to].bytes);
+        let mut r = Reader::new(&incoming);
+        while !r.done() {
+            unpack_particle(&mut r, p, hist.as_deref_mut())?;
+            received += 1;
+        }
+    }
+    Ok(received)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -96,6 +138,38 @@ mod tests {
         assert_eq!((out[1].0.clone(), out[1].1), (vec![1], 1));
         assert!(out[2].0.is_empty() && out[3].0.is_empty());
         assert_eq!(out[0].2, 2);
+    }
+
+    #[test]
+    fn anywhere_after_the_cuts_moved() {
+        // four bricks along x over 0..4, cut at 0.1, 0.2, 0.3 of the box after a balance
+        let out = ThreadRanks::run(4, |c| {
+            let mut dec = Decomposition::cartesian(
+                [4, 1, 1],
+                c.rank(),
+                [0.0; 3],
+                [4.0, 1.0, 1.0],
+                [false; 3],
+            );
+            dec.set_splits(&[
+                vec![0.0, 0.1, 0.2, 0.3, 1.0],
+                vec![0.0, 1.0],
+                vec![0.0, 1.0],
+            ]);
+            let mut p = Particles::default();
+            if c.rank() == 0 {
+                p.push(1, 1, [3.5, 0.5, 0.5], 0.1, 1.0); // three bricks away
+                p.push(2, 1, [0.2, 0.5, 0.5], 0.1, 1.0); // stays
+                p.push(3, 1, [-0.5, 0.5, 0.5], 0.1, 1.0); // out of the box: lost
+                p.push(4, 1, [0.6, 0.5, 0.5], 0.1, 1.0); // next brick
+            }
+            let got = migrate_anywhere(c, &dec, &mut p, None).expect("migrate");
+            (p.id.clone(), got)
+        });
+        assert_eq!(out[0], (vec![2], 0));
+        assert_eq!(out[1], (vec![4], 1));
+        assert!(out[2].0.is_empty());
+        assert_eq!(out[3], (vec![1], 1));
     }
 
     #[test]

@@ -13,6 +13,7 @@
 //! compute forces, and [`reverse`] (or [`reverse_contributions`] and [`canonical_sum`] for
 //! the same bits on any rank count).
 
+pub mod balance;
 pub mod borders;
 pub mod decomposition;
 pub mod forward;
@@ -25,5 +26,5 @@ pub use decomposition::{global_extent, Decomposition};
 pub use forward::{
     canonical_sum, forward, forward_with, reverse, reverse_contributions, Contribution, SwapBuffers,
 };
-pub use migrate::migrate;
+pub use migrate::{migrate, migrate_anywhere};
 pub use pack::{DecompError, PartnerHistory};

@@ -12,6 +12,7 @@ use crate::engine::region::Regions;
 use crate::engine::thermo::Thermo;
 use crate::io::dump::Layout;
 
+mod balance;
 mod dumps;
 mod guard;
 mod meshes;
@@ -25,6 +26,7 @@ mod servo;
 mod streams;
 mod values;
 
+pub use balance::{BalanceRequest, Cuts};
 pub(crate) use guard::GuardNotes;
 pub use guard::{
     energy_runaway, ENERGY_GROWTH, ENERGY_WATCH_STEPS, MAX_OVERLAP, RUNAWAY_RADII_PER_STEP,
@@ -251,6 +253,8 @@ pub struct Simulation {
     pub extras: crate::engine::extras::Extras,
     /// The `processors` settings and the MPI ranks of the run.
     pub procs: crate::engine::procmap::Processors,
+    /// The cuts a `balance` (or `fix balance`) left and the last run's cost per rank.
+    pub balance: crate::engine::decomp::balance::Kept,
     /// An insertion fix has been defined (a check run cannot know the atoms it adds).
     pub inserts_atoms: bool,
     /// `restart N ROOT` and `restart N FILE1 FILE2` (both may be active).
@@ -412,6 +416,7 @@ impl Default for Simulation {
         Simulation {
             extras: Default::default(),
             procs: Default::default(),
+            balance: Default::default(),
             inserts_atoms: false,
             restart_output: [None, None],
             pending_history: None,

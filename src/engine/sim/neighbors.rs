@@ -550,6 +550,7 @@ impl Simulation {
         let forced = self.mesh_rebuild_at == Some(self.step)
             || self.insert_rebuild_at == Some(self.step)
             || self.restart_due()
+            || self.balance_forces_build()
             || self.list.built_positions().len() != self.particles.len();
         let rebuild = self.decide_by_rules();
         // LIGGGHTS's dangerous build: a distance-triggered rebuild at the first step the
@@ -571,9 +572,11 @@ impl Simulation {
     /// The rebuild decision itself (see [`Self::decide`]).
     pub(super) fn decide_by_rules(&mut self) -> bool {
         self.ago += 1;
+        // LAMMPS's `fix balance` triggers a build at each rebalance step, on any rank count
         if self.mesh_rebuild_at == Some(self.step)
             || self.insert_rebuild_at == Some(self.step)
             || self.restart_due()
+            || self.balance_forces_build()
         {
             return true;
         }

@@ -27,8 +27,9 @@
 use super::*;
 use crate::engine::accel::ORDER_ARRAY;
 use crate::engine::decomp::pack::{pack_particle, unpack_particle, Reader, Writer};
+use crate::engine::decomp::Decomposition;
 use crate::engine::decomp::SwapBuffers;
-use crate::engine::decomp::{borders, forward_with, migrate, Decomposition, GhostPlan, Halo};
+use crate::engine::decomp::{borders, forward_with, migrate, migrate_anywhere, GhostPlan, Halo};
 use crate::engine::decomp::{DecompError, PartnerHistory};
 use crate::engine::dump_style::SharedLocalRows;
 use crate::engine::neighbor::SumOrder;
@@ -414,7 +415,7 @@ impl Simulation {
                     st.nlocal,
                     &st.flips,
                 );
-                self.rank_build(comm, &mut st, hist)?;
+                self.rank_build(comm, &mut st, hist, true)?;
                 self.stats.builds += 1;
                 self.stats.neigh += clock.elapsed().as_secs_f64();
             } else {
@@ -445,6 +446,7 @@ impl Simulation {
         self.atime_step = self.step;
         let loop_time = started.elapsed().as_secs_f64();
         let stats = self.rank_statistics(comm, &st, loop_time);
+        self.keep_run_balance(comm, &st.dec, st.nlocal);
         self.rank_gather_all(comm, &st)?;
         out(&format!(
             "Loop time of {} on {} procs for {} steps with {} atoms\n\n",
@@ -513,24 +515,9 @@ impl Simulation {
         }
         let flips = self.pair.as_ref().map_or(Vec::new(), |p| p.history_flips());
         let mut hist = self.history_rows(flips.len());
-        let prd = [0, 1, 2].map(|d| self.domain.length(d));
-        let grid = crate::engine::procmap::choose_grid(&self.procs, prd)?;
-        if grid.procs.iter().product::<i64>() != comm.size() as i64 {
-            return Err(EngineError::Invalid(format!(
-                "the processor grid {:?} does not hold the {} ranks of the run",
-                grid.procs,
-                comm.size()
-            )));
-        }
-        let periodic = [0, 1, 2].map(|d| self.domain.periodic(d));
-        let dec = Decomposition::new(
-            &self.procs,
-            &grid,
-            comm.rank(),
-            self.domain.lo,
-            self.domain.hi,
-            periodic,
-        );
+        // the grid with the cuts a balance left, moved again by a `fix balance` when due
+        let mut dec = self.balanced_grid(comm.rank())?;
+        self.balance_at_setup(&mut dec);
         let remove: Vec<bool> = self.particles.x.iter().map(|x| !dec.owns(*x)).collect();
         self.particles.retain_by(&remove);
         for what in [&mut hist.partners as &mut dyn RetainBy, &mut hist.values] {
@@ -552,7 +539,7 @@ impl Simulation {
             fresh: false,
             ghost_motion: (Vec::new(), Vec::new()),
         };
-        self.rank_build(comm, &mut st, hist)?;
+        self.rank_build(comm, &mut st, hist, false)?;
         Ok(st)
     }
 
@@ -581,12 +568,14 @@ impl Simulation {
     /// A neighbour-list build on this rank: owned particles (ghosts already dropped)
     /// wrapped into the box, those lost through fixed faces dropped, migration with the
     /// contact history `hist` (one row per owned particle), new ghosts and pair list, and
-    /// the history taken back from the partner lists.
+    /// the history taken back from the partner lists. `balance`: a `fix balance` may move
+    /// the cuts first (not at the setup build, which the setup balanced).
     fn rank_build(
         &mut self,
         comm: &RankComm,
         st: &mut RankState,
         mut hist: PartnerHistory,
+        balance: bool,
     ) -> Result<(), EngineError> {
         let p = &mut self.particles;
         // as LIGGGHTS's pbc, reset_box and exchange: periodic coordinates wrapped, the
@@ -622,7 +611,14 @@ impl Simulation {
                 i += 1;
             }
         }
-        migrate(comm, &st.dec, p, Some(&mut hist))?;
+        // the cuts moved: particles go straight to their new ranks, however far
+        if balance && self.balance_during_run(comm, &mut st.dec) {
+            let p = &mut self.particles;
+            migrate_anywhere(comm, &st.dec, p, Some(&mut hist))?;
+        } else {
+            let p = &mut self.particles;
+            migrate(comm, &st.dec, p, Some(&mut hist))?;
+        }
         if self.sort_every > 0 && self.step >= self.next_sort {
             self.rank_sort_order(comm)?;
         }
@@ -731,6 +727,10 @@ impl Simulation {
     /// then whether any rank's particle moved more than half the skin.
     fn rank_decide(&mut self, comm: &RankComm, st: &mut RankState) -> bool {
         st.ago += 1;
+        // a `fix balance` rebalancing at this step forces a build (every rank alike)
+        if self.balance_forces_build() {
+            return true;
+        }
         let n = &self.neighbor;
         if st.ago < n.delay || !st.ago.is_multiple_of(n.every) {
             return false;

@@ -120,6 +120,12 @@ convert_references() {
     (cd "$work" && liggghts -in in.make_bed -log none > /dev/null 2>&1)
     cp "$work/bed.restart" "$here/engine/shock.inputs/bed.restart"
     rm -rf "$work"
+    # the wet bed LIGGGHTS writes for engine deck easo_reads (compat/engine/easo_reads.inputs/in.make_wet)
+    work="$(mktemp -d)"
+    cp "$here/engine/easo_reads.inputs/in.make_wet" "$work/"
+    (cd "$work" && liggghts -in in.make_wet -log none > /dev/null 2>&1)
+    cp "$work/wet.restart" "$here/engine/easo_reads.inputs/wet.restart"
+    rm -rf "$work"
     echo "convert: bed.restart, bed.data"
 }
 

@@ -800,3 +800,82 @@ fn a_mesh_is_announced_at_its_first_setup() {
         .unwrap();
     assert!(at[0] < header, "{stdout}");
 }
+
+/// A deck with insertions and a mesh partly outside the box (the third node below the floor).
+fn screen_only_deck(dir: &std::path::Path, plate_z: [f64; 3]) {
+    let plate = format!(
+        "solid plate\nfacet normal 0 0 1\n outer loop\n  vertex 0.01 0.01 {}\n  vertex 0.09 0.01 {}\n  vertex 0.09 0.09 {}\n endloop\nendfacet\nendsolid plate\n",
+        plate_z[0], plate_z[1], plate_z[2]
+    );
+    std::fs::write(dir.join("plate.stl"), plate).unwrap();
+    let deck = format!(
+        "{HEAD}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n\
+         timestep 1e-5\nfix gr all gravity 9.81 vector 0 0 -1\n\
+         fix plate all mesh/surface file plate.stl type 1\n\
+         fix wall all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate\n\
+         fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.002\n\
+         fix pdd all particledistribution/discrete 32452843 1 pts 1.0\n\
+         region top block 0.01 0.09 0.01 0.09 0.05 0.09 units box\n\
+         region mid block 0.01 0.09 0.01 0.09 0.02 0.04 units box\n\
+         fix pack all insert/pack seed 86028121 distributiontemplate pdd insert_every once overlapcheck yes particles_in_region 30 region mid\n\
+         fix rate all insert/rate/region seed 49979687 distributiontemplate pdd nparticles 20 particlerate 2000 insert_every 200 overlapcheck yes region top\n\
+         fix integr all nve/sphere\nthermo 100\nrun 400\n"
+    );
+    std::fs::write(dir.join("in.t"), deck).unwrap();
+}
+
+#[test]
+fn the_log_leaves_out_what_liggghts_prints_on_the_screen_only() {
+    let dir = scratch("screenonly");
+    screen_only_deck(&dir, [0.002, 0.002, -0.001]);
+    let out = regolith(&dir, &["-in", "in.t", "-log", "log.t"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let screen = text(&out.stdout);
+    let log = std::fs::read_to_string(dir.join("log.t")).unwrap();
+    // LIGGGHTS 3.8.0 (fix_mesh.cpp): a node outside the closed box is warned about, once,
+    // on both; the rest below as its fprintf(screen, ...) and fprintf(logfile, ...) lines
+    let warning = "WARNING: Not all nodes of fix mesh inside simulation box, elements will be deleted or wrapped around periodic boundary conditions (./src/fix_mesh.cpp:531)\n";
+    assert_eq!(screen.matches(warning).count(), 1);
+    assert_eq!(log.matches(warning).count(), 1);
+    let rate = "INFO: Particle insertion rate: 4.000000 particles every 200 steps - particle rate 2000.000000";
+    assert!(screen.contains(&format!("{rate}  (mass rate 1.675516e-01)\n")));
+    assert!(log.contains(&format!("{rate}, (mass rate 1.675516e-01)\n")));
+    for screen_only in [
+        "\nReading STL file 'plate.stl' (mesh processing step 1/3) \n",
+        "Import and parallelization of mesh plate containing 1 triangle(s) successful\n",
+        "INFO: Resetting random generator for region mid\n",
+        "INFO: Resetting random generator for region top\n",
+        "insertion: proc 0 at 90 %\n",
+    ] {
+        assert!(
+            screen.contains(screen_only),
+            "{screen_only:?} not on the screen"
+        );
+        assert!(!log.contains(screen_only), "{screen_only:?} in the log");
+    }
+    // on both, as LIGGGHTS writes them
+    for both in [
+        "INFO: Particle insertion pack: inserting every 0 steps\n",
+        "INFO: Particle insertion rate: inserted 4 particle templates (mass 3.351032e-04) at step 201\n",
+    ] {
+        assert!(screen.contains(both) && log.contains(both), "{both:?}");
+    }
+    // inside the box: no warning
+    screen_only_deck(&dir, [0.002, 0.002, 0.001]);
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert!(!text(&out.stdout).contains("WARNING: Not all nodes"));
+}
+
+#[test]
+fn a_mesh_wholly_outside_the_box_stops_the_run_before_its_lines() {
+    let dir = scratch("meshlost");
+    screen_only_deck(&dir, [-0.002, -0.002, -0.001]);
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(1));
+    let screen = text(&out.stdout) + &text(&out.stderr);
+    // LIGGGHTS's message when every element is lost, and neither the warning nor the
+    // import line before it
+    assert!(screen.contains("Mesh (id plate): All 1 mesh elements have been lost / left the domain. \nPlease use 'boundary m m m'"), "{screen}");
+    assert!(!screen.contains("WARNING: Not all nodes"));
+    assert!(!screen.contains("Import and parallelization"));
+}

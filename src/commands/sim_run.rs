@@ -353,10 +353,26 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     }
     ctx.sim.ramp_bounds = (start, stop);
     // LIGGGHTS's line of each mesh's first setup (screen only)
-    for f in &mut ctx.sim.fixes {
+    let (lo, hi) = (ctx.sim.domain.lo, ctx.sim.domain.hi);
+    for k in 0..ctx.sim.fixes.len() {
+        // a mesh that lost triangles to the box stops the run before its lines
+        ctx.sim
+            .check_mesh_in_box(k)
+            .map_err(|e| a.engine_error(0, e))?;
+        let f = &mut ctx.sim.fixes[k];
         if let FixKind::Mesh(m) = &mut f.kind {
             if !m.announced {
                 m.announced = true;
+                // LIGGGHTS's test of every node against the closed box (fix_mesh.cpp)
+                let outside = m
+                    .mesh
+                    .nodes
+                    .iter()
+                    .flatten()
+                    .any(|p| (0..3).any(|d| !(p[d] >= lo[d] && p[d] <= hi[d])));
+                if outside {
+                    ctx.out.both("WARNING: Not all nodes of fix mesh inside simulation box, elements will be deleted or wrapped around periodic boundary conditions (./src/fix_mesh.cpp:531)\n");
+                }
                 ctx.out.screen(&format!(
                     "Import and parallelization of mesh {} containing {} triangle(s) successful\n",
                     f.id,
@@ -366,7 +382,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
         }
     }
     let out = &mut *ctx.out;
-    let mut sink = |s: &str| out.both(s);
+    let mut sink = |s: &str| out.engine_text(s);
     let mut vars = crate::lang::scope::RunVariables::new(&mut *ctx.vars, &mut *ctx.sys);
     ctx.sim
         .run_with_setup(nsteps, pre, &mut sink, &mut vars)

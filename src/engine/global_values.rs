@@ -180,6 +180,37 @@ pub fn fix_ext(sim: &Simulation, id: &str, column: Option<usize>) -> Option<i8> 
     ext
 }
 
+/// Whether `f_ID` (index None) or `f_ID[i]` is extensive, as LIGGGHTS's thermo output
+/// reads the fix's extscalar, extvector and extlist for `thermo_modify norm yes`.
+pub fn fix_extensive(sim: &Simulation, id: &str, index: Option<usize>) -> bool {
+    let Some(fix) = sim.fixes.iter().find(|f| f.id == id) else {
+        return false;
+    };
+    let FixKind::Style(style) = &fix.kind else {
+        return false;
+    };
+    let Some(at) = fix.kind.style_as::<AveTime>() else {
+        return style.extensive(index);
+    };
+    if at.rows.is_some() {
+        return fix_ext(sim, id, None) == Some(1);
+    }
+    // scalar mode: the scalar of a single input, or the flag of input i
+    let k = index.map_or(Some(0), |i| i.checked_sub(1));
+    match k.and_then(|k| at.inputs.get(k)) {
+        Some(AveInput::Compute(cid, col)) => sim
+            .computes
+            .iter()
+            .find(|c| &c.id == cid)
+            .is_some_and(|c| match col {
+                None => c.style().extensive_scalar(),
+                Some(_) => c.style().extensive(sim, None) == Some(1),
+            }),
+        Some(AveInput::Fix(fid, col)) => fix_extensive(sim, fid, *col),
+        _ => false,
+    }
+}
+
 /// The extensive flag of one vector-mode `fix ave/time` input.
 pub fn input_ext(sim: &Simulation, input: &AveInput) -> Option<i8> {
     match input {

@@ -33,7 +33,13 @@ const NORMAL: &[(&str, i64)] = &[
     ("hertz/stiffness", 4),
 ];
 const TANGENTIAL: &[(&str, i64)] = &[("off", 0), ("no_history", 1), ("history", 2)];
-const COHESION: &[(&str, i64)] = &[("off", 0), ("sjkr", 1), ("sjkr2", 2)];
+const COHESION: &[(&str, i64)] = &[
+    ("off", 0),
+    ("sjkr", 1),
+    ("sjkr2", 2),
+    ("washino/capillary/viscous", 7),
+    ("easo/capillary/viscous", 8),
+];
 const ROLLING: &[(&str, i64)] = &[
     ("off", 0),
     ("cdt", 1),
@@ -520,5 +526,14 @@ mod tests {
             "gran model hertz tangential history cohesion sjkr rolling_friction epsd"
         );
         assert!(model_words(63).is_none());
+        // LIGGGHTS's liquid bridges (cohesion_model_easo_capillary_viscous.h: 8)
+        let h = model_hash(
+            "hertz",
+            "history",
+            "easo/capillary/viscous",
+            "off",
+            "default",
+        );
+        assert_eq!(h, Some(32899));
     }
 }

@@ -373,7 +373,10 @@ pub fn keyword_value(
                 };
                 Some(if extensive { norm(value) } else { value })
             } else {
-                sim.fix_value(id, index).ok()
+                // and extensive fix values likewise
+                let value = sim.fix_value(id, index).ok()?;
+                let extensive = crate::engine::global_values::fix_extensive(sim, id, index);
+                Some(if extensive { norm(value) } else { value })
             };
         }
         other => return more_keywords(other, sim, thermo, vars),

@@ -8,7 +8,7 @@ use std::io::Write;
 pub use crate::io::error::ColumnError;
 use crate::state::domain::Domain;
 use crate::state::particles::Particles;
-use crate::util::format::{self, CFormat, Conversion, Piece};
+use crate::util::format::{self, CFormat, Piece};
 
 /// A per-atom quantity a dump column shows.
 #[derive(Debug, Clone, PartialEq)]
@@ -135,7 +135,7 @@ pub struct Layout {
     /// The parsed columns.
     pub columns: Vec<Column>,
     /// One C conversion per column (`dump_modify format`), or None for `%d`/`%g`.
-    pub format: Option<Vec<Conversion>>,
+    pub format: Option<Vec<CFormat>>,
     /// Sort atoms by ID (`dump_modify sort id`).
     pub sort_by_id: bool,
     /// Values separated by single blanks without a trailing one (LAMMPS's `dump atom`);
@@ -162,22 +162,23 @@ impl Layout {
         })
     }
 
-    /// `dump_modify format "..."`: one conversion per column, separated by blanks.
+    /// `dump_modify format "..."`: one element per column, separated by blanks. LIGGGHTS
+    /// prints each value with its element as a `printf` format: text around the conversion
+    /// is printed as it is, and an element without a conversion prints only its text (the
+    /// column's value is left out).
     pub fn set_format(&mut self, text: &str) -> Result<(), ColumnError> {
         let mut convs = Vec::new();
         for token in text.split(' ').filter(|t| !t.is_empty()) {
             let parsed = CFormat::parse(token)?;
-            let mut found = parsed.pieces.iter().filter_map(|p| match p {
-                Piece::Convert(c) => Some(c.clone()),
-                Piece::Text(_) => None,
-            });
-            let c = found
-                .next()
-                .ok_or_else(|| ColumnError::NoConversion(token.to_string()))?;
-            if found.next().is_some() || parsed.pieces.len() != 1 {
+            let n = parsed
+                .pieces
+                .iter()
+                .filter(|p| matches!(p, Piece::Convert(_)))
+                .count();
+            if n > 1 {
                 return Err(ColumnError::NotSingle(token.to_string()));
             }
-            convs.push(c);
+            convs.push(parsed);
         }
         let ncols = self.columns.len().max(self.names.len());
         if convs.len() < ncols {
@@ -239,7 +240,7 @@ impl Layout {
                     col => col.value(p, domain, i),
                 };
                 match &self.format {
-                    Some(convs) => format::push_one(&mut line, &convs[k], value),
+                    Some(convs) => format::push_element(&mut line, &convs[k], value),
                     None if col.is_integer() => {
                         use std::fmt::Write as _;
                         let _ = write!(line, "{}", value as i64);
@@ -323,7 +324,7 @@ pub fn write_local(
     step: i64,
     domain: &Domain,
     names: &[String],
-    formats: Option<&[Conversion]>,
+    formats: Option<&[CFormat]>,
     rows: usize,
     value: impl Fn(usize, usize) -> f64,
 ) -> std::io::Result<()> {
@@ -351,7 +352,7 @@ pub fn write_local(
         line.clear();
         for c in 0..names.len() {
             match formats {
-                Some(convs) => format::push_one(&mut line, &convs[c], value(r, c)),
+                Some(convs) => format::push_element(&mut line, &convs[c], value(r, c)),
                 None => format::push_g(&mut line, value(r, c)),
             }
             line.push(' ');

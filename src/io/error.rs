@@ -319,10 +319,8 @@ pub enum ColumnError {
     #[error(transparent)]
     Format(#[from] crate::util::format::FormatError),
     /// A format element without a conversion.
-    #[error("format element '{0}' has no conversion")]
-    NoConversion(String),
     /// A format element with more than a conversion.
-    #[error("format element '{0}' must be a single conversion")]
+    #[error("format element '{0}' has more than one conversion")]
     NotSingle(String),
     /// Fewer conversions than columns.
     #[error("Dump_modify format string is too short")]

@@ -81,6 +81,27 @@ impl Output {
         self.log(text);
     }
 
+    /// Write the engine's text of a run's setup and steps: most lines to both streams, but
+    /// those LIGGGHTS prints on the screen only (an insertion's progress, a region's
+    /// random generator reset) to the screen, and the insertion-rate line to the log with
+    /// the comma LIGGGHTS's log version of it has.
+    pub fn engine_text(&mut self, text: &str) {
+        for line in text.split_inclusive('\n') {
+            if line.starts_with("insertion: proc ")
+                || line.starts_with("INFO: Resetting random generator for region ")
+            {
+                self.screen(line);
+            } else if line.starts_with("INFO: Particle insertion ")
+                && line.contains(" - particle rate ")
+            {
+                self.screen(line);
+                self.log(&line.replacen("  (mass rate ", ", (mass rate ", 1));
+            } else {
+                self.both(line);
+            }
+        }
+    }
+
     /// Echo an input line where `echo` says.
     pub fn echo(&mut self, text: &str) {
         if self.echo_screen {

@@ -166,6 +166,17 @@ pub fn push_one(out: &mut String, conv: &Conversion, value: f64) {
     }
 }
 
+/// `value` through a whole `printf` format of at most one conversion appended to `out`:
+/// its text as it is, the conversion as [`push_one`] (without one, only the text).
+pub fn push_element(out: &mut String, fmt: &CFormat, value: f64) {
+    for piece in &fmt.pieces {
+        match piece {
+            Piece::Text(t) => out.push_str(t),
+            Piece::Convert(c) => push_one(out, c, value),
+        }
+    }
+}
+
 /// `%g` of `value` appended to `out`, as dumps print floats (no allocation).
 pub fn push_g(out: &mut String, value: f64) {
     push_c_f64(out, "%g", value);

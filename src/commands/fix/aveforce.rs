@@ -65,6 +65,11 @@ impl FixStyle for AveForce {
         self.apply(p, at.group);
     }
 
+    /// LIGGGHTS flags its global vector extensive.
+    fn extensive(&self, index: Option<usize>) -> bool {
+        index.is_some()
+    }
+
     fn value(&self, index: Option<usize>) -> Option<f64> {
         match index {
             Some(i @ 1..=3) => Some(self.original[i - 1]),

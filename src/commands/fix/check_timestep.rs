@@ -70,6 +70,11 @@ impl FixStyle for CheckTimestep {
         Ok(())
     }
 
+    /// LIGGGHTS flags its global vector extensive.
+    fn extensive(&self, index: Option<usize>) -> bool {
+        index.is_some()
+    }
+
     fn value(&self, index: Option<usize>) -> Option<f64> {
         match index {
             Some(i @ 1..=3) => Some(self.values[i - 1]),

@@ -332,9 +332,12 @@ impl MeshArgs {
                     .map_err(|m| a.error(2, m))?;
             return Ok((t, Some(extras)));
         }
-        ctx.say(&format!(
-            "\nReading STL file '{file}' (mesh processing step 1/3) \n"
-        ));
+        // LIGGGHTS prints this line on the screen only
+        if ctx.sys.mode == crate::lang::system::Mode::Run {
+            ctx.out.screen(&format!(
+                "\nReading STL file '{file}' (mesh processing step 1/3) \n"
+            ));
+        }
         let (t, ids, ascii) = crate::io::stl::read_with_ids(&path).map_err(|m| match m {
             // the file as the deck names it, as LIGGGHTS says it
             crate::io::error::StlError::Open { source, .. } => {

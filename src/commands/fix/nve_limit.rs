@@ -87,6 +87,11 @@ impl FixStyle for NveLimit {
         self.kick_and_cap(p, at.group, at.dt, false);
     }
 
+    /// LIGGGHTS flags its global scalar extensive.
+    fn extensive(&self, index: Option<usize>) -> bool {
+        index.is_none()
+    }
+
     fn value(&self, index: Option<usize>) -> Option<f64> {
         index.is_none().then_some(self.count as f64)
     }

@@ -157,6 +157,11 @@ impl FixStyle for Spring {
         self.apply(p, at.domain, at.group);
     }
 
+    /// LIGGGHTS flags its scalar and vector extensive.
+    fn extensive(&self, _index: Option<usize>) -> bool {
+        true
+    }
+
     fn value(&self, index: Option<usize>) -> Option<f64> {
         match index {
             None => Some(self.energy),

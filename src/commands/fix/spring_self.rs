@@ -82,6 +82,11 @@ impl FixStyle for SpringSelf {
         self.apply(p, at.group);
     }
 
+    /// LIGGGHTS flags its global scalar extensive.
+    fn extensive(&self, index: Option<usize>) -> bool {
+        index.is_none()
+    }
+
     fn value(&self, index: Option<usize>) -> Option<f64> {
         index.is_none().then_some(self.energy)
     }

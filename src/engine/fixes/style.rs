@@ -262,6 +262,12 @@ pub trait FixStyle: Send {
         None
     }
 
+    /// Whether the global value `f_ID` (index None) or `f_ID[i]` is extensive (LIGGGHTS's
+    /// extscalar/extvector: `thermo_modify norm yes` divides it by the atom count).
+    fn extensive(&self, _index: Option<usize>) -> bool {
+        false
+    }
+
     /// The shape of the per-atom values [`FixStyle::per_atom`] gives.
     fn per_atom_shape(&self) -> PerAtomShape {
         PerAtomShape::None

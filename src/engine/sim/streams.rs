@@ -2,7 +2,7 @@
 //! insertion fixes, and meshes that must stay inside the box.
 
 use super::*;
-use crate::engine::fixes::{mesh_named_mut, meshes};
+use crate::engine::fixes::mesh_named_mut;
 
 impl Simulation {
     pub(super) fn insert_world(&self) -> (Vec<[f64; 3]>, [bool; 3], bool) {
@@ -444,8 +444,17 @@ impl Simulation {
     /// LIGGGHTS's check at setup: mesh triangles whose centre lies outside the box (along
     /// directions with fixed or periodic faces; the faces padded by 1e-8 length) are an error.
     pub(super) fn check_meshes_in_box(&self) -> Result<(), EngineError> {
+        for k in 0..self.fixes.len() {
+            self.check_mesh_in_box(k)?;
+        }
+        Ok(())
+    }
+
+    /// [`Simulation::check_meshes_in_box`] for the mesh of fix `k` (nothing for another fix).
+    pub fn check_mesh_in_box(&self, k: usize) -> Result<(), EngineError> {
         let d = &self.domain;
-        for (f, m) in meshes(&self.fixes) {
+        let f = &self.fixes[k];
+        if let Some(m) = f.kind.mesh() {
             let lost = m
                 .triangles()
                 .iter()
@@ -465,8 +474,13 @@ impl Simulation {
                 })
                 .count();
             if lost > 0 {
+                let all = if lost == m.triangles().len() {
+                    "All "
+                } else {
+                    ""
+                };
                 return Err(format!(
-                    "Mesh (id {}): {lost} mesh elements have been lost / left the domain. \nPlease use 'boundary m m m' or scale/translate/rotate the mesh or change its dynamics",
+                    "Mesh (id {}): {all}{lost} mesh elements have been lost / left the domain. \nPlease use 'boundary m m m' or scale/translate/rotate the mesh or change its dynamics",
                     f.id
                 ).into());
             }

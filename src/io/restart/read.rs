@@ -86,24 +86,36 @@ impl<'a> Reader<'a> {
     }
 }
 
-/// Decode the atom records of `n` doubles.
+/// Decode the atom records stored in `raw` (little-endian doubles), one record at a time
+/// (no copy of the whole chunk as doubles: a large bed's file is read with one copy of it
+/// in memory).
 fn records(
-    buf: &[f64],
+    raw: &[u8],
     nfix: usize,
     name: &str,
     out: &mut Vec<AtomRecord>,
 ) -> Result<(), RestartError> {
+    let n = raw.len() / 8;
+    let at = |k: usize| {
+        let mut b = [0u8; 8];
+        b.copy_from_slice(&raw[8 * k..8 * k + 8]);
+        f64::from_le_bytes(b)
+    };
+    let mut r = Vec::new();
     let mut m = 0;
-    while m < buf.len() {
-        let len = buf[m] as usize;
-        if !(17..=buf.len() - m).contains(&len) || buf[m].fract() != 0.0 {
+    while m < n {
+        let first = at(m);
+        let len = first as usize;
+        if !(17..=n - m).contains(&len) || first.fract() != 0.0 {
             return Err(RestartError::RecordLength {
                 file: name.to_string(),
                 record: out.len() + 1,
-                length: buf[m],
+                length: first,
             });
         }
-        let r = &buf[m..m + len];
+        r.clear();
+        r.extend((m..m + len).map(at));
+        let r = &r[..];
         let mut extra = Vec::with_capacity(nfix);
         let mut k = 17;
         for f in 0..nfix {
@@ -311,10 +323,14 @@ impl Restart {
         let nprocs = self.int(flag::NPROCS).unwrap_or(1).max(1) as usize;
         match chunks {
             None => {
+                // every record takes at least 17 doubles of what is left of the file
+                let natoms = self.int(flag::NATOMS).unwrap_or(0).max(0) as usize;
+                let room = (r.bytes.len() - r.at) / (17 * 8);
+                self.atoms.reserve_exact(natoms.min(room));
                 for _ in 0..nprocs {
                     let n = r.count("atom chunk size", usize::MAX >> 4)?;
-                    let buf = r.doubles(n)?;
-                    records(&buf, nperatom, r.name, &mut self.atoms)?;
+                    let raw = r.take(8 * n, "doubles")?;
+                    records(raw, nperatom, r.name, &mut self.atoms)?;
                 }
                 if r.at != r.bytes.len() {
                     return Err(RestartError::Trailing {
@@ -333,8 +349,8 @@ impl Restart {
                         name: &pname,
                     };
                     let n = c.count("atom chunk size", usize::MAX >> 4)?;
-                    let buf = c.doubles(n)?;
-                    records(&buf, nperatom, &pname, &mut self.atoms)?;
+                    let raw = c.take(8 * n, "doubles")?;
+                    records(raw, nperatom, &pname, &mut self.atoms)?;
                 }
             }
         }

@@ -4,26 +4,13 @@
 //! entries and the mirrors are computed as separate batches (each contact depends only on its
 //! own inputs), then added in LIGGGHTS's order.
 
-use super::{add6, batch, half_virial, Collect, PairGran, PairResult};
+use super::{add6, batch, half_virial, later_worst, Collect, PairGran, PairResult};
 use crate::engine::contact::{CohesionModel, NormalModel, RollingModel, TangentialModel};
 use crate::engine::neighbor::{Mirrored, Pair};
 use crate::engine::particles::Particles;
 
 /// Touching entries computed before their forces are added (a buffer that stays in cache).
 const ROUND: usize = 1024;
-
-/// The worst overlap `(ratio, i, j)` of two parts in order: the second only where larger,
-/// so the first in order among equals is kept.
-fn later_worst(
-    first: Option<(f64, u32, u32)>,
-    second: Option<(f64, u32, u32)>,
-) -> Option<(f64, u32, u32)> {
-    match (first, second) {
-        (Some(a), Some(b)) if b.0 > a.0 => Some(b),
-        (None, b) => b,
-        (a, _) => a,
-    }
-}
 
 /// Buffers of the mirrors' pass, reused between steps.
 #[derive(Debug, Clone, Default)]

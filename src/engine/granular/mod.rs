@@ -310,13 +310,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
                 })
                 .collect();
             // the worst overlap, first in list order among equals (as the sequential pass)
-            self.worst = worst_of_parts.into_iter().flatten().fold(None, |worst, w| {
-                if worst.is_none_or(|b: (f64, u32, u32)| w.0 > b.0) {
-                    Some(w)
-                } else {
-                    worst
-                }
-            });
+            self.worst = worst_of_parts.into_iter().fold(None, later_worst);
         }
         // each particle adds its contacts: as second particle, then its own block
         let (slot_r, results_r) = (&slot, &results);
@@ -382,6 +376,19 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             self.touching.extend(part.iter().map(|&k| base + k));
         }
         self.parts = parts;
+    }
+}
+
+/// The worst overlap `(ratio, i, j)` of two parts in order: the second only where larger,
+/// so the first in order among equals is kept.
+fn later_worst(
+    first: Option<(f64, u32, u32)>,
+    second: Option<(f64, u32, u32)>,
+) -> Option<(f64, u32, u32)> {
+    match (first, second) {
+        (Some(a), Some(b)) if b.0 > a.0 => Some(b),
+        (None, b) => b,
+        (a, _) => a,
     }
 }
 
@@ -719,13 +726,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             }
         }
         // the worst overlap, first in block order among equals
-        self.worst = worst.into_iter().flatten().fold(None, |worst, w| {
-            if worst.is_none_or(|b: (f64, u32, u32)| w.0 > b.0) {
-                Some(w)
-            } else {
-                worst
-            }
-        });
+        self.worst = worst.into_iter().fold(None, later_worst);
         // only their number is read (the run's summary): no list of them is made
         self.touching.clear();
         self.block_contacts = Some(parts.iter().map(Vec::len).sum());

@@ -597,7 +597,7 @@ impl Simulation {
 
     /// A `restart` file is written at this step: LIGGGHTS's `Neighbor::decide` then rebuilds
     /// the lists (and sorts the atoms when due) before the file is written.
-    fn restart_due(&self) -> bool {
+    pub(super) fn restart_due(&self) -> bool {
         (self.restart_output.iter().flatten())
             .any(|out| self.step % out.every == 0 && out.last != Some(self.step))
     }

@@ -228,7 +228,6 @@ fn what_does_not_run_on_ranks_is_refused_by_name() {
             34,
             "fix insert/pack",
         ),
-        (before_run("restart 10 r.restart"), 34, "restart"),
         (
             before_run("thermo_style custom step c_thermo_press"),
             34,
@@ -1067,4 +1066,97 @@ fn restart_files_liggghts_wrote_on_two_processors_are_read_on_any_rank_count() {
             );
         }
     }
+}
+
+#[test]
+fn periodic_restart_files_on_ranks_are_those_of_one_process_and_read_back() {
+    // `restart N root` (one file, or `%`: a base file and one per rank) and `restart N a b`
+    // during the bed's two runs, then the file of step 100 read back and run on
+    let deck = BED.replace(
+        "run 100\n",
+        "restart 50 ${dir}/bed.*.restart\nrestart 50 ${dir}/a.%.restart ${dir}/b.%.restart\nrun 100\n",
+    );
+    let dir = scratch("periodic-restart");
+    let grids = [
+        (0, "", "serial"),
+        (2, "processors 2 1 1", "two"),
+        (3, "processors 1 3 1", "three"),
+    ];
+    let mut dumps = Vec::new();
+    for (n, grid, tag) in grids {
+        let d = dir.join(tag);
+        std::fs::create_dir_all(&d).unwrap();
+        run_in(&d, &deck, n, grid);
+        dumps.push(std::fs::read_to_string(d.join("out.dump")).unwrap());
+    }
+    let serial = dir.join("serial");
+    for ((n, grid, tag), dump) in grids.iter().zip(&dumps).skip(1) {
+        let d = dir.join(tag);
+        let dev = common::scale_deviation(&dumps[0], dump);
+        assert!(dev < 1e-10, "{grid}: the run differs by {dev:e}");
+        for step in [50, 100, 150] {
+            let f = format!("bed.{step}.restart");
+            let dev = restart_deviation(&serial.join(&f), &d.join(&f));
+            assert!(
+                dev < 1e-10,
+                "{grid}: {f} differs from one process's by {dev:e}"
+            );
+            // the order one process writes after the run: the serial file's IDs in turn
+            // are those of the exact path, which every rank count gathers
+            let r = regolith::io::restart::read(&d.join(&f).to_string_lossy()).unwrap();
+            assert_eq!(r.atoms.len(), 252);
+            assert_eq!(r.int(7), Some(1), "one file: written as by one processor");
+        }
+        // the two names in turn: a at 50 and 150, b at 100, one file per rank each
+        for (name, step) in [("a", 150), ("b", 100)] {
+            let split = d.join(format!("{name}.%.restart"));
+            let base = regolith::io::restart::read(&split.to_string_lossy()).unwrap();
+            assert_eq!(base.int(7), Some(*n as i64), "{name}: processor count");
+            assert!(d.join(format!("{name}.{}.restart", n - 1)).exists());
+            assert!(!d.join(format!("{name}.{n}.restart")).exists());
+            let single = restart_atoms(&d.join(format!("bed.{step}.restart")));
+            assert!(
+                restart_atoms(&split) == single,
+                "{grid}: {name} holds other atoms"
+            );
+        }
+    }
+    // the contacts are in the files: most atoms touch something
+    let atoms = restart_atoms(&serial.join("bed.100.restart"));
+    let touching = atoms.values().filter(|v| v.len() >= 24).count();
+    assert!(touching > atoms.len() / 2, "{touching} of {}", atoms.len());
+    // the file of step 100 read back on one process and on ranks: the second run again
+    // from its first step (the forces of the reading run's setup differ from those the
+    // writing run had at step 100 in LIGGGHTS 3.8.0 as well)
+    let tail = |dump: &str| dump[dump.find("ITEM: TIMESTEP\n125\n").unwrap()..].to_string();
+    let want = tail(&dumps[0]);
+    for (n, grid, tag) in [(0, "", "read-serial"), (2, "processors 2 1 1", "read-two")] {
+        let d = dir.join(tag);
+        std::fs::create_dir_all(&d).unwrap();
+        let file = dir.join("two/bed.100.restart");
+        let read = read_deck(
+            &file.to_string_lossy(),
+            "dump d all custom 25 ${out} id type x y z vx vy vz fx fy fz omegax omegay omegaz radius
+dump_modify d sort id format \"%d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"
+restart 50 ${dir}/again.*.restart
+run 50
+",
+        );
+        run_in(&d, &read, n, grid);
+        // (the file due at step 150 wraps the particles into the box there, as it did in
+        // the run that wrote the file read)
+        let dump = tail(&std::fs::read_to_string(d.join("out.dump")).unwrap());
+        let dev = common::scale_deviation(&want, &dump);
+        assert!(
+            dev < 1e-10,
+            "{tag}: differs from the run that wrote it by {dev:e}"
+        );
+        let again = d.join("again.150.restart");
+        let dev = restart_deviation(&serial.join("bed.150.restart"), &again);
+        assert!(
+            dev < 1e-10,
+            "{tag}: its file of step 150 differs by {dev:e}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

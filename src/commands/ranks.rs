@@ -1,6 +1,6 @@
 //! What runs on more than one MPI rank (the first slice of the domain decomposition): a box
 //! with periodic, fixed and shrink-wrapped faces, particles from `create_atoms`, `read_data`
-//! or `read_restart` (set-up commands run identically on every rank), `write_restart`, `pair_style gran`,
+//! or `read_restart` (set-up commands run identically on every rank), `write_restart` and `restart`, `pair_style gran`,
 //! `fix nve/sphere`, `nve`, `gravity`, primitive `wall/gran`, `check/timestep/gran`, `property/global` and the
 //! per-particle force fixes below, the computes below, `thermo` with the keywords below and
 //! `c_`/`v_` values, `dump custom` with `c_`/`v_` columns and `dump local`, on the fast path. Everything
@@ -27,6 +27,8 @@ const COMMANDS: &[&str] = &[
     "read_restart",
     // one file by rank 0 as one process writes it, or a `%` file per rank
     "write_restart",
+    // the same files every N steps of a run, from every rank's particles gathered
+    "restart",
     "lattice",
     "mass",
     "set",
@@ -142,7 +144,7 @@ const THERMO: &[&str] = &[
 
 /// What runs on more than one rank, as a refusal's help says it.
 pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic, \
-    fixed and shrink-wrapped faces, write_restart, pair_style gran, fix nve/sphere, gravity, primitive wall/gran, freeze, \
+    fixed and shrink-wrapped faces, write_restart, restart, pair_style gran, fix nve/sphere, gravity, primitive wall/gran, freeze, \
     setforce/addforce with constants, viscous, move and check/timestep/gran, shell, computes ke, \
     erotate/sphere, reduce, com, stress/atom, pair/gran/local and per-atom properties, thermo \
     (step, atoms, ke, c_, v_, ...), dump custom and dump local; or run it as one process (with threads: -sf fast -pk fast N)";

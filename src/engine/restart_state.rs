@@ -311,7 +311,11 @@ impl Simulation {
         }
         let flips = self.pair.as_ref().map_or(Vec::new(), |p| p.history_flips());
         let mirrors = &self.list.mirrors;
-        let mirrored = self.list.mirrored && self.mirror_history.len() == mirrors.len() * width;
+        // the fast path keeps one history for both sides of a pair across a periodic face
+        // (its list entry's): the mirrors' copies are not kept up to date
+        let mirrored = self.list.mirrored
+            && !self.accel.fast
+            && self.mirror_history.len() == mirrors.len() * width;
         let mut next_mirror = 0;
         for (k, pair) in self.list.pairs.iter().enumerate() {
             // a mirror keeps its own side's values (LIGGGHTS's order: in its atom's entries)

@@ -59,6 +59,7 @@ impl Simulation {
     /// does (each removed slot filled by the last particle), noting what the next list
     /// build needs to carry contact history as LIGGGHTS does after such a removal.
     pub fn remove_between_runs(&mut self, remove: &[bool]) {
+        self.share_mirror_history();
         let width = self.pair.as_ref().map_or(0, |p| p.history_width());
         let listed = !self.list.pairs.is_empty() || !self.list.mirrors.is_empty();
         if width > 0 && listed {
@@ -235,6 +236,37 @@ impl Simulation {
         Ok(())
     }
 
+    /// Fast path on a list with periodic mirrors: a pair across a periodic face has one
+    /// contact history, its list entry's (the fast pair pass computes the pair once and
+    /// leaves the mirrors' copies alone), so each mirror takes its entry's values seen from
+    /// the other particle (the vectors negated) before anything reads the mirrors: the
+    /// carry to a rebuilt list, whose entries may face the other way (a re-sorted order,
+    /// another bin), and a removal's record.
+    fn share_mirror_history(&mut self) {
+        if !self.accel.fast || !self.list.mirrored {
+            return;
+        }
+        let width = self.pair.as_ref().map_or(0, |p| p.history_width());
+        if width == 0 || self.history.len() != self.list.pairs.len() * width {
+            return;
+        }
+        let flips = self.pair.as_ref().map_or(Vec::new(), |p| p.history_flips());
+        self.mirror_history
+            .resize(self.list.mirrors.len() * width, 0.0);
+        for (m, side) in self
+            .list
+            .mirrors
+            .iter()
+            .zip(self.mirror_history.chunks_exact_mut(width))
+        {
+            let e = m.entry as usize;
+            let entry = &self.history[e * width..(e + 1) * width];
+            for ((s, &v), &flip) in side.iter_mut().zip(entry).zip(&flips) {
+                *s = if flip { -v } else { v };
+            }
+        }
+    }
+
     /// The box as the neighbour search sees it: in 2d nothing meets across the z faces
     /// (LIGGGHTS makes no ghost atoms along z there).
     pub(crate) fn list_domain(&self) -> crate::engine::domain::Domain {
@@ -249,6 +281,7 @@ impl Simulation {
     /// walk, or the general search), the excluded pairs dropped, the contact history carried
     /// to the new pairs, and the order the pair forces are summed in.
     pub(super) fn build_neighbors(&mut self) {
+        self.share_mirror_history();
         let old = OldList {
             pairs: std::mem::take(&mut self.list.pairs),
             mirrors: std::mem::take(&mut self.list.mirrors),
@@ -564,7 +597,7 @@ impl Simulation {
 
     /// A `restart` file is written at this step: LIGGGHTS's `Neighbor::decide` then rebuilds
     /// the lists (and sorts the atoms when due) before the file is written.
-    fn restart_due(&self) -> bool {
+    pub(super) fn restart_due(&self) -> bool {
         (self.restart_output.iter().flatten())
             .any(|out| self.step % out.every == 0 && out.last != Some(self.step))
     }

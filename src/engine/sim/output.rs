@@ -24,7 +24,7 @@ impl Simulation {
     /// as one process writes; a `%` name gives LIGGGHTS's base file (rank 0, with the
     /// processor count and grid) and one file per rank with the particles of its brick of
     /// the box. Any rank's failure stops every rank.
-    fn save_restart_on_ranks(
+    pub(super) fn save_restart_on_ranks(
         &self,
         comm: &crate::util::comm::RankComm,
         r: &crate::io::restart::Restart,
@@ -61,6 +61,23 @@ impl Simulation {
 
     /// The `restart` command's files, due at multiples of its interval (not at setup).
     pub(super) fn periodic_restart(&mut self) -> Result<(), EngineError> {
+        let paths = self.restart_paths_due();
+        if paths.is_empty() {
+            return Ok(());
+        }
+        // written from the current state without re-wrapping (the run goes on)
+        self.check_restart_size()?;
+        let partners = self.contact_partners();
+        let r = self.to_restart(&partners);
+        for path in paths {
+            crate::io::restart::write(&r, &path).map_err(|e| e.to_string())?;
+        }
+        Ok(())
+    }
+
+    /// The names of the `restart` command's files due at this step (multiples of its
+    /// interval, not at setup), each write noted (and the two names' turn taken).
+    pub(super) fn restart_paths_due(&mut self) -> Vec<String> {
         let mut paths = Vec::new();
         for out in self.restart_output.iter_mut().flatten() {
             if self.step % out.every != 0 || out.last == Some(self.step) {
@@ -75,17 +92,7 @@ impl Simulation {
                 p
             });
         }
-        if paths.is_empty() {
-            return Ok(());
-        }
-        // written from the current state without re-wrapping (the run goes on)
-        self.check_restart_size()?;
-        let partners = self.contact_partners();
-        let r = self.to_restart(&partners);
-        for path in paths {
-            crate::io::restart::write(&r, &path).map_err(|e| e.to_string())?;
-        }
-        Ok(())
+        paths
     }
 
     pub(super) fn thermo_line(

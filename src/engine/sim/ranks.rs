@@ -36,6 +36,7 @@ use crate::engine::neighbor::SumOrder;
 use crate::engine::particles::PerAtom;
 use crate::engine::restart_state::PendingHistory;
 use crate::util::comm::{Comm, RankComm, Reduce};
+use std::collections::HashMap;
 
 /// This rank's part of a run on several ranks.
 struct RankState {
@@ -438,6 +439,7 @@ impl Simulation {
             self.rank_end_of_step(comm, out, vars)?;
             let clock = std::time::Instant::now();
             self.rank_output(comm, &mut st, false, last, out, vars)?;
+            self.rank_periodic_restart(comm, &st)?;
             self.stats.output += clock.elapsed().as_secs_f64();
         }
         self.run_bounds = None;
@@ -727,8 +729,9 @@ impl Simulation {
     /// then whether any rank's particle moved more than half the skin.
     fn rank_decide(&mut self, comm: &RankComm, st: &mut RankState) -> bool {
         st.ago += 1;
-        // a `fix balance` rebalancing at this step forces a build (every rank alike)
-        if self.balance_forces_build() {
+        // a `fix balance` rebalancing at this step forces a build (every rank alike), and so
+        // does a `restart` file due now, as on one process
+        if self.balance_forces_build() || self.restart_due() {
             return true;
         }
         let n = &self.neighbor;
@@ -1030,6 +1033,32 @@ impl Simulation {
     /// the exact path's order (the order record dropped), the history kept by atom ID for
     /// the next run.
     fn rank_gather_all(&mut self, comm: &RankComm, st: &RankState) -> Result<(), EngineError> {
+        let (full, partners) = self.rank_whole_set(comm, st)?;
+        if let Some(partners) = partners {
+            self.pending_history = Some(PendingHistory {
+                width: st.flips.len(),
+                partners,
+                live: true,
+            });
+        }
+        self.particles = full;
+        self.list = crate::engine::neighbor::NeighborList::default();
+        self.list.builds = st.builds;
+        self.history.clear();
+        self.mirror_history.clear();
+        self.list_ids.clear();
+        Ok(())
+    }
+
+    /// Every rank's owned particles on every rank, in the exact path's order (the order
+    /// record dropped), with each particle's contacts by partner ID (None without history
+    /// in the pair model); the run's own state is left as it is.
+    #[allow(clippy::type_complexity)]
+    fn rank_whole_set(
+        &self,
+        comm: &RankComm,
+        st: &RankState,
+    ) -> Result<(Particles, Option<HashMap<i64, Vec<(i64, Vec<f64>)>>>), EngineError> {
         let hist = PartnerHistory::from_pairs(
             &st.pairs,
             &st.history,
@@ -1050,8 +1079,8 @@ impl Simulation {
             unpack_particle(&mut r, &mut full, Some(&mut rows))?;
         }
         let width = hist.width;
-        if width > 0 {
-            let mut partners = std::collections::HashMap::new();
+        let partners = (width > 0).then(|| {
+            let mut partners = HashMap::new();
             for (i, id) in full.id.iter().enumerate() {
                 let contacts: Vec<(i64, Vec<f64>)> = rows.partners[i]
                     .iter()
@@ -1062,12 +1091,8 @@ impl Simulation {
                     partners.insert(*id, contacts);
                 }
             }
-            self.pending_history = Some(PendingHistory {
-                width,
-                partners,
-                live: true,
-            });
-        }
+            partners
+        });
         if let Some(k) = full.extra.iter().position(|e| e.name == ORDER_ARRAY) {
             let ranks = full.extra[k].data.clone();
             let mut order: Vec<usize> = (0..ranks.len()).collect();
@@ -1075,13 +1100,40 @@ impl Simulation {
             full.permute(&order);
             full.extra.remove(k);
         }
-        self.particles = full;
-        self.list = crate::engine::neighbor::NeighborList::default();
-        self.list.builds = st.builds;
-        self.history.clear();
-        self.mirror_history.clear();
-        self.list_ids.clear();
-        Ok(())
+        Ok((full, partners))
+    }
+
+    /// The `restart` command's files due at this step, written from every rank's particles
+    /// gathered in the exact path's order: one file by rank 0 (what one process holding the
+    /// particles in that order writes), or for a `%` name LIGGGHTS's base file and one file
+    /// per rank (as `write_restart` between runs). Positions are not re-wrapped (the run
+    /// goes on), as on one process.
+    fn rank_periodic_restart(
+        &mut self,
+        comm: &RankComm,
+        st: &RankState,
+    ) -> Result<(), EngineError> {
+        let paths = self.restart_paths_due();
+        if paths.is_empty() {
+            return Ok(());
+        }
+        let (mut full, partners) = self.rank_whole_set(comm, st)?;
+        let mut partners = partners.unwrap_or_default();
+        // each particle's contacts by partner ID, as the fast path lists them on one process
+        for contacts in partners.values_mut() {
+            contacts.sort_by_key(|c| c.0);
+        }
+        std::mem::swap(&mut self.particles, &mut full);
+        let written = (|| {
+            self.check_restart_size()?;
+            let r = self.to_restart(&partners);
+            for path in &paths {
+                self.save_restart_on_ranks(comm, &r, path)?;
+            }
+            Ok(())
+        })();
+        std::mem::swap(&mut self.particles, &mut full);
+        written
     }
 
     /// LIGGGHTS's per-process counts after a run (ave, max, min over ranks) and the

@@ -189,7 +189,7 @@ fn check_thermo_references(a: &Args, ctx: &Ctx) -> Result {
                     return Err(a.error(k, "Could not find thermo custom fix ID"));
                 };
                 let silent = match &fix.kind {
-                    FixKind::WallGran(_) | FixKind::MeshWall(_) => true,
+                    FixKind::MeshWall(_) => true,
                     FixKind::Style(s) => s.refuses_thermo(),
                     _ => false,
                 };

@@ -2,7 +2,7 @@
 //! integrator can move, and neighbour bins that fit the box.
 
 use crate::engine::error::EngineError;
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::{FixKind, WallFix};
 use crate::engine::sim::Simulation;
 pub use crate::state::limits::{
     allocation, check_ntypes, check_sphere, failed_to_allocate, memory_limit, sphere_mass,
@@ -95,10 +95,7 @@ impl Simulation {
     /// walls, meshes and particle distributions must be 1 (so a run with no particles and
     /// nothing that will insert any fails), the largest at most the box's type count.
     pub fn check_types(&self) -> Result<(), EngineError> {
-        let walls = self
-            .fixes
-            .iter()
-            .any(|f| matches!(f.kind, FixKind::WallGran(_) | FixKind::MeshWall(_)));
+        let walls = self.fixes.iter().any(|f| f.kind.wall_selection().is_some());
         if self.pair_selection.is_none() && !walls {
             return Ok(());
         }
@@ -109,8 +106,10 @@ impl Simulation {
         }
         for f in &self.fixes {
             let types: Vec<u64> = match &f.kind {
-                FixKind::WallGran(w) => vec![w.wall_type as u64],
                 FixKind::Mesh(m) => vec![m.wall_type as u64],
+                kind if kind.style_as::<WallFix>().is_some() => kind
+                    .style_as::<WallFix>()
+                    .map_or(Vec::new(), |w| vec![w.wall_type as u64]),
                 kind => kind.distribution().map_or(Vec::new(), |d| {
                     d.templates.iter().map(|t| t.atom_type as u64).collect()
                 }),

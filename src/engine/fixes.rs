@@ -21,14 +21,13 @@ pub use meshes::{move_meshes, MeshFix};
 pub use motion::{Motion, Move};
 pub use stream::StreamFix;
 pub use style::{
-    FixInit, FixStep, FixStyle, PairInit, PerAtomShape, RestoreError, SetupPass, StepInputs,
+    FixInit, FixStep, FixStyle, ForcePass, PairInit, PerAtomShape, RestoreError, SetupPass,
+    StepInputs,
 };
 pub use walls::{mesh_wall_contacts, refresh_trackers, MeshWallFix, WallFix};
 
 /// What a fix does.
 pub enum FixKind {
-    /// `fix wall/gran ... primitive`: a granular plane wall.
-    WallGran(WallFix),
     /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
     Mesh(Box<MeshFix>),
     /// `fix wall/gran ... mesh`: granular walls of triangle meshes.
@@ -39,6 +38,10 @@ pub enum FixKind {
     Multisphere(Box<crate::engine::clumps::Clumps>),
     /// A style written as a module (see [`FixStyle`]): its hooks run in each phase.
     Style(Box<dyn FixStyle>),
+    /// The fix's state is out of its slot while one of its own hooks runs with the fix
+    /// list or the whole simulation at hand: no phase runs it and its values cannot be
+    /// read. A slot holds this only during such a hook ([`lend_style`]).
+    Lent,
 }
 
 impl FixKind {
@@ -151,9 +154,8 @@ impl FixKind {
     /// another style).
     pub fn wall_selection(&self) -> Option<&crate::engine::granular::Selection> {
         match self {
-            FixKind::WallGran(w) => Some(&w.selection),
             FixKind::MeshWall(w) => Some(&w.selection),
-            _ => None,
+            _ => Some(&self.style_as::<WallFix>()?.selection),
         }
     }
 
@@ -161,9 +163,7 @@ impl FixKind {
     /// be current on every step)? Kinds not listed answer yes.
     pub fn may_read_computes(&self) -> bool {
         match self {
-            FixKind::WallGran(_) | FixKind::Mesh(_) | FixKind::MeshWall(_) | FixKind::Settings => {
-                false
-            }
+            FixKind::Mesh(_) | FixKind::MeshWall(_) | FixKind::Settings | FixKind::Lent => false,
             FixKind::Style(s) => s.reads_computes(),
             _ => true,
         }
@@ -221,6 +221,24 @@ pub fn first_wall_on<'a>(fixes: &'a [Fix], id: &str) -> Option<(usize, &'a MeshW
         let w = f.kind.mesh_wall()?;
         Some((k, w, w.meshes.iter().position(|m| m == id)?))
     })
+}
+
+/// Run `hook` on the module fix style `fixes[k]` with the fix list at hand, the fix's slot
+/// [`FixKind::Lent`] meanwhile (None: fix `k` is not a module style).
+pub fn lend_style<R>(
+    fixes: &mut [Fix],
+    k: usize,
+    hook: impl FnOnce(&mut dyn FixStyle, &mut [Fix]) -> R,
+) -> Option<R> {
+    if !matches!(fixes[k].kind, FixKind::Style(_)) {
+        return None;
+    }
+    let FixKind::Style(mut style) = std::mem::replace(&mut fixes[k].kind, FixKind::Lent) else {
+        unreachable!("checked above")
+    };
+    let result = hook(&mut *style, fixes);
+    fixes[k].kind = FixKind::Style(style);
+    Some(result)
 }
 
 /// One defined fix.
@@ -292,25 +310,24 @@ pub fn post_force(
     list: (u64, f64),
     moving_skin: bool,
 ) {
+    let pass = ForcePass {
+        update,
+        list,
+        moving_skin,
+    };
     for k in 0..fixes.len() {
         if fixes[k].kind.mesh_wall().is_some() {
             walls::mesh_wall_force(fixes, k, p, dt, update, list, moving_skin);
             continue;
         }
-        let fix = &mut fixes[k];
-        let g = fix.group;
-        match &mut fix.kind {
-            FixKind::WallGran(wall) => {
-                if let Some(model) = wall.model.as_mut() {
-                    let w = model.history_width();
-                    let k = p.extra_index(&wall.history_name, w);
-                    let mut history = std::mem::take(&mut p.extra[k].data);
-                    let store = wall.multicontact.as_ref();
-                    model.compute(p, g, &mut history, dt, update, list, store);
-                    p.extra[k].data = history;
-                }
+        let step = FixStep::plain(fixes[k].group, at.0, dt, at.1);
+        match &mut fixes[k].kind {
+            FixKind::Style(s) if s.among_fixes() => {
+                lend_style(fixes, k, |s, fixes| {
+                    s.post_force_among(fixes, p, &step, &pass)
+                });
             }
-            FixKind::Style(s) => s.post_force(p, &FixStep::plain(g, at.0, dt, at.1)),
+            FixKind::Style(s) => s.post_force(p, &step),
             _ => {}
         }
     }

@@ -8,7 +8,7 @@ use crate::commands::fix::FixDef;
 use crate::commands::sim_run::gran_models;
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::contact::ModelError;
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::{Fix, FixKind, FixStep, FixStyle, ForcePass, WallFix};
 use crate::engine::granular::Primitive;
 use crate::util::numbers::c_atoi;
 
@@ -312,7 +312,7 @@ fn wall_kind(
                 multicontact: Vec::new(),
             }))
         }
-        (_, Some((wall_type, plane))) => Ok(FixKind::WallGran(crate::engine::fixes::WallFix {
+        (_, Some((wall_type, plane))) => Ok(FixKind::Style(Box::new(WallFix {
             selection,
             plane,
             wall_type,
@@ -320,7 +320,60 @@ fn wall_kind(
             model: None,
             history_name: format!("history_{id}"),
             multicontact: None,
-        })),
+        }))),
         _ => Err(fail(2, "Need to use define style 'mesh' or 'primitive'")),
+    }
+}
+
+/// A primitive wall: its forces in `post_force` from the wall's own list of the pair list's
+/// particles, its history per particle.
+impl FixStyle for WallFix {
+    fn name(&self) -> &str {
+        "wall/gran"
+    }
+
+    fn among_fixes(&self) -> bool {
+        true
+    }
+
+    fn post_force_among(
+        &mut self,
+        _fixes: &mut [Fix],
+        p: &mut crate::engine::particles::Particles,
+        at: &FixStep,
+        pass: &ForcePass,
+    ) {
+        let Some(model) = self.model.as_mut() else {
+            return;
+        };
+        let k = p.extra_index(&self.history_name, model.history_width());
+        let mut history = std::mem::take(&mut p.extra[k].data);
+        let store = self.multicontact.as_ref();
+        model.compute(
+            p,
+            at.group,
+            &mut history,
+            at.dt,
+            pass.update,
+            pass.list,
+            store,
+        );
+        p.extra[k].data = history;
+    }
+
+    fn refuses_thermo(&self) -> bool {
+        true
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
     }
 }

@@ -160,7 +160,7 @@ pub(super) fn mesh_wall_force(
     list: (u64, f64),
     moving_skin: bool,
 ) {
-    let mut kind = std::mem::replace(&mut fixes[k].kind, FixKind::Settings);
+    let mut kind = std::mem::replace(&mut fixes[k].kind, FixKind::Lent);
     if let Some(w) = kind.mesh_wall_mut() {
         if let Some(model) = w.model.take() {
             let mesh_fix: Vec<usize> = w

@@ -87,7 +87,7 @@ fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
                     }
                 }
             }
-            FixKind::Mesh(_) => {
+            kind if kind.mesh().is_some() => {
                 if let Some(&m) = movers(id).first() {
                     return Err(a.error(0, format!("Fix mesh/surface (id {id}): illegal unfix command, may not unfix a moving mesh while a fix move is applied to it. Unfix the fix move/mesh first (id: {})", ctx.sim.fixes[m].id)));
                 }
@@ -360,7 +360,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
             .check_mesh_in_box(k)
             .map_err(|e| a.engine_error(0, e))?;
         let f = &mut ctx.sim.fixes[k];
-        if let FixKind::Mesh(m) = &mut f.kind {
+        if let Some(m) = f.kind.mesh_mut() {
             if !m.announced {
                 m.announced = true;
                 // LIGGGHTS's test of every node against the closed box (fix_mesh.cpp)

@@ -105,15 +105,7 @@ impl Simulation {
             hi = hi.max(t as u64);
         }
         for f in &self.fixes {
-            let types: Vec<u64> = match &f.kind {
-                FixKind::Mesh(m) => vec![m.wall_type as u64],
-                kind if kind.style_as::<WallFix>().is_some() => kind
-                    .style_as::<WallFix>()
-                    .map_or(Vec::new(), |w| vec![w.wall_type as u64]),
-                kind => kind.distribution().map_or(Vec::new(), |d| {
-                    d.templates.iter().map(|t| t.atom_type as u64).collect()
-                }),
-            };
+            let types = wall_or_template_types(&f.kind);
             for t in types.into_iter().filter(|&t| t > 0) {
                 lo = lo.min(t);
                 hi = hi.max(t);
@@ -237,4 +229,18 @@ mod tests {
         let e = neighbor_bins(bbox, f64::NAN).unwrap_err().to_string();
         assert!(e.starts_with("Domain too large"), "{e}");
     }
+}
+
+/// The atom types a fix brings into a run: a primitive wall's or a mesh's wall type, a
+/// particle distribution's template types (none for other fixes).
+fn wall_or_template_types(kind: &FixKind) -> Vec<u64> {
+    if let Some(w) = kind.style_as::<WallFix>() {
+        return vec![w.wall_type as u64];
+    }
+    if let Some(m) = kind.mesh() {
+        return vec![m.wall_type as u64];
+    }
+    kind.distribution().map_or(Vec::new(), |d| {
+        d.templates.iter().map(|t| t.atom_type as u64).collect()
+    })
 }

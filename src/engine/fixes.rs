@@ -28,8 +28,6 @@ pub use walls::{mesh_wall_contacts, refresh_trackers, MeshWallFix, WallFix};
 
 /// What a fix does.
 pub enum FixKind {
-    /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
-    Mesh(Box<MeshFix>),
     /// `fix wall/gran ... mesh`: granular walls of triangle meshes.
     MeshWall(MeshWallFix),
     /// A fix that only holds settings read by other parts (e.g. `property/global`).
@@ -47,18 +45,12 @@ pub enum FixKind {
 impl FixKind {
     /// The triangle mesh of a `fix mesh/surface...` (None: a fix of another style).
     pub fn mesh(&self) -> Option<&MeshFix> {
-        match self {
-            FixKind::Mesh(m) => Some(m),
-            _ => None,
-        }
+        self.style_as()
     }
 
     /// [`FixKind::mesh`], to change.
     pub fn mesh_mut(&mut self) -> Option<&mut MeshFix> {
-        match self {
-            FixKind::Mesh(m) => Some(m),
-            _ => None,
-        }
+        self.style_as_mut()
     }
 
     /// The state of a module fix style (see [`FixStyle::as_any`]) as type `T` (None: a fix
@@ -163,7 +155,7 @@ impl FixKind {
     /// be current on every step)? Kinds not listed answer yes.
     pub fn may_read_computes(&self) -> bool {
         match self {
-            FixKind::Mesh(_) | FixKind::MeshWall(_) | FixKind::Settings | FixKind::Lent => false,
+            FixKind::MeshWall(_) | FixKind::Settings | FixKind::Lent => false,
             FixKind::Style(s) => s.reads_computes(),
             _ => true,
         }

@@ -4,7 +4,7 @@ use super::insertion::{keyword, Family};
 use super::mesh_servo::{ServoArgs, KEYWORDS as SERVO_KEYWORDS};
 use crate::commands::fix::FixDef;
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::{FixKind, MeshFix};
+use crate::engine::fixes::{FixKind, FixStyle, MeshFix};
 use crate::engine::mesh::MeshSettings;
 use crate::engine::restart_fixes::MeshExtras;
 use crate::io::stl::{MeshOp, Triangle};
@@ -440,7 +440,7 @@ impl MeshArgs {
             fix.servo = Some(Box::new(s));
         }
         fix.set_surface_velocity();
-        Ok(FixKind::Mesh(Box::new(fix)))
+        Ok(FixKind::Style(Box::new(fix)))
     }
 }
 
@@ -496,4 +496,29 @@ fn exclusion_list(a: &Args, i: usize, ctx: &Ctx) -> Result<Vec<i64>, CommandErro
     }
     list.sort_unstable();
     Ok(list)
+}
+
+/// A triangle mesh: no phase of its own (walls, insertion faces, movers and the stress and
+/// servo passes read and change it by type, [`FixKind::mesh`]).
+impl FixStyle for MeshFix {
+    fn name(&self) -> &str {
+        match (&self.servo, &self.stress, self.planar) {
+            (Some(_), _, _) => "mesh/surface/stress/servo",
+            (None, Some(_), _) => "mesh/surface/stress",
+            (None, None, true) => "mesh/surface/planar",
+            (None, None, false) => "mesh/surface",
+        }
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
+    }
 }

@@ -45,7 +45,7 @@ pub const COMMANDS: &[(&str, Handler)] = &[
 
 /// `fix ID GROUP STYLE ...`: the style's own file builds the fix (see [`super::fix`]).
 fn fix(a: &Args, ctx: &mut Ctx) -> Result {
-    super::fix::define(a, ctx, super::fix::STYLES)
+    super::fix::define(a, ctx)
 }
 
 fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
@@ -71,7 +71,7 @@ fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
     };
     if let Some(k) = ctx.sim.fixes.iter().position(|f| f.id == id) {
         match &ctx.sim.fixes[k].kind {
-            FixKind::Multisphere(_) => {
+            kind if kind.style_as::<crate::engine::clumps::Clumps>().is_some() => {
                 return Err(a.error(0, format!("Fix multisphere (id {id}): this fix may not be unfixed as it holds all the internal data for multi-spheres")));
             }
             kind if kind.mover().is_some() => {
@@ -189,7 +189,6 @@ fn check_thermo_references(a: &Args, ctx: &Ctx) -> Result {
                     return Err(a.error(k, "Could not find thermo custom fix ID"));
                 };
                 let silent = match &fix.kind {
-                    FixKind::MeshWall(_) => true,
                     FixKind::Style(s) => s.refuses_thermo(),
                     _ => false,
                 };

@@ -602,23 +602,20 @@ impl Simulation {
                 lines.push(line);
                 continue;
             }
-            match &f.kind {
-                FixKind::MeshWall(w) => {
-                    let mut line = format!(
-                        "  fix {} (wall/gran mesh {}): {}",
-                        f.id,
-                        w.meshes.join(" "),
-                        composed(&w.selection)
-                    );
-                    if w.model.is_some() {
-                        line.push_str(&format!(
-                            "; history {} per contact with a triangle",
-                            doubles(w.history_width())
-                        ));
-                    }
-                    lines.push(line);
+            if let Some(w) = f.kind.mesh_wall() {
+                let mut line = format!(
+                    "  fix {} (wall/gran mesh {}): {}",
+                    f.id,
+                    w.meshes.join(" "),
+                    composed(&w.selection)
+                );
+                if w.model.is_some() {
+                    line.push_str(&format!(
+                        "; history {} per contact with a triangle",
+                        doubles(w.history_width())
+                    ));
                 }
-                _ => {}
+                lines.push(line);
             }
         }
         if lines.is_empty() {

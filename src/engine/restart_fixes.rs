@@ -210,10 +210,11 @@ impl Simulation {
                 globals.push(mesh_entry(&f.id, &f.style, m));
                 continue;
             }
+            if let Some(w) = f.kind.mesh_wall() {
+                mesh_wall_entries(w, &self.particles.id, &mut globals, &mut peratom);
+                continue;
+            }
             match &f.kind {
-                FixKind::MeshWall(w) => {
-                    mesh_wall_entries(w, &self.particles.id, &mut globals, &mut peratom)
-                }
                 FixKind::Style(s) => {
                     if let Some(state) = s.restart_state() {
                         globals.push(entry(&f.id, &f.style, state));

@@ -6,15 +6,19 @@
 
 use crate::commands::fix::FixDef;
 use crate::commands::sim_run::gran_models;
+use crate::commands::specs::{arg, kw, style, Spec, Value, VELOCITY, YES_NO};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::contact::ModelError;
-use crate::engine::fixes::{Fix, FixKind, FixStep, FixStyle, ForcePass, WallFix};
+use crate::engine::fixes::{Fix, FixStep, FixStyle, ForcePass, MeshWallFix, WallFix};
 use crate::engine::granular::Primitive;
 use crate::util::numbers::c_atoi;
 
+/// The declared signature.
+pub const SPEC: Spec = style("fix", "wall/gran", "fix ID GROUP wall/gran model M tangential T ... primitive type T xplane|yplane|zplane|xcylinder|ycylinder|zcylinder ARGS | mesh n_meshes N meshes MESH ...", &[kw("model", &[arg("M", Value::Word)], "normal contact model"), kw("tangential", &[arg("T", Value::Word)], "tangential contact model"), kw("cohesion", &[arg("C", Value::Word)], "cohesion model"), kw("rolling_friction", &[arg("R", Value::Word)], "rolling-friction model"), kw("primitive", &[arg("type T SHAPE ARGS", Value::Word)], "a plane or cylinder wall (positions in length)"), kw("mesh", &[arg("n_meshes N meshes MESH ...", Value::Id("fix"))], "walls made of meshes"), kw("shear", &[arg("x|y|z V", VELOCITY)], "the wall slides at velocity V"), kw("store_force", &[arg("yes|no", YES_NO)], "keep per-particle wall forces")], "granular walls: planes, cylinders or meshes");
+
 /// `fix ID GROUP wall/gran model ... primitive type T SHAPE ARGS | mesh n_meshes N meshes ...`
 /// with keywords and model settings after them.
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     let FixDef { id, group, .. } = *fix;
     let fail = |k: usize, m: &str| a.error(k, format!("Fix wall/gran (id {id}): {m}"));
     let (mut selection, mut k, pending) = gran_models(a, ctx, 3, "fix wall/gran")?;
@@ -287,7 +291,7 @@ fn wall_kind(
     id: &str,
     group_index: u32,
     fail: &dyn Fn(usize, &str) -> CommandError,
-) -> Result<FixKind, CommandError> {
+) -> Result<Box<dyn FixStyle>, CommandError> {
     let Wall {
         mesh_style,
         primitive,
@@ -302,7 +306,7 @@ fn wall_kind(
                     "Need to provide the number and a list of meshes by using 'n_meshes' and 'meshes'",
                 ));
             };
-            Ok(FixKind::MeshWall(crate::engine::fixes::MeshWallFix {
+            Ok(Box::new(MeshWallFix {
                 selection,
                 meshes,
                 group_index,
@@ -312,7 +316,7 @@ fn wall_kind(
                 multicontact: Vec::new(),
             }))
         }
-        (_, Some((wall_type, plane))) => Ok(FixKind::Style(Box::new(WallFix {
+        (_, Some((wall_type, plane))) => Ok(Box::new(WallFix {
             selection,
             plane,
             wall_type,
@@ -320,7 +324,7 @@ fn wall_kind(
             model: None,
             history_name: format!("history_{id}"),
             multicontact: None,
-        }))),
+        })),
         _ => Err(fail(2, "Need to use define style 'mesh' or 'primitive'")),
     }
 }
@@ -359,6 +363,44 @@ impl FixStyle for WallFix {
             store,
         );
         p.extra[k].data = history;
+    }
+
+    fn refuses_thermo(&self) -> bool {
+        true
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
+    }
+}
+
+/// Mesh walls: their forces in `post_force` from their meshes among the other fixes, each
+/// contact's force summed into its mesh's stress module.
+impl FixStyle for MeshWallFix {
+    fn name(&self) -> &str {
+        "wall/gran"
+    }
+
+    fn among_fixes(&self) -> bool {
+        true
+    }
+
+    fn post_force_among(
+        &mut self,
+        fixes: &mut [Fix],
+        p: &mut crate::engine::particles::Particles,
+        at: &FixStep,
+        pass: &ForcePass,
+    ) {
+        crate::engine::fixes::mesh_wall_force(self, fixes, p, at.dt, pass);
     }
 
     fn refuses_thermo(&self) -> bool {

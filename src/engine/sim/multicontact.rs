@@ -42,8 +42,8 @@ impl Simulation {
                     stores.push(s);
                 }
             }
-            match &mut kind {
-                FixKind::MeshWall(w) if !w.multicontact.is_empty() => {
+            match kind.mesh_wall_mut() {
+                Some(w) if !w.multicontact.is_empty() => {
                     fixes::refresh_trackers(&self.fixes, w, &self.particles, list, moving_skin);
                     for (s, tr) in w.multicontact.iter_mut().zip(&w.trackers) {
                         let p = &self.particles;
@@ -89,8 +89,8 @@ impl Simulation {
                 }
                 continue;
             }
-            match &mut f.kind {
-                FixKind::MeshWall(w) if w.selection.surface == "multicontact" => {
+            match f.kind.mesh_wall_mut() {
+                Some(w) if w.selection.surface == "multicontact" => {
                     w.multicontact = stores.by_ref().take(w.meshes.len()).collect();
                     if !update {
                         for (s, tr) in w.multicontact.iter_mut().zip(&w.trackers) {

@@ -72,15 +72,12 @@ impl Simulation {
                 }
                 continue;
             }
-            match &mut self.fixes[k].kind {
-                FixKind::MeshWall(wall) => {
-                    let model = crate::engine::mesh_wall::build(&sel, input, cutneighmax)?;
-                    wall.model = Some(model);
-                    if multicontact && wall.multicontact.len() != wall.meshes.len() {
-                        wall.multicontact = vec![granular::WallStore::new(); wall.meshes.len()];
-                    }
+            if let Some(wall) = self.fixes[k].kind.mesh_wall_mut() {
+                let model = crate::engine::mesh_wall::build(&sel, input, cutneighmax)?;
+                wall.model = Some(model);
+                if multicontact && wall.multicontact.len() != wall.meshes.len() {
+                    wall.multicontact = vec![granular::WallStore::new(); wall.meshes.len()];
                 }
-                _ => {}
             }
         }
         Ok(())

@@ -30,7 +30,7 @@ pub fn restore_fix_state(
             )
         };
         match &mut fix.kind {
-            FixKind::Mesh(_) => {} // its nodes were taken from the file when it was built
+            kind if kind.mesh().is_some() => {} // its nodes were taken from the file when it was built
             kind if kind.property_atom().is_some() => {
                 // the number of values; the builder kept the restart's per-atom values
                 let columns = kind.property_atom().map(|pa| pa.defaults.len());

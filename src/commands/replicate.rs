@@ -21,7 +21,6 @@ fn unsupported_state(ctx: &Ctx) -> Option<String> {
     }
     for f in &sim.fixes {
         let keeps_state = match &f.kind {
-            FixKind::Multisphere(_) => true,
             FixKind::Style(s) => s.keeps_per_atom_state(),
             _ => false,
         };

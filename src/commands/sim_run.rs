@@ -45,7 +45,7 @@ pub const COMMANDS: &[(&str, Handler)] = &[
 
 /// `fix ID GROUP STYLE ...`: the style's own file builds the fix (see [`super::fix`]).
 fn fix(a: &Args, ctx: &mut Ctx) -> Result {
-    super::fix::define(a, ctx, super::fix::STYLES)
+    super::fix::define(a, ctx)
 }
 
 fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
@@ -71,7 +71,7 @@ fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
     };
     if let Some(k) = ctx.sim.fixes.iter().position(|f| f.id == id) {
         match &ctx.sim.fixes[k].kind {
-            FixKind::Multisphere(_) => {
+            kind if kind.style_as::<crate::engine::clumps::Clumps>().is_some() => {
                 return Err(a.error(0, format!("Fix multisphere (id {id}): this fix may not be unfixed as it holds all the internal data for multi-spheres")));
             }
             kind if kind.mover().is_some() => {
@@ -87,7 +87,7 @@ fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
                     }
                 }
             }
-            FixKind::Mesh(_) => {
+            kind if kind.mesh().is_some() => {
                 if let Some(&m) = movers(id).first() {
                     return Err(a.error(0, format!("Fix mesh/surface (id {id}): illegal unfix command, may not unfix a moving mesh while a fix move is applied to it. Unfix the fix move/mesh first (id: {})", ctx.sim.fixes[m].id)));
                 }
@@ -189,7 +189,6 @@ fn check_thermo_references(a: &Args, ctx: &Ctx) -> Result {
                     return Err(a.error(k, "Could not find thermo custom fix ID"));
                 };
                 let silent = match &fix.kind {
-                    FixKind::WallGran(_) | FixKind::MeshWall(_) => true,
                     FixKind::Style(s) => s.refuses_thermo(),
                     _ => false,
                 };
@@ -262,26 +261,65 @@ fn thermo_modify(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
+/// The keywords of a `run` command: `upto`, `start`, `stop` and `pre` (`post` is checked and
+/// takes no effect).
+struct RunOptions {
+    upto: bool,
+    start: Option<i64>,
+    stop: Option<i64>,
+    pre: bool,
+}
+
+/// `run N [upto] [start N] [stop N] [pre yes|no] [post yes|no]`: the run's length and
+/// bounds checked as LIGGGHTS checks them, then a dry run (check mode) or the run itself.
 fn run(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(
         1..=usize::MAX,
         "run N [upto] [start N] [stop N] [pre yes|no] [post yes|no] [every M c1 c2 ...]",
     )?;
     let n = a.int(0)?;
-    let (mut upto, mut start, mut stop, mut pre) = (false, None, None, true);
+    let options = run_options(a)?;
+    if !ctx.sim.domain.exists {
+        return Err(a.error(0, "Run command before simulation box is defined"));
+    }
+    let nsteps = run_steps(a, ctx, n, &options)?;
+    super::system_init::system_init(a, ctx, None)?;
+    super::fix::check_deform_variables(ctx).map_err(|e| a.engine_error(0, e))?;
+    crate::engine::temperature::setup_counts(ctx.sim);
+    if ctx.sys.mode == Mode::Check {
+        return dry_run(a, ctx, nsteps, &options);
+    }
+    ctx.sim.ramp_bounds = (options.start, options.stop);
+    announce_meshes(a, ctx)?;
+    let out = &mut *ctx.out;
+    let mut sink = |s: &str| out.engine_text(s);
+    let mut vars = crate::lang::scope::RunVariables::new(&mut *ctx.vars, &mut *ctx.sys);
+    ctx.sim
+        .run_with_setup(nsteps, options.pre, &mut sink, &mut vars)
+        .map_err(|e| a.engine_error(0, e))
+}
+
+/// The keywords of a `run` command after N.
+fn run_options(a: &Args) -> std::result::Result<RunOptions, CommandError> {
+    let mut o = RunOptions {
+        upto: false,
+        start: None,
+        stop: None,
+        pre: true,
+    };
     let mut i = 1;
     while i < a.len() {
         match a.word(i)? {
             "upto" => {
-                upto = true;
+                o.upto = true;
                 i += 1;
             }
             "start" => {
-                start = Some(a.int(i + 1)?);
+                o.start = Some(a.int(i + 1)?);
                 i += 2;
             }
             "stop" => {
-                stop = Some(a.int(i + 1)?);
+                o.stop = Some(a.int(i + 1)?);
                 i += 2;
             }
             "post" => {
@@ -290,7 +328,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
                 i += 2;
             }
             "pre" => {
-                pre = a.word_in(i + 1, &["yes", "no"])? == "yes";
+                o.pre = a.word_in(i + 1, &["yes", "no"])? == "yes";
                 i += 2;
             }
             // the interpreter splits `every` runs into chunks before they get here
@@ -298,10 +336,18 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
             _ => return Err(a.keyword_error(i, &["upto", "start", "stop", "pre", "post", "every"])),
         }
     }
-    if !ctx.sim.domain.exists {
-        return Err(a.error(0, "Run command before simulation box is defined"));
-    }
-    let nsteps = if upto {
+    Ok(o)
+}
+
+/// The number of steps of `run N` (`upto`: up to step N), with LIGGGHTS's checks of the
+/// step count and of the `start`/`stop` bounds.
+fn run_steps(
+    a: &Args,
+    ctx: &Ctx,
+    n: i64,
+    o: &RunOptions,
+) -> std::result::Result<i64, CommandError> {
+    let nsteps = if o.upto {
         let delta = n - ctx.sim.step;
         if delta < 0 {
             return Err(a.error(0, "Invalid run command upto value"));
@@ -321,72 +367,71 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     {
         return Err(a.error(0, "Too many timesteps"));
     }
-    if start.is_some_and(|s| s < 0 || s > ctx.sim.step) {
+    if o.start.is_some_and(|s| s < 0 || s > ctx.sim.step) {
         return Err(a.error(0, "Run command start value is after start of run"));
     }
-    if stop.is_some_and(|s| s < ctx.sim.step + nsteps) {
+    if o.stop.is_some_and(|s| s < ctx.sim.step + nsteps) {
         return Err(a.error(0, "Run command stop value is before end of run"));
     }
-    super::system_init::system_init(a, ctx, None)?;
-    super::fix::check_deform_variables(ctx).map_err(|e| a.engine_error(0, e))?;
-    crate::engine::temperature::setup_counts(ctx.sim);
-    if ctx.sys.mode == Mode::Check {
-        // a dry run validates the deck but never steps: it makes LIGGGHTS's init checks, keeps
-        // the restart files the run would write, and moves the step count to the run's end
-        ctx.sim.check_run().map_err(|e| a.engine_error(0, e))?;
-        let first = ctx.sim.step;
-        let bounds = (start.unwrap_or(first), stop.unwrap_or(first + nsteps));
-        (ctx.sim.deform_ramp(first, bounds)).map_err(|e| a.engine_error(0, e))?;
-        ctx.sim.init_heat().map_err(|m| a.error(0, &m))?;
-        ctx.sim.init_liquid().map_err(|m| a.error(0, &m))?;
-        if let Some(m) = ctx.sim.new_margin() {
-            ctx.sim.margin_notes.push(m);
-        }
-        if ctx.sim.restart_output.iter().any(Option::is_some) {
-            ctx.sim.check_restart_size().map_err(|m| a.error(0, &m))?;
-        }
-        keep_periodic_restarts(ctx, nsteps);
-        ctx.sim.step += nsteps;
-        // what a run leaves behind (contact history) counts as there for later commands
-        ctx.sim.has_run = true;
-        return Ok(());
+    Ok(nsteps)
+}
+
+/// A dry run (check mode) validates the deck but never steps: it makes LIGGGHTS's init
+/// checks, keeps the restart files the run would write, and moves the step count to the
+/// run's end.
+fn dry_run(a: &Args, ctx: &mut Ctx, nsteps: i64, o: &RunOptions) -> Result {
+    ctx.sim.check_run().map_err(|e| a.engine_error(0, e))?;
+    let first = ctx.sim.step;
+    let bounds = (o.start.unwrap_or(first), o.stop.unwrap_or(first + nsteps));
+    (ctx.sim.deform_ramp(first, bounds)).map_err(|e| a.engine_error(0, e))?;
+    ctx.sim.init_heat().map_err(|m| a.error(0, &m))?;
+    ctx.sim.init_liquid().map_err(|m| a.error(0, &m))?;
+    if let Some(m) = ctx.sim.new_margin() {
+        ctx.sim.margin_notes.push(m);
     }
-    ctx.sim.ramp_bounds = (start, stop);
-    // LIGGGHTS's line of each mesh's first setup (screen only)
+    if ctx.sim.restart_output.iter().any(Option::is_some) {
+        ctx.sim.check_restart_size().map_err(|m| a.error(0, &m))?;
+    }
+    keep_periodic_restarts(ctx, nsteps);
+    ctx.sim.step += nsteps;
+    // what a run leaves behind (contact history) counts as there for later commands
+    ctx.sim.has_run = true;
+    Ok(())
+}
+
+/// LIGGGHTS's line of each mesh's first setup (screen only), after its check that the mesh
+/// lies in the box (a mesh that lost triangles to the box stops the run before its lines).
+fn announce_meshes(a: &Args, ctx: &mut Ctx) -> Result {
     let (lo, hi) = (ctx.sim.domain.lo, ctx.sim.domain.hi);
     for k in 0..ctx.sim.fixes.len() {
-        // a mesh that lost triangles to the box stops the run before its lines
         ctx.sim
             .check_mesh_in_box(k)
             .map_err(|e| a.engine_error(0, e))?;
         let f = &mut ctx.sim.fixes[k];
-        if let FixKind::Mesh(m) = &mut f.kind {
-            if !m.announced {
-                m.announced = true;
-                // LIGGGHTS's test of every node against the closed box (fix_mesh.cpp)
-                let outside = m
-                    .mesh
-                    .nodes
-                    .iter()
-                    .flatten()
-                    .any(|p| (0..3).any(|d| !(p[d] >= lo[d] && p[d] <= hi[d])));
-                if outside {
-                    ctx.out.both("WARNING: Not all nodes of fix mesh inside simulation box, elements will be deleted or wrapped around periodic boundary conditions (./src/fix_mesh.cpp:531)\n");
-                }
-                ctx.out.screen(&format!(
-                    "Import and parallelization of mesh {} containing {} triangle(s) successful\n",
-                    f.id,
-                    m.mesh.len()
-                ));
-            }
+        let Some(m) = f.kind.mesh_mut() else {
+            continue;
+        };
+        if m.announced {
+            continue;
         }
+        m.announced = true;
+        // LIGGGHTS's test of every node against the closed box (fix_mesh.cpp)
+        let outside = m
+            .mesh
+            .nodes
+            .iter()
+            .flatten()
+            .any(|p| (0..3).any(|d| !(p[d] >= lo[d] && p[d] <= hi[d])));
+        if outside {
+            ctx.out.both("WARNING: Not all nodes of fix mesh inside simulation box, elements will be deleted or wrapped around periodic boundary conditions (./src/fix_mesh.cpp:531)\n");
+        }
+        ctx.out.screen(&format!(
+            "Import and parallelization of mesh {} containing {} triangle(s) successful\n",
+            f.id,
+            m.mesh.len()
+        ));
     }
-    let out = &mut *ctx.out;
-    let mut sink = |s: &str| out.engine_text(s);
-    let mut vars = crate::lang::scope::RunVariables::new(&mut *ctx.vars, &mut *ctx.sys);
-    ctx.sim
-        .run_with_setup(nsteps, pre, &mut sink, &mut vars)
-        .map_err(|e| a.engine_error(0, e))
+    Ok(())
 }
 
 /// Check mode: the files `restart N ...` would write during a run of `nsteps` from the current

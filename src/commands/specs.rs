@@ -215,13 +215,6 @@ pub const SPECS: &[Spec] = &[
         kw("element", &[arg("NAME ...", Value::Word)], "element names per type"),
         kw("binary", &[arg("yes|no", YES_NO)], "custom/vtk: binary legacy files, base64 arrays in XML files"),
     ]),
-    style("fix", "mesh/surface", "fix ID GROUP mesh/surface file FILE type T", &[kw("scale", &[arg("S", NUMBER)], "scale the mesh"), kw("move", &[arg("DX DY DZ", LENGTH)], "translate the mesh"), kw("rotate", &[arg("axis X Y Z angle A", Value::Real("angle in degrees"))], "rotate the mesh"), kw("curvature", &[arg("C", NUMBER)], "edge curvature tolerance"), kw("surface_vel", &[arg("VX VY VZ", VELOCITY)], "conveyor velocity of the surface"), kw("verbose", &[arg("yes|no", YES_NO)], "report mesh checks"), kw("element_exclusion_list", &[arg("read|write FILE", Value::OneOf(&["read", "write"]))], "leave out the triangles listed in FILE (ASCII STL: the lines of their facet keywords; binary: their positions from 1), or create FILE for the elements the mesh checks remove")], "a triangle mesh from an STL or VTK file"),
-    style("fix", "mesh/surface/planar", "fix ID GROUP mesh/surface/planar file FILE type T", &[], "a planar triangle mesh"),
-    style("fix", "mesh/surface/stress", "fix ID GROUP mesh/surface/stress file FILE type T", &[kw("stress", &[arg("on|off", ON_OFF)], "sum forces and torques on the mesh"), kw("wear", &[arg("finnie|off", Value::OneOf(&["finnie", "off"]))], "Finnie wear of the mesh")], "a triangle mesh that sums the forces on it"),
-    style("fix", "mesh/surface/stress/servo", "fix ID GROUP mesh/surface/stress/servo file FILE type T ... com X Y Z ctrlPV force axis X Y Z target_val F vel_max V", &[kw("com", &[arg("X Y Z", LENGTH)], "centre of mass of the wall"), kw("ctrlPV", &[arg("force", Value::OneOf(&["force", "torque"]))], "the controlled value (torque: not supported yet)"), kw("axis", &[arg("X Y Z", NUMBER)], "direction of the motion"), kw("target_val", &[arg("F", Value::Real("force"))], "target force (negative: towards -axis)"), kw("vel_max", &[arg("V", VELOCITY)], "largest wall speed"), kw("kp", &[arg("K", NUMBER)], "proportional gain"), kw("ki", &[arg("K", NUMBER)], "integral gain"), kw("kd", &[arg("K", NUMBER)], "derivative gain"), kw("mode", &[arg("auto", Value::OneOf(&["auto"]))], "gain-scheduled proportional controller"), kw("ratio", &[arg("R", NUMBER)], "auto mode speed near particles, in smallest radii per step")], "a mesh wall a servo drives to a target force"),
-    style("fix", "multisphere", "fix ID GROUP multisphere", &[], "rigid-body integration of the multisphere clumps (centre of mass and orientation)"),
-    style("fix", "property/global", "fix ID GROUP property/global NAME scalar|vector|peratomtype|peratomtypepair N VALUES ...", &[], "material properties (youngsModulus, poissonsRatio, coefficientRestitution, coefficientFriction ...)"),
-    style("fix", "wall/gran", "fix ID GROUP wall/gran model M tangential T ... primitive type T xplane|yplane|zplane|xcylinder|ycylinder|zcylinder ARGS | mesh n_meshes N meshes MESH ...", &[kw("model", &[arg("M", Value::Word)], "normal contact model"), kw("tangential", &[arg("T", Value::Word)], "tangential contact model"), kw("cohesion", &[arg("C", Value::Word)], "cohesion model"), kw("rolling_friction", &[arg("R", Value::Word)], "rolling-friction model"), kw("primitive", &[arg("type T SHAPE ARGS", Value::Word)], "a plane or cylinder wall (positions in length)"), kw("mesh", &[arg("n_meshes N meshes MESH ...", Value::Id("fix"))], "walls made of meshes"), kw("shear", &[arg("x|y|z V", VELOCITY)], "the wall slides at velocity V"), kw("store_force", &[arg("yes|no", YES_NO)], "keep per-particle wall forces")], "granular walls: planes, cylinders or meshes"),
     with(command("fix_modify ID KEYWORD VALUE ...", "change the settings every fix shares"), &[
         kw("energy", &[arg("yes|no", YES_NO)], "the fix's energy in compute pe (granular fixes add none; yes on gravity or addforce: not supported yet)"),
         kw("servo/integrate", &[arg("start|stop", Value::OneOf(&["start", "stop"]))], "mesh/surface/stress/servo: the servo moves or stays (without servo/: LIGGGHTS's deprecation warning)"),
@@ -323,16 +316,10 @@ pub const SPECS: &[Spec] = &[
 ];
 
 /// Every declared spec: [`SPECS`], with the module fix styles' rows
-/// ([`crate::commands::fix::TABLE`]) after the last fix style there, the compute styles'
+/// ([`crate::commands::fix::TABLE`]) before `fix_modify`, the compute styles'
 /// rows ([`crate::commands::compute::TABLE`]) before `compute_modify` and the dump
 /// styles' rows ([`crate::commands::dump::TABLE`]) before `dump_modify`.
 pub fn all() -> impl Iterator<Item = &'static Spec> {
-    let after = |command: &str| {
-        SPECS
-            .iter()
-            .rposition(|s| s.command == command)
-            .map_or(SPECS.len(), |k| k + 1)
-    };
     let computes = SPECS
         .iter()
         .position(|s| s.command == "compute_modify")
@@ -341,7 +328,10 @@ pub fn all() -> impl Iterator<Item = &'static Spec> {
         .iter()
         .position(|s| s.command == "dump_modify")
         .unwrap_or(SPECS.len());
-    let fixes = after("fix");
+    let fixes = SPECS
+        .iter()
+        .position(|s| s.command == "fix_modify")
+        .unwrap_or(SPECS.len());
     let fix_modules = crate::commands::fix::TABLE.specs();
     let compute_modules = crate::commands::compute::TABLE.specs();
     let dump_modules = crate::commands::dump::TABLE.specs();

@@ -406,7 +406,6 @@ impl Simulation {
                     Some(part) => part,
                     None => continue,
                 },
-                FixKind::Multisphere(_) => "multisphere clumps (fix multisphere)",
                 _ => continue,
             };
             if !parts.contains(&part) {

@@ -2,7 +2,7 @@
 //! integrator can move, and neighbour bins that fit the box.
 
 use crate::engine::error::EngineError;
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::{FixKind, WallFix};
 use crate::engine::sim::Simulation;
 pub use crate::state::limits::{
     allocation, check_ntypes, check_sphere, failed_to_allocate, memory_limit, sphere_mass,
@@ -95,10 +95,7 @@ impl Simulation {
     /// walls, meshes and particle distributions must be 1 (so a run with no particles and
     /// nothing that will insert any fails), the largest at most the box's type count.
     pub fn check_types(&self) -> Result<(), EngineError> {
-        let walls = self
-            .fixes
-            .iter()
-            .any(|f| matches!(f.kind, FixKind::WallGran(_) | FixKind::MeshWall(_)));
+        let walls = self.fixes.iter().any(|f| f.kind.wall_selection().is_some());
         if self.pair_selection.is_none() && !walls {
             return Ok(());
         }
@@ -108,13 +105,7 @@ impl Simulation {
             hi = hi.max(t as u64);
         }
         for f in &self.fixes {
-            let types: Vec<u64> = match &f.kind {
-                FixKind::WallGran(w) => vec![w.wall_type as u64],
-                FixKind::Mesh(m) => vec![m.wall_type as u64],
-                kind => kind.distribution().map_or(Vec::new(), |d| {
-                    d.templates.iter().map(|t| t.atom_type as u64).collect()
-                }),
-            };
+            let types = wall_or_template_types(&f.kind);
             for t in types.into_iter().filter(|&t| t > 0) {
                 lo = lo.min(t);
                 hi = hi.max(t);
@@ -238,4 +229,18 @@ mod tests {
         let e = neighbor_bins(bbox, f64::NAN).unwrap_err().to_string();
         assert!(e.starts_with("Domain too large"), "{e}");
     }
+}
+
+/// The atom types a fix brings into a run: a primitive wall's or a mesh's wall type, a
+/// particle distribution's template types (none for other fixes).
+fn wall_or_template_types(kind: &FixKind) -> Vec<u64> {
+    if let Some(w) = kind.style_as::<WallFix>() {
+        return vec![w.wall_type as u64];
+    }
+    if let Some(m) = kind.mesh() {
+        return vec![m.wall_type as u64];
+    }
+    kind.distribution().map_or(Vec::new(), |d| {
+        d.templates.iter().map(|t| t.atom_type as u64).collect()
+    })
 }

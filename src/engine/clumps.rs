@@ -345,19 +345,13 @@ impl Clumps {
 /// The simulation's side of `fix multisphere`: the calls in LIGGGHTS's phases.
 /// The bodies of the `fix multisphere` among `fixes`, if there is one.
 fn clumps_in(fixes: &mut [crate::engine::fixes::Fix]) -> Option<&mut Clumps> {
-    fixes.iter_mut().find_map(|f| match &mut f.kind {
-        crate::engine::fixes::FixKind::Multisphere(ms) => Some(&mut **ms),
-        _ => None,
-    })
+    fixes.iter_mut().find_map(|f| f.kind.style_as_mut())
 }
 
 impl crate::engine::sim::Simulation {
     /// The `fix multisphere` state, if the deck has one.
     pub fn clumps(&self) -> Option<&Clumps> {
-        self.fixes.iter().find_map(|f| match &f.kind {
-            crate::engine::fixes::FixKind::Multisphere(ms) => Some(&**ms),
-            _ => None,
-        })
+        self.fixes.iter().find_map(|f| f.kind.style_as())
     }
 
     pub(crate) fn clumps_mut(&mut self) -> Option<&mut Clumps> {
@@ -373,10 +367,7 @@ impl crate::engine::sim::Simulation {
 
     /// The setup of `fix multisphere`: the bodies' forces from the setup force evaluation.
     pub(crate) fn setup_clump_forces(&mut self) {
-        let gravity = self.fixes.iter().find_map(|f| match &f.kind {
-            crate::engine::fixes::FixKind::Style(s) => s.acceleration(),
-            _ => None,
-        });
+        let gravity = crate::engine::fixes::gravity(&self.fixes);
         if let Some(ms) = clumps_in(&mut self.fixes) {
             ms.calc_force(&self.particles, &self.domain, gravity);
         }

@@ -418,7 +418,6 @@ impl crate::engine::sim::Simulation {
 
     /// LIGGGHTS's init checks of `fix deform` (every run and `check`).
     pub fn check_deform(&self) -> Result<(), EngineError> {
-        use crate::engine::fixes::FixKind;
         let deforms = self
             .fixes
             .iter()
@@ -429,7 +428,7 @@ impl crate::engine::sim::Simulation {
         if self
             .fixes
             .iter()
-            .any(|f| matches!(f.kind, FixKind::Multisphere(_)))
+            .any(|f| f.kind.style_as::<crate::engine::clumps::Clumps>().is_some())
         {
             return Err(format!(
                 "Fix deform (id {}): fix deform and fix multisphere are incompatible",

@@ -21,41 +21,30 @@ pub use meshes::{move_meshes, MeshFix};
 pub use motion::{Motion, Move};
 pub use stream::StreamFix;
 pub use style::{
-    FixInit, FixStep, FixStyle, PairInit, PerAtomShape, RestoreError, SetupPass, StepInputs,
+    FixInit, FixStep, FixStyle, ForcePass, PairInit, PerAtomShape, RestoreError, SetupPass,
+    StepInputs,
 };
-pub use walls::{mesh_wall_contacts, refresh_trackers, MeshWallFix, WallFix};
+pub use walls::{mesh_wall_contacts, mesh_wall_force, refresh_trackers, MeshWallFix, WallFix};
 
 /// What a fix does.
 pub enum FixKind {
-    /// `fix wall/gran ... primitive`: a granular plane wall.
-    WallGran(WallFix),
-    /// `fix mesh/surface`: a triangle mesh (walls and insertion faces use it).
-    Mesh(Box<MeshFix>),
-    /// `fix wall/gran ... mesh`: granular walls of triangle meshes.
-    MeshWall(MeshWallFix),
-    /// A fix that only holds settings read by other parts (e.g. `property/global`).
-    Settings,
-    /// `fix multisphere`: the rigid clumps and their integration.
-    Multisphere(Box<crate::engine::clumps::Clumps>),
     /// A style written as a module (see [`FixStyle`]): its hooks run in each phase.
     Style(Box<dyn FixStyle>),
+    /// The fix's state is out of its slot while one of its own hooks runs with the fix
+    /// list or the whole simulation at hand: no phase runs it and its values cannot be
+    /// read. A slot holds this only during such a hook ([`lend_style`]).
+    Lent,
 }
 
 impl FixKind {
     /// The triangle mesh of a `fix mesh/surface...` (None: a fix of another style).
     pub fn mesh(&self) -> Option<&MeshFix> {
-        match self {
-            FixKind::Mesh(m) => Some(m),
-            _ => None,
-        }
+        self.style_as()
     }
 
     /// [`FixKind::mesh`], to change.
     pub fn mesh_mut(&mut self) -> Option<&mut MeshFix> {
-        match self {
-            FixKind::Mesh(m) => Some(m),
-            _ => None,
-        }
+        self.style_as_mut()
     }
 
     /// The state of a module fix style (see [`FixStyle::as_any`]) as type `T` (None: a fix
@@ -133,39 +122,29 @@ impl FixKind {
 
     /// The granular mesh walls of a `fix wall/gran ... mesh` (None: a fix of another style).
     pub fn mesh_wall(&self) -> Option<&MeshWallFix> {
-        match self {
-            FixKind::MeshWall(w) => Some(w),
-            _ => None,
-        }
+        self.style_as()
     }
 
     /// [`FixKind::mesh_wall`], to change.
     pub fn mesh_wall_mut(&mut self) -> Option<&mut MeshWallFix> {
-        match self {
-            FixKind::MeshWall(w) => Some(w),
-            _ => None,
-        }
+        self.style_as_mut()
     }
 
     /// The contact model a `fix wall/gran` names, of primitive or mesh walls (None: a fix of
     /// another style).
     pub fn wall_selection(&self) -> Option<&crate::engine::granular::Selection> {
-        match self {
-            FixKind::WallGran(w) => Some(&w.selection),
-            FixKind::MeshWall(w) => Some(&w.selection),
-            _ => None,
+        if let Some(w) = self.mesh_wall() {
+            return Some(&w.selection);
         }
+        Some(&self.style_as::<WallFix>()?.selection)
     }
 
     /// Can the fix evaluate variables or computes inside a step (so per-atom computes must
-    /// be current on every step)? Kinds not listed answer yes.
+    /// be current on every step)? A lent slot answers no.
     pub fn may_read_computes(&self) -> bool {
         match self {
-            FixKind::WallGran(_) | FixKind::Mesh(_) | FixKind::MeshWall(_) | FixKind::Settings => {
-                false
-            }
             FixKind::Style(s) => s.reads_computes(),
-            _ => true,
+            FixKind::Lent => false,
         }
     }
 }
@@ -223,6 +202,24 @@ pub fn first_wall_on<'a>(fixes: &'a [Fix], id: &str) -> Option<(usize, &'a MeshW
     })
 }
 
+/// Run `hook` on the module fix style `fixes[k]` with the fix list at hand, the fix's slot
+/// [`FixKind::Lent`] meanwhile (None: fix `k` is not a module style).
+pub fn lend_style<R>(
+    fixes: &mut [Fix],
+    k: usize,
+    hook: impl FnOnce(&mut dyn FixStyle, &mut [Fix]) -> R,
+) -> Option<R> {
+    if !matches!(fixes[k].kind, FixKind::Style(_)) {
+        return None;
+    }
+    let FixKind::Style(mut style) = std::mem::replace(&mut fixes[k].kind, FixKind::Lent) else {
+        unreachable!("checked above")
+    };
+    let result = hook(&mut *style, fixes);
+    fixes[k].kind = FixKind::Style(style);
+    Some(result)
+}
+
 /// One defined fix.
 pub struct Fix {
     /// The fix ID.
@@ -245,14 +242,15 @@ pub fn initial_integrate(
     dt: f64,
     domain: &Domain,
 ) {
-    // clumps from an insertion face move at its velocity until released
-    let has_stream = fixes.iter().any(|f| f.kind.stream().is_some());
-    for fix in fixes {
-        match &mut fix.kind {
-            FixKind::Multisphere(ms) => ms.initial_integrate(p, dt, domain, step, has_stream),
-            FixKind::Style(s) => {
-                s.initial_integrate(p, &FixStep::plain(fix.group, step, dt, domain))
+    for k in 0..fixes.len() {
+        let at = FixStep::plain(fixes[k].group, step, dt, domain);
+        match &mut fixes[k].kind {
+            FixKind::Style(s) if s.among_fixes() => {
+                lend_style(fixes, k, |s, fixes| {
+                    s.initial_integrate_among(fixes, p, &at)
+                });
             }
+            FixKind::Style(s) => s.initial_integrate(p, &at),
             _ => {}
         }
     }
@@ -292,25 +290,20 @@ pub fn post_force(
     list: (u64, f64),
     moving_skin: bool,
 ) {
+    let pass = ForcePass {
+        update,
+        list,
+        moving_skin,
+    };
     for k in 0..fixes.len() {
-        if fixes[k].kind.mesh_wall().is_some() {
-            walls::mesh_wall_force(fixes, k, p, dt, update, list, moving_skin);
-            continue;
-        }
-        let fix = &mut fixes[k];
-        let g = fix.group;
-        match &mut fix.kind {
-            FixKind::WallGran(wall) => {
-                if let Some(model) = wall.model.as_mut() {
-                    let w = model.history_width();
-                    let k = p.extra_index(&wall.history_name, w);
-                    let mut history = std::mem::take(&mut p.extra[k].data);
-                    let store = wall.multicontact.as_ref();
-                    model.compute(p, g, &mut history, dt, update, list, store);
-                    p.extra[k].data = history;
-                }
+        let step = FixStep::plain(fixes[k].group, at.0, dt, at.1);
+        match &mut fixes[k].kind {
+            FixKind::Style(s) if s.among_fixes() => {
+                lend_style(fixes, k, |s, fixes| {
+                    s.post_force_among(fixes, p, &step, &pass)
+                });
             }
-            FixKind::Style(s) => s.post_force(p, &FixStep::plain(g, at.0, dt, at.1)),
+            FixKind::Style(s) => s.post_force(p, &step),
             _ => {}
         }
     }
@@ -318,21 +311,25 @@ pub fn post_force(
 
 /// Run the `final_integrate` phase of all fixes for `step`.
 pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, step: i64, dt: f64, domain: &Domain) {
-    // the clumps' weight comes from the (single) gravity fix
-    let gravity = fixes.iter().find_map(|f| match &f.kind {
-        FixKind::Style(s) => s.acceleration(),
-        _ => None,
-    });
-    for fix in fixes {
-        match &mut fix.kind {
-            FixKind::Multisphere(ms) => {
-                ms.calc_force(p, domain, gravity);
-                ms.final_integrate(p, dt);
+    for k in 0..fixes.len() {
+        let at = FixStep::plain(fixes[k].group, step, dt, domain);
+        match &mut fixes[k].kind {
+            FixKind::Style(s) if s.among_fixes() => {
+                lend_style(fixes, k, |s, fixes| s.final_integrate_among(fixes, p, &at));
             }
-            FixKind::Style(s) => s.final_integrate(p, &FixStep::plain(fix.group, step, dt, domain)),
+            FixKind::Style(s) => s.final_integrate(p, &at),
             _ => {}
         }
     }
+}
+
+/// The uniform acceleration of the first fix among `fixes` that adds one (`fix gravity`;
+/// length/time^2), which clumps take as their weight.
+pub fn gravity(fixes: &[Fix]) -> Option<[f64; 3]> {
+    fixes.iter().find_map(|f| match &f.kind {
+        FixKind::Style(s) => s.acceleration(),
+        _ => None,
+    })
 }
 
 /// Group bits of all frozen particles (contacts treat them as infinitely heavy).

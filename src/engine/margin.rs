@@ -4,7 +4,7 @@
 //! error (the screen and log keep LIGGGHTS's lines). LIGGGHTS says nothing of this unless the
 //! deck asks (`fix check/timestep/gran`).
 
-use crate::engine::fixes::{FixKind, Motion, Move};
+use crate::engine::fixes::{FixKind, Motion, Move, WallFix};
 use crate::engine::insert::Velocity;
 use crate::engine::sim::Simulation;
 use std::f64::consts::PI;
@@ -422,29 +422,26 @@ impl Simulation {
                 );
                 continue;
             }
-            match &f.kind {
-                FixKind::Style(s) => {
-                    // free fall under `fix gravity`
-                    let Some(acc) = s.acceleration() else {
-                        continue;
-                    };
-                    let a = norm(acc);
-                    if a > 0.0 {
-                        let h: f64 = (0..3)
-                            .map(|d| acc[d].abs() / a * self.domain.length(d))
-                            .sum();
-                        offer(
-                            (2.0 * a * h).sqrt(),
-                            format!("free fall over the box height ({} at {})", g(h), g(a)),
-                        );
-                    }
-                }
-                FixKind::WallGran(w) => {
-                    if let Some((_, v)) = w.shear {
-                        offer(v.abs(), format!("fix {} (wall shear)", f.id));
-                    }
-                }
-                _ => {}
+            if let Some((_, v)) = f.kind.style_as::<WallFix>().and_then(|w| w.shear) {
+                offer(v.abs(), format!("fix {} (wall shear)", f.id));
+                continue;
+            }
+            // free fall under `fix gravity`
+            let FixKind::Style(s) = &f.kind else {
+                continue;
+            };
+            let Some(acc) = s.acceleration() else {
+                continue;
+            };
+            let a = norm(acc);
+            if a > 0.0 {
+                let h: f64 = (0..3)
+                    .map(|d| acc[d].abs() / a * self.domain.length(d))
+                    .sum();
+                offer(
+                    (2.0 * a * h).sqrt(),
+                    format!("free fall over the box height ({} at {})", g(h), g(a)),
+                );
             }
         }
         best
@@ -590,37 +587,35 @@ impl Simulation {
             lines.push(line);
         }
         for f in &self.fixes {
-            match &f.kind {
-                FixKind::WallGran(w) => {
-                    let mut line = format!(
-                        "  fix {} (wall/gran primitive): {}",
-                        f.id,
-                        composed(&w.selection)
-                    );
-                    if let Some(m) = &w.model {
-                        line.push_str(&format!(
-                            "; history {} per particle",
-                            doubles(m.history_width())
-                        ));
-                    }
-                    lines.push(line);
+            if let Some(w) = f.kind.style_as::<WallFix>() {
+                let mut line = format!(
+                    "  fix {} (wall/gran primitive): {}",
+                    f.id,
+                    composed(&w.selection)
+                );
+                if let Some(m) = &w.model {
+                    line.push_str(&format!(
+                        "; history {} per particle",
+                        doubles(m.history_width())
+                    ));
                 }
-                FixKind::MeshWall(w) => {
-                    let mut line = format!(
-                        "  fix {} (wall/gran mesh {}): {}",
-                        f.id,
-                        w.meshes.join(" "),
-                        composed(&w.selection)
-                    );
-                    if w.model.is_some() {
-                        line.push_str(&format!(
-                            "; history {} per contact with a triangle",
-                            doubles(w.history_width())
-                        ));
-                    }
-                    lines.push(line);
+                lines.push(line);
+                continue;
+            }
+            if let Some(w) = f.kind.mesh_wall() {
+                let mut line = format!(
+                    "  fix {} (wall/gran mesh {}): {}",
+                    f.id,
+                    w.meshes.join(" "),
+                    composed(&w.selection)
+                );
+                if w.model.is_some() {
+                    line.push_str(&format!(
+                        "; history {} per contact with a triangle",
+                        doubles(w.history_width())
+                    ));
                 }
-                _ => {}
+                lines.push(line);
             }
         }
         if lines.is_empty() {

@@ -481,7 +481,7 @@ impl crate::engine::sim::Simulation {
             if self.fixes[k].kind.style_as::<Massflow>().is_none() {
                 continue;
             }
-            let mut kind = std::mem::replace(&mut self.fixes[k].kind, FixKind::Settings);
+            let mut kind = std::mem::replace(&mut self.fixes[k].kind, FixKind::Lent);
             let mut result: Result<(), EngineError> = Ok(());
             if let Some(mf) = kind.style_as_mut::<Massflow>() {
                 let moving = moves_mesh(&self.fixes, &mf.mesh);
@@ -517,7 +517,7 @@ impl crate::engine::sim::Simulation {
             if self.fixes[k].kind.style_as::<Massflow>().is_none() {
                 continue;
             }
-            let mut kind = std::mem::replace(&mut self.fixes[k].kind, FixKind::Settings);
+            let mut kind = std::mem::replace(&mut self.fixes[k].kind, FixKind::Lent);
             let mut result = Ok(());
             if let Some(mf) = kind.style_as_mut::<Massflow>() {
                 let moving = moves_mesh(&self.fixes, &mf.mesh);

@@ -7,10 +7,6 @@ use crate::engine::particles::Particles;
 /// Moment-of-inertia prefactor of a disc (I = 0.5 m r^2), as LIGGGHTS's nve/sphere uses it in 2d.
 pub const DISC_INERTIA: f64 = 0.5;
 
-/// The fix styles regolith runs in 2d (the others, insertion among them, are refused there);
-/// a module fix style says so in its row instead.
-pub const PLANAR_FIXES: &[&str] = &["property/global", "wall/gran"];
-
 /// Mass of a disc of radius `r` (length) and density `rho` (mass per area), in LIGGGHTS's
 /// operation order.
 pub fn disc_mass(r: f64, rho: f64) -> f64 {

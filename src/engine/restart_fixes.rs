@@ -206,25 +206,15 @@ impl Simulation {
         let mut peratom = Vec::new();
         let mut release_written = false;
         for f in &self.fixes {
+            if let Some(m) = f.kind.mesh() {
+                globals.push(mesh_entry(&f.id, &f.style, m));
+                continue;
+            }
+            if let Some(w) = f.kind.mesh_wall() {
+                mesh_wall_entries(w, &self.particles.id, &mut globals, &mut peratom);
+                continue;
+            }
             match &f.kind {
-                FixKind::Mesh(m) => {
-                    // the stress module keeps each triangle's wear (when on) and p_ref
-                    let extras = match &m.stress {
-                        Some(st) => MeshExtras {
-                            element: if st.wear_on {
-                                st.wear.iter().map(|w| vec![*w]).collect()
-                            } else {
-                                Vec::new()
-                            },
-                            global: st.reference.to_vec(),
-                        },
-                        None => MeshExtras::default(),
-                    };
-                    globals.push(entry(&f.id, &f.style, mesh_state(m.triangles(), &extras)))
-                }
-                FixKind::MeshWall(w) => {
-                    mesh_wall_entries(w, &self.particles.id, &mut globals, &mut peratom)
-                }
                 FixKind::Style(s) => {
                     if let Some(state) = s.restart_state() {
                         globals.push(entry(&f.id, &f.style, state));
@@ -401,4 +391,21 @@ mod tests {
         assert!(Release::from_row(1092, &row, 120437).is_none());
         assert!(Release::from_row(7, &[0.0; RELEASE_WIDTH], 5).is_none());
     }
+}
+
+/// A mesh's global restart entry: its nodes, and what its stress module keeps (each
+/// triangle's wear when on, and the reference point p_ref).
+fn mesh_entry(id: &str, style: &str, m: &crate::engine::fixes::MeshFix) -> GlobalFix {
+    let extras = match &m.stress {
+        Some(st) => MeshExtras {
+            element: if st.wear_on {
+                st.wear.iter().map(|w| vec![*w]).collect()
+            } else {
+                Vec::new()
+            },
+            global: st.reference.to_vec(),
+        },
+        None => MeshExtras::default(),
+    };
+    entry(id, style, mesh_state(m.triangles(), &extras))
 }

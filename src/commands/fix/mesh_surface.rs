@@ -3,16 +3,54 @@
 use super::insertion::{keyword, Family};
 use super::mesh_servo::{ServoArgs, KEYWORDS as SERVO_KEYWORDS};
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{
+    arg, kw, style, Spec, Value, LENGTH, NUMBER, ON_OFF, VELOCITY, YES_NO,
+};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::{FixKind, MeshFix};
+use crate::engine::fixes::{FixStyle, MeshFix};
 use crate::engine::mesh::MeshSettings;
 use crate::engine::restart_fixes::MeshExtras;
 use crate::io::stl::{MeshOp, Triangle};
 
+/// The declared signature.
+pub const SPEC: Spec = style("fix", "mesh/surface", "fix ID GROUP mesh/surface file FILE type T", &[kw("scale", &[arg("S", NUMBER)], "scale the mesh"), kw("move", &[arg("DX DY DZ", LENGTH)], "translate the mesh"), kw("rotate", &[arg("axis X Y Z angle A", Value::Real("angle in degrees"))], "rotate the mesh"), kw("curvature", &[arg("C", NUMBER)], "edge curvature tolerance"), kw("surface_vel", &[arg("VX VY VZ", VELOCITY)], "conveyor velocity of the surface"), kw("verbose", &[arg("yes|no", YES_NO)], "report mesh checks"), kw("element_exclusion_list", &[arg("read|write FILE", Value::OneOf(&["read", "write"]))], "leave out the triangles listed in FILE (ASCII STL: the lines of their facet keywords; binary: their positions from 1), or create FILE for the elements the mesh checks remove")], "a triangle mesh from an STL or VTK file");
+
+/// The declared signature of `mesh/surface/planar`.
+pub const PLANAR: Spec = style(
+    "fix",
+    "mesh/surface/planar",
+    "fix ID GROUP mesh/surface/planar file FILE type T",
+    &[],
+    "a planar triangle mesh",
+);
+
+/// The declared signature of `mesh/surface/stress`.
+pub const STRESS: Spec = style(
+    "fix",
+    "mesh/surface/stress",
+    "fix ID GROUP mesh/surface/stress file FILE type T",
+    &[
+        kw(
+            "stress",
+            &[arg("on|off", ON_OFF)],
+            "sum forces and torques on the mesh",
+        ),
+        kw(
+            "wear",
+            &[arg("finnie|off", Value::OneOf(&["finnie", "off"]))],
+            "Finnie wear of the mesh",
+        ),
+    ],
+    "a triangle mesh that sums the forces on it",
+);
+
+/// The declared signature of `mesh/surface/stress/servo`.
+pub const SERVO: Spec = style("fix", "mesh/surface/stress/servo", "fix ID GROUP mesh/surface/stress/servo file FILE type T ... com X Y Z ctrlPV force axis X Y Z target_val F vel_max V", &[kw("com", &[arg("X Y Z", LENGTH)], "centre of mass of the wall"), kw("ctrlPV", &[arg("force", Value::OneOf(&["force", "torque"]))], "the controlled value (torque: not supported yet)"), kw("axis", &[arg("X Y Z", NUMBER)], "direction of the motion"), kw("target_val", &[arg("F", Value::Real("force"))], "target force (negative: towards -axis)"), kw("vel_max", &[arg("V", VELOCITY)], "largest wall speed"), kw("kp", &[arg("K", NUMBER)], "proportional gain"), kw("ki", &[arg("K", NUMBER)], "integral gain"), kw("kd", &[arg("K", NUMBER)], "derivative gain"), kw("mode", &[arg("auto", Value::OneOf(&["auto"]))], "gain-scheduled proportional controller"), kw("ratio", &[arg("R", NUMBER)], "auto mode speed near particles, in smallest radii per step")], "a mesh wall a servo drives to a target force");
+
 /// `fix ID GROUP mesh/surface[/planar] file F type T [scale f] [move x y z]
 /// [rotate axis x y z angle deg] [curvature deg] [curvature_tolerant yes|no]
 /// [precision p] [heal auto_remove_duplicates|no] [verbose yes|no]`.
-pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     let style = fix.style;
     a.count(
         5..=usize::MAX,
@@ -400,7 +438,7 @@ impl MeshArgs {
         wall_type: usize,
         triangles: &[Triangle],
         restored: Option<MeshExtras>,
-    ) -> Result<FixKind, CommandError> {
+    ) -> Result<Box<dyn FixStyle>, CommandError> {
         let mut fix = MeshFix {
             file: self.file,
             wall_type,
@@ -440,7 +478,7 @@ impl MeshArgs {
             fix.servo = Some(Box::new(s));
         }
         fix.set_surface_velocity();
-        Ok(FixKind::Mesh(Box::new(fix)))
+        Ok(Box::new(fix))
     }
 }
 
@@ -496,4 +534,30 @@ fn exclusion_list(a: &Args, i: usize, ctx: &Ctx) -> Result<Vec<i64>, CommandErro
     }
     list.sort_unstable();
     Ok(list)
+}
+
+/// A triangle mesh: no phase of its own (walls, insertion faces, movers and the stress and
+/// servo passes read and change it by type,
+/// [`FixKind::mesh`](crate::engine::fixes::FixKind::mesh)).
+impl FixStyle for MeshFix {
+    fn name(&self) -> &str {
+        match (&self.servo, &self.stress, self.planar) {
+            (Some(_), _, _) => "mesh/surface/stress/servo",
+            (None, Some(_), _) => "mesh/surface/stress",
+            (None, None, true) => "mesh/surface/planar",
+            (None, None, false) => "mesh/surface",
+        }
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
+    }
 }

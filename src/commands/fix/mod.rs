@@ -63,20 +63,6 @@ pub struct FixDef<'a> {
     pub style: &'a str,
 }
 
-/// Builds a fix's state from the `fix` command's arguments (the style is argument 2).
-pub type Build = fn(&Args, &mut Ctx, &FixDef) -> Result<FixKind, CommandError>;
-
-/// The fix styles regolith runs: the style name and the builder in the style's file.
-pub const STYLES: &[(&str, Build)] = &[
-    ("property/global", property_global::build),
-    ("mesh/surface", mesh_surface::build),
-    ("mesh/surface/planar", mesh_surface::build),
-    ("mesh/surface/stress", mesh_surface::build),
-    ("mesh/surface/stress/servo", mesh_surface::build),
-    ("wall/gran", wall_gran::build),
-    ("multisphere", multisphere::build),
-];
-
 /// Builds a module fix style (see [`FixStyle`]) from the `fix` command's arguments.
 pub type BuildStyle = fn(&Args, &mut Ctx, &FixDef) -> Result<Box<dyn FixStyle>, CommandError>;
 
@@ -99,10 +85,44 @@ impl StyleRow for FixRow {
     }
 }
 
-/// The fix styles written as modules: one file each in this folder, one row here. The
-/// `fix` command looks a style up here (rows registered at run time included) before
-/// [`STYLES`].
+/// The fix styles, written as modules: one file each in this folder, one row here. The
+/// `fix` command looks a style up here (rows registered at run time included).
 pub static TABLE: StyleTable<FixRow> = StyleTable::new(&[
+    FixRow {
+        spec: mesh_surface::SPEC,
+        planar: false,
+        build: mesh_surface::build,
+    },
+    FixRow {
+        spec: mesh_surface::PLANAR,
+        planar: false,
+        build: mesh_surface::build,
+    },
+    FixRow {
+        spec: mesh_surface::STRESS,
+        planar: false,
+        build: mesh_surface::build,
+    },
+    FixRow {
+        spec: mesh_surface::SERVO,
+        planar: false,
+        build: mesh_surface::build,
+    },
+    FixRow {
+        spec: multisphere::SPEC,
+        planar: false,
+        build: multisphere::build,
+    },
+    FixRow {
+        spec: property_global::SPEC,
+        planar: true,
+        build: property_global::build,
+    },
+    FixRow {
+        spec: wall_gran::SPEC,
+        planar: true,
+        build: wall_gran::build,
+    },
     FixRow {
         spec: nve::SPHERE,
         planar: true,
@@ -335,36 +355,21 @@ pub static TABLE: StyleTable<FixRow> = StyleTable::new(&[
     },
 ]);
 
-/// The state of a fix of `style`: a module style's builder boxed as [`FixKind::Style`], else
-/// the builder of `styles`; None when neither runs the style.
-fn build_kind(
-    a: &Args,
-    ctx: &mut Ctx,
-    def: &FixDef,
-    styles: &[(&str, Build)],
-) -> Option<Result<FixKind, CommandError>> {
+/// The state of a fix of `style` from its row's builder; None when no row runs the style.
+fn build_kind(a: &Args, ctx: &mut Ctx, def: &FixDef) -> Option<Result<FixKind, CommandError>> {
     let style = def.style;
-    if let Some(row) = TABLE.row(style) {
-        if ctx.sim.dimension == 2 && !row.planar {
-            return Some(Err(
-                a.unsupported(2, &format!("fix {style} in a 2d simulation"))
-            ));
-        }
-        return Some((row.build)(a, ctx, def).map(FixKind::Style));
-    }
-    let &(_, build) = styles.iter().find(|(name, _)| *name == style)?;
-    if ctx.sim.dimension == 2 && !crate::engine::planar::PLANAR_FIXES.contains(&style) {
+    let row = TABLE.row(style)?;
+    if ctx.sim.dimension == 2 && !row.planar {
         return Some(Err(
             a.unsupported(2, &format!("fix {style} in a 2d simulation"))
         ));
     }
-    Some(build(a, ctx, def))
+    Some((row.build)(a, ctx, def).map(FixKind::Style))
 }
 
-/// `fix ID GROUP STYLE ...` with the module styles and those of `styles`: checks what every
-/// fix shares, has the style's builder make its state, then adds the fix (or replaces the
-/// one with its ID).
-pub fn define(a: &Args, ctx: &mut Ctx, styles: &[(&str, Build)]) -> Result<(), CommandError> {
+/// `fix ID GROUP STYLE ...`: checks what every fix shares, has the style's builder make its
+/// state, then adds the fix (or replaces the one with its ID).
+pub fn define(a: &Args, ctx: &mut Ctx) -> Result<(), CommandError> {
     a.count(3..=usize::MAX, "fix ID GROUP STYLE ...")?;
     let (id, group, style) = (a.word(0)?, a.word(1)?, a.word(2)?);
     if !ctx.sim.domain.exists {
@@ -383,7 +388,7 @@ pub fn define(a: &Args, ctx: &mut Ctx, styles: &[(&str, Build)]) -> Result<(), C
         bit,
         style,
     };
-    let Some(kind) = build_kind(a, ctx, &definition, styles) else {
+    let Some(kind) = build_kind(a, ctx, &definition) else {
         return Err(a.unsupported(2, &format!("fix {style}")));
     };
     let kind = kind?;
@@ -496,8 +501,7 @@ mod tests {
 
     #[test]
     fn every_declared_fix_style_has_a_row_and_every_row_a_declaration() {
-        let mut rows: Vec<&str> = STYLES.iter().map(|row| row.0).collect();
-        rows.extend(TABLE.modules().iter().map(StyleRow::name));
+        let mut rows: Vec<&str> = TABLE.modules().iter().map(StyleRow::name).collect();
         rows.sort();
         let mut declared = crate::commands::specs::styles("fix");
         declared.sort();
@@ -569,16 +573,17 @@ mod tests {
         } = &mut deck;
         // not a style of the table the `fix` command reads
         assert!(engine.execute(&toy_line, sys, vars, out).is_err());
-        let mut styles = STYLES.to_vec();
-        styles.push(("toy/push", toy::build));
-        let mut ctx = Ctx {
-            sim: &mut engine.sim,
-            sys,
-            out,
-            vars,
-        };
-        define(&Args { cmd: &toy_line }, &mut ctx, &styles).expect("the toy style is defined");
-        for text in ["fix integr all nve/sphere", "timestep 1e-4", "run 10"] {
+        TABLE.register(FixRow {
+            spec: toy::SPEC,
+            planar: false,
+            build: toy::build,
+        });
+        for text in [
+            "fix push all toy/push 1e-6",
+            "fix integr all nve/sphere",
+            "timestep 1e-4",
+            "run 10",
+        ] {
             deck.run(text);
         }
         let v = deck.engine.sim.particles.v[0];

@@ -1,11 +1,15 @@
 //! `fix property/global`: material and contact constants read by the contact models.
 
 use crate::commands::fix::FixDef;
+use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
-use crate::engine::fixes::FixKind;
+use crate::engine::fixes::FixStyle;
+
+/// The declared signature.
+pub const SPEC: Spec = style("fix", "property/global", "fix ID GROUP property/global NAME scalar|vector|peratomtype|peratomtypepair N VALUES ...", &[], "material properties (youngsModulus, poissonsRatio, coefficientRestitution, coefficientFriction ...)");
 
 /// `fix ID GROUP property/global NAME STYLE VALUES...`.
-pub fn build(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandError> {
+pub fn build(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     a.count(
         6..=usize::MAX,
         "fix ID GROUP property/global NAME STYLE VALUES...",
@@ -43,5 +47,20 @@ pub fn build(a: &Args, ctx: &mut Ctx, _fix: &FixDef) -> Result<FixKind, CommandE
         a.real(i)?;
     }
     crate::commands::material_check::remember(a, ctx);
-    Ok(FixKind::Settings)
+    Ok(Box::new(PropertyGlobal))
+}
+
+/// `fix property/global`: no phase of its own; the contact models and checks read its
+/// values from the fix's arguments.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PropertyGlobal;
+
+impl FixStyle for PropertyGlobal {
+    fn name(&self) -> &str {
+        "property/global"
+    }
+
+    fn array_unsupported(&self) -> bool {
+        true
+    }
 }

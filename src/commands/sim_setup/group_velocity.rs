@@ -175,6 +175,8 @@ fn select_by_number(a: &Args, values: &[i64]) -> std::result::Result<Vec<bool>, 
     }
 }
 
+/// `velocity GROUP set|ramp|zero ...`: the group, the style and its options read as
+/// LIGGGHTS reads them, then the style's velocities set.
 pub(super) fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
     a.count(2..=usize::MAX, "velocity GROUP set|zero|ramp ...")?;
     let bit = ctx
@@ -186,28 +188,55 @@ pub(super) fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
         return Err(a.error(0, "Velocity command with no atoms existing"));
     }
     let style = a.word(1)?;
-    let first_option = match style {
-        "set" => 5,
-        "ramp" => 8,
-        "zero" => 3,
-        "create" => {
-            return Err(a
-                .error(1, "Illegal velocity command")
-                .with_help("LIGGGHTS 3.8.0 has velocity set, ramp and zero"))
-        }
-        other => {
-            return Err(a
-                .keyword_error(1, &["set", "ramp", "zero"])
-                .with_help(format!("velocity {other}")))
-        }
-    };
+    let first_option = velocity_first_option(a, style)?;
     a.count(
         first_option..=usize::MAX,
         "velocity GROUP set VX VY VZ | ramp VDIM VLO VHI DIM CLO CHI | zero linear|angular",
     )?;
-    // options (LIGGGHTS's defaults: units box, sum no)
+    let (sum, lattice_units) = velocity_options(a, first_option)?;
+    let scale = if lattice_units {
+        match &ctx.sim.lattice {
+            Some((spacing, _)) => *spacing,
+            None => return Err(a.error(0, "Use of velocity with undefined lattice")),
+        }
+    } else {
+        1.0
+    };
+    if style == "set" && ctx.sim.dimension == 2 {
+        check_planar_set(a)?;
+    }
+    if style == "set" && (2..5).any(|d| a.word(d).is_ok_and(|w| w.starts_with("v_"))) {
+        return crate::commands::velocity_vars::set(a, ctx, bit, sum, scale);
+    }
+    let sim = &mut *ctx.sim;
+    match style {
+        "set" => velocity_set(a, sim, bit, sum, scale),
+        "ramp" => velocity_ramp(a, sim, bit, sum, scale),
+        _ => velocity_zero(a, sim, bit),
+    }
+}
+
+/// The index of the first option word of velocity style `style` (LIGGGHTS's errors for the
+/// styles it lacks).
+fn velocity_first_option(a: &Args, style: &str) -> std::result::Result<usize, CommandError> {
+    match style {
+        "set" => Ok(5),
+        "ramp" => Ok(8),
+        "zero" => Ok(3),
+        "create" => Err(a
+            .error(1, "Illegal velocity command")
+            .with_help("LIGGGHTS 3.8.0 has velocity set, ramp and zero")),
+        other => Err(a
+            .keyword_error(1, &["set", "ramp", "zero"])
+            .with_help(format!("velocity {other}"))),
+    }
+}
+
+/// The velocity options from word `first` on: `sum` and lattice `units` (LIGGGHTS's
+/// defaults: units box, sum no); the others are checked and take no effect.
+fn velocity_options(a: &Args, first: usize) -> std::result::Result<(bool, bool), CommandError> {
     let (mut sum, mut lattice_units) = (false, false);
-    let mut i = first_option;
+    let mut i = first;
     while i < a.len() {
         match a.word(i)? {
             "sum" => sum = a.word_in(i + 1, &["yes", "no"])? == "yes",
@@ -226,99 +255,111 @@ pub(super) fn velocity(a: &Args, ctx: &mut Ctx) -> Result {
         }
         i += 2;
     }
-    let scale = if lattice_units {
-        match &ctx.sim.lattice {
-            Some((spacing, _)) => *spacing,
-            None => return Err(a.error(0, "Use of velocity with undefined lattice")),
-        }
-    } else {
-        1.0
-    };
-    if style == "set" && ctx.sim.dimension == 2 {
-        let vz = a.word(4)?;
-        if vz.starts_with("v_") {
-            return Err(a.error(4, "Cannot set variable z velocity for 2d simulation"));
-        }
-        if vz != "NULL" && a.real(4)? != 0.0 {
-            return Err(a.error(4, "Cannot set non-zero z velocity for 2d simulation"));
+    Ok((sum, lattice_units))
+}
+
+/// LIGGGHTS's refusal of a z velocity other than 0 or NULL in a 2d `velocity set`.
+fn check_planar_set(a: &Args) -> Result {
+    let vz = a.word(4)?;
+    if vz.starts_with("v_") {
+        return Err(a.error(4, "Cannot set variable z velocity for 2d simulation"));
+    }
+    if vz != "NULL" && a.real(4)? != 0.0 {
+        return Err(a.error(4, "Cannot set non-zero z velocity for 2d simulation"));
+    }
+    Ok(())
+}
+
+/// `velocity GROUP set VX VY VZ` with constants (velocity; NULL leaves a component), scaled
+/// by `scale` and added when `sum`.
+fn velocity_set(
+    a: &Args,
+    sim: &mut crate::engine::sim::Simulation,
+    bit: u32,
+    sum: bool,
+    scale: f64,
+) -> Result {
+    let mut v = [None; 3];
+    for (d, slot) in v.iter_mut().enumerate() {
+        let w = a.word(2 + d)?;
+        if w != "NULL" {
+            if w.starts_with("v_") {
+                return Err(a.unsupported(2 + d, "velocity set with variables"));
+            }
+            *slot = Some(scale * a.real(2 + d)?);
         }
     }
-    if style == "set" && (2..5).any(|d| a.word(d).is_ok_and(|w| w.starts_with("v_"))) {
-        return crate::commands::velocity_vars::set(a, ctx, bit, sum, scale);
-    }
-    let sim = &mut *ctx.sim;
-    match style {
-        "set" => {
-            let mut v = [None; 3];
-            for (d, slot) in v.iter_mut().enumerate() {
-                let w = a.word(2 + d)?;
-                if w != "NULL" {
-                    if w.starts_with("v_") {
-                        return Err(a.unsupported(2 + d, "velocity set with variables"));
-                    }
-                    *slot = Some(scale * a.real(2 + d)?);
-                }
-            }
-            let p = &mut sim.particles;
-            for k in 0..p.len() {
-                if p.mask[k] & bit != 0 {
-                    for (d, component) in v.iter().enumerate() {
-                        if let Some(value) = *component {
-                            if sum {
-                                p.v[k][d] += value;
-                            } else {
-                                p.v[k][d] = value;
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        "ramp" => {
-            let dim = |k: usize, names: &[&str]| -> std::result::Result<usize, CommandError> {
-                let w = a.word(k)?;
-                names
-                    .iter()
-                    .position(|n| *n == w)
-                    .ok_or_else(|| a.error(k, "Illegal velocity command"))
-            };
-            let vdim = dim(2, &["vx", "vy", "vz"])?;
-            if vdim == 2 && sim.dimension == 2 {
-                return Err(a.error(2, "Velocity ramp in z for a 2d problem"));
-            }
-            let (vlo, vhi) = (scale * a.real(3)?, scale * a.real(4)?);
-            let cdim = dim(5, &["x", "y", "z"])?;
-            let (clo, chi) = (scale * a.real(6)?, scale * a.real(7)?);
-            let p = &mut sim.particles;
-            for k in 0..p.len() {
-                if p.mask[k] & bit != 0 {
-                    // max then min as LIGGGHTS's MAX and MIN: a NaN becomes 0, clamp keeps it
-                    #[allow(clippy::manual_clamp)]
-                    let fraction = ((p.x[k][cdim] - clo) / (chi - clo)).max(0.0).min(1.0);
-                    let vramp = vlo + fraction * (vhi - vlo);
+    let p = &mut sim.particles;
+    for k in 0..p.len() {
+        if p.mask[k] & bit != 0 {
+            for (d, component) in v.iter().enumerate() {
+                if let Some(value) = *component {
                     if sum {
-                        p.v[k][vdim] += vramp;
+                        p.v[k][d] += value;
                     } else {
-                        p.v[k][vdim] = vramp;
+                        p.v[k][d] = value;
                     }
                 }
             }
         }
-        _ => {
-            let members: Vec<usize> = (0..sim.particles.len())
-                .filter(|&k| sim.particles.mask[k] & bit != 0)
-                .collect();
-            if members.is_empty() {
-                return Err(a.error(0, "Cannot zero momentum of no atoms"));
+    }
+    Ok(())
+}
+
+/// `velocity GROUP ramp VDIM VLO VHI DIM CLO CHI`: the velocity component VDIM from VLO to
+/// VHI (velocity) along coordinate DIM from CLO to CHI (length), scaled by `scale`.
+fn velocity_ramp(
+    a: &Args,
+    sim: &mut crate::engine::sim::Simulation,
+    bit: u32,
+    sum: bool,
+    scale: f64,
+) -> Result {
+    let dim = |k: usize, names: &[&str]| -> std::result::Result<usize, CommandError> {
+        let w = a.word(k)?;
+        names
+            .iter()
+            .position(|n| *n == w)
+            .ok_or_else(|| a.error(k, "Illegal velocity command"))
+    };
+    let vdim = dim(2, &["vx", "vy", "vz"])?;
+    if vdim == 2 && sim.dimension == 2 {
+        return Err(a.error(2, "Velocity ramp in z for a 2d problem"));
+    }
+    let (vlo, vhi) = (scale * a.real(3)?, scale * a.real(4)?);
+    let cdim = dim(5, &["x", "y", "z"])?;
+    let (clo, chi) = (scale * a.real(6)?, scale * a.real(7)?);
+    let p = &mut sim.particles;
+    for k in 0..p.len() {
+        if p.mask[k] & bit != 0 {
+            // max then min as LIGGGHTS's MAX and MIN: a NaN becomes 0, clamp keeps it
+            #[allow(clippy::manual_clamp)]
+            let fraction = ((p.x[k][cdim] - clo) / (chi - clo)).max(0.0).min(1.0);
+            let vramp = vlo + fraction * (vhi - vlo);
+            if sum {
+                p.v[k][vdim] += vramp;
+            } else {
+                p.v[k][vdim] = vramp;
             }
-            match a.word_in(2, &["linear", "angular", "angularIndividual"])? {
-                "linear" => zero_momentum(sim, &members),
-                "angular" => zero_rotation(sim, &members),
-                _ => {
-                    for &k in &members {
-                        sim.particles.omega[k] = [0.0; 3];
-                    }
-                }
+        }
+    }
+    Ok(())
+}
+
+/// `velocity GROUP zero linear|angular|angularIndividual`.
+fn velocity_zero(a: &Args, sim: &mut crate::engine::sim::Simulation, bit: u32) -> Result {
+    let members: Vec<usize> = (0..sim.particles.len())
+        .filter(|&k| sim.particles.mask[k] & bit != 0)
+        .collect();
+    if members.is_empty() {
+        return Err(a.error(0, "Cannot zero momentum of no atoms"));
+    }
+    match a.word_in(2, &["linear", "angular", "angularIndividual"])? {
+        "linear" => zero_momentum(sim, &members),
+        "angular" => zero_rotation(sim, &members),
+        _ => {
+            for &k in &members {
+                sim.particles.omega[k] = [0.0; 3];
             }
         }
     }

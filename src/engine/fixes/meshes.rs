@@ -70,7 +70,7 @@ pub fn move_meshes(fixes: &mut [Fix], dt: f64) {
         .filter(|&k| fixes[k].kind.mover().is_some())
         .collect();
     for (pos, &k) in movers.iter().enumerate() {
-        let mut kind = std::mem::replace(&mut fixes[k].kind, FixKind::Settings);
+        let mut kind = std::mem::replace(&mut fixes[k].kind, FixKind::Lent);
         let Some(mv) = kind.mover_mut() else {
             fixes[k].kind = kind;
             continue;

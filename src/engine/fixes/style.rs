@@ -15,6 +15,8 @@ use crate::engine::particles::Particles;
 use crate::engine::region::Regions;
 use crate::engine::sim::{Simulation, VariableSource};
 
+use super::Fix;
+
 /// What a phase hook is told about the fix and the step.
 #[derive(Debug, Clone, Copy)]
 pub struct FixStep<'a> {
@@ -127,6 +129,18 @@ pub struct PairInit<'a> {
     pub wall_surfaces: &'a [&'a str],
 }
 
+/// What the `post_force` phase tells a style that keeps its own lists of the pair list's
+/// particles (granular walls; see [`FixStyle::post_force_among`]).
+#[derive(Debug, Clone, Copy)]
+pub struct ForcePass {
+    /// Whether contact histories advance (false in a run's setup force evaluation).
+    pub update: bool,
+    /// The pair list's build count and skin (length).
+    pub list: (u64, f64),
+    /// Whether mesh neighbour lists use the full skin (moving meshes or a changing box).
+    pub moving_skin: bool,
+}
+
 /// A fix style: the phases it hooks and the values it offers. Every hook has a default that
 /// does nothing (or offers nothing), so a style writes only what it does.
 pub trait FixStyle: Send {
@@ -224,6 +238,38 @@ pub trait FixStyle: Send {
     /// `post_force`: after the pair and wall forces (also in the setup force evaluation, as
     /// LIGGGHTS's `setup` of force fixes runs their `post_force`).
     fn post_force(&mut self, _p: &mut Particles, _at: &FixStep) {}
+
+    /// Whether the style's phase hooks read the pair list's state or the other fixes
+    /// (granular walls, rigid clumps): then the `*_among` hooks run in its place of each
+    /// phase instead of the plain ones.
+    fn among_fixes(&self) -> bool {
+        false
+    }
+
+    /// `post_force` of a style that [`FixStyle::among_fixes`]: `fixes` is the whole fix
+    /// list, this fix's own slot lent out ([`FixKind::Lent`](super::FixKind::Lent)) while
+    /// the hook runs; `pass` the pair list's state.
+    fn post_force_among(
+        &mut self,
+        _fixes: &mut [Fix],
+        p: &mut Particles,
+        at: &FixStep,
+        _pass: &ForcePass,
+    ) {
+        self.post_force(p, at)
+    }
+
+    /// `initial_integrate` of a style that [`FixStyle::among_fixes`] (`fixes` as in
+    /// [`FixStyle::post_force_among`]).
+    fn initial_integrate_among(&mut self, _fixes: &mut [Fix], p: &mut Particles, at: &FixStep) {
+        self.initial_integrate(p, at)
+    }
+
+    /// `final_integrate` of a style that [`FixStyle::among_fixes`] (`fixes` as in
+    /// [`FixStyle::post_force_among`]).
+    fn final_integrate_among(&mut self, _fixes: &mut [Fix], p: &mut Particles, at: &FixStep) {
+        self.final_integrate(p, at)
+    }
 
     /// `final_integrate`: the second half of the step (after the forces).
     fn final_integrate(&mut self, _p: &mut Particles, _at: &FixStep) {}
@@ -497,7 +543,7 @@ impl Simulation {
             if !matches!(&self.fixes[k].kind, super::FixKind::Style(s) if s.evaluates()) {
                 continue;
             }
-            let kind = std::mem::replace(&mut self.fixes[k].kind, super::FixKind::Settings);
+            let kind = std::mem::replace(&mut self.fixes[k].kind, super::FixKind::Lent);
             let super::FixKind::Style(mut style) = kind else {
                 unreachable!("checked above")
             };
@@ -521,7 +567,7 @@ impl Simulation {
         out: &mut dyn FnMut(&str),
         vars: &mut dyn VariableSource,
     ) -> Result<(), EngineError> {
-        let kind = std::mem::replace(&mut self.fixes[k].kind, super::FixKind::Settings);
+        let kind = std::mem::replace(&mut self.fixes[k].kind, super::FixKind::Lent);
         let super::FixKind::Style(mut style) = kind else {
             self.fixes[k].kind = kind;
             return Ok(());
@@ -549,7 +595,7 @@ impl Simulation {
             {
                 continue;
             }
-            let kind = std::mem::replace(&mut self.fixes[k].kind, super::FixKind::Settings);
+            let kind = std::mem::replace(&mut self.fixes[k].kind, super::FixKind::Lent);
             let super::FixKind::Style(mut style) = kind else {
                 unreachable!("checked above")
             };
@@ -622,7 +668,7 @@ impl Simulation {
         };
         let stand_in = s
             .stand_in()
-            .map_or(super::FixKind::Settings, super::FixKind::Style);
+            .map_or(super::FixKind::Lent, super::FixKind::Style);
         let super::FixKind::Style(mut style) = std::mem::replace(&mut self.fixes[k].kind, stand_in)
         else {
             unreachable!("checked above")

@@ -1,7 +1,7 @@
 //! `fix wall/gran`: granular walls, primitive planes and triangle meshes, and the force
 //! pass of the mesh walls.
 
-use super::{Fix, FixKind};
+use super::{Fix, ForcePass};
 use crate::engine::particles::Particles;
 
 /// A primitive granular wall: its models, the plane, and the built interaction.
@@ -150,71 +150,88 @@ pub fn refresh_trackers(
     w.trackers = trackers;
 }
 
-/// The forces of the mesh wall fix `fixes[k]` on the particles.
-pub(super) fn mesh_wall_force(
+/// The forces of the mesh wall `w` on the particles, its meshes among `fixes` (where the
+/// wall's own slot is lent out meanwhile); their stress modules sum the contacts' forces.
+pub fn mesh_wall_force(
+    w: &mut MeshWallFix,
     fixes: &mut [Fix],
-    k: usize,
     p: &mut Particles,
     dt: f64,
-    update: bool,
-    list: (u64, f64),
-    moving_skin: bool,
+    pass: &ForcePass,
 ) {
-    let mut kind = std::mem::replace(&mut fixes[k].kind, FixKind::Settings);
-    if let Some(w) = kind.mesh_wall_mut() {
-        if let Some(model) = w.model.take() {
-            let mesh_fix: Vec<usize> = w
-                .meshes
+    let Some(model) = w.model.take() else {
+        return;
+    };
+    let mesh_fix: Vec<usize> = w
+        .meshes
+        .iter()
+        .filter_map(|id| {
+            fixes
                 .iter()
-                .filter_map(|id| {
-                    fixes
-                        .iter()
-                        .position(|f| &f.id == id && f.kind.mesh().is_some())
-                })
-                .collect();
-            refresh_trackers(fixes, w, p, list, moving_skin);
-            let mut trackers = std::mem::take(&mut w.trackers);
-            let refs = mesh_refs(fixes, w);
-            let mut records = Vec::new();
-            model.compute(p, &refs, &mut trackers, dt, update, &mut records);
-            drop(refs);
-            w.trackers = trackers;
-            w.model = Some(model);
-            // a servo mesh sums its force in LIGGGHTS's loop order (it feeds back on the motion)
-            for (k, &at) in mesh_fix.iter().enumerate() {
-                if let Some(m) = fixes[at].kind.mesh() {
-                    if let Some(s) = m.servo.as_ref() {
-                        let mut own: Vec<_> =
-                            records.iter().filter(|r| r.0 == k).map(|r| r.1).collect();
-                        crate::engine::mesh_servo::order_contacts(&mut own, &s.bins);
-                        records.retain(|r| r.0 != k);
-                        records.extend(own.into_iter().map(|c| (k, c)));
-                    }
-                }
-            }
-            for (mesh_index, c) in records {
-                let f = &mut fixes[mesh_fix[mesh_index]];
-                if p.mask[c.particle] & f.group == 0 {
-                    continue;
-                }
-                if let Some(m) = f.kind.mesh_mut() {
-                    let t = c.tri as usize;
-                    let (normal, area) = (m.mesh.normal[t], m.mesh.area[t]);
-                    if let Some(st) = m.stress.as_mut() {
-                        st.add(
-                            &c,
-                            p.x[c.particle],
-                            p.v[c.particle],
-                            normal,
-                            area,
-                            m.wall_type,
-                            p.kind[c.particle] as usize,
-                            dt,
-                        );
-                    }
-                }
-            }
+                .position(|f| &f.id == id && f.kind.mesh().is_some())
+        })
+        .collect();
+    refresh_trackers(fixes, w, p, pass.list, pass.moving_skin);
+    let mut trackers = std::mem::take(&mut w.trackers);
+    let refs = mesh_refs(fixes, w);
+    let mut records = Vec::new();
+    model.compute(p, &refs, &mut trackers, dt, pass.update, &mut records);
+    drop(refs);
+    w.trackers = trackers;
+    w.model = Some(model);
+    servo_order(fixes, &mesh_fix, &mut records);
+    add_mesh_stresses(fixes, &mesh_fix, &records, p, dt);
+}
+
+/// A servo mesh sums its force in LIGGGHTS's loop order (it feeds back on the motion): its
+/// contacts among `records` (mesh index among `mesh_fix`, contact) are put in that order,
+/// after the others.
+fn servo_order(
+    fixes: &[Fix],
+    mesh_fix: &[usize],
+    records: &mut Vec<(usize, crate::engine::mesh_stress::StressContact)>,
+) {
+    for (k, &at) in mesh_fix.iter().enumerate() {
+        let Some(s) = fixes[at].kind.mesh().and_then(|m| m.servo.as_ref()) else {
+            continue;
+        };
+        let mut own: Vec<_> = records.iter().filter(|r| r.0 == k).map(|r| r.1).collect();
+        crate::engine::mesh_servo::order_contacts(&mut own, &s.bins);
+        records.retain(|r| r.0 != k);
+        records.extend(own.into_iter().map(|c| (k, c)));
+    }
+}
+
+/// Each contact of `records` added to its mesh's stress module (meshes with one), for
+/// particles of the mesh fix's group.
+fn add_mesh_stresses(
+    fixes: &mut [Fix],
+    mesh_fix: &[usize],
+    records: &[(usize, crate::engine::mesh_stress::StressContact)],
+    p: &Particles,
+    dt: f64,
+) {
+    for (mesh_index, c) in records {
+        let f = &mut fixes[mesh_fix[*mesh_index]];
+        if p.mask[c.particle] & f.group == 0 {
+            continue;
+        }
+        let Some(m) = f.kind.mesh_mut() else {
+            continue;
+        };
+        let t = c.tri as usize;
+        let (normal, area) = (m.mesh.normal[t], m.mesh.area[t]);
+        if let Some(st) = m.stress.as_mut() {
+            st.add(
+                c,
+                p.x[c.particle],
+                p.v[c.particle],
+                normal,
+                area,
+                m.wall_type,
+                p.kind[c.particle] as usize,
+                dt,
+            );
         }
     }
-    fixes[k].kind = kind;
 }

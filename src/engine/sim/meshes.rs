@@ -86,7 +86,7 @@ impl Simulation {
     /// a mesh that moved in an earlier run gets vectors from where its nodes are now.
     pub(super) fn refresh_all_mesh_surfaces(&mut self) {
         for f in self.fixes.iter_mut() {
-            if let FixKind::Mesh(m) = &mut f.kind {
+            if let Some(m) = f.kind.mesh_mut() {
                 m.mesh.recompute_surface();
             }
         }

@@ -28,30 +28,22 @@ impl Simulation {
         let moving_skin = self.box_changes();
         let mut stores = Vec::new();
         for k in 0..self.fixes.len() {
-            let mut kind = std::mem::replace(&mut self.fixes[k].kind, FixKind::Settings);
-            match &mut kind {
-                FixKind::WallGran(w) => {
-                    if let Some(mut s) = w.multicontact.take() {
-                        let width = w.model.as_ref().map_or(0, |m| m.history_width());
-                        let hist = self
-                            .particles
-                            .extra
-                            .iter()
-                            .find(|e| e.name == w.history_name && e.width == width)
-                            .map(|e| (&e.data[..], e.width));
-                        primitive_entries(
-                            &mut s,
-                            &self.particles,
-                            group,
-                            &w.plane,
-                            hist,
-                            list,
-                            update,
-                        );
-                        stores.push(s);
-                    }
+            let mut kind = std::mem::replace(&mut self.fixes[k].kind, FixKind::Lent);
+            if let Some(w) = kind.style_as_mut::<fixes::WallFix>() {
+                if let Some(mut s) = w.multicontact.take() {
+                    let width = w.model.as_ref().map_or(0, |m| m.history_width());
+                    let hist = self
+                        .particles
+                        .extra
+                        .iter()
+                        .find(|e| e.name == w.history_name && e.width == width)
+                        .map(|e| (&e.data[..], e.width));
+                    primitive_entries(&mut s, &self.particles, group, &w.plane, hist, list, update);
+                    stores.push(s);
                 }
-                FixKind::MeshWall(w) if !w.multicontact.is_empty() => {
+            }
+            match kind.mesh_wall_mut() {
+                Some(w) if !w.multicontact.is_empty() => {
                     fixes::refresh_trackers(&self.fixes, w, &self.particles, list, moving_skin);
                     for (s, tr) in w.multicontact.iter_mut().zip(&w.trackers) {
                         let p = &self.particles;
@@ -85,8 +77,8 @@ impl Simulation {
         let half = 0.5 * self.neighbor.skin;
         let p = &self.particles;
         for f in &mut self.fixes {
-            match &mut f.kind {
-                FixKind::WallGran(w) if w.selection.surface == "multicontact" => {
+            if let Some(w) = f.kind.style_as_mut::<fixes::WallFix>() {
+                if w.selection.surface == "multicontact" {
                     w.multicontact = stores.next();
                     if let Some(s) = w.multicontact.as_mut().filter(|_| !update) {
                         let shape = w.plane;
@@ -95,7 +87,10 @@ impl Simulation {
                         });
                     }
                 }
-                FixKind::MeshWall(w) if w.selection.surface == "multicontact" => {
+                continue;
+            }
+            match f.kind.mesh_wall_mut() {
+                Some(w) if w.selection.surface == "multicontact" => {
                     w.multicontact = stores.by_ref().take(w.meshes.len()).collect();
                     if !update {
                         for (s, tr) in w.multicontact.iter_mut().zip(&w.trackers) {

@@ -60,26 +60,24 @@ impl Simulation {
                 return Err("No suitable multicontact fix found.".into());
             }
             sel.options.two_d = two_d;
-            match &mut self.fixes[k].kind {
-                FixKind::WallGran(wall) => {
-                    let shape = (wall.wall_type, wall.plane, wall.shear);
-                    wall.model = Some(if multicontact {
-                        granular::build_wall_multicontact(&sel, input, shape, cutneighmax)?
-                    } else {
-                        granular::build_wall(&sel, input, shape.0, shape.1, shape.2)?
-                    });
-                    if multicontact && wall.multicontact.is_none() {
-                        wall.multicontact = Some(granular::WallStore::new());
-                    }
+            if let Some(wall) = self.fixes[k].kind.style_as_mut::<fixes::WallFix>() {
+                let shape = (wall.wall_type, wall.plane, wall.shear);
+                wall.model = Some(if multicontact {
+                    granular::build_wall_multicontact(&sel, input, shape, cutneighmax)?
+                } else {
+                    granular::build_wall(&sel, input, shape.0, shape.1, shape.2)?
+                });
+                if multicontact && wall.multicontact.is_none() {
+                    wall.multicontact = Some(granular::WallStore::new());
                 }
-                FixKind::MeshWall(wall) => {
-                    let model = crate::engine::mesh_wall::build(&sel, input, cutneighmax)?;
-                    wall.model = Some(model);
-                    if multicontact && wall.multicontact.len() != wall.meshes.len() {
-                        wall.multicontact = vec![granular::WallStore::new(); wall.meshes.len()];
-                    }
+                continue;
+            }
+            if let Some(wall) = self.fixes[k].kind.mesh_wall_mut() {
+                let model = crate::engine::mesh_wall::build(&sel, input, cutneighmax)?;
+                wall.model = Some(model);
+                if multicontact && wall.multicontact.len() != wall.meshes.len() {
+                    wall.multicontact = vec![granular::WallStore::new(); wall.meshes.len()];
                 }
-                _ => {}
             }
         }
         Ok(())

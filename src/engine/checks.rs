@@ -201,6 +201,20 @@ impl Simulation {
     }
 }
 
+/// The atom types a fix brings into a run: a primitive wall's or a mesh's wall type, a
+/// particle distribution's template types (none for other fixes).
+fn wall_or_template_types(kind: &FixKind) -> Vec<u64> {
+    if let Some(w) = kind.style_as::<WallFix>() {
+        return vec![w.wall_type as u64];
+    }
+    if let Some(m) = kind.mesh() {
+        return vec![m.wall_type as u64];
+    }
+    kind.distribution().map_or(Vec::new(), |d| {
+        d.templates.iter().map(|t| t.atom_type as u64).collect()
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -229,18 +243,4 @@ mod tests {
         let e = neighbor_bins(bbox, f64::NAN).unwrap_err().to_string();
         assert!(e.starts_with("Domain too large"), "{e}");
     }
-}
-
-/// The atom types a fix brings into a run: a primitive wall's or a mesh's wall type, a
-/// particle distribution's template types (none for other fixes).
-fn wall_or_template_types(kind: &FixKind) -> Vec<u64> {
-    if let Some(w) = kind.style_as::<WallFix>() {
-        return vec![w.wall_type as u64];
-    }
-    if let Some(m) = kind.mesh() {
-        return vec![m.wall_type as u64];
-    }
-    kind.distribution().map_or(Vec::new(), |d| {
-        d.templates.iter().map(|t| t.atom_type as u64).collect()
-    })
 }

@@ -214,22 +214,19 @@ impl Simulation {
                 mesh_wall_entries(w, &self.particles.id, &mut globals, &mut peratom);
                 continue;
             }
-            match &f.kind {
-                FixKind::Style(s) => {
-                    if let Some(state) = s.restart_state() {
-                        globals.push(entry(&f.id, &f.style, state));
-                    }
-                    if let Some((maxsize, rows)) = s.restart_per_atom(&self.particles) {
-                        let (id, style) = (f.id.clone(), f.style.clone());
-                        peratom.push((PeratomFix { id, style, maxsize }, rows));
-                    }
-                    // the first stream's entry is followed by the release data
-                    if f.kind.stream().is_some() && self.stream_release && !release_written {
-                        release_written = true;
-                        self.release_entries(&mut globals, &mut peratom);
-                    }
+            if let FixKind::Style(s) = &f.kind {
+                if let Some(state) = s.restart_state() {
+                    globals.push(entry(&f.id, &f.style, state));
                 }
-                _ => {}
+                if let Some((maxsize, rows)) = s.restart_per_atom(&self.particles) {
+                    let (id, style) = (f.id.clone(), f.style.clone());
+                    peratom.push((PeratomFix { id, style, maxsize }, rows));
+                }
+                // the first stream's entry is followed by the release data
+                if f.kind.stream().is_some() && self.stream_release && !release_written {
+                    release_written = true;
+                    self.release_entries(&mut globals, &mut peratom);
+                }
             }
         }
         (globals, peratom)
@@ -331,6 +328,23 @@ fn mesh_wall_entries(
     }
 }
 
+/// A mesh's global restart entry: its nodes, and what its stress module keeps (each
+/// triangle's wear when on, and the reference point p_ref).
+fn mesh_entry(id: &str, style: &str, m: &crate::engine::fixes::MeshFix) -> GlobalFix {
+    let extras = match &m.stress {
+        Some(st) => MeshExtras {
+            element: if st.wear_on {
+                st.wear.iter().map(|w| vec![*w]).collect()
+            } else {
+                Vec::new()
+            },
+            global: st.reference.to_vec(),
+        },
+        None => MeshExtras::default(),
+    };
+    entry(id, style, mesh_state(m.triangles(), &extras))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -391,21 +405,4 @@ mod tests {
         assert!(Release::from_row(1092, &row, 120437).is_none());
         assert!(Release::from_row(7, &[0.0; RELEASE_WIDTH], 5).is_none());
     }
-}
-
-/// A mesh's global restart entry: its nodes, and what its stress module keeps (each
-/// triangle's wear when on, and the reference point p_ref).
-fn mesh_entry(id: &str, style: &str, m: &crate::engine::fixes::MeshFix) -> GlobalFix {
-    let extras = match &m.stress {
-        Some(st) => MeshExtras {
-            element: if st.wear_on {
-                st.wear.iter().map(|w| vec![*w]).collect()
-            } else {
-                Vec::new()
-            },
-            global: st.reference.to_vec(),
-        },
-        None => MeshExtras::default(),
-    };
-    entry(id, style, mesh_state(m.triangles(), &extras))
 }

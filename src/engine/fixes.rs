@@ -23,7 +23,7 @@ pub use stream::StreamFix;
 pub use style::{
     FixInit, FixStep, FixStyle, PairInit, PerAtomShape, RestoreError, SetupPass, StepInputs,
 };
-pub use walls::{mesh_wall_contacts, refresh_trackers, MeshWallFix, WallFix};
+pub use walls::{dry_history_width, mesh_wall_contacts, refresh_trackers, MeshWallFix, WallFix};
 
 /// What a fix does.
 pub enum FixKind {
@@ -235,6 +235,8 @@ pub struct Fix {
     pub kind: FixKind,
     /// Its arguments after the style (for settings fixes).
     pub args: Vec<String>,
+    /// Its time in the current run (`modify_timing`).
+    pub clock: crate::engine::fix_timing::FixClock,
 }
 
 /// Run the `initial_integrate` phase of all fixes.
@@ -248,6 +250,7 @@ pub fn initial_integrate(
     // clumps from an insertion face move at its velocity until released
     let has_stream = fixes.iter().any(|f| f.kind.stream().is_some());
     for fix in fixes {
+        let clock = fix.clock.start();
         match &mut fix.kind {
             FixKind::Multisphere(ms) => ms.initial_integrate(p, dt, domain, step, has_stream),
             FixKind::Style(s) => {
@@ -255,6 +258,7 @@ pub fn initial_integrate(
             }
             _ => {}
         }
+        fix.clock.stop(clock);
     }
 }
 
@@ -293,8 +297,10 @@ pub fn post_force(
     moving_skin: bool,
 ) {
     for k in 0..fixes.len() {
+        let clock = fixes[k].clock.start();
         if fixes[k].kind.mesh_wall().is_some() {
             walls::mesh_wall_force(fixes, k, p, dt, update, list, moving_skin);
+            fixes[k].clock.stop(clock);
             continue;
         }
         let fix = &mut fixes[k];
@@ -313,6 +319,7 @@ pub fn post_force(
             FixKind::Style(s) => s.post_force(p, &FixStep::plain(g, at.0, dt, at.1)),
             _ => {}
         }
+        fix.clock.stop(clock);
     }
 }
 
@@ -324,6 +331,7 @@ pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, step: i64, dt: f64,
         _ => None,
     });
     for fix in fixes {
+        let clock = fix.clock.start();
         match &mut fix.kind {
             FixKind::Multisphere(ms) => {
                 ms.calc_force(p, domain, gravity);
@@ -332,6 +340,7 @@ pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, step: i64, dt: f64,
             FixKind::Style(s) => s.final_integrate(p, &FixStep::plain(fix.group, step, dt, domain)),
             _ => {}
         }
+        fix.clock.stop(clock);
     }
 }
 

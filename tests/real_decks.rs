@@ -879,3 +879,114 @@ fn a_mesh_wholly_outside_the_box_stops_the_run_before_its_lines() {
     assert!(!screen.contains("WARNING: Not all nodes"));
     assert!(!screen.contains("Import and parallelization"));
 }
+
+#[test]
+fn insertion_fixes_name_what_they_miss_as_liggghts_means_it() {
+    let dir = scratch("insertion_names");
+    let tpl = "fix pts1 all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.003\n";
+    let pdd = "fix pdd1 all particledistribution/discrete 32452843 1 pts1 1.0\n";
+    let region = "region box block 0.01 0.09 0.01 0.09 0.02 0.09 units box\n";
+    // a distribution that is not there (line 18), or not a distribution (line 18)
+    let ins = |d: &str| {
+        format!("fix ins all insert/pack seed 49979687 distributiontemplate {d} insert_every once particles_in_region 10 region box")
+    };
+    fails_alike(
+        &dir,
+        &format!("{MATERIAL}{tpl}{pdd}{region}{}", ins("pdd2")),
+        "Fix insert/pack (id ins): Fix insert requires you to define a valid ID for a fix of type particledistribution/discrete (there is no fix pdd2; did you mean 'pdd1'?)",
+        18,
+    );
+    fails_alike(
+        &dir,
+        &format!("{MATERIAL}{tpl}{pdd}{region}{}", ins("pts1")),
+        "Fix insert/pack (id ins): Fix insert requires you to define a valid ID for a fix of type particledistribution/discrete (fix pts1 is a fix particletemplate/sphere)",
+        18,
+    );
+    // a template that is not there (line 16)
+    fails_alike(
+        &dir,
+        &format!("{MATERIAL}{tpl}fix pdd1 all particledistribution/discrete 32452843 1 pts2 1.0\n"),
+        "Fix particledistribution/discrete (id pdd1): invalid ID for fix particletemplate provided (there is no fix pts2; did you mean 'pts1'?)",
+        16,
+    );
+    // the insertion's seed equal to a template's (LIGGGHTS: all must differ)
+    fails_alike(
+        &dir,
+        &format!(
+            "{MATERIAL}{tpl}{pdd}{region}{}",
+            ins("pdd1").replace("49979687", "15485863")
+        ),
+        "Fix insert/pack, ID ins: Random number generation: It is required that all the random seeds of this fix insert/*",
+        18,
+    );
+}
+
+#[test]
+fn a_stream_face_extruded_out_of_the_box_is_refused_at_its_first_insertion() {
+    // the face lies on the box top and is extruded upwards (against its normal, which points
+    // down), so no point of the extruded volume is in the box: LIGGGHTS's Monte Carlo share
+    // is 0 and it stops with fix_insert_stream.cpp:552 at the first insertion
+    let dir = scratch("stream_outside");
+    std::fs::write(
+        dir.join("face.stl"),
+        "solid f\nfacet normal 0 0 -1\nouter loop\nvertex 0.02 0.02 0.1\nvertex 0.02 0.08 0.1\nvertex 0.08 0.08 0.1\nendloop\nendfacet\nendsolid f\n",
+    )
+    .unwrap();
+    let deck = format!(
+        "{HEAD}{MATERIAL}pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 0.00001
+fix pts1 all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.003
+fix pdd1 all particledistribution/discrete 32452843 1 pts1 1.0
+fix face all mesh/surface file face.stl type 1
+fix ins all insert/stream seed 49979687 distributiontemplate pdd1 nparticles 10 particlerate 1000 vel constant 0 0 -1 insertion_face face extrude_length 0.05
+fix integr all nve/sphere
+run 10
+"
+    );
+    std::fs::write(dir.join("in.t"), &deck).unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
+    assert_eq!(out.status.code(), Some(1), "{stdout}{stderr}");
+    assert!(
+        stdout
+            .contains("WARNING: Fix insert/stream: Extruded insertion face extends outside domain"),
+        "{stdout}"
+    );
+    assert!(
+        stderr.contains("Fix insert/stream (id ins): insertion volume could not be distributed properly in parallel"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn a_stream_face_that_is_not_planar_is_refused_as_liggghts_refuses_it() {
+    // a face folded into a ridge (three triangles): LIGGGHTS's isPlanar fails and the run
+    // stops at the stream's first setup (fix_insert_stream.cpp:300)
+    let dir = scratch("stream_folded");
+    std::fs::write(
+        dir.join("face.stl"),
+        "solid v\nfacet normal 0 0 -1\nouter loop\nvertex 0.02 0.02 0.08\nvertex 0.02 0.08 0.08\nvertex 0.05 0.08 0.09\nendloop\nendfacet\nfacet normal 0 0 -1\nouter loop\nvertex 0.05 0.08 0.09\nvertex 0.05 0.02 0.09\nvertex 0.02 0.02 0.08\nendloop\nendfacet\nfacet normal 0 0 -1\nouter loop\nvertex 0.05 0.02 0.09\nvertex 0.05 0.08 0.09\nvertex 0.08 0.08 0.08\nendloop\nendfacet\nendsolid v\n",
+    )
+    .unwrap();
+    let deck = format!(
+        "{HEAD}{MATERIAL}pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 0.00001
+fix pts1 all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.003
+fix pdd1 all particledistribution/discrete 32452843 1 pts1 1.0
+fix face all mesh/surface file face.stl type 1
+fix ins all insert/stream seed 49979687 distributiontemplate pdd1 nparticles 10 particlerate 1000 vel constant 0 0 -1 insertion_face face extrude_length 0.03
+fix integr all nve/sphere
+run 10
+"
+    );
+    std::fs::write(dir.join("in.t"), &deck).unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("Fix insert/stream (id ins): command requires a planar face for insertion"),
+        "{stderr}"
+    );
+}

@@ -40,8 +40,8 @@ pub fn thermo_log(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
-/// `modify_timing off|on|verbose`: accepted; regolith's end-of-run summary has no timing
-/// breakdown to add the per-fix times to.
+/// `modify_timing off|on|verbose`: after each run, the fixes' time (`Modfy time`) and one
+/// line per fix of LIGGGHTS's fix list (see [`crate::engine::fix_timing`]).
 pub fn modify_timing(a: &Args, ctx: &mut Ctx) -> Result {
     if a.len() != 1 {
         return Err(a.error(0, "Illegal modify_timing command"));

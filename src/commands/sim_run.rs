@@ -100,7 +100,9 @@ fn unfix(a: &Args, ctx: &mut Ctx) -> Result {
         |f| &f.id,
         a,
         "Could not find fix ID to delete",
-    )
+    )?;
+    ctx.sim.modify_list.remove(id);
+    Ok(())
 }
 
 fn thermo(a: &Args, ctx: &mut Ctx) -> Result {

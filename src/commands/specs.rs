@@ -306,7 +306,7 @@ pub const SPECS: &[Spec] = &[
     command("uncompute ID", "delete a compute"),
     command("undump ID", "delete a dump"),
     command("thermo_log FILE [append] | none", "a log of the thermo output alone"),
-    command("modify_timing on|off", "per-fix timing (accepted; regolith prints no per-fix times)"),
+    command("modify_timing on|off|verbose", "per-fix timing: the fixes LIGGGHTS lists (its own among them) with their times after each run"),
     command("unfix ID", "delete a fix"),
     command("units si|cgs", "unit system of the deck"),
     command("velocity GROUP create|set|zero|ramp ...", "set particle velocities (velocity)"),

@@ -24,7 +24,9 @@ pub use style::{
     FixInit, FixStep, FixStyle, ForcePass, PairInit, PerAtomShape, RestoreError, SetupPass,
     StepInputs,
 };
-pub use walls::{mesh_wall_contacts, mesh_wall_force, refresh_trackers, MeshWallFix, WallFix};
+pub use walls::{
+    dry_history_width, mesh_wall_contacts, mesh_wall_force, refresh_trackers, MeshWallFix, WallFix,
+};
 
 /// What a fix does.
 pub enum FixKind {
@@ -232,6 +234,8 @@ pub struct Fix {
     pub kind: FixKind,
     /// Its arguments after the style (for settings fixes).
     pub args: Vec<String>,
+    /// Its time in the current run (`modify_timing`).
+    pub clock: crate::engine::fix_timing::FixClock,
 }
 
 /// Run the `initial_integrate` phase of all fixes.
@@ -243,6 +247,7 @@ pub fn initial_integrate(
     domain: &Domain,
 ) {
     for k in 0..fixes.len() {
+        let clock = fixes[k].clock.start();
         let at = FixStep::plain(fixes[k].group, step, dt, domain);
         match &mut fixes[k].kind {
             FixKind::Style(s) if s.among_fixes() => {
@@ -253,6 +258,7 @@ pub fn initial_integrate(
             FixKind::Style(s) => s.initial_integrate(p, &at),
             _ => {}
         }
+        fixes[k].clock.stop(clock);
     }
 }
 
@@ -296,6 +302,7 @@ pub fn post_force(
         moving_skin,
     };
     for k in 0..fixes.len() {
+        let clock = fixes[k].clock.start();
         let step = FixStep::plain(fixes[k].group, at.0, dt, at.1);
         match &mut fixes[k].kind {
             FixKind::Style(s) if s.among_fixes() => {
@@ -306,12 +313,14 @@ pub fn post_force(
             FixKind::Style(s) => s.post_force(p, &step),
             _ => {}
         }
+        fixes[k].clock.stop(clock);
     }
 }
 
 /// Run the `final_integrate` phase of all fixes for `step`.
 pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, step: i64, dt: f64, domain: &Domain) {
     for k in 0..fixes.len() {
+        let clock = fixes[k].clock.start();
         let at = FixStep::plain(fixes[k].group, step, dt, domain);
         match &mut fixes[k].kind {
             FixKind::Style(s) if s.among_fixes() => {
@@ -320,6 +329,7 @@ pub fn final_integrate(fixes: &mut [Fix], p: &mut Particles, step: i64, dt: f64,
             FixKind::Style(s) => s.final_integrate(p, &at),
             _ => {}
         }
+        fixes[k].clock.stop(clock);
     }
 }
 

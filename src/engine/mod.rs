@@ -19,6 +19,7 @@ pub mod dump_style;
 pub mod error;
 pub mod extras;
 pub mod fix_columns;
+pub mod fix_timing;
 pub mod fixes;
 pub mod global_values;
 pub mod granular;

@@ -165,6 +165,7 @@ impl Simulation {
                     fresh: false,
                 })),
                 args,
+                clock: Default::default(),
             });
         }
         Ok(())

@@ -83,11 +83,15 @@ impl Output {
 
     /// Write the engine's text of a run's setup and steps: most lines to both streams, but
     /// those LIGGGHTS prints on the screen only (an insertion's progress, a region's
-    /// random generator reset) to the screen, and the insertion-rate line to the log with
-    /// the comma LIGGGHTS's log version of it has.
+    /// random generator reset) to the screen, the insertion-rate line to the log with
+    /// the comma LIGGGHTS's log version of it has, and `modify_timing verbose`'s per-process
+    /// fix lines to the log with one leading space where the screen's have two.
     pub fn engine_text(&mut self, text: &str) {
         for line in text.split_inclusive('\n') {
-            if line.starts_with("insertion: proc ")
+            if line.starts_with("  [0] Fix ") {
+                self.screen(line);
+                self.log(&line[1..]);
+            } else if line.starts_with("insertion: proc ")
                 || line.starts_with("INFO: Resetting random generator for region ")
             {
                 self.screen(line);

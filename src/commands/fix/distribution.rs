@@ -66,12 +66,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>,
                         .style_as::<crate::engine::multisphere::ClumpTemplate>()?,
                 )),
             })
-            .ok_or_else(|| {
-                a.error(
-                    5 + 2 * k,
-                    format!("Fix {style}: could not find fix particletemplate {tid}"),
-                )
-            })?;
+            .ok_or_else(|| missing_template(a, ctx, 5 + 2 * k, style, tid))?;
         let w = a.real(6 + 2 * k)?;
         // LIGGGHTS refuses only negative weights (a zero weight never inserts its template)
         if w < 0.0 {
@@ -179,4 +174,28 @@ fn report(
     }
     block("number", &mut d.weights.iter().copied());
     ctx.out.screen(&text);
+}
+
+/// LIGGGHTS's error for a template ID (word `i`) that names no `particletemplate` fix, with
+/// what the ID names instead and the nearest template's ID.
+fn missing_template(a: &Args, ctx: &Ctx, i: usize, style: &str, tid: &str) -> CommandError {
+    let fixes = &ctx.sim.fixes;
+    let templates: Vec<&str> = fixes
+        .iter()
+        .filter(|f| f.style.starts_with("particletemplate/"))
+        .map(|f| f.id.as_str())
+        .collect();
+    let found = match fixes.iter().find(|f| f.id == tid) {
+        Some(f) => format!("fix {tid} is a fix {}", f.style),
+        None => format!("there is no fix {tid}"),
+    };
+    let hint = crate::commands::suggest::did_you_mean(tid, &templates)
+        .map_or(String::new(), |h| format!("; {h}"));
+    let id = a.word(0).unwrap_or("?");
+    a.error(
+        i,
+        format!(
+            "Fix {style} (id {id}): invalid ID for fix particletemplate provided ({found}{hint})"
+        ),
+    )
 }

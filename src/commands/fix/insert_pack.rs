@@ -62,6 +62,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>,
             None => return Err(unknown(a, i, w, fix.style)),
         }
     }
+    pack.common.check_seeds(a, ctx)?;
     pack.finish(a, ctx, fix)
 }
 

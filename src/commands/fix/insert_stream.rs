@@ -50,6 +50,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>,
             None => return Err(unknown(a, i, w)),
         }
     }
+    stream.common.check_seeds(a, ctx)?;
     stream.finish(a, id)
 }
 

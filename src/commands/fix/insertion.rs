@@ -174,21 +174,37 @@ impl Insertion {
     }
 }
 
-/// The `distributiontemplate` ID at word `i`: a `fix particledistribution/discrete`.
+/// The `distributiontemplate` ID at word `i`: a `fix particledistribution/discrete`, else
+/// LIGGGHTS's error with what the ID names instead and the nearest distribution's ID.
 fn distribution_arg(a: &Args, ctx: &Ctx, i: usize) -> Result<String, CommandError> {
     let d = a.word(i)?;
-    if !ctx
-        .sim
-        .fixes
+    let fixes = &ctx.sim.fixes;
+    if fixes
         .iter()
         .any(|f| f.id == d && f.kind.distribution().is_some())
     {
-        return Err(a.error(
-            i,
-            "Fix insert: distributiontemplate must be a fix particledistribution/discrete",
-        ));
+        return Ok(d.to_string());
     }
-    Ok(d.to_string())
+    let distributions: Vec<&str> = fixes
+        .iter()
+        .filter(|f| f.kind.distribution().is_some())
+        .map(|f| f.id.as_str())
+        .collect();
+    let found = match fixes.iter().find(|f| f.id == d) {
+        Some(f) => format!("fix {d} is a fix {}", f.style),
+        None => format!("there is no fix {d}"),
+    };
+    let hint = crate::commands::suggest::did_you_mean(d, &distributions)
+        .map_or(String::new(), |h| format!("; {h}"));
+    Err(a.error(
+        i,
+        format!(
+            "Fix {} (id {}): Fix insert requires you to define a valid ID for a fix of type \
+             particledistribution/discrete ({found}{hint})",
+            a.word(2)?,
+            a.word(0)?
+        ),
+    ))
 }
 
 /// The `vel constant vx vy vz` or `vel uniform|gaussian vx vy vz dvx dvy dvz` keyword of
@@ -221,5 +237,49 @@ fn orientation_arg(a: &Args, i: usize) -> Result<bool, CommandError> {
             i + 1,
             "expecting 'random', template' or 'constant' after keyword 'quat'",
         )),
+    }
+}
+
+impl Insertion {
+    /// LIGGGHTS's check when an insertion fix is made: its seed, its distribution's
+    /// generator and the insertion generators of the distribution's templates must all
+    /// differ (compared as their states now, as LIGGGHTS compares them).
+    pub fn check_seeds(&self, a: &Args, ctx: &Ctx) -> Result<(), CommandError> {
+        let (Some(seed), Some(dist_id)) = (self.seed, self.distribution.as_deref()) else {
+            return Ok(());
+        };
+        let Some(dist) = ctx
+            .sim
+            .fixes
+            .iter()
+            .find(|f| f.id == dist_id)
+            .and_then(|f| f.kind.distribution())
+        else {
+            return Ok(());
+        };
+        let mut seeds = vec![seed, dist.rng.state()];
+        seeds.extend(dist.templates.iter().map(|t| t.rng_state.0));
+        seeds.sort_unstable();
+        let n = seeds.len();
+        seeds.dedup();
+        if seeds.len() == n {
+            return Ok(());
+        }
+        let at = (0..a.len())
+            .find(|&i| a.word(i).is_ok_and(|w| w == "seed"))
+            .map_or(2, |i| i + 1);
+        Err(a.error(
+            at,
+            format!(
+                "Fix {}, ID {}: Random number generation: It is required that all the random \
+                 seeds of this fix insert/*, the random seed of particle distribution fix (id \
+                 {dist_id}) template and all random seeds of the fix particletemplate/* commands \
+                 used by particle distribution fix (id {dist_id}) are different. Hint: possible \
+                 valid (different) seeds would be the following numbers: 15485863, 15485867, \
+                 32452843, 32452867, 49979687, 49979693, 67867967, 67867979, 86028121, 86028157",
+                a.word(2)?,
+                a.word(0)?
+            ),
+        ))
     }
 }

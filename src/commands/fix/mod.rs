@@ -401,11 +401,17 @@ pub fn define(a: &Args, ctx: &mut Ctx) -> Result<(), CommandError> {
         group: bit,
         kind,
         args,
+        clock: Default::default(),
     };
     for line in crate::commands::fix_state::restore_fix_state(a, ctx, &mut fix)? {
         ctx.say(&format!("{line}\n"));
     }
-    match ctx.sim.fixes.iter().position(|f| f.id == id) {
+    let position = ctx.sim.fixes.iter().position(|f| f.id == id);
+    let created = crate::engine::fix_timing::created_with(
+        &fix,
+        &ctx.sim.fixes[..position.unwrap_or(ctx.sim.fixes.len())],
+    );
+    match position {
         Some(i) => {
             if ctx.sim.fixes[i].style != style {
                 return Err(a.error(2, "Replacing a fix, but new style != old style"));
@@ -414,6 +420,7 @@ pub fn define(a: &Args, ctx: &mut Ctx) -> Result<(), CommandError> {
         }
         None => ctx.sim.fixes.push(fix),
     }
+    ctx.sim.modify_list.define(id, style, &created);
     Ok(())
 }
 

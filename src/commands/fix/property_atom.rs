@@ -172,6 +172,7 @@ pub fn ensure(
             fresh: true,
         })),
         args,
+        clock: Default::default(),
     });
     name.to_string()
 }

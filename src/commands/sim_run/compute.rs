@@ -26,6 +26,9 @@ pub(super) fn compute(a: &Args, ctx: &mut Ctx) -> Result {
         style,
     };
     let calc = (row.build)(a, ctx, &def)?;
+    if let Some((fid, fstyle)) = crate::engine::fix_timing::created_with_compute(id, style) {
+        ctx.sim.modify_list.ensure(&fid, &fstyle, Some(id));
+    }
     ctx.sim.computes.push(Compute {
         id: id.into(),
         style: style.into(),
@@ -42,5 +45,7 @@ pub(super) fn uncompute(a: &Args, ctx: &mut Ctx) -> Result {
         |c| &c.id,
         a,
         "Could not find uncompute ID",
-    )
+    )?;
+    ctx.sim.modify_list.remove(a.word(0)?);
+    Ok(())
 }

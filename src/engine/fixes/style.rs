@@ -543,6 +543,7 @@ impl Simulation {
             if !matches!(&self.fixes[k].kind, super::FixKind::Style(s) if s.evaluates()) {
                 continue;
             }
+            let clock = self.fixes[k].clock.start();
             let kind = std::mem::replace(&mut self.fixes[k].kind, super::FixKind::Lent);
             let super::FixKind::Style(mut style) = kind else {
                 unreachable!("checked above")
@@ -554,6 +555,7 @@ impl Simulation {
             };
             let result = style.evaluate(&self.particles, &at, &mut inputs);
             self.fixes[k].kind = super::FixKind::Style(style);
+            self.fixes[k].clock.stop(clock);
             result?;
         }
         Ok(())
@@ -595,6 +597,7 @@ impl Simulation {
             {
                 continue;
             }
+            let clock = self.fixes[k].clock.start();
             let kind = std::mem::replace(&mut self.fixes[k].kind, super::FixKind::Lent);
             let super::FixKind::Style(mut style) = kind else {
                 unreachable!("checked above")
@@ -609,6 +612,7 @@ impl Simulation {
                 style.pre_force(&mut self.particles, &at);
             }
             self.fixes[k].kind = super::FixKind::Style(style);
+            self.fixes[k].clock.stop(clock);
             result?;
         }
         Ok(())

@@ -24,6 +24,7 @@ fn wiggle_velocity_after_one_period_is_a_omega() {
         group: 1,
         kind: FixKind::Style(Box::new(m)),
         args: vec![],
+        clock: Default::default(),
     }];
     let dt = 1e-4;
     for step in 1..=200 {
@@ -71,6 +72,7 @@ fn a_moved_atom_stays_at_the_image_nearest_its_old_position() {
         group: 1,
         kind: FixKind::Style(Box::new(m)),
         args: vec![],
+        clock: Default::default(),
     }];
     initial_integrate(&mut fixes, &mut p, 1, 1e-3, &domain);
     assert!((p.x[0][0] - 0.2).abs() < 1e-12, "x = {:?}", p.x[0]);
@@ -158,6 +160,7 @@ fn post_force_order_and_freeze() {
         group: 1,
         kind,
         args: vec![],
+        clock: Default::default(),
     };
     let fixes = vec![
         mk(FixKind::Style(Box::new(Push([1.0, 2.0, 3.0])))),

@@ -23,6 +23,18 @@ pub struct WallFix {
     pub multicontact: Option<crate::engine::granular::WallStore>,
 }
 
+/// Doubles of history per wall contact of the contact model `selection` names, before a
+/// run has built it (0: the model keeps no history).
+pub fn dry_history_width(selection: &crate::engine::granular::Selection) -> usize {
+    let mut dry = selection.clone();
+    let mut surface = 0;
+    if dry.surface == "multicontact" {
+        dry.surface = "default".into();
+        surface = crate::engine::contact::multicontact_wall::WALL_HISTORY;
+    }
+    crate::engine::contact::AnyContactModel::new(&dry).map_or(0, |m| surface + m.history_len())
+}
+
 /// `fix wall/gran model ... mesh n_meshes N meshes ...`.
 pub struct MeshWallFix {
     /// Selected contact models.
@@ -48,16 +60,7 @@ impl MeshWallFix {
     pub fn history_width(&self) -> usize {
         match &self.model {
             Some(m) => m.history_width(),
-            None => {
-                let mut dry = self.selection.clone();
-                let mut surface = 0;
-                if dry.surface == "multicontact" {
-                    dry.surface = "default".into();
-                    surface = crate::engine::contact::multicontact_wall::WALL_HISTORY;
-                }
-                crate::engine::contact::AnyContactModel::new(&dry)
-                    .map_or(0, |m| surface + m.history_len())
-            }
+            None => dry_history_width(&self.selection),
         }
     }
 }

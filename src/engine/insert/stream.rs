@@ -480,9 +480,6 @@ impl InsertStream {
         box_changes: bool,
     ) -> Result<(Vec<NewParticle>, Vec<String>), EngineError> {
         let mut lines = Vec::new();
-        if self.extrusion_leaves(w.lo, w.hi) {
-            lines.push("WARNING: Fix insert/stream: Extruded insertion face extends outside domain, may not insert all particles correctly (./src/fix_insert_stream.cpp:561)".into());
-        }
         let mut n = (self.per_insertion + self.rng.uniform()) as i64;
         if self.inserted + n > self.total {
             n = self.total - self.inserted;
@@ -491,11 +488,28 @@ impl InsertStream {
             n = (self.total - self.inserted).max(0);
         }
         if !self.measured || box_changes {
+            // LIGGGHTS's Monte Carlo share of the extruded face inside the box: below 0.9
+            // it refuses to insert
+            let mut inside = 0i64;
             for _ in 0..self.ntry_mc {
-                self.face.random_point();
-                self.rng.uniform();
+                let p = self.face.random_point();
+                let r = -self.rng.uniform() * self.extrude;
+                let q = [0, 1, 2].map(|d| p[d] + r * self.normal[d]);
+                if (0..3).all(|d| q[d] >= w.lo[d] && q[d] < w.hi[d]) {
+                    inside += 1;
+                }
             }
             self.measured = true;
+            let share = inside as f64 / self.ntry_mc.max(1) as f64;
+            if !(0.9..=1.1).contains(&share) {
+                return Err(format!(
+                    "Fix insert/stream (id {}): insertion volume could not be distributed \
+                     properly in parallel. Bad decomposition or insertion face extrusion is too \
+                     small or outside domain",
+                    self.id
+                )
+                .into());
+            }
         }
         let list = dist.list(n)?;
         let maxrad = dist.max_radius;
@@ -613,7 +627,7 @@ impl InsertStream {
     /// (length), as LIGGGHTS checks before each insertion (a corner exactly on the box
     /// surface is inside; the extruded corner is the face's plus -extrude times the normal,
     /// rounded as LIGGGHTS rounds it).
-    fn extrusion_leaves(&self, lo: [f64; 3], hi: [f64; 3]) -> bool {
+    pub fn extrusion_leaves(&self, lo: [f64; 3], hi: [f64; 3]) -> bool {
         let mut min = [f64::INFINITY; 3];
         let mut max = [f64::NEG_INFINITY; 3];
         for v in self.face.triangles.iter().flatten() {

@@ -365,6 +365,9 @@ pub struct Simulation {
     pub zero_restitution: bool,
     /// Fixes in definition order.
     pub fixes: Vec<Fix>,
+    /// LIGGGHTS's fix list in its order: the deck's fixes and those LIGGGHTS creates itself
+    /// (what `modify_timing` reports).
+    pub modify_list: crate::engine::fix_timing::ModifyList,
     /// Computes in definition order.
     pub computes: Vec<crate::engine::computes::Compute>,
     /// Per-particle pair virial of the last force evaluation (xx yy zz xy xz yz, force
@@ -434,6 +437,7 @@ impl Default for Simulation {
             margin_said: None,
             margin_notes: Vec::new(),
             has_run: false,
+            modify_list: Default::default(),
             particles: Particles::default(),
             domain: Domain::default(),
             regions: Regions::default(),
@@ -646,16 +650,43 @@ impl Simulation {
                 0.0
             }
         };
-        let other = (loop_time - t.pair - t.neigh - t.comm - t.output).max(0.0);
+        // with modify_timing, the fixes' time is its own line and leaves `Other`
+        let timing = self.extras.modify_timing;
+        let times = |id: &str| {
+            self.fixes
+                .iter()
+                .find(|f| f.id == id)
+                .map_or(0.0, |f| f.clock.seconds)
+        };
+        let modify = if timing > 0 {
+            self.modify_list.total(&times)
+        } else {
+            0.0
+        };
+        let other = (loop_time - t.pair - t.neigh - t.comm - t.output - modify).max(0.0);
         let mut s = String::new();
-        for (name, v) in [
+        let mut lines = vec![
             ("Pair ", t.pair),
             ("Neigh", t.neigh),
             ("Comm ", t.comm),
             ("Outpt", t.output),
-            ("Other", other),
-        ] {
+        ];
+        if timing > 0 {
+            lines.push(("Modfy", modify));
+        }
+        lines.push(("Other", other));
+        for (name, v) in lines {
             s.push_str(&format!("{name} time (%) = {} ({})\n", g(v), g(pct(v))));
+            if name == "Modfy" && timing > 1 {
+                s.push_str(&format!(
+                    "  Modify   time [0] (%) = {} ({})\n",
+                    g(v),
+                    g(pct(v))
+                ));
+            }
+        }
+        if timing > 0 {
+            s.push_str(&self.modify_list.report(&times, loop_time, timing > 1));
         }
         let n = self.particles.len();
         let neighs = self.list.pairs.len() + self.list.mirrors.len();

@@ -71,6 +71,7 @@ impl Simulation {
         self.init_pair()?;
         self.init_liquid()?;
         self.init_heat()?;
+        self.list_run_fixes();
         self.check_meshes_in_box()?;
         let (first, last, started) = self.begin_run(nsteps)?;
         self.setup_deform(first)?;
@@ -198,6 +199,13 @@ impl Simulation {
         self.write_dumps(true, vars)?;
         self.loop_clock = Some(std::time::Instant::now());
         self.stats = RunStats::default();
+        let timed = self.extras.modify_timing > 0;
+        for f in &mut self.fixes {
+            f.clock = crate::engine::fix_timing::FixClock {
+                on: timed,
+                seconds: 0.0,
+            };
+        }
         if let Some(o) = self.observer.as_mut() {
             o.run_started(first, last, self.particles.len());
         }
@@ -326,6 +334,9 @@ impl Simulation {
         }
         self.run_bounds = None;
         self.loop_clock = None;
+        for f in &mut self.fixes {
+            f.clock.on = false;
+        }
         if self.accel.fast {
             self.restore_order();
         }
@@ -350,6 +361,35 @@ impl Simulation {
                 crate::util::format::g(self.neighbor.cutneighmax)
             ));
             self.list.missed = 0;
+        }
+    }
+
+    /// The fixes LIGGGHTS creates at a run's init joined to its fix list (once): the pair
+    /// style's contact history, the liquid transport of a wet pair style with its per-atom
+    /// arrays, the multiple-contact stores; then any fix regolith added itself.
+    fn list_run_fixes(&mut self) {
+        let list = &mut self.modify_list;
+        let width = self.pair.as_ref().map_or(0, |p| p.history_width());
+        if width > 0 {
+            list.ensure("contacthistory", "contacthistory", None);
+        }
+        if self
+            .pair_selection
+            .as_ref()
+            .is_some_and(|s| s.cohesion == crate::engine::wet::EASO)
+        {
+            list.ensure("liquidtransfer", "transportequation/scalar", None);
+        }
+        for f in &self.fixes {
+            list.ensure(&f.id, &f.style, None);
+        }
+        if self
+            .pair_selection
+            .as_ref()
+            .is_some_and(|s| s.surface == "multicontact")
+        {
+            list.ensure("multicontactData_", "contactproperty/atom", None);
+            list.ensure("nneighs_full", "property/atom", None);
         }
     }
 }

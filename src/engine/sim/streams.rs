@@ -49,6 +49,18 @@ impl Simulation {
                     sf.distribution
                 )
             })?;
+        // the face's triangles must lie in one plane with their neighbours (known once the
+        // mesh topology is built)
+        if let Some(face) = crate::engine::fixes::mesh_named(&self.fixes, &sf.face_id) {
+            let m = &face.mesh;
+            if m.neighbors.len() == m.len() && !crate::engine::massflow::Massflow::planar(m) {
+                return Err(format!(
+                    "Fix insert/stream (id {}): command requires a planar face for insertion",
+                    sf.id
+                )
+                .into());
+            }
+        }
         if sf.all_in && !sf.planar {
             return Err(format!("Fix insert/stream (id {}): using all_in yes requires you to use a fix mesh/surface/planar", sf.id).into());
         }
@@ -188,6 +200,7 @@ impl Simulation {
                 continue;
             }
             self.insert_rebuild_at = Some(step);
+            let clock = self.fixes[k].clock.start();
             let group = self.fixes[k].group;
             let dist_id = sf.distribution.clone();
             let (dk, mut dist) = self.distribution_of(&dist_id)?;
@@ -207,6 +220,10 @@ impl Simulation {
                 };
                 let sf = self.fixes[k].kind.stream_mut().expect("a stream");
                 let state = sf.state.as_mut().expect("set up");
+                // printed before the insertion, which may refuse the face
+                if state.extrusion_leaves(world.lo, world.hi) {
+                    out("WARNING: Fix insert/stream: Extruded insertion face extends outside domain, may not insert all particles correctly (./src/fix_insert_stream.cpp:561)\n");
+                }
                 state.insert(step, &mut dist, &world, box_changes)
             }?;
             if let Some(d) = self.fixes[dk].kind.distribution_mut() {
@@ -270,6 +287,7 @@ impl Simulation {
             for l in lines {
                 out(&format!("{l}\n"));
             }
+            self.fixes[k].clock.stop(clock);
         }
         Ok(())
     }
@@ -386,6 +404,7 @@ impl Simulation {
                 continue;
             }
             self.insert_rebuild_at = Some(step);
+            let clock = self.fixes[k].clock.start();
             let dist_id = ins.distribution.clone();
             let group = self.fixes[k].group;
             let (dk, mut dist) = self.distribution_of(&dist_id)?;
@@ -437,6 +456,7 @@ impl Simulation {
             for l in lines {
                 out(&format!("{l}\n"));
             }
+            self.fixes[k].clock.stop(clock);
         }
         Ok(())
     }

@@ -51,6 +51,7 @@ impl Simulation {
         let mesh_vmax_sqr = self.moving_mesh_vmax_sqr();
         for k in 0..self.fixes.len() {
             let fix = &mut self.fixes[k];
+            let clock = fix.clock.start();
             if let FixKind::Style(s) = &mut fix.kind {
                 s.end_of_step(
                     &mut self.particles,
@@ -71,6 +72,7 @@ impl Simulation {
                 }
                 self.fix_style_end_of_step_sim(k, vars)?;
             }
+            self.fixes[k].clock.stop(clock);
         }
         Ok(())
     }

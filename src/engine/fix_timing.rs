@@ -148,46 +148,43 @@ pub fn created_with(
         }
         return out;
     }
-    match &fix.kind {
-        FixKind::Style(_) => {
-            if fix.kind.stream().is_some() {
-                out.push(pa(crate::engine::insert::RELEASE_NAME));
-            } else if let Some(h) = fix.kind.style_as::<crate::engine::heat::HeatGran>() {
-                let [temp, flux, source, directional] = &h.arrays;
-                out.push(pa(directional));
-                out.push(("ste_heattransfer".into(), "transportequation/scalar".into()));
-                out.extend([pa(temp), pa(flux), pa(source)]);
-                if let Some(data) = &h.contact_data {
-                    out.extend(data.iter().map(|d| pa(d)));
-                }
-            } else if let Some(m) = fix.kind.style_as::<crate::engine::massflow::Massflow>() {
-                let (id, mesh) = (&fix.id, &m.mesh);
-                out.push(pa(&format!("massflow_{id}")));
-                out.push((format!("neighlist_{id}_{mesh}"), "neighlist/mesh".into()));
-                out.push(pa(&format!(
-                    "n_neighs_mesh_{mesh}_fix_neighlist_{id}_{mesh}"
-                )));
-            } else if fix.style == "adapt" {
-                out.push(pa(&format!("adaptProp_{}", fix.id)));
-            } else if fix.style == "multicontact/halfspace" {
-                // one contact store per wall (per mesh of a mesh wall) with the model
-                for f in before {
-                    let wall = "contactproperty/atom/wall".to_string();
-                    if let Some(w) = f.kind.style_as::<crate::engine::fixes::WallFix>() {
-                        if w.selection.surface == "multicontact" {
-                            out.push((format!("multicontactData_{}", f.id), wall));
-                        }
-                    } else if let Some(w) = f.kind.mesh_wall() {
-                        if w.selection.surface == "multicontact" {
-                            for m in &w.meshes {
-                                out.push((format!("multicontactData_{m}"), wall.clone()));
-                            }
+    if let FixKind::Style(_) = &fix.kind {
+        if fix.kind.stream().is_some() {
+            out.push(pa(crate::engine::insert::RELEASE_NAME));
+        } else if let Some(h) = fix.kind.style_as::<crate::engine::heat::HeatGran>() {
+            let [temp, flux, source, directional] = &h.arrays;
+            out.push(pa(directional));
+            out.push(("ste_heattransfer".into(), "transportequation/scalar".into()));
+            out.extend([pa(temp), pa(flux), pa(source)]);
+            if let Some(data) = &h.contact_data {
+                out.extend(data.iter().map(|d| pa(d)));
+            }
+        } else if let Some(m) = fix.kind.style_as::<crate::engine::massflow::Massflow>() {
+            let (id, mesh) = (&fix.id, &m.mesh);
+            out.push(pa(&format!("massflow_{id}")));
+            out.push((format!("neighlist_{id}_{mesh}"), "neighlist/mesh".into()));
+            out.push(pa(&format!(
+                "n_neighs_mesh_{mesh}_fix_neighlist_{id}_{mesh}"
+            )));
+        } else if fix.style == "adapt" {
+            out.push(pa(&format!("adaptProp_{}", fix.id)));
+        } else if fix.style == "multicontact/halfspace" {
+            // one contact store per wall (per mesh of a mesh wall) with the model
+            for f in before {
+                let wall = "contactproperty/atom/wall".to_string();
+                if let Some(w) = f.kind.style_as::<crate::engine::fixes::WallFix>() {
+                    if w.selection.surface == "multicontact" {
+                        out.push((format!("multicontactData_{}", f.id), wall));
+                    }
+                } else if let Some(w) = f.kind.mesh_wall() {
+                    if w.selection.surface == "multicontact" {
+                        for m in &w.meshes {
+                            out.push((format!("multicontactData_{m}"), wall.clone()));
                         }
                     }
                 }
             }
         }
-        _ => {}
     }
     out
 }

@@ -2,7 +2,7 @@
 //! integrator can move, and neighbour bins that fit the box.
 
 use crate::engine::error::EngineError;
-use crate::engine::fixes::{FixKind, WallFix};
+use crate::engine::fixes::FixKind;
 use crate::engine::sim::Simulation;
 pub use crate::state::limits::{
     allocation, check_ntypes, check_sphere, failed_to_allocate, memory_limit, sphere_mass,
@@ -204,7 +204,7 @@ impl Simulation {
 /// The atom types a fix brings into a run: a primitive wall's or a mesh's wall type, a
 /// particle distribution's template types (none for other fixes).
 fn wall_or_template_types(kind: &FixKind) -> Vec<u64> {
-    if let Some(w) = kind.style_as::<WallFix>() {
+    if let Some(w) = kind.primitive_wall() {
         return vec![w.wall_type as u64];
     }
     if let Some(m) = kind.mesh() {

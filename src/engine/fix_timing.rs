@@ -128,7 +128,7 @@ pub fn created_with(
     let pa = |id: &str| (id.to_string(), "property/atom".to_string());
     let mut out = Vec::new();
     let kind = &fix.kind;
-    if let Some(w) = kind.style_as::<crate::engine::fixes::WallFix>() {
+    if let Some(w) = kind.primitive_wall() {
         if crate::engine::fixes::dry_history_width(&w.selection) > 0 {
             out.push(pa(&format!("history_{}", fix.id)));
         }
@@ -172,7 +172,7 @@ pub fn created_with(
             // one contact store per wall (per mesh of a mesh wall) with the model
             for f in before {
                 let wall = "contactproperty/atom/wall".to_string();
-                if let Some(w) = f.kind.style_as::<crate::engine::fixes::WallFix>() {
+                if let Some(w) = f.kind.primitive_wall() {
                     if w.selection.surface == "multicontact" {
                         out.push((format!("multicontactData_{}", f.id), wall));
                     }

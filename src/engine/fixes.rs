@@ -138,7 +138,12 @@ impl FixKind {
         if let Some(w) = self.mesh_wall() {
             return Some(&w.selection);
         }
-        Some(&self.style_as::<WallFix>()?.selection)
+        Some(&self.primitive_wall()?.selection)
+    }
+
+    /// The primitive wall of a `fix wall/gran ... primitive` (None: a fix of another style).
+    pub fn primitive_wall(&self) -> Option<&WallFix> {
+        self.style_as()
     }
 
     /// Can the fix evaluate variables or computes inside a step (so per-atom computes must

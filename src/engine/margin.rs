@@ -4,7 +4,7 @@
 //! error (the screen and log keep LIGGGHTS's lines). LIGGGHTS says nothing of this unless the
 //! deck asks (`fix check/timestep/gran`).
 
-use crate::engine::fixes::{FixKind, Motion, Move, WallFix};
+use crate::engine::fixes::{FixKind, Motion, Move};
 use crate::engine::insert::Velocity;
 use crate::engine::sim::Simulation;
 use std::f64::consts::PI;
@@ -422,7 +422,7 @@ impl Simulation {
                 );
                 continue;
             }
-            if let Some((_, v)) = f.kind.style_as::<WallFix>().and_then(|w| w.shear) {
+            if let Some((_, v)) = f.kind.primitive_wall().and_then(|w| w.shear) {
                 offer(v.abs(), format!("fix {} (wall shear)", f.id));
                 continue;
             }
@@ -587,7 +587,7 @@ impl Simulation {
             lines.push(line);
         }
         for f in &self.fixes {
-            if let Some(w) = f.kind.style_as::<WallFix>() {
+            if let Some(w) = f.kind.primitive_wall() {
                 let mut line = format!(
                     "  fix {} (wall/gran primitive): {}",
                     f.id,

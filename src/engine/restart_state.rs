@@ -446,7 +446,7 @@ impl Simulation {
             .iter()
             .filter(|e| {
                 // LIGGGHTS keeps a primitive wall's history only when its model has one
-                (e.width > 0 && self.fixes.iter().any(|f| f.kind.style_as::<crate::engine::fixes::WallFix>().is_some_and(|w| w.history_name == e.name)))
+                (e.width > 0 && self.fixes.iter().any(|f| f.kind.primitive_wall().is_some_and(|w| w.history_name == e.name)))
                     // property/atom fixes with restart `yes` (the heat fixes' Temp too)
                     || self.fixes.iter().any(|f| f.kind.property_atom().is_some_and(|pa| pa.restart && f.id == e.name && pa.defaults.len() == e.width))
             })

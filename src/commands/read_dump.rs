@@ -66,6 +66,35 @@ struct Options {
 
 /// Fields and keywords in LIGGGHTS's order of checks and with its messages.
 fn parse(a: &Args, ctx: &Ctx) -> Result<Options> {
+    let (fields, i) = field_list(a)?;
+    check_fields(a, ctx, &fields)?;
+    let mut o = Options {
+        fields,
+        boxflag: true,
+        replace: true,
+        purge: false,
+        trim: false,
+        add: false,
+    };
+    let (format, i) = keywords(a, i, &mut o)?;
+    if o.purge && (o.replace || o.trim) {
+        return Err(a.error(0, "If read_dump purges it cannot replace or trim"));
+    }
+    match format {
+        "native" => {}
+        "xyz" => return Err(a.unsupported(i - 1, "read_dump format xyz")),
+        _ => return Err(a.error(i - 1, "Invalid dump reader style")),
+    }
+    // words after `format native` go to the native reader, which ignores them
+    if o.add {
+        return Err(a.unsupported(0, "read_dump add yes (new particles from a snapshot)"));
+    }
+    Ok(o)
+}
+
+/// The fields from word 2 on (the ID and type always read first) and the first word after
+/// them.
+fn field_list(a: &Args) -> Result<(Vec<Field>, usize)> {
     let mut fields = vec![Field::Id, Field::Type];
     let mut i = 2;
     while i < a.len() {
@@ -80,6 +109,11 @@ fn parse(a: &Args, ctx: &Ctx) -> Result<Options> {
         }
         i += 1;
     }
+    Ok((fields, i))
+}
+
+/// LIGGGHTS's checks of the fields: the radius among them, no z in 2d, none twice.
+fn check_fields(a: &Args, ctx: &Ctx, fields: &[Field]) -> Result<()> {
     if !fields.contains(&Field::Radius) {
         return Err(a.error(
             a.len().saturating_sub(1),
@@ -98,15 +132,12 @@ fn parse(a: &Args, ctx: &Ctx) -> Result<Options> {
             return Err(a.error(0, "Duplicate fields in read_dump command"));
         }
     }
-    let mut o = Options {
-        fields,
-        boxflag: true,
-        replace: true,
-        purge: false,
-        trim: false,
-        add: false,
-    };
-    let mut format = "native";
+    Ok(())
+}
+
+/// The yes/no keywords from word `i` into `o`, up to and including `format`: the reader
+/// format (`native` by default) and the first word after the keywords.
+fn keywords<'a>(a: &'a Args, mut i: usize, o: &mut Options) -> Result<(&'a str, usize)> {
     while i < a.len() {
         let key = a.word(i)?;
         if !matches!(
@@ -127,9 +158,7 @@ fn parse(a: &Args, ctx: &Ctx) -> Result<Options> {
             return Err(a.error(i, ILLEGAL));
         }
         if key == "format" {
-            format = a.word(i + 1)?;
-            i += 2;
-            break;
+            return Ok((a.word(i + 1)?, i + 2));
         }
         if key == "label" {
             // LIGGGHTS 3.8.0 looks the field up among labels that are all still unset, so
@@ -153,19 +182,7 @@ fn parse(a: &Args, ctx: &Ctx) -> Result<Options> {
         }
         i += 2;
     }
-    if o.purge && (o.replace || o.trim) {
-        return Err(a.error(0, "If read_dump purges it cannot replace or trim"));
-    }
-    match format {
-        "native" => {}
-        "xyz" => return Err(a.unsupported(i - 1, "read_dump format xyz")),
-        _ => return Err(a.error(i - 1, "Invalid dump reader style")),
-    }
-    // words after `format native` go to the native reader, which ignores them
-    if o.add {
-        return Err(a.unsupported(0, "read_dump add yes (new particles from a snapshot)"));
-    }
-    Ok(o)
+    Ok(("native", i))
 }
 
 /// The snapshot read_dump asked for: its box (length), whether its coordinates are scaled

@@ -221,29 +221,47 @@ fn leading_int(line: &str) -> i64 {
     t[..n].parse().unwrap_or(-1)
 }
 
+/// Why a native dump file does not give the snapshot asked for, in LIGGGHTS's words.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+enum SnapshotError {
+    /// A snapshot does not start with its `ITEM: TIMESTEP` line.
+    #[error("Dump file is incorrectly formatted")]
+    Formatted,
+    /// No snapshot of the step asked for.
+    #[error("Dump file does not contain requested snapshot")]
+    Missing,
+    /// A triclinic box in the file.
+    #[error("Read_dump triclinic status does not match simulation")]
+    Triclinic,
+    /// A field without its column.
+    #[error("Read_dump field not found in dump file")]
+    FieldNotFound,
+    /// Coordinate columns of mixed kinds (`x` and `ys`, ...).
+    #[error("Read_dump xyz fields do not have consistent scaling/wrapping")]
+    MixedCoordinates,
+}
+
 /// Find the snapshot of step `nstep` in the text of a native dump file and read its
-/// columns for `fields`; errors carry LIGGGHTS's messages.
+/// columns for `fields`.
 fn find_snapshot(
     text: &str,
     nstep: i64,
     fields: &[Field],
-) -> std::result::Result<Snapshot, String> {
+) -> std::result::Result<Snapshot, SnapshotError> {
     let mut lines = text.lines();
-    let formatted = "Dump file is incorrectly formatted";
-    let missing = "Dump file does not contain requested snapshot";
     loop {
         let Some(head) = lines.next() else {
-            return Err(missing.into());
+            return Err(SnapshotError::Missing);
         };
         if !head.starts_with("ITEM: TIMESTEP") {
-            return Err(formatted.into());
+            return Err(SnapshotError::Formatted);
         }
         let step = leading_int(lines.next().unwrap_or(""));
         lines.next();
         let natoms = leading_int(lines.next().unwrap_or("")).max(0) as usize;
         if step >= nstep {
             if step != nstep {
-                return Err(missing.into());
+                return Err(SnapshotError::Missing);
             }
             return read_body(&mut lines, natoms, fields);
         }
@@ -258,10 +276,10 @@ fn read_body<'t>(
     lines: &mut impl Iterator<Item = &'t str>,
     natoms: usize,
     fields: &[Field],
-) -> std::result::Result<Snapshot, String> {
+) -> std::result::Result<Snapshot, SnapshotError> {
     let bounds = lines.next().unwrap_or("");
     if bounds.get(17..18) == Some("x") {
-        return Err("Read_dump triclinic status does not match simulation".into());
+        return Err(SnapshotError::Triclinic);
     }
     let (mut lo, mut hi) = ([0.0; 3], [0.0; 3]);
     for d in 0..3 {
@@ -304,21 +322,21 @@ fn read_body<'t>(
                         coord.push(flags);
                         continue;
                     }
-                    None => return Err("Read_dump field not found in dump file".into()),
+                    None => return Err(SnapshotError::FieldNotFound),
                 }
             }
             other => {
                 let (name, _) = FIELDS
                     .iter()
                     .find(|(_, g)| g == other)
-                    .ok_or("Read_dump field not found in dump file")?;
+                    .ok_or(SnapshotError::FieldNotFound)?;
                 (*name).to_string()
             }
         };
-        index.push(find(&name).ok_or("Read_dump field not found in dump file")?);
+        index.push(find(&name).ok_or(SnapshotError::FieldNotFound)?);
     }
     if coord.iter().any(|c| *c != coord[0]) {
-        return Err("Read_dump xyz fields do not have consistent scaling/wrapping".into());
+        return Err(SnapshotError::MixedCoordinates);
     }
     let (scaled, wrapped) = coord.first().copied().unwrap_or((false, false));
     let mut rows = Vec::with_capacity(natoms);
@@ -370,7 +388,7 @@ pub fn read_dump(a: &Args, ctx: &mut Ctx) -> Result {
         ctx.sys.read(name).map_err(|e| e.to_string())
     }
     .map_err(|m| a.file_error(0, format!("Cannot open file {name}: {m}")))?;
-    let snap = find_snapshot(&text, nstep, &o.fields).map_err(|m| a.error(0, m))?;
+    let snap = find_snapshot(&text, nstep, &o.fields).map_err(|e| a.error(0, e.to_string()))?;
     ctx.sim.reset_timestep(nstep);
     ctx.out.screen("Reading snapshot from dump file ...\n");
     let before = ctx.sim.particles.len();
@@ -487,8 +505,11 @@ mod tests {
             ]
         );
         let e = find_snapshot(DUMP, 150, &fields).unwrap_err();
-        assert_eq!(e, "Dump file does not contain requested snapshot");
+        assert_eq!(
+            e.to_string(),
+            "Dump file does not contain requested snapshot"
+        );
         let e = find_snapshot(DUMP, 100, &[Field::Id, Field::V(0)]).unwrap_err();
-        assert_eq!(e, "Read_dump field not found in dump file");
+        assert_eq!(e.to_string(), "Read_dump field not found in dump file");
     }
 }

@@ -6,7 +6,7 @@
 
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
-use crate::engine::domain::Boundary;
+use crate::engine::domain::{Boundary, BoxError};
 use crate::engine::sim::Simulation;
 use crate::lang::system::Mode;
 use crate::util::format::g;
@@ -232,7 +232,7 @@ fn saved(sim: &Simulation) -> Saved {
 
 /// LIGGGHTS's `reset_box`: shrink-wrap `s`/`m` faces around the atoms and mesh nodes (an
 /// empty extent turns an `s` face inside out: "Illegal simulation box").
-fn reset_box(sim: &mut Simulation) -> std::result::Result<(), String> {
+fn reset_box(sim: &mut Simulation) -> std::result::Result<(), BoxError> {
     if !sim.domain.shrinks() {
         return Ok(());
     }
@@ -251,7 +251,7 @@ fn reset_box(sim: &mut Simulation) -> std::result::Result<(), String> {
             hi[d] = hi[d].max(x[d]);
         }
     }
-    sim.domain.shrink_wrap(lo, hi).map_err(|e| e.to_string())
+    sim.domain.shrink_wrap(lo, hi)
 }
 
 /// Wrap every atom into the periodic directions (LIGGGHTS's pbc and remap).
@@ -281,10 +281,9 @@ pub(crate) fn orthogonal_box_line(lo: [f64; 3], hi: [f64; 3]) -> String {
 }
 
 fn apply(a: &Args, ctx: &mut Ctx, ops: &[Op], group: u32, scale: f64) -> Result {
-    let at = |m: String| a.error(0, &m);
-    let at_box = |e: crate::engine::domain::BoxError| a.error(0, e.to_string());
+    let at_box = |e: BoxError| a.error(0, e.to_string());
     wrap_atoms(ctx.sim);
-    reset_box(ctx.sim).map_err(at)?;
+    reset_box(ctx.sim).map_err(at_box)?;
     let mut from = saved(ctx.sim);
     for op in ops {
         match *op {
@@ -352,9 +351,9 @@ fn apply(a: &Args, ctx: &mut Ctx, ops: &[Op], group: u32, scale: f64) -> Result 
             }
         }
     }
-    reset_box(ctx.sim).map_err(at)?;
+    reset_box(ctx.sim).map_err(at_box)?;
     wrap_atoms(ctx.sim);
-    reset_box(ctx.sim).map_err(at)?;
+    reset_box(ctx.sim).map_err(at_box)?;
     Ok(())
 }
 

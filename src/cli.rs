@@ -97,129 +97,155 @@ fn usage(message: impl Into<String>, help: Option<String>) -> UsageError {
 pub fn parse_deck_flags(args: &[String]) -> Result<DeckOptions, UsageError> {
     let mut o = DeckOptions::default();
     let mut i = 0;
-    let missing = |flag: &str, what: &str| {
-        usage(
-            "Invalid command-line argument",
-            Some(format!("{flag} needs {what}")),
-        )
-    };
     while i < args.len() {
-        let flag = args[i].as_str();
-        let value = |n: usize| args.get(i + n).cloned();
-        match flag {
-            "-in" | "-i" => {
-                o.input = Some(value(1).ok_or_else(|| missing(flag, "a file name"))?);
-                i += 2;
-            }
-            "-log" | "-l" => {
-                o.log = Some(value(1).ok_or_else(|| missing(flag, "a file name or none"))?);
-                i += 2;
-            }
-            "-screen" | "-sc" => {
-                o.screen = Some(value(1).ok_or_else(|| missing(flag, "a file name or none"))?);
-                i += 2;
-            }
-            "-echo" | "-e" => {
-                let v = value(1).ok_or_else(|| missing(flag, "none, screen, log or both"))?;
-                if !["none", "screen", "log", "both"].contains(&v.as_str()) {
-                    return Err(usage(
-                        "Illegal echo command",
-                        Some(format!("-echo takes none, screen, log or both, not '{v}'")),
-                    ));
-                }
-                o.echo = Some(v);
-                i += 2;
-            }
-            "-var" | "-v" => {
-                // as liggghts: the name and first value are taken whatever they look like,
-                // further values run until the next word starting with '-'
-                let (Some(name), Some(first)) = (value(1), value(2)) else {
-                    return Err(missing(flag, "a name and at least one value"));
-                };
-                let mut values = vec![first];
-                let mut j = i + 3;
-                while j < args.len() && !args[j].starts_with('-') {
-                    values.push(args[j].clone());
-                    j += 1;
-                }
-                o.vars.push((name, values));
-                i = j;
-            }
-            "-nocite" | "-nc" => {
-                o.nocite = true;
-                i += 1;
-            }
-            "-seedtolerant" | "-st" => {
-                o.seed_tolerant = true;
-                i += 1;
-            }
-            "-zero_restitution" => {
-                o.zero_restitution = true;
-                i += 1;
-            }
-            "-help" | "-h" => {
-                o.help = true;
-                i += 1;
-            }
-            "-suffix" | "-sf" => {
-                let v = value(1).ok_or_else(|| missing(flag, "an accelerator style (fast)"))?;
-                o.fast =
-                    parse_suffix(&v).map_err(|m| usage(m.to_string(), Some(SUFFIX_HELP.into())))?;
-                i += 2;
-            }
-            "-package" | "-pk" => {
-                let style = value(1).ok_or_else(|| missing(flag, "fast and a thread count"))?;
-                let n = value(2).ok_or_else(|| missing(flag, "fast and a thread count"))?;
-                o.threads = Some(
-                    parse_package(&style, &n)
-                        .map_err(|m| usage(m.to_string(), Some(PACKAGE_HELP.into())))?,
-                );
-                i += 3;
-            }
-            "-restart" | "-r" => {
-                let (Some(r), Some(d)) = (value(1), value(2)) else {
-                    return Err(missing(flag, "a restart file and a data file"));
-                };
-                o.restart_to_data = Some((r, d));
-                i += 3;
-            }
-            "-partition" | "-p" => {
-                let mut j = i + 1;
-                let mut worlds = Vec::new();
-                while j < args.len() && !args[j].starts_with('-') {
-                    worlds.push(args[j].clone());
-                    j += 1;
-                }
-                if worlds.is_empty() {
-                    return Err(missing(flag, "partition sizes"));
-                }
-                if worlds != ["1"] {
-                    return Err(usage(
-                        format!("{flag} {}: not supported yet", worlds.join(" ")),
-                        Some("regolith runs one partition; parallelism comes from threads".into()),
-                    ));
-                }
-                i = j;
-            }
-            _ if FLAGS.contains(&flag) => {
-                return Err(usage(
-                    format!("{flag}: not supported yet"),
-                    Some("supported: -in -var -log -screen -echo -nocite -seedtolerant -partition 1 -help -restart -suffix fast -package fast N".into()),
-                ));
-            }
-            _ => {
-                let help = did_you_mean(flag, FLAGS).or_else(|| {
-                    (!flag.starts_with('-'))
-                        .then(|| format!("to run a deck, write: regolith -in {flag}"))
-                });
-                return Err(usage(
-                    format!("Invalid command-line argument: {flag}"),
-                    help,
-                ));
-            }
-        }
+        i = deck_flag(args, i, &mut o)?;
     }
     Ok(o)
+}
+
+/// The error for `flag` given without `what` it takes.
+fn missing(flag: &str, what: &str) -> UsageError {
+    usage(
+        "Invalid command-line argument",
+        Some(format!("{flag} needs {what}")),
+    )
+}
+
+/// Read the flag `args[i]` and its values into `o`: the index of the next flag.
+fn deck_flag(args: &[String], i: usize, o: &mut DeckOptions) -> Result<usize, UsageError> {
+    let flag = args[i].as_str();
+    let value = |n: usize| args.get(i + n).cloned();
+    // the words the flag takes, itself included
+    let words = match flag {
+        "-in" | "-i" => {
+            o.input = Some(value(1).ok_or_else(|| missing(flag, "a file name"))?);
+            2
+        }
+        "-log" | "-l" => {
+            o.log = Some(value(1).ok_or_else(|| missing(flag, "a file name or none"))?);
+            2
+        }
+        "-screen" | "-sc" => {
+            o.screen = Some(value(1).ok_or_else(|| missing(flag, "a file name or none"))?);
+            2
+        }
+        "-echo" | "-e" => {
+            o.echo = Some(echo_style(flag, value(1))?);
+            2
+        }
+        "-var" | "-v" => return command_line_variable(args, i, o),
+        "-nocite" | "-nc" => {
+            o.nocite = true;
+            1
+        }
+        "-seedtolerant" | "-st" => {
+            o.seed_tolerant = true;
+            1
+        }
+        "-zero_restitution" => {
+            o.zero_restitution = true;
+            1
+        }
+        "-help" | "-h" => {
+            o.help = true;
+            1
+        }
+        "-suffix" | "-sf" => {
+            let v = value(1).ok_or_else(|| missing(flag, "an accelerator style (fast)"))?;
+            o.fast =
+                parse_suffix(&v).map_err(|m| usage(m.to_string(), Some(SUFFIX_HELP.into())))?;
+            2
+        }
+        "-package" | "-pk" => {
+            let style = value(1).ok_or_else(|| missing(flag, "fast and a thread count"))?;
+            let n = value(2).ok_or_else(|| missing(flag, "fast and a thread count"))?;
+            o.threads = Some(
+                parse_package(&style, &n)
+                    .map_err(|m| usage(m.to_string(), Some(PACKAGE_HELP.into())))?,
+            );
+            3
+        }
+        "-restart" | "-r" => {
+            let (Some(r), Some(d)) = (value(1), value(2)) else {
+                return Err(missing(flag, "a restart file and a data file"));
+            };
+            o.restart_to_data = Some((r, d));
+            3
+        }
+        "-partition" | "-p" => return one_partition(args, i),
+        _ => return Err(unknown_flag(flag)),
+    };
+    Ok(i + words)
+}
+
+/// The value of `-echo none|screen|log|both`.
+fn echo_style(flag: &str, value: Option<String>) -> Result<String, UsageError> {
+    let v = value.ok_or_else(|| missing(flag, "none, screen, log or both"))?;
+    if !["none", "screen", "log", "both"].contains(&v.as_str()) {
+        return Err(usage(
+            "Illegal echo command",
+            Some(format!("-echo takes none, screen, log or both, not '{v}'")),
+        ));
+    }
+    Ok(v)
+}
+
+/// `-var NAME VALUE ...` at `args[i]` into `o`: the index of the next flag. As liggghts: the
+/// name and first value are taken whatever they look like, further values run until the
+/// next word starting with '-'.
+fn command_line_variable(
+    args: &[String],
+    i: usize,
+    o: &mut DeckOptions,
+) -> Result<usize, UsageError> {
+    let (Some(name), Some(first)) = (args.get(i + 1).cloned(), args.get(i + 2).cloned()) else {
+        return Err(missing(&args[i], "a name and at least one value"));
+    };
+    let mut values = vec![first];
+    let mut j = i + 3;
+    while j < args.len() && !args[j].starts_with('-') {
+        values.push(args[j].clone());
+        j += 1;
+    }
+    o.vars.push((name, values));
+    Ok(j)
+}
+
+/// `-partition 1` at `args[i]` (the only partitioning regolith runs): the index of the next
+/// flag.
+fn one_partition(args: &[String], i: usize) -> Result<usize, UsageError> {
+    let flag = args[i].as_str();
+    let mut j = i + 1;
+    let mut worlds = Vec::new();
+    while j < args.len() && !args[j].starts_with('-') {
+        worlds.push(args[j].clone());
+        j += 1;
+    }
+    if worlds.is_empty() {
+        return Err(missing(flag, "partition sizes"));
+    }
+    if worlds != ["1"] {
+        return Err(usage(
+            format!("{flag} {}: not supported yet", worlds.join(" ")),
+            Some("regolith runs one partition; parallelism comes from threads".into()),
+        ));
+    }
+    Ok(j)
+}
+
+/// The error for `flag`: a LIGGGHTS flag regolith does not take yet, or no flag at all (the
+/// nearest flags, or how to run a deck named so).
+fn unknown_flag(flag: &str) -> UsageError {
+    if FLAGS.contains(&flag) {
+        return usage(
+            format!("{flag}: not supported yet"),
+            Some("supported: -in -var -log -screen -echo -nocite -seedtolerant -partition 1 -help -restart -suffix fast -package fast N".into()),
+        );
+    }
+    let help = did_you_mean(flag, FLAGS).or_else(|| {
+        (!flag.starts_with('-')).then(|| format!("to run a deck, write: regolith -in {flag}"))
+    });
+    usage(format!("Invalid command-line argument: {flag}"), help)
 }
 
 pub use crate::engine::accel::{parse_package, parse_suffix, PACKAGE_HELP, SUFFIX_HELP};

@@ -143,103 +143,28 @@ pub fn run_deck_on(opts: &DeckOptions, comm: Option<crate::util::comm::RankComm>
             return ExitStatus::DeckError;
         }
     };
-
-    // the whole deck is checked first: nothing unsupported or misspelled starts a run
-    let checked = check_deck_full(
-        Source {
-            name: source.name.clone(),
-            lines: source.lines.clone(),
-            from_stdin: source.from_stdin,
-        },
-        opts,
-        None,
-    );
-    let problems: Vec<Diagnostic> = checked
-        .diagnostics
-        .into_iter()
-        .filter(|d| d.severity != Severity::Warning)
-        .collect();
-    if opts.ranks.size > 1 && (comm.is_none() || !problems.is_empty()) {
-        // on more than one rank: rank 0 reports the grid as LIGGGHTS would, then the refusals
-        if opts.ranks.rank == 0 {
-            print!("{}", checked.grid.concat());
-            for d in &problems {
-                report(d);
-            }
-            if comm.is_none() {
-                report(&Diagnostic::unsupported(format!(
-                    "this run {}",
-                    crate::util::comm::MANY_RANKS
-                )));
-            }
-        }
-        return match status_of(&problems) {
-            ExitStatus::Success => ExitStatus::Unsupported,
-            other => other,
-        };
+    if let Some(refused) = check_before_running(opts, &source, comm.is_some(), &report) {
+        return refused;
     }
-    if !problems.is_empty() {
-        for d in &problems {
-            report(d);
-        }
-        let _ = writeln!(
-            std::io::stderr(),
-            "regolith: {} problem(s) found before running; nothing was run",
-            problems.len()
-        );
-        return status_of(&problems);
-    }
-
-    let quiet = opts.ranks.rank > 0;
-    let screen: Option<Box<dyn Write>> = match opts.screen.as_deref() {
-        _ if quiet => None,
-        None => Some(Box::new(std::io::stdout())),
-        Some(name) => match open_output(name) {
-            Ok(s) => s,
-            Err(d) => {
-                report(&d);
-                return ExitStatus::DeckError;
-            }
-        },
-    };
-    let (observer, screen) = crate::progress::attach(screen);
-    let log_name = if quiet {
-        "none"
-    } else {
-        opts.log.as_deref().unwrap_or("log.liggghts")
-    };
-    let log = match open_output(log_name) {
-        Ok(l) => l,
+    let (observer, mut out) = match open_streams(opts) {
+        Ok(streams) => streams,
         Err(d) => {
             report(&d);
             return ExitStatus::DeckError;
         }
     };
-    let (echo_screen, echo_log) = match opts.echo.as_deref() {
-        Some("none") => (false, false),
-        Some("screen") => (true, false),
-        Some("both") => (true, true),
-        _ => (false, true),
-    };
-    let mut out = Output {
-        screen,
-        log,
-        echo_screen,
-        echo_log,
-        write_errors: [None, None],
-        stdout_apart: !quiet && opts.screen.is_some(),
-    };
     out.both(&banner());
     let mut interp = Interpreter::new(Mode::Run, out);
-    interp.engine.sim.seed_tolerant = opts.seed_tolerant;
-    interp.engine.sim.zero_restitution = opts.zero_restitution;
-    interp.engine.sim.accel.fast = opts.fast;
-    interp.engine.sim.accel.ask_threads(opts.threads);
-    interp.engine.sim.observer = observer;
-    interp.engine.sim.procs.nprocs = opts.ranks.size as i64;
-    interp.engine.sim.procs.procs_per_node = opts.ranks.per_node as i64;
-    interp.engine.sim.accel.ranks_per_node = opts.ranks.per_node;
-    interp.engine.sim.comm = comm;
+    let sim = &mut interp.engine.sim;
+    sim.seed_tolerant = opts.seed_tolerant;
+    sim.zero_restitution = opts.zero_restitution;
+    sim.accel.fast = opts.fast;
+    sim.accel.ask_threads(opts.threads);
+    sim.observer = observer;
+    sim.procs.nprocs = opts.ranks.size as i64;
+    sim.procs.procs_per_node = opts.ranks.per_node as i64;
+    sim.accel.ranks_per_node = opts.ranks.per_node;
+    sim.comm = comm;
     for (name, values) in &opts.vars {
         if let Err(d) = interp.set_command_line_variable(name, values) {
             report(&d);
@@ -258,8 +183,104 @@ pub fn run_deck_on(opts: &DeckOptions, comm: Option<crate::util::comm::RankComm>
         }
     };
     interp.out.flush();
-    // output the deck asked for and did not get: the run did not end cleanly
-    let lost: Vec<String> = interp.out.write_errors.iter().flatten().cloned().collect();
+    with_lost_output(&interp.out, status)
+}
+
+/// The whole deck checked first: nothing unsupported or misspelled starts a run. The exit
+/// status when the deck is refused (its problems reported), None when it may run. On more
+/// than one rank without `ranks_joined` (a communicator), every deck is refused.
+fn check_before_running(
+    opts: &DeckOptions,
+    source: &Source,
+    ranks_joined: bool,
+    report: &dyn Fn(&Diagnostic),
+) -> Option<ExitStatus> {
+    let checked = check_deck_full(
+        Source {
+            name: source.name.clone(),
+            lines: source.lines.clone(),
+            from_stdin: source.from_stdin,
+        },
+        opts,
+        None,
+    );
+    let problems: Vec<Diagnostic> = checked
+        .diagnostics
+        .into_iter()
+        .filter(|d| d.severity != Severity::Warning)
+        .collect();
+    if opts.ranks.size > 1 && (!ranks_joined || !problems.is_empty()) {
+        // on more than one rank: rank 0 reports the grid as LIGGGHTS would, then the refusals
+        if opts.ranks.rank == 0 {
+            print!("{}", checked.grid.concat());
+            for d in &problems {
+                report(d);
+            }
+            if !ranks_joined {
+                report(&Diagnostic::unsupported(format!(
+                    "this run {}",
+                    crate::util::comm::MANY_RANKS
+                )));
+            }
+        }
+        return Some(match status_of(&problems) {
+            ExitStatus::Success => ExitStatus::Unsupported,
+            other => other,
+        });
+    }
+    if !problems.is_empty() {
+        for d in &problems {
+            report(d);
+        }
+        let _ = writeln!(
+            std::io::stderr(),
+            "regolith: {} problem(s) found before running; nothing was run",
+            problems.len()
+        );
+        return Some(status_of(&problems));
+    }
+    None
+}
+
+/// The run's screen (with the progress line when standard error is a terminal), log and
+/// echo settings as the flags set them; ranks above 0 write neither screen nor log.
+fn open_streams(
+    opts: &DeckOptions,
+) -> Result<(Option<Box<dyn crate::progress::StepObserver>>, Output), Diagnostic> {
+    let quiet = opts.ranks.rank > 0;
+    let screen: Option<Box<dyn Write>> = match opts.screen.as_deref() {
+        _ if quiet => None,
+        None => Some(Box::new(std::io::stdout())),
+        Some(name) => open_output(name)?,
+    };
+    let (observer, screen) = crate::progress::attach(screen);
+    let log_name = if quiet {
+        "none"
+    } else {
+        opts.log.as_deref().unwrap_or("log.liggghts")
+    };
+    let log = open_output(log_name)?;
+    let (echo_screen, echo_log) = match opts.echo.as_deref() {
+        Some("none") => (false, false),
+        Some("screen") => (true, false),
+        Some("both") => (true, true),
+        _ => (false, true),
+    };
+    let out = Output {
+        screen,
+        log,
+        echo_screen,
+        echo_log,
+        write_errors: [None, None],
+        stdout_apart: !quiet && opts.screen.is_some(),
+    };
+    Ok((observer, out))
+}
+
+/// The run's exit status once the output it asked for and did not get is reported: a
+/// run that lost output did not end cleanly.
+fn with_lost_output(out: &Output, status: ExitStatus) -> ExitStatus {
+    let lost: Vec<String> = out.write_errors.iter().flatten().cloned().collect();
     if !lost.is_empty() {
         for m in &lost {
             let _ = writeln!(std::io::stderr(), "ERROR: {m}");

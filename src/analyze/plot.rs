@@ -105,7 +105,7 @@ pub fn save(
     let root = BitMapBackend::new(path, (width, height)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
     for (area, chart) in root.split_evenly((charts.len(), 1)).iter().zip(charts) {
-        draw(area, chart).map_err(err)?;
+        draw(area, chart).map_err(|e| err(e.to_string()))?;
     }
     root.present().map_err(|e| err(e.to_string()))
 }
@@ -144,7 +144,11 @@ fn range(chart: &Chart, axis: usize, log: bool) -> (f64, f64) {
     }
 }
 
-fn draw(area: &DrawingArea<BitMapBackend<'_>, Shift>, chart: &Chart) -> Result<(), String> {
+/// Why drawing on a bitmap failed (plotters' error).
+type DrawError = DrawingAreaErrorKind<<BitMapBackend<'static> as DrawingBackend>::ErrorType>;
+
+/// Draw `chart` on its panel `area`, each axis linear or logarithmic.
+fn draw(area: &DrawingArea<BitMapBackend<'_>, Shift>, chart: &Chart) -> Result<(), DrawError> {
     let (x0, x1) = range(chart, 0, chart.log_x);
     let (y0, y1) = range(chart, 1, chart.log_y);
     match (chart.log_x, chart.log_y) {
@@ -173,21 +177,19 @@ fn draw_in<X, Y>(
     chart: &Chart,
     xs: X,
     ys: Y,
-) -> Result<(), String>
+) -> Result<(), DrawError>
 where
     X: AsRangedCoord<Value = f64>,
     Y: AsRangedCoord<Value = f64>,
     X::CoordDescType: ValueFormatter<f64>,
     Y::CoordDescType: ValueFormatter<f64>,
 {
-    let e = |e: DrawingAreaErrorKind<_>| e.to_string();
     let mut ctx = ChartBuilder::on(area)
         .caption(&chart.title, ("sans-serif", 22))
         .margin(12)
         .x_label_area_size(48)
         .y_label_area_size(80)
-        .build_cartesian_2d(xs, ys)
-        .map_err(e)?;
+        .build_cartesian_2d(xs, ys)?;
     ctx.configure_mesh()
         .x_desc(chart.x_label.as_str())
         .y_desc(chart.y_label.as_str())
@@ -196,8 +198,7 @@ where
         .label_style(("sans-serif", 15))
         .axis_desc_style(("sans-serif", 17))
         .light_line_style(RGBColor(235, 235, 235))
-        .draw()
-        .map_err(e)?;
+        .draw()?;
     let keep = |p: &(f64, f64)| {
         p.0.is_finite()
             && p.1.is_finite()
@@ -208,20 +209,16 @@ where
         let color = PALETTE[k % PALETTE.len()];
         let pts: Vec<(f64, f64)> = c.points.iter().copied().filter(keep).collect();
         let anno = match c.style {
-            Style::Line => ctx
-                .draw_series(LineSeries::new(pts, color.stroke_width(2)))
-                .map_err(e)?,
-            Style::Dashed => ctx
-                .draw_series(DashedLineSeries::new(pts, 8, 5, color.stroke_width(2)))
-                .map_err(e)?,
-            Style::Points => ctx
-                .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
-                .map_err(e)?,
+            Style::Line => ctx.draw_series(LineSeries::new(pts, color.stroke_width(2)))?,
+            Style::Dashed => {
+                ctx.draw_series(DashedLineSeries::new(pts, 8, 5, color.stroke_width(2)))?
+            }
+            Style::Points => {
+                ctx.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))?
+            }
             Style::LinePoints => {
-                ctx.draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))
-                    .map_err(e)?;
-                ctx.draw_series(LineSeries::new(pts, color.stroke_width(2)))
-                    .map_err(e)?
+                ctx.draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))?;
+                ctx.draw_series(LineSeries::new(pts, color.stroke_width(2)))?
             }
         };
         if !c.label.is_empty() {
@@ -243,7 +240,7 @@ where
                     };
                     PathElement::new(vec![(x, lo), (x, y + s)], color.stroke_width(2))
                 });
-            ctx.draw_series(bars).map_err(e)?;
+            ctx.draw_series(bars)?;
         }
         if let Some(notes) = &c.notes {
             let text = c
@@ -258,7 +255,7 @@ where
                         ("sans-serif", 13).into_font().color(&color.mix(0.9)),
                     )
                 });
-            ctx.draw_series(text).map_err(e)?;
+            ctx.draw_series(text)?;
         }
     }
     if chart.curves.iter().any(|c| !c.label.is_empty()) {
@@ -267,8 +264,7 @@ where
             .border_style(BLACK)
             .label_font(("sans-serif", 15))
             .position(SeriesLabelPosition::UpperLeft)
-            .draw()
-            .map_err(e)?;
+            .draw()?;
     }
     Ok(())
 }

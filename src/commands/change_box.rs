@@ -6,7 +6,7 @@
 
 use crate::commands::CommandError;
 use crate::commands::{Args, Ctx};
-use crate::engine::domain::Boundary;
+use crate::engine::domain::{Boundary, BoxError};
 use crate::engine::sim::Simulation;
 use crate::lang::system::Mode;
 use crate::util::format::g;
@@ -115,61 +115,8 @@ fn parse_ops(a: &Args) -> Result<(Vec<Op>, bool, usize)> {
     let mut force = false;
     let mut i = 1;
     while i < a.len() {
-        let word = a.word(i)?;
-        match word {
-            "x" | "y" | "z" => {
-                let dim = (word.as_bytes()[0] - b'x') as usize;
-                if i + 2 > a.len() {
-                    return Err(illegal(a, i));
-                }
-                let flavor = match a.word(i + 1)? {
-                    "final" | "delta" => {
-                        if i + 3 >= a.len() {
-                            return Err(illegal(a, a.len() - 1));
-                        }
-                        let (u, v) = (a.real(i + 2)?, a.real(i + 3)?);
-                        if a.word(i + 1)? == "final" {
-                            Flavor::Final(u, v)
-                        } else {
-                            Flavor::Delta(u, v)
-                        }
-                    }
-                    "scale" => {
-                        if i + 2 >= a.len() {
-                            return Err(illegal(a, a.len() - 1));
-                        }
-                        Flavor::Scale(a.real(i + 2)?)
-                    }
-                    "volume" => {
-                        let prev = match ops.last_mut() {
-                            Some(Op::Bounds {
-                                dim: d, volume: v, ..
-                            }) if *d != dim && v[1].is_none() => v,
-                            _ => {
-                                return Err(a.error(i + 1, "Change_box volume used incorrectly")
-                                    .with_help("volume follows an x, y or z operation on another dimension (at most two in a row)"))
-                            }
-                        };
-                        if prev[0].is_none() {
-                            prev[0] = Some(dim);
-                        } else {
-                            prev[1] = Some(dim);
-                        }
-                        i += 2;
-                        continue;
-                    }
-                    _ => return Err(illegal(a, i + 1)),
-                };
-                i += match flavor {
-                    Flavor::Scale(_) => 3,
-                    _ => 4,
-                };
-                ops.push(Op::Bounds {
-                    dim,
-                    flavor,
-                    volume: [None, None],
-                });
-            }
+        match a.word(i)? {
+            "x" | "y" | "z" => i = bounds_op(a, i, &mut ops)?,
             "xy" | "xz" | "yz" => {
                 match a.word(i + 1)? {
                     "final" | "delta" => {
@@ -213,6 +160,70 @@ fn parse_ops(a: &Args) -> Result<(Vec<Op>, bool, usize)> {
     Ok((ops, force, i))
 }
 
+/// `x|y|z final LO HI`, `delta DLO DHI`, `scale F` or `volume` at word `i`: the operation
+/// added to `ops` (`volume` marks the previous one), and the first word after it.
+fn bounds_op(a: &Args, i: usize, ops: &mut Vec<Op>) -> Result<usize> {
+    let dim = (a.word(i)?.as_bytes()[0] - b'x') as usize;
+    if i + 2 > a.len() {
+        return Err(illegal(a, i));
+    }
+    let flavor = match a.word(i + 1)? {
+        "final" | "delta" => {
+            if i + 3 >= a.len() {
+                return Err(illegal(a, a.len() - 1));
+            }
+            let (u, v) = (a.real(i + 2)?, a.real(i + 3)?);
+            if a.word(i + 1)? == "final" {
+                Flavor::Final(u, v)
+            } else {
+                Flavor::Delta(u, v)
+            }
+        }
+        "scale" => {
+            if i + 2 >= a.len() {
+                return Err(illegal(a, a.len() - 1));
+            }
+            Flavor::Scale(a.real(i + 2)?)
+        }
+        "volume" => {
+            keep_volume(a, i, dim, ops)?;
+            return Ok(i + 2);
+        }
+        _ => return Err(illegal(a, i + 1)),
+    };
+    ops.push(Op::Bounds {
+        dim,
+        flavor,
+        volume: [None, None],
+    });
+    Ok(i + match flavor {
+        Flavor::Scale(_) => 3,
+        _ => 4,
+    })
+}
+
+/// `x|y|z volume` at word `i`: dimension `dim` changes so that the previous operation (on
+/// another dimension, at most two in a row) keeps the box's volume.
+fn keep_volume(a: &Args, i: usize, dim: usize, ops: &mut [Op]) -> Result<()> {
+    let prev =
+        match ops.last_mut() {
+            Some(Op::Bounds {
+                dim: d, volume: v, ..
+            }) if *d != dim && v[1].is_none() => v,
+            _ => return Err(a
+                .error(i + 1, "Change_box volume used incorrectly")
+                .with_help(
+                "volume follows an x, y or z operation on another dimension (at most two in a row)",
+            )),
+        };
+    if prev[0].is_none() {
+        prev[0] = Some(dim);
+    } else {
+        prev[1] = Some(dim);
+    }
+    Ok(())
+}
+
 /// The box state remap converts from.
 fn saved(sim: &Simulation) -> Saved {
     let d = &sim.domain;
@@ -221,7 +232,7 @@ fn saved(sim: &Simulation) -> Saved {
 
 /// LIGGGHTS's `reset_box`: shrink-wrap `s`/`m` faces around the atoms and mesh nodes (an
 /// empty extent turns an `s` face inside out: "Illegal simulation box").
-fn reset_box(sim: &mut Simulation) -> std::result::Result<(), String> {
+fn reset_box(sim: &mut Simulation) -> std::result::Result<(), BoxError> {
     if !sim.domain.shrinks() {
         return Ok(());
     }
@@ -240,7 +251,7 @@ fn reset_box(sim: &mut Simulation) -> std::result::Result<(), String> {
             hi[d] = hi[d].max(x[d]);
         }
     }
-    sim.domain.shrink_wrap(lo, hi).map_err(|e| e.to_string())
+    sim.domain.shrink_wrap(lo, hi)
 }
 
 /// Wrap every atom into the periodic directions (LIGGGHTS's pbc and remap).
@@ -270,10 +281,9 @@ pub(crate) fn orthogonal_box_line(lo: [f64; 3], hi: [f64; 3]) -> String {
 }
 
 fn apply(a: &Args, ctx: &mut Ctx, ops: &[Op], group: u32, scale: f64) -> Result {
-    let at = |m: String| a.error(0, &m);
-    let at_box = |e: crate::engine::domain::BoxError| a.error(0, e.to_string());
+    let at_box = |e: BoxError| a.error(0, e.to_string());
     wrap_atoms(ctx.sim);
-    reset_box(ctx.sim).map_err(at)?;
+    reset_box(ctx.sim).map_err(at_box)?;
     let mut from = saved(ctx.sim);
     for op in ops {
         match *op {
@@ -341,9 +351,9 @@ fn apply(a: &Args, ctx: &mut Ctx, ops: &[Op], group: u32, scale: f64) -> Result 
             }
         }
     }
-    reset_box(ctx.sim).map_err(at)?;
+    reset_box(ctx.sim).map_err(at_box)?;
     wrap_atoms(ctx.sim);
-    reset_box(ctx.sim).map_err(at)?;
+    reset_box(ctx.sim).map_err(at_box)?;
     Ok(())
 }
 

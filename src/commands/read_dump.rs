@@ -66,6 +66,35 @@ struct Options {
 
 /// Fields and keywords in LIGGGHTS's order of checks and with its messages.
 fn parse(a: &Args, ctx: &Ctx) -> Result<Options> {
+    let (fields, i) = field_list(a)?;
+    check_fields(a, ctx, &fields)?;
+    let mut o = Options {
+        fields,
+        boxflag: true,
+        replace: true,
+        purge: false,
+        trim: false,
+        add: false,
+    };
+    let (format, i) = keywords(a, i, &mut o)?;
+    if o.purge && (o.replace || o.trim) {
+        return Err(a.error(0, "If read_dump purges it cannot replace or trim"));
+    }
+    match format {
+        "native" => {}
+        "xyz" => return Err(a.unsupported(i - 1, "read_dump format xyz")),
+        _ => return Err(a.error(i - 1, "Invalid dump reader style")),
+    }
+    // words after `format native` go to the native reader, which ignores them
+    if o.add {
+        return Err(a.unsupported(0, "read_dump add yes (new particles from a snapshot)"));
+    }
+    Ok(o)
+}
+
+/// The fields from word 2 on (the ID and type always read first) and the first word after
+/// them.
+fn field_list(a: &Args) -> Result<(Vec<Field>, usize)> {
     let mut fields = vec![Field::Id, Field::Type];
     let mut i = 2;
     while i < a.len() {
@@ -80,6 +109,11 @@ fn parse(a: &Args, ctx: &Ctx) -> Result<Options> {
         }
         i += 1;
     }
+    Ok((fields, i))
+}
+
+/// LIGGGHTS's checks of the fields: the radius among them, no z in 2d, none twice.
+fn check_fields(a: &Args, ctx: &Ctx, fields: &[Field]) -> Result<()> {
     if !fields.contains(&Field::Radius) {
         return Err(a.error(
             a.len().saturating_sub(1),
@@ -98,15 +132,12 @@ fn parse(a: &Args, ctx: &Ctx) -> Result<Options> {
             return Err(a.error(0, "Duplicate fields in read_dump command"));
         }
     }
-    let mut o = Options {
-        fields,
-        boxflag: true,
-        replace: true,
-        purge: false,
-        trim: false,
-        add: false,
-    };
-    let mut format = "native";
+    Ok(())
+}
+
+/// The yes/no keywords from word `i` into `o`, up to and including `format`: the reader
+/// format (`native` by default) and the first word after the keywords.
+fn keywords<'a>(a: &'a Args, mut i: usize, o: &mut Options) -> Result<(&'a str, usize)> {
     while i < a.len() {
         let key = a.word(i)?;
         if !matches!(
@@ -127,9 +158,7 @@ fn parse(a: &Args, ctx: &Ctx) -> Result<Options> {
             return Err(a.error(i, ILLEGAL));
         }
         if key == "format" {
-            format = a.word(i + 1)?;
-            i += 2;
-            break;
+            return Ok((a.word(i + 1)?, i + 2));
         }
         if key == "label" {
             // LIGGGHTS 3.8.0 looks the field up among labels that are all still unset, so
@@ -153,19 +182,7 @@ fn parse(a: &Args, ctx: &Ctx) -> Result<Options> {
         }
         i += 2;
     }
-    if o.purge && (o.replace || o.trim) {
-        return Err(a.error(0, "If read_dump purges it cannot replace or trim"));
-    }
-    match format {
-        "native" => {}
-        "xyz" => return Err(a.unsupported(i - 1, "read_dump format xyz")),
-        _ => return Err(a.error(i - 1, "Invalid dump reader style")),
-    }
-    // words after `format native` go to the native reader, which ignores them
-    if o.add {
-        return Err(a.unsupported(0, "read_dump add yes (new particles from a snapshot)"));
-    }
-    Ok(o)
+    Ok(("native", i))
 }
 
 /// The snapshot read_dump asked for: its box (length), whether its coordinates are scaled
@@ -204,29 +221,47 @@ fn leading_int(line: &str) -> i64 {
     t[..n].parse().unwrap_or(-1)
 }
 
+/// Why a native dump file does not give the snapshot asked for, in LIGGGHTS's words.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+enum SnapshotError {
+    /// A snapshot does not start with its `ITEM: TIMESTEP` line.
+    #[error("Dump file is incorrectly formatted")]
+    Formatted,
+    /// No snapshot of the step asked for.
+    #[error("Dump file does not contain requested snapshot")]
+    Missing,
+    /// A triclinic box in the file.
+    #[error("Read_dump triclinic status does not match simulation")]
+    Triclinic,
+    /// A field without its column.
+    #[error("Read_dump field not found in dump file")]
+    FieldNotFound,
+    /// Coordinate columns of mixed kinds (`x` and `ys`, ...).
+    #[error("Read_dump xyz fields do not have consistent scaling/wrapping")]
+    MixedCoordinates,
+}
+
 /// Find the snapshot of step `nstep` in the text of a native dump file and read its
-/// columns for `fields`; errors carry LIGGGHTS's messages.
+/// columns for `fields`.
 fn find_snapshot(
     text: &str,
     nstep: i64,
     fields: &[Field],
-) -> std::result::Result<Snapshot, String> {
+) -> std::result::Result<Snapshot, SnapshotError> {
     let mut lines = text.lines();
-    let formatted = "Dump file is incorrectly formatted";
-    let missing = "Dump file does not contain requested snapshot";
     loop {
         let Some(head) = lines.next() else {
-            return Err(missing.into());
+            return Err(SnapshotError::Missing);
         };
         if !head.starts_with("ITEM: TIMESTEP") {
-            return Err(formatted.into());
+            return Err(SnapshotError::Formatted);
         }
         let step = leading_int(lines.next().unwrap_or(""));
         lines.next();
         let natoms = leading_int(lines.next().unwrap_or("")).max(0) as usize;
         if step >= nstep {
             if step != nstep {
-                return Err(missing.into());
+                return Err(SnapshotError::Missing);
             }
             return read_body(&mut lines, natoms, fields);
         }
@@ -241,10 +276,10 @@ fn read_body<'t>(
     lines: &mut impl Iterator<Item = &'t str>,
     natoms: usize,
     fields: &[Field],
-) -> std::result::Result<Snapshot, String> {
+) -> std::result::Result<Snapshot, SnapshotError> {
     let bounds = lines.next().unwrap_or("");
     if bounds.get(17..18) == Some("x") {
-        return Err("Read_dump triclinic status does not match simulation".into());
+        return Err(SnapshotError::Triclinic);
     }
     let (mut lo, mut hi) = ([0.0; 3], [0.0; 3]);
     for d in 0..3 {
@@ -287,21 +322,21 @@ fn read_body<'t>(
                         coord.push(flags);
                         continue;
                     }
-                    None => return Err("Read_dump field not found in dump file".into()),
+                    None => return Err(SnapshotError::FieldNotFound),
                 }
             }
             other => {
                 let (name, _) = FIELDS
                     .iter()
                     .find(|(_, g)| g == other)
-                    .ok_or("Read_dump field not found in dump file")?;
+                    .ok_or(SnapshotError::FieldNotFound)?;
                 (*name).to_string()
             }
         };
-        index.push(find(&name).ok_or("Read_dump field not found in dump file")?);
+        index.push(find(&name).ok_or(SnapshotError::FieldNotFound)?);
     }
     if coord.iter().any(|c| *c != coord[0]) {
-        return Err("Read_dump xyz fields do not have consistent scaling/wrapping".into());
+        return Err(SnapshotError::MixedCoordinates);
     }
     let (scaled, wrapped) = coord.first().copied().unwrap_or((false, false));
     let mut rows = Vec::with_capacity(natoms);
@@ -353,7 +388,7 @@ pub fn read_dump(a: &Args, ctx: &mut Ctx) -> Result {
         ctx.sys.read(name).map_err(|e| e.to_string())
     }
     .map_err(|m| a.file_error(0, format!("Cannot open file {name}: {m}")))?;
-    let snap = find_snapshot(&text, nstep, &o.fields).map_err(|m| a.error(0, m))?;
+    let snap = find_snapshot(&text, nstep, &o.fields).map_err(|e| a.error(0, e.to_string()))?;
     ctx.sim.reset_timestep(nstep);
     ctx.out.screen("Reading snapshot from dump file ...\n");
     let before = ctx.sim.particles.len();
@@ -470,8 +505,11 @@ mod tests {
             ]
         );
         let e = find_snapshot(DUMP, 150, &fields).unwrap_err();
-        assert_eq!(e, "Dump file does not contain requested snapshot");
+        assert_eq!(
+            e.to_string(),
+            "Dump file does not contain requested snapshot"
+        );
         let e = find_snapshot(DUMP, 100, &[Field::Id, Field::V(0)]).unwrap_err();
-        assert_eq!(e, "Read_dump field not found in dump file");
+        assert_eq!(e.to_string(), "Read_dump field not found in dump file");
     }
 }

@@ -383,79 +383,10 @@ fn lattice(a: &Args, ctx: &mut Ctx) -> Result {
     if scale <= 0.0 {
         return Err(a.error(1, "Illegal lattice command"));
     }
-    if !registry::runs_style("lattice", style) && !LATTICE_STYLES.contains(&style) {
-        return Err(a.keyword_error(0, LATTICE_STYLES));
-    }
-    // LIGGGHTS checks the style against the dimension before anything else
-    let planar = matches!(style, "sq" | "sq2" | "hex");
-    let spatial = matches!(style, "sc" | "bcc" | "fcc" | "hcp" | "diamond");
-    if (ctx.sim.dimension == 2 && spatial) || (ctx.sim.dimension == 3 && planar) {
-        return Err(a
-            .error(0, "Lattice style incompatible with simulation dimension")
-            .with_help("sq, sq2 and hex are 2d lattices; sc, bcc, fcc, hcp and diamond 3d"));
-    }
-    registry::require_style(a, "lattice")?;
-    let mut basis: Vec<[f64; 3]> = match style {
-        "none" | "custom" => Vec::new(),
-        "sc" | "sq" => vec![[0.0; 3]],
-        "bcc" => vec![[0.0; 3], [0.5, 0.5, 0.5]],
-        "fcc" => vec![[0.0; 3], [0.5, 0.5, 0.0], [0.5, 0.0, 0.5], [0.0, 0.5, 0.5]],
-        "sq2" | "hex" => vec![[0.0; 3], [0.5, 0.5, 0.0]],
-        _ => return Err(a.unsupported(0, &format!("lattice {style}"))),
-    };
-    let mut origin = [0.0; 3];
-    let mut primitive = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    let mut i = 2;
-    while i < a.len() {
-        let w = a.word(i)?;
-        match w {
-            "origin" | "a1" | "a2" | "a3" | "basis" => {
-                if i + 4 > a.len() {
-                    return Err(a.error(i, "Illegal lattice command"));
-                }
-                if w != "origin" && style != "custom" {
-                    return Err(
-                        a.error(i, "Invalid option in lattice command for non-custom style")
-                    );
-                }
-                let mut v = [0.0; 3];
-                for (k, o) in v.iter_mut().enumerate() {
-                    *o = a.real(i + 1 + k)?;
-                }
-                let fraction = |k: usize| (0.0..1.0).contains(&v[k]);
-                match w {
-                    "origin" | "basis" => {
-                        if let Some(k) = (0..3).find(|&k| !fraction(k)) {
-                            return Err(a
-                                .error(i + 1 + k, "Illegal lattice command")
-                                .with_help("each value must be at least 0 and less than 1"));
-                        }
-                        if w == "origin" {
-                            origin = v;
-                        } else {
-                            basis.push(v);
-                        }
-                    }
-                    "a1" => primitive[0] = v,
-                    "a2" => primitive[1] = v,
-                    _ => primitive[2] = v,
-                }
-                i += 4;
-            }
-            w => return Err(a.unsupported(i, &format!("lattice keyword {w}"))),
-        }
-    }
-    if ctx.sim.dimension == 2
-        && (origin[2] != 0.0
-            || primitive[0][2] != 0.0
-            || primitive[1][2] != 0.0
-            || primitive[2][0] != 0.0
-            || primitive[2][1] != 0.0)
-    {
-        return Err(a
-            .error(0, "Lattice settings are not compatible with 2d simulation")
-            .with_help("in 2d the origin's z and the a1, a2 z and a3 x, y components must be 0"));
-    }
+    check_lattice_style(a, ctx, style)?;
+    let mut basis = unit_cell_basis(a, style)?;
+    let (origin, mut primitive) = lattice_keywords(a, style, &mut basis)?;
+    check_lattice_2d(a, ctx, origin, &primitive)?;
     if style == "hex" {
         // the hexagonal cell is sqrt(3) times taller than wide
         primitive[1][1] = 3f64.sqrt();
@@ -481,6 +412,99 @@ fn lattice(a: &Args, ctx: &mut Ctx) -> Result {
         g(spacing[1]),
         g(spacing[2])
     ));
+    Ok(())
+}
+
+/// LIGGGHTS's checks of a lattice style: a known style, made for the simulation's
+/// dimension (checked before anything else), and one regolith runs.
+fn check_lattice_style(a: &Args, ctx: &Ctx, style: &str) -> Result {
+    if !registry::runs_style("lattice", style) && !LATTICE_STYLES.contains(&style) {
+        return Err(a.keyword_error(0, LATTICE_STYLES));
+    }
+    let planar = matches!(style, "sq" | "sq2" | "hex");
+    let spatial = matches!(style, "sc" | "bcc" | "fcc" | "hcp" | "diamond");
+    if (ctx.sim.dimension == 2 && spatial) || (ctx.sim.dimension == 3 && planar) {
+        return Err(a
+            .error(0, "Lattice style incompatible with simulation dimension")
+            .with_help("sq, sq2 and hex are 2d lattices; sc, bcc, fcc, hcp and diamond 3d"));
+    }
+    registry::require_style(a, "lattice")
+}
+
+/// The basis atoms of lattice `style`'s unit cell (fractions of the cell; none for
+/// `custom`, whose `basis` keywords add them).
+fn unit_cell_basis(a: &Args, style: &str) -> std::result::Result<Vec<[f64; 3]>, CommandError> {
+    Ok(match style {
+        "none" | "custom" => Vec::new(),
+        "sc" | "sq" => vec![[0.0; 3]],
+        "bcc" => vec![[0.0; 3], [0.5, 0.5, 0.5]],
+        "fcc" => vec![[0.0; 3], [0.5, 0.5, 0.0], [0.5, 0.0, 0.5], [0.0, 0.5, 0.5]],
+        "sq2" | "hex" => vec![[0.0; 3], [0.5, 0.5, 0.0]],
+        _ => return Err(a.unsupported(0, &format!("lattice {style}"))),
+    })
+}
+
+/// The lattice's keywords `origin`, `a1`, `a2`, `a3` and `basis` (the last four with
+/// `custom` only): the origin (fractions of the cell) and the primitive vectors; `basis`
+/// atoms are added to `basis`.
+fn lattice_keywords(
+    a: &Args,
+    style: &str,
+    basis: &mut Vec<[f64; 3]>,
+) -> std::result::Result<([f64; 3], [[f64; 3]; 3]), CommandError> {
+    let mut origin = [0.0; 3];
+    let mut primitive = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let mut i = 2;
+    while i < a.len() {
+        let w = a.word(i)?;
+        if !matches!(w, "origin" | "a1" | "a2" | "a3" | "basis") {
+            return Err(a.unsupported(i, &format!("lattice keyword {w}")));
+        }
+        if i + 4 > a.len() {
+            return Err(a.error(i, "Illegal lattice command"));
+        }
+        if w != "origin" && style != "custom" {
+            return Err(a.error(i, "Invalid option in lattice command for non-custom style"));
+        }
+        let mut v = [0.0; 3];
+        for (k, o) in v.iter_mut().enumerate() {
+            *o = a.real(i + 1 + k)?;
+        }
+        match w {
+            "origin" | "basis" => {
+                if let Some(k) = (0..3).find(|&k| !(0.0..1.0).contains(&v[k])) {
+                    return Err(a
+                        .error(i + 1 + k, "Illegal lattice command")
+                        .with_help("each value must be at least 0 and less than 1"));
+                }
+                if w == "origin" {
+                    origin = v;
+                } else {
+                    basis.push(v);
+                }
+            }
+            "a1" => primitive[0] = v,
+            "a2" => primitive[1] = v,
+            _ => primitive[2] = v,
+        }
+        i += 4;
+    }
+    Ok((origin, primitive))
+}
+
+/// In 2d LIGGGHTS refuses an origin or primitive vectors that leave the xy plane.
+fn check_lattice_2d(a: &Args, ctx: &Ctx, origin: [f64; 3], primitive: &[[f64; 3]; 3]) -> Result {
+    if ctx.sim.dimension == 2
+        && (origin[2] != 0.0
+            || primitive[0][2] != 0.0
+            || primitive[1][2] != 0.0
+            || primitive[2][0] != 0.0
+            || primitive[2][1] != 0.0)
+    {
+        return Err(a
+            .error(0, "Lattice settings are not compatible with 2d simulation")
+            .with_help("in 2d the origin's z and the a1, a2 z and a3 x, y components must be 0"));
+    }
     Ok(())
 }
 

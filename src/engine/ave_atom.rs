@@ -214,14 +214,6 @@ impl FixStyle for AveAtom {
     fn stand_in(&self) -> Option<Box<dyn FixStyle>> {
         Some(Box::new(self.clone()))
     }
-
-    fn as_any(&self) -> Option<&dyn std::any::Any> {
-        Some(self)
-    }
-
-    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
-        Some(self)
-    }
 }
 
 #[cfg(test)]

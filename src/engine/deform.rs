@@ -392,14 +392,6 @@ impl crate::engine::fixes::FixStyle for Deform {
     ) -> Result<(), EngineError> {
         sim.deform_apply(k, self, vars)
     }
-
-    fn as_any(&self) -> Option<&dyn std::any::Any> {
-        Some(self)
-    }
-
-    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
-        Some(self)
-    }
 }
 
 impl crate::engine::sim::Simulation {

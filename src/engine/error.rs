@@ -55,4 +55,5 @@ invalid_from!(
     crate::state::domain::BoxError,
     crate::io::restart_values::RestartValueError,
     crate::engine::tet_mesh::TetMeshError,
+    crate::engine::procmap::GridError,
 );

@@ -275,14 +275,6 @@ impl FixStyle for HeatGran {
     fn array_unsupported(&self) -> bool {
         true
     }
-
-    fn as_any(&self) -> Option<&dyn std::any::Any> {
-        Some(self)
-    }
-
-    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
-        Some(self)
-    }
 }
 
 impl FixStyle for PropertyAtom {
@@ -310,14 +302,6 @@ impl FixStyle for PropertyAtom {
 
     fn array_unsupported(&self) -> bool {
         true
-    }
-
-    fn as_any(&self) -> Option<&dyn std::any::Any> {
-        Some(self)
-    }
-
-    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
-        Some(self)
     }
 }
 

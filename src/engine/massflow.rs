@@ -408,14 +408,6 @@ impl crate::engine::fixes::FixStyle for Massflow {
     fn keeps_per_atom_state(&self) -> bool {
         true
     }
-
-    fn as_any(&self) -> Option<&dyn std::any::Any> {
-        Some(self)
-    }
-
-    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
-        Some(self)
-    }
 }
 
 impl crate::engine::sim::Simulation {

@@ -214,14 +214,6 @@ impl crate::engine::fixes::FixStyle for MoveMesh {
     fn refuses_thermo(&self) -> bool {
         true
     }
-
-    fn as_any(&self) -> Option<&dyn std::any::Any> {
-        Some(self)
-    }
-
-    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
-        Some(self)
-    }
 }
 
 #[cfg(test)]

@@ -269,14 +269,6 @@ impl crate::engine::fixes::FixStyle for ClumpTemplate {
             self.mc_state as f64,
         ]))
     }
-
-    fn as_any(&self) -> Option<&dyn std::any::Any> {
-        Some(self)
-    }
-
-    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
-        Some(self)
-    }
 }
 
 impl ClumpTemplate {

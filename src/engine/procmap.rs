@@ -142,16 +142,36 @@ fn first3(f: [i64; 4]) -> [i64; 3] {
     [f[0], f[1], f[2]]
 }
 
-/// The grid LIGGGHTS chooses for `p.nprocs` ranks over a box with lengths `prd` (length),
-/// or its error message.
-pub fn choose_grid(p: &Processors, prd: [f64; 3]) -> Result<ProcGrid, &'static str> {
+/// Why no processor grid fits the rank count and the `processors` settings, in LIGGGHTS's
+/// words.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum GridError {
+    /// No factorisation into a one-level grid matches the settings.
+    #[error("Could not create 3d grid of processors")]
+    OneLevel,
+    /// `twolevel`: the rank count is not a multiple of the cores per node.
+    #[error("Processors twogrid requires proc count be a multiple of core count")]
+    CoreCount,
+    /// No factorisation into a two-level grid matches the settings.
+    #[error("Could not create twolevel 3d grid of processors")]
+    TwoLevel,
+    /// No factorisation into a `numa` grid matches the settings.
+    #[error("Could not create numa grid of processors")]
+    Numa,
+    /// The chosen grid does not hold the rank count.
+    #[error("Bad grid of processors")]
+    BadGrid,
+}
+
+/// The grid LIGGGHTS chooses for `p.nprocs` ranks over a box with lengths `prd` (length).
+pub fn choose_grid(p: &Processors, prd: [f64; 3]) -> Result<ProcGrid, GridError> {
     let n = p.nprocs;
     let grid = match &p.grid {
         GridStyle::OneLevel => {
             let mut f = factor(n);
             cull_user(&mut f, p.user);
             if f.is_empty() {
-                return Err("Could not create 3d grid of processors");
+                return Err(GridError::OneLevel);
             }
             ProcGrid {
                 procs: first3(f[best_factors(&f, prd, [1; 3])]),
@@ -160,7 +180,7 @@ pub fn choose_grid(p: &Processors, prd: [f64; 3]) -> Result<ProcGrid, &'static s
         }
         GridStyle::TwoLevel { ncores, user_cores } => {
             if n % ncores != 0 {
-                return Err("Processors twogrid requires proc count be a multiple of core count");
+                return Err(GridError::CoreCount);
             }
             let nodes = factor(n / ncores);
             let mut cores = factor(*ncores);
@@ -173,7 +193,7 @@ pub fn choose_grid(p: &Processors, prd: [f64; 3]) -> Result<ProcGrid, &'static s
             }
             cull_user(&mut f, p.user);
             if f.is_empty() {
-                return Err("Could not create twolevel 3d grid of processors");
+                return Err(GridError::TwoLevel);
             }
             let best = f[best_factors(&f, prd, [1; 3])];
             ProcGrid {
@@ -184,15 +204,15 @@ pub fn choose_grid(p: &Processors, prd: [f64; 3]) -> Result<ProcGrid, &'static s
         GridStyle::Numa => numa_grid(p, prd)?,
     };
     if grid.procs.iter().product::<i64>() != n {
-        return Err("Bad grid of processors");
+        return Err(GridError::BadGrid);
     }
     Ok(grid)
 }
 
 /// The `numa` grid: a grid within each node, then a grid of nodes, then the node's grid
 /// again fitted to the nodes' sub-boxes.
-fn numa_grid(p: &Processors, prd: [f64; 3]) -> Result<ProcGrid, &'static str> {
-    const ERR: &str = "Could not create numa grid of processors";
+fn numa_grid(p: &Processors, prd: [f64; 3]) -> Result<ProcGrid, GridError> {
+    const ERR: GridError = GridError::Numa;
     let (n, per) = (p.nprocs, p.procs_per_node.max(1));
     if n % per != 0 || p.user.iter().any(|&u| u > 1) {
         return Err(ERR);

@@ -381,109 +381,138 @@ fn vector(name: &str, values: impl IntoIterator<Item = f64>) -> Array {
 
 /// The arrays of one mesh, in LIGGGHTS's order (`DumpMesh::prepare_mbSet`).
 fn mesh_block(spec: &MeshDumpSpec, m: &MeshSnapshot) -> io::Result<Block> {
-    let n = m.nodes.len();
     let mut b = Block {
-        triangles: n,
+        triangles: m.nodes.len(),
         ..Block::default()
     };
-    let ints = |v: &[i32]| v.iter().map(|&x| x as f64).collect::<Vec<f64>>();
     for k in MeshKeyword::ALL {
-        if !spec.keywords.contains(&k) {
-            continue;
+        if spec.keywords.contains(&k) {
+            add_keyword(&mut b, k, m)?;
         }
-        match k {
-            MeshKeyword::Stress => {
-                if let Some(s) = m.sigma_n {
-                    let s = per_triangle("sigma_n", s, n)?;
-                    add(
-                        &mut b.cell,
-                        scalar("normal_stress_average", s.iter().copied()),
-                    );
-                }
-                if let Some(s) = m.sigma_t {
-                    let s = per_triangle("sigma_t", s, n)?;
-                    add(
-                        &mut b.cell,
-                        scalar("shear_stress_average", s.iter().copied()),
-                    );
-                }
+    }
+    add_properties(&mut b, spec, m)?;
+    Ok(b)
+}
+
+/// Integer values (IDs, counts, flags) as the doubles of an array.
+fn ints(v: &[i32]) -> Vec<f64> {
+    v.iter().map(|&x| x as f64).collect()
+}
+
+/// Add the arrays of keyword `k` of mesh `m` to `b` (none when the mesh lacks the values an
+/// optional keyword writes).
+fn add_keyword(b: &mut Block, k: MeshKeyword, m: &MeshSnapshot) -> io::Result<()> {
+    let n = m.nodes.len();
+    match k {
+        MeshKeyword::Stress => add_stress(b, m)?,
+        MeshKeyword::StressComponents => add_stress_components(b, m)?,
+        MeshKeyword::Id => {
+            let values = match m.ids {
+                Some(ids) => ints(per_triangle("id", ids, n)?),
+                None => (0..n).map(|t| t as f64).collect(),
+            };
+            add(&mut b.cell, integer("meshid", values));
+        }
+        MeshKeyword::Vel => {
+            if let Some(v) = m.node_vel {
+                let v = per_triangle("v", v, n)?;
+                let values = v.iter().flatten().flatten().copied();
+                add(&mut b.point, vector("v", values));
             }
-            MeshKeyword::StressComponents => {
-                if let Some(f) = m.force {
-                    let f = per_triangle("f", f, n)?;
-                    let area = required("area", m.area, n)?;
-                    let values = f.iter().zip(area).flat_map(|(f, &a)| {
-                        let inv = 1.0 / a;
-                        [f[0] * inv, f[1] * inv, f[2] * inv]
-                    });
-                    add(&mut b.cell, vector("stress", values));
-                }
-            }
-            MeshKeyword::Id => {
-                let values = match m.ids {
-                    Some(ids) => ints(per_triangle("id", ids, n)?),
-                    None => (0..n).map(|t| t as f64).collect(),
-                };
-                add(&mut b.cell, integer("meshid", values));
-            }
-            MeshKeyword::Vel => {
-                if let Some(v) = m.node_vel {
-                    let v = per_triangle("v", v, n)?;
-                    let values = v.iter().flatten().flatten().copied();
-                    add(&mut b.point, vector("v", values));
-                }
-            }
-            MeshKeyword::Wear => {
-                if let Some(w) = m.wear {
-                    add(
-                        &mut b.cell,
-                        scalar("wear", per_triangle("wear", w, n)?.to_vec()),
-                    );
-                }
-            }
-            MeshKeyword::Temp => {
-                if let Some(t) = m.temp {
-                    add(
-                        &mut b.cell,
-                        scalar("Temp", per_triangle("Temp", t, n)?.to_vec()),
-                    );
-                }
-            }
-            MeshKeyword::Owner => add(&mut b.cell, integer("owner", vec![0.0; n])),
-            MeshKeyword::Area => {
+        }
+        MeshKeyword::Wear => {
+            if let Some(w) = m.wear {
                 add(
                     &mut b.cell,
-                    scalar("area", required("area", m.area, n)?.to_vec()),
+                    scalar("wear", per_triangle("wear", w, n)?.to_vec()),
                 );
             }
-            MeshKeyword::ActiveEdges => {
-                let v = required("active_edges", m.active_edges, n)?;
-                add(&mut b.cell, integer("active_edges", ints(v)));
+        }
+        MeshKeyword::Temp => {
+            if let Some(t) = m.temp {
+                add(
+                    &mut b.cell,
+                    scalar("Temp", per_triangle("Temp", t, n)?.to_vec()),
+                );
             }
-            MeshKeyword::ActiveCorners => {
-                let v = required("active_corners", m.active_corners, n)?;
-                add(&mut b.cell, integer("active_corners", ints(v)));
+        }
+        MeshKeyword::Owner => add(&mut b.cell, integer("owner", vec![0.0; n])),
+        MeshKeyword::Area => {
+            add(
+                &mut b.cell,
+                scalar("area", required("area", m.area, n)?.to_vec()),
+            );
+        }
+        MeshKeyword::ActiveEdges => {
+            let v = required("active_edges", m.active_edges, n)?;
+            add(&mut b.cell, integer("active_edges", ints(v)));
+        }
+        MeshKeyword::ActiveCorners => {
+            let v = required("active_corners", m.active_corners, n)?;
+            add(&mut b.cell, integer("active_corners", ints(v)));
+        }
+        MeshKeyword::Index => add(&mut b.cell, integer("index", (0..n).map(|t| t as f64))),
+        MeshKeyword::NNeighs => {
+            let v = required("nneighs", m.nneighs, n)?;
+            add(&mut b.cell, integer("nneighs", ints(v)));
+        }
+        MeshKeyword::MinActiveEdgeDist => {
+            if let Some(d) = m.min_active_edge_dist {
+                let d = per_triangle("minActiveEdgeDist", d, n)?;
+                add(&mut b.cell, scalar("min_active_edge_dist", d.to_vec()));
             }
-            MeshKeyword::Index => add(&mut b.cell, integer("index", (0..n).map(|t| t as f64))),
-            MeshKeyword::NNeighs => {
-                let v = required("nneighs", m.nneighs, n)?;
-                add(&mut b.cell, integer("nneighs", ints(v)));
-            }
-            MeshKeyword::MinActiveEdgeDist => {
-                if let Some(d) = m.min_active_edge_dist {
-                    let d = per_triangle("minActiveEdgeDist", d, n)?;
-                    add(&mut b.cell, scalar("min_active_edge_dist", d.to_vec()));
-                }
-            }
-            MeshKeyword::LiquidContent => {
-                if let Some(l) = m.liquid_content {
-                    let l = per_triangle("LiquidContent", l, n)?;
-                    add(&mut b.cell, scalar("liquid_content", l.to_vec()));
-                }
+        }
+        MeshKeyword::LiquidContent => {
+            if let Some(l) = m.liquid_content {
+                let l = per_triangle("LiquidContent", l, n)?;
+                add(&mut b.cell, scalar("liquid_content", l.to_vec()));
             }
         }
     }
-    // named element properties: all scalars, then all vectors, each in command-line order
+    Ok(())
+}
+
+/// `stress`: the normal and shear stress averages per triangle (pressure), when the mesh
+/// keeps them.
+fn add_stress(b: &mut Block, m: &MeshSnapshot) -> io::Result<()> {
+    let n = m.nodes.len();
+    if let Some(s) = m.sigma_n {
+        let s = per_triangle("sigma_n", s, n)?;
+        add(
+            &mut b.cell,
+            scalar("normal_stress_average", s.iter().copied()),
+        );
+    }
+    if let Some(s) = m.sigma_t {
+        let s = per_triangle("sigma_t", s, n)?;
+        add(
+            &mut b.cell,
+            scalar("shear_stress_average", s.iter().copied()),
+        );
+    }
+    Ok(())
+}
+
+/// `stress_components`: each triangle's force over its area (pressure), when the mesh
+/// keeps forces.
+fn add_stress_components(b: &mut Block, m: &MeshSnapshot) -> io::Result<()> {
+    let n = m.nodes.len();
+    if let Some(f) = m.force {
+        let f = per_triangle("f", f, n)?;
+        let area = required("area", m.area, n)?;
+        let values = f.iter().zip(area).flat_map(|(f, &a)| {
+            let inv = 1.0 / a;
+            [f[0] * inv, f[1] * inv, f[2] * inv]
+        });
+        add(&mut b.cell, vector("stress", values));
+    }
+    Ok(())
+}
+
+/// The named element properties: all scalars, then all vectors, each in command-line
+/// order.
+fn add_properties(b: &mut Block, spec: &MeshDumpSpec, m: &MeshSnapshot) -> io::Result<()> {
+    let n = m.nodes.len();
     for name in &spec.properties {
         for (pname, p) in m.properties {
             if pname == name {
@@ -506,7 +535,7 @@ fn mesh_block(spec: &MeshDumpSpec, m: &MeshSnapshot) -> io::Result<Block> {
             }
         }
     }
-    Ok(b)
+    Ok(())
 }
 
 /// Unite the arrays of several meshes by name, in order of first appearance; a mesh lacking

@@ -97,6 +97,19 @@ pub struct Variable {
 }
 
 impl Variable {
+    /// A new variable `name` of `style` holding `values`, at its first value.
+    fn new(name: &str, style: Style, values: Vec<String>) -> Variable {
+        Variable {
+            name: name.to_string(),
+            style,
+            values,
+            which: 0,
+            count: 0,
+            pad: 0,
+            file: None,
+        }
+    }
+
     /// The formula of an equal- or atom-style variable, or the text of a string variable.
     pub fn formula(&self) -> Option<&str> {
         match self.style {
@@ -212,15 +225,7 @@ impl Variables {
         let style_word = args[1].as_str();
         let rest = &args[2..];
         let exists = self.position(name);
-        let new = |style: Style, values: Vec<String>| Variable {
-            name: name.to_string(),
-            style,
-            values,
-            which: 0,
-            count: 0,
-            pad: 0,
-            file: None,
-        };
+        // None: an existing variable of a style LIGGGHTS does not redefine is kept
         let var = match style_word {
             "delete" => {
                 if !rest.is_empty() {
@@ -233,111 +238,122 @@ impl Variables {
                 if rest.is_empty() {
                     return Err(illegal());
                 }
-                if exists.is_some() {
-                    return Ok(());
+                match exists {
+                    Some(_) => None,
+                    None => Some(self.value_list(name, style_word, rest, host)?),
                 }
-                let style = match style_word {
-                    "index" => Style::Index,
-                    "world" => Style::World,
-                    _ => Style::Universe,
-                };
-                let mut v = new(style, rest.to_vec());
-                v.count = rest.len() as i64;
-                let (worlds, me) = host.partitions();
-                if style == Style::World {
-                    if v.count != worlds as i64 {
-                        return Err(VariableCommandError::WorldCount);
-                    }
-                    v.which = me as i64;
-                }
-                if style == Style::Universe {
-                    self.universe_checks(&v, host)?;
-                }
-                v
             }
-            "loop" => {
-                if exists.is_some() {
-                    return Ok(());
-                }
-                let (first, last, padded) = loop_range(rest)?;
-                // LIGGGHTS stores which = N1 - 1 and count = N2, so N1 may be negative
-                let mut v = new(Style::Loop, Vec::new());
-                v.count = last;
-                v.which = first - 1;
-                if padded {
-                    v.pad = pad_width(last);
-                }
-                v
-            }
-            "uloop" => {
-                let padded = match rest {
-                    [_] => false,
-                    [_, p] if p == "pad" => true,
-                    _ => return Err(illegal()),
-                };
-                if exists.is_some() {
-                    return Ok(());
-                }
-                let n = parse_int(&rest[0])?;
-                let mut v = new(Style::Uloop, Vec::new());
-                v.count = n.max(0);
-                if padded {
-                    v.pad = pad_width(n);
-                }
-                self.universe_checks(&v, host)?;
-                v
-            }
+            "loop" => match exists {
+                Some(_) => None,
+                None => Some(loop_variable(name, rest)?),
+            },
+            "uloop" => self.uloop_variable(name, rest, exists, host)?,
             "string" | "getenv" | "equal" | "atom" => {
-                if rest.len() != 1 {
-                    return Err(illegal());
-                }
-                let style = match style_word {
-                    "string" => Style::String,
-                    "getenv" => Style::Getenv,
-                    "equal" => Style::Equal,
-                    _ => Style::Atom,
-                };
-                if let Some(i) = exists {
-                    if self.vars[i].style != style {
-                        return Err(VariableCommandError::Redefined);
-                    }
-                    self.vars.remove(i);
-                }
-                let mut v = new(style, rest.to_vec());
-                v.count = 1;
-                v
+                Some(self.formula_variable(name, style_word, rest, exists)?)
             }
             "file" | "atomfile" => {
                 if rest.len() != 1 {
                     return Err(illegal());
                 }
-                if exists.is_some() {
-                    return Ok(());
+                match exists {
+                    Some(_) => None,
+                    None => Some(file_variable(name, style_word, &rest[0], host)?),
                 }
-                let text = host
-                    .read_file(&rest[0])
-                    .map_err(|_| VariableCommandError::CannotOpen(rest[0].clone()))?;
-                if style_word == "atomfile" {
-                    return Err(VariableCommandError::Unsupported(
-                        "variable atomfile".into(),
-                    ));
-                }
-                let mut file = FileValues::from_text(&text);
-                let Some(first) = file.values.pop_front() else {
-                    return Err(VariableCommandError::EmptyFile);
-                };
-                let mut v = new(Style::File, vec![first]);
-                v.count = 1;
-                v.file = Some(file);
-                v
             }
             _ => return Err(illegal()),
+        };
+        let Some(var) = var else {
+            return Ok(());
         };
         if !name.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_') {
             return Err(VariableCommandError::BadName);
         }
         self.vars.push(var);
         Ok(())
+    }
+
+    /// `index|world|universe V1 V2 ...`: a new variable stepping through its values (a
+    /// `world` variable takes the value of this partition).
+    fn value_list(
+        &self,
+        name: &str,
+        style_word: &str,
+        values: &[String],
+        host: &mut dyn VariableHost,
+    ) -> Result<Variable, VariableCommandError> {
+        let style = match style_word {
+            "index" => Style::Index,
+            "world" => Style::World,
+            _ => Style::Universe,
+        };
+        let mut v = Variable::new(name, style, values.to_vec());
+        v.count = values.len() as i64;
+        let (worlds, me) = host.partitions();
+        if style == Style::World {
+            if v.count != worlds as i64 {
+                return Err(VariableCommandError::WorldCount);
+            }
+            v.which = me as i64;
+        }
+        if style == Style::Universe {
+            self.universe_checks(&v, host)?;
+        }
+        Ok(v)
+    }
+
+    /// `uloop N [pad]`: a new universe loop over 1..N (None when `name` exists).
+    fn uloop_variable(
+        &self,
+        name: &str,
+        rest: &[String],
+        exists: Option<usize>,
+        host: &mut dyn VariableHost,
+    ) -> Result<Option<Variable>, VariableCommandError> {
+        let padded = match rest {
+            [_] => false,
+            [_, p] if p == "pad" => true,
+            _ => return Err(illegal()),
+        };
+        if exists.is_some() {
+            return Ok(None);
+        }
+        let n = parse_int(&rest[0])?;
+        let mut v = Variable::new(name, Style::Uloop, Vec::new());
+        v.count = n.max(0);
+        if padded {
+            v.pad = pad_width(n);
+        }
+        self.universe_checks(&v, host)?;
+        Ok(Some(v))
+    }
+
+    /// `string|getenv|equal|atom TEXT`: a variable of one value, replacing an existing one of
+    /// the same style (`exists`: its index).
+    fn formula_variable(
+        &mut self,
+        name: &str,
+        style_word: &str,
+        rest: &[String],
+        exists: Option<usize>,
+    ) -> Result<Variable, VariableCommandError> {
+        if rest.len() != 1 {
+            return Err(illegal());
+        }
+        let style = match style_word {
+            "string" => Style::String,
+            "getenv" => Style::Getenv,
+            "equal" => Style::Equal,
+            _ => Style::Atom,
+        };
+        if let Some(i) = exists {
+            if self.vars[i].style != style {
+                return Err(VariableCommandError::Redefined);
+            }
+            self.vars.remove(i);
+        }
+        let mut v = Variable::new(name, style, rest.to_vec());
+        v.count = 1;
+        Ok(v)
     }
 
     fn universe_checks(
@@ -461,6 +477,45 @@ impl Variables {
     pub fn names(&self) -> Vec<&str> {
         self.vars.iter().map(|v| v.name.as_str()).collect()
     }
+}
+
+/// `loop N` or `loop N1 N2 [pad]`: a new loop variable over N1..N2 (1..N).
+fn loop_variable(name: &str, rest: &[String]) -> Result<Variable, VariableCommandError> {
+    let (first, last, padded) = loop_range(rest)?;
+    // LIGGGHTS stores which = N1 - 1 and count = N2, so N1 may be negative
+    let mut v = Variable::new(name, Style::Loop, Vec::new());
+    v.count = last;
+    v.which = first - 1;
+    if padded {
+        v.pad = pad_width(last);
+    }
+    Ok(v)
+}
+
+/// `file F` (`atomfile` is not supported yet): a new variable stepping through the file's
+/// values, the first one current.
+fn file_variable(
+    name: &str,
+    style_word: &str,
+    file_name: &str,
+    host: &mut dyn VariableHost,
+) -> Result<Variable, VariableCommandError> {
+    let text = host
+        .read_file(file_name)
+        .map_err(|_| VariableCommandError::CannotOpen(file_name.to_string()))?;
+    if style_word == "atomfile" {
+        return Err(VariableCommandError::Unsupported(
+            "variable atomfile".into(),
+        ));
+    }
+    let mut file = FileValues::from_text(&text);
+    let Some(first) = file.values.pop_front() else {
+        return Err(VariableCommandError::EmptyFile);
+    };
+    let mut v = Variable::new(name, Style::File, vec![first]);
+    v.count = 1;
+    v.file = Some(file);
+    Ok(v)
 }
 
 /// The words after `variable NAME loop`: `N` or `N1 N2`, then `pad` or not. Gives the first

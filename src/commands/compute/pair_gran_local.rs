@@ -7,6 +7,9 @@ use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::computes::{ComputeAt, ComputeStyle, LocalField, LocalRows};
 use crate::engine::error::EngineError;
+use crate::engine::neighbor::{BinOrder, Pair};
+use crate::engine::particles::Particles;
+use crate::engine::sim::Simulation;
 
 /// The declared signature.
 pub const SPEC: Spec = style(
@@ -77,22 +80,8 @@ fn rows(at: &ComputeAt, fields: &[LocalField]) -> Result<(usize, Vec<f64>), Engi
     let ncols: usize = fields.iter().map(|f| f.width(width)).sum();
     let p = &sim.particles;
     let pairs = &sim.list.pairs;
+    let order = RowOrder::of(sim);
     let mut out = Vec::new();
-    // rows in LIGGGHTS's order: by the reporting atom, then its partners in bin order
-    // (positions of the last list build, ghosts of periodic partners beyond the box)
-    let order = crate::engine::neighbor::BinOrder::sized(
-        sim.domain.lo,
-        sim.domain.hi,
-        sim.neighbor.cutneighmax,
-        sim.extras.neigh_binsize,
-    );
-    let built = sim.list.built_positions();
-    // the fast path keeps its own order and records the exact path's: pairs are reported
-    // and their rows ordered as the exact path (LIGGGHTS) does, by that order
-    let exact = sim.exact_rank().filter(|r| r.len() == p.len());
-    let place = |k: usize| exact.map_or(k, |r| r[k] as usize);
-    // (reporting atom, partner's bin, partner) and the row's index in `out`
-    type RowKey = (usize, [i64; 3], usize);
     let mut keyed: Vec<(RowKey, usize)> = Vec::new();
     for (k, fi, ti, fj, tj) in pair.contacts(
         p,
@@ -102,44 +91,141 @@ fn rows(at: &ComputeAt, fields: &[LocalField]) -> Result<(usize, Vec<f64>), Engi
         (&sim.force_time_state.0, &sim.force_time_state.1),
     ) {
         let pr = &pairs[k];
-        let (mut i, mut j) = (pr.i as usize, pr.j as usize);
+        let (i, j) = (pr.i as usize, pr.j as usize);
         if p.mask[i] & at.group == 0 || p.mask[j] & at.group == 0 {
             continue;
         }
+        let side = order.reporting_side(p, pr, (fi, ti), (fj, tj));
+        keyed.push((order.key(p, &side), out.len()));
+        let history = &sim.history[k * width..(k + 1) * width];
+        let contact = Contact::between(p, &side);
+        push_row(&mut out, fields, p, &side, &contact, (history, &flips));
+    }
+    Ok((ncols, sorted_rows(keyed, &out, ncols)))
+}
+
+/// A row's place in LIGGGHTS's order: (reporting atom, partner's bin, partner).
+type RowKey = (usize, [i64; 3], usize);
+
+/// LIGGGHTS's row order: by the reporting atom, then its partners in bin order (positions
+/// of the last list build, ghosts of periodic partners beyond the box).
+struct RowOrder<'a> {
+    /// The bins of the last list build.
+    bins: BinOrder,
+    /// The particle positions at the last list build (length).
+    built: &'a [[f64; 3]],
+    /// The exact path's place of each particle when the fast path keeps its own order:
+    /// pairs are reported and their rows ordered as the exact path (LIGGGHTS) does.
+    exact: Option<&'a [f64]>,
+}
+
+/// A touching pair as its row reports it: from particle `i` to particle `j`, whose ghost
+/// across a periodic face lies `shift` (length) away; force and torque on `i`.
+struct Side {
+    i: usize,
+    j: usize,
+    periodic: bool,
+    shift: [f64; 3],
+    force: [f64; 3],
+    torque: [f64; 3],
+    /// -1 when the pair is reported from its second particle (signed history flips).
+    sign: f64,
+}
+
+impl<'a> RowOrder<'a> {
+    fn of(sim: &'a Simulation) -> Self {
+        RowOrder {
+            bins: BinOrder::sized(
+                sim.domain.lo,
+                sim.domain.hi,
+                sim.neighbor.cutneighmax,
+                sim.extras.neigh_binsize,
+            ),
+            built: sim.list.built_positions(),
+            exact: sim.exact_rank().filter(|r| r.len() == sim.particles.len()),
+        }
+    }
+
+    /// Particle `k`'s place in the exact path's order.
+    fn place(&self, k: usize) -> usize {
+        self.exact.map_or(k, |r| r[k] as usize)
+    }
+
+    /// The side pair `pr` is reported from: across a periodic face LIGGGHTS reports the
+    /// pair from the atom with the larger ID (its ghost partner carries the shift), other
+    /// pairs from the atom first in its order. `on_i` and `on_j` are (force, torque) on
+    /// each particle.
+    fn reporting_side(
+        &self,
+        p: &Particles,
+        pr: &Pair,
+        on_i: ([f64; 3], [f64; 3]),
+        on_j: ([f64; 3], [f64; 3]),
+    ) -> Side {
+        let (i, j) = (pr.i as usize, pr.j as usize);
         let periodic = pr.shift != [0.0; 3];
-        // across a periodic face LIGGGHTS reports the pair from the atom with the
-        // larger ID (its ghost partner carries the shift); other pairs from the atom
-        // first in its order
-        let mut shift = pr.shift;
-        let (mut f, mut t, mut sign) = (fi, ti, 1.0);
         let from_j = if periodic {
             p.id[i] < p.id[j]
         } else {
-            place(i) > place(j)
+            self.place(i) > self.place(j)
         };
         if from_j {
-            std::mem::swap(&mut i, &mut j);
-            shift = shift.map(|v| -v);
-            f = fj;
-            t = tj;
-            sign = -1.0;
+            Side {
+                i: j,
+                j: i,
+                periodic,
+                shift: pr.shift.map(|v| -v),
+                force: on_j.0,
+                torque: on_j.1,
+                sign: -1.0,
+            }
+        } else {
+            Side {
+                i,
+                j,
+                periodic,
+                shift: pr.shift,
+                force: on_i.0,
+                torque: on_i.1,
+                sign: 1.0,
+            }
         }
-        let xb = built.get(j).copied().unwrap_or(p.x[j]);
-        keyed.push((
-            (
-                place(i),
-                order.bin([0, 1, 2].map(|d| xb[d] + shift[d])),
-                place(j),
-            ),
-            out.len(),
-        ));
+    }
+
+    /// The row's sort key.
+    fn key(&self, p: &Particles, side: &Side) -> RowKey {
+        let xb = self.built.get(side.j).copied().unwrap_or(p.x[side.j]);
+        (
+            self.place(side.i),
+            self.bins.bin([0, 1, 2].map(|d| xb[d] + side.shift[d])),
+            self.place(side.j),
+        )
+    }
+}
+
+/// The geometry of a reported contact: the partner's ghost position, the unit vector from
+/// `i` to `j` along which forces are split, the radii and the centre distance.
+struct Contact {
+    xi: [f64; 3],
+    xj_ghost: [f64; 3],
+    normal: [f64; 3],
+    ri: f64,
+    rj: f64,
+    /// The squared centre distance (length^2).
+    rsq: f64,
+    /// The centre distance (length).
+    r: f64,
+}
+
+impl Contact {
+    fn between(p: &Particles, side: &Side) -> Contact {
+        let (i, j, shift) = (side.i, side.j, side.shift);
         let xi = p.x[i];
         let xj_ghost = [
             p.x[j][0] + shift[0],
             p.x[j][1] + shift[1],
             p.x[j][2] + shift[2],
         ];
-        // the unit vector from i to j, along which force and torque are split
         let mut normal = [
             xj_ghost[0] - xi[0],
             xj_ghost[1] - xi[1],
@@ -149,64 +235,97 @@ fn rows(at: &ComputeAt, fields: &[LocalField]) -> Result<(usize, Vec<f64>), Engi
         if len > 0.0 {
             normal = normal.map(|c| c / len);
         }
-        let (ri, rj) = (p.radius[i], p.radius[j]);
         let del = [
             xi[0] - xj_ghost[0],
             xi[1] - xj_ghost[1],
             xi[2] - xj_ghost[2],
         ];
         let rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-        let r = rsq.sqrt();
-        for field in fields {
-            match field {
-                LocalField::Pos => {
-                    out.extend_from_slice(&xi);
-                    out.extend_from_slice(&p.x[j]);
-                }
-                LocalField::Vel => {
-                    out.extend_from_slice(&p.v[i]);
-                    out.extend_from_slice(&p.v[j]);
-                }
-                LocalField::Id => {
-                    out.push(p.id[i] as f64);
-                    out.push(p.id[j] as f64);
-                    out.push(if periodic { 1.0 } else { 0.0 });
-                }
-                LocalField::Force
-                | LocalField::ForceNormal
-                | LocalField::ForceTangential
-                | LocalField::Torque
-                | LocalField::TorqueNormal
-                | LocalField::TorqueTangential => {
-                    out.extend_from_slice(&force_torque(*field, f, t, normal))
-                }
-                LocalField::History => out.extend(
-                    sim.history[k * width..(k + 1) * width]
+        Contact {
+            xi,
+            xj_ghost,
+            normal,
+            ri: p.radius[i],
+            rj: p.radius[j],
+            rsq,
+            r: rsq.sqrt(),
+        }
+    }
+
+    /// LIGGGHTS's contact area of two overlapping spheres (length^2).
+    fn area(&self) -> f64 {
+        let (r, ri, rj) = (self.r, self.ri, self.rj);
+        -std::f64::consts::PI / 4.0
+            * ((r - ri - rj) * (r + ri - rj) * (r - ri + rj) * (r + ri + rj))
+            / self.rsq
+    }
+}
+
+/// Append the row of a reported contact: each field's values in `fields` order;
+/// `history` is the pair's stored history and which of its values flip sign with the
+/// reporting side.
+fn push_row(
+    out: &mut Vec<f64>,
+    fields: &[LocalField],
+    p: &Particles,
+    side: &Side,
+    c: &Contact,
+    history: (&[f64], &[bool]),
+) {
+    let (i, j) = (side.i, side.j);
+    for field in fields {
+        match field {
+            LocalField::Pos => {
+                out.extend_from_slice(&c.xi);
+                out.extend_from_slice(&p.x[j]);
+            }
+            LocalField::Vel => {
+                out.extend_from_slice(&p.v[i]);
+                out.extend_from_slice(&p.v[j]);
+            }
+            LocalField::Id => {
+                out.push(p.id[i] as f64);
+                out.push(p.id[j] as f64);
+                out.push(if side.periodic { 1.0 } else { 0.0 });
+            }
+            LocalField::Force
+            | LocalField::ForceNormal
+            | LocalField::ForceTangential
+            | LocalField::Torque
+            | LocalField::TorqueNormal
+            | LocalField::TorqueTangential => {
+                out.extend_from_slice(&force_torque(*field, side.force, side.torque, c.normal))
+            }
+            LocalField::History => {
+                out.extend(
+                    history
+                        .0
                         .iter()
-                        .zip(&flips)
-                        .map(|(h, &f)| if f { h * sign } else { *h }),
-                ),
-                LocalField::ContactArea => out.push(
-                    -std::f64::consts::PI / 4.0
-                        * ((r - ri - rj) * (r + ri - rj) * (r - ri + rj) * (r + ri + rj))
-                        / rsq,
-                ),
-                LocalField::Delta => out.push(ri + rj - r),
-                LocalField::HeatFlux => out.push(0.0),
-                LocalField::ContactPoint => {
-                    for d in 0..3 {
-                        out.push((xi[d] * rj + xj_ghost[d] * ri) / (ri + rj));
-                    }
+                        .zip(history.1)
+                        .map(|(h, &f)| if f { h * side.sign } else { *h }),
+                )
+            }
+            LocalField::ContactArea => out.push(c.area()),
+            LocalField::Delta => out.push(c.ri + c.rj - c.r),
+            LocalField::HeatFlux => out.push(0.0),
+            LocalField::ContactPoint => {
+                for d in 0..3 {
+                    out.push((c.xi[d] * c.rj + c.xj_ghost[d] * c.ri) / (c.ri + c.rj));
                 }
             }
         }
     }
+}
+
+/// The rows of `out` (`ncols` values each, at the indices `keyed` holds) in the order of
+/// their keys.
+fn sorted_rows(mut keyed: Vec<(RowKey, usize)>, out: &[f64], ncols: usize) -> Vec<f64> {
     keyed.sort_by_key(|(key, _)| *key);
     let mut sorted = Vec::with_capacity(out.len());
     for (_, at) in keyed {
         sorted.extend_from_slice(&out[at..at + ncols]);
     }
-    Ok((ncols, sorted))
+    sorted
 }
 
 /// `compute ID GROUP pair/gran/local [FIELD ...]`: one row per touching pair with the

@@ -2,11 +2,11 @@
 //! velocity, volume fraction, radius, pressure), one file per snapshot.
 
 use crate::commands::dump::{no_columns, Built, DumpDef};
+use crate::commands::fix::ave_euler::AveEuler;
 use crate::commands::specs::{style, Spec};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::dump_style::{DumpAt, DumpStyle};
 use crate::engine::error::EngineError;
-use crate::engine::fixes::FixKind;
 use crate::engine::sim::VariableSource;
 
 /// The declared signature of `euler/vtk`.
@@ -33,13 +33,9 @@ impl DumpStyle for EulerVtk {
         _vars: &mut dyn VariableSource,
     ) -> Result<Vec<u8>, EngineError> {
         let text: String = (at.sim.fixes.iter())
-            .find_map(|f| match &f.kind {
-                FixKind::Style(s) if f.style == "ave/euler" => s
-                    .as_any()
-                    .and_then(|a| a.downcast_ref::<crate::engine::ave_euler::EulerGrid>())
-                    .map(|g| g.vtk()),
-                _ => None,
-            })
+            .filter(|f| f.style == "ave/euler")
+            .find_map(|f| f.kind.style_as::<AveEuler>())
+            .map(|a| a.grid.vtk())
             .ok_or("Illegal dump euler/vtk command, need a fix ave/euler")?;
         Ok(text.into_bytes())
     }

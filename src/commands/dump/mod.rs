@@ -124,27 +124,58 @@ const VTK_SUFFIXES: [&str; 10] = [
     ".vtk", ".vtp", ".vtu", ".vti", ".vtr", ".vtm", ".pvtp", ".pvtu", ".pvti", ".pvtr",
 ];
 
+/// Why LIGGGHTS refuses a VTK dump's file name, in its words.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum VtkFileProblem {
+    /// A `%` in the name.
+    #[error("It is no longer allowed to enable parallel writing by setting the % character, please see the documentation for help.")]
+    Percent,
+    /// A five-character suffix that is not an allowed parallel one.
+    #[error("Could not find allowed filetype for parallel writing.")]
+    Parallel,
+    /// A four-character suffix that is not an allowed serial one.
+    #[error("Could not find allowed filetype for serial writing.")]
+    Serial,
+    /// A suffix of any other length.
+    #[error("Could not find allowed filetype for writing of VTK file.")]
+    Unknown,
+}
+
+/// A VTK dump's file name LIGGGHTS refuses: the dump style, the problem and the suffixes
+/// the style allows.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("dump {style}: {problem} Allowed file extensions for this dump style are: {allowed}")]
+pub struct VtkFileError {
+    /// The dump style (`custom/vtk`).
+    pub style: String,
+    /// What is wrong with the name.
+    pub problem: VtkFileProblem,
+    /// The allowed suffixes, space-separated in LIGGGHTS's order.
+    pub allowed: String,
+}
+
 /// LIGGGHTS's check of a VTK dump's file name (`DumpVTK::identify_file_type`): no `%`, and
 /// the suffix after the last dot one of `allowed` (four characters a serial file, five a
 /// parallel one). The error names the allowed suffixes in `allowed`'s order.
-pub fn vtk_file_type(file: &str, style: &str, allowed: &[&str]) -> Result<(), String> {
-    let fail = |what: &str| {
-        Err(format!(
-            "dump {style}: {what} Allowed file extensions for this dump style are: {}",
-            allowed.join(" ")
-        ))
+pub fn vtk_file_type(file: &str, style: &str, allowed: &[&str]) -> Result<(), VtkFileError> {
+    let fail = |problem: VtkFileProblem| {
+        Err(VtkFileError {
+            style: style.to_string(),
+            problem,
+            allowed: allowed.join(" "),
+        })
     };
     if file.contains('%') {
-        return fail("It is no longer allowed to enable parallel writing by setting the % character, please see the documentation for help.");
+        return fail(VtkFileProblem::Percent);
     }
     let suffix = file.rfind('.').map_or("", |k| &file[k..]);
     let parallel = |s: &str| VTK_SUFFIXES[6..].contains(&s);
     match suffix.len() {
         5 if allowed.contains(&suffix) && parallel(suffix) => Ok(()),
-        5 => fail("Could not find allowed filetype for parallel writing."),
+        5 => fail(VtkFileProblem::Parallel),
         4 if allowed.contains(&suffix) && VTK_SUFFIXES[..6].contains(&suffix) => Ok(()),
-        4 => fail("Could not find allowed filetype for serial writing."),
-        _ => fail("Could not find allowed filetype for writing of VTK file."),
+        4 => fail(VtkFileProblem::Serial),
+        _ => fail(VtkFileProblem::Unknown),
     }
 }
 

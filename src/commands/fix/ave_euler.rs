@@ -116,10 +116,6 @@ impl FixStyle for AveEuler {
         }
         Some(Ok(self.grid.array(i - 1, j - 1)))
     }
-
-    fn as_any(&self) -> Option<&dyn std::any::Any> {
-        Some(&self.grid)
-    }
 }
 
 /// `fix ID GROUP ave/euler nevery N cell_size_relative C parallel yes|no

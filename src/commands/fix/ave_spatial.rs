@@ -152,85 +152,122 @@ fn keywords(
     mut dims: Vec<(usize, Origin, f64)>,
     values: Vec<SpatialValue>,
 ) -> Result<Parsed, CommandError> {
-    let mut set = SpatialSettings {
-        schedule,
-        dims: Vec::new(),
-        values,
-        norm_sample: false,
-        reduced: false,
-        region: None,
-        mode: AveMode::One,
-        overwrite: false,
-        write_ts: true,
+    let mut k = Keywords {
+        set: SpatialSettings {
+            schedule,
+            dims: Vec::new(),
+            values,
+            norm_sample: false,
+            reduced: false,
+            region: None,
+            mode: AveMode::One,
+            overwrite: false,
+            write_ts: true,
+        },
+        lattice: false,
+        file: None,
+        titles: [None, None, None],
     };
-    let (mut lattice, mut file) = (false, None);
-    let mut titles: [Option<String>; 3] = [None, None, None];
-    let need = |k: usize| {
-        if k > a.len() {
+    while i < a.len() {
+        i = keyword(a, ctx, i, &mut k)?;
+    }
+    check_schedule(a, &k.set, &dims)?;
+    if k.lattice {
+        in_lattice_units(ctx, &mut dims);
+    }
+    k.set.dims = dims;
+    Ok((k.set, k.file, k.titles))
+}
+
+/// What the optional keywords set.
+struct Keywords {
+    /// The averaging settings (all but the bins).
+    set: SpatialSettings,
+    /// `units lattice`.
+    lattice: bool,
+    /// `file F`.
+    file: Option<String>,
+    /// `title1`, `title2`, `title3`.
+    titles: [Option<String>; 3],
+}
+
+/// Read the keyword at word `i` into `k`: the word after it and its values.
+fn keyword(a: &Args, ctx: &Ctx, i: usize, k: &mut Keywords) -> Result<usize, CommandError> {
+    let need = |n: usize| {
+        if n > a.len() {
             Err(a.error(a.len() - 1, ILLEGAL))
         } else {
             Ok(())
         }
     };
-    while i < a.len() {
-        let w = a.word(i)?;
-        match w {
-            "norm" | "units" | "region" | "file" | "write_ts" | "ave" | "title1" | "title2"
-            | "title3" => need(i + 2)?,
-            _ => {}
-        }
-        match w {
-            "norm" => match a.word(i + 1)? {
-                "all" => set.norm_sample = false,
-                "sample" => set.norm_sample = true,
-                _ => return Err(a.error(i + 1, ILLEGAL)),
-            },
-            "units" => match a.word(i + 1)? {
-                "box" => (lattice, set.reduced) = (false, false),
-                "lattice" => (lattice, set.reduced) = (true, false),
-                "reduced" => (lattice, set.reduced) = (false, true),
-                _ => return Err(a.error(i + 1, ILLEGAL)),
-            },
-            "region" => {
-                let id = a.word(i + 1)?;
-                let r = ctx.sim.regions.find(id).ok_or_else(|| {
+    let w = a.word(i)?;
+    match w {
+        "norm" | "units" | "region" | "file" | "write_ts" | "ave" | "title1" | "title2"
+        | "title3" => need(i + 2)?,
+        _ => {}
+    }
+    let set = &mut k.set;
+    match w {
+        "norm" => match a.word(i + 1)? {
+            "all" => set.norm_sample = false,
+            "sample" => set.norm_sample = true,
+            _ => return Err(a.error(i + 1, ILLEGAL)),
+        },
+        "units" => match a.word(i + 1)? {
+            "box" => (k.lattice, set.reduced) = (false, false),
+            "lattice" => (k.lattice, set.reduced) = (true, false),
+            "reduced" => (k.lattice, set.reduced) = (false, true),
+            _ => return Err(a.error(i + 1, ILLEGAL)),
+        },
+        "region" => {
+            let id = a.word(i + 1)?;
+            let r =
+                ctx.sim.regions.find(id).ok_or_else(|| {
                     a.error(i + 1, "Region ID for fix ave/spatial does not exist")
                 })?;
-                set.region = Some(r);
-            }
-            "file" => file = Some(a.word(i + 1)?.to_string()),
-            "write_ts" => match a.word(i + 1)? {
-                "yes" => set.write_ts = true,
-                "no" => set.write_ts = false,
-                _ => return Err(a.error(i + 1, ILLEGAL)),
-            },
-            "ave" => match a.word(i + 1)? {
-                "one" => set.mode = AveMode::One,
-                "running" => set.mode = AveMode::Running,
-                "window" => {
-                    need(i + 3)?;
-                    let n = a.int(i + 2)?;
-                    if n <= 0 {
-                        return Err(a.error(i + 2, ILLEGAL));
-                    }
-                    set.mode = AveMode::Window(n as usize);
-                    i += 1;
-                }
-                _ => return Err(a.error(i + 1, ILLEGAL)),
-            },
-            "overwrite" => {
-                set.overwrite = true;
-                i -= 1;
-            }
-            "title1" | "title2" | "title3" => {
-                titles[(w.as_bytes()[5] - b'1') as usize] = Some(a.word(i + 1)?.to_string());
-            }
-            "std" => return Err(a.unsupported(i, "fix ave/spatial std")),
-            _ => return Err(a.error(i, ILLEGAL)),
+            set.region = Some(r);
         }
-        i += 2;
+        "file" => k.file = Some(a.word(i + 1)?.to_string()),
+        "write_ts" => match a.word(i + 1)? {
+            "yes" => set.write_ts = true,
+            "no" => set.write_ts = false,
+            _ => return Err(a.error(i + 1, ILLEGAL)),
+        },
+        "ave" => match a.word(i + 1)? {
+            "one" => set.mode = AveMode::One,
+            "running" => set.mode = AveMode::Running,
+            "window" => {
+                need(i + 3)?;
+                let n = a.int(i + 2)?;
+                if n <= 0 {
+                    return Err(a.error(i + 2, ILLEGAL));
+                }
+                set.mode = AveMode::Window(n as usize);
+                return Ok(i + 3);
+            }
+            _ => return Err(a.error(i + 1, ILLEGAL)),
+        },
+        "overwrite" => {
+            set.overwrite = true;
+            return Ok(i + 1);
+        }
+        "title1" | "title2" | "title3" => {
+            k.titles[(w.as_bytes()[5] - b'1') as usize] = Some(a.word(i + 1)?.to_string());
+        }
+        "std" => return Err(a.unsupported(i, "fix ave/spatial std")),
+        _ => return Err(a.error(i, ILLEGAL)),
     }
-    let (every, repeat, freq) = schedule;
+    Ok(i + 2)
+}
+
+/// LIGGGHTS's checks of the schedule (`Nevery Nrepeat Nfreq`), the bin widths and
+/// `overwrite`.
+fn check_schedule(
+    a: &Args,
+    set: &SpatialSettings,
+    dims: &[(usize, Origin, f64)],
+) -> Result<(), CommandError> {
+    let (every, repeat, freq) = set.schedule;
     if every <= 0 || repeat <= 0 || freq <= 0 || freq % every != 0 || (repeat - 1) * every >= freq {
         return Err(a.error(3, ILLEGAL));
     }
@@ -240,17 +277,18 @@ fn keywords(
     if set.overwrite && set.mode != AveMode::Running {
         return Err(a.error(0, ILLEGAL));
     }
-    if lattice {
-        let spacing = crate::engine::thermo::lattice_spacings(ctx.sim);
-        for d in dims.iter_mut() {
-            d.2 *= spacing[d.0];
-            if let Origin::Coord(c) = &mut d.1 {
-                *c *= spacing[d.0];
-            }
+    Ok(())
+}
+
+/// `units lattice`: the bins' origins and widths scaled by the lattice spacings.
+fn in_lattice_units(ctx: &Ctx, dims: &mut [(usize, Origin, f64)]) {
+    let spacing = crate::engine::thermo::lattice_spacings(ctx.sim);
+    for d in dims.iter_mut() {
+        d.2 *= spacing[d.0];
+        if let Origin::Coord(c) = &mut d.1 {
+            *c *= spacing[d.0];
         }
     }
-    set.dims = dims;
-    Ok((set, file, titles))
 }
 
 /// A `c_`, `f_` or `v_` value at word `i`, checked as LIGGGHTS checks it.

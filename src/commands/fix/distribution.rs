@@ -124,14 +124,6 @@ impl FixStyle for Distribution {
     fn refuses_thermo(&self) -> bool {
         true
     }
-
-    fn as_any(&self) -> Option<&dyn std::any::Any> {
-        Some(self)
-    }
-
-    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
-        Some(self)
-    }
 }
 
 /// LIGGGHTS's printout of a distribution when it is defined (screen only): the weight-sum

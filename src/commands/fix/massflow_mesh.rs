@@ -5,6 +5,7 @@ use crate::commands::specs::{arg, kw, style, Spec, Value, LENGTH, YES_NO};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::fixes::FixStyle;
 use crate::engine::massflow::{Massflow, Side};
+use crate::engine::mesh::TriMesh;
 
 /// The declared signature.
 pub const SPEC: Spec = style(
@@ -48,138 +49,171 @@ pub const SPEC: Spec = style(
 pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>, CommandError> {
     let id = fix.id;
     let fail = |i: usize, m: &str| a.error(i, format!("Fix massflow/mesh (id {id}): {m}"));
-    let mut side = [0.0; 3];
-    let mut mesh = None;
-    let mut once = false;
-    let mut write_time = false;
-    let mut outlet: Option<[f64; 3]> = None;
-    let mut inside_out = false;
-    let mut file = None;
-    let mut screen = false;
-    let mut delete = false;
-    let mut property = None;
+    let mut o = Options::default();
     let mut i = 3;
     while i < a.len() {
-        match a.word(i)? {
-            "vec_side" => {
-                if a.len() < i + 4 {
-                    return Err(fail(i, "not enough arguments for 'vec_side'"));
-                }
-                side = [a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?];
-                if side.iter().all(|&c| c == 0.0) {
-                    return Err(fail(i, "vec_side > 0 required"));
-                }
-                i += 4;
-            }
-            "mesh" => {
-                if a.len() < i + 2 {
-                    return Err(fail(i, "not enough arguments for 'insert_stream'"));
-                }
-                let m = a.word(i + 1)?;
-                let found =
-                    crate::engine::fixes::mesh_named(&ctx.sim.fixes, m).map(|mf| mf.mesh.clone());
-                mesh = Some((
-                    m.to_string(),
-                    found.ok_or_else(|| fail(i + 1, "fix mesh ID does not exist"))?,
-                ));
-                i += 2;
-            }
-            "count" => {
-                if a.len() < i + 2 {
-                    return Err(fail(i, "not enough arguments for 'insert_stream'"));
-                }
-                once = match a.word(i + 1)? {
-                    "once" => true,
-                    "multiple" => false,
-                    _ => return Err(fail(i + 1, "expecting 'once' or 'multiple' after 'count'")),
-                };
-                i += 2;
-            }
-            "writeTime" => {
-                write_time = true;
-                i += 1;
-            }
-            "point_at_outlet" => {
-                if a.len() < i + 4 {
-                    return Err(fail(i, "not enough arguments for 'point_at_outlet'"));
-                }
-                outlet = Some([a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?]);
-                i += 4;
-            }
-            "inside_out" => {
-                inside_out = true;
-                if outlet.is_none() {
-                    return Err(fail(i, "the setting 'inside_out' has no meaning in case you do not use 'point_at_outlet'"));
-                }
-                i += 1;
-            }
-            kw @ ("file" | "append") => {
-                if a.len() < i + 2 {
-                    return Err(fail(i, "Illegal keyword entry"));
-                }
-                if let Some(f) = open_output(a, ctx, i, kw == "append", id)? {
-                    file = Some(f);
-                }
-                i += 2;
-            }
-            "screen" => {
-                if a.len() < i + 2 {
-                    return Err(fail(i, "Illegal keyword entry"));
-                }
-                screen = match a.word(i + 1)? {
-                    "yes" => true,
-                    "no" => false,
-                    _ => return Err(a.error(i + 1, "Illegal fix print command")),
-                };
-                i += 2;
-            }
-            "delete_atoms" => {
-                if a.len() < i + 2 {
-                    return Err(fail(i, "Illegal keyword entry"));
-                }
-                delete = match a.word(i + 1)? {
-                    "yes" => true,
-                    "no" => false,
-                    _ => return Err(a.error(i + 1, "Illegal delete command")),
-                };
-                i += 2;
-            }
-            "sum_property" => {
-                if a.len() < i + 2 {
-                    return Err(fail(i, "not enough arguments for 'sum_property'"));
-                }
-                property = Some(summed_property(a, ctx, i + 1)?);
-                i += 2;
-            }
-            _ => return Err(fail(i, "unknown keyword")),
-        }
+        i = keyword(a, ctx, i, &mut o, id, &fail)?;
     }
-    if delete && !once {
-        return Err(fail(2, "using 'delete_atoms yes' requires 'count once'"));
-    }
-    if outlet.is_some() && !once {
-        return Err(fail(2, "setting 'point_at_outlet' requires 'count once'"));
-    }
-    if side.iter().all(|&c| c == 0.0) && outlet.is_none() {
-        return Err(fail(2, "expecting keyword 'vec_side'"));
-    }
-    let Some((mesh_id, trimesh)) = mesh else {
-        return Err(fail(2, "expecting keyword 'mesh'"));
-    };
-    let side = match outlet {
-        Some(point) => Side::Outlet { point, inside_out },
-        None => Side::Vector(side),
-    };
+    let (mesh_id, trimesh, side) = check_options(&mut o, &fail)?;
     let mut m = Massflow::new(id, &mesh_id, &trimesh, side).map_err(|e| fail(2, &e.to_string()))?;
-    m.once = once;
-    m.screen = screen;
-    m.write_time = write_time;
-    m.file = file;
-    m.delete = delete;
-    m.property = property;
+    m.once = o.once;
+    m.screen = o.screen;
+    m.write_time = o.write_time;
+    m.file = o.file;
+    m.delete = o.delete;
+    m.property = o.property;
     m.write_header()
         .map_err(|e| a.error(0, format!("fix massflow/mesh: {e}")))?;
     Ok(Box::new(m))
+}
+
+/// What the keywords set, as LIGGGHTS reads them.
+#[derive(Default)]
+struct Options {
+    /// `vec_side`: the direction counted as crossing (zero: not given).
+    side: [f64; 3],
+    /// `mesh`: the mesh fix's ID and its mesh.
+    mesh: Option<(String, TriMesh)>,
+    /// `count once`.
+    once: bool,
+    /// `writeTime`.
+    write_time: bool,
+    /// `point_at_outlet` (length).
+    outlet: Option<[f64; 3]>,
+    /// `inside_out`.
+    inside_out: bool,
+    /// `file` or `append` (None also in a dry run).
+    file: Option<std::io::BufWriter<std::fs::File>>,
+    /// `screen yes`.
+    screen: bool,
+    /// `delete_atoms yes`.
+    delete: bool,
+    /// `sum_property`: the fix ID of the summed property.
+    property: Option<String>,
+}
+
+/// Read the keyword at word `i` into `o`: the word after it and its values.
+fn keyword(
+    a: &Args,
+    ctx: &Ctx,
+    i: usize,
+    o: &mut Options,
+    id: &str,
+    fail: &dyn Fn(usize, &str) -> CommandError,
+) -> Result<usize, CommandError> {
+    let need = |n: usize, m: &str| {
+        if a.len() < i + n {
+            Err(fail(i, m))
+        } else {
+            Ok(())
+        }
+    };
+    match a.word(i)? {
+        "vec_side" => {
+            need(4, "not enough arguments for 'vec_side'")?;
+            o.side = [a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?];
+            if o.side.iter().all(|&c| c == 0.0) {
+                return Err(fail(i, "vec_side > 0 required"));
+            }
+            Ok(i + 4)
+        }
+        "mesh" => {
+            need(2, "not enough arguments for 'insert_stream'")?;
+            let m = a.word(i + 1)?;
+            let found =
+                crate::engine::fixes::mesh_named(&ctx.sim.fixes, m).map(|mf| mf.mesh.clone());
+            o.mesh = Some((
+                m.to_string(),
+                found.ok_or_else(|| fail(i + 1, "fix mesh ID does not exist"))?,
+            ));
+            Ok(i + 2)
+        }
+        "count" => {
+            need(2, "not enough arguments for 'insert_stream'")?;
+            o.once = match a.word(i + 1)? {
+                "once" => true,
+                "multiple" => false,
+                _ => return Err(fail(i + 1, "expecting 'once' or 'multiple' after 'count'")),
+            };
+            Ok(i + 2)
+        }
+        "writeTime" => {
+            o.write_time = true;
+            Ok(i + 1)
+        }
+        "point_at_outlet" => {
+            need(4, "not enough arguments for 'point_at_outlet'")?;
+            o.outlet = Some([a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?]);
+            Ok(i + 4)
+        }
+        "inside_out" => {
+            o.inside_out = true;
+            if o.outlet.is_none() {
+                return Err(fail(i, "the setting 'inside_out' has no meaning in case you do not use 'point_at_outlet'"));
+            }
+            Ok(i + 1)
+        }
+        kw @ ("file" | "append") => {
+            need(2, "Illegal keyword entry")?;
+            if let Some(f) = open_output(a, ctx, i, kw == "append", id)? {
+                o.file = Some(f);
+            }
+            Ok(i + 2)
+        }
+        "screen" => {
+            need(2, "Illegal keyword entry")?;
+            o.screen = yes_no(a, i + 1, "Illegal fix print command")?;
+            Ok(i + 2)
+        }
+        "delete_atoms" => {
+            need(2, "Illegal keyword entry")?;
+            o.delete = yes_no(a, i + 1, "Illegal delete command")?;
+            Ok(i + 2)
+        }
+        "sum_property" => {
+            need(2, "not enough arguments for 'sum_property'")?;
+            o.property = Some(summed_property(a, ctx, i + 1)?);
+            Ok(i + 2)
+        }
+        _ => Err(fail(i, "unknown keyword")),
+    }
+}
+
+/// Word `i` as `yes` (true) or `no` (false); any other word is refused with `refusal`.
+fn yes_no(a: &Args, i: usize, refusal: &str) -> Result<bool, CommandError> {
+    match a.word(i)? {
+        "yes" => Ok(true),
+        "no" => Ok(false),
+        _ => Err(a.error(i, refusal)),
+    }
+}
+
+/// LIGGGHTS's checks of the keywords together: the mesh (its fix ID and mesh) and the
+/// side counted as crossing.
+fn check_options(
+    o: &mut Options,
+    fail: &dyn Fn(usize, &str) -> CommandError,
+) -> Result<(String, TriMesh, Side), CommandError> {
+    if o.delete && !o.once {
+        return Err(fail(2, "using 'delete_atoms yes' requires 'count once'"));
+    }
+    if o.outlet.is_some() && !o.once {
+        return Err(fail(2, "setting 'point_at_outlet' requires 'count once'"));
+    }
+    if o.side.iter().all(|&c| c == 0.0) && o.outlet.is_none() {
+        return Err(fail(2, "expecting keyword 'vec_side'"));
+    }
+    let Some((mesh_id, trimesh)) = o.mesh.take() else {
+        return Err(fail(2, "expecting keyword 'mesh'"));
+    };
+    let side = match o.outlet {
+        Some(point) => Side::Outlet {
+            point,
+            inside_out: o.inside_out,
+        },
+        None => Side::Vector(o.side),
+    };
+    Ok((mesh_id, trimesh, side))
 }
 
 /// The output file of `file F` (`append` false) or `append F` at word `i` (the file name

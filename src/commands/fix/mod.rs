@@ -3,7 +3,7 @@
 
 mod adapt;
 mod ave_atom;
-mod ave_euler;
+pub(crate) mod ave_euler;
 mod ave_histo;
 mod ave_spatial;
 mod ave_time;

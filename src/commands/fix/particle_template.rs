@@ -26,87 +26,122 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>,
     let id = fix.id;
     a.count(4..=usize::MAX, "fix ID GROUP particletemplate/sphere SEED atom_type T density constant D radius constant R")?;
     let seed = seed_arg(a, ctx, 3)?;
-    let (mut atom_type, mut density, mut radius) = (1u32, None, None);
-    let mut volume_limit = 1e-12;
+    let mut s = Sphere {
+        atom_type: 1,
+        density: None,
+        radius: None,
+        volume_limit: 1e-12,
+    };
     let mut i = 4;
     while i < a.len() {
-        match a.word(i)? {
-            "atom_type" => {
-                let t = a.int(i + 1)?;
-                if t < 1 || t > ctx.sim.ntypes as i64 {
-                    return Err(
-                        a.error(i + 1, "Fix particletemplate/sphere: atom type out of range")
-                    );
-                }
-                atom_type = t as u32;
-                i += 2;
+        i = keyword(a, ctx, i, id, &mut s)?;
+    }
+    let density = s
+        .density
+        .ok_or_else(|| a.error(2, "Fix particletemplate/sphere: have to define 'density'"))?;
+    let radius = s
+        .radius
+        .ok_or_else(|| a.error(2, "Fix particletemplate/sphere: have to define 'radius'"))?;
+    check_sphere(a, radius, density)?;
+    let mut template = Template::new(id, s.atom_type, radius, density);
+    template.rng_state = (seed, seed);
+    if template.volume < s.volume_limit {
+        return Err(a.error(2, "Fix particletemplate/sphere: Volume expectancy too small. Change 'volume_limit' or particle size in the simulation"));
+    }
+    Ok(Box::new(template))
+}
+
+/// The sphere the keywords describe.
+struct Sphere {
+    /// `atom_type`.
+    atom_type: u32,
+    /// `density constant D` (mass/length^3).
+    density: Option<f64>,
+    /// `radius constant R` (length).
+    radius: Option<f64>,
+    /// `volume_limit` (length^3).
+    volume_limit: f64,
+}
+
+/// Read the keyword at word `i` into `s`: the word after it and its values.
+fn keyword(a: &Args, ctx: &Ctx, i: usize, id: &str, s: &mut Sphere) -> Result<usize, CommandError> {
+    match a.word(i)? {
+        "atom_type" => {
+            let t = a.int(i + 1)?;
+            if t < 1 || t > ctx.sim.ntypes as i64 {
+                return Err(a.error(i + 1, "Fix particletemplate/sphere: atom type out of range"));
             }
-            w @ ("density" | "radius") => {
-                match a.word(i + 1)? {
-                    "constant" => {}
-                    "gaussian" | "lognormal" | "uniform" => {
-                        // documented, but LIGGGHTS 3.8.0 rejects every random style
-                        return Err(a
-                            .error(
-                                i + 1,
-                                format!(
-                                    "Fix particletemplate/sphere (id {id}): invalid {w} random style"
-                                ),
-                            )
-                            .with_help(
-                                "LIGGGHTS 3.8.0 accepts only 'constant'; for a size distribution, \
-                                 give several templates to fix particledistribution/discrete",
-                            ));
-                    }
-                    _ => {
-                        return Err(a.error(
-                            i + 1,
-                            "Illegal fix particletemplate/sphere command: expected 'constant'",
-                        ))
-                    }
-                }
-                let v = a.real(i + 2)?;
-                if v <= 0.0 {
-                    return Err(a.error(
-                        i + 2,
-                        format!("Fix particletemplate/sphere: {w} must be > 0"),
-                    ));
-                }
-                if w == "density" {
-                    density = Some(v);
-                } else {
-                    radius = Some(v);
-                }
-                i += 3;
+            s.atom_type = t as u32;
+            Ok(i + 2)
+        }
+        w @ ("density" | "radius") => {
+            let v = constant(a, i, w, id)?;
+            if w == "density" {
+                s.density = Some(v);
+            } else {
+                s.radius = Some(v);
             }
-            "volume_limit" => {
-                volume_limit = a.real(i + 1)?;
-                if volume_limit <= 0.0 {
-                    return Err(a.error(
-                        i + 1,
-                        "Fix particletemplate/sphere: volume_limit > 0 required",
-                    ));
-                }
-                i += 2;
+            Ok(i + 3)
+        }
+        "volume_limit" => {
+            s.volume_limit = a.real(i + 1)?;
+            if s.volume_limit <= 0.0 {
+                return Err(a.error(
+                    i + 1,
+                    "Fix particletemplate/sphere: volume_limit > 0 required",
+                ));
             }
-            "relative" => {
-                if a.word_in(i + 1, &["yes", "no"])? == "yes" {
-                    return Err(a.unsupported(i, "fix particletemplate/sphere relative yes"));
-                }
-                i += 2;
+            Ok(i + 2)
+        }
+        "relative" => {
+            if a.word_in(i + 1, &["yes", "no"])? == "yes" {
+                return Err(a.unsupported(i, "fix particletemplate/sphere relative yes"));
             }
-            _ => {
-                return Err(a.keyword_error(
-                    i,
-                    &["atom_type", "density", "radius", "volume_limit", "relative"],
-                ))
-            }
+            Ok(i + 2)
+        }
+        _ => Err(a.keyword_error(
+            i,
+            &["atom_type", "density", "radius", "volume_limit", "relative"],
+        )),
+    }
+}
+
+/// `density|radius constant V` at word `i` (`what` the keyword): the value, which must be
+/// positive. LIGGGHTS 3.8.0 documents random styles but rejects every one.
+fn constant(a: &Args, i: usize, what: &str, id: &str) -> Result<f64, CommandError> {
+    match a.word(i + 1)? {
+        "constant" => {}
+        "gaussian" | "lognormal" | "uniform" => {
+            return Err(a
+                .error(
+                    i + 1,
+                    format!("Fix particletemplate/sphere (id {id}): invalid {what} random style"),
+                )
+                .with_help(
+                    "LIGGGHTS 3.8.0 accepts only 'constant'; for a size distribution, \
+                     give several templates to fix particledistribution/discrete",
+                ));
+        }
+        _ => {
+            return Err(a.error(
+                i + 1,
+                "Illegal fix particletemplate/sphere command: expected 'constant'",
+            ))
         }
     }
-    let density = density
-        .ok_or_else(|| a.error(2, "Fix particletemplate/sphere: have to define 'density'"))?;
-    let radius =
-        radius.ok_or_else(|| a.error(2, "Fix particletemplate/sphere: have to define 'radius'"))?;
+    let v = a.real(i + 2)?;
+    if v <= 0.0 {
+        return Err(a.error(
+            i + 2,
+            format!("Fix particletemplate/sphere: {what} must be > 0"),
+        ));
+    }
+    Ok(v)
+}
+
+/// The sphere's size and density checked as particles' are, the error pointing at the last
+/// `radius` value.
+fn check_sphere(a: &Args, radius: f64, density: f64) -> Result<(), CommandError> {
     if let Err(m) = crate::engine::checks::check_sphere(2.0 * radius, density, "diameter") {
         let at = (4..a.len())
             .rev()
@@ -119,12 +154,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>,
             ),
         ));
     }
-    let mut template = Template::new(id, atom_type, radius, density);
-    template.rng_state = (seed, seed);
-    if template.volume < volume_limit {
-        return Err(a.error(2, "Fix particletemplate/sphere: Volume expectancy too small. Change 'volume_limit' or particle size in the simulation"));
-    }
-    Ok(Box::new(template))
+    Ok(())
 }
 
 /// A template acts in no phase: insertion fixes read it through their distributions, the
@@ -162,13 +192,5 @@ impl FixStyle for Template {
 
     fn refuses_thermo(&self) -> bool {
         true
-    }
-
-    fn as_any(&self) -> Option<&dyn std::any::Any> {
-        Some(self)
-    }
-
-    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
-        Some(self)
     }
 }

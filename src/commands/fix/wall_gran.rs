@@ -429,14 +429,6 @@ impl FixStyle for WallFix {
     fn array_unsupported(&self) -> bool {
         true
     }
-
-    fn as_any(&self) -> Option<&dyn std::any::Any> {
-        Some(self)
-    }
-
-    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
-        Some(self)
-    }
 }
 
 /// Mesh walls: their forces in `post_force` from their meshes among the other fixes, each
@@ -466,13 +458,5 @@ impl FixStyle for MeshWallFix {
 
     fn array_unsupported(&self) -> bool {
         true
-    }
-
-    fn as_any(&self) -> Option<&dyn std::any::Any> {
-        Some(self)
-    }
-
-    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
-        Some(self)
     }
 }

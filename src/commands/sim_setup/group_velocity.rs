@@ -1,6 +1,7 @@
 //! `group` and `velocity`.
 
 use super::*;
+use crate::engine::sim::Simulation;
 
 pub(super) fn group(a: &Args, ctx: &mut Ctx) -> Result {
     ctx.reshape_regions(false)
@@ -19,100 +20,127 @@ pub(super) fn group(a: &Args, ctx: &mut Ctx) -> Result {
     }
     let sim = &mut ctx.sim;
     if style == "delete" {
-        if name == "all" {
-            return Err(a.error(0, "Cannot delete group all"));
-        }
-        let bit = sim
-            .group_bit(name)
-            .ok_or_else(|| a.error(0, "Could not find group delete group ID"))?;
+        return delete_group(a, sim, name);
+    }
+    let bit = group_bit_or_new(a, sim, name)?;
+    if style == "clear" {
         sim.particles.mask.iter_mut().for_each(|m| *m &= !bit);
-        let idx = bit.trailing_zeros() as usize;
-        sim.groups[idx] = String::new();
         return Ok(());
     }
-    let bit = match sim.group_bit(name) {
-        Some(b) => b,
+    let selected = match style {
+        // a dry run that cannot evaluate the variable selects nobody
+        "variable" => by_variable
+            .flatten()
+            .unwrap_or_else(|| vec![false; sim.particles.len()]),
+        _ => select(a, sim, style)?,
+    };
+    let count = add_to_group(&mut sim.particles.mask, &selected, bit);
+    ctx.say(&format!("{count} atoms in group {name}\n"));
+    Ok(())
+}
+
+/// `group ID delete`: group `name` removed from every particle and its slot freed.
+fn delete_group(a: &Args, sim: &mut Simulation, name: &str) -> Result {
+    if name == "all" {
+        return Err(a.error(0, "Cannot delete group all"));
+    }
+    let bit = sim
+        .group_bit(name)
+        .ok_or_else(|| a.error(0, "Could not find group delete group ID"))?;
+    sim.particles.mask.iter_mut().for_each(|m| *m &= !bit);
+    let idx = bit.trailing_zeros() as usize;
+    sim.groups[idx] = String::new();
+    Ok(())
+}
+
+/// The bit of group `name`, defined in the first free slot when it is new (at most 32
+/// groups).
+fn group_bit_or_new(
+    a: &Args,
+    sim: &mut Simulation,
+    name: &str,
+) -> std::result::Result<u32, CommandError> {
+    if let Some(b) = sim.group_bit(name) {
+        return Ok(b);
+    }
+    let slot = match sim.groups.iter().position(String::is_empty) {
+        Some(s) => s,
         None => {
-            let slot = match sim.groups.iter().position(String::is_empty) {
-                Some(s) => s,
-                None => {
-                    if sim.groups.len() >= 32 {
-                        return Err(a.error(0, "Too many groups"));
-                    }
-                    sim.groups.push(String::new());
-                    sim.groups.len() - 1
-                }
-            };
-            sim.groups[slot] = name.to_string();
-            1u32 << slot
+            if sim.groups.len() >= 32 {
+                return Err(a.error(0, "Too many groups"));
+            }
+            sim.groups.push(String::new());
+            sim.groups.len() - 1
         }
     };
+    sim.groups[slot] = name.to_string();
+    Ok(1u32 << slot)
+}
+
+/// The particles group style `style` selects (every style but `delete`, `clear` and
+/// `variable`), one flag per particle.
+fn select(a: &Args, sim: &Simulation, style: &str) -> std::result::Result<Vec<bool>, CommandError> {
     let p = &sim.particles;
     let n = p.len();
-    let selected: Vec<bool> = match style {
-        "clear" => {
-            sim.particles.mask.iter_mut().for_each(|m| *m &= !bit);
-            return Ok(());
-        }
+    match style {
         "region" => {
             let r = sim
                 .regions
                 .find(a.word(2)?)
                 .ok_or_else(|| a.error(2, "Group region ID does not exist"))?;
-            (0..n).map(|i| sim.regions.matches(r, p.x[i])).collect()
+            Ok((0..n).map(|i| sim.regions.matches(r, p.x[i])).collect())
         }
-        "type" | "id" => {
-            let values: Vec<i64> = (0..n)
-                .map(|i| {
-                    if style == "type" {
-                        p.kind[i] as i64
-                    } else {
-                        p.id[i]
-                    }
-                })
-                .collect();
-            select_by_number(a, &values)?
-        }
-        // a dry run that cannot evaluate the variable selects nobody
-        "variable" => by_variable.flatten().unwrap_or_else(|| vec![false; n]),
-        "initialize" => vec![false; n],
-        "subtract" | "union" | "intersect" => {
-            let mut bits = Vec::new();
-            for k in 2..a.len() {
-                bits.push(
-                    sim.group_bit(a.word(k)?)
-                        .ok_or_else(|| a.error(k, "Group ID does not exist"))?,
-                );
-            }
-            let m = &p.mask;
-            (0..n)
-                .map(|i| match style {
-                    "subtract" => m[i] & bits[0] != 0 && bits[1..].iter().all(|b| m[i] & b == 0),
-                    "union" => bits.iter().any(|b| m[i] & b != 0),
-                    _ => bits.iter().all(|b| m[i] & b != 0),
-                })
-                .collect()
-        }
-        _ => {
-            return Err(a.keyword_error(
-                1,
-                &[
-                    "region",
-                    "type",
-                    "id",
-                    "subtract",
-                    "union",
-                    "intersect",
-                    "variable",
-                    "initialize",
-                    "delete",
-                    "clear",
-                ],
-            ))
-        }
-    };
+        "type" => select_by_number(a, &p.kind.iter().map(|&k| k as i64).collect::<Vec<_>>()),
+        "id" => select_by_number(a, &p.id),
+        "initialize" => Ok(vec![false; n]),
+        "subtract" | "union" | "intersect" => combine_groups(a, sim, style),
+        _ => Err(a.keyword_error(
+            1,
+            &[
+                "region",
+                "type",
+                "id",
+                "subtract",
+                "union",
+                "intersect",
+                "variable",
+                "initialize",
+                "delete",
+                "clear",
+            ],
+        )),
+    }
+}
+
+/// `group ID subtract|union|intersect G1 G2 ...`: the particles in the first group but
+/// none of the others, in any of the groups, or in all of them.
+fn combine_groups(
+    a: &Args,
+    sim: &Simulation,
+    style: &str,
+) -> std::result::Result<Vec<bool>, CommandError> {
+    let mut bits = Vec::new();
+    for k in 2..a.len() {
+        bits.push(
+            sim.group_bit(a.word(k)?)
+                .ok_or_else(|| a.error(k, "Group ID does not exist"))?,
+        );
+    }
+    let m = &sim.particles.mask;
+    Ok((0..m.len())
+        .map(|i| match style {
+            "subtract" => m[i] & bits[0] != 0 && bits[1..].iter().all(|b| m[i] & b == 0),
+            "union" => bits.iter().any(|b| m[i] & b != 0),
+            _ => bits.iter().all(|b| m[i] & b != 0),
+        })
+        .collect())
+}
+
+/// Add the `selected` particles to the group of `bit`: the count of particles in the group
+/// then.
+fn add_to_group(mask: &mut [u32], selected: &[bool], bit: u32) -> usize {
     let mut count = 0;
-    for (m, s) in sim.particles.mask.iter_mut().zip(&selected) {
+    for (m, s) in mask.iter_mut().zip(selected) {
         if *s {
             *m |= bit;
         }
@@ -120,8 +148,7 @@ pub(super) fn group(a: &Args, ctx: &mut Ctx) -> Result {
             count += 1;
         }
     }
-    ctx.say(&format!("{count} atoms in group {name}\n"));
-    Ok(())
+    count
 }
 
 /// `group ID type|id ...`: the particles whose type or ID (`values`) passes the test of the

@@ -339,14 +339,6 @@ impl FixStyle for AveTime {
         true
     }
 
-    fn as_any(&self) -> Option<&dyn std::any::Any> {
-        Some(self)
-    }
-
-    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
-        Some(self)
-    }
-
     fn end_of_step_sim_due(&self, step: i64) -> bool {
         self.next == step
     }

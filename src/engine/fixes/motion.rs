@@ -270,12 +270,4 @@ impl FixStyle for Move {
     fn refuses_thermo(&self) -> bool {
         true
     }
-
-    fn as_any(&self) -> Option<&dyn std::any::Any> {
-        Some(self)
-    }
-
-    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
-        Some(self)
-    }
 }

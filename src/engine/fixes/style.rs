@@ -141,9 +141,29 @@ pub struct ForcePass {
     pub moving_skin: bool,
 }
 
+/// A style's state as [`std::any::Any`], so the fixes that read another fix's state find it
+/// by its type ([`FixKind::style_as`](super::FixKind::style_as)). Every `'static` type has it
+/// through the blanket impl below: a style writes nothing for it.
+pub trait AsAny: std::any::Any {
+    /// The style's state, to read.
+    fn any_ref(&self) -> &dyn std::any::Any;
+    /// The style's state, to change.
+    fn any_mut(&mut self) -> &mut dyn std::any::Any;
+}
+
+impl<T: std::any::Any> AsAny for T {
+    fn any_ref(&self) -> &dyn std::any::Any {
+        self
+    }
+
+    fn any_mut(&mut self) -> &mut dyn std::any::Any {
+        self
+    }
+}
+
 /// A fix style: the phases it hooks and the values it offers. Every hook has a default that
 /// does nothing (or offers nothing), so a style writes only what it does.
-pub trait FixStyle: Send {
+pub trait FixStyle: AsAny + Send {
     /// The style's name as decks write it (`viscous`).
     fn name(&self) -> &str;
 
@@ -386,15 +406,16 @@ pub trait FixStyle: Send {
         None
     }
 
-    /// The style's engine state for outputs that read it by type (`dump euler/vtk` reads
-    /// `fix ave/euler`'s [`EulerGrid`](crate::engine::ave_euler::EulerGrid)).
+    /// The style's state for fixes and outputs that read it by type
+    /// ([`FixKind::style_as`](super::FixKind::style_as)): the style itself, which every style
+    /// has through [`AsAny`] without writing this.
     fn as_any(&self) -> Option<&dyn std::any::Any> {
-        None
+        Some(self.any_ref())
     }
 
     /// [`FixStyle::as_any`], to change.
     fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
-        None
+        Some(self.any_mut())
     }
 
     /// Whether `f_ID[i][j]` of the style is refused as not supported yet rather than with

@@ -186,67 +186,9 @@ pub(super) fn math(
             }
             a + delta * (b - a)
         }
-        Stagger => {
-            let (n1, n2) = (c_int(a), c_int(b));
-            if n1 <= 0 || n2 <= 0 || n1 <= n2 {
-                return err(BAD_MATH, at);
-            }
-            // LIGGGHTS keeps these in C ints
-            let lower = (step / i64::from(n1) * i64::from(n1)) as i32;
-            let delta = (step - i64::from(lower)) as i32;
-            let next = if delta < n2 {
-                lower.wrapping_add(n2)
-            } else {
-                lower.wrapping_add(n1)
-            };
-            f64::from(next)
-        }
-        Logfreq => {
-            let (n1, n2, n3) = (
-                i64::from(c_int(a)),
-                i64::from(c_int(b)),
-                i64::from(c_int(c)),
-            );
-            if n1 <= 0 || n2 <= 0 || n3 <= 0 || n2 >= n3 {
-                return err(BAD_MATH, at);
-            }
-            if step < n1 {
-                n1 as f64
-            } else {
-                // 64-bit here: LIGGGHTS's int arithmetic overflows beyond step 2^31 / n3
-                let mut lower = n1;
-                while let Some(up) = n3.checked_mul(lower).filter(|&up| step >= up) {
-                    lower = up;
-                }
-                let multiple = step / lower;
-                if multiple < n2 {
-                    ((multiple + 1) * lower) as f64
-                } else {
-                    (lower * n3) as f64
-                }
-            }
-        }
-        Stride => {
-            let (n1, n2, n3) = (c_int(a), c_int(b), c_int(c));
-            if n1 < 0 || n2 < 0 || n3 <= 0 || n1 > n2 {
-                return err(BAD_MATH, at);
-            }
-            if step < i64::from(n1) {
-                f64::from(n1)
-            } else if step < i64::from(n2) {
-                let offset = (step - i64::from(n1)) as i32;
-                let next = n1
-                    .wrapping_add((offset / n3).wrapping_mul(n3))
-                    .wrapping_add(n3);
-                if next > n2 {
-                    9.0e18
-                } else {
-                    f64::from(next)
-                }
-            } else {
-                9.0e18
-            }
-        }
+        Stagger => stagger(step, a, b, at)?,
+        Logfreq => logfreq(step, [a, b, c], at)?,
+        Stride => stride(step, [a, b, c], at)?,
         Vdisplace => {
             let (begin, _) = run(ctx)?;
             a + b * (step - begin) as f64 * ctx.dt()
@@ -265,6 +207,74 @@ pub(super) fn math(
             }
         }
         Random | Normal => return err(BAD_MATH, at),
+    })
+}
+
+/// `stagger(N1,N2)`: the next step after `step` on the pattern N2, N1, N1+N2, 2*N1, ...
+/// (LIGGGHTS's C int arithmetic).
+fn stagger(step: i64, a: f64, b: f64, at: usize) -> Result<f64, ExprError> {
+    let (n1, n2) = (c_int(a), c_int(b));
+    if n1 <= 0 || n2 <= 0 || n1 <= n2 {
+        return err(BAD_MATH, at);
+    }
+    // LIGGGHTS keeps these in C ints
+    let lower = (step / i64::from(n1) * i64::from(n1)) as i32;
+    let delta = (step - i64::from(lower)) as i32;
+    let next = if delta < n2 {
+        lower.wrapping_add(n2)
+    } else {
+        lower.wrapping_add(n1)
+    };
+    Ok(f64::from(next))
+}
+
+/// `logfreq(N1,N2,N3)`: the next step after `step` with N2 steps per factor N3 from N1 on.
+fn logfreq(step: i64, [a, b, c]: [f64; 3], at: usize) -> Result<f64, ExprError> {
+    let (n1, n2, n3) = (
+        i64::from(c_int(a)),
+        i64::from(c_int(b)),
+        i64::from(c_int(c)),
+    );
+    if n1 <= 0 || n2 <= 0 || n3 <= 0 || n2 >= n3 {
+        return err(BAD_MATH, at);
+    }
+    if step < n1 {
+        return Ok(n1 as f64);
+    }
+    // 64-bit here: LIGGGHTS's int arithmetic overflows beyond step 2^31 / n3
+    let mut lower = n1;
+    while let Some(up) = n3.checked_mul(lower).filter(|&up| step >= up) {
+        lower = up;
+    }
+    let multiple = step / lower;
+    Ok(if multiple < n2 {
+        ((multiple + 1) * lower) as f64
+    } else {
+        (lower * n3) as f64
+    })
+}
+
+/// `stride(N1,N2,N3)`: the next step after `step` from N1 to N2 every N3 steps (9e18
+/// past N2; LIGGGHTS's C int arithmetic).
+fn stride(step: i64, [a, b, c]: [f64; 3], at: usize) -> Result<f64, ExprError> {
+    let (n1, n2, n3) = (c_int(a), c_int(b), c_int(c));
+    if n1 < 0 || n2 < 0 || n3 <= 0 || n1 > n2 {
+        return err(BAD_MATH, at);
+    }
+    Ok(if step < i64::from(n1) {
+        f64::from(n1)
+    } else if step < i64::from(n2) {
+        let offset = (step - i64::from(n1)) as i32;
+        let next = n1
+            .wrapping_add((offset / n3).wrapping_mul(n3))
+            .wrapping_add(n3);
+        if next > n2 {
+            9.0e18
+        } else {
+            f64::from(next)
+        }
+    } else {
+        9.0e18
     })
 }
 

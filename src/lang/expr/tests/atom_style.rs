@@ -3,18 +3,20 @@
 #![allow(clippy::excessive_precision, clippy::approx_constant)]
 
 use super::*;
+use crate::lang::error::ExprErrorKind;
 
 /// Per-atom values of an atom-style formula for the two atoms (fresh world each time,
 /// as liggghts was run once per formula).
-fn per_atom(formula: &str, w: &mut World) -> Result<Vec<f64>, String> {
-    let e = Expr::parse_atom(formula, w).map_err(|e| e.to_string())?;
-    e.eval_atoms(w, 2).map_err(|e| e.to_string())
+fn per_atom(formula: &str, w: &mut World) -> Result<Vec<f64>, ExprErrorKind> {
+    let e = Expr::parse_atom(formula, w).map_err(|e| e.kind)?;
+    e.eval_atoms(w, 2).map_err(|e| e.kind)
 }
 
-fn per_atom_walk(formula: &str, w: &mut World) -> Result<Vec<f64>, String> {
-    let e = Expr::parse_atom(formula, w).map_err(|e| e.to_string())?;
+/// [`per_atom`] evaluated atom by atom.
+fn per_atom_walk(formula: &str, w: &mut World) -> Result<Vec<f64>, ExprErrorKind> {
+    let e = Expr::parse_atom(formula, w).map_err(|e| e.kind)?;
     (0..2)
-        .map(|a| e.eval(w, Some(a)).map_err(|e| e.to_string()))
+        .map(|a| e.eval(w, Some(a)).map_err(|e| e.kind))
         .collect()
 }
 
@@ -157,12 +159,16 @@ fn atom_style_errors_as_liggghts() {
     for (formula, want) in cases {
         let mut w = world();
         w.run = Some((0, 0));
-        assert_eq!(per_atom(formula, &mut w).unwrap_err(), *want, "{formula}");
+        assert_eq!(
+            per_atom(formula, &mut w).unwrap_err().to_string(),
+            *want,
+            "{formula}"
+        );
     }
     // run-only functions are refused while reading, even where unused
     let mut w = world();
     assert_eq!(
-        per_atom("x + 0*ramp(0,1)", &mut w).unwrap_err(),
+        per_atom("x + 0*ramp(0,1)", &mut w).unwrap_err().to_string(),
         "Cannot use ramp in variable formula between runs"
     );
 }

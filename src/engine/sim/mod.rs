@@ -20,6 +20,7 @@ mod multicontact;
 mod neighbors;
 mod output;
 mod prepare;
+mod rank_meshes;
 mod ranks;
 mod run;
 mod servo;

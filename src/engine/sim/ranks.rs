@@ -206,6 +206,19 @@ fn rank_pairs(p: &Particles, nlocal: usize, skin: f64, cells: &[u64]) -> Vec<Pai
     out
 }
 
+/// One particle's pair contacts: (partner ID, history values) each.
+type Contacts = Vec<(i64, Vec<f64>)>;
+
+/// Every rank's owned particles gathered on every rank, in the exact path's order.
+struct WholeSet {
+    /// The particles (the order record dropped).
+    particles: Particles,
+    /// Each particle's pair contacts by partner ID (None without history in the pair model).
+    partners: Option<HashMap<i64, Contacts>>,
+    /// Each particle's per-atom fix state that travels with it, in the particles' order.
+    attached: Vec<Vec<f64>>,
+}
+
 /// Velocities (length/time) and angular velocities (1/time) of particles.
 type Motion = (Vec<[f64; 3]>, Vec<[f64; 3]>);
 
@@ -368,6 +381,7 @@ impl Simulation {
             return Err("Run command before simulation box is defined".into());
         }
         self.init_pair()?;
+        self.check_meshes_in_box()?;
         if self.contact_factor() != 1.0 {
             return Err(EngineError::Invalid(
                 "a wet pair model on more than one MPI rank: not supported yet".into(),
@@ -378,7 +392,9 @@ impl Simulation {
         // every rank holds the whole set here: the computes' run-start state is global
         self.setup_compute_styles();
         let mut st = self.rank_setup(comm)?;
+        self.rank_mesh_setup()?;
         self.rank_forces(&mut st, false, true);
+        self.zero_mesh_velocities(false);
         if comm.rank() == 0 {
             // LIGGGHTS's proc 0 says the history fix took its state from a restart file
             self.say_history_restored(out);
@@ -407,15 +423,18 @@ impl Simulation {
                 self.dt,
                 &self.domain,
             );
+            fixes::move_meshes(&mut self.fixes, self.dt);
             let clock = std::time::Instant::now();
-            if self.rank_decide(comm, &mut st) {
-                let hist = PartnerHistory::from_pairs(
+            let rebuilt = self.rank_decide(comm, &mut st);
+            if rebuilt {
+                let mut hist = PartnerHistory::from_pairs(
                     &st.pairs,
                     &st.history,
                     &st.ids(&self.particles),
                     st.nlocal,
                     &st.flips,
                 );
+                self.attach_wall_state(&mut hist, &self.particles.id[..st.nlocal]);
                 self.rank_build(comm, &mut st, hist, true)?;
                 self.stats.builds += 1;
                 self.stats.neigh += clock.elapsed().as_secs_f64();
@@ -425,6 +444,7 @@ impl Simulation {
                 forward_with(comm, &st.dec, &st.plan, p, false, &mut st.swap)?;
                 self.stats.comm += clock.elapsed().as_secs_f64();
             }
+            self.refresh_moving_meshes(rebuilt);
             let clock = std::time::Instant::now();
             let tally = self.virial_wanted(last);
             self.rank_forces(&mut st, true, tally);
@@ -517,12 +537,18 @@ impl Simulation {
         }
         let flips = self.pair.as_ref().map_or(Vec::new(), |p| p.history_flips());
         let mut hist = self.history_rows(flips.len());
+        let ids = self.particles.id.clone();
+        self.attach_wall_state(&mut hist, &ids);
         // the grid with the cuts a balance left, moved again by a `fix balance` when due
         let mut dec = self.balanced_grid(comm.rank())?;
         self.balance_at_setup(&mut dec);
         let remove: Vec<bool> = self.particles.x.iter().map(|x| !dec.owns(*x)).collect();
         self.particles.retain_by(&remove);
-        for what in [&mut hist.partners as &mut dyn RetainBy, &mut hist.values] {
+        for what in [
+            &mut hist.partners as &mut dyn RetainBy,
+            &mut hist.values,
+            &mut hist.attached,
+        ] {
             what.retain_by(&remove);
         }
         let mut st = RankState {
@@ -646,6 +672,18 @@ impl Simulation {
             .iter()
             .map(|&k| std::mem::take(&mut values[k]))
             .collect();
+        let attached: Vec<Vec<f64>> = order
+            .iter()
+            .map(|&k| {
+                hist.attached
+                    .get_mut(k)
+                    .map(std::mem::take)
+                    .unwrap_or_default()
+            })
+            .collect();
+        let ids = p.id.clone();
+        self.restore_wall_state(&attached, &ids)?;
+        let p = &mut self.particles;
         st.nlocal = p.len();
         let natoms = comm.all_reduce_i64(st.nlocal as i64, Reduce::Sum) as usize;
         if natoms != self.natoms_expected && !self.lost_ignore {
@@ -734,6 +772,11 @@ impl Simulation {
         if self.balance_forces_build() || self.restart_due() {
             return true;
         }
+        // a moving mesh's node went more than half the skin since the last build (every
+        // rank moves the same meshes alike)
+        if self.mesh_rebuild_at == Some(self.step) {
+            return true;
+        }
         let n = &self.neighbor;
         if st.ago < n.delay || !st.ago.is_multiple_of(n.every) {
             return false;
@@ -796,6 +839,8 @@ impl Simulation {
         }
         self.particles.truncate(st.nlocal);
         self.virial.truncate(st.nlocal);
+        // the mesh lists use the full skin when the box can change, as on one process
+        let moving_skin = self.box_changes();
         fixes::post_force(
             &mut self.fixes,
             &mut self.particles,
@@ -803,7 +848,7 @@ impl Simulation {
             self.dt,
             update,
             (st.builds, self.neighbor.skin),
-            false,
+            moving_skin,
         );
     }
 
@@ -1033,7 +1078,13 @@ impl Simulation {
     /// the exact path's order (the order record dropped), the history kept by atom ID for
     /// the next run.
     fn rank_gather_all(&mut self, comm: &RankComm, st: &RankState) -> Result<(), EngineError> {
-        let (full, partners) = self.rank_whole_set(comm, st)?;
+        let WholeSet {
+            particles: full,
+            partners,
+            attached,
+        } = self.rank_whole_set(comm, st)?;
+        // the mesh walls' contacts of the whole set, in its order
+        self.restore_wall_state(&attached, &full.id)?;
         if let Some(partners) = partners {
             self.pending_history = Some(PendingHistory {
                 width: st.flips.len(),
@@ -1053,19 +1104,15 @@ impl Simulation {
     /// Every rank's owned particles on every rank, in the exact path's order (the order
     /// record dropped), with each particle's contacts by partner ID (None without history
     /// in the pair model); the run's own state is left as it is.
-    #[allow(clippy::type_complexity)]
-    fn rank_whole_set(
-        &self,
-        comm: &RankComm,
-        st: &RankState,
-    ) -> Result<(Particles, Option<HashMap<i64, Vec<(i64, Vec<f64>)>>>), EngineError> {
-        let hist = PartnerHistory::from_pairs(
+    fn rank_whole_set(&self, comm: &RankComm, st: &RankState) -> Result<WholeSet, EngineError> {
+        let mut hist = PartnerHistory::from_pairs(
             &st.pairs,
             &st.history,
             &st.ids(&self.particles),
             st.nlocal,
             &st.flips,
         );
+        self.attach_wall_state(&mut hist, &self.particles.id[..st.nlocal]);
         let mine = self.pack_owned(st, Some(&hist));
         let mut all = comm
             .gather_bytes(&mine)
@@ -1093,14 +1140,23 @@ impl Simulation {
             }
             partners
         });
+        let mut attached = rows.attached;
         if let Some(k) = full.extra.iter().position(|e| e.name == ORDER_ARRAY) {
             let ranks = full.extra[k].data.clone();
             let mut order: Vec<usize> = (0..ranks.len()).collect();
             order.sort_by(|&a, &b| ranks[a].total_cmp(&ranks[b]));
             full.permute(&order);
             full.extra.remove(k);
+            attached = order
+                .iter()
+                .map(|&k| attached.get_mut(k).map(std::mem::take).unwrap_or_default())
+                .collect();
         }
-        Ok((full, partners))
+        Ok(WholeSet {
+            particles: full,
+            partners,
+            attached,
+        })
     }
 
     /// The `restart` command's files due at this step, written from every rank's particles
@@ -1117,12 +1173,19 @@ impl Simulation {
         if paths.is_empty() {
             return Ok(());
         }
-        let (mut full, partners) = self.rank_whole_set(comm, st)?;
+        let WholeSet {
+            particles: mut full,
+            partners,
+            attached,
+        } = self.rank_whole_set(comm, st)?;
         let mut partners = partners.unwrap_or_default();
         // each particle's contacts by partner ID, as the fast path lists them on one process
         for contacts in partners.values_mut() {
             contacts.sort_by_key(|c| c.0);
         }
+        // the mesh walls' contacts of the whole set while the files are written
+        let trackers = self.save_wall_trackers();
+        self.restore_wall_state(&attached, &full.id)?;
         std::mem::swap(&mut self.particles, &mut full);
         let written = (|| {
             self.check_restart_size()?;
@@ -1133,6 +1196,7 @@ impl Simulation {
             Ok(())
         })();
         std::mem::swap(&mut self.particles, &mut full);
+        self.put_wall_trackers(trackers);
         written
     }
 

@@ -20,7 +20,6 @@ mod multicontact;
 mod neighbors;
 mod output;
 mod prepare;
-mod rank_meshes;
 mod ranks;
 mod run;
 mod servo;

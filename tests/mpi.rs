@@ -1133,3 +1133,118 @@ fn balancing_under_mpirun_evens_the_counts_and_keeps_the_dumps() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Compat deck `name` (`compat/engine/in.<name>` with its `.inputs` folder) in folder `dir`
+/// with `processors` line `grid` after `units si`, as phases: the deck with its script
+/// loop taken out (`label`, `clear`, `next`, `jump`, `shell`) and `variable phase loop 2`
+/// set to each of `phases` in turn (all of the deck when there is no such line).
+#[cfg(feature = "mpi")]
+fn compat_phases(name: &str, dir: &std::path::Path, grid: &str, phases: &[&str]) -> Vec<String> {
+    let engine = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("compat/engine");
+    std::fs::create_dir_all(dir.join("post")).unwrap();
+    for e in std::fs::read_dir(engine.join(format!("{name}.inputs"))).unwrap() {
+        let e = e.unwrap();
+        std::fs::copy(e.path(), dir.join(e.file_name())).unwrap();
+    }
+    let text = std::fs::read_to_string(engine.join(format!("in.{name}"))).unwrap();
+    let text = text.replacen("units si\n", &format!("units si\n{grid}\n"), 1);
+    let script = ["label", "clear", "next", "jump", "shell"];
+    let body: String = text
+        .lines()
+        .filter(|l| !script.contains(&l.split(' ').next().unwrap_or("")))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    phases
+        .iter()
+        .map(|p| {
+            body.replace(
+                "variable phase loop 2",
+                &format!("variable phase index {p}"),
+            )
+        })
+        .collect()
+}
+
+/// The dump files (`*.sqd`, `post/*.dump`) in folder `dir`, by name.
+#[cfg(feature = "mpi")]
+fn dump_files(dir: &std::path::Path) -> std::collections::BTreeMap<String, String> {
+    let mut out = std::collections::BTreeMap::new();
+    for d in [dir.to_path_buf(), dir.join("post")] {
+        for e in std::fs::read_dir(d).unwrap() {
+            let e = e.unwrap();
+            let file = e.file_name().to_string_lossy().into_owned();
+            if file.ends_with(".dump") || file.ends_with(".sqd") {
+                out.insert(file, std::fs::read_to_string(e.path()).unwrap());
+            }
+        }
+    }
+    out
+}
+
+/// With MPI built in: mesh walls under `mpirun -np 2` and `3`, from two compat decks:
+/// spheres on a static square mesh (one slides across the cut between two ranks while
+/// touching it) and spheres on two meshes moved by `fix move/mesh`, through a restart file
+/// written mid-motion on the ranks and read back on them. Every dump is one process's within
+/// 1e-10 of each column's scale, and the same bits when run again.
+#[cfg(feature = "mpi")]
+#[test]
+fn mesh_walls_under_mpirun_match_one_process() {
+    if std::process::Command::new("mpirun")
+        .arg("--version")
+        .output()
+        .is_err()
+    {
+        eprintln!("no mpirun: skipped");
+        return;
+    }
+    let bin = env!("CARGO_BIN_EXE_regolith");
+    let args = ["-sf", "fast", "-in", "in.deck", "-log", "none"];
+    // the dumps of deck `name` (its phases in turn) on `np` ranks (None: one process)
+    let run = |name: &str, grid: &str, phases: &[&str], np: Option<&str>, tag: &str| {
+        let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
+            "regolith-mpi-mesh-{}-{name}-{tag}",
+            std::process::id()
+        ));
+        let _ = std::fs::remove_dir_all(&dir);
+        for deck in compat_phases(name, &dir, grid, phases) {
+            std::fs::write(dir.join("in.deck"), deck).unwrap();
+            let mut c = match np {
+                Some(np) => {
+                    let mut c = std::process::Command::new("mpirun");
+                    c.args(["--allow-run-as-root", "--oversubscribe", "-np", np, bin]);
+                    c
+                }
+                None => std::process::Command::new(bin),
+            };
+            let out = c.args(args).current_dir(&dir).output().expect("runs");
+            assert!(
+                out.status.success(),
+                "{name} on {np:?}: {}{}",
+                String::from_utf8_lossy(&out.stdout),
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+        let files = dump_files(&dir);
+        let _ = std::fs::remove_dir_all(&dir);
+        files
+    };
+    for (name, grid, phases, count) in [
+        ("mesh_square_drop", "processors 1 * 1", &[""][..], 1),
+        ("move_mesh_restart", "processors * 1 1", &["1", "2"][..], 18),
+    ] {
+        let serial = run(name, grid, phases, None, "serial");
+        assert_eq!(serial.len(), count, "{name}: {:?}", serial.keys());
+        for np in ["2", "3"] {
+            let got = run(name, grid, phases, Some(np), np);
+            assert!(got.keys().eq(serial.keys()), "{name} on {np}");
+            for (file, text) in &serial {
+                let d = common::scale_deviation(text, &got[file]);
+                assert!(d <= 1e-10, "{name} {file}: {np} ranks differ by {d:e}");
+            }
+            if np == "2" {
+                let again = run(name, grid, phases, Some(np), "again");
+                assert!(again == got, "{name}: two runs on {np} ranks differ");
+            }
+        }
+    }
+}

@@ -1,7 +1,7 @@
 //! What runs on more than one MPI rank (the first slice of the domain decomposition): a box
 //! with periodic, fixed and shrink-wrapped faces, particles from `create_atoms`, `read_data`
 //! or `read_restart` (set-up commands run identically on every rank), `write_restart` and `restart`, `pair_style gran`,
-//! `fix nve/sphere`, `nve`, `gravity`, primitive `wall/gran`, `check/timestep/gran`, `property/global` and the
+//! `fix nve/sphere`, `nve`, `gravity`, primitive and mesh `wall/gran` (`mesh/surface`, `move/mesh`), `check/timestep/gran`, `property/global` and the
 //! per-particle force fixes below, the computes below, `thermo` with the keywords below and
 //! `c_`/`v_` values, `dump custom` with `c_`/`v_` columns and `dump local`, on the fast path. Everything
 //! else is refused by name before anything runs.
@@ -93,6 +93,10 @@ const FIXES: &[&str] = &[
     "move",
     // the grid's cuts moved at builds, particles migrating to any rank
     "balance",
+    // every mesh whole on every rank, moved alike on each; each rank's particles carry
+    // their mesh contacts with them
+    "mesh/surface",
+    "move/mesh",
 ];
 
 /// Compute styles that run on ranks: evaluated by rank 0 for thermo and dumps from every
@@ -144,7 +148,7 @@ const THERMO: &[&str] = &[
 
 /// What runs on more than one rank, as a refusal's help says it.
 pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic, \
-    fixed and shrink-wrapped faces, write_restart, restart, pair_style gran, fix nve/sphere, gravity, primitive wall/gran, freeze, \
+    fixed and shrink-wrapped faces, write_restart, restart, pair_style gran, fix nve/sphere, gravity, primitive and mesh wall/gran (mesh/surface, move/mesh), freeze, \
     setforce/addforce with constants, viscous, move and check/timestep/gran, shell, computes ke, \
     erotate/sphere, reduce, com, stress/atom, pair/gran/local and per-atom properties, thermo \
     (step, atoms, ke, c_, v_, ...), dump custom and dump local; or run it as one process (with threads: -sf fast -pk fast N)";
@@ -169,8 +173,8 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
             if matches!(style, "setforce" | "addforce") && args.contains(&"region") {
                 return Some(format!("fix {style} with a region"));
             }
-            if style == "wall/gran" && !args.contains(&"primitive") {
-                return Some("fix wall/gran with a mesh".into());
+            if style == "wall/gran" && args.contains(&"multicontact") {
+                return Some("fix wall/gran with surface multicontact".into());
             }
             None
         }

@@ -155,6 +155,66 @@ impl Tracker {
             .collect()
     }
 
+    /// Atom IDs of the particles the per-particle records belong to, by index.
+    pub fn ids(&self) -> &[i64] {
+        &self.ids
+    }
+
+    /// Append the record of particle `index` (None: a particle without one) to `out` as it
+    /// travels between ranks: its candidate triangles, then its used history slots packed
+    /// as a rebuild packs them (triangle id and [`MAX_HISTORY`] values each).
+    pub fn encode(&self, index: Option<usize>, out: &mut Vec<f64>) {
+        let cand = index
+            .and_then(|i| self.cand.get(i))
+            .map_or(&[][..], Vec::as_slice);
+        out.push(cand.len() as f64);
+        out.extend(cand.iter().map(|&t| f64::from(t)));
+        let mut slots = index
+            .and_then(|i| self.slots.get(i))
+            .cloned()
+            .unwrap_or_default();
+        pack(&mut slots);
+        let used = slots.iter().take_while(|s| s.partner >= 0);
+        out.push(used.clone().count() as f64);
+        for s in used {
+            out.push(f64::from(s.partner));
+            out.extend_from_slice(&s.hist);
+        }
+    }
+
+    /// Append the particle with atom ID `id` and the record [`Self::encode`] wrote at the
+    /// start of `record`; the doubles it took (None: the record is cut short).
+    pub fn push_decoded(&mut self, id: i64, record: &[f64]) -> Option<usize> {
+        let mut at = 0;
+        let mut next = || {
+            let v = record.get(at).copied();
+            at += 1;
+            v
+        };
+        let ncand = next()? as usize;
+        let cand = (0..ncand)
+            .map(|_| next().map(|t| t as u32))
+            .collect::<Option<Vec<u32>>>()?;
+        let nused = next()? as usize;
+        let mut slots = Vec::with_capacity(nused);
+        for _ in 0..nused {
+            let partner = next()? as i32;
+            let mut hist = [0.0; MAX_HISTORY];
+            for h in &mut hist {
+                *h = next()?;
+            }
+            slots.push(Slot {
+                partner,
+                keep: false,
+                hist,
+            });
+        }
+        self.ids.push(id);
+        self.cand.push(cand);
+        self.slots.push(slots);
+        Some(at)
+    }
+
     /// Reorder the per-particle records with the particles (`order`: new index -> old).
     pub fn permute(&mut self, order: &[usize]) {
         if self.ids.len() == order.len() {
@@ -680,6 +740,32 @@ mod tests {
         pack(&mut s);
         let order: Vec<i32> = s.iter().map(|x| x.partner).collect();
         assert_eq!(order, vec![1, 3, 2, -1]);
+    }
+
+    #[test]
+    fn a_particle_record_between_ranks_is_the_packed_slots_and_candidates() {
+        let t = Tracker {
+            ids: vec![4, 9],
+            cand: vec![vec![0, 3, 5], vec![]],
+            slots: vec![vec![slot(3, true, 1.5), FREE, slot(5, false, -2.0)], vec![]],
+        };
+        let mut out = Vec::new();
+        t.encode(Some(0), &mut out);
+        let first = out.len();
+        t.encode(None, &mut out);
+        assert_eq!(out.len(), first + 2, "no candidates, no slots");
+        let mut back = Tracker::default();
+        assert_eq!(back.push_decoded(4, &out), Some(first));
+        assert_eq!(back.push_decoded(7, &out[first..]), Some(2));
+        assert_eq!(back.push_decoded(8, &out[..first - 1]), None);
+        assert_eq!(back.ids, vec![4, 7]);
+        assert_eq!(back.cand, vec![vec![0, 3, 5], vec![]]);
+        // the used slots packed as a rebuild packs them, their values bit for bit
+        let mut packed = t.slots[0].clone();
+        pack(&mut packed);
+        packed.truncate(2);
+        packed.iter_mut().for_each(|s| s.keep = false);
+        assert_eq!(back.slots, vec![packed, vec![]]);
     }
 
     #[test]

@@ -136,6 +136,9 @@ pub struct PartnerHistory {
     pub partners: Vec<Vec<i64>>,
     /// `width` values per partner, partner-major, per particle.
     pub values: Vec<Vec<f64>>,
+    /// Per-atom state of fixes that travels with the particle besides its pair contacts
+    /// (the mesh walls' candidate triangles and contact history), as the fixes encode it.
+    pub attached: Vec<Vec<f64>>,
 }
 
 impl PartnerHistory {
@@ -145,6 +148,7 @@ impl PartnerHistory {
             width,
             partners: vec![Vec::new(); n],
             values: vec![Vec::new(); n],
+            attached: vec![Vec::new(); n],
         }
     }
 
@@ -165,6 +169,9 @@ impl PartnerHistory {
         if i < self.partners.len() {
             self.partners.swap_remove(i);
             self.values.swap_remove(i);
+        }
+        if i < self.attached.len() {
+            self.attached.swap_remove(i);
         }
     }
 }
@@ -208,6 +215,9 @@ pub fn pack_particle(
             w.i64(id);
             vals.iter().take(h.width).for_each(|&v| w.f64(v));
         }
+        let attached = h.attached.get(i).map_or(&[][..], Vec::as_slice);
+        w.u32(attached.len() as u32);
+        attached.iter().for_each(|&v| w.f64(v));
     }
     let len = (w.bytes.len() - start) as u32;
     w.bytes[start..start + 4].copy_from_slice(&len.to_le_bytes());
@@ -263,7 +273,12 @@ pub fn unpack_particle(
                     values.push(r.f64()?);
                 }
             }
-            Some((partners, values))
+            let n = r.u32()? as usize;
+            let mut attached = Vec::with_capacity(n);
+            for _ in 0..n {
+                attached.push(r.f64()?);
+            }
+            Some((partners, values, attached))
         }
         None => None,
     };
@@ -284,9 +299,10 @@ pub fn unpack_particle(
         e.data.extend_from_slice(&extra[k..k + e.width]);
         k += e.width;
     }
-    if let (Some(h), Some((partners, values))) = (hist, contacts) {
+    if let (Some(h), Some((partners, values, attached))) = (hist, contacts) {
         h.partners.push(partners);
         h.values.push(values);
+        h.attached.push(attached);
     }
     Ok(())
 }
@@ -307,6 +323,7 @@ mod tests {
         let mut h = PartnerHistory::new(3, 1);
         h.insert(0, 12, &[1.0, 2.0, 3.0]);
         h.insert(0, 3, &[-1.0, -2.0, -3.0]);
+        h.attached[0] = vec![2.0, 0.5, -1e-300];
         let mut w = Writer::default();
         pack_particle(&mut w, &p, 0, [10.0, 0.0, 0.0], Some(&h));
         let mut q = Particles::default();

@@ -360,9 +360,10 @@ impl MeshArgs {
             if self.servo_style {
                 return Err(a.unsupported(2, "fix mesh/surface/stress/servo from a restart file"));
             }
+            let global = crate::engine::restart_fixes::STRESS_GLOBAL_SIZE;
             let (element, global) = match (self.stress_style, self.wear_on) {
-                (true, true) => (1, 3),
-                (true, false) => (0, 3),
+                (true, true) => (1, global),
+                (true, false) => (0, global),
                 _ => (0, 0),
             };
             let (t, extras) =
@@ -462,7 +463,7 @@ impl MeshArgs {
                 if self.wear_on {
                     st.wear = extras.element.iter().map(|e| e[0]).collect();
                 }
-                st.reference = [extras.global[0], extras.global[1], extras.global[2]];
+                st.reference = crate::engine::restart_fixes::stress_reference(&extras.global);
             }
             fix.stress = Some(st);
         }

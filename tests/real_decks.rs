@@ -962,7 +962,7 @@ run 10
 #[test]
 fn a_stream_face_that_is_not_planar_is_refused_as_liggghts_refuses_it() {
     // a face folded into a ridge (three triangles): LIGGGHTS's isPlanar fails and the run
-    // stops at the stream's first setup (fix_insert_stream.cpp:300)
+    // stops at the stream's first setup (fix_insert_stream.cpp:300); `check` stops there too
     let dir = scratch("stream_folded");
     std::fs::write(
         dir.join("face.stl"),
@@ -986,7 +986,27 @@ run 10
     let stderr = text(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(
-        stderr.contains("Fix insert/stream (id ins): command requires a planar face for insertion"),
+        stderr.contains("Fix insert/stream (id ins): command requires a planar face for insertion\n  --> in.t:23"),
         "{stderr}"
     );
+    // `check` builds the face's topology as the run's setup does, and says so at the same line
+    let out = regolith(&dir, &["check", "in.t"]);
+    let stdout = text(&out.stdout);
+    let problems: Vec<&str> = stdout.lines().filter(|l| l.starts_with("in.t:")).collect();
+    assert_eq!(
+        problems,
+        ["in.t:23: Fix insert/stream (id ins): command requires a planar face for insertion"],
+        "{stdout}"
+    );
+    assert_eq!(out.status.code(), Some(1));
+    // a flat face (at mid-height, its extrusion inside the box) passes both
+    std::fs::write(
+        dir.join("face.stl"),
+        "solid v\nfacet normal 0 0 -1\nouter loop\nvertex 0.02 0.02 0.05\nvertex 0.02 0.08 0.05\nvertex 0.08 0.08 0.05\nendloop\nendfacet\nfacet normal 0 0 -1\nouter loop\nvertex 0.08 0.08 0.05\nvertex 0.08 0.02 0.05\nvertex 0.02 0.02 0.05\nendloop\nendfacet\nendsolid v\n",
+    )
+    .unwrap();
+    let out = regolith(&dir, &["check", "in.t"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
 }

@@ -126,6 +126,13 @@ convert_references() {
     (cd "$work" && liggghts -in in.make_wet -log none > /dev/null 2>&1)
     cp "$work/wet.restart" "$here/engine/easo_reads.inputs/wet.restart"
     rm -rf "$work"
+    # the worn stress mesh LIGGGHTS writes for engine deck stress_reads
+    # (compat/engine/stress_reads.inputs/in.make_stress)
+    work="$(mktemp -d)"
+    cp "$here/engine/stress_reads.inputs/in.make_stress" "$here/engine/stress_reads.inputs/square.stl" "$work/"
+    (cd "$work" && liggghts -in in.make_stress -log none > /dev/null 2>&1)
+    cp "$work/stress.restart" "$here/engine/stress_reads.inputs/stress.restart"
+    rm -rf "$work"
     echo "convert: bed.restart, bed.data"
 }
 

@@ -962,7 +962,7 @@ run 10
 #[test]
 fn a_stream_face_that_is_not_planar_is_refused_as_liggghts_refuses_it() {
     // a face folded into a ridge (three triangles): LIGGGHTS's isPlanar fails and the run
-    // stops at the stream's first setup (fix_insert_stream.cpp:300)
+    // stops at the stream's first setup (fix_insert_stream.cpp:300); `check` stops there too
     let dir = scratch("stream_folded");
     std::fs::write(
         dir.join("face.stl"),
@@ -986,7 +986,72 @@ run 10
     let stderr = text(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(
-        stderr.contains("Fix insert/stream (id ins): command requires a planar face for insertion"),
+        stderr.contains("Fix insert/stream (id ins): command requires a planar face for insertion\n  --> in.t:23"),
         "{stderr}"
     );
+    // `check` builds the face's topology as the run's setup does, and says so at the same line
+    let out = regolith(&dir, &["check", "in.t"]);
+    let stdout = text(&out.stdout);
+    let problems: Vec<&str> = stdout.lines().filter(|l| l.starts_with("in.t:")).collect();
+    assert_eq!(
+        problems,
+        ["in.t:23: Fix insert/stream (id ins): command requires a planar face for insertion"],
+        "{stdout}"
+    );
+    assert_eq!(out.status.code(), Some(1));
+    // a flat face (at mid-height, its extrusion inside the box) passes both
+    std::fs::write(
+        dir.join("face.stl"),
+        "solid v\nfacet normal 0 0 -1\nouter loop\nvertex 0.02 0.02 0.05\nvertex 0.02 0.08 0.05\nvertex 0.08 0.08 0.05\nendloop\nendfacet\nfacet normal 0 0 -1\nouter loop\nvertex 0.08 0.08 0.05\nvertex 0.08 0.02 0.05\nvertex 0.02 0.02 0.05\nendloop\nendfacet\nendsolid v\n",
+    )
+    .unwrap();
+    let out = regolith(&dir, &["check", "in.t"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+}
+
+/// `element_exclusion_list write` lists the triangles with an angle below the hard limit as
+/// LIGGGHTS reads the mesh, in a deck that only writes the list (no run): a cyclone deck's
+/// first step. Debian's LIGGGHTS 3.8.0 writes "16\n" for this file (the line of the sliver's
+/// `facet`); reading the list back leaves the sliver out and the run goes on.
+#[test]
+fn an_exclusion_list_is_written_when_the_mesh_is_read() {
+    let dir = scratch("exclusion_write");
+    std::fs::write(
+        dir.join("sliver.stl"),
+        "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0.01 0.01 0.01\nvertex 0.09 0.01 0.01\nvertex 0.09 0.09 0.01\nendloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 0.01 0.01 0.01\nvertex 0.09 0.09 0.01\nvertex 0.01 0.09 0.01\nendloop\nendfacet\nfacet normal 0 -1 0\nouter loop\nvertex 0.01 0.095 0.02\nvertex 0.05 0.095 0.02\nvertex 0.09 0.095 0.02000001\nendloop\nendfacet\nendsolid s\n",
+    )
+    .unwrap();
+    let mesh = "fix cad all mesh/surface file sliver.stl type 1 element_exclusion_list";
+    let deck = format!(
+        "{}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n\
+         {mesh} write sliver.exclude curvature_tolerant yes\n",
+        HEAD.replace("p p f", "f f f")
+    );
+    std::fs::write(dir.join("in.w"), &deck).unwrap();
+    let out = regolith(&dir, &["-in", "in.w", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert_eq!(
+        std::fs::read_to_string(dir.join("sliver.exclude")).unwrap(),
+        "16\n"
+    );
+    // the list read back: the run does not meet the sliver
+    let read = deck.replace(
+        "write sliver.exclude curvature_tolerant yes",
+        "read sliver.exclude",
+    ) + "create_atoms 1 single 0.05 0.05 0.02\nset atom 1 diameter 0.01 density 2500\n\
+         fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad\n\
+         fix i all nve/sphere\ntimestep 1e-5\nrun 10\n";
+    std::fs::write(dir.join("in.r"), &read).unwrap();
+    let out = regolith(&dir, &["-in", "in.r", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    // without the list, the run refuses the sliver
+    std::fs::write(
+        dir.join("in.n"),
+        read.replace(" element_exclusion_list read sliver.exclude", ""),
+    )
+    .unwrap();
+    let out = regolith(&dir, &["-in", "in.n", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(1));
 }

@@ -133,3 +133,43 @@ fn history_free_walls_leave_no_history_in_restart_files() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A stress mesh's restart state is LIGGGHTS's, byte for byte: regolith writes for the deck
+/// `compat/engine/stress_reads.inputs/in.make_stress` (a worn mesh on a wiggle, reference
+/// point given) the nodes, wear and the global part `[1, p_ref, 1, p_ref]` LIGGGHTS wrote in
+/// `stress.restart` (which engine deck `stress_reads` reads).
+#[test]
+fn a_stress_mesh_is_stored_as_liggghts_stores_it() {
+    let inputs = Path::new(env!("CARGO_MANIFEST_DIR")).join("compat/engine/stress_reads.inputs");
+    let dir = common::scratch_dir("restart-stress");
+    std::fs::copy(inputs.join("square.stl"), dir.join("square.stl")).unwrap();
+    let deck = std::fs::read_to_string(inputs.join("in.make_stress")).unwrap();
+    run(&dir, "in.make_stress", &deck);
+    let mesh = |path: &Path| {
+        let r = regolith::io::restart::read(&path.to_string_lossy()).unwrap();
+        let f = r.global_fixes.into_iter().find(|g| g.id == "cad").unwrap();
+        assert_eq!(f.style, "mesh/surface/stress");
+        f.state
+    };
+    let (got, want) = (
+        mesh(&dir.join("stress.restart")),
+        mesh(&inputs.join("stress.restart")),
+    );
+    let doubles = |b: &[u8]| -> Vec<f64> {
+        b.chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+            .collect()
+    };
+    let w = doubles(&want);
+    // 32 triangles of 10 values and the wear, then the reference point twice
+    assert_eq!(w[..3], [32.0, 11.0, 8.0]);
+    let tail = &w[w.len() - 8..];
+    assert_eq!([tail[0], tail[4]], [1.0, 1.0]);
+    assert_eq!(tail[1..4], tail[5..8]);
+    assert_eq!([tail[1], tail[2]], [0.001, 0.002]);
+    // each record: its length 12, nine node values, the id, the wear
+    let wear: f64 = (0..32).map(|k| w[3 + 12 * k + 11]).sum();
+    assert!(wear > 0.0, "the particles wore the mesh");
+    assert_eq!(doubles(&got), w);
+    let _ = std::fs::remove_dir_all(&dir);
+}

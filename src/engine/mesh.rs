@@ -473,10 +473,23 @@ impl TriMesh {
         self.corner_active[t][k] = !colinear && any_active && t == max_id;
     }
 
+    /// Cosine of LIGGGHTS's hard limit on a triangle's smallest angle (0.0573 degrees).
+    fn hard_angle_cos() -> f64 {
+        (0.0573_f64 * std::f64::consts::PI / 180.)
+            .cos()
+            .max(0.9999995)
+    }
+
+    /// Triangle `t` has an angle at or below LIGGGHTS's hard limit (0.0573 degrees): a
+    /// run refuses it, `element_exclusion_list write` lists it as the mesh is read.
+    pub fn below_hard_angle(&self, t: usize) -> bool {
+        let e = self.edge_vec[t];
+        (0..3).any(|k| -dot(e[k], e[(k + 2) % 3]) >= Self::hard_angle_cos())
+    }
+
     /// LIGGGHTS's mesh quality checks (angles, duplicates).
     fn quality_check(&self, name: &str) -> Result<(), EngineError> {
-        let hard = (0.0573_f64 * std::f64::consts::PI / 180.).cos();
-        let hard = hard.max(0.9999995);
+        let hard = Self::hard_angle_cos();
         for t in 0..self.len() {
             let e = self.edge_vec[t];
             for k in 0..3 {

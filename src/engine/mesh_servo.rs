@@ -51,10 +51,6 @@ pub struct MeshServo {
     pub old_pv: f64,
     /// Nodes at the run's setup (length).
     pub nodes_orig: Vec<[V3; 3]>,
-    /// Neighbour bin (z, y, x) of each particle at the last list build: LIGGGHTS lists a
-    /// triangle's particles bin by bin (x outermost) and sums the force on the mesh in that
-    /// order.
-    pub bins: Vec<[i64; 3]>,
 }
 
 impl MeshServo {
@@ -78,7 +74,6 @@ impl MeshServo {
             sum_err: 0.,
             old_pv: 0.,
             nodes_orig: Vec::new(),
-            bins: Vec::new(),
         }
     }
 
@@ -193,7 +188,7 @@ impl MeshServo {
     }
 }
 
-/// Put the contacts of one servo mesh in the order LIGGGHTS's wall loop meets them:
+/// Put the contacts of one stress mesh in the order LIGGGHTS's wall loop meets them:
 /// triangle by triangle, each triangle's particles by neighbour bin (x, then y, then z) and
 /// index (`bins`: each particle's bin as (z, y, x)).
 pub fn order_contacts(

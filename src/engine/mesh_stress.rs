@@ -53,6 +53,10 @@ pub struct MeshStress {
     pub old_totals: (V3, V3),
     /// This step's totals are complete (set at the end of a step, cleared before forces).
     pub updated: bool,
+    /// Neighbour bin (z, y, x) of each particle at the last list build, shared by every
+    /// stress mesh: LIGGGHTS lists a triangle's particles bin by bin (x outermost) and sums
+    /// the forces and wear on the mesh in that order.
+    pub bins: std::sync::Arc<Vec<[i64; 3]>>,
 }
 
 impl MeshStress {
@@ -72,6 +76,7 @@ impl MeshStress {
             k_finnie: Vec::new(),
             old_totals: ([0.0; 3], [0.0; 3]),
             updated: false,
+            bins: Default::default(),
         }
     }
 

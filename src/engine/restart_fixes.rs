@@ -29,6 +29,25 @@ pub fn to_bytes(values: &[f64]) -> Vec<u8> {
 /// coordinates and the id.
 const MESH_ELEMENT_SIZE: usize = 10;
 
+/// Doubles of a stress mesh's global restart values: LIGGGHTS keeps each global property
+/// twice (its current value, then its copy at the last setup), each as a container of one
+/// vector: `[1, p_ref, 1, p_ref]`.
+pub const STRESS_GLOBAL_SIZE: usize = 8;
+
+/// The global restart values of a stress mesh with reference point `p_ref` (length): the
+/// current value and the copy LIGGGHTS stores beside it, equal when a restart is written.
+pub fn stress_globals(p_ref: [f64; 3]) -> Vec<f64> {
+    vec![
+        1.0, p_ref[0], p_ref[1], p_ref[2], 1.0, p_ref[0], p_ref[1], p_ref[2],
+    ]
+}
+
+/// The reference point (length) among a stress mesh's global restart values (the current
+/// value, the first of the two LIGGGHTS keeps).
+pub fn stress_reference(global: &[f64]) -> [f64; 3] {
+    [global[1], global[2], global[3]]
+}
+
 /// What a mesh's restart state holds besides its nodes.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct MeshExtras {
@@ -338,7 +357,7 @@ fn mesh_entry(id: &str, style: &str, m: &crate::engine::fixes::MeshFix) -> Globa
             } else {
                 Vec::new()
             },
-            global: st.reference.to_vec(),
+            global: stress_globals(st.reference),
         },
         None => MeshExtras::default(),
     };

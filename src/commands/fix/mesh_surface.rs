@@ -139,6 +139,9 @@ struct MeshArgs {
     surface_vel: Option<[f64; 3]>,
     /// `element_exclusion_list read FILE`: the sorted triangle IDs left out.
     exclusion: Option<Vec<i64>>,
+    /// `element_exclusion_list write FILE` (in a run): the file, created empty, that lists
+    /// the triangles the checks of reading the mesh remove, and the word naming it.
+    exclusion_write: Option<(std::path::PathBuf, usize)>,
     /// A keyword other than fix mesh's own has been read (fix mesh's own must come first).
     past_base: bool,
     /// The style is `mesh/surface/stress` or its servo.
@@ -171,6 +174,7 @@ impl MeshArgs {
             heal: false,
             surface_vel: None,
             exclusion: None,
+            exclusion_write: None,
             past_base: false,
             stress_style: style.starts_with("mesh/surface/stress"),
             servo_style: style == "mesh/surface/stress/servo",
@@ -326,6 +330,9 @@ impl MeshArgs {
             }
             "element_exclusion_list" => {
                 self.exclusion = Some(exclusion_list(a, i, ctx)?);
+                if a.word(i + 1)? == "write" && ctx.sys.mode == crate::lang::system::Mode::Run {
+                    self.exclusion_write = Some((std::path::PathBuf::from(a.word(i + 2)?), i + 2));
+                }
                 return Ok(Some(3));
             }
             _ => return Ok(None),
@@ -360,9 +367,10 @@ impl MeshArgs {
             if self.servo_style {
                 return Err(a.unsupported(2, "fix mesh/surface/stress/servo from a restart file"));
             }
+            let global = crate::engine::restart_fixes::STRESS_GLOBAL_SIZE;
             let (element, global) = match (self.stress_style, self.wear_on) {
-                (true, true) => (1, 3),
-                (true, false) => (0, 3),
+                (true, true) => (1, global),
+                (true, false) => (0, global),
                 _ => (0, 0),
             };
             let (t, extras) =
@@ -388,10 +396,40 @@ impl MeshArgs {
             None => t,
         };
         crate::io::stl::transform(&mut t, &self.ops);
+        if let Some((out, word)) = &self.exclusion_write {
+            self.write_exclusions(a, (out, *word), &t, &ids)?;
+        }
         if self.heal {
             t = self.healed(t);
         }
         Ok((t, None))
+    }
+
+    /// `element_exclusion_list write`: as LIGGGHTS adds each triangle of the mesh it reads,
+    /// it lists in the file the ID (its line in an ASCII file) of one with an angle below
+    /// the hard limit, the triangles a run would refuse (`triangles`, all of the file's,
+    /// transformed, and their `ids`).
+    fn write_exclusions(
+        &self,
+        a: &Args,
+        (out, word): (&std::path::Path, usize),
+        triangles: &[Triangle],
+        ids: &[usize],
+    ) -> Result<(), CommandError> {
+        let mesh = crate::engine::mesh::TriMesh::new(triangles, self.settings);
+        let lines: String = (0..mesh.len())
+            .filter(|&t| mesh.below_hard_angle(t))
+            .map(|t| format!("{}\n", ids[t]))
+            .collect();
+        if lines.is_empty() {
+            return Ok(());
+        }
+        std::fs::write(out, lines).map_err(|_| {
+            a.file_error(
+                word,
+                "Fix mesh: can not open file for 'element_exclusion_list' for writing",
+            )
+        })
     }
 
     /// `heal auto_remove_duplicates`: a triangle with the nodes of an earlier one goes.
@@ -462,7 +500,7 @@ impl MeshArgs {
                 if self.wear_on {
                     st.wear = extras.element.iter().map(|e| e[0]).collect();
                 }
-                st.reference = [extras.global[0], extras.global[1], extras.global[2]];
+                st.reference = crate::engine::restart_fixes::stress_reference(&extras.global);
             }
             fix.stress = Some(st);
         }

@@ -4,6 +4,9 @@ use crate::engine::error::EngineError;
 use crate::engine::fixes::PairInit;
 use crate::engine::particles::Particles;
 
+/// Where LIGGGHTS 3.8.0 raises this fix's warnings; each warning ends with it and the line.
+const SOURCE: &str = "./src/fix_check_timestep_gran.cpp";
+
 /// `fix check/timestep/gran N rayleigh_limit hertz_limit [warn yes|no] [error yes|no] [vmax V]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CheckTimestep {
@@ -154,25 +157,25 @@ impl CheckTimestep {
         if self.warn || self.error {
             if self.values[0] > self.rayleigh_limit {
                 messages.push(format!(
-                    "time-step is {} % of rayleigh time",
+                    "time-step is {} % of rayleigh time ({SOURCE}:200)",
                     crate::util::format::with_spec("%f", self.values[0] * 100.).unwrap_or_default()
                 ));
             }
             if self.values[1] > self.hertz_limit {
                 messages.push(format!(
-                    "time-step is {} % of hertz time",
+                    "time-step is {} % of hertz time ({SOURCE}:208)",
                     crate::util::format::with_spec("%f", self.values[1] * 100.).unwrap_or_default()
                 ));
             }
             if self.values[2] > 1.0 {
                 messages.push(format!(
-                    "time step too large or skin too small - particles may relatively travel a distance of {} per time-step, but skin is {}",
+                    "time step too large or skin too small - particles may relatively travel a distance of {} per time-step, but skin is {} ({SOURCE}:217)",
                     crate::util::format::with_spec("%f", v_rel * dt).unwrap_or_default(),
                     crate::util::format::with_spec("%f", skin).unwrap_or_default()
                 ));
             }
             if v_rel * dt > r_min {
-                messages.push("time step way too large - particles relativley move further than the minimum radius in one step".into());
+                messages.push(format!("time step way too large - particles relativley move further than the minimum radius in one step ({SOURCE}:226)"));
             }
         }
         messages

@@ -182,24 +182,27 @@ pub fn mesh_wall_force(
     drop(refs);
     w.trackers = trackers;
     w.model = Some(model);
-    servo_order(fixes, &mesh_fix, &mut records);
+    stress_order(fixes, &mesh_fix, &mut records);
     add_mesh_stresses(fixes, &mesh_fix, &records, p, dt);
 }
 
-/// A servo mesh sums its force in LIGGGHTS's loop order (it feeds back on the motion): its
-/// contacts among `records` (mesh index among `mesh_fix`, contact) are put in that order,
-/// after the others.
-fn servo_order(
+/// A stress mesh sums its force and wear in LIGGGHTS's loop order (a servo feeds it back on
+/// the motion; `f_ID[1..6]` and the stresses show it to the last digit): its contacts among
+/// `records` (mesh index among `mesh_fix`, contact) are put in that order, after the others.
+fn stress_order(
     fixes: &[Fix],
     mesh_fix: &[usize],
     records: &mut Vec<(usize, crate::engine::mesh_stress::StressContact)>,
 ) {
     for (k, &at) in mesh_fix.iter().enumerate() {
-        let Some(s) = fixes[at].kind.mesh().and_then(|m| m.servo.as_ref()) else {
+        let Some(st) = fixes[at].kind.mesh().and_then(|m| m.stress.as_ref()) else {
             continue;
         };
         let mut own: Vec<_> = records.iter().filter(|r| r.0 == k).map(|r| r.1).collect();
-        crate::engine::mesh_servo::order_contacts(&mut own, &s.bins);
+        if own.len() < 2 {
+            continue;
+        }
+        crate::engine::mesh_servo::order_contacts(&mut own, &st.bins);
         records.retain(|r| r.0 != k);
         records.extend(own.into_iter().map(|c| (k, c)));
     }

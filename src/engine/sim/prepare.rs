@@ -178,17 +178,19 @@ impl Simulation {
     }
 
     /// A dry run's `run`: LIGGGHTS's init checks of particles, neighbour bins and mesh
-    /// quality, no step.
+    /// quality, no step; in a run's order: the init, the meshes' topology and quality
+    /// checks of the setup, then the insertion fixes' setup (a stream's face must be planar,
+    /// which its topology tells).
     pub fn check_run(&mut self) -> Result<(), EngineError> {
         self.check_run_init()?;
+        self.build_mesh_topology()?;
         self.check_streams()?;
         for f in &self.fixes {
             if let Some(ins) = f.kind.insert_pack() {
                 ins.check_tet_region(&self.regions, self.domain.lo, self.domain.hi)?;
             }
         }
-        // the meshes' quality checks of the run's setup
-        self.build_mesh_topology()
+        Ok(())
     }
 
     /// A fix changes particle radii during runs (`fix adapt ... atom diameter`).

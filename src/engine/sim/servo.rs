@@ -43,10 +43,12 @@ impl Simulation {
         Ok(())
     }
 
-    /// After a list build: each servo remembers the particles' neighbour bins, the order in
-    /// which LIGGGHTS lists them for its triangles.
+    /// After a list build: every mesh with a stress module (servo meshes among them)
+    /// remembers the particles' neighbour bins, the order in which LIGGGHTS lists them for
+    /// its triangles and sums their forces on the mesh.
     pub(super) fn servo_bins(&mut self) {
-        if self.servo_meshes().is_empty() {
+        let stressed = |f: &Fix| f.kind.mesh().is_some_and(|m| m.stress.is_some());
+        if !self.fixes.iter().any(stressed) {
             return;
         }
         let order = crate::engine::neighbor::BinOrder::sized(
@@ -55,12 +57,11 @@ impl Simulation {
             self.neighbor.cutneighmax,
             self.extras.neigh_binsize,
         );
-        let bins: Vec<[i64; 3]> = self.particles.x.iter().map(|x| order.bin(*x)).collect();
+        let bins: std::sync::Arc<Vec<[i64; 3]>> =
+            std::sync::Arc::new(self.particles.x.iter().map(|x| order.bin(*x)).collect());
         for f in &mut self.fixes {
-            if let Some(m) = f.kind.mesh_mut() {
-                if let Some(s) = m.servo.as_mut() {
-                    s.bins.clone_from(&bins);
-                }
+            if let Some(st) = f.kind.mesh_mut().and_then(|m| m.stress.as_mut()) {
+                st.bins = std::sync::Arc::clone(&bins);
             }
         }
     }

@@ -250,6 +250,70 @@ impl HeatGran {
     }
 }
 
+/// What a mesh wall needs to conduct heat into the particles touching a mesh kept at a
+/// fixed temperature (`fix mesh/surface ... temperature T`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WallHeat<'a> {
+    /// Index of the per-atom temperature array (K).
+    temp: usize,
+    /// Index of the per-atom heat flow array (W).
+    flux: usize,
+    /// Thermal conductivity per type (W/(m K), index type - 1).
+    conductivity: &'a [f64],
+    /// The heat fix's `area_correction` overlap factors (row-major over type pairs; empty
+    /// without it).
+    overlap_ratio: &'a [f64],
+}
+
+impl<'a> WallHeat<'a> {
+    /// The wall conduction of the heat fix `h` (None when the particles lack its arrays).
+    pub fn new(h: &'a HeatGran, p: &Particles) -> Option<Self> {
+        Some(Self {
+            temp: array(p, &h.arrays[0], 1)?,
+            flux: array(p, &h.arrays[1], 1)?,
+            conductivity: &h.conductivity,
+            overlap_ratio: &h.overlap_ratio,
+        })
+    }
+
+    /// One particle-wall contact, as LIGGGHTS's wall/gran adds it: particle `i` of radius
+    /// `radius` (m) overlapping by `overlap` (m) a wall of atom type `wall_type` at `t_wall`
+    /// (K) gains `(t_wall - T_i) h` (W), `h = 4 k_i k_w / (k_i + k_w) sqrt(A)`, A the
+    /// circle where the sphere cuts the wall, `pi (r^2 - (r - overlap)^2)` (m^2).
+    #[inline]
+    pub fn add(
+        &self,
+        p: &mut Particles,
+        i: usize,
+        radius: f64,
+        overlap: f64,
+        wall_type: usize,
+        t_wall: f64,
+    ) {
+        let it = p.kind[i] as usize;
+        let ntypes = self.conductivity.len();
+        let mut delta_n = overlap;
+        if !self.overlap_ratio.is_empty() && wall_type <= ntypes {
+            delta_n *= self.overlap_ratio[(it - 1) * ntypes + wall_type - 1];
+        }
+        let r = radius - delta_n;
+        let area = (radius * radius - r * r) * std::f64::consts::PI * 1.0;
+        let kp = self.conductivity.get(it - 1).copied().unwrap_or(0.0);
+        let kw = self
+            .conductivity
+            .get(wall_type.wrapping_sub(1))
+            .copied()
+            .unwrap_or(0.0);
+        let hc = if kp.abs() < SMALL_CONDUCTIVITY || kw.abs() < SMALL_CONDUCTIVITY {
+            0.0
+        } else {
+            4.0 * kp * kw / (kp + kw) * area.sqrt()
+        };
+        let flow = (t_wall - p.extra[self.temp].data[i]) * hc;
+        p.extra[self.flux].data[i] += flow;
+    }
+}
+
 impl FixStyle for HeatGran {
     fn name(&self) -> &str {
         &self.style

@@ -18,6 +18,7 @@ use crate::engine::contact::{
 use crate::engine::error::EngineError;
 use crate::engine::granular::Selection;
 use crate::engine::granular::WallStore;
+use crate::engine::heat::WallHeat;
 use crate::engine::mesh::TriMesh;
 use crate::engine::mesh_stress::StressContact;
 use crate::engine::particles::Particles;
@@ -382,6 +383,8 @@ pub struct MeshRef<'a> {
     pub factor: f64,
     /// `surface multicontact`: the mesh's contacts `fix multicontact/halfspace` gathered.
     pub multicontact: Option<&'a WallStore>,
+    /// `temperature T`: the mesh's fixed temperature (K), conducting into touching particles.
+    pub temperature: Option<f64>,
 }
 
 /// One particle-triangle contact as the contact model evaluated it: what `compute
@@ -421,7 +424,9 @@ pub trait MeshWallInteraction: Send {
     fn history_width(&self) -> usize;
     /// Add the forces and torques of every mesh in `meshes` (in order) to the particles;
     /// `trackers[k]` belongs to `meshes[k]`. Contacts with meshes that keep stresses are
-    /// appended to `records` with the mesh's index.
+    /// appended to `records` with the mesh's index. With `heat`, meshes at a fixed
+    /// temperature conduct into the particles they touch.
+    #[allow(clippy::too_many_arguments)]
     fn compute(
         &self,
         p: &mut Particles,
@@ -430,6 +435,7 @@ pub trait MeshWallInteraction: Send {
         dt: f64,
         update: bool,
         records: &mut Vec<(usize, StressContact)>,
+        heat: Option<&WallHeat>,
     );
     /// The contacts a second force pass finds, applying nothing and advancing no history
     /// (LIGGGHTS's compute wall/gran/local re-runs the wall's loop this way at output).
@@ -508,6 +514,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Mesh
         dt: f64,
         update: bool,
         records: &mut Vec<(usize, StressContact)>,
+        heat: Option<&WallHeat>,
     ) {
         self.pass(
             p,
@@ -534,6 +541,10 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Mesh
                             v_wall: c.v_wall,
                         },
                     ));
+                }
+                // LIGGGHTS adds the wall's heat flow after the contact's force
+                if let (Some(h), Some(t_wall)) = (heat, meshes[c.mesh].temperature) {
+                    h.add(p, i, p.radius[i], -c.gap, meshes[c.mesh].wall_type, t_wall);
                 }
             },
         );

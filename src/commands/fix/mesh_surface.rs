@@ -13,7 +13,7 @@ use crate::engine::restart_fixes::MeshExtras;
 use crate::io::stl::{MeshOp, Triangle};
 
 /// The declared signature.
-pub const SPEC: Spec = style("fix", "mesh/surface", "fix ID GROUP mesh/surface file FILE type T", &[kw("scale", &[arg("S", NUMBER)], "scale the mesh"), kw("move", &[arg("DX DY DZ", LENGTH)], "translate the mesh"), kw("rotate", &[arg("axis X Y Z angle A", Value::Real("angle in degrees"))], "rotate the mesh"), kw("curvature", &[arg("C", NUMBER)], "edge curvature tolerance"), kw("surface_vel", &[arg("VX VY VZ", VELOCITY)], "conveyor velocity of the surface"), kw("verbose", &[arg("yes|no", YES_NO)], "report mesh checks"), kw("element_exclusion_list", &[arg("read|write FILE", Value::OneOf(&["read", "write"]))], "leave out the triangles listed in FILE (ASCII STL: the lines of their facet keywords; binary: their positions from 1), or create FILE for the elements the mesh checks remove")], "a triangle mesh from an STL or VTK file");
+pub const SPEC: Spec = style("fix", "mesh/surface", "fix ID GROUP mesh/surface file FILE type T", &[kw("scale", &[arg("S", NUMBER)], "scale the mesh"), kw("move", &[arg("DX DY DZ", LENGTH)], "translate the mesh"), kw("rotate", &[arg("axis X Y Z angle A", Value::Real("angle in degrees"))], "rotate the mesh"), kw("curvature", &[arg("C", NUMBER)], "edge curvature tolerance"), kw("surface_vel", &[arg("VX VY VZ", VELOCITY)], "conveyor velocity of the surface"), kw("temperature", &[arg("T", NUMBER)], "fixed wall temperature (K) that fix heat/gran conducts into touching particles"), kw("verbose", &[arg("yes|no", YES_NO)], "report mesh checks"), kw("element_exclusion_list", &[arg("read|write FILE", Value::OneOf(&["read", "write"]))], "leave out the triangles listed in FILE (ASCII STL: the lines of their facet keywords; binary: their positions from 1), or create FILE for the elements the mesh checks remove")], "a triangle mesh from an STL or VTK file");
 
 /// The declared signature of `mesh/surface/planar`.
 pub const PLANAR: Spec = style(
@@ -94,12 +94,7 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>,
 fn unknown(a: &Args, i: usize, w: &str) -> CommandError {
     if matches!(
         w,
-        "temperature"
-            | "mass_temperature"
-            | "surface_ang_vel"
-            | "region"
-            | "extrude_planar"
-            | "min_feature_length"
+        "mass_temperature" | "surface_ang_vel" | "region" | "extrude_planar" | "min_feature_length"
     ) {
         return a.unsupported(i, &format!("fix mesh/surface {w}"));
     }
@@ -137,6 +132,8 @@ struct MeshArgs {
     heal: bool,
     /// `surface_vel vx vy vz` (length/time).
     surface_vel: Option<[f64; 3]>,
+    /// `temperature T`: the mesh's fixed temperature (K).
+    temperature: Option<f64>,
     /// `element_exclusion_list read FILE`: the sorted triangle IDs left out.
     exclusion: Option<Vec<i64>>,
     /// `element_exclusion_list write FILE` (in a run): the file, created empty, that lists
@@ -173,6 +170,7 @@ impl MeshArgs {
             settings: MeshSettings::default(),
             heal: false,
             surface_vel: None,
+            temperature: None,
             exclusion: None,
             exclusion_write: None,
             past_base: false,
@@ -324,6 +322,7 @@ impl MeshArgs {
             "heal" => {
                 self.heal = a.word_in(i + 1, &["auto_remove_duplicates", "no"])? != "no";
             }
+            "temperature" => self.temperature = Some(a.real(i + 1)?),
             "surface_vel" => {
                 self.surface_vel = Some([a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?]);
                 return Ok(Some(4));
@@ -483,6 +482,7 @@ impl MeshArgs {
             mesh: crate::engine::mesh::TriMesh::new(triangles, self.settings),
             node_v: None,
             surface_vel: self.surface_vel,
+            temperature: self.temperature,
             planar: self.style == "mesh/surface/planar",
             nodes_at_refresh: Vec::new(),
             stress: None,

@@ -16,6 +16,8 @@ pub struct MeshFix {
     pub node_v: Option<Vec<[[f64; 3]; 3]>>,
     /// `surface_vel vx vy vz` (length/time): the conveyor velocity, projected per triangle.
     pub surface_vel: Option<[f64; 3]>,
+    /// `temperature T`: the mesh is held at T (K) for heat conduction into touching particles.
+    pub temperature: Option<f64>,
     /// Defined as `mesh/surface/planar`.
     pub planar: bool,
     /// Nodes at the last refresh of a moving mesh (for the half-skin rebuild test).

@@ -91,6 +91,7 @@ fn mesh_refs<'a>(
                         node_v: m.node_v.as_deref(),
                         factor,
                         multicontact: w.multicontact.get(k),
+                        temperature: m.temperature,
                     })
                 }
                 _ => None,
@@ -178,7 +179,25 @@ pub fn mesh_wall_force(
     let mut trackers = std::mem::take(&mut w.trackers);
     let refs = mesh_refs(fixes, w);
     let mut records = Vec::new();
-    model.compute(p, &refs, &mut trackers, dt, pass.update, &mut records);
+    // the first heat fix's arrays take the flow of meshes at a fixed temperature
+    let heat = if pass.update && refs.iter().any(|m| m.temperature.is_some()) {
+        fixes.iter().find_map(|f| {
+            f.kind
+                .style_as::<crate::engine::heat::HeatGran>()
+                .and_then(|h| crate::engine::heat::WallHeat::new(h, p))
+        })
+    } else {
+        None
+    };
+    model.compute(
+        p,
+        &refs,
+        &mut trackers,
+        dt,
+        pass.update,
+        &mut records,
+        heat.as_ref(),
+    );
     drop(refs);
     w.trackers = trackers;
     w.model = Some(model);

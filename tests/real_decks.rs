@@ -1055,3 +1055,58 @@ fn an_exclusion_list_is_written_when_the_mesh_is_read() {
     let out = regolith(&dir, &["-in", "in.n", "-log", "none"]);
     assert_eq!(out.status.code(), Some(1));
 }
+
+/// A mesh held at a temperature with no heat fix: LIGGGHTS stops at the run's init ("Could
+/// not locate a fix/property storing value(s) for Temp as requested by wall/gran."); `check`
+/// says the same at the run line, and the deck with its heat fix passes both.
+#[test]
+fn a_heated_mesh_without_a_heat_fix_is_refused_as_liggghts_refuses_it() {
+    let dir = scratch("mesh_temperature");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("compat/engine");
+    let deck = std::fs::read_to_string(root.join("in.mesh_temperature")).unwrap();
+    std::fs::copy(
+        root.join("mesh_temperature.inputs/square.stl"),
+        dir.join("square.stl"),
+    )
+    .unwrap();
+    std::fs::create_dir_all(dir.join("post")).unwrap();
+    let without: String = deck
+        .lines()
+        .filter(|l| !l.contains("heat/gran") && !l.contains("reduce") && !l.starts_with("dump"))
+        .map(|l| {
+            if l.starts_with("thermo_style") {
+                "thermo_style custom step atoms ke".to_string()
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    std::fs::write(dir.join("in.noheat"), format!("{without}\n")).unwrap();
+    std::fs::write(dir.join("in.heat"), &deck).unwrap();
+    let want =
+        "Could not locate a fix/property storing value(s) for Temp as requested by wall/gran.";
+    let run_line = without
+        .lines()
+        .position(|l| l.starts_with("run"))
+        .expect("the deck runs")
+        + 1;
+    let check = regolith(&dir, &["check", "in.noheat"]);
+    let said = text(&check.stdout) + &text(&check.stderr);
+    assert_eq!(check.status.code(), Some(1), "{said}");
+    assert!(
+        said.contains(&format!("in.noheat:{run_line}: {want}")),
+        "{said}"
+    );
+    let run = regolith(&dir, &["-in", "in.noheat", "-log", "none"]);
+    let said = text(&run.stdout) + &text(&run.stderr);
+    assert_eq!(run.status.code(), Some(1), "{said}");
+    assert!(said.contains(&format!("ERROR: {want}")), "{said}");
+    let fine = regolith(&dir, &["check", "in.heat"]);
+    assert_eq!(
+        fine.status.code(),
+        Some(0),
+        "{}",
+        text(&fine.stdout) + &text(&fine.stderr)
+    );
+}

@@ -396,7 +396,32 @@ pub fn property_values(p: &Particles, id: &str, width: usize) -> Vec<f64> {
 impl crate::engine::sim::Simulation {
     /// At each run's start (LIGGGHTS's `init`): the heat fixes read the conductivities and
     /// capacities per type, and new property/atom fixes are no longer fresh.
+    /// A mesh wall touching a mesh held at a temperature needs the particles' temperatures:
+    /// without a heat fix LIGGGHTS stops at the run's init.
+    fn check_wall_temperatures(&self) -> Result<(), EngineError> {
+        let heated = |id: &String| {
+            self.fixes
+                .iter()
+                .any(|f| &f.id == id && f.kind.mesh().is_some_and(|m| m.temperature.is_some()))
+        };
+        let wall_needs = self
+            .fixes
+            .iter()
+            .filter_map(|f| f.kind.mesh_wall())
+            .any(|w| w.meshes.iter().any(heated));
+        let has_heat = self
+            .fixes
+            .iter()
+            .any(|f| f.kind.style_as::<HeatGran>().is_some());
+        if wall_needs && !has_heat {
+            return Err("Could not locate a fix/property storing value(s) for Temp as requested by wall/gran."
+                .into());
+        }
+        Ok(())
+    }
+
     pub(crate) fn init_heat(&mut self) -> Result<(), EngineError> {
+        self.check_wall_temperatures()?;
         let ntypes = self.ntypes as usize;
         let mut heat_styles: Vec<&str> = Vec::new();
         let mut resolved = Vec::new();

@@ -480,6 +480,28 @@ impl InsertStream {
         box_changes: bool,
     ) -> Result<(Vec<NewParticle>, Vec<String>), EngineError> {
         let mut lines = Vec::new();
+        let n = self.count_this_insertion();
+        if !self.measured || box_changes {
+            self.check_extrusion_inside_box(w)?;
+        }
+        let list = dist.list(n)?;
+        if !list.is_empty() {
+            lines.extend(narrow_box_warning(w, dist.max_radius));
+        }
+        // LIGGGHTS's nearby test uses the largest sphere radius (a clump's largest member)
+        let near = if self.overlapcheck {
+            self.atoms_near_extrusion(w, dist.max_sphere_radius())
+        } else {
+            Vec::new()
+        };
+        let placed = self.place_templates(&list, dist, w, near, &mut lines);
+        self.account_inserted(step, n, &placed, dist, &mut lines);
+        Ok((placed, lines))
+    }
+
+    /// How many particles this insertion asks for: the mean per insertion plus a uniform
+    /// draw, truncated, and never past the total.
+    fn count_this_insertion(&mut self) -> i64 {
         let mut n = (self.per_insertion + self.rng.uniform()) as i64;
         if self.inserted + n > self.total {
             n = self.total - self.inserted;
@@ -487,57 +509,69 @@ impl InsertStream {
         if self.inserted + n >= self.total {
             n = (self.total - self.inserted).max(0);
         }
-        if !self.measured || box_changes {
-            // LIGGGHTS's Monte Carlo share of the extruded face inside the box: below 0.9
-            // it refuses to insert
-            let mut inside = 0i64;
-            for _ in 0..self.ntry_mc {
-                let p = self.face.random_point();
-                let r = -self.rng.uniform() * self.extrude;
-                let q = [0, 1, 2].map(|d| p[d] + r * self.normal[d]);
-                if (0..3).all(|d| q[d] >= w.lo[d] && q[d] < w.hi[d]) {
-                    inside += 1;
-                }
-            }
-            self.measured = true;
-            let share = inside as f64 / self.ntry_mc.max(1) as f64;
-            if !(0.9..=1.1).contains(&share) {
-                return Err(format!(
-                    "Fix insert/stream (id {}): insertion volume could not be distributed \
-                     properly in parallel. Bad decomposition or insertion face extrusion is too \
-                     small or outside domain",
-                    self.id
-                )
-                .into());
+        n
+    }
+
+    /// LIGGGHTS's Monte Carlo share of the extruded face inside the box (`ntry_mc`
+    /// samples): below 0.9 or above 1.1 it refuses to insert.
+    fn check_extrusion_inside_box(&mut self, w: &World) -> Result<(), EngineError> {
+        let mut inside = 0i64;
+        for _ in 0..self.ntry_mc {
+            let p = self.face.random_point();
+            let r = -self.rng.uniform() * self.extrude;
+            let q = [0, 1, 2].map(|d| p[d] + r * self.normal[d]);
+            if (0..3).all(|d| q[d] >= w.lo[d] && q[d] < w.hi[d]) {
+                inside += 1;
             }
         }
-        let list = dist.list(n)?;
-        let maxrad = dist.max_radius;
-        if !list.is_empty() {
-            lines.extend(narrow_box_warning(w, maxrad));
+        self.measured = true;
+        let share = inside as f64 / self.ntry_mc.max(1) as f64;
+        if !(0.9..=1.1).contains(&share) {
+            return Err(format!(
+                "Fix insert/stream (id {}): insertion volume could not be distributed \
+                 properly in parallel. Bad decomposition or insertion face extrusion is too \
+                 small or outside domain",
+                self.id
+            )
+            .into());
         }
+        Ok(())
+    }
+
+    /// Existing atoms (position, radius) a new particle could overlap: within `rmax`
+    /// (length) above the face, or the extrusion plus three `rmax` below it, and over the face.
+    fn atoms_near_extrusion(&self, w: &World, rmax: f64) -> Vec<([f64; 3], f64)> {
         let nrm = self.normal;
-        // LIGGGHTS's nearby test uses the largest sphere radius (a clump's largest member)
-        let rmax = dist.max_sphere_radius();
-        let mut near: Vec<([f64; 3], f64)> = Vec::new();
-        if self.overlapcheck {
-            for i in 0..w.x.len() {
-                let x = w.x[i];
-                let dn = (x[0] - self.p_ref[0]) * nrm[0]
-                    + (x[1] - self.p_ref[1]) * nrm[1]
-                    + (x[2] - self.p_ref[2]) * nrm[2];
-                if dn > rmax || dn < -(self.extrude + 3.0 * rmax) {
-                    continue;
-                }
-                if self
-                    .face
-                    .covers([x[0] + nrm[0] * dn, x[1] + nrm[1] * dn, x[2] + nrm[2] * dn])
-                {
-                    near.push((x, w.radius[i]));
-                }
+        let mut near = Vec::new();
+        for i in 0..w.x.len() {
+            let x = w.x[i];
+            let dn = (x[0] - self.p_ref[0]) * nrm[0]
+                + (x[1] - self.p_ref[1]) * nrm[1]
+                + (x[2] - self.p_ref[2]) * nrm[2];
+            if dn > rmax || dn < -(self.extrude + 3.0 * rmax) {
+                continue;
+            }
+            if self
+                .face
+                .covers([x[0] + nrm[0] * dn, x[1] + nrm[1] * dn, x[2] + nrm[2] * dn])
+            {
+                near.push((x, w.radius[i]));
             }
         }
-        let in_sub = |p: [f64; 3]| (0..3).all(|d| p[d] >= w.lo[d] && p[d] < w.hi[d]);
+        near
+    }
+
+    /// Places the templates of `list` in turn, at most `maxattempt` tries each on average
+    /// (the tries are shared), each clear of `near` when `overlapcheck` is on; a placed
+    /// particle joins `near`.
+    fn place_templates(
+        &mut self,
+        list: &[usize],
+        dist: &Distribution,
+        w: &World,
+        mut near: Vec<([f64; 3], f64)>,
+        lines: &mut Vec<String>,
+    ) -> Vec<NewParticle> {
         let maxtry = (list.len() as i64).saturating_mul(self.maxattempt);
         let mut ntry = 0;
         let mut placed: Vec<NewParticle> = Vec::new();
@@ -546,52 +580,16 @@ impl InsertStream {
             let rad = dist.templates[t].radius;
             let mut done = false;
             while !done && ntry < maxtry {
-                let mut p;
-                loop {
-                    p = if self.face.within.is_some() {
-                        let (q, ok) = self.face.random_point_within(rad);
-                        if !ok {
-                            lines.push(
-                                "WARNING: 'All_in yes' did not succeed (./src/tri_mesh_planar_I.h:95)"
-                                    .into(),
-                            );
-                        }
-                        q
-                    } else {
-                        self.face.random_point()
-                    };
-                    let r = if self.overlapcheck {
-                        -(self.rng.uniform() * self.extrude + rad + 0.0)
-                    } else {
-                        -(self.rng.uniform() * (self.extrude - 2.0 * rad) + rad + 0.0)
-                    };
-                    p = [p[0] + nrm[0] * r, p[1] + nrm[1] * r, p[2] + nrm[2] * r];
-                    ntry += 1;
-                    let bad = !in_sub(p)
-                        || (self.overlapcheck && super::place::subdomain_distance(w, p) < rad);
-                    if !(ntry < maxtry && bad) {
-                        break;
-                    }
-                }
+                let p = self.draw_position(rad, w, &mut ntry, maxtry, lines);
                 if ntry < maxtry {
                     let axes = if self.random_orientation {
                         random_orientation(&mut self.rng, &dist.templates[t])
                     } else {
                         None
                     };
-                    // every sphere of the template (a clump's members) against the near
-                    // ones; a NaN distance counts as clear, as in LIGGGHTS
+                    // every sphere of the template (a clump's members) against the near ones
                     let spheres = dist.templates[t].spheres_at(p, axes.as_ref());
-                    #[allow(clippy::neg_cmp_op_on_partial_ord)]
-                    let clear = !self.overlapcheck
-                        || spheres.iter().all(|&(s, rs_new)| {
-                            near.iter().all(|(q, rq)| {
-                                let d = [s[0] - q[0], s[1] - q[1], s[2] - q[2]];
-                                let rs = rs_new + rq;
-                                !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= rs * rs)
-                            })
-                        });
-                    if clear {
+                    if !self.overlapcheck || clear_of(&spheres, &near) {
                         near.extend(spheres);
                         placed.push((t, p, self.v_normal, axes));
                         done = true;
@@ -599,6 +597,60 @@ impl InsertStream {
                 }
             }
         }
+        placed
+    }
+
+    /// A centre for a sphere of radius `rad` (length): a point on the face pushed back
+    /// into the extrusion, redrawn (counting each draw in `ntry`) while it lies outside
+    /// the box or, with `overlapcheck`, closer than `rad` to the box's walls.
+    fn draw_position(
+        &mut self,
+        rad: f64,
+        w: &World,
+        ntry: &mut i64,
+        maxtry: i64,
+        lines: &mut Vec<String>,
+    ) -> [f64; 3] {
+        let nrm = self.normal;
+        let in_box = |p: [f64; 3]| (0..3).all(|d| p[d] >= w.lo[d] && p[d] < w.hi[d]);
+        loop {
+            let p = if self.face.within.is_some() {
+                let (q, ok) = self.face.random_point_within(rad);
+                if !ok {
+                    lines.push(
+                        "WARNING: 'All_in yes' did not succeed (./src/tri_mesh_planar_I.h:95)"
+                            .into(),
+                    );
+                }
+                q
+            } else {
+                self.face.random_point()
+            };
+            let r = if self.overlapcheck {
+                -(self.rng.uniform() * self.extrude + rad + 0.0)
+            } else {
+                -(self.rng.uniform() * (self.extrude - 2.0 * rad) + rad + 0.0)
+            };
+            let p = [p[0] + nrm[0] * r, p[1] + nrm[1] * r, p[2] + nrm[2] * r];
+            *ntry += 1;
+            let bad =
+                !in_box(p) || (self.overlapcheck && super::place::subdomain_distance(w, p) < rad);
+            if !(*ntry < maxtry && bad) {
+                return p;
+            }
+        }
+    }
+
+    /// Adds the placed particles to the running totals, schedules the next insertion and
+    /// writes LIGGGHTS's report (`verbose`) and its warning when fewer than `n` were placed.
+    fn account_inserted(
+        &mut self,
+        step: i64,
+        n: i64,
+        placed: &[NewParticle],
+        dist: &Distribution,
+        lines: &mut Vec<String>,
+    ) {
         let m: f64 = placed.iter().map(|(t, ..)| dist.templates[*t].mass).sum();
         self.inserted += placed.len() as i64;
         self.inserted_mass += m;
@@ -620,7 +672,6 @@ impl InsertStream {
         if (placed.len() as i64) < n {
             lines.push("WARNING: Particle insertion: Less insertions than requested (./src/fix_insert.cpp:814)".into());
         }
-        Ok((placed, lines))
     }
 
     /// Whether the bounding box of the face and its extrusion reaches outside the box `lo`..`hi`
@@ -692,4 +743,17 @@ impl InsertStream {
         }
         out
     }
+}
+
+/// Whether every sphere (centre, radius; length) is clear of every `near` sphere; a NaN
+/// distance counts as clear, as in LIGGGHTS.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+fn clear_of(spheres: &[([f64; 3], f64)], near: &[([f64; 3], f64)]) -> bool {
+    spheres.iter().all(|&(s, rs_new)| {
+        near.iter().all(|(q, rq)| {
+            let d = [s[0] - q[0], s[1] - q[1], s[2] - q[2]];
+            let rs = rs_new + rq;
+            !(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= rs * rs)
+        })
+    })
 }

@@ -1110,3 +1110,26 @@ fn a_heated_mesh_without_a_heat_fix_is_refused_as_liggghts_refuses_it() {
         text(&fine.stdout) + &text(&fine.stderr)
     );
 }
+
+/// A bin size far below the box (Debian's LIGGGHTS crashes there) stops the run with the
+/// bin count instead of a panic.
+#[test]
+fn an_ave_spatial_bin_far_below_the_box_stops_the_run_with_its_count() {
+    let dir = scratch("ave_spatial_bins");
+    let deck = format!(
+        "{HEAD}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n\
+         timestep 1e-5\nregion fill block 0.01 0.09 0.01 0.09 0.01 0.05 units box\n\
+         lattice sc 0.01\ncreate_atoms 1 region fill\nset group all diameter 0.004 density 2500\n\
+         fix integr all nve/sphere\n\
+         fix a all ave/spatial 1 1 1 x lower 0.01 y upper 1e-30 density/number file s.txt\n\
+         run 1\n"
+    );
+    std::fs::write(dir.join("in.bins"), deck).unwrap();
+    let run = regolith(&dir, &["-in", "in.bins", "-log", "none"]);
+    let said = text(&run.stdout) + &text(&run.stderr);
+    assert_eq!(run.status.code(), Some(1), "{said}");
+    assert!(
+        said.contains("ERROR: Fix ave/spatial: bin sizes 0.01 1e-30 give no bins or more than 67108864 of them"),
+        "{said}"
+    );
+}

@@ -138,7 +138,7 @@ impl AveSpatial {
 
     /// LIGGGHTS's `setup_bins`: layers from the origin out past both faces, bin centres,
     /// the bin volume; sums grow (and restart) when the bin count grows.
-    pub fn setup_bins(&mut self, sim: &Simulation) {
+    pub fn setup_bins(&mut self, sim: &Simulation) -> Result<(), EngineError> {
         let d = &sim.domain;
         let (lo_box, hi_box, prd) = if self.set.reduced {
             ([0.0; 3], [1.0; 3], [1.0; 3])
@@ -185,6 +185,28 @@ impl AveSpatial {
             self.nlayers.push(((hi - lo) * inv + 0.5) as i32 as usize);
             self.bin_volume *= delta / prd[axis];
         }
+        // a bin size far below the box gives more bins than memory holds (Debian's LIGGGHTS
+        // crashes there): stop with the count instead
+        let total = self
+            .nlayers
+            .iter()
+            .try_fold(1usize, |acc, &n| acc.checked_mul(n))
+            .filter(|&n| {
+                n > 0 && n <= MAX_BINS && self.nlayers.iter().all(|&l| l < i32::MAX as usize)
+            });
+        if total.is_none() {
+            let sizes: Vec<String> = self
+                .set
+                .dims
+                .iter()
+                .map(|d| crate::util::format::g(d.2))
+                .collect();
+            return Err(format!(
+                "Fix ave/spatial: bin sizes {} give no bins or more than {MAX_BINS} of them",
+                sizes.join(" ")
+            )
+            .into());
+        }
         if self.set.reduced {
             // Debian's LIGGGHTS 3.8.0 prints densities of 0 in reduced units (observed):
             // its lamda period is 0 there, which makes the bin volume infinite
@@ -216,6 +238,7 @@ impl AveSpatial {
                 c
             })
             .collect();
+        Ok(())
     }
 
     /// The bin of position `x` (LIGGGHTS's `atom2bin1d/2d/3d`); `x` is in reduced units for
@@ -254,6 +277,9 @@ impl AveSpatial {
         bin
     }
 }
+
+/// The most bins `fix ave/spatial` makes (each holds a count and every value's sums).
+const MAX_BINS: usize = 1 << 26;
 
 impl Simulation {
     /// The bins of the group's atoms (None outside the group or region) and the per-bin
@@ -325,7 +351,7 @@ impl Simulation {
         let nv = a.set.values.len();
         if a.irepeat == 0 {
             if self.domain.shrinks() {
-                a.setup_bins(self);
+                a.setup_bins(self)?;
             }
             a.count_many.fill(0.0);
             a.count_sum.fill(0.0);
@@ -519,7 +545,7 @@ impl FixStyle for AveSpatial {
             self.irepeat = 0;
             self.nvalid = self.next_valid(step);
         }
-        self.setup_bins(sim);
+        self.setup_bins(sim)?;
         if self.nvalid != step {
             return Ok(());
         }
@@ -551,7 +577,7 @@ mod tests {
         // samples at 80 and 100, then every 100 steps
         assert_eq!(a.nvalid, 80);
         assert_eq!(a.next_valid(100), 180);
-        a.setup_bins(&sim);
+        a.setup_bins(&sim).unwrap();
         // x: 4 layers from 0 (centre 0.5 minus two widths); y: 6 from -0.1969 to 1.0031
         assert_eq!(a.nlayers, [4, 6]);
         assert_eq!(a.coord[0], [0.125, 0.0031 - 0.2 + 0.5 * 0.2]);

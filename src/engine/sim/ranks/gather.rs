@@ -35,14 +35,9 @@ impl Simulation {
         Ok(())
     }
 
-    /// Every rank's owned particles on every rank, in the exact path's order (the order
-    /// record dropped), with each particle's contacts by partner ID (None without history
-    /// in the pair model); the run's own state is left as it is.
-    pub(super) fn rank_whole_set(
-        &self,
-        comm: &RankComm,
-        st: &RankState,
-    ) -> Result<WholeSet, EngineError> {
+    /// This rank's owned particles' contacts by partner ID, with their mesh walls' state:
+    /// what travels with them to a new list or another rank.
+    pub(super) fn owned_contacts(&self, st: &RankState) -> PartnerHistory {
         let mut hist = PartnerHistory::from_pairs(
             &st.pairs,
             &st.history,
@@ -51,6 +46,18 @@ impl Simulation {
             &st.flips,
         );
         self.attach_wall_state(&mut hist, &self.particles.id[..st.nlocal]);
+        hist
+    }
+
+    /// Every rank's owned particles on every rank, in the exact path's order (the order
+    /// record dropped), with each particle's contacts by partner ID (None without history
+    /// in the pair model); the run's own state is left as it is.
+    pub(super) fn rank_whole_set(
+        &self,
+        comm: &RankComm,
+        st: &RankState,
+    ) -> Result<WholeSet, EngineError> {
+        let hist = self.owned_contacts(st);
         let mine = self.pack_owned(st, Some(&hist));
         let mut all = comm
             .gather_bytes(&mine)

@@ -75,14 +75,7 @@ impl Simulation {
             let clock = std::time::Instant::now();
             let rebuilt = self.rank_decide(comm, &mut st);
             if rebuilt {
-                let mut hist = PartnerHistory::from_pairs(
-                    &st.pairs,
-                    &st.history,
-                    &st.ids(&self.particles),
-                    st.nlocal,
-                    &st.flips,
-                );
-                self.attach_wall_state(&mut hist, &self.particles.id[..st.nlocal]);
+                let hist = self.owned_contacts(&st);
                 self.rank_build(comm, &mut st, hist, true)?;
                 self.stats.builds += 1;
                 self.stats.neigh += clock.elapsed().as_secs_f64();

@@ -8,8 +8,10 @@ use crate::engine::error::EngineError;
 use crate::engine::particles::Particles;
 
 /// Below this many particles the per-particle stages stay on one thread (the fork-join cost
-/// is larger than the work); either way every particle is updated alike.
-pub const PARALLEL_PARTICLES: usize = 4096;
+/// is larger than the work); either way every particle is updated alike. The pair pass
+/// shares out its blocks of 1 024 particles from two blocks on: the stages over a particle
+/// share the same split, so its data stay with one core from stage to stage.
+pub const PARALLEL_PARTICLES: usize = 1024;
 
 /// Particles per parallel chunk.
 const CHUNK: usize = 1024;
@@ -209,7 +211,7 @@ fn kick_drift_all_plain(
 /// Run per-particle work on the engine's threads when there are enough particles.
 #[inline]
 pub fn parallel(n: usize) -> bool {
-    n >= PARALLEL_PARTICLES && rayon::current_num_threads() > 1
+    n >= PARALLEL_PARTICLES && rayon::current_num_threads() > 1 && !crate::util::team::held()
 }
 
 /// Moment-of-inertia prefactor of a solid sphere (I = 0.4 m r^2).

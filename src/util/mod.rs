@@ -11,3 +11,4 @@ pub mod huge_pages;
 pub mod numbers;
 pub mod random;
 pub mod team;
+pub mod tuner;

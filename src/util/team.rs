@@ -18,7 +18,7 @@ use std::cell::{Cell, UnsafeCell};
 use std::marker::PhantomData;
 use std::ops::Range;
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering::SeqCst};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering::Relaxed, Ordering::SeqCst};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -48,6 +48,8 @@ struct Shared {
     parked: Vec<AtomicBool>,
     /// The team is being dropped.
     stop: AtomicBool,
+    /// Stages stay on the thread that hands them out (see [`hold`]).
+    held: AtomicBool,
 }
 
 // SAFETY: `job` is written only while no worker is inside a stage (the hand-out protocol
@@ -131,6 +133,7 @@ impl Team {
             panicked: AtomicBool::new(false),
             parked: (0..workers).map(|_| AtomicBool::new(false)).collect(),
             stop: AtomicBool::new(false),
+            held: AtomicBool::new(false),
         });
         let workers = (0..workers)
             .map(|me| {
@@ -306,16 +309,37 @@ fn active() -> Option<&'static Team> {
     ACTIVE.with(|a| a.get()).map(|t| unsafe { &*t })
 }
 
-/// Is a team of more than one thread active on this thread?
+/// Is a team of more than one thread active on this thread and sharing out stages (not
+/// [`held`])?
 pub fn is_active() -> bool {
-    active().is_some_and(|t| t.threads() > 1)
+    active().is_some_and(|t| t.threads() > 1 && !t.shared.held.load(Relaxed))
 }
 
-/// Run tasks `0..tasks` on the active team, else on rayon's threads when `parallel`, else in
-/// order on this thread.
+/// Keep the active team's stages on this thread (`true`) or share them out again (`false`).
+/// Results do not change (a stage gives the same answer for any number of threads); the
+/// workers park once idle.
+pub fn hold(on: bool) {
+    if let Some(team) = active() {
+        team.shared.held.store(on, Relaxed);
+    }
+}
+
+/// Are the active team's stages held on this thread (see [`hold`])?
+pub fn held() -> bool {
+    active().is_some_and(|t| t.shared.held.load(Relaxed))
+}
+
+/// Run tasks `0..tasks` on the active team (unless it is [`held`]), else on rayon's threads,
+/// when `parallel`; else in order on this thread.
 pub fn stage(tasks: usize, parallel: bool, f: impl Fn(usize) + Sync) {
     match active() {
-        Some(team) if team.threads() > 1 => team.for_each(tasks, &f),
+        Some(team) if team.threads() > 1 => {
+            if parallel && !team.shared.held.load(Relaxed) {
+                team.for_each(tasks, &f)
+            } else {
+                (0..tasks).for_each(f)
+            }
+        }
         _ if parallel && tasks > 1 => {
             use rayon::prelude::*;
             (0..tasks).into_par_iter().with_max_len(1).for_each(&f)
@@ -436,6 +460,42 @@ mod tests {
             }
         });
         assert!(v.iter().enumerate().all(|(i, &x)| i == x));
+    }
+
+    #[test]
+    fn a_held_team_runs_every_task_on_the_calling_thread() {
+        let team = Team::new(2);
+        let _on = activate(Some(&team));
+        let me = std::thread::current().id();
+        let others = AtomicUsize::new(0);
+        let count = |others: &AtomicUsize| {
+            stage(64, true, |_| {
+                if std::thread::current().id() != me {
+                    others.fetch_add(1, SeqCst);
+                }
+                // long enough for the worker to join an open stage
+                std::thread::sleep(Duration::from_millis(1));
+            })
+        };
+        hold(true);
+        assert!(held() && !is_active());
+        count(&others);
+        assert_eq!(others.load(SeqCst), 0, "a held stage went to a worker");
+        hold(false);
+        assert!(!held() && is_active());
+        count(&others);
+        assert!(
+            others.load(SeqCst) > 0,
+            "the released team shared nothing out"
+        );
+        // a stage that is not parallel stays on this thread with the team active
+        let before = others.load(SeqCst);
+        stage(64, false, |_| {
+            if std::thread::current().id() != me {
+                others.fetch_add(1, SeqCst);
+            }
+        });
+        assert_eq!(others.load(SeqCst), before);
     }
 
     #[test]

@@ -276,12 +276,12 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             sums.foreign.group(blocks);
             sums.worst
         };
-        let parallel = rayon::current_num_threads() > 1 && blocks > 1;
+        let parallel = rayon::current_num_threads() > 1 && blocks > 1 && !crate::util::team::held();
         let worst: Vec<Option<(f64, u32, u32)>> = if parallel {
             let mut jobs: Vec<_> = jobs.into_iter().map(Some).collect();
             let mut worst = vec![None; blocks];
             let (js, ws) = (Shards::new(&mut jobs), Shards::new(&mut worst));
-            crate::util::team::stage(blocks, true, |b| {
+            crate::util::team::stage(blocks, parallel, |b| {
                 // SAFETY: each task takes its own block's job and result slot
                 let (job, slot) = unsafe { (js.range(b..b + 1), ws.range(b..b + 1)) };
                 if let Some(job) = job[0].take() {

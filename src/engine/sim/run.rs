@@ -55,10 +55,37 @@ impl Simulation {
         self.has_run = true;
         self.setup_fix_state(out, vars)?;
         self.setup_output(first, last, out, vars)?;
-        for _ in 0..nsteps {
-            self.step_once(last, out, vars)?;
-        }
+        let result = self.steps_tuned(nsteps, last, out, vars);
+        crate::util::team::hold(false);
+        result?;
         self.finish_run(nsteps, started, out);
+        Ok(())
+    }
+
+    /// The run's steps; with a team of threads and fewer than [`crate::util::tuner::TUNE_BELOW`] particles, the
+    /// stages go to the team or stay on this thread, whichever measured faster (the same
+    /// results either way; see [`crate::util::tuner`]).
+    fn steps_tuned(
+        &mut self,
+        nsteps: i64,
+        last: i64,
+        out: Sink<'_>,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        use crate::util::tuner::{Tuner, TUNE_BELOW};
+        let team = crate::util::team::is_active();
+        let mut tuner = Tuner::default();
+        for _ in 0..nsteps {
+            if !team || self.particles.len() >= TUNE_BELOW {
+                crate::util::team::hold(false);
+                self.step_once(last, out, vars)?;
+                continue;
+            }
+            crate::util::team::hold(tuner.alone());
+            let clock = std::time::Instant::now();
+            self.step_once(last, out, vars)?;
+            tuner.record(clock.elapsed().as_secs_f64());
+        }
         Ok(())
     }
 

@@ -229,11 +229,6 @@ fn what_does_not_run_on_ranks_is_refused_by_name() {
             "fix particletemplate/multisphere",
         ),
         (
-            before_run("fix face all mesh/surface/planar file face.stl type 1"),
-            34,
-            "fix mesh/surface/planar",
-        ),
-        (
             before_run("thermo_style custom step c_thermo_press"),
             34,
             "thermo keyword c_thermo_press",

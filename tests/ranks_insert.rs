@@ -312,3 +312,35 @@ particlerate 40000 insert_every 80 overlapcheck yes vel constant 0 0 -5 insertio
         .count();
     assert!(carried > 0, "no particle carried by the stream");
 }
+
+#[test]
+fn insert_stream_all_in_on_ranks_matches_the_serial_fast_path() {
+    // the same stream through a planar face with `all_in yes` (every particle wholly
+    // inside the face's extrusion, tested against the face's edges)
+    let deck = pour(
+        "fix ins all insert/stream seed 32452867 distributiontemplate pdd nparticles 200 \
+particlerate 40000 insert_every 80 overlapcheck yes all_in yes vel constant 0 0 -5 \
+insertion_face inface",
+        "fix inface all mesh/surface/planar file ${dir}/face.stl type 1",
+    );
+    let (serial, counts) = on_grids(&deck, &GRIDS[..2], "stream-all-in");
+    assert!(growth(&counts) >= 6, "insertion events: {counts:?}");
+    // every particle inserted wholly inside the face's square (x and y from 0.002 to 0.018)
+    let snaps = regolith::io::dump_compare::parse(&serial).unwrap();
+    let col = |name: &str| snaps[0].columns.iter().position(|c| c == name).unwrap();
+    let (x, y, vz, radius) = (col("x"), col("y"), col("vz"), col("radius"));
+    let carried: Vec<&Vec<f64>> = snaps
+        .iter()
+        .flat_map(|s| s.rows.values())
+        .filter(|r| r[vz] == -5.0)
+        .collect();
+    assert!(!carried.is_empty(), "no particle carried by the stream");
+    for r in carried {
+        for c in [x, y] {
+            assert!(
+                r[c] - r[radius] >= 0.002 && r[c] + r[radius] <= 0.018,
+                "{r:?}"
+            );
+        }
+    }
+}

@@ -97,6 +97,8 @@ const FIXES: &[&str] = &[
     // every mesh whole on every rank, moved alike on each; each rank's particles carry
     // their mesh contacts with them
     "mesh/surface",
+    // the same mesh, checked to be planar (an insert/stream face with all_in)
+    "mesh/surface/planar",
     "move/mesh",
     // at an insertion step every rank gathers the whole set, inserts as one process does
     // (the same particles with the same IDs on each) and keeps its brick's; a stream's
@@ -159,7 +161,7 @@ const THERMO: &[&str] = &[
 
 /// What runs on more than one rank, as a refusal's help says it.
 pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic, \
-    fixed and shrink-wrapped faces, write_restart, restart, pair_style gran, fix nve/sphere, gravity, primitive and mesh wall/gran (mesh/surface, move/mesh), freeze, \
+    fixed and shrink-wrapped faces, write_restart, restart, pair_style gran, fix nve/sphere, gravity, primitive and mesh wall/gran (mesh/surface, mesh/surface/planar, move/mesh), freeze, \
     setforce/addforce with constants, viscous, move and check/timestep/gran, insert/pack, \
     insert/rate/region and insert/stream with particletemplate/sphere and \
     particledistribution/discrete, shell, computes ke, \

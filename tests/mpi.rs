@@ -1248,3 +1248,112 @@ fn mesh_walls_under_mpirun_match_one_process() {
         }
     }
 }
+
+/// A pour into a box with a floor: `fix insert/pack` refills its region every 50 steps as
+/// the particles fall out of it (as tests/ranks_insert.rs).
+#[cfg(feature = "mpi")]
+const POUR: &str = "\
+atom_style granular
+atom_modify map array
+boundary f f f
+newton off
+communicate single vel yes
+units si
+processors * * *
+region reg block 0 0.02 0 0.02 0 0.03 units box
+create_box 1 reg
+neighbor 0.0005 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-5
+fix gr all gravity 9.81 vector 0 0 -1
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+fix pts1 all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.0008
+fix pts2 all particletemplate/sphere 15485867 atom_type 1 density constant 2500 radius constant 0.0006
+fix pdd all particledistribution/discrete 32452843 2 pts1 0.6 pts2 0.4
+region ins block 0.001 0.019 0.001 0.019 0.006 0.016 units box
+fix ins all insert/pack seed 32452867 distributiontemplate pdd insert_every 50 overlapcheck yes vel constant 0.1 -0.05 -3 region ins particles_in_region 40
+fix integr all nve/sphere
+thermo_style custom step atoms ke
+thermo 25
+dump d all custom 25 out.dump id x y z vx vy vz radius
+dump_modify d sort id format \"%d %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"
+run 300
+run 200
+";
+
+/// With MPI built in: the pour with `fix insert/pack` under `mpirun -np 2` and `3` inserts
+/// the particles one process inserts: the dump is one process's within 1e-10 of each
+/// column's scale (the same atoms at every snapshot), every thermo line has the same atom
+/// count, and two runs on 2 ranks give the same bits.
+#[cfg(feature = "mpi")]
+#[test]
+fn insertion_under_mpirun_matches_one_process() {
+    if std::process::Command::new("mpirun")
+        .arg("--version")
+        .output()
+        .is_err()
+    {
+        eprintln!("no mpirun: skipped");
+        return;
+    }
+    let bin = env!("CARGO_BIN_EXE_regolith");
+    let args = ["-sf", "fast", "-in", "in.pour", "-log", "none"];
+    // the dump and the thermo lines (step and atoms) on `np` ranks (None: one process)
+    let run = |np: Option<&str>, tag: &str| {
+        let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+            .join(format!("regolith-mpi-pour-{}-{tag}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("in.pour"), POUR).unwrap();
+        let mut c = match np {
+            Some(np) => {
+                let mut c = std::process::Command::new("mpirun");
+                c.args(["--allow-run-as-root", "--oversubscribe", "-np", np, bin]);
+                c
+            }
+            None => std::process::Command::new(bin),
+        };
+        let out = c.args(args).current_dir(&dir).output().expect("runs");
+        let so = String::from_utf8_lossy(&out.stdout).into_owned();
+        assert!(
+            out.status.success(),
+            "pour on {np:?}: {so}{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let dump = std::fs::read_to_string(dir.join("out.dump")).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        let thermo: Vec<(i64, i64)> = so
+            .lines()
+            .filter_map(|l| {
+                let w: Vec<&str> = l.split_whitespace().collect();
+                match w[..] {
+                    [s, a, k] if k.parse::<f64>().is_ok() => {
+                        Some((s.parse().ok()?, a.parse().ok()?))
+                    }
+                    _ => None,
+                }
+            })
+            .collect();
+        (dump, thermo)
+    };
+    let (serial, counts) = run(None, "serial");
+    assert_eq!(counts.len(), 22, "{counts:?}");
+    // several insertions: the count grows at least five times
+    assert!(counts.windows(2).filter(|w| w[1].1 > w[0].1).count() >= 5);
+    for np in ["2", "3"] {
+        let (dump, thermo) = run(Some(np), np);
+        assert_eq!(thermo, counts, "{np} ranks: atom counts");
+        let d = common::scale_deviation(&serial, &dump);
+        assert!(d <= 1e-10, "{np} ranks differ from one process by {d:e}");
+        if np == "2" {
+            let (again, _) = run(Some(np), "again");
+            assert!(again == dump, "two runs on {np} ranks differ");
+        }
+    }
+}

@@ -224,9 +224,9 @@ fn what_does_not_run_on_ranks_is_refused_by_name() {
             "fix addforce with a variable",
         ),
         (
-            before_run("fix ins all insert/pack seed 10007"),
+            before_run("fix pts all particletemplate/multisphere 15485863"),
             34,
-            "fix insert/pack",
+            "fix particletemplate/multisphere",
         ),
         (
             before_run("thermo_style custom step c_thermo_press"),

@@ -2,7 +2,8 @@
 //! with periodic, fixed and shrink-wrapped faces, particles from `create_atoms`, `read_data`
 //! or `read_restart` (set-up commands run identically on every rank), `write_restart` and `restart`, `pair_style gran`,
 //! `fix nve/sphere`, `nve`, `gravity`, primitive and mesh `wall/gran` (`mesh/surface`, `move/mesh`), `check/timestep/gran`, `property/global` and the
-//! per-particle force fixes below, the computes below, `thermo` with the keywords below and
+//! per-particle force fixes below, insertion (`insert/pack`, `insert/rate/region`,
+//! `insert/stream` with sphere templates and discrete distributions), the computes below, `thermo` with the keywords below and
 //! `c_`/`v_` values, `dump custom` with `c_`/`v_` columns and `dump local`, on the fast path. Everything
 //! else is refused by name before anything runs.
 
@@ -96,7 +97,19 @@ const FIXES: &[&str] = &[
     // every mesh whole on every rank, moved alike on each; each rank's particles carry
     // their mesh contacts with them
     "mesh/surface",
+    // the same mesh, checked to be planar (an insert/stream face with all_in)
+    "mesh/surface/planar",
     "move/mesh",
+    // at an insertion step every rank gathers the whole set, inserts as one process does
+    // (the same particles with the same IDs on each) and keeps its brick's; a stream's
+    // particles are carried to their release by the rank that owns them
+    "insert/pack",
+    "insert/rate/region",
+    "insert/stream",
+    "particletemplate/sphere",
+    "particledistribution/discrete",
+    "particledistribution/discrete/massbased",
+    "particledistribution/discrete/numberbased",
 ];
 
 /// Compute styles that run on ranks: evaluated by rank 0 for thermo and dumps from every
@@ -148,8 +161,10 @@ const THERMO: &[&str] = &[
 
 /// What runs on more than one rank, as a refusal's help says it.
 pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic, \
-    fixed and shrink-wrapped faces, write_restart, restart, pair_style gran, fix nve/sphere, gravity, primitive and mesh wall/gran (mesh/surface, move/mesh), freeze, \
-    setforce/addforce with constants, viscous, move and check/timestep/gran, shell, computes ke, \
+    fixed and shrink-wrapped faces, write_restart, restart, pair_style gran, fix nve/sphere, gravity, primitive and mesh wall/gran (mesh/surface, mesh/surface/planar, move/mesh), freeze, \
+    setforce/addforce with constants, viscous, move and check/timestep/gran, insert/pack, \
+    insert/rate/region and insert/stream with particletemplate/sphere and \
+    particledistribution/discrete, shell, computes ke, \
     erotate/sphere, reduce, com, stress/atom, pair/gran/local and per-atom properties, thermo \
     (step, atoms, ke, c_, v_, ...), dump custom and dump local; or run it as one process (with threads: -sf fast -pk fast N)";
 

@@ -54,7 +54,10 @@ impl Comm for MpiComm {
         let mut len = bytes.len() as u64;
         root.broadcast_into(&mut len);
         bytes.resize(len as usize, 0);
-        root.broadcast_into(&mut bytes[..]);
+        // Open MPI refuses a broadcast of an empty buffer (every rank knows the length)
+        if len > 0 {
+            root.broadcast_into(&mut bytes[..]);
+        }
     }
     fn gather_bytes(&self, bytes: &[u8]) -> Option<Vec<Vec<u8>>> {
         if self.rank() != 0 {

@@ -296,6 +296,17 @@ impl Simulation {
     /// velocity from where they were inserted, without forces; at the release step they
     /// get their final velocity and spin.
     pub(super) fn move_streams(&mut self) {
+        self.move_stream_particles(None);
+    }
+
+    /// [`Self::move_streams`] over the particles held here. On ranks (`ranks` given) a
+    /// particle not held is another rank's: its record stays until its release step (every
+    /// rank keeps the same records) and is marked as elsewhere, looked for again only when
+    /// particles may have arrived (`ranks` true: a build since the last move); on one
+    /// process it is gone.
+    pub(super) fn move_stream_particles(&mut self, ranks: Option<bool>) {
+        let owned_only = ranks.is_some();
+        let arrived = ranks.unwrap_or(true);
         let (step, dt) = (self.step, self.dt);
         // the particles' places by ID, made only when a hint is stale (after a reorder)
         let mut index: Option<crate::engine::neighbor::IdIndex> = None;
@@ -316,10 +327,15 @@ impl Simulation {
             state.moving.retain_mut(|r| {
                 let (vn, omega) = (r.v_int, r.omega);
                 if p.id.get(r.at) != Some(&r.id) {
+                    // another rank's since the last look, and none has arrived since
+                    if r.at == usize::MAX && !arrived {
+                        return step < r.release;
+                    }
                     let map =
                         index.get_or_insert_with(|| crate::engine::neighbor::IdIndex::new(&p.id));
                     let Some(i) = map.get(r.id) else {
-                        return false;
+                        r.at = usize::MAX;
+                        return owned_only && step < r.release;
                     };
                     r.at = i;
                 }

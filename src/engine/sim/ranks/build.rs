@@ -51,7 +51,7 @@ impl Simulation {
             fresh: false,
             ghost_motion: (Vec::new(), Vec::new()),
         };
-        self.rank_build(comm, &mut st, hist, false)?;
+        self.rank_build(comm, &mut st, hist, false, false)?;
         Ok(st)
     }
 
@@ -81,13 +81,16 @@ impl Simulation {
     /// wrapped into the box, those lost through fixed faces dropped, migration with the
     /// contact history `hist` (one row per owned particle), new ghosts and pair list, and
     /// the history taken back from the partner lists. `balance`: a `fix balance` may move
-    /// the cuts first (not at the setup build, which the setup balanced).
+    /// the cuts first (not at the setup build, which the setup balanced). `anywhere`: some
+    /// particles may be far from their brick (new ones after an insertion), so every
+    /// particle goes straight to its rank.
     pub(super) fn rank_build(
         &mut self,
         comm: &RankComm,
         st: &mut RankState,
         mut hist: PartnerHistory,
         balance: bool,
+        anywhere: bool,
     ) -> Result<(), EngineError> {
         let p = &mut self.particles;
         // as LIGGGHTS's pbc, reset_box and exchange: periodic coordinates wrapped, the
@@ -124,7 +127,8 @@ impl Simulation {
             }
         }
         // the cuts moved: particles go straight to their new ranks, however far
-        if balance && self.balance_during_run(comm, &mut st.dec) {
+        let cuts_moved = balance && self.balance_during_run(comm, &mut st.dec);
+        if cuts_moved || anywhere {
             let p = &mut self.particles;
             migrate_anywhere(comm, &st.dec, p, Some(&mut hist))?;
         } else {

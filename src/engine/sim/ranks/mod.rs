@@ -22,14 +22,17 @@
 //! order, as one process does; LIGGGHTS's spatial sort is recorded in that order as on one
 //! process, so the pairs are reported from the same side whatever the rank count). At the
 //! end of a run every rank gets the whole set back in the exact path's order with the
-//! contact history, so the commands between runs act identically on every rank.
+//! contact history, so the commands between runs act identically on every rank. At an
+//! insertion step every rank gathers the whole set likewise, inserts as one process does
+//! (the same new particles with the same IDs on every rank), keeps its own and builds.
 //!
 //! The parts: `run` (the step loop), `build` (setup and list builds), `pairs` (the pair
-//! search by sum key), `meshes` (mesh walls), `output` (thermo, dumps, statistics) and
-//! `gather` (the whole set on every rank).
+//! search by sum key), `meshes` (mesh walls), `output` (thermo, dumps, statistics),
+//! `gather` (the whole set on every rank) and `insert` (insertion).
 
 mod build;
 mod gather;
+mod insert;
 mod meshes;
 mod output;
 mod pairs;

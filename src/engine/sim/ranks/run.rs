@@ -39,6 +39,7 @@ impl Simulation {
         self.setup_fix_styles();
         // every rank holds the whole set here: the computes' run-start state is global
         self.setup_compute_styles();
+        self.rank_setup_insertions(comm, out)?;
         let mut st = self.rank_setup(comm)?;
         self.rank_mesh_setup()?;
         self.rank_forces(&mut st, false, true);
@@ -73,10 +74,20 @@ impl Simulation {
             );
             fixes::move_meshes(&mut self.fixes, self.dt);
             let clock = std::time::Instant::now();
-            let rebuilt = self.rank_decide(comm, &mut st);
+            // an insertion (at steps every rank knows alike) makes the list again, as a
+            // changed atom count does on one process
+            let rebuilt = if self.insertion_due() {
+                self.rank_insert(comm, &mut st, out)?;
+                true
+            } else {
+                let rebuilt = self.rank_decide(comm, &mut st);
+                if rebuilt {
+                    let hist = self.owned_contacts(&st);
+                    self.rank_build(comm, &mut st, hist, true, false)?;
+                }
+                rebuilt
+            };
             if rebuilt {
-                let hist = self.owned_contacts(&st);
-                self.rank_build(comm, &mut st, hist, true)?;
                 self.stats.builds += 1;
                 self.stats.neigh += clock.elapsed().as_secs_f64();
             } else {
@@ -97,7 +108,9 @@ impl Simulation {
                 self.dt,
                 &self.domain,
             );
-            self.rank_end_of_step(comm, out, vars)?;
+            // particles reach another rank only at builds (and the run's setup build)
+            let arrived = rebuilt || self.step == first + 1;
+            self.rank_end_of_step(comm, out, vars, arrived)?;
             let clock = std::time::Instant::now();
             self.rank_output(comm, &mut st, false, last, out, vars)?;
             self.rank_periodic_restart(comm, &st)?;
@@ -122,18 +135,23 @@ impl Simulation {
         Ok(())
     }
 
-    /// The `end_of_step` phase on ranks: each module fix style over this rank's particles,
-    /// extremes reduced over the ranks; rank 0 writes what the styles print.
+    /// The `end_of_step` phase on ranks: the streams' carried particles this rank owns
+    /// moved (`arrived`: particles may have come from other ranks since the last step),
+    /// then each module fix style over this rank's particles, extremes reduced over the
+    /// ranks; rank 0 writes what the styles print.
     pub(super) fn rank_end_of_step(
         &mut self,
         comm: &RankComm,
         out: Sink<'_>,
         vars: &mut dyn VariableSource,
+        arrived: bool,
     ) -> Result<(), EngineError> {
         let (step, dt, skin) = (self.step, self.dt, self.neighbor.skin);
         let contact = self.neighbor.cutneighmax - skin;
         let mesh_vmax_sqr = self.moving_mesh_vmax_sqr();
         let min = |values: &mut [f64]| comm.all_reduce_f64(values, Reduce::Min);
+        // each rank carries its own particles of the streams to their release
+        self.move_stream_particles(Some(arrived));
         for k in 0..self.fixes.len() {
             let fix = &mut self.fixes[k];
             if let FixKind::Style(s) = &mut fix.kind {

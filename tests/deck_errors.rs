@@ -296,3 +296,16 @@ fn insert_stream_settings_are_refused_at_the_run_as_liggghts_does() {
         );
     }
 }
+
+#[test]
+fn more_atoms_than_int_ids_can_number_are_refused_at_their_line() {
+    fails_with(
+        "toomany",
+        &with("create_atoms 1 random 3000000000 15485863 NULL\n"),
+        &[
+            "New atom IDs exceed maximum allowed ID: 3e+09 atoms requested \
+             (at most 2147483647 atoms can be numbered)",
+            "--> in.t:15",
+        ],
+    );
+}

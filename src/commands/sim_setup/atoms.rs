@@ -105,9 +105,8 @@ impl NewAtoms {
             return Err(a.error(3, "Illegal create_atoms command"));
         }
         let mut rng = crate::util::random::RanPark::new(seed as i32).map_err(|m| a.error(3, &m))?;
-        if let Some(m) = too_many_atoms(count as f64, next_id, "atoms requested") {
-            return Err(a.error(2, &m));
-        }
+        too_many_atoms(count as f64, next_id, "atoms requested")
+            .map_err(|e| a.error(2, &e.to_string()))?;
         if ctx.sys.mode == Mode::Check && count as f64 > CHECK_BUILD_LIMIT {
             // a dry run validates the count but does not build the atoms
             ctx.sim.inserts_atoms = true;
@@ -224,9 +223,8 @@ impl NewAtoms {
             None => [range(0), range(1), range(2)],
         };
         let points = bounds.iter().map(|(l, h)| h - l + 1.0).product::<f64>() * basis.len() as f64;
-        if let Some(m) = too_many_atoms(points, next_id, "lattice points in the box") {
-            return Err(a.error(1, &m));
-        }
+        too_many_atoms(points, next_id, "lattice points in the box")
+            .map_err(|e| a.error(1, &e.to_string()))?;
         if ctx.sys.mode == Mode::Check && points > CHECK_BUILD_LIMIT {
             // a dry run validates the count but does not build the atoms
             ctx.sim.inserts_atoms = true;
@@ -288,17 +286,30 @@ pub(super) const CHECK_BUILD_LIMIT: f64 = 2.0e6;
 /// Tries for one `create_atoms random` position before the region is deemed empty.
 pub(super) const MAX_RANDOM_TRIES: u64 = 10_000_000;
 
-/// The error for creating up to `count` atoms (`what` they are) numbered from `next_id`, if
-/// LIGGGHTS cannot number them.
-pub(super) fn too_many_atoms(count: f64, next_id: i64, what: &str) -> Option<String> {
+/// More atoms asked for than LIGGGHTS's int IDs can number.
+#[derive(Debug, thiserror::Error)]
+#[error("New atom IDs exceed maximum allowed ID: {count} {what} (at most {MAX_ATOM_ID} atoms can be numbered)")]
+pub(super) struct TooManyAtoms {
+    /// How many were asked for, as LIGGGHTS prints it.
+    count: String,
+    /// What they are ("atoms requested", "lattice points in the box").
+    what: &'static str,
+}
+
+/// Can up to `count` atoms (`what` they are) be numbered from `next_id`?
+pub(super) fn too_many_atoms(
+    count: f64,
+    next_id: i64,
+    what: &'static str,
+) -> std::result::Result<(), TooManyAtoms> {
     let last = count + next_id as f64 - 1.0;
-    (last.is_nan() || last > MAX_ATOM_ID).then(|| {
-        format!(
-            "New atom IDs exceed maximum allowed ID: {} {what} (at most {} atoms can be numbered)",
-            g(count),
-            MAX_ATOM_ID
-        )
-    })
+    if last.is_nan() || last > MAX_ATOM_ID {
+        return Err(TooManyAtoms {
+            count: g(count),
+            what,
+        });
+    }
+    Ok(())
 }
 
 pub(super) fn displace_atoms(a: &Args, ctx: &mut Ctx) -> Result {

@@ -148,11 +148,7 @@ impl Simulation {
             // LIGGGHTS's atom sort bins (half the neighbour cutoff, or the user's size)
             // (LIGGGHTS's cutoff knows the particle templates' sizes before any particle
             // is inserted)
-            let size = if self.sort_binsize > 0.0 {
-                self.sort_binsize
-            } else {
-                0.5 * self.neighbor_cutoff().max(self.liggghts_cutneighmax())
-            };
+            let size = self.sort_bin_size();
             if size > 0.0 {
                 // a single layer of bins in 2d
                 let layers = if self.dimension == 2 { 2 } else { 3 };

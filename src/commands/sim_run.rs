@@ -287,6 +287,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     let nsteps = run_steps(a, ctx, n, &options)?;
     super::system_init::system_init(a, ctx, None)?;
     super::fix::check_deform_variables(ctx).map_err(|e| a.engine_error(0, e))?;
+    super::fix::check_servo_variables(ctx).map_err(|e| a.engine_error(0, e))?;
     crate::engine::temperature::setup_counts(ctx.sim);
     if ctx.sys.mode == Mode::Check {
         return dry_run(a, ctx, nsteps, &options);
@@ -392,7 +393,9 @@ fn dry_run(a: &Args, ctx: &mut Ctx, nsteps: i64, o: &RunOptions) -> Result {
         ctx.sim.margin_notes.push(m);
     }
     if ctx.sim.restart_output.iter().any(Option::is_some) {
-        ctx.sim.check_restart_size().map_err(|m| a.error(0, &m))?;
+        ctx.sim
+            .check_restart_size()
+            .map_err(|e| a.engine_error(0, e))?;
     }
     keep_periodic_restarts(ctx, nsteps);
     ctx.sim.step += nsteps;

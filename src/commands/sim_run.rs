@@ -407,7 +407,13 @@ fn dry_run(a: &Args, ctx: &mut Ctx, nsteps: i64, o: &RunOptions) -> Result {
 /// LIGGGHTS's line of each mesh's first setup (screen only), after its check that the mesh
 /// lies in the box (a mesh that lost triangles to the box stops the run before its lines).
 fn announce_meshes(a: &Args, ctx: &mut Ctx) -> Result {
+    use crate::state::domain::Boundary;
     let (lo, hi) = (ctx.sim.domain.lo, ctx.sim.domain.hi);
+    // LIGGGHTS's setup shrink-wraps the box around every mesh node first (FixMesh's
+    // box_extent), so no node lies beyond a shrink-wrapped face when it tests them
+    let bounds = ctx.sim.domain.boundary;
+    let wraps =
+        |d: usize, side: usize| matches!(bounds[d][side], Boundary::Shrink | Boundary::ShrinkMin);
     for k in 0..ctx.sim.fixes.len() {
         ctx.sim
             .check_mesh_in_box(k)
@@ -421,12 +427,9 @@ fn announce_meshes(a: &Args, ctx: &mut Ctx) -> Result {
         }
         m.announced = true;
         // LIGGGHTS's test of every node against the closed box (fix_mesh.cpp)
-        let outside = m
-            .mesh
-            .nodes
-            .iter()
-            .flatten()
-            .any(|p| (0..3).any(|d| !(p[d] >= lo[d] && p[d] <= hi[d])));
+        let outside = m.mesh.nodes.iter().flatten().any(|p| {
+            (0..3).any(|d| !((p[d] >= lo[d] || wraps(d, 0)) && (p[d] <= hi[d] || wraps(d, 1))))
+        });
         if outside {
             ctx.out.both("WARNING: Not all nodes of fix mesh inside simulation box, elements will be deleted or wrapped around periodic boundary conditions (./src/fix_mesh.cpp:531)\n");
         }

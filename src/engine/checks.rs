@@ -136,6 +136,13 @@ impl Simulation {
                     .enumerate()
                     .any(|(j, f)| j != k && f.kind.mesh_wall().is_some())
             };
+            // the stress module's init: wear needs its coefficients
+            let wears = (fix.kind.mesh())
+                .and_then(|m| m.stress.as_ref())
+                .is_some_and(|st| st.wear_on);
+            if wears && self.property("k_finnie").is_none() {
+                return Err(crate::engine::sim::no_k_finnie(&fix.id));
+            }
             if fix.kind.mesh_wall().is_some() && other_mesh_wall() {
                 return Err(format!(
                     "Fix wall/gran (id {}): More than one wall of type 'mesh' is not supported",

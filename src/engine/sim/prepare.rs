@@ -185,6 +185,7 @@ impl Simulation {
         self.check_run_init()?;
         self.build_mesh_topology()?;
         self.check_streams()?;
+        self.check_stream_extrusions()?;
         for f in &self.fixes {
             if let Some(ins) = f.kind.insert_pack() {
                 ins.check_tet_region(&self.regions, self.domain.lo, self.domain.hi)?;

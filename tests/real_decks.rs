@@ -1351,3 +1351,24 @@ run 10
         1,
     );
 }
+
+/// A model keyword after the on/off settings' place (cohesion after rolling_friction, as an
+/// auger-dosing deck generator writes it when cohesion is on) is LIGGGHTS's "Unknown
+/// argument or wrong keyword order" (pair_gran_base.h:129), not a setting regolith lacks.
+#[test]
+fn a_pair_model_keyword_out_of_order_is_liggghts_s_error() {
+    let dir = scratch("pair_order");
+    fails_alike(
+        &dir,
+        &format!("{MATERIAL}pair_style gran model hertz tangential history rolling_friction epsd2 cohesion sjkr\npair_coeff * *"),
+        "Unknown argument or wrong keyword order: 'cohesion'",
+        15,
+    );
+    // a known setting with a value that is not on/off
+    fails_alike(
+        &dir,
+        &format!("{MATERIAL}pair_style gran model hertz tangential history rolling_friction epsd2 torsionTorque 1\npair_coeff * *"),
+        "while parsing 'torsionTorque' argument: unknown option or wrong keyword order: '1'",
+        15,
+    );
+}

@@ -539,12 +539,10 @@ pub(super) fn gran_models(
     if !crate::engine::contact::whitelist::whitelisted(&sel) {
         ctx.say(crate::engine::contact::whitelist::WARNING);
     }
-    // on/off settings follow until the first word that is not a setting name (a wall's
-    // come after its own keywords)
-    let mut end = used;
-    while !wall && end + 1 < words.len() && matches!(words[end + 1], "on" | "off" | "yes" | "no") {
-        end += 2;
-    }
+    // the pair style's on/off settings are the rest of its words, as LIGGGHTS reads them
+    // (a word out of place is its 'Unknown argument or wrong keyword order'); a wall's
+    // come after its own keywords
+    let end = if wall { used } else { words.len() };
     let settings: Vec<&str> = words[used..end]
         .iter()
         .map(|w| match *w {

@@ -186,7 +186,7 @@ impl Simulation {
         }
         // the run's setup, after the init checks above: LIGGGHTS's neighbour cutoff is 0
         // without a pair style, and without any particle size (no particles, no
-        // templates); it cannot bin the atoms for sorting then
+        // distributions); it cannot bin the atoms for sorting then
         let no_cutoff = self.pair_selection.is_none() || self.largest_radius() == 0.0;
         if self.sort_every > 0 && self.sort_binsize <= 0.0 && no_cutoff {
             return Err("Atom sorting has bin size = 0.0".into());

@@ -485,6 +485,24 @@ fn change_box_after_a_restart_with_per_atom_state_needs_force() {
         let out = regolith(&dir, mode);
         assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
     }
+    // LIGGGHTS 3.8.0 forgets the restart file's fix entries at every system init (a run,
+    // even `run 0`, or write_restart): change_box needs no `force` after one
+    let setup = format!(
+        "atom_style granular\nread_restart r.restart\nnewton off\ncommunicate single vel yes\n\
+         neigh_modify delay 0\n{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n"
+    );
+    for init in ["run 0", "write_restart again.restart"] {
+        std::fs::write(
+            dir.join("in.t"),
+            format!("{setup}{init}\nchange_box all boundary p p fs\n"),
+        )
+        .unwrap();
+        for mode in [&["check", "in.t"][..], &["-in", "in.t", "-log", "none"]] {
+            let out = regolith(&dir, mode);
+            let all = text(&out.stdout) + &text(&out.stderr);
+            assert_eq!(out.status.code(), Some(0), "{init}: {all}");
+        }
+    }
 }
 
 #[test]
@@ -945,14 +963,20 @@ run 10
 "
     );
     std::fs::write(dir.join("in.t"), &deck).unwrap();
+    // check draws the first insertion's Monte Carlo samples as the run draws them, so the
+    // run stops before its first step (LIGGGHTS: after its setup lines and its warning
+    // that the extruded face leaves the box)
+    let out = regolith(&dir, &["check", "in.t"]);
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(
+        stdout.starts_with("in.t:23: Fix insert/stream (id ins): insertion volume could not be distributed properly in parallel"),
+        "{stdout}"
+    );
     let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
     let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
     assert_eq!(out.status.code(), Some(1), "{stdout}{stderr}");
-    assert!(
-        stdout
-            .contains("WARNING: Fix insert/stream: Extruded insertion face extends outside domain"),
-        "{stdout}"
-    );
+    assert!(stderr.contains("nothing was run"), "{stderr}");
     assert!(
         stderr.contains("Fix insert/stream (id ins): insertion volume could not be distributed properly in parallel"),
         "{stderr}"
@@ -1131,5 +1155,220 @@ fn an_ave_spatial_bin_far_below_the_box_stops_the_run_with_its_count() {
     assert!(
         said.contains("ERROR: Fix ave/spatial: bin sizes 0.01 1e-30 give no bins or more than 67108864 of them"),
         "{said}"
+    );
+}
+
+/// A stress mesh scaled, moved or rotated before its `reference_point` gets LIGGGHTS's
+/// warning (mesh_module_stress.cpp:104), once per mesh; a mesh reaching past a
+/// shrink-wrapped face gets no "Not all nodes" warning, as LIGGGHTS's setup wraps the box
+/// around every mesh node before it tests them (found on a soil-mechanics deck of six
+/// stress walls in an `m m m` box).
+#[test]
+fn stress_meshes_warn_as_liggghts_warns() {
+    let dir = scratch("stress_warnings");
+    // one node below the floor
+    std::fs::write(
+        dir.join("plate.stl"),
+        "solid plate\nfacet normal 0 0 1\n outer loop\n  vertex 0.01 0.01 0.002\n  vertex 0.09 0.01 0.002\n  vertex 0.09 0.09 -0.001\n endloop\nendfacet\nendsolid plate\n",
+    )
+    .unwrap();
+    let body = "pair_style gran model hertz tangential history\npair_coeff * *\n\
+         fix a all mesh/surface/stress file plate.stl type 1 move 0 0 0.001 reference_point 0.05 0.05 0\n\
+         fix b all mesh/surface/stress file plate.stl type 1 reference_point 0.05 0.05 0\n\
+         fix wall all wall/gran model hertz tangential history mesh n_meshes 2 meshes a b\n\
+         create_atoms 1 single 0.05 0.05 0.05\nset atom 1 diameter 0.01 density 2500\n\
+         fix integr all nve/sphere\ntimestep 1e-5\nrun 2\n";
+    let warning = "WARNING: Mesh for fix mesh/surface/stress has been scaled, moved, or rotated.\nPlease note that values for 'reference_point' refer to the scaled, moved, or rotated configuration (./src/mesh_module_stress.cpp:104)\n";
+    let outside = "WARNING: Not all nodes of fix mesh inside simulation box";
+    // as Debian's LIGGGHTS 3.8.0 warns for each boundary
+    for (boundary, warned) in [
+        ("boundary p p f", true),
+        ("boundary p p m", false),
+        ("boundary m m m", false),
+    ] {
+        let deck = format!("{HEAD}{MATERIAL}{body}").replace("boundary p p f", boundary);
+        std::fs::write(dir.join("in.t"), deck).unwrap();
+        let out = regolith(&dir, &["-in", "in.t", "-log", "log.t"]);
+        let stdout = text(&out.stdout);
+        assert_eq!(out.status.code(), Some(0), "{stdout}{}", text(&out.stderr));
+        let log = std::fs::read_to_string(dir.join("log.t")).unwrap();
+        assert_eq!(stdout.matches(warning).count(), 1, "{stdout}");
+        assert_eq!(log.matches(warning).count(), 1, "{log}");
+        assert_eq!(stdout.contains(outside), warned, "{boundary}: {stdout}");
+    }
+}
+
+/// `fix_modify ID servo/target_val v_name` names an equal-style variable (LIGGGHTS's
+/// checks there); the variable set point itself runs bit-identically to LIGGGHTS in the
+/// engine deck servo_variable.
+#[test]
+fn a_servo_variable_set_point_is_checked_as_liggghts_checks_it() {
+    let dir = scratch("servo_variable");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("compat/engine");
+    std::fs::copy(
+        root.join("servo_variable.inputs/plate.stl"),
+        dir.join("plate.stl"),
+    )
+    .unwrap();
+    let deck = std::fs::read_to_string(root.join("in.servo_variable")).unwrap();
+    let line = deck
+        .lines()
+        .position(|l| l.starts_with("fix_modify lid servo/target_val v_t"))
+        .unwrap()
+        + 1;
+    for (replacement, needle) in [
+        (
+            "fix_modify lid servo/target_val v_nothing",
+            "Variable name does not exist",
+        ),
+        (
+            "variable s string 3\nfix_modify lid servo/target_val v_s",
+            "Variable is invalid style",
+        ),
+    ] {
+        let bad = deck.replace("fix_modify lid servo/target_val v_t", replacement);
+        let at = line + replacement.lines().count() - 1;
+        stops_deck(&dir, &bad, needle, at, 1);
+    }
+    // the fix's own target_val v_name is checked at the run's init
+    let bad = deck.replace("target_val v_half", "target_val v_nothing");
+    let run_line = bad.lines().position(|l| l.starts_with("run")).unwrap() + 1;
+    stops_deck(
+        &dir,
+        &bad,
+        "Fix mesh/surface/stress/servo (id top): Variable name does not exist",
+        run_line,
+        1,
+    );
+    // a servo mesh's state is not written to restart files yet: said as such (status 3)
+    let with_restart = format!("{deck}write_restart x.restart\n");
+    let at = with_restart.lines().count();
+    stops_deck(
+        &dir,
+        &with_restart,
+        "a restart file with fix mesh/surface/stress/servo (id lid): not supported yet",
+        at,
+        3,
+    );
+}
+
+/// A wearing stress mesh without `k_finnie` stops at the run's init with LIGGGHTS's
+/// message, in `check` as in a run (a silo deck passed check and failed to run).
+#[test]
+fn wear_without_k_finnie_stops_check_and_run_at_the_run() {
+    let dir = scratch("k_finnie");
+    let stl = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("compat/engine/wall_gran_local.inputs/left.stl");
+    std::fs::copy(stl, dir.join("left.stl")).unwrap();
+    let deck = format!(
+        "{HEAD}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n\
+         fix cad all mesh/surface/stress file left.stl type 1 wear finnie\n\
+         fix wall all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad\n\
+         timestep 1e-5\nrun 1\n"
+    );
+    stops_deck(
+        &dir,
+        &deck,
+        "Could not locate a fix/property storing value(s) for k_finnie as requested by meshmodule/stress (fix mesh/surface/stress cad has wear finnie",
+        20,
+        1,
+    );
+}
+
+/// Mesh IDs beyond `n_meshes` are LIGGGHTS's unknown argument, with a hint that the list
+/// outnumbers the count (a silo deck listing four meshes after `n_meshes 3`); an unknown
+/// mesh module names the fix as LIGGGHTS does.
+#[test]
+fn mesh_wall_and_module_errors_name_what_is_wrong() {
+    let dir = scratch("n_meshes");
+    let stl = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("compat/engine/wall_gran_local.inputs/left.stl");
+    std::fs::copy(stl, dir.join("left.stl")).unwrap();
+    let meshes = "fix a all mesh/surface file left.stl type 1\nfix b all mesh/surface file left.stl type 1\n";
+    let extra = "fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes a b";
+    fails_alike(
+        &dir,
+        &format!("{MATERIAL}{meshes}{extra}"),
+        "Fix wall/gran (id w): Unknown argument or wrong keyword order: 'b'",
+        17,
+    );
+    for mode in [&["check", "in.t"][..], &["-in", "in.t", "-log", "none"]] {
+        let out = regolith(&dir, mode);
+        let all = text(&out.stdout) + &text(&out.stderr);
+        assert!(
+            all.contains("'b' is a mesh: the meshes listed outnumber n_meshes"),
+            "{all}"
+        );
+    }
+    fails_alike(
+        &dir,
+        "fix a all mesh/surface/omp file left.stl type 1",
+        "Fix mesh/surface/omp (id a): unknown keyword in style definition: mesh/surface/omp (omp)",
+        11,
+    );
+}
+
+/// After a shell command whose effects check cannot follow, a problem check finds is said
+/// as a warning instead of passing in silence (a transfer-chute deck symlinking its output
+/// folder passed check with no word and stopped at its first insertion).
+#[test]
+fn check_says_what_a_run_may_stop_at_after_a_shell_command() {
+    let dir = scratch("uncertain");
+    std::fs::write(
+        dir.join("face.stl"),
+        "solid f\nfacet normal 0 0 -1\nouter loop\nvertex 0.02 0.02 0.1\nvertex 0.02 0.08 0.1\nvertex 0.08 0.08 0.1\nendloop\nendfacet\nendsolid f\n",
+    )
+    .unwrap();
+    let deck = format!(
+        "{HEAD}{MATERIAL}pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 0.00001
+fix pts1 all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.003
+fix pdd1 all particledistribution/discrete 32452843 1 pts1 1.0
+fix face all mesh/surface file face.stl type 1
+fix ins all insert/stream seed 49979687 distributiontemplate pdd1 nparticles 10 particlerate 1000 vel constant 0 0 -1 insertion_face face extrude_length 0.05
+fix integr all nve/sphere
+shell ln -s . here
+run 10
+"
+    );
+    std::fs::write(dir.join("in.t"), &deck).unwrap();
+    let out = regolith(&dir, &["check", "in.t"]);
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{stdout}");
+    assert!(
+        stdout.contains("in.t:24: warning: a run may stop here (check cannot be sure after a command whose effects it cannot follow): Fix insert/stream (id ins): insertion volume could not be distributed properly in parallel"),
+        "{stdout}"
+    );
+    // without the shell command the same problem is check's own error (status 1), as the
+    // run's first insertion stops there
+    let certain = deck.replace("shell ln -s . here\n", "");
+    stops_deck(
+        &dir,
+        &certain,
+        "Fix insert/stream (id ins): insertion volume could not be distributed properly in parallel",
+        23,
+        1,
+    );
+}
+
+/// A model keyword after the on/off settings' place (cohesion after rolling_friction, as an
+/// auger-dosing deck generator writes it when cohesion is on) is LIGGGHTS's "Unknown
+/// argument or wrong keyword order" (pair_gran_base.h:129), not a setting regolith lacks.
+#[test]
+fn a_pair_model_keyword_out_of_order_is_liggghts_s_error() {
+    let dir = scratch("pair_order");
+    fails_alike(
+        &dir,
+        &format!("{MATERIAL}pair_style gran model hertz tangential history rolling_friction epsd2 cohesion sjkr\npair_coeff * *"),
+        "Unknown argument or wrong keyword order: 'cohesion'",
+        15,
+    );
+    // a known setting with a value that is not on/off
+    fails_alike(
+        &dir,
+        &format!("{MATERIAL}pair_style gran model hertz tangential history rolling_friction epsd2 torsionTorque 1\npair_coeff * *"),
+        "while parsing 'torsionTorque' argument: unknown option or wrong keyword order: '1'",
+        15,
     );
 }

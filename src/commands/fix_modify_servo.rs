@@ -37,6 +37,18 @@ pub fn servo_param(a: &Args, i: usize, id: &str, ctx: &mut Ctx) -> Result<usize,
             Ok(())
         }
     };
+    // a variable set point: an equal-style variable, checked as LIGGGHTS checks it here
+    let variable = match (key, a.word(i + 1)) {
+        ("target_val", Ok(w)) if left >= 2 && w.starts_with("v_") => {
+            let name = &w[2..];
+            match ctx.vars.get(name).map(|v| v.style) {
+                None => return Err(a.error(i + 1, "Variable name does not exist")),
+                Some(crate::lang::variables::Style::Equal) => Some(name.to_string()),
+                Some(_) => return Err(a.error(i + 1, "Variable is invalid style")),
+            }
+        }
+        _ => None,
+    };
     let Some(servo) = servo_of(ctx, id) else {
         return Ok(0);
     };
@@ -62,10 +74,11 @@ pub fn servo_param(a: &Args, i: usize, id: &str, ctx: &mut Ctx) -> Result<usize,
         }
         "target_val" => {
             need(2)?;
-            if a.word(i + 1)?.starts_with("v_") {
-                return Err(
-                    a.unsupported(i + 1, "fix_modify target_val v_name (a variable set point)")
-                );
+            servo.sum_err = 0.;
+            if variable.is_some() {
+                // evaluated at each step's controller
+                servo.set_point_var = variable;
+                return finish(ctx, module, key, None, 2);
             }
             let v = a.real(i + 1)?;
             if v == 0. {
@@ -75,7 +88,7 @@ pub fn servo_param(a: &Args, i: usize, id: &str, ctx: &mut Ctx) -> Result<usize,
                 ));
             }
             servo.set_point = -v;
-            servo.sum_err = 0.;
+            servo.set_point_var = None;
             2
         }
         "ctrlParam" => {
@@ -94,6 +107,18 @@ pub fn servo_param(a: &Args, i: usize, id: &str, ctx: &mut Ctx) -> Result<usize,
         }
         _ => return Ok(0),
     };
+    finish(ctx, module, key, warning, taken)
+}
+
+/// The warnings after a servo keyword (its own, then LIGGGHTS's deprecation warning for a
+/// keyword without the module prefix); the number of arguments it took.
+fn finish(
+    ctx: &mut Ctx,
+    module: Option<&str>,
+    key: &str,
+    warning: Option<String>,
+    taken: usize,
+) -> Result<usize, CommandError> {
     if let Some(w) = warning {
         ctx.say(&w);
     }

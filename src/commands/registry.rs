@@ -127,7 +127,7 @@ pub fn validate_names(cmd: &CommandLine) -> Result<(), CommandError> {
         return Ok(());
     }
     if kind == NameKind::FixStyle && style.starts_with("mesh/surface") {
-        validate_mesh_modules(style, index)?;
+        validate_mesh_modules(style, index, cmd.arg(0).unwrap_or(""))?;
     } else if (kind == NameKind::DumpStyle && EXTENSION_DUMP_STYLES.contains(&style))
         || (kind == NameKind::FixStyle && EXTENSION_FIX_STYLES.contains(&style))
     {
@@ -163,13 +163,15 @@ fn is_registered_module(kind: NameKind, style: &str) -> bool {
 pub const MESH_MODULES: &[&str] = &["liquidtransfer", "planar", "servo", "stress"];
 
 /// LIGGGHTS accepts any `mesh/surface[/module...]` fix style whose parts are mesh modules.
-fn validate_mesh_modules(style: &str, index: usize) -> Result<(), CommandError> {
+fn validate_mesh_modules(style: &str, index: usize, id: &str) -> Result<(), CommandError> {
     for part in style.split('/').skip(2) {
         if !MESH_MODULES.contains(&part) {
             let help = did_you_mean(part, MESH_MODULES)
                 .unwrap_or_else(|| format!("mesh modules: {}", MESH_MODULES.join(", ")));
             return Err(CommandError::UnknownName {
-                message: format!("unknown keyword in style definition: {style} ({part})"),
+                message: format!(
+                    "Fix {style} (id {id}): unknown keyword in style definition: {style} ({part})"
+                ),
                 at: At::Arg(index),
                 help,
             });

@@ -287,6 +287,7 @@ fn run(a: &Args, ctx: &mut Ctx) -> Result {
     let nsteps = run_steps(a, ctx, n, &options)?;
     super::system_init::system_init(a, ctx, None)?;
     super::fix::check_deform_variables(ctx).map_err(|e| a.engine_error(0, e))?;
+    super::fix::check_servo_variables(ctx).map_err(|e| a.engine_error(0, e))?;
     crate::engine::temperature::setup_counts(ctx.sim);
     if ctx.sys.mode == Mode::Check {
         return dry_run(a, ctx, nsteps, &options);
@@ -392,7 +393,9 @@ fn dry_run(a: &Args, ctx: &mut Ctx, nsteps: i64, o: &RunOptions) -> Result {
         ctx.sim.margin_notes.push(m);
     }
     if ctx.sim.restart_output.iter().any(Option::is_some) {
-        ctx.sim.check_restart_size().map_err(|m| a.error(0, &m))?;
+        ctx.sim
+            .check_restart_size()
+            .map_err(|e| a.engine_error(0, e))?;
     }
     keep_periodic_restarts(ctx, nsteps);
     ctx.sim.step += nsteps;
@@ -404,7 +407,13 @@ fn dry_run(a: &Args, ctx: &mut Ctx, nsteps: i64, o: &RunOptions) -> Result {
 /// LIGGGHTS's line of each mesh's first setup (screen only), after its check that the mesh
 /// lies in the box (a mesh that lost triangles to the box stops the run before its lines).
 fn announce_meshes(a: &Args, ctx: &mut Ctx) -> Result {
+    use crate::state::domain::Boundary;
     let (lo, hi) = (ctx.sim.domain.lo, ctx.sim.domain.hi);
+    // LIGGGHTS's setup shrink-wraps the box around every mesh node first (FixMesh's
+    // box_extent), so no node lies beyond a shrink-wrapped face when it tests them
+    let bounds = ctx.sim.domain.boundary;
+    let wraps =
+        |d: usize, side: usize| matches!(bounds[d][side], Boundary::Shrink | Boundary::ShrinkMin);
     for k in 0..ctx.sim.fixes.len() {
         ctx.sim
             .check_mesh_in_box(k)
@@ -418,12 +427,9 @@ fn announce_meshes(a: &Args, ctx: &mut Ctx) -> Result {
         }
         m.announced = true;
         // LIGGGHTS's test of every node against the closed box (fix_mesh.cpp)
-        let outside = m
-            .mesh
-            .nodes
-            .iter()
-            .flatten()
-            .any(|p| (0..3).any(|d| !(p[d] >= lo[d] && p[d] <= hi[d])));
+        let outside = m.mesh.nodes.iter().flatten().any(|p| {
+            (0..3).any(|d| !((p[d] >= lo[d] || wraps(d, 0)) && (p[d] <= hi[d] || wraps(d, 1))))
+        });
         if outside {
             ctx.out.both("WARNING: Not all nodes of fix mesh inside simulation box, elements will be deleted or wrapped around periodic boundary conditions (./src/fix_mesh.cpp:531)\n");
         }
@@ -533,12 +539,10 @@ pub(super) fn gran_models(
     if !crate::engine::contact::whitelist::whitelisted(&sel) {
         ctx.say(crate::engine::contact::whitelist::WARNING);
     }
-    // on/off settings follow until the first word that is not a setting name (a wall's
-    // come after its own keywords)
-    let mut end = used;
-    while !wall && end + 1 < words.len() && matches!(words[end + 1], "on" | "off" | "yes" | "no") {
-        end += 2;
-    }
+    // the pair style's on/off settings are the rest of its words, as LIGGGHTS reads them
+    // (a word out of place is its 'Unknown argument or wrong keyword order'); a wall's
+    // come after its own keywords
+    let end = if wall { used } else { words.len() };
     let settings: Vec<&str> = words[used..end]
         .iter()
         .map(|w| match *w {

@@ -48,7 +48,11 @@ pub fn system_init(a: &Args, ctx: &mut Ctx, announce: Option<&str>) -> Result<()
     }
     ctx.sim.check_types().map_err(|e| a.engine_error(0, e))?;
     super::material_check::validate(a, ctx)?;
-    thermo_references(a, ctx)
+    thermo_references(a, ctx)?;
+    // LIGGGHTS's Modify::init forgets the restart file's fix entries: a later change_box
+    // no longer needs `force`
+    ctx.sim.extras.restart_peratom_fixes = 0;
+    Ok(())
 }
 
 /// The computes, fixes and variables the thermo output names must exist (LIGGGHTS's

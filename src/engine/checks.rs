@@ -136,6 +136,13 @@ impl Simulation {
                     .enumerate()
                     .any(|(j, f)| j != k && f.kind.mesh_wall().is_some())
             };
+            // the stress module's init: wear needs its coefficients
+            let wears = (fix.kind.mesh())
+                .and_then(|m| m.stress.as_ref())
+                .is_some_and(|st| st.wear_on);
+            if wears && self.property("k_finnie").is_none() {
+                return Err(crate::engine::sim::no_k_finnie(&fix.id));
+            }
             if fix.kind.mesh_wall().is_some() && other_mesh_wall() {
                 return Err(format!(
                     "Fix wall/gran (id {}): More than one wall of type 'mesh' is not supported",
@@ -148,11 +155,7 @@ impl Simulation {
             // LIGGGHTS's atom sort bins (half the neighbour cutoff, or the user's size)
             // (LIGGGHTS's cutoff knows the particle templates' sizes before any particle
             // is inserted)
-            let size = if self.sort_binsize > 0.0 {
-                self.sort_binsize
-            } else {
-                0.5 * self.neighbor_cutoff().max(self.liggghts_cutneighmax())
-            };
+            let size = self.sort_bin_size();
             if size > 0.0 {
                 // a single layer of bins in 2d
                 let layers = if self.dimension == 2 { 2 } else { 3 };
@@ -183,7 +186,7 @@ impl Simulation {
         }
         // the run's setup, after the init checks above: LIGGGHTS's neighbour cutoff is 0
         // without a pair style, and without any particle size (no particles, no
-        // templates); it cannot bin the atoms for sorting then
+        // distributions); it cannot bin the atoms for sorting then
         let no_cutoff = self.pair_selection.is_none() || self.largest_radius() == 0.0;
         if self.sort_every > 0 && self.sort_binsize <= 0.0 && no_cutoff {
             return Err("Atom sorting has bin size = 0.0".into());

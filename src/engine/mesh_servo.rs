@@ -30,6 +30,9 @@ pub struct MeshServo {
     pub axis: V3,
     /// Set point: minus `target_val` (force), as LIGGGHTS keeps it (0 without one).
     pub set_point: f64,
+    /// `target_val v_name`: the equal-style variable giving the target force (force),
+    /// evaluated at each step's controller.
+    pub set_point_var: Option<String>,
     /// `vel_max` (length/time).
     pub vel_max: f64,
     /// `kp`, `ki`, `kd`.
@@ -64,6 +67,7 @@ impl MeshServo {
             vcm: [0.0; 3],
             axis: [axis[0] * inv, axis[1] * inv, axis[2] * inv],
             set_point: -target,
+            set_point_var: None,
             vel_max,
             gains: [0.01, 0., 0.],
             auto: false,

@@ -184,6 +184,18 @@ impl Interpreter {
                     .any(|e| e.location == d.location && e.message == d.message);
                 if !seen && (d.severity == Severity::Unsupported || !self.uncertain) {
                     self.diagnostics.push(d);
+                } else if !seen && d.severity == Severity::Error {
+                    // past a command whose effects the dry run cannot follow (a shell
+                    // command, values it cannot know): what a run may well stop at, said
+                    // without counting it
+                    let mut w = Diagnostic::warning(format!(
+                        "a run may stop here (check cannot be sure after a command whose effects it cannot follow): {}",
+                        d.message
+                    ));
+                    if let Some(loc) = &d.location {
+                        w = w.at(loc);
+                    }
+                    self.diagnostics.push(w);
                 }
                 Ok(())
             }

@@ -1,7 +1,7 @@
 //! The servo keywords of `fix mesh/surface/stress/servo` (after the mesh's and the stress
 //! module's keywords, as LIGGGHTS parses its mesh modules in turn).
 
-use crate::commands::{Args, CommandError};
+use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::mesh_servo::MeshServo;
 
 /// The servo keywords as given (LIGGGHTS's defaults: kp 0.01, ki 0, kd 0).
@@ -15,6 +15,8 @@ pub struct ServoArgs {
     axis: [f64; 3],
     /// `target_val` (force).
     target: Option<f64>,
+    /// `target_val v_name`: the equal-style variable giving the target (force).
+    target_var: Option<String>,
     /// `vel_max` (length/time).
     vel_max: Option<f64>,
     /// `kp`, `ki`, `kd` when given.
@@ -90,11 +92,11 @@ impl ServoArgs {
             }
             "target_val" => {
                 need(1, w)?;
-                if a.word(i + 1)?.starts_with("v_") {
-                    return Err(a.unsupported(
-                        i + 1,
-                        "fix mesh/surface/stress/servo target_val v_name (a variable set point)",
-                    ));
+                if let Some(name) = a.word(i + 1)?.strip_prefix("v_") {
+                    // checked at each run's init, as LIGGGHTS checks it
+                    self.target_var = Some(name.to_string());
+                    self.target = None;
+                    return Ok(2);
                 }
                 let v = a.real(i + 1)?;
                 if v == 0. {
@@ -104,6 +106,7 @@ impl ServoArgs {
                     ));
                 }
                 self.target = Some(v);
+                self.target_var = None;
                 Ok(2)
             }
             "kp" | "ki" | "kd" => {
@@ -152,6 +155,7 @@ impl ServoArgs {
         // without target_val LIGGGHTS's set point is 0 and its servo never moves
         let target = self.target.unwrap_or(0.);
         let mut s = MeshServo::new(com, self.axis, target, vel_max);
+        s.set_point_var = self.target_var.clone();
         for (g, given) in s.gains.iter_mut().zip(self.gains) {
             if let Some(v) = given {
                 *g = v;
@@ -179,4 +183,35 @@ impl ServoArgs {
         }
         Ok(s)
     }
+}
+
+/// A run's init: each servo's variable set point names an equal-style variable, as
+/// LIGGGHTS's servo module checks it.
+pub fn check_variables(ctx: &Ctx) -> Result<(), crate::engine::error::EngineError> {
+    for f in &ctx.sim.fixes {
+        let Some(name) = (f.kind.mesh())
+            .and_then(|m| m.servo.as_ref())
+            .and_then(|s| s.set_point_var.as_deref())
+        else {
+            continue;
+        };
+        match ctx.vars.get(name).map(|v| v.style) {
+            None => {
+                return Err(format!(
+                    "Fix mesh/surface/stress/servo (id {}): Variable name does not exist",
+                    f.id
+                )
+                .into())
+            }
+            Some(crate::lang::variables::Style::Equal) => {}
+            Some(_) => {
+                return Err(format!(
+                    "Fix mesh/surface/stress/servo (id {}): Variable is invalid style",
+                    f.id
+                )
+                .into())
+            }
+        }
+    }
+    Ok(())
 }

@@ -45,7 +45,7 @@ pub const STRESS: Spec = style(
 );
 
 /// The declared signature of `mesh/surface/stress/servo`.
-pub const SERVO: Spec = style("fix", "mesh/surface/stress/servo", "fix ID GROUP mesh/surface/stress/servo file FILE type T ... com X Y Z ctrlPV force axis X Y Z target_val F vel_max V", &[kw("com", &[arg("X Y Z", LENGTH)], "centre of mass of the wall"), kw("ctrlPV", &[arg("force", Value::OneOf(&["force", "torque"]))], "the controlled value (torque: not supported yet)"), kw("axis", &[arg("X Y Z", NUMBER)], "direction of the motion"), kw("target_val", &[arg("F", Value::Real("force"))], "target force (negative: towards -axis)"), kw("vel_max", &[arg("V", VELOCITY)], "largest wall speed"), kw("kp", &[arg("K", NUMBER)], "proportional gain"), kw("ki", &[arg("K", NUMBER)], "integral gain"), kw("kd", &[arg("K", NUMBER)], "derivative gain"), kw("mode", &[arg("auto", Value::OneOf(&["auto"]))], "gain-scheduled proportional controller"), kw("ratio", &[arg("R", NUMBER)], "auto mode speed near particles, in smallest radii per step")], "a mesh wall a servo drives to a target force");
+pub const SERVO: Spec = style("fix", "mesh/surface/stress/servo", "fix ID GROUP mesh/surface/stress/servo file FILE type T ... com X Y Z ctrlPV force axis X Y Z target_val F vel_max V", &[kw("com", &[arg("X Y Z", LENGTH)], "centre of mass of the wall"), kw("ctrlPV", &[arg("force", Value::OneOf(&["force", "torque"]))], "the controlled value (torque: not supported yet)"), kw("axis", &[arg("X Y Z", NUMBER)], "direction of the motion"), kw("target_val", &[arg("F", Value::Real("force"))], "target force (negative: towards -axis), or v_name: an equal-style variable evaluated each step"), kw("vel_max", &[arg("V", VELOCITY)], "largest wall speed"), kw("kp", &[arg("K", NUMBER)], "proportional gain"), kw("ki", &[arg("K", NUMBER)], "integral gain"), kw("kd", &[arg("K", NUMBER)], "derivative gain"), kw("mode", &[arg("auto", Value::OneOf(&["auto"]))], "gain-scheduled proportional controller"), kw("ratio", &[arg("R", NUMBER)], "auto mode speed near particles, in smallest radii per step")], "a mesh wall a servo drives to a target force");
 
 /// `fix ID GROUP mesh/surface[/planar] file F type T [scale f] [move x y z]
 /// [rotate axis x y z angle deg] [curvature deg] [curvature_tolerant yes|no]
@@ -86,6 +86,13 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>,
         .wall_type
         .ok_or_else(|| a.error(2, "Fix mesh: must define type"))?;
     let (triangles, restored) = mesh.triangles(a, ctx)?;
+    // LIGGGHTS's stress module, reading each reference point of a mesh already scaled,
+    // moved or rotated
+    if !mesh.ops.is_empty() {
+        for _ in 0..mesh.references {
+            ctx.say("WARNING: Mesh for fix mesh/surface/stress has been scaled, moved, or rotated.\nPlease note that values for 'reference_point' refer to the scaled, moved, or rotated configuration (./src/mesh_module_stress.cpp:104)\n");
+        }
+    }
     mesh.check(a, ctx, &triangles)?;
     mesh.assemble(a, wall_type, &triangles, restored)
 }
@@ -151,6 +158,8 @@ struct MeshArgs {
     wear_on: bool,
     /// `reference_point x y z` (length).
     reference: [f64; 3],
+    /// How many `reference_point` keywords were read.
+    references: usize,
     /// The word the stress or servo module's keywords start at.
     module_from: Option<usize>,
     /// The servo module's keywords.
@@ -179,6 +188,7 @@ impl MeshArgs {
             stress_on: true,
             wear_on: false,
             reference: [0.0; 3],
+            references: 0,
             module_from: None,
             servo: ServoArgs::default(),
             servo_from: None,
@@ -209,6 +219,7 @@ impl MeshArgs {
             "wear" => self.wear_on = a.word_in(i + 1, &["finnie", "off"])? == "finnie",
             _ => {
                 self.reference = [a.real(i + 1)?, a.real(i + 2)?, a.real(i + 3)?];
+                self.references += 1;
                 i += 2;
             }
         }

@@ -425,6 +425,7 @@ pub fn define(a: &Args, ctx: &mut Ctx) -> Result<(), CommandError> {
 }
 
 pub(crate) use deform::check_variables as check_deform_variables;
+pub(crate) use mesh_servo::check_variables as check_servo_variables;
 
 /// The compute a `c_ID` input of fix `style` names (word `i`), or LIGGGHTS's error.
 pub(crate) fn input_compute<'c>(

@@ -31,7 +31,20 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>,
         .map(|i| a.word(i))
         .collect::<std::result::Result<_, _>>()?;
     if let Err(e) = selection.apply_settings(&rest) {
+        // a mesh ID beyond the count `n_meshes` gave
+        let extra_mesh = rest.first().is_some_and(|w| {
+            wall.meshes.is_some()
+                && ctx
+                    .sim
+                    .fixes
+                    .iter()
+                    .any(|f| f.id == *w && f.kind.mesh().is_some())
+        });
         return Err(match e {
+            ModelError::Invalid(m) if extra_mesh => fail(k, &m).with_help(format!(
+                "'{}' is a mesh: the meshes listed outnumber n_meshes",
+                rest[0]
+            )),
             ModelError::Invalid(m) => fail(k, &m),
             ModelError::Unsupported(setting) => a.unsupported(
                 k,

@@ -219,7 +219,9 @@ pub(super) fn write_restart(a: &Args, ctx: &mut Ctx) -> Result {
     let path = ctx.sys.resolve(a.word(0)?).to_string_lossy().into_owned();
     let path = path.replace('*', &ctx.sim.step.to_string());
     crate::commands::system_init::system_init(a, ctx, Some("write_restart"))?;
-    ctx.sim.check_restart_size().map_err(|m| a.error(0, &m))?;
+    ctx.sim
+        .check_restart_size()
+        .map_err(|e| a.engine_error(0, e))?;
     if ctx.sys.mode != Mode::Run {
         // check mode: keep the file in memory for a later read_restart of the same deck
         let partners = ctx.sim.contact_partners();

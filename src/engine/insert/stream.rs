@@ -482,7 +482,7 @@ impl InsertStream {
         let mut lines = Vec::new();
         let n = self.count_this_insertion();
         if !self.measured || box_changes {
-            self.check_extrusion_inside_box(w)?;
+            self.check_extrusion_inside_box(w.lo, w.hi)?;
         }
         let list = dist.list(n)?;
         if !list.is_empty() {
@@ -497,6 +497,14 @@ impl InsertStream {
         let placed = self.place_templates(&list, dist, w, near, &mut lines);
         self.account_inserted(step, n, &placed, dist, &mut lines);
         Ok((placed, lines))
+    }
+
+    /// The Monte Carlo test of the first insertion on a copy of this new stream (its
+    /// random numbers drawn as that insertion draws them), in the box `lo`..`hi` (length).
+    pub fn check_first_extrusion(&self, lo: [f64; 3], hi: [f64; 3]) -> Result<(), EngineError> {
+        let mut copy = self.clone();
+        copy.count_this_insertion();
+        copy.check_extrusion_inside_box(lo, hi)
     }
 
     /// How many particles this insertion asks for: the mean per insertion plus a uniform
@@ -514,13 +522,17 @@ impl InsertStream {
 
     /// LIGGGHTS's Monte Carlo share of the extruded face inside the box (`ntry_mc`
     /// samples): below 0.9 or above 1.1 it refuses to insert.
-    fn check_extrusion_inside_box(&mut self, w: &World) -> Result<(), EngineError> {
+    fn check_extrusion_inside_box(
+        &mut self,
+        lo: [f64; 3],
+        hi: [f64; 3],
+    ) -> Result<(), EngineError> {
         let mut inside = 0i64;
         for _ in 0..self.ntry_mc {
             let p = self.face.random_point();
             let r = -self.rng.uniform() * self.extrude;
             let q = [0, 1, 2].map(|d| p[d] + r * self.normal[d]);
-            if (0..3).all(|d| q[d] >= w.lo[d] && q[d] < w.hi[d]) {
+            if (0..3).all(|d| q[d] >= lo[d] && q[d] < hi[d]) {
                 inside += 1;
             }
         }

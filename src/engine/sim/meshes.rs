@@ -3,6 +3,12 @@
 use super::*;
 use crate::engine::fixes::{first_wall_on, mesh_named_mut};
 
+/// LIGGGHTS's error for a wearing stress mesh without `k_finnie` (its run's init), naming
+/// the mesh `id`.
+pub(crate) fn no_k_finnie(id: &str) -> EngineError {
+    format!("Could not locate a fix/property storing value(s) for k_finnie as requested by meshmodule/stress (fix mesh/surface/stress {id} has wear finnie: it needs fix property/global k_finnie peratomtypepair)").into()
+}
+
 impl Simulation {
     /// LIGGGHTS's mesh setup at the first run: neighbours and active edges and corners of
     /// every `fix mesh/surface`, within the current box.
@@ -42,9 +48,7 @@ impl Simulation {
                     st.clear_triangles();
                     match &k_finnie {
                         Some(k) => st.k_finnie = k.clone(),
-                        None if st.wear_on => {
-                            return Err(format!("Fix mesh/surface/stress (id {}): wear finnie needs fix property/global k_finnie peratomtypepair", f.id).into())
-                        }
+                        None if st.wear_on => return Err(no_k_finnie(&f.id)),
                         None => {}
                     }
                 }

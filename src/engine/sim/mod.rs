@@ -32,6 +32,7 @@ pub use guard::{
     energy_runaway, ENERGY_GROWTH, ENERGY_WATCH_STEPS, MAX_OVERLAP, RUNAWAY_RADII_PER_STEP,
 };
 use guard::{guard_say, lost_atoms_message};
+pub(crate) use meshes::no_k_finnie;
 
 /// Neighbour-list settings (`neighbor`, `neigh_modify`); skin in length units.
 #[derive(Debug, Clone, PartialEq)]

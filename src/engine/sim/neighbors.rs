@@ -116,11 +116,7 @@ impl Simulation {
     /// keeps the order.
     pub(super) fn sort_particles(&mut self) {
         self.next_sort = (self.step / self.sort_every) * self.sort_every + self.sort_every;
-        let binsize = if self.sort_binsize > 0.0 {
-            self.sort_binsize
-        } else {
-            0.5 * self.neighbor_cutoff()
-        };
+        let binsize = self.sort_bin_size();
         let (lo, hi) = (self.domain.lo, self.domain.hi);
         let planar = self.dimension == 2;
         let bins = move |x: &[[f64; 3]]| sort_bins(x, lo, hi, binsize, planar);
@@ -145,6 +141,19 @@ impl Simulation {
     /// LIGGGHTS's largest neighbour cutoff: for each type pair the sum of the largest radii
     /// (frozen particles only with moving ones), times the contact distance factor, plus the
     /// skin; 0 without a pair style.
+    /// The atom sort's bin size (length): `atom_modify sort`'s size, else half LIGGGHTS's
+    /// `cutneighmax` of the run's init, which counts the particle templates' radii before
+    /// any such particle is inserted; 0 (no sort) without a pair style.
+    pub(crate) fn sort_bin_size(&self) -> f64 {
+        if self.sort_binsize > 0.0 {
+            self.sort_binsize
+        } else if self.pair_selection.is_none() {
+            0.0
+        } else {
+            0.5 * self.neighbor_cutoff().max(self.liggghts_cutneighmax())
+        }
+    }
+
     pub fn neighbor_cutoff(&self) -> f64 {
         if self.pair_selection.is_none() {
             return 0.0;

@@ -149,32 +149,25 @@ impl Simulation {
     }
 
     /// LIGGGHTS's `cutneighmax` at a run's init: twice the largest radius among the atoms
-    /// and the particle templates, times the pair style's contact distance factor, plus the
+    /// and the particle distributions, times the pair style's contact distance factor, plus the
     /// skin (length).
     pub(crate) fn liggghts_cutneighmax(&self) -> f64 {
         2.0 * self.largest_radius() * self.contact_factor() + self.neighbor.skin
     }
 
-    /// The largest radius among the atoms and the particle templates (length).
+    /// The largest radius among the atoms and the particle distributions (length), as
+    /// LIGGGHTS's pair init counts future particles: by the fixes that report a largest
+    /// radius (distributions and the insertions using them, a clump template's largest
+    /// sphere); a template no distribution lists does not count.
     pub fn largest_radius(&self) -> f64 {
         let atoms = self.particles.radius.iter().copied().fold(0.0, f64::max);
-        let templates = self
+        let distributions = self
             .fixes
             .iter()
-            .filter_map(|f| match f.kind.template() {
-                Some(t) => Some(t.radius),
-                // a clump template's largest sphere (LIGGGHTS's max_rad), not its bounding radius
-                None => Some(
-                    (f.kind
-                        .style_as::<crate::engine::multisphere::ClumpTemplate>()?
-                        .radii
-                        .iter())
-                    .copied()
-                    .fold(0.0, f64::max),
-                ),
-            })
+            .filter_map(|f| f.kind.distribution())
+            .map(|d| d.max_sphere_radius())
             .fold(0.0, f64::max);
-        atoms.max(templates)
+        atoms.max(distributions)
     }
 
     /// A dry run's `run`: LIGGGHTS's init checks of particles, neighbour bins and mesh
@@ -185,6 +178,7 @@ impl Simulation {
         self.check_run_init()?;
         self.build_mesh_topology()?;
         self.check_streams()?;
+        self.check_stream_extrusions()?;
         for f in &self.fixes {
             if let Some(ins) = f.kind.insert_pack() {
                 ins.check_tet_region(&self.regions, self.domain.lo, self.domain.hi)?;

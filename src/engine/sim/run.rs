@@ -327,7 +327,7 @@ impl Simulation {
         );
         self.liquid_final_integrate();
         self.mesh_stress_phase(StressPhase::EndOfStep)?;
-        self.servo_final_integrate();
+        self.servo_final_integrate(vars)?;
         self.end_of_step(out, vars)
     }
 

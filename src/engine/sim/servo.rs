@@ -84,9 +84,27 @@ impl Simulation {
 
     /// After the stress module's totals: each servo's controller sets the next step's
     /// velocity of its mesh (every node moves with it).
-    pub(super) fn servo_final_integrate(&mut self) {
+    pub(super) fn servo_final_integrate(
+        &mut self,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
         let dt = self.dt;
         for id in self.servo_meshes() {
+            // a variable set point, evaluated before this servo's controller
+            let variable = mesh_named_mut(&mut self.fixes, &id)
+                .and_then(|m| m.servo.as_ref())
+                .filter(|s| s.integrate)
+                .and_then(|s| s.set_point_var.clone());
+            if let Some(name) = variable {
+                let target = vars.equal(self, &name)?;
+                if target == 0. {
+                    return Err(format!("Fix mesh/surface/stress/servo (id {id}): Set point (desired force/torque/shear) has to be != 0.0").into());
+                }
+                if let Some(s) = mesh_named_mut(&mut self.fixes, &id).and_then(|m| m.servo.as_mut())
+                {
+                    s.set_point = -target;
+                }
+            }
             // entries in the mesh's contact lists (of the first wall that uses it)
             let near = first_wall_on(&self.fixes, &id)
                 .and_then(|(_, w, k)| w.trackers.get(k))
@@ -104,5 +122,6 @@ impl Simulation {
             let n = m.mesh.len();
             m.node_v = Some(vec![[v; 3]; n]);
         }
+        Ok(())
     }
 }

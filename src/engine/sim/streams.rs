@@ -98,17 +98,63 @@ impl Simulation {
     /// First run's setup of the `fix insert/stream` at `k`: face normal, normal velocity,
     /// interval.
     pub(super) fn setup_stream(&mut self, k: usize, out: Sink<'_>) -> Result<(), EngineError> {
-        use crate::engine::insert::InsertStream;
-        let dt = self.dt;
         self.stream_init_checks(k)?;
-        let Some(sf) = self.fixes[k].kind.stream() else {
+        let Some((state, dist)) = self.new_stream_state(k)? else {
             return Ok(());
         };
-        if sf.state.is_some() {
+        for l in state.setup_lines(&dist) {
+            out(&format!("{l}\n"));
+        }
+        if let Some(sf) = self.fixes[k].kind.stream_mut() {
+            sf.state = Some(state);
+        }
+        Ok(())
+    }
+
+    /// A dry run's look at each new stream's first insertion: LIGGGHTS's Monte Carlo share
+    /// of the extruded face inside the box, as the run draws it (in a box whose faces stay
+    /// put until then).
+    pub(super) fn check_stream_extrusions(&mut self) -> Result<(), EngineError> {
+        if self.domain.shrinks() {
             return Ok(());
         }
+        for k in 0..self.fixes.len() {
+            let fresh = self.fixes[k]
+                .kind
+                .stream()
+                .is_some_and(|sf| sf.state.is_none());
+            if !fresh {
+                continue;
+            }
+            if let Some((state, _)) = self.new_stream_state(k)? {
+                state.check_first_extrusion(self.domain.lo, self.domain.hi)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The state of the `fix insert/stream` at `k` at its first run's setup, and its
+    /// distribution (None when it has one already or inserts nothing).
+    fn new_stream_state(
+        &mut self,
+        k: usize,
+    ) -> Result<
+        Option<(
+            crate::engine::insert::InsertStream,
+            crate::engine::insert::Distribution,
+        )>,
+        EngineError,
+    > {
+        use crate::engine::insert::InsertStream;
+        let dt = self.dt;
+        let Some(sf) = self.fixes[k].kind.stream() else {
+            return Ok(None);
+        };
+        if sf.state.is_some() {
+            return Ok(None);
+        }
         let Some(plan) = self.stream_plan(k)? else {
-            return Ok(());
+            return Ok(None);
         };
         let StreamPlan {
             normal: n,
@@ -129,7 +175,7 @@ impl Simulation {
             Vec::new()
         };
         let Some(sf) = self.fixes[k].kind.stream() else {
-            return Ok(());
+            return Ok(None);
         };
         let restored = sf.restored;
         let state = InsertStream {
@@ -159,13 +205,7 @@ impl Simulation {
             first_step: restored.map_or(sf.start, |r| r.first_step),
             random_orientation: sf.random_orientation,
         };
-        for l in state.setup_lines(&dist) {
-            out(&format!("{l}\n"));
-        }
-        if let Some(sf) = self.fixes[k].kind.stream_mut() {
-            sf.state = Some(state);
-        }
-        Ok(())
+        Ok(Some((state, dist)))
     }
 
     /// The insertion face of a stream: its triangles, and with `all_in` the mesh fix

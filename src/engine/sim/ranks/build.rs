@@ -205,11 +205,7 @@ impl Simulation {
     /// place in the exact order, each particle's place gathered from every rank.
     pub(super) fn rank_sort_order(&mut self, comm: &RankComm) -> Result<(), EngineError> {
         self.next_sort = (self.step / self.sort_every) * self.sort_every + self.sort_every;
-        let binsize = if self.sort_binsize > 0.0 {
-            self.sort_binsize
-        } else {
-            0.5 * self.neighbor_cutoff()
-        };
+        let binsize = self.sort_bin_size();
         let (lo, hi) = (self.domain.lo, self.domain.hi);
         let p = &mut self.particles;
         // the bins depend on the box alone: every rank sorts or none

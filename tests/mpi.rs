@@ -927,10 +927,13 @@ thermo_style custom step atoms ke
 thermo 50
 dump d all custom 25 out.dump id type x y z vx vy vz fx fy fz omegax omegay omegaz radius
 dump_modify d sort id format \"%d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"
+write_data start.data
 run 100
 run 50
 write_restart bed.restart
 write_restart bed.%.restart
+write_data end.data
+write_dump all custom end.dump id type x y z vx vy vz modify sort id format \"%d %d %.17g %.17g %.17g %.17g %.17g %.17g\"
 ";
 
 /// The IDs of a restart file's atoms, in the file's order.
@@ -981,12 +984,18 @@ fn a_build_with_mpi_runs_on_ranks_and_refuses_the_rest() {
     );
     let serial = std::fs::read_to_string(dir.join("out.dump")).unwrap();
     let serial_ids = restart_ids(&dir.join("bed.restart"));
+    let written = |name: &str| std::fs::read(dir.join(name)).unwrap();
+    let serial_start = written("start.data");
+    let serial_end = String::from_utf8(written("end.dump")).unwrap();
+    assert!(String::from_utf8_lossy(&written("end.data")).contains("\n252 atoms\n"));
     assert_eq!(serial_ids.len(), 252);
     let snapshots = regolith::io::dump_compare::parse(&serial).unwrap();
     assert_eq!(snapshots.len(), 7);
     assert!(snapshots.iter().all(|s| s.rows.len() == 252));
     for np in ["2", "3"] {
-        std::fs::remove_file(dir.join("out.dump")).unwrap();
+        for f in ["out.dump", "start.data", "end.data", "end.dump"] {
+            std::fs::remove_file(dir.join(f)).unwrap();
+        }
         let out = mpirun(np, &["-sf", "fast", "-in", "in.bed", "-log", "none"]);
         let so = String::from_utf8_lossy(&out.stdout);
         assert!(
@@ -1001,6 +1010,23 @@ fn a_build_with_mpi_runs_on_ranks_and_refuses_the_rest() {
         let ranks = std::fs::read_to_string(dir.join("out.dump")).unwrap();
         let d = common::scale_deviation(&serial, &ranks);
         assert!(d <= 1e-10, "{np} ranks differ from one process by {d:e}");
+        // write_data before the runs: one process's bytes; write_dump after them: one
+        // process's within 1e-10; each written once by rank 0 (no other rank's temporary
+        // file left)
+        assert!(
+            written("start.data") == serial_start,
+            "{np} ranks: start.data"
+        );
+        let end = String::from_utf8(written("end.dump")).unwrap();
+        let d = common::scale_deviation(&serial_end, &end);
+        assert!(d <= 1e-10, "{np} ranks: end.dump differs by {d:e}");
+        assert!(String::from_utf8_lossy(&written("end.data")).contains("\n252 atoms\n"));
+        let temps = std::fs::read_dir(&dir)
+            .unwrap()
+            .flatten()
+            .filter(|e| e.file_name().to_string_lossy().contains("regolith-tmp"))
+            .count();
+        assert_eq!(temps, 0, "{np} ranks: temporary files left");
         // one restart file in the serial order; the % form: a base file with the rank
         // count and one file per rank, the same atoms
         assert_eq!(restart_ids(&dir.join("bed.restart")), serial_ids);

@@ -1,6 +1,7 @@
 //! What runs on more than one MPI rank (the first slice of the domain decomposition): a box
 //! with periodic, fixed and shrink-wrapped faces, particles from `create_atoms`, `read_data`
-//! or `read_restart` (set-up commands run identically on every rank), `write_restart` and `restart`, `pair_style gran`,
+//! or `read_restart` (set-up commands run identically on every rank), `write_restart`, `restart`,
+//! `write_data` and `write_dump custom` (by rank 0 alone), `pair_style gran`,
 //! `fix nve/sphere`, `nve`, `gravity`, primitive and mesh `wall/gran` (`mesh/surface`, `move/mesh`), `check/timestep/gran`, `property/global` and the
 //! per-particle force fixes below, insertion (`insert/pack`, `insert/rate/region`,
 //! `insert/stream` with sphere templates and discrete distributions), the computes below, `thermo` with the keywords below and
@@ -30,6 +31,10 @@ const COMMANDS: &[&str] = &[
     "write_restart",
     // the same files every N steps of a run, from every rank's particles gathered
     "restart",
+    // files by rank 0 alone from the whole set every rank holds between runs, as one
+    // process writes them
+    "write_data",
+    "write_dump",
     "lattice",
     "mass",
     "set",
@@ -161,7 +166,7 @@ const THERMO: &[&str] = &[
 
 /// What runs on more than one rank, as a refusal's help says it.
 pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic, \
-    fixed and shrink-wrapped faces, write_restart, restart, pair_style gran, fix nve/sphere, gravity, primitive and mesh wall/gran (mesh/surface, mesh/surface/planar, move/mesh), freeze, \
+    fixed and shrink-wrapped faces, write_restart, restart, write_data, write_dump custom, pair_style gran, fix nve/sphere, gravity, primitive and mesh wall/gran (mesh/surface, mesh/surface/planar, move/mesh), freeze, \
     setforce/addforce with constants, viscous, move and check/timestep/gran, insert/pack, \
     insert/rate/region and insert/stream with particletemplate/sphere and \
     particledistribution/discrete, shell, computes ke, \
@@ -211,6 +216,19 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
             // the rows of local computes, every rank's gathered
             Some(&"local") => None,
             Some(s) => Some(format!("dump {s}")),
+            None => None,
+        },
+        "write_dump" => match args.get(1) {
+            Some(&"custom") => {
+                let end = args
+                    .iter()
+                    .position(|a| *a == "modify")
+                    .unwrap_or(args.len());
+                let columns = args.get(3..end).unwrap_or(&[]);
+                let derived = columns.iter().find(|c| c.starts_with("f_"));
+                derived.map(|c| format!("write_dump custom column {c}"))
+            }
+            Some(s) => Some(format!("write_dump {s}")),
             None => None,
         },
         "thermo_style" => {

@@ -97,8 +97,18 @@ fn write_now(a: &Args, ctx: &mut Ctx, modify: usize) -> Result {
         .iter()
         .position(|d| d.id == ID)
         .expect("added above");
-    let mut vars = crate::lang::scope::RunVariables::new(&mut *ctx.vars, &mut *ctx.sys);
+    // on several ranks rank 0 alone evaluates and writes the snapshot, as in a run (every
+    // rank holds the whole set between runs)
+    let written = if ctx.sim.writes_files() {
+        let mut vars = crate::lang::scope::RunVariables::new(&mut *ctx.vars, &mut *ctx.sys);
+        ctx.sim
+            .write_single_dump(k, &mut vars)
+            .map_err(|e| e.to_string())
+    } else {
+        Ok(())
+    };
+    let name = a.word(2)?;
     ctx.sim
-        .write_single_dump(k, &mut vars)
+        .agree_on_file(written, name)
         .map_err(|m| a.error(2, &m))
 }

@@ -92,8 +92,16 @@ pub(super) fn write_data(a: &Args, ctx: &mut Ctx) -> Result {
         concat!("regolith ", env!("CARGO_PKG_VERSION")),
     );
     let path = ctx.sys.resolve(name).to_string_lossy().into_owned();
-    crate::io::write_atomically(&path, text.as_bytes())
-        .map_err(|e| a.file_error(0, format!("Cannot open data file {name}: {e}")))
+    // on several ranks rank 0 alone writes (every rank holds the whole set between runs)
+    let written = if ctx.sim.writes_files() {
+        crate::io::write_atomically(&path, text.as_bytes())
+            .map_err(|e| format!("Cannot open data file {name}: {e}"))
+    } else {
+        Ok(())
+    };
+    ctx.sim
+        .agree_on_file(written, name)
+        .map_err(|m| a.file_error(0, m))
 }
 
 /// `read_restart FILE` (a `*` picks the largest step, a `%` the multi-file form).

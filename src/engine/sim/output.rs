@@ -59,6 +59,27 @@ impl Simulation {
         }
     }
 
+    /// Whether this process writes the files of commands run between runs (`write_data`,
+    /// `write_dump`): one process, or rank 0 of several (every rank holds the whole set
+    /// between runs, so rank 0's file is the one one process writes).
+    pub fn writes_files(&self) -> bool {
+        self.comm.as_ref().is_none_or(|c| c.rank() == 0)
+    }
+
+    /// The outcome of a file only rank 0 wrote (`Ok` on the others), agreed by every rank:
+    /// rank 0's failure fails them all. One process: `written` itself.
+    pub fn agree_on_file(&self, written: Result<(), String>, name: &str) -> Result<(), String> {
+        let Some(comm) = self.comm.as_ref().filter(|c| c.size() > 1) else {
+            return written;
+        };
+        let failed =
+            comm.all_reduce_i64(i64::from(written.is_err()), crate::util::comm::Reduce::Max);
+        match written {
+            Ok(()) if failed > 0 => Err(format!("Cannot write {name}: rank 0 could not write it")),
+            other => other,
+        }
+    }
+
     /// The `restart` command's files, due at multiples of its interval (not at setup).
     pub(super) fn periodic_restart(&mut self) -> Result<(), EngineError> {
         let paths = self.restart_paths_due();

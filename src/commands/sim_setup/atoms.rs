@@ -106,7 +106,7 @@ impl NewAtoms {
         }
         let mut rng = crate::util::random::RanPark::new(seed as i32).map_err(|m| a.error(3, &m))?;
         too_many_atoms(count as f64, next_id, "atoms requested")
-            .map_err(|e| a.error(2, &e.to_string()))?;
+            .map_err(|e| a.error(2, e.to_string()))?;
         if ctx.sys.mode == Mode::Check && count as f64 > CHECK_BUILD_LIMIT {
             // a dry run validates the count but does not build the atoms
             ctx.sim.inserts_atoms = true;
@@ -224,7 +224,7 @@ impl NewAtoms {
         };
         let points = bounds.iter().map(|(l, h)| h - l + 1.0).product::<f64>() * basis.len() as f64;
         too_many_atoms(points, next_id, "lattice points in the box")
-            .map_err(|e| a.error(1, &e.to_string()))?;
+            .map_err(|e| a.error(1, e.to_string()))?;
         if ctx.sys.mode == Mode::Check && points > CHECK_BUILD_LIMIT {
             // a dry run validates the count but does not build the atoms
             ctx.sim.inserts_atoms = true;

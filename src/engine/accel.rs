@@ -106,6 +106,9 @@ pub struct Accel {
     /// The fast path's team for a run's per-step stages (made at the first run that has
     /// more than one thread; its size follows the thread count).
     team: Option<Arc<crate::util::team::Team>>,
+    /// Whether a small run's stages go to the team, measured and kept from run to run (a
+    /// deck's runs one after the other are mostly the same scene).
+    pub tuner: crate::util::tuner::Tuner,
 }
 
 impl std::fmt::Debug for Accel {

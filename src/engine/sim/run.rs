@@ -74,19 +74,25 @@ impl Simulation {
     ) -> Result<(), EngineError> {
         use crate::util::tuner::{Tuner, TUNE_BELOW};
         let team = crate::util::team::is_active();
-        let mut tuner = Tuner::default();
+        // the last run's choice and schedule carry on (a deck's runs are mostly one scene)
+        let mut tuner: Tuner = std::mem::take(&mut self.accel.tuner);
+        let mut result = Ok(());
         for _ in 0..nsteps {
             if !team || self.particles.len() >= TUNE_BELOW {
                 crate::util::team::hold(false);
-                self.step_once(last, out, vars)?;
-                continue;
+                result = self.step_once(last, out, vars);
+            } else {
+                crate::util::team::hold(tuner.alone());
+                let clock = std::time::Instant::now();
+                result = self.step_once(last, out, vars);
+                tuner.record(clock.elapsed().as_secs_f64());
             }
-            crate::util::team::hold(tuner.alone());
-            let clock = std::time::Instant::now();
-            self.step_once(last, out, vars)?;
-            tuner.record(clock.elapsed().as_secs_f64());
+            if result.is_err() {
+                break;
+            }
         }
-        Ok(())
+        self.accel.tuner = tuner;
+        result
     }
 
     /// LIGGGHTS's `init` of a run of `nsteps`: the pair style, models and fixes checked

@@ -89,6 +89,40 @@ pub struct AveSpatial {
     maxbin: usize,
 }
 
+/// LIGGGHTS's layer bounds along one axis (lower end of the first layer, upper end of the
+/// last): whole layers of `delta` from the origin out past the box's faces `blo`, `bhi`
+/// (all in the axis's length unit, or reduced).
+fn layer_bounds(origin: Origin, delta: f64, blo: f64, bhi: f64) -> (f64, f64) {
+    let inv = 1.0 / delta;
+    let o = match origin {
+        Origin::Lower => blo,
+        Origin::Upper => bhi,
+        Origin::Center => 0.5 * (blo + bhi),
+        Origin::Coord(c) => c,
+    };
+    let lo = if o < blo {
+        o + ((blo - o) * inv) as i32 as f64 * delta
+    } else {
+        let lo = o - ((o - blo) * inv) as i32 as f64 * delta;
+        if lo > blo {
+            lo - delta
+        } else {
+            lo
+        }
+    };
+    let hi = if o < bhi {
+        let hi = o + ((bhi - o) * inv) as i32 as f64 * delta;
+        if hi < bhi {
+            hi + delta
+        } else {
+            hi
+        }
+    } else {
+        o - ((o - bhi) * inv) as i32 as f64 * delta
+    };
+    (lo, hi)
+}
+
 impl AveSpatial {
     /// A fix defined at `step`.
     pub fn new(set: SpatialSettings, step: i64) -> AveSpatial {
@@ -153,34 +187,8 @@ impl AveSpatial {
         self.offset.clear();
         self.nlayers.clear();
         for &(axis, origin, delta) in &self.set.dims {
+            let (lo, hi) = layer_bounds(origin, delta, lo_box[axis], hi_box[axis]);
             let inv = 1.0 / delta;
-            let (blo, bhi) = (lo_box[axis], hi_box[axis]);
-            let o = match origin {
-                Origin::Lower => blo,
-                Origin::Upper => bhi,
-                Origin::Center => 0.5 * (blo + bhi),
-                Origin::Coord(c) => c,
-            };
-            let lo = if o < blo {
-                o + ((blo - o) * inv) as i32 as f64 * delta
-            } else {
-                let lo = o - ((o - blo) * inv) as i32 as f64 * delta;
-                if lo > blo {
-                    lo - delta
-                } else {
-                    lo
-                }
-            };
-            let hi = if o < bhi {
-                let hi = o + ((bhi - o) * inv) as i32 as f64 * delta;
-                if hi < bhi {
-                    hi + delta
-                } else {
-                    hi
-                }
-            } else {
-                o - ((o - bhi) * inv) as i32 as f64 * delta
-            };
             self.offset.push(lo);
             self.nlayers.push(((hi - lo) * inv + 0.5) as i32 as usize);
             self.bin_volume *= delta / prd[axis];

@@ -194,6 +194,25 @@ pub fn trade_lines(frac: f64) -> String {
             pct(100.0 * largest)
         ));
     }
+    s.push_str(&observable_lines(&exact));
+    // statistical observables do not resolve a time-step error below their spread: they are
+    // quoted, but do not set the fastest setting
+    let smallest = |set: &[TradeAt]| {
+        set.iter()
+            .filter(|x| x.spread == 0.0)
+            .map(|x| x.within.unwrap_or(0.0))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let (best_exact, best_fast) = (smallest(&exact), smallest(&fast));
+    if best_exact > 0.0 && best_exact.is_finite() {
+        s.push_str(&fastest_line(&rows, &exact, frac, best_exact, best_fast));
+    }
+    s
+}
+
+/// The study's errors per observable at the deck's step, and the largest step within the
+/// tolerance per observable.
+fn observable_lines(exact: &[TradeAt]) -> String {
     let words: Vec<String> = exact
         .iter()
         .map(|t| {
@@ -211,7 +230,7 @@ pub fn trade_lines(frac: f64) -> String {
             }
         })
         .collect();
-    s.push_str(&format!("    {}\n", words.join(", ")));
+    let mut s = format!("    {}\n", words.join(", "));
     let each: Vec<String> = exact
         .iter()
         .map(|t| {
@@ -231,51 +250,52 @@ pub fn trade_lines(frac: f64) -> String {
         pct(100.0 * TRADE_TOLERANCE),
         each.join(", ")
     ));
-    // statistical observables do not resolve a time-step error below their spread: they are
-    // quoted, but do not set the fastest setting
-    let smallest = |set: &[TradeAt]| {
-        set.iter()
-            .filter(|x| x.spread == 0.0)
-            .map(|x| x.within.unwrap_or(0.0))
-            .fold(f64::INFINITY, f64::min)
-    };
-    let (best_exact, best_fast) = (smallest(&exact), smallest(&fast));
-    if best_exact > 0.0 && best_exact.is_finite() {
-        // the fast path's errors in the study, against the exact path's at the same step
-        let same = rows.iter().filter(|r| r.fast && r.spread == 0.0).all(|r| {
-            rows.iter().any(|x| {
-                !x.fast
-                    && (x.scene, x.observable, x.frac) == (r.scene, r.observable, r.frac)
-                    && x.error == r.error
-            })
-        });
-        let (best, path) = if best_fast >= best_exact && same {
-            (
-                best_fast,
-                ", -sf fast (the study's fast-path errors are the exact path's)",
-            )
-        } else if best_fast >= best_exact {
-            (best_fast, ", -sf fast")
-        } else {
-            (best_exact, " on the exact path")
-        };
-        let gain = if best > frac * (1.0 + 1e-9) {
-            format!(" ({} this deck's)", times(best / frac))
-        } else {
-            String::new()
-        };
-        let aside = if exact.iter().any(|t| t.spread > 0.0) {
-            " (the statistical ones aside)"
-        } else {
-            ""
-        };
-        s.push_str(&format!(
-            "  fastest setting within {} for all of them{aside}: dt = {} of the Rayleigh time{gain}{path}\n",
-            pct(100.0 * TRADE_TOLERANCE),
-            pct(100.0 * best),
-        ));
-    }
     s
+}
+
+/// The fastest setting (time step, engine path) that keeps every deterministic observable
+/// within the tolerance: `best_exact` and `best_fast` are each path's largest fraction of
+/// the Rayleigh time.
+fn fastest_line(
+    rows: &[TradeRow],
+    exact: &[TradeAt],
+    frac: f64,
+    best_exact: f64,
+    best_fast: f64,
+) -> String {
+    // the fast path's errors in the study, against the exact path's at the same step
+    let same = rows.iter().filter(|r| r.fast && r.spread == 0.0).all(|r| {
+        rows.iter().any(|x| {
+            !x.fast
+                && (x.scene, x.observable, x.frac) == (r.scene, r.observable, r.frac)
+                && x.error == r.error
+        })
+    });
+    let (best, path) = if best_fast >= best_exact && same {
+        (
+            best_fast,
+            ", -sf fast (the study's fast-path errors are the exact path's)",
+        )
+    } else if best_fast >= best_exact {
+        (best_fast, ", -sf fast")
+    } else {
+        (best_exact, " on the exact path")
+    };
+    let gain = if best > frac * (1.0 + 1e-9) {
+        format!(" ({} this deck's)", times(best / frac))
+    } else {
+        String::new()
+    };
+    let aside = if exact.iter().any(|t| t.spread > 0.0) {
+        " (the statistical ones aside)"
+    } else {
+        ""
+    };
+    format!(
+        "  fastest setting within {} for all of them{aside}: dt = {} of the Rayleigh time{gain}{path}\n",
+        pct(100.0 * TRADE_TOLERANCE),
+        pct(100.0 * best),
+    )
 }
 
 fn times(x: f64) -> String {

@@ -264,33 +264,8 @@ impl Regions {
                 Shape::Block { lo, hi }
             }
             "cylinder" | "cone" => cylinder_or_cone(style, geometry, scale, &coord, &mut plain)?,
-            "sphere" => {
-                let mut centre = [0.0; 3];
-                for d in 0..3 {
-                    centre[d] = scale[d] * numeric(geometry[d])?;
-                }
-                let radius = plain(geometry[3], scale[0])?;
-                if radius < 0.0 {
-                    return Err("Illegal region sphere command".into());
-                }
-                Shape::Sphere { centre, radius }
-            }
-            "plane" => {
-                let mut point = [0.0; 3];
-                let mut normal = [0.0; 3];
-                for d in 0..3 {
-                    point[d] = scale[d] * numeric(geometry[d])?;
-                    normal[d] = scale[d] * numeric(geometry[3 + d])?;
-                }
-                let rsq = normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2];
-                if rsq == 0.0 {
-                    return Err("Illegal region plane command".into());
-                }
-                for n in &mut normal {
-                    *n /= rsq.sqrt();
-                }
-                Shape::Plane { point, normal }
-            }
+            "sphere" => sphere(geometry, scale, &mut plain)?,
+            "plane" => plane(geometry, scale)?,
             "prism" => prism(geometry, scale, &coord)?,
             _ => {
                 let mut members = Vec::new();
@@ -685,6 +660,38 @@ fn cylinder_or_cone(
 
 /// `prism XLO XHI YLO YHI ZLO ZHI XY XZ YZ` (length): the box and the inverse of its
 /// triangular shape matrix.
+/// A `sphere` region's shape: centre (scaled by the lattice), radius (a number or v_name,
+/// the variable read later).
+fn sphere(geometry: &[&str], scale: [f64; 3], plain: &mut Plain) -> Result<Shape, EngineError> {
+    let mut centre = [0.0; 3];
+    for d in 0..3 {
+        centre[d] = scale[d] * numeric(geometry[d])?;
+    }
+    let radius = plain(geometry[3], scale[0])?;
+    if radius < 0.0 {
+        return Err("Illegal region sphere command".into());
+    }
+    Ok(Shape::Sphere { centre, radius })
+}
+
+/// A `plane` region's shape: a point and the unit normal (both scaled by the lattice).
+fn plane(geometry: &[&str], scale: [f64; 3]) -> Result<Shape, EngineError> {
+    let mut point = [0.0; 3];
+    let mut normal = [0.0; 3];
+    for d in 0..3 {
+        point[d] = scale[d] * numeric(geometry[d])?;
+        normal[d] = scale[d] * numeric(geometry[3 + d])?;
+    }
+    let rsq = normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2];
+    if rsq == 0.0 {
+        return Err("Illegal region plane command".into());
+    }
+    for n in &mut normal {
+        *n /= rsq.sqrt();
+    }
+    Ok(Shape::Plane { point, normal })
+}
+
 fn prism(geometry: &[&str], scale: [f64; 3], coord: &Coord) -> Result<Shape, EngineError> {
     let mut lo = [0.0; 3];
     let mut hi = [0.0; 3];

@@ -394,6 +394,57 @@ impl Simulation {
         )?)
     }
 
+    /// The restart file's pair style entry: the granular model's hash and one flag per
+    /// type pair (None without a hashed granular model).
+    fn pair_restart_entry(&self) -> Option<(String, Vec<u8>)> {
+        if let Some(sel) = &self.pair_selection {
+            if let Some(hash) = model_hash(
+                &sel.normal,
+                &sel.tangential,
+                &sel.cohesion,
+                &sel.rolling,
+                &sel.surface,
+            ) {
+                let n = self.ntypes as usize;
+                let mut raw = Vec::with_capacity(8 + 4 * (n * (n + 1) / 2));
+                raw.extend_from_slice(&hash.to_le_bytes());
+                for _ in 0..n * (n + 1) / 2 {
+                    raw.extend_from_slice(&1i32.to_le_bytes());
+                }
+                return Some(("gran".into(), raw));
+            }
+        }
+        None
+    }
+
+    /// The per-atom values written to a restart file as `property/atom` fixes: primitive
+    /// walls' contact history (when their model keeps one) and `fix property/atom` values
+    /// with restart `yes`.
+    fn restarted_per_atom(&self) -> Vec<&crate::engine::particles::PerAtom> {
+        let wall_history = |e: &crate::engine::particles::PerAtom| {
+            // LIGGGHTS keeps a primitive wall's history only when its model has one
+            e.width > 0
+                && self.fixes.iter().any(|f| {
+                    f.kind
+                        .primitive_wall()
+                        .is_some_and(|w| w.history_name == e.name)
+                })
+        };
+        let kept_property = |e: &crate::engine::particles::PerAtom| {
+            // property/atom fixes with restart `yes` (the heat fixes' Temp too)
+            self.fixes.iter().any(|f| {
+                f.kind
+                    .property_atom()
+                    .is_some_and(|pa| pa.restart && f.id == e.name && pa.defaults.len() == e.width)
+            })
+        };
+        self.particles
+            .extra
+            .iter()
+            .filter(|e| wall_history(e) || kept_property(e))
+            .collect()
+    }
+
     /// This simulation as a restart file LIGGGHTS 3.8.0 reads, with pair history from
     /// [`Simulation::contact_partners`].
     pub fn to_restart(&self, partners: &HashMap<i64, Vec<(i64, Vec<f64>)>>) -> Restart {
@@ -416,23 +467,7 @@ impl Simulation {
             .collect();
         r.ngroup = r.groups.iter().filter(|g| g.is_some()).count() as i32;
         let width = self.pair.as_ref().map_or(0, |p| p.history_width());
-        if let Some(sel) = &self.pair_selection {
-            if let Some(hash) = model_hash(
-                &sel.normal,
-                &sel.tangential,
-                &sel.cohesion,
-                &sel.rolling,
-                &sel.surface,
-            ) {
-                let n = self.ntypes as usize;
-                let mut raw = Vec::with_capacity(8 + 4 * (n * (n + 1) / 2));
-                raw.extend_from_slice(&hash.to_le_bytes());
-                for _ in 0..n * (n + 1) / 2 {
-                    raw.extend_from_slice(&1i32.to_le_bytes());
-                }
-                r.pair = Some(("gran".into(), raw));
-            }
-        }
+        r.pair = self.pair_restart_entry();
         // fix states in fix order (templates, distributions, meshes, insertion, release
         // data), then wall histories of existing walls, then the pair contact history
         let (globals, release) = self.fix_restart_entries();
@@ -441,16 +476,7 @@ impl Simulation {
             r.peratom_fixes.push(header.clone());
         }
         let p = &self.particles;
-        let walls: Vec<&crate::engine::particles::PerAtom> = p
-            .extra
-            .iter()
-            .filter(|e| {
-                // LIGGGHTS keeps a primitive wall's history only when its model has one
-                (e.width > 0 && self.fixes.iter().any(|f| f.kind.primitive_wall().is_some_and(|w| w.history_name == e.name)))
-                    // property/atom fixes with restart `yes` (the heat fixes' Temp too)
-                    || self.fixes.iter().any(|f| f.kind.property_atom().is_some_and(|pa| pa.restart && f.id == e.name && pa.defaults.len() == e.width))
-            })
-            .collect();
+        let walls = self.restarted_per_atom();
         for w in &walls {
             r.global_fixes.push(GlobalFix {
                 id: w.name.clone(),

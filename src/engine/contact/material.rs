@@ -404,28 +404,10 @@ impl Bases {
     /// Create one base value with LIGGGHTS's checks, unless it exists already.
     fn create(&mut self, inp: &MaterialInput, base: Base, caller: &str) -> Result<(), EngineError> {
         let si = inp.units == UnitStyle::Si;
-        let cgs = inp.units == UnitStyle::Cgs;
         match base {
             Base::Youngs if self.youngs.is_none() => {
                 let v = inp.per_type(&inp.youngs_modulus, base, caller)?;
-                for &y in &v {
-                    if !inp.soft_particles {
-                        if si && y < 5e6 {
-                            return Err("youngsModulus >= 5e6 required for SI units (use command 'soft_particles yes' to override)".into());
-                        }
-                        if cgs && y < 5e7 {
-                            return Err("youngsModulus >= 5e7 required for CGS units (use command 'soft_particles yes' to override)".into());
-                        }
-                    }
-                    if !inp.hard_particles {
-                        if si && y > 1e9 {
-                            return Err("youngsModulus <= 1e9 required for SI units (use command 'hard_particles yes' to override)".into());
-                        }
-                        if cgs && y > 1e10 {
-                            return Err("youngsModulus <= 1e10 required for CGS units (use command 'hard_particles yes' to override)".into());
-                        }
-                    }
-                }
+                youngs_limits(inp, &v)?;
                 self.youngs = Some(v);
             }
             Base::Poisson if self.poisson.is_none() => {
@@ -437,15 +419,7 @@ impl Bases {
             }
             Base::Restitution if self.restitution.is_none() => {
                 let v = inp.per_pair(&inp.coefficient_restitution, base, caller)?;
-                for &e in &v {
-                    if inp.allow_zero_restitution {
-                        if e < 0.0 || e > 1.0 {
-                            return Err("0 <= coefficientRestitution <= 1 required (regolith extension -zero_restitution)".into());
-                        }
-                    } else if e <= 0.05 || e > 1.0 {
-                        return Err("0.05 < coefficientRestitution <= 1 required (regolith: run with -zero_restitution to allow values down to 0)".into());
-                    }
-                }
+                restitution_limits(inp, &v)?;
                 self.restitution = Some(v);
             }
             Base::CharVel if self.char_vel.is_none() => {
@@ -530,6 +504,47 @@ impl Bases {
         }
         Ok(())
     }
+}
+
+/// LIGGGHTS's bounds on Young's moduli `v` (Pa, or barye in cgs) for the deck's units,
+/// unless `soft_particles` / `hard_particles` lift them.
+fn youngs_limits(inp: &MaterialInput, v: &[f64]) -> Result<(), EngineError> {
+    let si = inp.units == UnitStyle::Si;
+    let cgs = inp.units == UnitStyle::Cgs;
+    for &y in v {
+        if !inp.soft_particles {
+            if si && y < 5e6 {
+                return Err("youngsModulus >= 5e6 required for SI units (use command 'soft_particles yes' to override)".into());
+            }
+            if cgs && y < 5e7 {
+                return Err("youngsModulus >= 5e7 required for CGS units (use command 'soft_particles yes' to override)".into());
+            }
+        }
+        if !inp.hard_particles {
+            if si && y > 1e9 {
+                return Err("youngsModulus <= 1e9 required for SI units (use command 'hard_particles yes' to override)".into());
+            }
+            if cgs && y > 1e10 {
+                return Err("youngsModulus <= 1e10 required for CGS units (use command 'hard_particles yes' to override)".into());
+            }
+        }
+    }
+    Ok(())
+}
+
+/// LIGGGHTS's bounds on restitution coefficients `v` (regolith's -zero_restitution allows
+/// values down to 0).
+fn restitution_limits(inp: &MaterialInput, v: &[f64]) -> Result<(), EngineError> {
+    for &e in v {
+        if inp.allow_zero_restitution {
+            if e < 0.0 || e > 1.0 {
+                return Err("0 <= coefficientRestitution <= 1 required (regolith extension -zero_restitution)".into());
+            }
+        } else if e <= 0.05 || e > 1.0 {
+            return Err("0.05 < coefficientRestitution <= 1 required (regolith: run with -zero_restitution to allow values down to 0)".into());
+        }
+    }
+    Ok(())
 }
 
 /// LIGGGHTS's `Yeff` mixing of two types.

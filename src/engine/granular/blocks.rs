@@ -200,6 +200,114 @@ impl batch::Sink for BlockSums<'_> {
     }
 }
 
+/// One block's work: its list entries, its touching entries (buffer), its entries'
+/// history and its sums.
+type BlockJob<'a> = (
+    std::ops::Range<usize>,
+    &'a mut Vec<u32>,
+    &'a mut [f64],
+    BlockSums<'a>,
+);
+
+/// Cut forces, torques, history and (when tallied) virials into the blocks' jobs: block `b`
+/// owns particles `b * BLOCK_PARTICLES..` and list entries `starts[b]..starts[b + 1]`.
+#[allow(clippy::too_many_arguments)]
+fn block_jobs<'a>(
+    x: &'a [[f64; 3]],
+    mut f: &'a mut [[f64; 3]],
+    mut t: &'a mut [[f64; 3]],
+    mut h: &'a mut [f64],
+    virial: Option<&'a mut [[f64; 6]]>,
+    width: usize,
+    starts: &[u32],
+    parts: &'a mut [Vec<u32>],
+    foreign: &'a mut [Owed],
+) -> Vec<BlockJob<'a>> {
+    let tally = virial.is_some();
+    let mut w: &mut [[f64; 6]] = virial.unwrap_or_default();
+    let mut jobs = Vec::with_capacity(parts.len());
+    for (b, (touch, out)) in parts.iter_mut().zip(foreign.iter_mut()).enumerate() {
+        let own = BLOCK_PARTICLES.min(f.len());
+        let (fb, rest) = std::mem::take(&mut f).split_at_mut(own);
+        f = rest;
+        let (tb, rest) = std::mem::take(&mut t).split_at_mut(own);
+        t = rest;
+        let (s, e) = (starts[b] as usize, starts[b + 1] as usize);
+        let (hb, rest) = std::mem::take(&mut h).split_at_mut((e - s) * width);
+        h = rest;
+        let virial = if tally {
+            let (wb, rest) = std::mem::take(&mut w).split_at_mut(own);
+            w = rest;
+            Some((x, wb))
+        } else {
+            None
+        };
+        let sums = BlockSums {
+            lo: b * BLOCK_PARTICLES,
+            f: fb,
+            torque: tb,
+            virial,
+            foreign: out,
+            worst: None,
+        };
+        jobs.push((s..e, touch, hb, sums));
+    }
+    jobs
+}
+
+/// Add what the blocks owe each other's particles: each block adds the contributions to
+/// its particles in block order (blocks on the engine's threads when `parallel`).
+fn add_owed(
+    foreign: &[Owed],
+    f: &mut [[f64; 3]],
+    torque: &mut [[f64; 3]],
+    virial: Option<&mut [[f64; 6]]>,
+    parallel: bool,
+) {
+    let owed = |(t, (f, torque, mut w)): (usize, BlockForces)| {
+        let lo = (t * BLOCK_PARTICLES) as u32;
+        for out in foreign {
+            let half = out.virial_to_block(t);
+            for (n, c) in out.to_block(t).iter().enumerate() {
+                let k = (c.j - lo) as usize;
+                for d in 0..3 {
+                    f[k][d] += c.f[d];
+                    torque[k][d] += c.t[d];
+                }
+                if let (Some(w), Some(h)) = (w.as_deref_mut(), half.get(n)) {
+                    add6(&mut w[k], h);
+                }
+            }
+        }
+    };
+    match virial {
+        _ if parallel => {
+            let n = f.len();
+            let (fs, ts) = (Shards::new(f), Shards::new(torque));
+            let ws = virial.map(Shards::new);
+            crate::util::team::stage_chunks(n, BLOCK_PARTICLES, true, |t, r| {
+                // SAFETY: each task takes its own block's particles
+                let (f, torque) = unsafe { (fs.range(r.clone()), ts.range(r.clone())) };
+                let w = ws.as_ref().map(|w| unsafe { w.range(r.clone()) });
+                owed((t, (f, torque, w)));
+            });
+        }
+        Some(w) => f
+            .chunks_mut(BLOCK_PARTICLES)
+            .zip(torque.chunks_mut(BLOCK_PARTICLES))
+            .zip(w.chunks_mut(BLOCK_PARTICLES))
+            .map(|((f, t), w)| (f, t, Some(w)))
+            .enumerate()
+            .for_each(owed),
+        None => f
+            .chunks_mut(BLOCK_PARTICLES)
+            .zip(torque.chunks_mut(BLOCK_PARTICLES))
+            .map(|(f, t)| (f, t, None))
+            .enumerate()
+            .for_each(owed),
+    }
+}
+
 impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> PairGran<N, T, C, R> {
     /// The fast path's pair pass ([`SumOrder::Blocks`]): each block of particles finds and
     /// computes its touching entries and adds them to its own particles (blocks on the
@@ -225,46 +333,19 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         let mut foreign = std::mem::take(&mut self.foreign);
         foreign.resize_with(blocks, Owed::default);
         // each block owns its particles' forces, its entries' history and its buffers
-        let mut jobs = Vec::with_capacity(blocks);
-        let tally = virial.is_some();
-        {
-            let x = &p.x[..];
-            let (mut f, mut t, mut h) = (&mut p.f[..], &mut p.torque[..], &mut history[..]);
-            let mut w: &mut [[f64; 6]] = virial.as_deref_mut().unwrap_or_default();
-            for (b, (touch, out)) in parts.iter_mut().zip(foreign.iter_mut()).enumerate() {
-                let own = BLOCK_PARTICLES.min(f.len());
-                let (fb, rest) = std::mem::take(&mut f).split_at_mut(own);
-                f = rest;
-                let (tb, rest) = std::mem::take(&mut t).split_at_mut(own);
-                t = rest;
-                let (s, e) = (starts[b] as usize, starts[b + 1] as usize);
-                let (hb, rest) = std::mem::take(&mut h).split_at_mut((e - s) * width);
-                h = rest;
-                let virial = if tally {
-                    let (wb, rest) = std::mem::take(&mut w).split_at_mut(own);
-                    w = rest;
-                    Some((x, wb))
-                } else {
-                    None
-                };
-                let sums = BlockSums {
-                    lo: b * BLOCK_PARTICLES,
-                    f: fb,
-                    torque: tb,
-                    virial,
-                    foreign: out,
-                    worst: None,
-                };
-                jobs.push((s..e, touch, hb, sums));
-            }
-        }
+        let jobs = block_jobs(
+            &p.x,
+            &mut p.f,
+            &mut p.torque,
+            history,
+            virial.as_deref_mut(),
+            width,
+            starts,
+            &mut parts,
+            &mut foreign,
+        );
         let kinds = &p.kind;
-        let run = |(range, touch, h, mut sums): (
-            std::ops::Range<usize>,
-            &mut Vec<u32>,
-            &mut [f64],
-            BlockSums,
-        )| {
+        let run = |(range, touch, h, mut sums): BlockJob| {
             let part = &pairs[range];
             sums.f.fill([0.0; 3]);
             sums.torque.fill([0.0; 3]);
@@ -292,52 +373,9 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
         } else {
             jobs.into_iter().map(run).collect()
         };
-        // contributions between blocks: each block adds what the others owe its particles,
-        // in block order (blocks in parallel; the same sums as one pass over the lists)
+        // contributions between blocks (the same sums as one pass over the lists)
         if foreign.iter().any(|out| !out.made.is_empty()) {
-            let owed = |(t, (f, torque, mut w)): (usize, BlockForces)| {
-                let lo = (t * BLOCK_PARTICLES) as u32;
-                for out in &foreign {
-                    let half = out.virial_to_block(t);
-                    for (n, c) in out.to_block(t).iter().enumerate() {
-                        let k = (c.j - lo) as usize;
-                        for d in 0..3 {
-                            f[k][d] += c.f[d];
-                            torque[k][d] += c.t[d];
-                        }
-                        if let (Some(w), Some(h)) = (w.as_deref_mut(), half.get(n)) {
-                            add6(&mut w[k], h);
-                        }
-                    }
-                }
-            };
-            let (f, torque) = (&mut p.f, &mut p.torque);
-            match virial {
-                _ if parallel => {
-                    let n = f.len();
-                    let (fs, ts) = (Shards::new(f), Shards::new(torque));
-                    let ws = virial.map(Shards::new);
-                    crate::util::team::stage_chunks(n, BLOCK_PARTICLES, true, |t, r| {
-                        // SAFETY: each task takes its own block's particles
-                        let (f, torque) = unsafe { (fs.range(r.clone()), ts.range(r.clone())) };
-                        let w = ws.as_ref().map(|w| unsafe { w.range(r.clone()) });
-                        owed((t, (f, torque, w)));
-                    });
-                }
-                Some(w) => f
-                    .chunks_mut(BLOCK_PARTICLES)
-                    .zip(torque.chunks_mut(BLOCK_PARTICLES))
-                    .zip(w.chunks_mut(BLOCK_PARTICLES))
-                    .map(|((f, t), w)| (f, t, Some(w)))
-                    .enumerate()
-                    .for_each(owed),
-                None => f
-                    .chunks_mut(BLOCK_PARTICLES)
-                    .zip(torque.chunks_mut(BLOCK_PARTICLES))
-                    .map(|(f, t)| (f, t, None))
-                    .enumerate()
-                    .for_each(owed),
-            }
+            add_owed(&foreign, &mut p.f, &mut p.torque, virial, parallel);
         }
         // the worst overlap, first in block order among equals
         self.worst = worst.into_iter().fold(None, later_worst);

@@ -315,61 +315,7 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             self.worst = worst_of_parts.into_iter().fold(None, later_worst);
         }
         // each particle adds its contacts: as second particle, then its own block
-        let (slot_r, results_r) = (&slot, &results);
-        let x = &p.x;
-        let per = p.len().div_ceil(threads * 8).max(256);
-        let add = |i: usize, f: &mut [f64; 3], t: &mut [f64; 3], w: Option<&mut [f64; 6]>| {
-            let mut w = w;
-            let seconds =
-                &inc.second[inc.second_start[i] as usize..inc.second_start[i + 1] as usize];
-            // as second particle (the j side of each result), then its own block (the i side)
-            let entries = seconds
-                .iter()
-                .map(|&e| (e as usize, true))
-                .chain((inc.first[i]..inc.first[i + 1]).map(|e| (e as usize, false)));
-            for (e, second) in entries {
-                let s = slot_r[e];
-                if s == u32::MAX {
-                    continue;
-                }
-                let r = &results_r[s as usize];
-                let (rf, rt) = if second {
-                    (&r.fj, &r.tj)
-                } else {
-                    (&r.fi, &r.ti)
-                };
-                for d in 0..3 {
-                    f[d] += rf[d];
-                    t[d] += rt[d];
-                }
-                if let Some(w) = w.as_deref_mut() {
-                    add_virial(x, &pairs[e], r, w);
-                }
-            }
-        };
-        match virial {
-            Some(vir) => {
-                p.f.par_chunks_mut(per)
-                    .zip(p.torque.par_chunks_mut(per))
-                    .zip(vir.par_chunks_mut(per))
-                    .enumerate()
-                    .for_each(|(c, ((f, t), w))| {
-                        for k in 0..f.len() {
-                            add(c * per + k, &mut f[k], &mut t[k], Some(&mut w[k]));
-                        }
-                    })
-            }
-            None => {
-                p.f.par_chunks_mut(per)
-                    .zip(p.torque.par_chunks_mut(per))
-                    .enumerate()
-                    .for_each(|(c, (f, t))| {
-                        for k in 0..f.len() {
-                            add(c * per + k, &mut f[k], &mut t[k], None);
-                        }
-                    })
-            }
-        }
+        gather_sums(p, pairs, inc, &slot, &results, virial, threads);
         self.results = results;
         self.slot = slot;
         self.touching.clear();
@@ -378,6 +324,73 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel> Pair
             self.touching.extend(part.iter().map(|&k| base + k));
         }
         self.parts = parts;
+    }
+}
+
+/// Each particle's sums from the computed contacts (`results`, at `slot` per list entry,
+/// u32::MAX: apart): its entries as second particle, then its own, in list order (particles
+/// in parallel parts).
+fn gather_sums(
+    p: &mut Particles,
+    pairs: &[Pair],
+    inc: &Incidence,
+    slot: &[u32],
+    results: &[PairResult],
+    virial: Option<&mut [[f64; 6]]>,
+    threads: usize,
+) {
+    let x = &p.x;
+    let per = p.len().div_ceil(threads * 8).max(256);
+    let add = |i: usize, f: &mut [f64; 3], t: &mut [f64; 3], w: Option<&mut [f64; 6]>| {
+        let mut w = w;
+        let seconds = &inc.second[inc.second_start[i] as usize..inc.second_start[i + 1] as usize];
+        // as second particle (the j side of each result), then its own block (the i side)
+        let entries = seconds
+            .iter()
+            .map(|&e| (e as usize, true))
+            .chain((inc.first[i]..inc.first[i + 1]).map(|e| (e as usize, false)));
+        for (e, second) in entries {
+            let s = slot[e];
+            if s == u32::MAX {
+                continue;
+            }
+            let r = &results[s as usize];
+            let (rf, rt) = if second {
+                (&r.fj, &r.tj)
+            } else {
+                (&r.fi, &r.ti)
+            };
+            for d in 0..3 {
+                f[d] += rf[d];
+                t[d] += rt[d];
+            }
+            if let Some(w) = w.as_deref_mut() {
+                add_virial(x, &pairs[e], r, w);
+            }
+        }
+    };
+    match virial {
+        Some(vir) => {
+            p.f.par_chunks_mut(per)
+                .zip(p.torque.par_chunks_mut(per))
+                .zip(vir.par_chunks_mut(per))
+                .enumerate()
+                .for_each(|(c, ((f, t), w))| {
+                    for k in 0..f.len() {
+                        add(c * per + k, &mut f[k], &mut t[k], Some(&mut w[k]));
+                    }
+                })
+        }
+        None => {
+            p.f.par_chunks_mut(per)
+                .zip(p.torque.par_chunks_mut(per))
+                .enumerate()
+                .for_each(|(c, (f, t))| {
+                    for k in 0..f.len() {
+                        add(c * per + k, &mut f[k], &mut t[k], None);
+                    }
+                })
+        }
     }
 }
 

@@ -533,8 +533,11 @@ fn bench(cmd: Command) -> ExitCode {
                 .map_err(|e| regolith::tool_error::ToolError::Run(e.to_string()))?;
             let rows = regolith::bench::beds::suite(&opts, &programs, &me)?;
             if let Some(path) = &csv {
-                std::fs::write(path, regolith::bench::csv(&rows))
-                    .map_err(regolith::tool_error::ToolError::file(path))?;
+                regolith::io::write_atomically(
+                    &path.to_string_lossy(),
+                    regolith::bench::csv(&rows).as_bytes(),
+                )
+                .map_err(regolith::tool_error::ToolError::file(path))?;
             }
             if let Some(path) = &plot {
                 regolith::bench::plot(&rows, path)?;

@@ -102,12 +102,25 @@ pub fn save(
         message: m,
     };
     let height = panel_height * charts.len().max(1) as u32;
-    let root = BitMapBackend::new(path, (width, height)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
-    for (area, chart) in root.split_evenly((charts.len(), 1)).iter().zip(charts) {
-        draw(area, chart).map_err(|e| err(e.to_string()))?;
+    // drawn beside the target under a temporary name (same extension: it picks the format),
+    // then renamed over it, so a reader never sees half a figure
+    let name = path
+        .file_name()
+        .map_or("figure".into(), |n| n.to_string_lossy());
+    let tmp = path.with_file_name(format!(".{}.{name}", std::process::id()));
+    let drawn = (|| {
+        let root = BitMapBackend::new(&tmp, (width, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        for (area, chart) in root.split_evenly((charts.len(), 1)).iter().zip(charts) {
+            draw(area, chart).map_err(|e| err(e.to_string()))?;
+        }
+        root.present().map_err(|e| err(e.to_string()))
+    })()
+    .and_then(|()| std::fs::rename(&tmp, path).map_err(|e| err(e.to_string())));
+    if drawn.is_err() {
+        let _ = std::fs::remove_file(&tmp);
     }
-    root.present().map_err(|e| err(e.to_string()))
+    drawn
 }
 
 /// The data range of the chart's points along one axis, padded; positive only for log axes.

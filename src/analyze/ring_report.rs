@@ -12,6 +12,17 @@ use super::AnalyzeError;
 /// Write one run's tables and figures (names prefixed with `tag`); return the summary lines.
 pub fn write_run(dir: &Path, tag: &str, r: &RingResult) -> Result<Vec<String>, AnalyzeError> {
     let name = |base: &str| dir.join(format!("{tag}{base}"));
+    write_run_tables(&name, r)?;
+    write_run_figures(&name, r)?;
+    Ok(run_summary(r))
+}
+
+/// One run's `ring_states.csv`, `ring_surface.csv` and `ring_spectrum.csv` (paths from
+/// `name`).
+fn write_run_tables(
+    name: &dyn Fn(&str) -> std::path::PathBuf,
+    r: &RingResult,
+) -> Result<(), AnalyzeError> {
     let mut t = Table::new(&[
         "t_s",
         "r_in_m",
@@ -47,7 +58,14 @@ pub fn write_run(dir: &Path, tag: &str, r: &RingResult) -> Result<Vec<String>, A
         }
     }
     t.write(&name("ring_spectrum.csv"))?;
+    Ok(())
+}
 
+/// One run's `ring_radii.png` and `ring_spectrum.png` (paths from `name`).
+fn write_run_figures(
+    name: &dyn Fn(&str) -> std::path::PathBuf,
+    r: &RingResult,
+) -> Result<(), AnalyzeError> {
     let mm = |v: f64| v * 1e3;
     let series = |f: fn(&ring::RingState) -> f64| -> Vec<(f64, f64)> {
         r.states.iter().map(|s| (s.t, mm(f(s)))).collect()
@@ -134,6 +152,13 @@ pub fn write_run(dir: &Path, tag: &str, r: &RingResult) -> Result<Vec<String>, A
         ..Default::default()
     };
     save(&name("ring_spectrum.png"), &[spectrum], 900, 500)?;
+    Ok(())
+}
+
+/// One run's summary lines: the last snapshot's surface, front and edge (mm), and each
+/// band's dominant mode and force-chain spacing.
+fn run_summary(r: &RingResult) -> Vec<String> {
+    let mm = |v: f64| v * 1e3;
     let s = r.states[r.states.len() - 1];
     let mut lines = vec![format!(
         "t = {:.3e} s: surface radius {:.4}-{:.4} mm (mean {:.4}), relative amplitude {:.4} (rms {:.4}), front {:.4} mm, edge {:.4} mm",
@@ -145,7 +170,7 @@ pub fn write_run(dir: &Path, tag: &str, r: &RingResult) -> Result<Vec<String>, A
             mm(b.radii.0), mm(b.radii.1), b.mode, mm(b.spacing), b.spacing_diameters
         ));
     }
-    Ok(lines)
+    lines
 }
 
 /// Across trials: `ring_trials.csv` and `ring_trials.png` (amplitude against time, the mean

@@ -43,10 +43,12 @@ impl Table {
 
     /// Write the CSV file.
     pub fn write(&self, path: &Path) -> Result<(), AnalyzeError> {
-        std::fs::write(path, self.to_csv()).map_err(|e| AnalyzeError::Write {
-            path: path.display().to_string(),
-            message: e.to_string(),
-        })
+        crate::io::write_atomically(&path.to_string_lossy(), self.to_csv().as_bytes()).map_err(
+            |e| AnalyzeError::Write {
+                path: path.display().to_string(),
+                message: e.to_string(),
+            },
+        )
     }
 }
 

@@ -329,7 +329,10 @@ impl SweepResult {
     /// Write `sweep.csv`, `sweep.png` and `summary.txt` into `out`; the table is returned.
     pub fn write(&self, out: &Path) -> Result<String, ToolError> {
         let table = self.table();
-        let w = |p: PathBuf, text: &str| std::fs::write(&p, text).map_err(ToolError::file(&p));
+        let w = |p: PathBuf, text: &str| {
+            crate::io::write_atomically(&p.to_string_lossy(), text.as_bytes())
+                .map_err(ToolError::file(&p))
+        };
         w(out.join("sweep.csv"), &self.csv())?;
         w(out.join("summary.txt"), &table)?;
         let charts = self.charts();
@@ -628,7 +631,8 @@ pub fn merge(dirs: &[PathBuf], out: &Path, title: &str, cost: Cost) -> Result<St
     }
     std::fs::create_dir_all(out).map_err(ToolError::file(out))?;
     let md_path = out.join("trade.md");
-    std::fs::write(&md_path, &md).map_err(ToolError::file(&md_path))?;
+    crate::io::write_atomically(&md_path.to_string_lossy(), md.as_bytes())
+        .map_err(ToolError::file(&md_path))?;
     plot::save(&out.join("trade.png"), &[by_axis, by_cost], 1100, 700)?;
     Ok(md)
 }

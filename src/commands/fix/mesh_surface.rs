@@ -434,7 +434,7 @@ impl MeshArgs {
         if lines.is_empty() {
             return Ok(());
         }
-        std::fs::write(out, lines).map_err(|_| {
+        crate::io::write_atomically(&out.to_string_lossy(), lines.as_bytes()).map_err(|_| {
             a.file_error(
                 word,
                 "Fix mesh: can not open file for 'element_exclusion_list' for writing",

@@ -65,6 +65,7 @@ impl Tuner {
     }
 
     /// The choice made by the last trial, if one is complete (`true`: one thread).
+    #[cfg(test)]
     pub fn chosen(&self) -> Option<bool> {
         match self.mode {
             Mode::Chosen(alone, _) => Some(alone),

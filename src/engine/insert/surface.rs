@@ -92,6 +92,8 @@ pub fn surface_contacts(regions: &Regions, index: usize, x: [f64; 3], cut: f64) 
     surface_contacts_side(regions, index, x, cut, r.interior)
 }
 
+/// [`surface_contacts`] with the inside (`interior`) or outside of the region's surface
+/// taken as its side.
 pub(super) fn surface_contacts_side(
     regions: &Regions,
     index: usize,
@@ -102,37 +104,13 @@ pub(super) fn surface_contacts_side(
     let r = &regions.list[index];
     let mut out = Vec::new();
     match &r.shape {
+        Shape::Block { lo, hi } if interior => block_inside(x, *lo, *hi, cut, &mut out),
         Shape::Block { lo, hi } => {
-            if interior {
-                if !(0..3).all(|d| x[d] >= lo[d] && x[d] <= hi[d]) {
-                    return out;
-                }
-                for d in 0..3 {
-                    let delta = x[d] - lo[d];
-                    if delta < cut {
-                        let mut v = [0.0; 3];
-                        v[d] = delta;
-                        out.push(v);
-                    }
-                    let delta = hi[d] - x[d];
-                    if delta < cut {
-                        let mut v = [0.0; 3];
-                        v[d] = -delta;
-                        out.push(v);
-                    }
-                }
-            } else {
-                if (0..3).any(|d| x[d] <= lo[d] - cut || x[d] >= hi[d] + cut) {
-                    return out;
-                }
-                if (0..3).all(|d| x[d] > lo[d] && x[d] < hi[d]) {
-                    return out;
-                }
+            let outside = (0..3).any(|d| x[d] <= lo[d] - cut || x[d] >= hi[d] + cut);
+            let inside = (0..3).all(|d| x[d] > lo[d] && x[d] < hi[d]);
+            if !outside && !inside {
                 let p = [0, 1, 2].map(|d| x[d].clamp(lo[d], hi[d]));
-                let v = [x[0] - p[0], x[1] - p[1], x[2] - p[2]];
-                if (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() < cut {
-                    out.push(v);
-                }
+                push_within(x, p, cut, &mut out);
             }
         }
         Shape::Cylinder {
@@ -143,56 +121,16 @@ pub(super) fn surface_contacts_side(
             lo,
             hi,
         } => {
-            let (a1, a2) = cross_axes(*axis);
-            let (d1, d2) = (x[a1] - c1, x[a2] - c2);
-            let rr = (d1 * d1 + d2 * d2).sqrt();
-            let a = x[*axis];
+            let c = Can {
+                axis: *axis,
+                centre: (*c1, *c2),
+                radius: *radius,
+                ends: (*lo, *hi),
+            };
             if interior {
-                if rr > *radius || a < *lo || a > *hi {
-                    return out;
-                }
-                let delta = radius - rr;
-                if delta < cut && rr > 0.0 {
-                    let mut v = [0.0; 3];
-                    v[a1] = d1 * (1.0 - radius / rr);
-                    v[a2] = d2 * (1.0 - radius / rr);
-                    out.push(v);
-                }
-                let delta = a - lo;
-                if delta < cut {
-                    let mut v = [0.0; 3];
-                    v[*axis] = delta;
-                    out.push(v);
-                }
-                let delta = hi - a;
-                if delta < cut {
-                    let mut v = [0.0; 3];
-                    v[*axis] = -delta;
-                    out.push(v);
-                }
+                c.inside(x, cut, &mut out)
             } else {
-                if rr >= radius + cut || a <= lo - cut || a >= hi + cut {
-                    return out;
-                }
-                if rr < *radius && a > *lo && a < *hi {
-                    return out;
-                }
-                let mut p = x;
-                if rr > *radius {
-                    p[a1] = c1 + d1 * radius / rr;
-                    p[a2] = c2 + d2 * radius / rr;
-                }
-                p[*axis] = if a < *lo {
-                    *lo
-                } else if a > *hi {
-                    *hi
-                } else {
-                    a
-                };
-                let v = [x[0] - p[0], x[1] - p[1], x[2] - p[2]];
-                if (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() < cut {
-                    out.push(v);
-                }
+                c.outside(x, cut, &mut out)
             }
         }
         Shape::Intersect(members) => {
@@ -218,6 +156,107 @@ pub(super) fn surface_contacts_side(
         _ => {}
     }
     out
+}
+
+/// The vector from surface point `p` to `x` when shorter than `cut`, pushed to `out`.
+fn push_within(x: [f64; 3], p: [f64; 3], cut: f64, out: &mut Vec<[f64; 3]>) {
+    let v = [x[0] - p[0], x[1] - p[1], x[2] - p[2]];
+    if (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() < cut {
+        out.push(v);
+    }
+}
+
+/// A point inside block `lo`..`hi`: its contacts with each face nearer than `cut`.
+fn block_inside(x: [f64; 3], lo: [f64; 3], hi: [f64; 3], cut: f64, out: &mut Vec<[f64; 3]>) {
+    if !(0..3).all(|d| x[d] >= lo[d] && x[d] <= hi[d]) {
+        return;
+    }
+    for d in 0..3 {
+        let delta = x[d] - lo[d];
+        if delta < cut {
+            let mut v = [0.0; 3];
+            v[d] = delta;
+            out.push(v);
+        }
+        let delta = hi[d] - x[d];
+        if delta < cut {
+            let mut v = [0.0; 3];
+            v[d] = -delta;
+            out.push(v);
+        }
+    }
+}
+
+/// A closed cylinder region: axis, centre in the two other axes, radius and ends along the
+/// axis (m).
+struct Can {
+    axis: usize,
+    centre: (f64, f64),
+    radius: f64,
+    ends: (f64, f64),
+}
+
+impl Can {
+    /// A point inside: its contacts with the mantle and each end nearer than `cut`.
+    fn inside(&self, x: [f64; 3], cut: f64, out: &mut Vec<[f64; 3]>) {
+        let (axis, radius, (lo, hi)) = (self.axis, self.radius, self.ends);
+        let (a1, a2) = cross_axes(axis);
+        let (d1, d2) = (x[a1] - self.centre.0, x[a2] - self.centre.1);
+        let rr = (d1 * d1 + d2 * d2).sqrt();
+        let a = x[axis];
+        if rr > radius || a < lo || a > hi {
+            return;
+        }
+        let delta = radius - rr;
+        if delta < cut && rr > 0.0 {
+            let mut v = [0.0; 3];
+            v[a1] = d1 * (1.0 - radius / rr);
+            v[a2] = d2 * (1.0 - radius / rr);
+            out.push(v);
+        }
+        let delta = a - lo;
+        if delta < cut {
+            let mut v = [0.0; 3];
+            v[axis] = delta;
+            out.push(v);
+        }
+        let delta = hi - a;
+        if delta < cut {
+            let mut v = [0.0; 3];
+            v[axis] = -delta;
+            out.push(v);
+        }
+    }
+
+    /// A point outside: its contact with the nearest surface point when nearer than `cut`.
+    fn outside(&self, x: [f64; 3], cut: f64, out: &mut Vec<[f64; 3]>) {
+        let (axis, radius, (lo, hi)) = (self.axis, self.radius, self.ends);
+        let (a1, a2) = cross_axes(axis);
+        let (c1, c2) = self.centre;
+        let (d1, d2) = (x[a1] - c1, x[a2] - c2);
+        let rr = (d1 * d1 + d2 * d2).sqrt();
+        let a = x[axis];
+        if rr >= radius + cut || a <= lo - cut || a >= hi + cut {
+            return;
+        }
+        if rr < radius && a > lo && a < hi {
+            return;
+        }
+        let mut p = x;
+        if rr > radius {
+            p[a1] = c1 + d1 * radius / rr;
+            p[a2] = c2 + d2 * radius / rr;
+        }
+        // (not `clamp`, which would panic on ends given in reverse)
+        p[axis] = if a < lo {
+            lo
+        } else if a > hi {
+            hi
+        } else {
+            a
+        };
+        push_within(x, p, cut, out);
+    }
 }
 
 pub(super) fn cross_axes(axis: usize) -> (usize, usize) {

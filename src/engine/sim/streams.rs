@@ -269,67 +269,84 @@ impl Simulation {
             if let Some(d) = self.fixes[dk].kind.distribution_mut() {
                 *d = dist.clone();
             }
-            let mut tag = self.particles.max_id();
             let first_new = self.particles.len();
-            for (t, xp, v, axes) in placed {
-                let tpl = &dist.templates[t];
-                if let Some(c) = &tpl.clump {
-                    self.insert_clump(c, axes, tag + 1, xp, v, [0.0; 3], group)?;
-                    tag += c.displace.len() as i64;
-                    continue;
-                }
-                tag += 1;
-                self.particles
-                    .push(tag, tpl.atom_type, xp, tpl.radius, tpl.density);
-                let i = self.particles.len() - 1;
-                self.particles.mass[i] = tpl.mass;
-                self.particles.v[i] = v;
-                self.particles.mask[i] |= group;
-            }
-            // the release step: a clump's from its centre of mass (LIGGGHTS's calc_n_steps)
-            let dt = self.dt;
-            let sf = self.fixes[k].kind.stream().expect("a stream");
-            let st = sf.state.as_ref().expect("set up");
-            let (p_ref, normal, v_normal) = (st.p_ref, st.normal, st.v_normal);
-            let ba = crate::engine::clumps::body_array(&self.particles);
-            let mut new = Vec::with_capacity(self.particles.len() - first_new);
-            for i in first_new..self.particles.len() {
-                let body = ba.map_or(-1.0, |b| self.particles.extra[b].data[i]);
-                let steps = match self.clumps_mut() {
-                    Some(ms) if body >= 0.0 => {
-                        ms.stream_steps(body, step, dt, p_ref, normal, v_normal)
-                    }
-                    _ => None,
-                };
-                new.push((self.particles.id[i], self.particles.x[i], steps));
-            }
-            let sf = self.fixes[k].kind.stream_mut().expect("a stream");
-            let records = sf.state.as_mut().expect("set up").record(step, dt, &new);
-            // the new atoms are the last ones, in the order of their records
-            let first = self.particles.len() - records.len();
-            self.store_releases(first, &records);
-            // the integrating stream moves them, if they are in its group
-            if let Some(ki) = self.stream_integrator() {
-                let g = self.fixes[ki].group;
-                let mask = &self.particles.mask[first..];
-                if let Some(sf) = self.fixes[ki].kind.stream_mut() {
-                    if let Some(state) = sf.state.as_mut() {
-                        state.moving.extend(
-                            records
-                                .into_iter()
-                                .zip(mask)
-                                .filter(|(_, &m)| m & g != 0)
-                                .map(|(r, _)| r),
-                        );
-                    }
-                }
-            }
+            self.add_stream_particles(placed, &dist, group)?;
+            self.record_stream_releases(k, first_new);
             for l in lines {
                 out(&format!("{l}\n"));
             }
             self.fixes[k].clock.stop(clock);
         }
         Ok(())
+    }
+
+    /// Add a stream's placed particles (template, position, velocity, clump axes) with new
+    /// IDs after the largest, in group `group` too.
+    fn add_stream_particles(
+        &mut self,
+        placed: Vec<crate::engine::insert::NewParticle>,
+        dist: &crate::engine::insert::Distribution,
+        group: u32,
+    ) -> Result<(), EngineError> {
+        let mut tag = self.particles.max_id();
+        for (t, xp, v, axes) in placed {
+            let tpl = &dist.templates[t];
+            if let Some(c) = &tpl.clump {
+                self.insert_clump(c, axes, tag + 1, xp, v, [0.0; 3], group)?;
+                tag += c.displace.len() as i64;
+                continue;
+            }
+            tag += 1;
+            self.particles
+                .push(tag, tpl.atom_type, xp, tpl.radius, tpl.density);
+            let i = self.particles.len() - 1;
+            self.particles.mass[i] = tpl.mass;
+            self.particles.v[i] = v;
+            self.particles.mask[i] |= group;
+        }
+        Ok(())
+    }
+
+    /// Record stream fix `k`'s release data for the particles it inserted from index
+    /// `first_new` on, and hand those in the integrating stream's group to it.
+    fn record_stream_releases(&mut self, k: usize, first_new: usize) {
+        let step = self.step;
+        // the release step: a clump's from its centre of mass (LIGGGHTS's calc_n_steps)
+        let dt = self.dt;
+        let sf = self.fixes[k].kind.stream().expect("a stream");
+        let st = sf.state.as_ref().expect("set up");
+        let (p_ref, normal, v_normal) = (st.p_ref, st.normal, st.v_normal);
+        let ba = crate::engine::clumps::body_array(&self.particles);
+        let mut new = Vec::with_capacity(self.particles.len() - first_new);
+        for i in first_new..self.particles.len() {
+            let body = ba.map_or(-1.0, |b| self.particles.extra[b].data[i]);
+            let steps = match self.clumps_mut() {
+                Some(ms) if body >= 0.0 => ms.stream_steps(body, step, dt, p_ref, normal, v_normal),
+                _ => None,
+            };
+            new.push((self.particles.id[i], self.particles.x[i], steps));
+        }
+        let sf = self.fixes[k].kind.stream_mut().expect("a stream");
+        let records = sf.state.as_mut().expect("set up").record(step, dt, &new);
+        // the new atoms are the last ones, in the order of their records
+        let first = self.particles.len() - records.len();
+        self.store_releases(first, &records);
+        // the integrating stream moves them, if they are in its group
+        if let Some(ki) = self.stream_integrator() {
+            let g = self.fixes[ki].group;
+            let mask = &self.particles.mask[first..];
+            if let Some(sf) = self.fixes[ki].kind.stream_mut() {
+                if let Some(state) = sf.state.as_mut() {
+                    state.moving.extend(
+                        records
+                            .into_iter()
+                            .zip(mask)
+                            .filter(|(_, &m)| m & g != 0)
+                            .map(|(r, _)| r),
+                    );
+                }
+            }
+        }
     }
 
     /// `fix insert/stream`'s end of step: particles not yet released move at the normal

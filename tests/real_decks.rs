@@ -1080,6 +1080,55 @@ fn an_exclusion_list_is_written_when_the_mesh_is_read() {
     assert_eq!(out.status.code(), Some(1));
 }
 
+/// A mesh with angles below LIGGGHTS's hard limit stops the run with LIGGGHTS's count of
+/// those angles and its "Bad mesh" error (a hopper deck's STL has two slivers; regolith
+/// said it in words of its own), in `check` as in a run; a triangle below the soft limit
+/// only (0.5 degrees) gets LIGGGHTS's count line on the screen and its warning in the log,
+/// as Debian's LIGGGHTS 3.8.0 prints them for these two files.
+#[test]
+fn skewed_mesh_triangles_are_said_as_liggghts_says_them() {
+    let dir = scratch("skewed_mesh");
+    let sliver = "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0.01 0.01 0.01\nvertex 0.09 0.01 0.01\nvertex 0.09 0.09 0.01\nendloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 0.01 0.01 0.01\nvertex 0.09 0.09 0.01\nvertex 0.01 0.09 0.01\nendloop\nendfacet\nfacet normal 0 -1 0\nouter loop\nvertex 0.01 0.095 0.02\nvertex 0.05 0.095 0.02\nvertex 0.09 0.095 0.02000001\nendloop\nendfacet\nendsolid s\n";
+    std::fs::write(dir.join("sliver.stl"), sliver).unwrap();
+    std::fs::write(
+        dir.join("soft.stl"),
+        sliver.replace("0.09 0.095 0.02000001", "0.09 0.095 0.0202"),
+    )
+    .unwrap();
+    let deck = format!(
+        "{}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n\
+         fix cad all mesh/surface file sliver.stl type 1 curvature_tolerant yes\n\
+         create_atoms 1 single 0.05 0.05 0.02\nset atom 1 diameter 0.01 density 2500\n\
+         fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad\n\
+         fix i all nve/sphere\ntimestep 1e-5\nrun 10\n",
+        HEAD.replace("p p f", "f f f")
+    );
+    stops_deck(
+        &dir,
+        &deck,
+        "Mesh cad: 2 mesh elements have a really unreasonably high aspect ratio (hard limit: smallest angle must be > 0.057296 \u{b0})  \n\
+         Fix mesh: Bad mesh, cannot continue. You will need to fix or remove these element. Remedies:\n \
+         - You can use the 'element_exclusion_list' feature to remove elements with too many neighbors and elements with angles below the hard limit",
+        23,
+        1,
+    );
+    std::fs::write(dir.join("in.s"), deck.replace("sliver.stl", "soft.stl")).unwrap();
+    let out = regolith(&dir, &["-in", "in.s", "-log", "log.s"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let warning = "WARNING: Fix mesh: Mesh contains highly skewed element, moving mesh (if used) will not parallelize well (./src/surface_mesh_I.h:657)\n";
+    assert!(
+        text(&out.stdout).contains(&format!(
+            "Mesh cad: 1 elements have high aspect ratio (soft limit: smallest angle > 0.500000 \u{b0} required)\n{warning}\
+             Import and parallelization of mesh cad containing 3 triangle(s) successful\n"
+        )),
+        "{}",
+        text(&out.stdout)
+    );
+    let log = std::fs::read_to_string(dir.join("log.s")).unwrap();
+    assert_eq!(log.matches(warning).count(), 1, "{log}");
+    assert!(!log.contains("soft limit"), "{log}");
+}
+
 /// A mesh held at a temperature with no heat fix: LIGGGHTS stops at the run's init ("Could
 /// not locate a fix/property storing value(s) for Temp as requested by wall/gran."); `check`
 /// says the same at the run line, and the deck with its heat fix passes both.

@@ -1421,3 +1421,51 @@ fn a_pair_model_keyword_out_of_order_is_liggghts_s_error() {
         15,
     );
 }
+
+/// `compute erotate` prints `igrpu: GROUP` with `printf` when it is defined, as LIGGGHTS
+/// 3.8.0's constructor does (an angle-of-repose deck's screen has it after its mesh's
+/// `Reading STL file` line): on standard output, not in the log; a second one is
+/// LIGGGHTS's "Reuse of compute ID".
+#[test]
+fn compute_erotate_prints_its_group_as_liggghts_does() {
+    let dir = scratch("erotate_printf");
+    let deck = format!(
+        "{HEAD}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n\
+         region sub block 0 0.05 0 0.1 0 0.1 units box\ngroup half region sub\n\
+         compute er half erotate\nprint done\n"
+    );
+    std::fs::write(dir.join("in.t"), &deck).unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "log.t"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stdout).contains("igrpu: half\ndone\n"),
+        "{}",
+        text(&out.stdout)
+    );
+    let log = std::fs::read_to_string(dir.join("log.t")).unwrap();
+    assert!(!log.contains("igrpu"), "{log}");
+    let twice = deck.replace("print done\n", "compute er2 all erotate\n");
+    std::fs::write(dir.join("in.t"), twice).unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        text(&out.stderr).contains("Reuse of compute ID"),
+        "{}",
+        text(&out.stderr)
+    );
+}
+
+/// A `dump_modify` keyword LIGGGHTS 3.8.0 does not have (`domainfile`, of LIGGGHTS-PFM's
+/// VTK dumps, in a forked test deck) is its "Illegal dump_modify command" in `check` and in
+/// a run, as Debian's LIGGGHTS 3.8.0 says (regolith said "not supported yet").
+#[test]
+fn an_unknown_dump_modify_keyword_is_illegal() {
+    let dir = scratch("dump_modify_unknown");
+    std::fs::create_dir_all(dir.join("post")).unwrap();
+    fails_alike(
+        &dir,
+        "dump d all custom/vtk 10 post/d*.vtk id type x y z\ndump_modify d domainfile no",
+        "Illegal dump_modify command",
+        12,
+    );
+}

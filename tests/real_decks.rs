@@ -1469,3 +1469,49 @@ fn an_unknown_dump_modify_keyword_is_illegal() {
         12,
     );
 }
+
+/// Multisphere templates of several types: each template's insertion generator is its
+/// seed when an insertion checks the seeds (regolith took every clump template's as 0 and
+/// refused a hopper deck of four clump shapes with LIGGGHTS's "seeds ... are different"),
+/// and the run's init checks their types as LIGGGHTS's first template does: unique, and 1
+/// to their count (Debian's LIGGGHTS 3.8.0 runs the first deck and refuses the others
+/// with these words).
+#[test]
+fn multisphere_template_seeds_and_types_as_liggghts_checks_them() {
+    let dir = scratch("clump_types");
+    let clump = |id: &str, seed: u32, ty: u32| {
+        format!(
+            "fix {id} all particletemplate/multisphere {seed} atom_type 1 density constant 2500 \
+             nspheres 2 ntry 10000 spheres 0 0 0 0.004 0.005 0 0 0.003 type {ty}\n"
+        )
+    };
+    let deck = |t2: u32| {
+        format!(
+            "{}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n\
+             timestep 0.00001\n{}{}\
+             fix pdd all particledistribution/discrete/numberbased 15485867 2 pts1 0.5 pts2 0.5\n\
+             region bc block 0.02 0.08 0.02 0.08 0.02 0.08 units box\n\
+             fix ins all insert/pack seed 32452843 distributiontemplate pdd vel constant 0 0 0 \
+             insert_every once overlapcheck yes region bc ntry_mc 10000 particles_in_region 6\n\
+             fix integr all multisphere\nrun 1\n",
+            HEAD.replace("p p f", "f f f"),
+            clump("pts1", 15485863, 1),
+            clump("pts2", 67867967, t2)
+        )
+    };
+    std::fs::write(dir.join("in.t"), deck(2)).unwrap();
+    let out = regolith(&dir, &["check", "in.t"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(text(&out.stdout).contains("inserted 6 particle templates"));
+    let fix = "Fix particletemplate/multisphere (id pts1): multisphere template types have to be";
+    stops_deck(&dir, &deck(1), &format!("{fix} unique"), 24, 1);
+    stops_deck(
+        &dir,
+        &deck(3),
+        &format!("{fix} consecutive starting from 1"),
+        24,
+        1,
+    );
+}

@@ -523,8 +523,9 @@ impl TriMesh {
             for k in 0..3 {
                 let c = -dot(e[k], e[(k + 2) % 3]);
                 if c > self.settings.curvature && !self.settings.curvature_tolerant {
+                    // LIGGGHTS's words (it adds the element's line in the file)
                     return Err(format!(
-                        "Mesh {name}: element {t} has an angle smaller than the curvature angle ({:.6} degrees); use 'curvature_tolerant yes' or a smaller 'curvature'",
+                        "Mesh {name}: The minumum angle of mesh element {t} is lower than the specified curvature. Increase mesh quality or decrease curvature (currently {:.6}\u{b0})\nFix mesh: Bad mesh, cannot continue. You can try setting 'curvature' to 1e-5 or lower or use 'curvature_tolerant yes'",
                         self.settings.curvature.acos() * 180. / std::f64::consts::PI
                     ).into());
                 }

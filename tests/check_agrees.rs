@@ -148,11 +148,25 @@ fn a_mesh_failing_the_quality_check_is_reported_by_check_at_the_run() {
     );
     std::fs::write(dir.join("in.t"), deck).unwrap();
     let (found, code) = problems(&dir);
-    let message = "Mesh cad: element 1 has an angle below 0.0573 degrees; fix the mesh";
+    // LIGGGHTS checks the curvature angle before its hard limit (Debian's LIGGGHTS 3.8.0:
+    // "ERROR: Mesh cad: The minumum angle of mesh element 1 (line 9) is lower than the
+    // specified curvature. ..." and "Fix mesh: Bad mesh, cannot continue. ...")
+    let message = "Mesh cad: The minumum angle of mesh element 1 is lower than the specified curvature. Increase mesh quality or decrease curvature (currently 0.256235\u{b0})";
     assert_eq!(found, [format!("in.t:22: {message}")]);
     assert_eq!(code, Some(1));
     let (err, code) = run_error(&dir);
     assert_eq!(err, format!("ERROR: {message}"));
+    assert_eq!(code, Some(1));
+    // curvature_tolerant: the hard limit's count and error
+    let tolerant = std::fs::read_to_string(dir.join("in.t"))
+        .unwrap()
+        .replace("skew.stl type 1", "skew.stl type 1 curvature_tolerant yes");
+    std::fs::write(dir.join("in.t"), tolerant).unwrap();
+    let (found, code) = problems(&dir);
+    assert_eq!(
+        found,
+        ["in.t:22: Mesh cad: 2 mesh elements have a really unreasonably high aspect ratio (hard limit: smallest angle must be > 0.057296 \u{b0})  "]
+    );
     assert_eq!(code, Some(1));
 }
 

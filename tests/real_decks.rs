@@ -1080,6 +1080,55 @@ fn an_exclusion_list_is_written_when_the_mesh_is_read() {
     assert_eq!(out.status.code(), Some(1));
 }
 
+/// A mesh with angles below LIGGGHTS's hard limit stops the run with LIGGGHTS's count of
+/// those angles and its "Bad mesh" error (a hopper deck's STL has two slivers; regolith
+/// said it in words of its own), in `check` as in a run; a triangle below the soft limit
+/// only (0.5 degrees) gets LIGGGHTS's count line on the screen and its warning in the log,
+/// as Debian's LIGGGHTS 3.8.0 prints them for these two files.
+#[test]
+fn skewed_mesh_triangles_are_said_as_liggghts_says_them() {
+    let dir = scratch("skewed_mesh");
+    let sliver = "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0.01 0.01 0.01\nvertex 0.09 0.01 0.01\nvertex 0.09 0.09 0.01\nendloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 0.01 0.01 0.01\nvertex 0.09 0.09 0.01\nvertex 0.01 0.09 0.01\nendloop\nendfacet\nfacet normal 0 -1 0\nouter loop\nvertex 0.01 0.095 0.02\nvertex 0.05 0.095 0.02\nvertex 0.09 0.095 0.02000001\nendloop\nendfacet\nendsolid s\n";
+    std::fs::write(dir.join("sliver.stl"), sliver).unwrap();
+    std::fs::write(
+        dir.join("soft.stl"),
+        sliver.replace("0.09 0.095 0.02000001", "0.09 0.095 0.0202"),
+    )
+    .unwrap();
+    let deck = format!(
+        "{}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n\
+         fix cad all mesh/surface file sliver.stl type 1 curvature_tolerant yes\n\
+         create_atoms 1 single 0.05 0.05 0.02\nset atom 1 diameter 0.01 density 2500\n\
+         fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad\n\
+         fix i all nve/sphere\ntimestep 1e-5\nrun 10\n",
+        HEAD.replace("p p f", "f f f")
+    );
+    stops_deck(
+        &dir,
+        &deck,
+        "Mesh cad: 2 mesh elements have a really unreasonably high aspect ratio (hard limit: smallest angle must be > 0.057296 \u{b0})  \n\
+         Fix mesh: Bad mesh, cannot continue. You will need to fix or remove these element. Remedies:\n \
+         - You can use the 'element_exclusion_list' feature to remove elements with too many neighbors and elements with angles below the hard limit",
+        23,
+        1,
+    );
+    std::fs::write(dir.join("in.s"), deck.replace("sliver.stl", "soft.stl")).unwrap();
+    let out = regolith(&dir, &["-in", "in.s", "-log", "log.s"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let warning = "WARNING: Fix mesh: Mesh contains highly skewed element, moving mesh (if used) will not parallelize well (./src/surface_mesh_I.h:657)\n";
+    assert!(
+        text(&out.stdout).contains(&format!(
+            "Mesh cad: 1 elements have high aspect ratio (soft limit: smallest angle > 0.500000 \u{b0} required)\n{warning}\
+             Import and parallelization of mesh cad containing 3 triangle(s) successful\n"
+        )),
+        "{}",
+        text(&out.stdout)
+    );
+    let log = std::fs::read_to_string(dir.join("log.s")).unwrap();
+    assert_eq!(log.matches(warning).count(), 1, "{log}");
+    assert!(!log.contains("soft limit"), "{log}");
+}
+
 /// A mesh held at a temperature with no heat fix: LIGGGHTS stops at the run's init ("Could
 /// not locate a fix/property storing value(s) for Temp as requested by wall/gran."); `check`
 /// says the same at the run line, and the deck with its heat fix passes both.
@@ -1370,5 +1419,99 @@ fn a_pair_model_keyword_out_of_order_is_liggghts_s_error() {
         &format!("{MATERIAL}pair_style gran model hertz tangential history rolling_friction epsd2 torsionTorque 1\npair_coeff * *"),
         "while parsing 'torsionTorque' argument: unknown option or wrong keyword order: '1'",
         15,
+    );
+}
+
+/// `compute erotate` prints `igrpu: GROUP` with `printf` when it is defined, as LIGGGHTS
+/// 3.8.0's constructor does (an angle-of-repose deck's screen has it after its mesh's
+/// `Reading STL file` line): on standard output, not in the log; a second one is
+/// LIGGGHTS's "Reuse of compute ID".
+#[test]
+fn compute_erotate_prints_its_group_as_liggghts_does() {
+    let dir = scratch("erotate_printf");
+    let deck = format!(
+        "{HEAD}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n\
+         region sub block 0 0.05 0 0.1 0 0.1 units box\ngroup half region sub\n\
+         compute er half erotate\nprint done\n"
+    );
+    std::fs::write(dir.join("in.t"), &deck).unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "log.t"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stdout).contains("igrpu: half\ndone\n"),
+        "{}",
+        text(&out.stdout)
+    );
+    let log = std::fs::read_to_string(dir.join("log.t")).unwrap();
+    assert!(!log.contains("igrpu"), "{log}");
+    let twice = deck.replace("print done\n", "compute er2 all erotate\n");
+    std::fs::write(dir.join("in.t"), twice).unwrap();
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        text(&out.stderr).contains("Reuse of compute ID"),
+        "{}",
+        text(&out.stderr)
+    );
+}
+
+/// A `dump_modify` keyword LIGGGHTS 3.8.0 does not have (`domainfile`, of LIGGGHTS-PFM's
+/// VTK dumps, in a forked test deck) is its "Illegal dump_modify command" in `check` and in
+/// a run, as Debian's LIGGGHTS 3.8.0 says (regolith said "not supported yet").
+#[test]
+fn an_unknown_dump_modify_keyword_is_illegal() {
+    let dir = scratch("dump_modify_unknown");
+    std::fs::create_dir_all(dir.join("post")).unwrap();
+    fails_alike(
+        &dir,
+        "dump d all custom/vtk 10 post/d*.vtk id type x y z\ndump_modify d domainfile no",
+        "Illegal dump_modify command",
+        12,
+    );
+}
+
+/// Multisphere templates of several types: each template's insertion generator is its
+/// seed when an insertion checks the seeds (regolith took every clump template's as 0 and
+/// refused a hopper deck of four clump shapes with LIGGGHTS's "seeds ... are different"),
+/// and the run's init checks their types as LIGGGHTS's first template does: unique, and 1
+/// to their count (Debian's LIGGGHTS 3.8.0 runs the first deck and refuses the others
+/// with these words).
+#[test]
+fn multisphere_template_seeds_and_types_as_liggghts_checks_them() {
+    let dir = scratch("clump_types");
+    let clump = |id: &str, seed: u32, ty: u32| {
+        format!(
+            "fix {id} all particletemplate/multisphere {seed} atom_type 1 density constant 2500 \
+             nspheres 2 ntry 10000 spheres 0 0 0 0.004 0.005 0 0 0.003 type {ty}\n"
+        )
+    };
+    let deck = |t2: u32| {
+        format!(
+            "{}{MATERIAL}pair_style gran model hertz tangential history\npair_coeff * *\n\
+             timestep 0.00001\n{}{}\
+             fix pdd all particledistribution/discrete/numberbased 15485867 2 pts1 0.5 pts2 0.5\n\
+             region bc block 0.02 0.08 0.02 0.08 0.02 0.08 units box\n\
+             fix ins all insert/pack seed 32452843 distributiontemplate pdd vel constant 0 0 0 \
+             insert_every once overlapcheck yes region bc ntry_mc 10000 particles_in_region 6\n\
+             fix integr all multisphere\nrun 1\n",
+            HEAD.replace("p p f", "f f f"),
+            clump("pts1", 15485863, 1),
+            clump("pts2", 67867967, t2)
+        )
+    };
+    std::fs::write(dir.join("in.t"), deck(2)).unwrap();
+    let out = regolith(&dir, &["check", "in.t"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
+    let out = regolith(&dir, &["-in", "in.t", "-log", "none"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(text(&out.stdout).contains("inserted 6 particle templates"));
+    let fix = "Fix particletemplate/multisphere (id pts1): multisphere template types have to be";
+    stops_deck(&dir, &deck(1), &format!("{fix} unique"), 24, 1);
+    stops_deck(
+        &dir,
+        &deck(3),
+        &format!("{fix} consecutive starting from 1"),
+        24,
+        1,
     );
 }

@@ -426,6 +426,22 @@ fn announce_meshes(a: &Args, ctx: &mut Ctx) -> Result {
             continue;
         }
         m.announced = true;
+        // LIGGGHTS's quality check counts skewed triangles (surface_mesh_I.h)
+        let (soft, hard) = m.mesh.skewed_counts();
+        if soft > 0 {
+            ctx.out.screen(&format!(
+                "{}\n",
+                crate::engine::mesh::soft_limit_line(&f.id, soft)
+            ));
+            ctx.out.both("WARNING: Fix mesh: Mesh contains highly skewed element, moving mesh (if used) will not parallelize well (./src/surface_mesh_I.h:657)\n");
+        }
+        if hard > 0 {
+            ctx.out.screen(&format!(
+                "{}\n",
+                crate::engine::mesh::hard_limit_line(&f.id, hard)
+            ));
+            return Err(a.engine_error(0, crate::engine::mesh::BAD_MESH_HARD_LIMIT.into()));
+        }
         // LIGGGHTS's test of every node against the closed box (fix_mesh.cpp)
         let outside = m.mesh.nodes.iter().flatten().any(|p| {
             (0..3).any(|d| !((p[d] >= lo[d] || wraps(d, 0)) && (p[d] <= hi[d] || wraps(d, 1))))

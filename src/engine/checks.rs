@@ -120,10 +120,40 @@ impl Simulation {
         Ok(())
     }
 
+    /// LIGGGHTS's init of the first `fix particletemplate/multisphere`: the templates'
+    /// multisphere types (`type MT`) are unique and run from 1 to their count.
+    fn check_clump_types(&self) -> Result<(), EngineError> {
+        use crate::engine::multisphere::ClumpTemplate;
+        let clumps: Vec<(&str, u32)> = self
+            .fixes
+            .iter()
+            .filter_map(|f| Some((f.id.as_str(), f.kind.style_as::<ClumpTemplate>()?)))
+            .map(|(id, t)| (id, t.spec.shape_type))
+            .collect();
+        let Some(&(first, _)) = clumps.first() else {
+            return Ok(());
+        };
+        let fail = |m: &str| -> Result<(), EngineError> {
+            Err(format!("Fix particletemplate/multisphere (id {first}): {m}").into())
+        };
+        let types: Vec<u32> = clumps.iter().map(|c| c.1).collect();
+        for (i, t) in types.iter().enumerate() {
+            if types[i + 1..].contains(t) {
+                return fail("multisphere template types have to be unique");
+            }
+        }
+        let (lo, hi) = (types.iter().min(), types.iter().max());
+        if lo != Some(&1) || hi != Some(&(types.len() as u32)) {
+            return fail("multisphere template types have to be consecutive starting from 1");
+        }
+        Ok(())
+    }
+
     /// At a run's init: LIGGGHTS's own checks of the integrated particles (and the checks of
     /// the module fix styles, in fix order) and of the neighbour bins.
     pub fn check_run_init(&self) -> Result<(), EngineError> {
         self.check_types()?;
+        self.check_clump_types()?;
         let p = &self.particles;
         for (k, fix) in self.fixes.iter().enumerate() {
             if let FixKind::Style(s) = &fix.kind {

@@ -487,27 +487,27 @@ impl TriMesh {
         (0..3).any(|k| -dot(e[k], e[(k + 2) % 3]) >= Self::hard_angle_cos())
     }
 
+    /// LIGGGHTS's counts of skewed triangles at a mesh's first setup: triangles with an
+    /// angle below its soft limit (0.5 degrees), and angles below its hard limit (0.0573
+    /// degrees; a run refuses the mesh when there is any).
+    pub fn skewed_counts(&self) -> (usize, usize) {
+        let soft = (0.5_f64 * std::f64::consts::PI / 180.).cos();
+        let hard = Self::hard_angle_cos();
+        let mut soft_triangles = 0;
+        let mut hard_angles = 0;
+        for e in &self.edge_vec {
+            let cosines = [0, 1, 2].map(|k| -dot(e[k], e[(k + 2) % 3]));
+            if cosines.iter().any(|&c| c > soft) {
+                soft_triangles += 1;
+            }
+            hard_angles += cosines.iter().filter(|&&c| c > hard).count();
+        }
+        (soft_triangles, hard_angles)
+    }
+
     /// LIGGGHTS's mesh quality checks (angles, duplicates).
     fn quality_check(&self, name: &str) -> Result<(), EngineError> {
-        let hard = Self::hard_angle_cos();
-        for t in 0..self.len() {
-            let e = self.edge_vec[t];
-            for k in 0..3 {
-                let c = -dot(e[k], e[(k + 2) % 3]);
-                if c >= hard {
-                    return Err(format!(
-                        "Mesh {name}: element {t} has an angle below 0.0573 degrees; fix the mesh"
-                    )
-                    .into());
-                }
-                if c > self.settings.curvature && !self.settings.curvature_tolerant {
-                    return Err(format!(
-                        "Mesh {name}: element {t} has an angle smaller than the curvature angle ({:.6} degrees); use 'curvature_tolerant yes' or a smaller 'curvature'",
-                        self.settings.curvature.acos() * 180. / std::f64::consts::PI
-                    ).into());
-                }
-            }
-        }
+        // in LIGGGHTS's order: duplicates, the curvature angle, the hard limit
         for &(i, j) in &self.close_pairs() {
             let shared = (0..3)
                 .filter(|&a| (0..3).any(|b| self.same(self.nodes[i][a], self.nodes[j][b])))
@@ -517,6 +517,27 @@ impl TriMesh {
                     "Mesh {name}: elements {j} and {i} are duplicates; use 'heal auto_remove_duplicates' or fix the mesh"
                 ).into());
             }
+        }
+        for t in 0..self.len() {
+            let e = self.edge_vec[t];
+            for k in 0..3 {
+                let c = -dot(e[k], e[(k + 2) % 3]);
+                if c > self.settings.curvature && !self.settings.curvature_tolerant {
+                    // LIGGGHTS's words (it adds the element's line in the file)
+                    return Err(format!(
+                        "Mesh {name}: The minumum angle of mesh element {t} is lower than the specified curvature. Increase mesh quality or decrease curvature (currently {:.6}\u{b0})\nFix mesh: Bad mesh, cannot continue. You can try setting 'curvature' to 1e-5 or lower or use 'curvature_tolerant yes'",
+                        self.settings.curvature.acos() * 180. / std::f64::consts::PI
+                    ).into());
+                }
+            }
+        }
+        let (_, hard_angles) = self.skewed_counts();
+        if hard_angles > 0 {
+            return Err(format!(
+                "{}\n{BAD_MESH_HARD_LIMIT}",
+                hard_limit_line(name, hard_angles)
+            )
+            .into());
         }
         Ok(())
     }
@@ -742,6 +763,21 @@ fn dist(p: V3, q: V3) -> (f64, V3) {
 fn edge_point_dist(a: V3, e: V3, len: f64, p: V3) -> f64 {
     let s = dot(sub(p, a), e).clamp(0.0, len);
     mag(sub(p, add_multiple(a, s, e)))
+}
+
+/// LIGGGHTS's line counting the `angles` angles below its hard limit (0.0573 degrees) of
+/// mesh `name`, said on the screen before its error (surface_mesh_I.h, qualityCheck).
+pub fn hard_limit_line(name: &str, angles: usize) -> String {
+    format!("Mesh {name}: {angles} mesh elements have a really unreasonably high aspect ratio (hard limit: smallest angle must be > 0.057296 \u{b0})  ")
+}
+
+/// LIGGGHTS's error for a mesh with angles below its hard limit.
+pub const BAD_MESH_HARD_LIMIT: &str = "Fix mesh: Bad mesh, cannot continue. You will need to fix or remove these element. Remedies:\n - You can use the 'element_exclusion_list' feature to remove elements with too many neighbors and elements with angles below the hard limit";
+
+/// LIGGGHTS's line counting mesh `name`'s `triangles` with an angle below its soft limit
+/// (0.5 degrees), said on the screen before its warning.
+pub fn soft_limit_line(name: &str, triangles: usize) -> String {
+    format!("Mesh {name}: {triangles} elements have high aspect ratio (soft limit: smallest angle > 0.500000 \u{b0} required)")
 }
 
 #[cfg(test)]

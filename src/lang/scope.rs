@@ -271,7 +271,13 @@ impl ExprContext for Scope<'_> {
             }
             return Err(VariableError::Unsupported(format!("f_{id}[i][j]")));
         }
-        let per_atom = crate::engine::fix_columns::column(self.sim, id, i).is_ok();
+        // LIGGGHTS's variables read a fix's global scalar before its per-atom vector
+        let scalar_first = i.is_none()
+            && self.sim.fixes.iter().any(|f| {
+                f.id == id
+                    && matches!(&f.kind, crate::engine::fixes::FixKind::Style(s) if s.scalar_before_per_atom())
+            });
+        let per_atom = !scalar_first && crate::engine::fix_columns::column(self.sim, id, i).is_ok();
         match atom {
             Some(a) if per_atom => {
                 let key = format!("f_{id}[{}]", i.unwrap_or(0));

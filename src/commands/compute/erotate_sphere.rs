@@ -111,19 +111,21 @@ pub fn sphere(
 }
 
 /// `compute ID GROUP erotate`: LIGGGHTS 3.8.0 defines an internal compute
-/// `erotate_sphere_` for it, so a deck can have only one.
+/// `erotate_sphere_` for it, so a deck can have only one. Its constructor prints
+/// `igrpu: GROUP` with `printf` (standard output, not the log), before that check.
 pub fn erotate(
     a: &Args,
     ctx: &mut Ctx,
-    _def: &ComputeDef,
+    def: &ComputeDef,
 ) -> Result<Box<dyn ComputeStyle>, CommandError> {
+    no_arguments(a, "erotate")?;
+    ctx.out.stdout(&format!("igrpu: {}\n", def.group));
     if ctx.sim.computes.iter().any(|c| c.style == "erotate") {
         return Err(a.error(0, "Reuse of compute ID").with_help(
             "LIGGGHTS 3.8.0's compute erotate defines an internal compute \
              erotate_sphere_, so a deck can have only one; use compute erotate/sphere",
         ));
     }
-    no_arguments(a, "erotate")?;
     Ok(Box::new(ErotateSphere { name: "erotate" }))
 }
 

@@ -51,6 +51,10 @@ impl FixStyle for Tracer {
         }
     }
 
+    fn scalar_before_per_atom(&self) -> bool {
+        true
+    }
+
     fn per_atom_shape(&self) -> PerAtomShape {
         PerAtomShape::Vector
     }

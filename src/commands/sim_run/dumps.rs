@@ -45,6 +45,36 @@ pub(in crate::commands) fn dump(a: &Args, ctx: &mut Ctx) -> Result {
     Ok(())
 }
 
+/// Every `dump_modify` keyword LIGGGHTS 3.8.0 knows (Dump's own, its sort buffer's, and
+/// those of its custom, VTK, xyz, local and image dumps); any other is its "Illegal
+/// dump_modify command".
+const LIGGGHTS_KEYWORDS: &[&str] = &[
+    "append",
+    "buffer",
+    "every",
+    "fileper",
+    "first",
+    "flush",
+    "format",
+    "nfile",
+    "pad",
+    "sort",
+    "region",
+    "label",
+    "element",
+    "thresh",
+    "binary",
+    "compressor",
+    "acolor",
+    "adiam",
+    "amap",
+    "backcolor",
+    "bcolor",
+    "bdiam",
+    "boxcolor",
+    "color",
+];
+
 /// `dump_modify ID KEYWORD VALUE ...`: the settings every dump has, and the keywords the
 /// dump's style takes.
 pub(in crate::commands) fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
@@ -121,7 +151,12 @@ pub(in crate::commands) fn dump_modify(a: &Args, ctx: &mut Ctx) -> Result {
             other if !other.starts_with(|c: char| c.is_ascii_alphabetic()) => {
                 return Err(a.error(i, "Illegal dump_modify command"));
             }
-            other => return Err(a.unsupported(i, &format!("dump_modify {other}"))),
+            other if LIGGGHTS_KEYWORDS.contains(&other) => {
+                return Err(a.unsupported(i, &format!("dump_modify {other}")))
+            }
+            // a keyword of newer LIGGGHTS versions or of LAMMPS (`domainfile` of
+            // LIGGGHTS-PFM's VTK dumps)
+            _ => return Err(a.error(i, "Illegal dump_modify command")),
         }
         i += 2;
     }

@@ -328,6 +328,13 @@ pub trait FixStyle: AsAny + Send {
         None
     }
 
+    /// The style has a global scalar `f_ID` besides a per-atom vector of the same name: a
+    /// variable reads the scalar, as LIGGGHTS's variables take a fix's global scalar
+    /// before its per-atom values (atom-style ones too).
+    fn scalar_before_per_atom(&self) -> bool {
+        false
+    }
+
     /// Whether the global value `f_ID` (index None) or `f_ID[i]` is extensive (LIGGGHTS's
     /// extscalar/extvector: `thermo_modify norm yes` divides it by the atom count).
     fn extensive(&self, _index: Option<usize>) -> bool {

@@ -69,7 +69,9 @@ impl Template {
             density: t.density,
             volume: t.volume,
             mass: t.mass,
-            rng_state: (0, 0),
+            // its insertion generator is untouched until it inserts (the Monte Carlo
+            // sampling draws from another one): the seed, as LIGGGHTS's seed check sees it
+            rng_state: (t.spec.seed, t.spec.seed),
             clump: Some(Box::new(t.clone())),
         }
     }

@@ -638,14 +638,9 @@ impl<N: NormalModel, T: TangentialModel, C: CohesionModel, R: RollingModel>
                         self.model.surfaces_close(hm);
                         continue;
                     }
-                    let mut v_wall = [0.0; 3];
-                    if let Some(v) = mref.node_v {
-                        let (v0, v1, v2) = (v[t as usize][0], v[t as usize][1], v[t as usize][2]);
-                        let b = c.bary;
-                        for d in 0..3 {
-                            v_wall[d] = (b[0] * v0[d] + b[1] * v1[d]) + b[2] * v2[d];
-                        }
-                    }
+                    let v_wall = mref
+                        .node_v
+                        .map_or([0.0; 3], |v| wall_velocity(&v[t as usize], c.bary));
                     let input = WallInput {
                         x: q.x[i],
                         gap: c.gap,
@@ -796,4 +791,14 @@ mod tests {
         assert_eq!(handle_contact(&mut s, 0, true, &m), Some(0));
         assert!(s[0].keep);
     }
+}
+
+/// The velocity (m/s) of a triangle's surface at barycentric point `b`, from its nodes'
+/// velocities `v` (LIGGGHTS's sum order).
+fn wall_velocity(v: &[[f64; 3]; 3], b: [f64; 3]) -> [f64; 3] {
+    let mut out = [0.0; 3];
+    for d in 0..3 {
+        out[d] = (b[0] * v[0][d] + b[1] * v[1][d]) + b[2] * v[2][d];
+    }
+    out
 }

@@ -145,6 +145,62 @@ fn on_grids(deck: &str, grids: &[(usize, &str)], tag: &str) -> (String, Vec<Stri
     (serial, dumps)
 }
 
+/// The files of folder `dir` by name, with their text.
+fn texts_in(dir: &std::path::Path) -> std::collections::BTreeMap<String, String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .filter(|e| e.path().is_file())
+        .map(|e| {
+            let name = e.file_name().to_string_lossy().into_owned();
+            (name, std::fs::read_to_string(e.path()).unwrap_or_default())
+        })
+        .collect()
+}
+
+#[test]
+fn xyz_atom_and_vtk_dumps_on_ranks_write_what_one_process_writes() {
+    // rank 0 writes every rank's particles gathered: the sorted dumps are one process's
+    // text, the unsorted xyz file the same lines in another order
+    let deck = BED.replace(
+        "run 100\n",
+        "dump x all xyz 50 ${dir}/bed*.xyz
+dump a all atom 50 ${dir}/bed*.atom
+dump_modify a sort id
+dump v all custom/vtk 50 ${dir}/bed*.vtk id type vx omegaz radius
+dump_modify v sort id
+run 100\n",
+    );
+    let files = |n: usize, grid: &str| {
+        let dir = scratch(&format!("styles-{n}"));
+        run_in(&dir, &deck, n, grid);
+        let mut t = texts_in(&dir);
+        t.retain(|name, _| name.starts_with("bed"));
+        let _ = std::fs::remove_dir_all(&dir);
+        t
+    };
+    let serial = files(0, "");
+    // snapshots at 0, 50, 100 and 150; the VTK files with the box beside each
+    assert_eq!(serial.len(), 16, "{:?}", serial.keys());
+    let lines = |t: &str| {
+        let mut l: Vec<&str> = t.lines().collect();
+        l.sort_unstable();
+        l.join("\n")
+    };
+    for (n, grid) in [(2, "processors 2 1 1"), (3, "processors 1 3 1")] {
+        let got = files(n, grid);
+        assert!(got.keys().eq(serial.keys()), "{grid}: {:?}", got.keys());
+        for (name, want) in &serial {
+            if name.ends_with(".xyz") {
+                assert_eq!(want.lines().next(), Some("252"));
+                assert!(lines(&got[name]) == lines(want), "{grid}: {name}");
+            } else {
+                assert!(got[name] == *want, "{grid}: {name} differs");
+            }
+        }
+    }
+}
+
 #[test]
 fn a_settling_bed_on_ranks_matches_the_serial_fast_path() {
     let grids = [
@@ -233,7 +289,11 @@ fn what_does_not_run_on_ranks_is_refused_by_name() {
             34,
             "thermo keyword c_thermo_press",
         ),
-        (before_run("dump d2 all xyz 10 out.xyz"), 34, "dump xyz"),
+        (
+            before_run("dump d2 all decomposition/vtk 10 out.vtk"),
+            34,
+            "dump decomposition/vtk",
+        ),
         (before_run("run 10 every 5 NULL"), 34, "run every"),
     ] {
         let text = deck.replace(&from, &to);

@@ -5,7 +5,8 @@
 //! `fix nve/sphere`, `nve`, `gravity`, primitive and mesh `wall/gran` (`mesh/surface`, `move/mesh`), `check/timestep/gran`, `property/global` and the
 //! per-particle force fixes below, insertion (`insert/pack`, `insert/rate/region`,
 //! `insert/stream` with sphere templates and discrete distributions), the computes below, `thermo` with the keywords below and
-//! `c_`/`v_` values, `dump custom` with `c_`/`v_` columns and `dump local`, on the fast path. Everything
+//! `c_`/`v_` values, `dump custom` and `custom/vtk` with `c_`/`v_` columns, `dump xyz`,
+//! `atom`, `mesh/stl` and `local`, on the fast path. Everything
 //! else is refused by name before anything runs.
 
 use crate::commands::CommandLine;
@@ -171,7 +172,7 @@ pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxe
     insert/rate/region and insert/stream with particletemplate/sphere and \
     particledistribution/discrete, shell, computes ke, \
     erotate/sphere, reduce, com, stress/atom, pair/gran/local and per-atom properties, thermo \
-    (step, atoms, ke, c_, v_, ...), dump custom and dump local; or run it as one process (with threads: -sf fast -pk fast N)";
+    (step, atoms, ke, c_, v_, ...), dump custom, custom/vtk, atom, xyz, mesh/stl and local; or run it as one process (with threads: -sf fast -pk fast N)";
 
 /// What of `cmd` does not run on more than one rank yet (None: it runs), as the words
 /// the refusal names: "<what> on more than one MPI rank: not supported yet".
@@ -208,11 +209,16 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
             None => None,
         },
         "dump" => match args.get(2) {
-            Some(&"custom") => {
+            // the particles every rank owns, gathered on rank 0 (one VTK piece for a
+            // parallel name, as one process writes it)
+            Some(&s @ ("custom" | "custom/vtk")) => {
                 let columns = args.get(5..).unwrap_or(&[]);
                 let derived = columns.iter().find(|c| c.starts_with("f_"));
-                derived.map(|c| format!("dump custom column {c}"))
+                derived.map(|c| format!("dump {s} column {c}"))
             }
+            Some(&("xyz" | "atom")) => None,
+            // the meshes, whole on every rank
+            Some(&("mesh/stl" | "stl")) => None,
             // the rows of local computes, every rank's gathered
             Some(&"local") => None,
             Some(s) => Some(format!("dump {s}")),

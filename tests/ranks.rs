@@ -415,6 +415,82 @@ fn force_fixes_computes_and_variables_on_ranks_match_the_serial_fast_path() {
     assert!(serial[1..].iter().all(|r| r[3] > 0.0));
 }
 
+#[test]
+fn fix_print_and_the_other_thermo_keywords_on_ranks_match_the_serial_fast_path() {
+    // rank 0 prints, its variables (atoms by ID, erotate) over every rank's particles; the
+    // file appended to by rank 0 alone
+    let deck = BED.replace(
+        "thermo_style custom step atoms ke\n",
+        "thermo_style custom step atoms ke erotate fmax fnorm density xlat cella cellalpha
+thermo_modify format float %.16g
+variable xx equal x[1]
+variable e equal erotate
+fix p1 all print 25 \"at $(step) x1 ${xx} e ${e}\"
+fix p2 all print 50 \"x7 $(x[7]*2)\" append ${dir}/print.txt screen no title \"# my title\"
+",
+    );
+    let outputs = |n: usize, grid: &str| {
+        let dir = scratch(&format!("print-{n}"));
+        let log = run_in(&dir, &deck, n, grid);
+        let file = std::fs::read_to_string(dir.join("print.txt")).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        let printed: Vec<String> = log
+            .lines()
+            .filter(|l| l.starts_with("at "))
+            .map(str::to_string)
+            .collect();
+        let thermo: String = log
+            .lines()
+            .filter(|l| !l.starts_with("at "))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        (printed, file, thermo_table(&thermo))
+    };
+    let numbers = |lines: &[String]| -> Vec<Vec<f64>> {
+        lines
+            .iter()
+            .map(|l| {
+                l.split_whitespace()
+                    .filter_map(|w| w.parse().ok())
+                    .collect()
+            })
+            .collect()
+    };
+    let close = |a: &[Vec<f64>], b: &[Vec<f64>], what: &str| {
+        assert_eq!(a.len(), b.len(), "{what}: rows");
+        for (x, y) in a.iter().zip(b) {
+            assert_eq!(x.len(), y.len(), "{what}: {x:?} against {y:?}");
+            for (k, (u, v)) in x.iter().zip(y).enumerate() {
+                let scale = a
+                    .iter()
+                    .filter_map(|r| r.get(k))
+                    .fold(0.0, |m: f64, v| m.max(v.abs()));
+                assert!(
+                    (u - v).abs() <= 1e-10 * scale,
+                    "{what}: {x:?} against {y:?}"
+                );
+            }
+        }
+    };
+    let (printed, file, thermo) = outputs(0, "");
+    // at the end of steps 25..100 in the first run, 125 and 150 in the second
+    assert_eq!(printed.len(), 6, "{printed:?}");
+    let file_lines: Vec<String> = file.lines().map(str::to_string).collect();
+    assert_eq!(file_lines[0], "# my title");
+    assert_eq!(file_lines.len(), 4, "{file}");
+    assert_eq!(thermo.len(), 5);
+    // spinning particles: erotate and the largest force are not zero past the start
+    assert!(thermo[1..].iter().all(|r| r[3] > 0.0 && r[4] > 0.0));
+    for (n, grid) in [(2, "processors 2 1 1"), (3, "processors 1 3 1")] {
+        let (p, f, t) = outputs(n, grid);
+        close(&numbers(&printed), &numbers(&p), "fix print to the log");
+        let f: Vec<String> = f.lines().map(str::to_string).collect();
+        assert_eq!(f[0], "# my title", "one title, from rank 0");
+        close(&numbers(&file_lines), &numbers(&f), "fix print file");
+        close(&thermo, &t, "thermo");
+    }
+}
+
 /// The log of `deck` on `n` ranks (0: serial).
 fn log_of(deck: &str, n: usize, tag: &str) -> String {
     let dir = scratch(tag);

@@ -100,6 +100,8 @@ const FIXES: &[&str] = &[
     "move",
     // the grid's cuts moved at builds, particles migrating to any rank
     "balance",
+    // rank 0 prints, its variables evaluated over every rank's particles gathered
+    "print",
     // every mesh whole on every rank, moved alike on each; each rank's particles carry
     // their mesh contacts with them
     "mesh/surface",
@@ -163,12 +165,29 @@ const THERMO: &[&str] = &[
     "yhi",
     "zlo",
     "zhi",
+    "part",
+    "erotate",
+    "density",
+    "fmax",
+    "fnorm",
+    "xy",
+    "xz",
+    "yz",
+    "xlat",
+    "ylat",
+    "zlat",
+    "cella",
+    "cellb",
+    "cellc",
+    "cellalpha",
+    "cellbeta",
+    "cellgamma",
 ];
 
 /// What runs on more than one rank, as a refusal's help says it.
 pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic, \
     fixed and shrink-wrapped faces, write_restart, restart, write_data, write_dump custom, pair_style gran, fix nve/sphere, gravity, primitive and mesh wall/gran (mesh/surface, mesh/surface/planar, move/mesh), freeze, \
-    setforce/addforce with constants, viscous, move and check/timestep/gran, insert/pack, \
+    setforce/addforce with constants, viscous, move, print and check/timestep/gran, insert/pack, \
     insert/rate/region and insert/stream with particletemplate/sphere and \
     particledistribution/discrete, shell, computes ke, \
     erotate/sphere, reduce, com, stress/atom, pair/gran/local and per-atom properties, thermo \

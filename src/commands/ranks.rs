@@ -47,6 +47,8 @@ const COMMANDS: &[&str] = &[
     "neigh_modify",
     "pair_style",
     "pair_coeff",
+    // `compute no|yes` (mix, shift and tail change nothing for granular pairs)
+    "pair_modify",
     "fix",
     "unfix",
     "timestep",
@@ -85,6 +87,7 @@ const FIXES: &[&str] = &[
     "nve/sphere",
     "nve",
     "nve/limit",
+    "nve/noforce",
     "gravity",
     "wall/gran",
     "property/global",
@@ -186,7 +189,7 @@ const THERMO: &[&str] = &[
 
 /// What runs on more than one rank, as a refusal's help says it.
 pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic, \
-    fixed and shrink-wrapped faces, write_restart, restart, write_data, write_dump custom, pair_style gran, fix nve/sphere, gravity, primitive and mesh wall/gran (mesh/surface, mesh/surface/planar, move/mesh), freeze, \
+    fixed and shrink-wrapped faces, write_restart, restart, write_data, write_dump custom, pair_style gran (pair_modify), neigh_modify exclude type|group, fix nve/sphere, nve/noforce, gravity, primitive and mesh wall/gran (mesh/surface, mesh/surface/planar, move/mesh), freeze, \
     setforce/addforce with constants, viscous, move, print and check/timestep/gran, insert/pack, \
     insert/rate/region and insert/stream with particletemplate/sphere and \
     particledistribution/discrete, shell, computes ke, \
@@ -276,10 +279,12 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
                 .map(|k| format!("thermo keyword {k}"))
         }
         "dimension" => (args.first() != Some(&"3")).then(|| "dimension 2".to_string()),
-        "neigh_modify" => args
-            .iter()
-            .find(|w| **w == "exclude")
-            .map(|_| "neigh_modify exclude".to_string()),
+        // `exclude type`, `group` and `none` leave pairs out on every rank alike; the
+        // other exclusions are refused
+        "neigh_modify" => args.windows(2).find_map(|w| {
+            (w[0] == "exclude" && !matches!(w[1], "type" | "group" | "none"))
+                .then(|| format!("neigh_modify exclude {}", w[1]))
+        }),
         "print" => args
             .iter()
             .find(|w| matches!(**w, "file" | "append" | "universe"))

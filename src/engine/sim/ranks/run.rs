@@ -278,7 +278,9 @@ impl Simulation {
         if tally {
             self.virial.resize(self.particles.len(), [0.0; 6]);
         }
-        match self.pair.as_mut() {
+        // `pair_modify compute no`: the pair style leaves the forces alone
+        let compute = self.pair_compute;
+        match self.pair.as_mut().filter(|_| compute) {
             Some(pair) => pair.compute(
                 &mut self.particles,
                 &st.pairs,

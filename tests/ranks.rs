@@ -491,6 +491,40 @@ fix p2 all print 50 \"x7 $(x[7]*2)\" append ${dir}/print.txt screen no title \"#
     }
 }
 
+#[test]
+fn fix_move_dump_columns_on_ranks_match_the_serial_fast_path() {
+    // fix move keeps each atom's start position by ID on every rank: rank 0 writes its
+    // `f_` columns for every gathered atom (a mover crossing the periodic x faces, a second
+    // one defined between runs)
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("compat/engine/in.dump_fix_move");
+    let deck = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("post/", "${dir}/");
+    let dumps = |n: usize, grid: &str| {
+        let dir = scratch(&format!("fix-move-{n}"));
+        let deck = deck.replace("units si\n", &format!("units si\n{grid}\n"));
+        run_in(&dir, &deck, n, "");
+        let read = |f: &str| std::fs::read_to_string(dir.join(f)).unwrap();
+        let out = [read("fix_move.exact.dump"), read("fix_wiggle.exact.dump")];
+        let _ = std::fs::remove_dir_all(&dir);
+        out
+    };
+    let serial = dumps(0, "");
+    let snaps = regolith::io::dump_compare::parse(&serial[0]).unwrap();
+    // the top atoms' start x is not zero, the free atoms' is
+    let last = snaps.last().unwrap();
+    assert!(last.rows.values().any(|r| r[7] > 0.0));
+    assert!(last.rows.values().any(|r| r[7] == 0.0));
+    for (n, grid) in [(2, "processors 2 1 1"), (3, "processors 3 1 1")] {
+        let got = dumps(n, grid);
+        for (a, b) in serial.iter().zip(&got) {
+            let d = common::scale_deviation(a, b);
+            assert!(d < 1e-10, "{grid}: {d:e}");
+        }
+    }
+}
+
 /// The log of `deck` on `n` ranks (0: serial).
 fn log_of(deck: &str, n: usize, tag: &str) -> String {
     let dir = scratch(tag);

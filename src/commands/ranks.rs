@@ -235,7 +235,9 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
             // parallel name, as one process writes it)
             Some(&s @ ("custom" | "custom/vtk")) => {
                 let columns = args.get(5..).unwrap_or(&[]);
-                let derived = columns.iter().find(|c| c.starts_with("f_"));
+                let derived = columns
+                    .iter()
+                    .find(|c| c.starts_with("f_") && !fix_columns_by_id(sim, c));
                 derived.map(|c| format!("dump {s} column {c}"))
             }
             Some(&("xyz" | "atom")) => None,
@@ -253,7 +255,9 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
                     .position(|a| *a == "modify")
                     .unwrap_or(args.len());
                 let columns = args.get(3..end).unwrap_or(&[]);
-                let derived = columns.iter().find(|c| c.starts_with("f_"));
+                let derived = columns
+                    .iter()
+                    .find(|c| c.starts_with("f_") && !fix_columns_by_id(sim, c));
                 derived.map(|c| format!("write_dump custom column {c}"))
             }
             Some(s) => Some(format!("write_dump {s}")),
@@ -313,6 +317,16 @@ fn fix_values_on_every_rank(sim: &Simulation, k: &str) -> bool {
     sim.fixes
         .iter()
         .any(|f| f.id == id && matches!(f.style.as_str(), "check/timestep/gran" | "balance"))
+}
+
+/// Is dump column `c` (`f_ID[i]`) a per-atom value of a fix that keeps it by atom ID on
+/// every rank (`fix move`'s start positions), so rank 0 gives it for every gathered atom?
+fn fix_columns_by_id(sim: &Simulation, c: &str) -> bool {
+    let Some(id) = c.strip_prefix("f_") else {
+        return false;
+    };
+    let id = id.split('[').next().unwrap_or(id);
+    sim.fixes.iter().any(|f| f.id == id && f.style == "move")
 }
 
 /// The full refusal message of what [`refusal`] names.

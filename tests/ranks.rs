@@ -525,6 +525,54 @@ fn fix_move_dump_columns_on_ranks_match_the_serial_fast_path() {
     }
 }
 
+#[test]
+fn local_gran_vtk_on_ranks_writes_every_ranks_contacts() {
+    // compat deck vtk_contact_point: 60 spheres poured into a cylinder, their contacts as
+    // VTK lines every 1000 steps; on ranks rank 0 writes every rank's contacts (in rank
+    // order, so compared as a set: each contact's three points as printed)
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("compat/engine/in.vtk_contact_point");
+    let deck = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("post/", "${dir}/");
+    let contacts = |n: usize, grid: &str| {
+        let dir = scratch(&format!("local-vtk-{n}"));
+        let deck = deck.replace("units si\n", &format!("units si\n{grid}\n"));
+        run_in(&dir, &deck, n, "");
+        let sets: Vec<Vec<Vec<String>>> = [0, 1000, 2000, 3000]
+            .iter()
+            .map(|step| {
+                let text =
+                    std::fs::read_to_string(dir.join(format!("contacts{step}.vtk"))).unwrap();
+                let mut words = text.split_whitespace();
+                let count: usize = words
+                    .by_ref()
+                    .skip_while(|w| *w != "POINTS")
+                    .nth(1)
+                    .unwrap()
+                    .parse()
+                    .unwrap();
+                let floats: Vec<String> =
+                    words.skip(1).take(3 * count).map(str::to_string).collect();
+                let mut set: Vec<Vec<String>> = floats.chunks(9).map(<[String]>::to_vec).collect();
+                set.sort();
+                set
+            })
+            .collect();
+        let _ = std::fs::remove_dir_all(&dir);
+        sets
+    };
+    let serial = contacts(0, "");
+    assert!(
+        serial[3].len() > 5,
+        "contacts at the end: {}",
+        serial[3].len()
+    );
+    for (n, grid) in [(2, "processors 2 1 1"), (3, "processors 1 3 1")] {
+        assert!(contacts(n, grid) == serial, "{grid}: other contacts");
+    }
+}
+
 /// The log of `deck` on `n` ranks (0: serial).
 fn log_of(deck: &str, n: usize, tag: &str) -> String {
     let dir = scratch(tag);

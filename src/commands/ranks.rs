@@ -6,7 +6,7 @@
 //! per-particle force fixes below, insertion (`insert/pack`, `insert/rate/region`,
 //! `insert/stream` with sphere templates and discrete distributions), the computes below, `thermo` with the keywords below and
 //! `c_`/`v_` values, `dump custom` and `custom/vtk` with `c_`/`v_` columns, `dump xyz`,
-//! `atom`, `mesh/stl` and `local`, on the fast path. Everything
+//! `atom`, `mesh/stl`, `local` and `local/gran/vtk`, on the fast path. Everything
 //! else is refused by name before anything runs.
 
 use crate::commands::CommandLine;
@@ -194,7 +194,7 @@ pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxe
     insert/rate/region and insert/stream with particletemplate/sphere and \
     particledistribution/discrete, shell, computes ke, \
     erotate/sphere, reduce, com, stress/atom, pair/gran/local and per-atom properties, thermo \
-    (step, atoms, ke, c_, v_, ...), dump custom, custom/vtk, atom, xyz, mesh/stl and local; or run it as one process (with threads: -sf fast -pk fast N)";
+    (step, atoms, ke, c_, v_, ...), dump custom, custom/vtk, atom, xyz, mesh/stl, local and local/gran/vtk; or run it as one process (with threads: -sf fast -pk fast N)";
 
 /// What of `cmd` does not run on more than one rank yet (None: it runs), as the words
 /// the refusal names: "<what> on more than one MPI rank: not supported yet".
@@ -244,7 +244,7 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
             // the meshes, whole on every rank
             Some(&("mesh/stl" | "stl")) => None,
             // the rows of local computes, every rank's gathered
-            Some(&"local") => None,
+            Some(&("local" | "local/gran/vtk")) => None,
             Some(s) => Some(format!("dump {s}")),
             None => None,
         },

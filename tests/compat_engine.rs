@@ -7,7 +7,10 @@ use std::process::Command;
 
 mod common;
 
-use common::thermo_lines;
+use common::{
+    copy_tree, engine_deck_copy, engine_decks, engine_dir, fastcheck_dumps, first_hundred_steps,
+    snapshots_deviation, thermo_lines,
+};
 use regolith::io::dump_compare::{compare, parse};
 
 const RTOL: f64 = 1e-6;
@@ -16,10 +19,6 @@ const ATOL: f64 = 1e-12;
 /// Decks named by `REGOLITH_ENGINE_DECKS` (comma-separated), or all.
 fn selected(deck: &str) -> bool {
     std::env::var("REGOLITH_ENGINE_DECKS").map_or(true, |v| v.split(',').any(|d| d == deck))
-}
-
-fn engine_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("compat/engine")
 }
 
 /// The lines of a `dump local` file, entry lines sorted within each snapshot.
@@ -54,18 +53,6 @@ fn files_below(dir: &Path, base: &Path, out: &mut Vec<PathBuf>) {
             files_below(&p, base, out);
         } else {
             out.push(p.strip_prefix(base).unwrap().to_path_buf());
-        }
-    }
-}
-
-fn copy_tree(from: &Path, to: &Path) {
-    for e in std::fs::read_dir(from).unwrap() {
-        let e = e.unwrap();
-        if e.path().is_dir() {
-            std::fs::create_dir_all(to.join(e.file_name())).unwrap();
-            copy_tree(&e.path(), &to.join(e.file_name()));
-        } else {
-            std::fs::copy(e.path(), to.join(e.file_name())).unwrap();
         }
     }
 }
@@ -298,18 +285,7 @@ fn check_deck(name: &str) -> Vec<String> {
 
 #[test]
 fn engine_decks_match_liggghts() {
-    let mut decks: Vec<String> = std::fs::read_dir(engine_dir())
-        .unwrap()
-        .filter_map(|e| {
-            e.unwrap()
-                .file_name()
-                .to_str()?
-                .strip_prefix("in.")
-                .map(str::to_string)
-        })
-        .filter(|d| selected(d))
-        .collect();
-    decks.sort();
+    let decks: Vec<String> = engine_decks().into_iter().filter(|d| selected(d)).collect();
     assert!(!decks.is_empty());
     let failures: Vec<String> = decks
         .iter()
@@ -324,19 +300,8 @@ fn engine_decks_match_liggghts() {
 /// Run `deck_text` (named `in.NAME`) in a fresh copy of the deck's folder with `flags`;
 /// (exit success, stdout, the folder).
 fn run_in_copy(name: &str, deck_text: &str, flags: &[&str], tag: &str) -> (bool, String, PathBuf) {
-    let dir = engine_dir();
-    let work = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
-        "regolith-engine-{}-{name}-{tag}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&work);
-    std::fs::create_dir_all(&work).unwrap();
+    let work = engine_deck_copy(name, deck_text, tag);
     let deck = format!("in.{name}");
-    std::fs::write(work.join(&deck), deck_text).unwrap();
-    let inputs = dir.join(format!("{name}.inputs"));
-    if inputs.is_dir() {
-        copy_tree(&inputs, &work);
-    }
     let out = Command::new(env!("CARGO_BIN_EXE_regolith"))
         .args(flags)
         .args(["-in", &deck, "-log", "none"])
@@ -350,95 +315,12 @@ fn run_in_copy(name: &str, deck_text: &str, flags: &[&str], tag: &str) -> (bool,
     )
 }
 
-/// The deck cut after its first `run` (at top level), which runs 100 steps with every
-/// particle dumped every 10 steps at full precision; None for decks whose first run is
-/// inside a loop or condition.
-fn first_hundred_steps(text: &str) -> Option<String> {
-    let mut out = String::new();
-    for line in text.lines() {
-        let word = line.split_whitespace().next().unwrap_or("");
-        if matches!(word, "jump" | "label" | "next" | "if") {
-            return None;
-        }
-        if word == "run" {
-            out.push_str(
-                "dump fastcheck all custom 10 fastcheck_*.dump id x y z vx vy vz fx fy fz omegax omegay omegaz\n\
-                 dump_modify fastcheck format \"%d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"\n\
-                 run 100\n",
-            );
-            return Some(out);
-        }
-        out.push_str(line);
-        out.push('\n');
-    }
-    None
-}
-
-/// The snapshots of every `fastcheck_*.dump` in `dir`.
-fn fastcheck_dumps(dir: &Path) -> Vec<regolith::io::dump_compare::Snapshot> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| {
-            p.file_name()
-                .and_then(|n| n.to_str())
-                .is_some_and(|n| n.starts_with("fastcheck_"))
-        })
-        .collect();
-    files.sort();
-    files
-        .iter()
-        .flat_map(|f| parse(&std::fs::read_to_string(f).unwrap()).unwrap())
-        .collect()
-}
-
-/// Largest |a - b| relative to the column's largest magnitude in `a`, over all snapshots
-/// (atoms matched by ID); Err for differing steps, atoms or columns.
-fn scale_deviation(
-    a: &[regolith::io::dump_compare::Snapshot],
-    b: &[regolith::io::dump_compare::Snapshot],
-) -> Result<f64, String> {
-    if a.len() != b.len() {
-        return Err(format!("{} snapshots against {}", a.len(), b.len()));
-    }
-    let mut worst: f64 = 0.0;
-    for (sa, sb) in a.iter().zip(b) {
-        if sa.step != sb.step || sa.columns != sb.columns {
-            return Err(format!("step {} against {}", sa.step, sb.step));
-        }
-        if sa.rows.keys().ne(sb.rows.keys()) {
-            return Err(format!("step {}: other atoms", sa.step));
-        }
-        for c in 0..sa.columns.len() {
-            let scale = sa.rows.values().map(|r| r[c].abs()).fold(0.0, f64::max);
-            if scale == 0.0 {
-                continue;
-            }
-            for (id, r) in &sa.rows {
-                worst = worst.max((r[c] - sb.rows[id][c]).abs() / scale);
-            }
-        }
-    }
-    Ok(worst)
-}
-
 /// The fast path against the exact path over the first 100 steps of every engine deck
 /// (only the order of summation differs: every dumped value within 1e-10 of its column's
 /// largest magnitude), and every deck run to its end on the fast path with two threads.
 #[test]
 fn engine_decks_on_the_fast_path() {
-    let mut decks: Vec<String> = std::fs::read_dir(engine_dir())
-        .unwrap()
-        .filter_map(|e| {
-            e.unwrap()
-                .file_name()
-                .to_str()?
-                .strip_prefix("in.")
-                .map(str::to_string)
-        })
-        .filter(|d| selected(d))
-        .collect();
-    decks.sort();
+    let decks: Vec<String> = engine_decks().into_iter().filter(|d| selected(d)).collect();
     let fast = ["-sf", "fast", "-pk", "fast", "2"];
     let mut failures = Vec::new();
     let mut compared = 0;
@@ -464,7 +346,7 @@ fn engine_decks_on_the_fast_path() {
             let (a, b) = (fastcheck_dumps(&work_e), fastcheck_dumps(&work_f));
             if !a.is_empty() {
                 compared += 1;
-                match scale_deviation(&a, &b) {
+                match snapshots_deviation(&a, &b) {
                     Ok(d) if d <= 1e-10 => {}
                     Ok(d) => {
                         failures.push(format!("{name}: fast vs exact {d:e} of a column's scale"))

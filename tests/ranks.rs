@@ -145,6 +145,62 @@ fn on_grids(deck: &str, grids: &[(usize, &str)], tag: &str) -> (String, Vec<Stri
     (serial, dumps)
 }
 
+/// The files of folder `dir` by name, with their text.
+fn texts_in(dir: &std::path::Path) -> std::collections::BTreeMap<String, String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .filter(|e| e.path().is_file())
+        .map(|e| {
+            let name = e.file_name().to_string_lossy().into_owned();
+            (name, std::fs::read_to_string(e.path()).unwrap_or_default())
+        })
+        .collect()
+}
+
+#[test]
+fn xyz_atom_and_vtk_dumps_on_ranks_write_what_one_process_writes() {
+    // rank 0 writes every rank's particles gathered: the sorted dumps are one process's
+    // text, the unsorted xyz file the same lines in another order
+    let deck = BED.replace(
+        "run 100\n",
+        "dump x all xyz 50 ${dir}/bed*.xyz
+dump a all atom 50 ${dir}/bed*.atom
+dump_modify a sort id
+dump v all custom/vtk 50 ${dir}/bed*.vtk id type vx omegaz radius
+dump_modify v sort id
+run 100\n",
+    );
+    let files = |n: usize, grid: &str| {
+        let dir = scratch(&format!("styles-{n}"));
+        run_in(&dir, &deck, n, grid);
+        let mut t = texts_in(&dir);
+        t.retain(|name, _| name.starts_with("bed"));
+        let _ = std::fs::remove_dir_all(&dir);
+        t
+    };
+    let serial = files(0, "");
+    // snapshots at 0, 50, 100 and 150; the VTK files with the box beside each
+    assert_eq!(serial.len(), 16, "{:?}", serial.keys());
+    let lines = |t: &str| {
+        let mut l: Vec<&str> = t.lines().collect();
+        l.sort_unstable();
+        l.join("\n")
+    };
+    for (n, grid) in [(2, "processors 2 1 1"), (3, "processors 1 3 1")] {
+        let got = files(n, grid);
+        assert!(got.keys().eq(serial.keys()), "{grid}: {:?}", got.keys());
+        for (name, want) in &serial {
+            if name.ends_with(".xyz") {
+                assert_eq!(want.lines().next(), Some("252"));
+                assert!(lines(&got[name]) == lines(want), "{grid}: {name}");
+            } else {
+                assert!(got[name] == *want, "{grid}: {name} differs");
+            }
+        }
+    }
+}
+
 #[test]
 fn a_settling_bed_on_ranks_matches_the_serial_fast_path() {
     let grids = [
@@ -233,7 +289,11 @@ fn what_does_not_run_on_ranks_is_refused_by_name() {
             34,
             "thermo keyword c_thermo_press",
         ),
-        (before_run("dump d2 all xyz 10 out.xyz"), 34, "dump xyz"),
+        (
+            before_run("dump d2 all decomposition/vtk 10 out.vtk"),
+            34,
+            "dump decomposition/vtk",
+        ),
         (before_run("run 10 every 5 NULL"), 34, "run every"),
     ] {
         let text = deck.replace(&from, &to);
@@ -353,6 +413,164 @@ fn force_fixes_computes_and_variables_on_ranks_match_the_serial_fast_path() {
     // the values are not trivial: rotation, a largest force and the centre of mass moving
     assert!(serial.iter().all(|r| r[4] > 0.0 && r[6] != 0.0));
     assert!(serial[1..].iter().all(|r| r[3] > 0.0));
+}
+
+#[test]
+fn fix_print_and_the_other_thermo_keywords_on_ranks_match_the_serial_fast_path() {
+    // rank 0 prints, its variables (atoms by ID, erotate) over every rank's particles; the
+    // file appended to by rank 0 alone
+    let deck = BED.replace(
+        "thermo_style custom step atoms ke\n",
+        "thermo_style custom step atoms ke erotate fmax fnorm density xlat cella cellalpha
+thermo_modify format float %.16g
+variable xx equal x[1]
+variable e equal erotate
+fix p1 all print 25 \"at $(step) x1 ${xx} e ${e}\"
+fix p2 all print 50 \"x7 $(x[7]*2)\" append ${dir}/print.txt screen no title \"# my title\"
+",
+    );
+    let outputs = |n: usize, grid: &str| {
+        let dir = scratch(&format!("print-{n}"));
+        let log = run_in(&dir, &deck, n, grid);
+        let file = std::fs::read_to_string(dir.join("print.txt")).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        let printed: Vec<String> = log
+            .lines()
+            .filter(|l| l.starts_with("at "))
+            .map(str::to_string)
+            .collect();
+        let thermo: String = log
+            .lines()
+            .filter(|l| !l.starts_with("at "))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        (printed, file, thermo_table(&thermo))
+    };
+    let numbers = |lines: &[String]| -> Vec<Vec<f64>> {
+        lines
+            .iter()
+            .map(|l| {
+                l.split_whitespace()
+                    .filter_map(|w| w.parse().ok())
+                    .collect()
+            })
+            .collect()
+    };
+    let close = |a: &[Vec<f64>], b: &[Vec<f64>], what: &str| {
+        assert_eq!(a.len(), b.len(), "{what}: rows");
+        for (x, y) in a.iter().zip(b) {
+            assert_eq!(x.len(), y.len(), "{what}: {x:?} against {y:?}");
+            for (k, (u, v)) in x.iter().zip(y).enumerate() {
+                let scale = a
+                    .iter()
+                    .filter_map(|r| r.get(k))
+                    .fold(0.0, |m: f64, v| m.max(v.abs()));
+                assert!(
+                    (u - v).abs() <= 1e-10 * scale,
+                    "{what}: {x:?} against {y:?}"
+                );
+            }
+        }
+    };
+    let (printed, file, thermo) = outputs(0, "");
+    // at the end of steps 25..100 in the first run, 125 and 150 in the second
+    assert_eq!(printed.len(), 6, "{printed:?}");
+    let file_lines: Vec<String> = file.lines().map(str::to_string).collect();
+    assert_eq!(file_lines[0], "# my title");
+    assert_eq!(file_lines.len(), 4, "{file}");
+    assert_eq!(thermo.len(), 5);
+    // spinning particles: erotate and the largest force are not zero past the start
+    assert!(thermo[1..].iter().all(|r| r[3] > 0.0 && r[4] > 0.0));
+    for (n, grid) in [(2, "processors 2 1 1"), (3, "processors 1 3 1")] {
+        let (p, f, t) = outputs(n, grid);
+        close(&numbers(&printed), &numbers(&p), "fix print to the log");
+        let f: Vec<String> = f.lines().map(str::to_string).collect();
+        assert_eq!(f[0], "# my title", "one title, from rank 0");
+        close(&numbers(&file_lines), &numbers(&f), "fix print file");
+        close(&thermo, &t, "thermo");
+    }
+}
+
+#[test]
+fn fix_move_dump_columns_on_ranks_match_the_serial_fast_path() {
+    // fix move keeps each atom's start position by ID on every rank: rank 0 writes its
+    // `f_` columns for every gathered atom (a mover crossing the periodic x faces, a second
+    // one defined between runs)
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("compat/engine/in.dump_fix_move");
+    let deck = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("post/", "${dir}/");
+    let dumps = |n: usize, grid: &str| {
+        let dir = scratch(&format!("fix-move-{n}"));
+        let deck = deck.replace("units si\n", &format!("units si\n{grid}\n"));
+        run_in(&dir, &deck, n, "");
+        let read = |f: &str| std::fs::read_to_string(dir.join(f)).unwrap();
+        let out = [read("fix_move.exact.dump"), read("fix_wiggle.exact.dump")];
+        let _ = std::fs::remove_dir_all(&dir);
+        out
+    };
+    let serial = dumps(0, "");
+    let snaps = regolith::io::dump_compare::parse(&serial[0]).unwrap();
+    // the top atoms' start x is not zero, the free atoms' is
+    let last = snaps.last().unwrap();
+    assert!(last.rows.values().any(|r| r[7] > 0.0));
+    assert!(last.rows.values().any(|r| r[7] == 0.0));
+    for (n, grid) in [(2, "processors 2 1 1"), (3, "processors 3 1 1")] {
+        let got = dumps(n, grid);
+        for (a, b) in serial.iter().zip(&got) {
+            let d = common::scale_deviation(a, b);
+            assert!(d < 1e-10, "{grid}: {d:e}");
+        }
+    }
+}
+
+#[test]
+fn local_gran_vtk_on_ranks_writes_every_ranks_contacts() {
+    // compat deck vtk_contact_point: 60 spheres poured into a cylinder, their contacts as
+    // VTK lines every 1000 steps; on ranks rank 0 writes every rank's contacts (in rank
+    // order, so compared as a set: each contact's three points as printed)
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("compat/engine/in.vtk_contact_point");
+    let deck = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("post/", "${dir}/");
+    let contacts = |n: usize, grid: &str| {
+        let dir = scratch(&format!("local-vtk-{n}"));
+        let deck = deck.replace("units si\n", &format!("units si\n{grid}\n"));
+        run_in(&dir, &deck, n, "");
+        let sets: Vec<Vec<Vec<String>>> = [0, 1000, 2000, 3000]
+            .iter()
+            .map(|step| {
+                let text =
+                    std::fs::read_to_string(dir.join(format!("contacts{step}.vtk"))).unwrap();
+                let mut words = text.split_whitespace();
+                let count: usize = words
+                    .by_ref()
+                    .skip_while(|w| *w != "POINTS")
+                    .nth(1)
+                    .unwrap()
+                    .parse()
+                    .unwrap();
+                let floats: Vec<String> =
+                    words.skip(1).take(3 * count).map(str::to_string).collect();
+                let mut set: Vec<Vec<String>> = floats.chunks(9).map(<[String]>::to_vec).collect();
+                set.sort();
+                set
+            })
+            .collect();
+        let _ = std::fs::remove_dir_all(&dir);
+        sets
+    };
+    let serial = contacts(0, "");
+    assert!(
+        serial[3].len() > 5,
+        "contacts at the end: {}",
+        serial[3].len()
+    );
+    for (n, grid) in [(2, "processors 2 1 1"), (3, "processors 1 3 1")] {
+        assert!(contacts(n, grid) == serial, "{grid}: other contacts");
+    }
 }
 
 /// The log of `deck` on `n` ranks (0: serial).

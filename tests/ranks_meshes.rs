@@ -255,3 +255,16 @@ fn mesh_walls_pass_the_check_on_ranks_and_what_sums_over_ranks_is_refused() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn dump_mesh_stl_on_ranks_writes_what_one_process_writes() {
+    // every rank holds the meshes whole, moved alike: rank 0 writes one process's file
+    let files = ["mesh.stl", "insertion_face.stl", "post/mesh_stl"];
+    let dumps = ["post/mesh_stl0.stl", "post/mesh_stl10.stl"];
+    let serial = dumps_of("mesh_stl", &files, &dumps, 0, "");
+    assert!(serial[1].starts_with("solid") && serial[1].matches("facet normal").count() == 94);
+    for (n, grid) in [(2, "processors 2 1 1"), (3, "processors 1 1 3")] {
+        let got = dumps_of("mesh_stl", &files, &dumps, n, grid);
+        assert!(got == serial, "{grid}: other STL files");
+    }
+}

@@ -5,7 +5,8 @@
 //! `fix nve/sphere`, `nve`, `gravity`, primitive and mesh `wall/gran` (`mesh/surface`, `move/mesh`), `check/timestep/gran`, `property/global` and the
 //! per-particle force fixes below, insertion (`insert/pack`, `insert/rate/region`,
 //! `insert/stream` with sphere templates and discrete distributions), the computes below, `thermo` with the keywords below and
-//! `c_`/`v_` values, `dump custom` with `c_`/`v_` columns and `dump local`, on the fast path. Everything
+//! `c_`/`v_` values, `dump custom` and `custom/vtk` with `c_`/`v_` columns, `dump xyz`,
+//! `atom`, `mesh/stl`, `local` and `local/gran/vtk`, on the fast path. Everything
 //! else is refused by name before anything runs.
 
 use crate::commands::CommandLine;
@@ -46,6 +47,8 @@ const COMMANDS: &[&str] = &[
     "neigh_modify",
     "pair_style",
     "pair_coeff",
+    // `compute no|yes` (mix, shift and tail change nothing for granular pairs)
+    "pair_modify",
     "fix",
     "unfix",
     "timestep",
@@ -84,6 +87,7 @@ const FIXES: &[&str] = &[
     "nve/sphere",
     "nve",
     "nve/limit",
+    "nve/noforce",
     "gravity",
     "wall/gran",
     "property/global",
@@ -99,6 +103,8 @@ const FIXES: &[&str] = &[
     "move",
     // the grid's cuts moved at builds, particles migrating to any rank
     "balance",
+    // rank 0 prints, its variables evaluated over every rank's particles gathered
+    "print",
     // every mesh whole on every rank, moved alike on each; each rank's particles carry
     // their mesh contacts with them
     "mesh/surface",
@@ -162,16 +168,33 @@ const THERMO: &[&str] = &[
     "yhi",
     "zlo",
     "zhi",
+    "part",
+    "erotate",
+    "density",
+    "fmax",
+    "fnorm",
+    "xy",
+    "xz",
+    "yz",
+    "xlat",
+    "ylat",
+    "zlat",
+    "cella",
+    "cellb",
+    "cellc",
+    "cellalpha",
+    "cellbeta",
+    "cellgamma",
 ];
 
 /// What runs on more than one rank, as a refusal's help says it.
 pub const WHAT_RUNS: &str = "on several ranks regolith runs (with -sf fast) boxes with periodic, \
-    fixed and shrink-wrapped faces, write_restart, restart, write_data, write_dump custom, pair_style gran, fix nve/sphere, gravity, primitive and mesh wall/gran (mesh/surface, mesh/surface/planar, move/mesh), freeze, \
-    setforce/addforce with constants, viscous, move and check/timestep/gran, insert/pack, \
+    fixed and shrink-wrapped faces, write_restart, restart, write_data, write_dump custom, pair_style gran (pair_modify), neigh_modify exclude type|group, fix nve/sphere, nve/noforce, gravity, primitive and mesh wall/gran (mesh/surface, mesh/surface/planar, move/mesh), freeze, \
+    setforce/addforce with constants, viscous, move, print and check/timestep/gran, insert/pack, \
     insert/rate/region and insert/stream with particletemplate/sphere and \
     particledistribution/discrete, shell, computes ke, \
     erotate/sphere, reduce, com, stress/atom, pair/gran/local and per-atom properties, thermo \
-    (step, atoms, ke, c_, v_, ...), dump custom and dump local; or run it as one process (with threads: -sf fast -pk fast N)";
+    (step, atoms, ke, c_, v_, ...), dump custom, custom/vtk, atom, xyz, mesh/stl, local and local/gran/vtk; or run it as one process (with threads: -sf fast -pk fast N)";
 
 /// What of `cmd` does not run on more than one rank yet (None: it runs), as the words
 /// the refusal names: "<what> on more than one MPI rank: not supported yet".
@@ -208,13 +231,20 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
             None => None,
         },
         "dump" => match args.get(2) {
-            Some(&"custom") => {
+            // the particles every rank owns, gathered on rank 0 (one VTK piece for a
+            // parallel name, as one process writes it)
+            Some(&s @ ("custom" | "custom/vtk")) => {
                 let columns = args.get(5..).unwrap_or(&[]);
-                let derived = columns.iter().find(|c| c.starts_with("f_"));
-                derived.map(|c| format!("dump custom column {c}"))
+                let derived = columns
+                    .iter()
+                    .find(|c| c.starts_with("f_") && !fix_columns_by_id(sim, c));
+                derived.map(|c| format!("dump {s} column {c}"))
             }
+            Some(&("xyz" | "atom")) => None,
+            // the meshes, whole on every rank
+            Some(&("mesh/stl" | "stl")) => None,
             // the rows of local computes, every rank's gathered
-            Some(&"local") => None,
+            Some(&("local" | "local/gran/vtk")) => None,
             Some(s) => Some(format!("dump {s}")),
             None => None,
         },
@@ -225,7 +255,9 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
                     .position(|a| *a == "modify")
                     .unwrap_or(args.len());
                 let columns = args.get(3..end).unwrap_or(&[]);
-                let derived = columns.iter().find(|c| c.starts_with("f_"));
+                let derived = columns
+                    .iter()
+                    .find(|c| c.starts_with("f_") && !fix_columns_by_id(sim, c));
                 derived.map(|c| format!("write_dump custom column {c}"))
             }
             Some(s) => Some(format!("write_dump {s}")),
@@ -251,10 +283,12 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
                 .map(|k| format!("thermo keyword {k}"))
         }
         "dimension" => (args.first() != Some(&"3")).then(|| "dimension 2".to_string()),
-        "neigh_modify" => args
-            .iter()
-            .find(|w| **w == "exclude")
-            .map(|_| "neigh_modify exclude".to_string()),
+        // `exclude type`, `group` and `none` leave pairs out on every rank alike; the
+        // other exclusions are refused
+        "neigh_modify" => args.windows(2).find_map(|w| {
+            (w[0] == "exclude" && !matches!(w[1], "type" | "group" | "none"))
+                .then(|| format!("neigh_modify exclude {}", w[1]))
+        }),
         "print" => args
             .iter()
             .find(|w| matches!(**w, "file" | "append" | "universe"))
@@ -283,6 +317,16 @@ fn fix_values_on_every_rank(sim: &Simulation, k: &str) -> bool {
     sim.fixes
         .iter()
         .any(|f| f.id == id && matches!(f.style.as_str(), "check/timestep/gran" | "balance"))
+}
+
+/// Is dump column `c` (`f_ID[i]`) a per-atom value of a fix that keeps it by atom ID on
+/// every rank (`fix move`'s start positions), so rank 0 gives it for every gathered atom?
+fn fix_columns_by_id(sim: &Simulation, c: &str) -> bool {
+    let Some(id) = c.strip_prefix("f_") else {
+        return false;
+    };
+    let id = id.split('[').next().unwrap_or(id);
+    sim.fixes.iter().any(|f| f.id == id && f.style == "move")
 }
 
 /// The full refusal message of what [`refusal`] names.

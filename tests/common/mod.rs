@@ -101,3 +101,128 @@ pub fn scale_deviation(a: &str, b: &str) -> f64 {
     }
     worst
 }
+
+/// The engine decks' folder, compat/engine.
+pub fn engine_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("compat/engine")
+}
+
+/// The names of the engine decks (`in.NAME` in compat/engine), sorted.
+pub fn engine_decks() -> Vec<String> {
+    let mut decks: Vec<String> = std::fs::read_dir(engine_dir())
+        .unwrap()
+        .filter_map(|e| {
+            e.unwrap()
+                .file_name()
+                .to_str()?
+                .strip_prefix("in.")
+                .map(str::to_string)
+        })
+        .collect();
+    decks.sort();
+    decks
+}
+
+/// Copy every file and folder in `from` into `to`.
+pub fn copy_tree(from: &Path, to: &Path) {
+    for e in std::fs::read_dir(from).unwrap() {
+        let e = e.unwrap();
+        if e.path().is_dir() {
+            std::fs::create_dir_all(to.join(e.file_name())).unwrap();
+            copy_tree(&e.path(), &to.join(e.file_name()));
+        } else {
+            std::fs::copy(e.path(), to.join(e.file_name())).unwrap();
+        }
+    }
+}
+
+/// A fresh folder `regolith-engine-PID-NAME-TAG` in the build's temporary folder holding
+/// `deck_text` as `in.NAME` and the files of the deck's `NAME.inputs` folder.
+pub fn engine_deck_copy(name: &str, deck_text: &str, tag: &str) -> PathBuf {
+    let work = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
+        "regolith-engine-{}-{name}-{tag}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&work);
+    std::fs::create_dir_all(&work).unwrap();
+    std::fs::write(work.join(format!("in.{name}")), deck_text).unwrap();
+    let inputs = engine_dir().join(format!("{name}.inputs"));
+    if inputs.is_dir() {
+        copy_tree(&inputs, &work);
+    }
+    work
+}
+
+/// The deck cut after its first `run` (at top level), which runs 100 steps with every
+/// particle dumped every 10 steps at full precision (`fastcheck_*.dump`); None for decks
+/// whose first run is inside a loop or condition.
+pub fn first_hundred_steps(text: &str) -> Option<String> {
+    let mut out = String::new();
+    for line in text.lines() {
+        let word = line.split_whitespace().next().unwrap_or("");
+        if matches!(word, "jump" | "label" | "next" | "if") {
+            return None;
+        }
+        if word == "run" {
+            out.push_str(
+                "dump fastcheck all custom 10 fastcheck_*.dump id x y z vx vy vz fx fy fz omegax omegay omegaz\n\
+                 dump_modify fastcheck format \"%d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"\n\
+                 run 100\n",
+            );
+            return Some(out);
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    None
+}
+
+/// The snapshots of every `fastcheck_*.dump` in `dir` (files in name order).
+pub fn fastcheck_dumps(dir: &Path) -> Vec<regolith::io::dump_compare::Snapshot> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| {
+            p.file_name()
+                .and_then(|n| n.to_str())
+                .is_some_and(|n| n.starts_with("fastcheck_"))
+        })
+        .collect();
+    files.sort();
+    files
+        .iter()
+        .flat_map(|f| {
+            regolith::io::dump_compare::parse(&std::fs::read_to_string(f).unwrap()).unwrap()
+        })
+        .collect()
+}
+
+/// Largest |a - b| relative to the column's largest magnitude in `a`, over all snapshots
+/// (atoms matched by ID); Err for differing steps, atoms or columns.
+pub fn snapshots_deviation(
+    a: &[regolith::io::dump_compare::Snapshot],
+    b: &[regolith::io::dump_compare::Snapshot],
+) -> Result<f64, String> {
+    if a.len() != b.len() {
+        return Err(format!("{} snapshots against {}", a.len(), b.len()));
+    }
+    let mut worst: f64 = 0.0;
+    for (sa, sb) in a.iter().zip(b) {
+        if sa.step != sb.step || sa.columns != sb.columns {
+            return Err(format!("step {} against {}", sa.step, sb.step));
+        }
+        if sa.rows.keys().ne(sb.rows.keys()) {
+            return Err(format!("step {}: other atoms", sa.step));
+        }
+        for c in 0..sa.columns.len() {
+            let scale = sa.rows.values().map(|r| r[c].abs()).fold(0.0, f64::max);
+            if scale == 0.0 {
+                continue;
+            }
+            for (id, r) in &sa.rows {
+                worst = worst.max((r[c] - sb.rows[id][c]).abs() / scale);
+            }
+        }
+    }
+    Ok(worst)
+}

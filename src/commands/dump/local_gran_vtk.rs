@@ -34,7 +34,12 @@ impl DumpStyle for LocalGranVtk {
         at: &mut DumpAt,
         _vars: &mut dyn VariableSource,
     ) -> Result<Vec<u8>, EngineError> {
-        crate::engine::local_vtk::snapshot(at.sim, &self.compute, &at.dump.file)
+        let rows = at.local_rows(&self.compute)?;
+        crate::engine::local_vtk::snapshot(at.sim, &self.compute, &at.dump.file, &rows)
+    }
+
+    fn local_computes(&self) -> Vec<String> {
+        vec![self.compute.clone()]
     }
 
     fn whole_files(&self) -> bool {

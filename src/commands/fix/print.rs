@@ -6,6 +6,7 @@ use crate::commands::specs::{arg, kw, style, Spec, Value, YES_NO};
 use crate::commands::{Args, CommandError, Ctx};
 use crate::engine::error::EngineError;
 use crate::engine::fixes::{FixStep, FixStyle, StepInputs};
+use crate::util::comm::Comm;
 
 /// The declared signature.
 pub const SPEC: Spec = style(
@@ -91,7 +92,9 @@ pub fn build(a: &Args, ctx: &mut Ctx, fix: &FixDef) -> Result<Box<dyn FixStyle>,
         match a.word(i)? {
             kw @ ("file" | "append") => {
                 let name = a.word(i + 1)?;
-                if ctx.sys.mode == crate::lang::system::Mode::Run {
+                // on several MPI ranks rank 0 alone writes the file (as LIGGGHTS's proc 0)
+                let rank = ctx.sim.comm.as_ref().map_or(0, |c| c.rank());
+                if ctx.sys.mode == crate::lang::system::Mode::Run && rank == 0 {
                     let f = std::fs::OpenOptions::new()
                         .create(true)
                         .write(true)

@@ -54,6 +54,26 @@ pub struct NeighborSettings {
     pub cutneighmax: f64,
 }
 
+impl NeighborSettings {
+    /// Does `neigh_modify exclude` keep particles `i` and `j` of `p` out of the list?
+    pub fn excludes(&self, p: &Particles, i: usize, j: usize) -> bool {
+        let (ti, tj) = (p.kind[i], p.kind[j]);
+        let (mi, mj) = (p.mask[i], p.mask[j]);
+        self.exclude_types
+            .iter()
+            .any(|&(a, b)| (ti == a && tj == b) || (ti == b && tj == a))
+            || self
+                .exclude_groups
+                .iter()
+                .any(|&(a, b)| (mi & a != 0 && mj & b != 0) || (mi & b != 0 && mj & a != 0))
+    }
+
+    /// Does the list leave any pairs out (`neigh_modify exclude`)?
+    pub fn excludes_any(&self) -> bool {
+        !self.exclude_types.is_empty() || !self.exclude_groups.is_empty()
+    }
+}
+
 impl Default for NeighborSettings {
     fn default() -> Self {
         // LIGGGHTS's defaults for SI units

@@ -356,20 +356,10 @@ impl Simulation {
     /// `neigh_modify exclude type|molecule/intra ...`: the excluded pairs leave the list.
     fn exclude_pairs(&mut self) {
         let n = &self.neighbor;
-        if !n.exclude_types.is_empty() || !n.exclude_groups.is_empty() {
+        if n.excludes_any() {
             let p = &self.particles;
-            self.list.retain(|pair| {
-                let (i, j) = (pair.i as usize, pair.j as usize);
-                let (ti, tj) = (p.kind[i], p.kind[j]);
-                let (mi, mj) = (p.mask[i], p.mask[j]);
-                !n.exclude_types
-                    .iter()
-                    .any(|&(a, b)| (ti == a && tj == b) || (ti == b && tj == a))
-                    && !n
-                        .exclude_groups
-                        .iter()
-                        .any(|&(a, b)| (mi & a != 0 && mj & b != 0) || (mi & b != 0 && mj & a != 0))
-            });
+            self.list
+                .retain(|pair| !n.excludes(p, pair.i as usize, pair.j as usize));
         }
     }
 

@@ -184,6 +184,12 @@ impl Simulation {
         st.plan = borders(comm, &st.dec, &st.halo, p, st.nlocal)?;
         let cells: Vec<u64> = p.x.iter().map(|&x| grid.cell(x)).collect();
         st.pairs = rank_pairs(p, st.nlocal, self.neighbor.skin, &cells);
+        // `neigh_modify exclude`: types and groups travel with owned particles and ghosts
+        let n = &self.neighbor;
+        if n.excludes_any() {
+            st.pairs
+                .retain(|pair| !n.excludes(p, pair.i as usize, pair.j as usize));
+        }
         st.history = hist.to_pairs(&st.pairs, &p.id, st.nlocal, &st.flips);
         let width = st.flips.len();
         if width > 0 {

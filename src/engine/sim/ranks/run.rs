@@ -168,7 +168,11 @@ impl Simulation {
                 };
                 s.end_of_step_ranks(&mut self.particles, &at, &min);
                 if s.outputs_at(step) {
-                    if comm.rank() == 0 {
+                    // `fix print` reads the deck's variables: rank 0 evaluates them over
+                    // every rank's particles gathered, as thermo does
+                    if s.name() == "print" {
+                        self.rank_print_output(comm, k, out, vars)?;
+                    } else if comm.rank() == 0 {
                         self.fix_style_output(k, out, vars)?;
                     } else {
                         // what rank 0 prints, the others drop
@@ -178,6 +182,54 @@ impl Simulation {
             }
         }
         Ok(())
+    }
+
+    /// The output of fix `k` (a `fix print`) written by rank 0 alone, with every rank's
+    /// particles (this rank's owned ones at the end of a step) gathered there for its
+    /// variables; the other ranks evaluate nothing (LIGGGHTS's proc 0 alone prints). A
+    /// failure on rank 0 fails every rank.
+    fn rank_print_output(
+        &mut self,
+        comm: &RankComm,
+        k: usize,
+        out: Sink<'_>,
+        vars: &mut dyn VariableSource,
+    ) -> Result<(), EngineError> {
+        let mut w = Writer::default();
+        for i in 0..self.particles.len() {
+            pack_particle(&mut w, &self.particles, i, [0.0; 3], None);
+        }
+        let result = match comm.gather_bytes(&w.bytes) {
+            Some(all) => {
+                let mut full = empty_like(&self.particles);
+                let unpacked = all.iter().try_for_each(|bytes| {
+                    let mut r = Reader::new(bytes);
+                    while !r.done() {
+                        unpack_particle(&mut r, &mut full, None)?;
+                    }
+                    Ok::<(), DecompError>(())
+                });
+                match unpacked {
+                    Ok(()) => {
+                        std::mem::swap(&mut self.particles, &mut full);
+                        let printed = self.fix_style_output(k, out, vars);
+                        std::mem::swap(&mut self.particles, &mut full);
+                        printed
+                    }
+                    Err(e) => Err(e.into()),
+                }
+            }
+            None => Ok(()),
+        };
+        let failed = comm.all_reduce_i64(i64::from(result.is_err()), Reduce::Max) > 0;
+        match result {
+            Err(e) => Err(e),
+            Ok(()) if failed => Err(EngineError::Invalid(format!(
+                "fix {} failed on rank 0",
+                self.fixes[k].id
+            ))),
+            Ok(()) => Ok(()),
+        }
     }
 
     /// LIGGGHTS's rebuild decision, the same on every rank: the delay and every settings,
@@ -226,7 +278,9 @@ impl Simulation {
         if tally {
             self.virial.resize(self.particles.len(), [0.0; 6]);
         }
-        match self.pair.as_mut() {
+        // `pair_modify compute no`: the pair style leaves the forces alone
+        let compute = self.pair_compute;
+        match self.pair.as_mut().filter(|_| compute) {
             Some(pair) => pair.compute(
                 &mut self.particles,
                 &st.pairs,

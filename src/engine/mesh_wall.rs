@@ -723,6 +723,16 @@ pub fn build(
     Ok(model.dispatch(Make(material, multicontact, cutneighmax)))
 }
 
+/// The velocity (m/s) of a triangle's surface at barycentric point `b`, from its nodes'
+/// velocities `v` (LIGGGHTS's sum order).
+fn wall_velocity(v: &[[f64; 3]; 3], b: [f64; 3]) -> [f64; 3] {
+    let mut out = [0.0; 3];
+    for d in 0..3 {
+        out[d] = (b[0] * v[0][d] + b[1] * v[1][d]) + b[2] * v[2][d];
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -791,14 +801,4 @@ mod tests {
         assert_eq!(handle_contact(&mut s, 0, true, &m), Some(0));
         assert!(s[0].keep);
     }
-}
-
-/// The velocity (m/s) of a triangle's surface at barycentric point `b`, from its nodes'
-/// velocities `v` (LIGGGHTS's sum order).
-fn wall_velocity(v: &[[f64; 3]; 3], b: [f64; 3]) -> [f64; 3] {
-    let mut out = [0.0; 3];
-    for d in 0..3 {
-        out[d] = (b[0] * v[0][d] + b[1] * v[1][d]) + b[2] * v[2][d];
-    }
-    out
 }

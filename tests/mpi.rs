@@ -3,6 +3,7 @@
 //! refusals on more than one rank (with and without MPI in the build), and a run under
 //! `mpirun` with MPI built in.
 
+#[macro_use]
 mod common;
 
 use regolith::cli::DeckOptions;
@@ -894,7 +895,8 @@ fn a_build_without_mpi_stops_under_mpirun() {
 
 /// A bed of about 250 spheres settling on a floor, periodic in x and y (as tests/ranks.rs).
 #[cfg(feature = "mpi")]
-const BED: &str = "\
+const BED: &str = concat!(
+    "\
 atom_style granular
 atom_modify map array
 boundary p p f
@@ -906,15 +908,9 @@ region reg block 0 0.01488 0 0.01488 0 0.02 units box
 create_box 1 reg
 neighbor 0.0005 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5e6
-fix m2 all property/global poissonsRatio peratomtype 0.2
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.8
-fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.3
-pair_style gran model hertz tangential history rolling_friction cdt
-pair_coeff * *
-fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
-lattice sc 0.00248
+",
+    soft_material_on_a_floor!(),
+    "lattice sc 0.00248
 region pile block 0 0.01488 0 0.01488 0.0013 0.019 units box
 create_atoms 1 region pile
 set group all diameter 0.0025 density 2500
@@ -934,7 +930,8 @@ write_restart bed.restart
 write_restart bed.%.restart
 write_data end.data
 write_dump all custom end.dump id type x y z vx vy vz modify sort id format \"%d %d %.17g %.17g %.17g %.17g %.17g %.17g\"
-";
+"
+);
 
 /// The IDs of a restart file's atoms, in the file's order.
 #[cfg(feature = "mpi")]

@@ -3,6 +3,7 @@
 //! the serial fast path's (within 1e-10 of each column's scale) and between rank counts and
 //! repeated runs (bit for bit).
 
+#[macro_use]
 mod common;
 
 use regolith::cli::DeckOptions;
@@ -12,7 +13,8 @@ use regolith::util::comm_threads::ThreadRanks;
 
 /// About 300 spheres poured on a floor, periodic in x and y, touching when the run starts
 /// (a settling bed with contact history, friction and rolling friction).
-const BED: &str = "\
+const BED: &str = concat!(
+    "\
 atom_style granular
 atom_modify map array
 boundary p p f
@@ -24,15 +26,9 @@ region reg block 0 0.01488 0 0.01488 0 0.02 units box
 create_box 1 reg
 neighbor 0.0005 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5e6
-fix m2 all property/global poissonsRatio peratomtype 0.2
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.8
-fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.3
-pair_style gran model hertz tangential history rolling_friction cdt
-pair_coeff * *
-fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
-lattice sc 0.00248
+",
+    soft_material_on_a_floor!(),
+    "lattice sc 0.00248
 region pile block 0 0.01488 0 0.01488 0.0013 0.019 units box
 create_atoms 1 region pile
 set group all diameter 0.0025 density 2500
@@ -47,7 +43,8 @@ dump d all custom 25 ${out} id type x y z vx vy vz fx fy fz omegax omegay omegaz
 dump_modify d sort id format \"%d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"
 run 100
 run 50
-";
+"
+);
 
 fn scratch(tag: &str) -> std::path::PathBuf {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))

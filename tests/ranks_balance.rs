@@ -5,6 +5,7 @@
 //! of each column's scale; the cuts only decide which rank owns a particle), one process
 //! prints what LAMMPS prints with one rank, and bad arguments are refused with their line.
 
+#[macro_use]
 mod common;
 
 use regolith::cli::DeckOptions;
@@ -14,7 +15,8 @@ use regolith::util::comm_threads::ThreadRanks;
 
 /// A heap of 84 spheres against the left of a periodic box and a layer of 24 on the floor
 /// to its right (108 in all), settling; `${balance}` is replaced by the balancing lines.
-const HEAP: &str = "\
+const HEAP: &str = concat!(
+    "\
 atom_style granular
 atom_modify map array
 boundary p p f
@@ -26,15 +28,9 @@ region reg block 0 0.02976 0 0.00744 0 0.02 units box
 create_box 1 reg
 neighbor 0.0005 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5e6
-fix m2 all property/global poissonsRatio peratomtype 0.2
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.8
-fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.3
-pair_style gran model hertz tangential history rolling_friction cdt
-pair_coeff * *
-fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
-lattice sc 0.00248
+",
+    soft_material_on_a_floor!(),
+    "lattice sc 0.00248
 region heap block 0 0.0099 0 0.00744 0.0013 0.019 units box
 region layer block 0.0099 0.0297 0 0.00744 0.0013 0.004 units box
 create_atoms 1 region heap
@@ -51,7 +47,8 @@ thermo 50
 dump d all custom 25 ${out} id type x y z vx vy vz fx fy fz omegax omegay omegaz radius
 dump_modify d sort id format \"%d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"
 run 150
-";
+"
+);
 
 fn options(deck: &std::path::Path, dump: &std::path::Path, grid: &str, size: usize) -> DeckOptions {
     DeckOptions {

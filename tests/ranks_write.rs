@@ -2,6 +2,9 @@
 //! running the whole deck as `mpirun -np N regolith -sf fast -in deck` would): between runs
 //! and after the last one, rank 0 alone writes the files one process writes.
 
+#[macro_use]
+mod common;
+
 use regolith::cli::DeckOptions;
 use regolith::error::ExitStatus;
 use regolith::util::comm::{Comm, Ranks};
@@ -11,7 +14,8 @@ use regolith::util::comm_threads::ThreadRanks;
 /// apart from each other and falling alike, 0.0025: a settling bed with contact history).
 /// Data and dump files before the first run, between the runs and after the last, into
 /// folder `${dir}`.
-const BED: &str = "\
+const BED: &str = concat!(
+    "\
 atom_style granular
 atom_modify map array
 boundary f f f
@@ -23,15 +27,9 @@ region reg block 0 0.01488 0 0.01488 0 0.02 units box
 create_box 1 reg
 neighbor 0.0005 bin
 neigh_modify delay 0 every 1 check no
-fix m1 all property/global youngsModulus peratomtype 5e6
-fix m2 all property/global poissonsRatio peratomtype 0.2
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.8
-fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.3
-pair_style gran model hertz tangential history rolling_friction cdt
-pair_coeff * *
-fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
-lattice sc 0.00248
+",
+    soft_material_on_a_floor!(),
+    "lattice sc 0.00248
 region pile block 0 0.01488 0 0.01488 0.0013 0.019 units box
 create_atoms 1 region pile
 set group all diameter ${diameter} density 2500
@@ -50,7 +48,8 @@ write_dump all custom ${dir}/mid.dump id type x y z vx vy vz fx fy fz omegax ome
 run 50
 write_dump all custom ${dir}/end.dump id x y z c_k modify sort id
 write_data ${dir}/end.data
-";
+"
+);
 
 /// The files the deck writes.
 const FILES: [&str; 5] = ["start.data", "mid.data", "mid.dump", "end.dump", "end.data"];
@@ -233,8 +232,6 @@ fn data_deviation(a: &[u8], b: &[u8]) -> f64 {
     }
     worst
 }
-
-mod common;
 
 #[test]
 fn falling_apart_the_files_are_one_process_bytes_from_rank_0_alone() {

@@ -5,6 +5,23 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+/// The rank tests' soft granular material (E 5 MPa, nu 0.2, e 0.5, friction 0.8, rolling
+/// friction 0.3), Hertz with tangential history and `cdt` rolling friction between
+/// particles, and a primitive floor at z = 0: deck lines, for `concat!`.
+#[allow(unused_macros)]
+macro_rules! soft_material_on_a_floor {
+    () => {
+        "fix m1 all property/global youngsModulus peratomtype 5e6\n\
+fix m2 all property/global poissonsRatio peratomtype 0.2\n\
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5\n\
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.8\n\
+fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.3\n\
+pair_style gran model hertz tangential history rolling_friction cdt\n\
+pair_coeff * *\n\
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0\n"
+    };
+}
+
 /// A fresh, empty directory `regolith-TAG-PID` in the build's temporary folder (target/tmp).
 pub fn scratch_dir(tag: &str) -> PathBuf {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))

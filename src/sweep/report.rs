@@ -149,40 +149,8 @@ impl SweepResult {
             }
             rows.push(row);
         }
-        let widths: Vec<usize> = (0..rows[0].len())
-            .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
-            .collect();
-        for row in &rows {
-            let cells: Vec<String> = row
-                .iter()
-                .enumerate()
-                .map(|(c, w)| {
-                    if c == 0 {
-                        format!("{w:<width$}", width = widths[c])
-                    } else {
-                        format!("{w:>width$}", width = widths[c])
-                    }
-                })
-                .collect();
-            out.push_str(cells.join("  ").trim_end());
-            out.push('\n');
-        }
-        // the same message from several runs once, with the runs it came from
-        let mut grouped: Vec<(String, Vec<String>)> = Vec::new();
-        for (who, what) in notes {
-            match grouped.iter_mut().find(|g| g.0 == what) {
-                Some(g) => g.1.push(who),
-                None => grouped.push((what, vec![who])),
-            }
-        }
-        for (what, who) in grouped {
-            let runs = if who.len() == self.runs.len() && who.len() > 1 {
-                "every run".to_string()
-            } else {
-                who.join("; ")
-            };
-            out.push_str(&format!("note ({runs}): {what}\n"));
-        }
+        out.push_str(&aligned(&rows));
+        out.push_str(&grouped_notes(notes, self.runs.len()));
         out
     }
 
@@ -635,6 +603,54 @@ pub fn merge(dirs: &[PathBuf], out: &Path, title: &str, cost: Cost) -> Result<St
         .map_err(ToolError::file(&md_path))?;
     plot::save(&out.join("trade.png"), &[by_axis, by_cost], 1100, 700)?;
     Ok(md)
+}
+
+/// Table rows as text: the first column left-aligned, the others right-aligned, each as
+/// wide as its widest cell.
+fn aligned(rows: &[Vec<String>]) -> String {
+    let mut out = String::new();
+    let widths: Vec<usize> = (0..rows[0].len())
+        .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
+        .collect();
+    for row in rows {
+        let cells: Vec<String> = row
+            .iter()
+            .enumerate()
+            .map(|(c, w)| {
+                if c == 0 {
+                    format!("{w:<width$}", width = widths[c])
+                } else {
+                    format!("{w:>width$}", width = widths[c])
+                }
+            })
+            .collect();
+        out.push_str(cells.join("  ").trim_end());
+        out.push('\n');
+    }
+    out
+}
+
+/// Notes (run label, message) as `note (RUNS): MESSAGE` lines, a message from several runs
+/// once with the runs it came from ("every run" when all `runs_total` gave it).
+fn grouped_notes(notes: Vec<(String, String)>, runs_total: usize) -> String {
+    // the same message from several runs once, with the runs it came from
+    let mut out = String::new();
+    let mut grouped: Vec<(String, Vec<String>)> = Vec::new();
+    for (who, what) in notes {
+        match grouped.iter_mut().find(|g| g.0 == what) {
+            Some(g) => g.1.push(who),
+            None => grouped.push((what, vec![who])),
+        }
+    }
+    for (what, who) in grouped {
+        let runs = if who.len() == runs_total && who.len() > 1 {
+            "every run".to_string()
+        } else {
+            who.join("; ")
+        };
+        out.push_str(&format!("note ({runs}): {what}\n"));
+    }
+    out
 }
 
 /// The `sweep.csv` of each directory, labelled with the directory's name.

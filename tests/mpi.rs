@@ -1278,7 +1278,8 @@ fn mesh_walls_under_mpirun_match_one_process() {
 /// A pour into a box with a floor: `fix insert/pack` refills its region every 50 steps as
 /// the particles fall out of it (as tests/ranks_insert.rs).
 #[cfg(feature = "mpi")]
-const POUR: &str = "\
+const POUR: &str = concat!(
+    "\
 atom_style granular
 atom_modify map array
 boundary f f f
@@ -1286,23 +1287,9 @@ newton off
 communicate single vel yes
 units si
 processors * * *
-region reg block 0 0.02 0 0.02 0 0.03 units box
-create_box 1 reg
-neighbor 0.0005 bin
-neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5e6
-fix m2 all property/global poissonsRatio peratomtype 0.3
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
-pair_style gran model hertz tangential history
-pair_coeff * *
-timestep 1e-5
-fix gr all gravity 9.81 vector 0 0 -1
-fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
-fix pts1 all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.0008
-fix pts2 all particletemplate/sphere 15485867 atom_type 1 density constant 2500 radius constant 0.0006
-fix pdd all particledistribution/discrete 32452843 2 pts1 0.6 pts2 0.4
-region ins block 0.001 0.019 0.001 0.019 0.006 0.016 units box
+",
+    pour_box_and_spheres!(),
+    "region ins block 0.001 0.019 0.001 0.019 0.006 0.016 units box
 fix ins all insert/pack seed 32452867 distributiontemplate pdd insert_every 50 overlapcheck yes vel constant 0.1 -0.05 -3 region ins particles_in_region 40
 fix integr all nve/sphere
 thermo_style custom step atoms ke
@@ -1311,7 +1298,8 @@ dump d all custom 25 out.dump id x y z vx vy vz radius
 dump_modify d sort id format \"%d %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"
 run 300
 run 200
-";
+"
+);
 
 /// With MPI built in: the pour with `fix insert/pack` under `mpirun -np 2` and `3` inserts
 /// the particles one process inserts: the dump is one process's within 1e-10 of each

@@ -8,8 +8,7 @@ mod common;
 
 use regolith::cli::DeckOptions;
 use regolith::error::ExitStatus;
-use regolith::util::comm::{Comm, Ranks};
-use regolith::util::comm_threads::ThreadRanks;
+use regolith::util::comm::Ranks;
 
 /// About 300 spheres poured on a floor, periodic in x and y, touching when the run starts
 /// (a settling bed with contact history, friction and rolling friction).
@@ -102,14 +101,7 @@ fn run_in(dir: &std::path::Path, deck: &str, n: usize, grid: &str) -> String {
         o.log = Some(log.to_string_lossy().into_owned());
         o
     };
-    let status = if n == 0 {
-        vec![regolith::session::run_deck(&opts(0, 0))]
-    } else {
-        ThreadRanks::run_owned(n, |c| {
-            let o = opts(n, c.rank());
-            regolith::session::run_deck_on(&o, Some(Box::new(c)))
-        })
-    };
+    let status = common::run_on_ranks(n, opts);
     assert!(
         status.iter().all(|s| *s == ExitStatus::Success),
         "{} on {n} ranks: {status:?}",
@@ -343,14 +335,7 @@ fn thermo_rows(deck: &str, n: usize, tag: &str) -> Vec<Vec<f64>> {
         }
         o
     };
-    let status = if n == 0 {
-        vec![regolith::session::run_deck(&opts(0, 0))]
-    } else {
-        ThreadRanks::run_owned(n, |c| {
-            let o = opts(n, c.rank());
-            regolith::session::run_deck_on(&o, Some(Box::new(c)))
-        })
-    };
+    let status = common::run_on_ranks(n, opts);
     assert!(
         status.iter().all(|s| *s == ExitStatus::Success),
         "{tag}: {status:?}"
@@ -582,14 +567,7 @@ fn log_of(deck: &str, n: usize, tag: &str) -> String {
         o.log = Some(log.to_string_lossy().into_owned());
         o
     };
-    let status = if n == 0 {
-        vec![regolith::session::run_deck(&opts(0, 0))]
-    } else {
-        ThreadRanks::run_owned(n, |c| {
-            let o = opts(n, c.rank());
-            regolith::session::run_deck_on(&o, Some(Box::new(c)))
-        })
-    };
+    let status = common::run_on_ranks(n, opts);
     assert!(
         status.iter().all(|s| *s == ExitStatus::Success),
         "{tag}: {status:?}"
@@ -838,14 +816,7 @@ fn local_dump_of(deck: &str, n: usize, fast: bool, tag: &str) -> String {
         o.fast = fast;
         o
     };
-    let status = if n == 0 {
-        vec![regolith::session::run_deck(&opts(0, 0))]
-    } else {
-        ThreadRanks::run_owned(n, |c| {
-            let o = opts(n, c.rank());
-            regolith::session::run_deck_on(&o, Some(Box::new(c)))
-        })
-    };
+    let status = common::run_on_ranks(n, opts);
     assert!(
         status.iter().all(|s| *s == ExitStatus::Success),
         "{tag}: {status:?}"

@@ -10,8 +10,7 @@ mod common;
 
 use regolith::cli::DeckOptions;
 use regolith::error::ExitStatus;
-use regolith::util::comm::{Comm, Ranks};
-use regolith::util::comm_threads::ThreadRanks;
+use regolith::util::comm::Ranks;
 
 /// A heap of 84 spheres against the left of a periodic box and a layer of 24 on the floor
 /// to its right (108 in all), settling; `${balance}` is replaced by the balancing lines.
@@ -89,14 +88,7 @@ fn run_heap_on(balance: &str, n: usize, grid: &str, tag: &str, fast: bool) -> (S
         o.fast = fast;
         o
     };
-    let status = if n == 0 {
-        vec![regolith::session::run_deck(&opts(0, 0))]
-    } else {
-        ThreadRanks::run_owned(n, |c| {
-            let o = opts(n, c.rank());
-            regolith::session::run_deck_on(&o, Some(Box::new(c)))
-        })
-    };
+    let status = common::run_on_ranks(n, opts);
     let log_text = std::fs::read_to_string(&log).unwrap_or_default();
     assert!(
         status.iter().all(|s| *s == ExitStatus::Success),
@@ -288,14 +280,7 @@ fn run_custom(deck: &str, lines: &str, n: usize, grid: &str, tag: &str) -> (Stri
         o.log = Some(log.to_string_lossy().into_owned());
         o
     };
-    let status = if n == 0 {
-        vec![regolith::session::run_deck(&opts(0, 0))]
-    } else {
-        ThreadRanks::run_owned(n, |c| {
-            let o = opts(n, c.rank());
-            regolith::session::run_deck_on(&o, Some(Box::new(c)))
-        })
-    };
+    let status = common::run_on_ranks(n, opts);
     let log_text = std::fs::read_to_string(&log).unwrap_or_default();
     assert!(
         status.iter().all(|s| *s == ExitStatus::Success),

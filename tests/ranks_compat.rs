@@ -20,8 +20,7 @@ use std::time::Duration;
 use common::{engine_deck_copy, engine_decks, engine_dir, fastcheck_dumps, first_hundred_steps};
 use regolith::cli::DeckOptions;
 use regolith::error::ExitStatus;
-use regolith::util::comm::{Comm, Ranks};
-use regolith::util::comm_threads::ThreadRanks;
+use regolith::util::comm::Ranks;
 
 /// The rank counts each deck runs on.
 const RANKS: [usize; 2] = [2, 3];
@@ -68,14 +67,7 @@ fn run(name: &str, work: &Path, n: usize) -> Result<bool, String> {
     let log = work.join("log.txt");
     let (tx, rx) = std::sync::mpsc::channel();
     let handle = std::thread::spawn(move || {
-        let status = if n == 0 {
-            vec![regolith::session::run_deck(&options(&deck, &log, 0, 0))]
-        } else {
-            ThreadRanks::run_owned(n, |c| {
-                let o = options(&deck, &log, n, c.rank());
-                regolith::session::run_deck_on(&o, Some(Box::new(c)))
-            })
-        };
+        let status = common::run_on_ranks(n, |size, rank| options(&deck, &log, size, rank));
         let _ = tx.send(status);
     });
     match rx.recv_timeout(HANG) {

@@ -5,17 +5,18 @@
 //! (within 1e-10 of each column's scale, the same atoms at every snapshot), the atom count
 //! of every thermo line with the serial one's, and repeated runs bit for bit.
 
+#[macro_use]
 mod common;
 
 use regolith::cli::DeckOptions;
 use regolith::error::ExitStatus;
-use regolith::util::comm::{Comm, Ranks};
-use regolith::util::comm_threads::ThreadRanks;
+use regolith::util::comm::Ranks;
 
 /// A pour into a box with a floor: `${insert}` is the insertion (its distribution of
 /// spheres of radius 0.8 mm is `pdd`), `${extra}` more set-up lines, `${grid}` the
 /// `processors` line.
-const POUR: &str = "\
+const POUR: &str = concat!(
+    "\
 atom_style granular
 atom_modify map array
 boundary f f f
@@ -23,23 +24,9 @@ newton off
 communicate single vel yes
 units si
 ${grid}
-region reg block 0 0.02 0 0.02 0 0.03 units box
-create_box 1 reg
-neighbor 0.0005 bin
-neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5e6
-fix m2 all property/global poissonsRatio peratomtype 0.3
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
-pair_style gran model hertz tangential history
-pair_coeff * *
-timestep 1e-5
-fix gr all gravity 9.81 vector 0 0 -1
-fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
-fix pts1 all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.0008
-fix pts2 all particletemplate/sphere 15485867 atom_type 1 density constant 2500 radius constant 0.0006
-fix pdd all particledistribution/discrete 32452843 2 pts1 0.6 pts2 0.4
-${extra}
+",
+    pour_box_and_spheres!(),
+    "${extra}
 ${insert}
 fix integr all nve/sphere
 thermo_style custom step atoms ke
@@ -49,7 +36,8 @@ dump_modify d sort id format \"%d %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"
 run 300
 run 200
 write_restart ${dir}/pour.restart
-";
+"
+);
 
 /// An insertion face for `insert/stream`: a square at z = 0.013 over most of the box, as
 /// two triangles of an ASCII STL file.
@@ -135,14 +123,7 @@ fn outputs_of(deck: &str, n: usize, grid: &str, tag: &str) -> Outputs {
         },
         ..DeckOptions::default()
     };
-    let status = if n == 0 {
-        vec![regolith::session::run_deck(&opts(1, 0))]
-    } else {
-        ThreadRanks::run_owned(n, |c| {
-            let o = opts(n, c.rank());
-            regolith::session::run_deck_on(&o, Some(Box::new(c)))
-        })
-    };
+    let status = common::run_on_ranks(n, |size: usize, rank: usize| opts(size.max(1), rank));
     let log_text = std::fs::read_to_string(&log).unwrap_or_default();
     assert!(
         status.iter().all(|s| *s == ExitStatus::Success),

@@ -9,8 +9,7 @@ mod common;
 
 use regolith::cli::DeckOptions;
 use regolith::error::ExitStatus;
-use regolith::util::comm::{Comm, Ranks};
-use regolith::util::comm_threads::ThreadRanks;
+use regolith::util::comm::Ranks;
 
 /// A fresh folder for one run, holding the mesh files of compat deck `name`.
 fn scratch(name: &str, tag: &str) -> std::path::PathBuf {
@@ -62,14 +61,7 @@ fn run(dir: &std::path::Path, text: &str, n: usize) {
         },
         ..DeckOptions::default()
     };
-    let status = if n == 0 {
-        vec![regolith::session::run_deck(&opts(1, 0))]
-    } else {
-        ThreadRanks::run_owned(n, |c| {
-            let o = opts(n, c.rank());
-            regolith::session::run_deck_on(&o, Some(Box::new(c)))
-        })
-    };
+    let status = common::run_on_ranks(n, |size: usize, rank: usize| opts(size.max(1), rank));
     assert!(
         status.iter().all(|s| *s == ExitStatus::Success),
         "{} on {n} ranks: {status:?}",

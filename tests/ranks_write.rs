@@ -7,8 +7,7 @@ mod common;
 
 use regolith::cli::DeckOptions;
 use regolith::error::ExitStatus;
-use regolith::util::comm::{Comm, Ranks};
-use regolith::util::comm_threads::ThreadRanks;
+use regolith::util::comm::Ranks;
 
 /// 211 spheres over a floor, walls all round; `${diameter}` is their size (0.002:
 /// apart from each other and falling alike, 0.0025: a settling bed with contact history).
@@ -99,13 +98,7 @@ fn files_of(
         },
         ..DeckOptions::default()
     };
-    let status = if n == 0 {
-        vec![regolith::session::run_deck(&opts(0))]
-    } else {
-        ThreadRanks::run_owned(n, |c| {
-            regolith::session::run_deck_on(&opts(c.rank()), Some(Box::new(c)))
-        })
-    };
+    let status = common::run_on_ranks(n, |_, rank| opts(rank));
     assert!(
         status.iter().all(|s| *s == ExitStatus::Success),
         "{} on {n} ranks: {status:?}",

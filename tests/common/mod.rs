@@ -22,6 +22,31 @@ fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0
     };
 }
 
+/// The pour tests' box (20 x 20 x 30 mm with a floor, gravity), material (Hertz with
+/// tangential history) and distribution `pdd` of spheres of radius 0.8 mm (60 %) and
+/// 0.6 mm: deck lines, for `concat!`.
+#[allow(unused_macros)]
+macro_rules! pour_box_and_spheres {
+    () => {
+        "region reg block 0 0.02 0 0.02 0 0.03 units box\n\
+create_box 1 reg\n\
+neighbor 0.0005 bin\n\
+neigh_modify delay 0\n\
+fix m1 all property/global youngsModulus peratomtype 5e6\n\
+fix m2 all property/global poissonsRatio peratomtype 0.3\n\
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5\n\
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5\n\
+pair_style gran model hertz tangential history\n\
+pair_coeff * *\n\
+timestep 1e-5\n\
+fix gr all gravity 9.81 vector 0 0 -1\n\
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0\n\
+fix pts1 all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.0008\n\
+fix pts2 all particletemplate/sphere 15485867 atom_type 1 density constant 2500 radius constant 0.0006\n\
+fix pdd all particledistribution/discrete 32452843 2 pts1 0.6 pts2 0.4\n"
+    };
+}
+
 /// A fresh, empty directory `regolith-TAG-PID` in the build's temporary folder (target/tmp).
 pub fn scratch_dir(tag: &str) -> PathBuf {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
@@ -242,4 +267,21 @@ pub fn snapshots_deviation(
         }
     }
     Ok(worst)
+}
+
+/// Each rank's exit status of a deck run on `n` in-process ranks (N threads joined by
+/// channels, each running the whole deck as `mpirun -np N` would), or on one process for
+/// `n` = 0 (with `opts(0, 0)`); `opts(size, rank)` gives a rank's options.
+pub fn run_on_ranks(
+    n: usize,
+    opts: impl Fn(usize, usize) -> regolith::cli::DeckOptions + Sync,
+) -> Vec<regolith::error::ExitStatus> {
+    use regolith::util::comm::Comm;
+    if n == 0 {
+        return vec![regolith::session::run_deck(&opts(0, 0))];
+    }
+    regolith::util::comm_threads::ThreadRanks::run_owned(n, |c| {
+        let o = opts(n, c.rank());
+        regolith::session::run_deck_on(&o, Some(Box::new(c)))
+    })
 }

@@ -235,10 +235,7 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
             // parallel name, as one process writes it)
             Some(&s @ ("custom" | "custom/vtk")) => {
                 let columns = args.get(5..).unwrap_or(&[]);
-                let derived = columns
-                    .iter()
-                    .find(|c| c.starts_with("f_") && !fix_columns_by_id(sim, c));
-                derived.map(|c| format!("dump {s} column {c}"))
+                refused_column(sim, columns).map(|c| format!("dump {s} column {c}"))
             }
             Some(&("xyz" | "atom")) => None,
             // the meshes, whole on every rank
@@ -255,10 +252,7 @@ pub fn refusal(cmd: &CommandLine, sim: &Simulation) -> Option<String> {
                     .position(|a| *a == "modify")
                     .unwrap_or(args.len());
                 let columns = args.get(3..end).unwrap_or(&[]);
-                let derived = columns
-                    .iter()
-                    .find(|c| c.starts_with("f_") && !fix_columns_by_id(sim, c));
-                derived.map(|c| format!("write_dump custom column {c}"))
+                refused_column(sim, columns).map(|c| format!("write_dump custom column {c}"))
             }
             Some(s) => Some(format!("write_dump {s}")),
             None => None,
@@ -317,6 +311,15 @@ fn fix_values_on_every_rank(sim: &Simulation, k: &str) -> bool {
     sim.fixes
         .iter()
         .any(|f| f.id == id && matches!(f.style.as_str(), "check/timestep/gran" | "balance"))
+}
+
+/// The first of a dump's `columns` that does not run on ranks: a fix's per-atom values
+/// (`f_ID`), unless the fix keeps them by atom ID on every rank.
+fn refused_column<'a>(sim: &Simulation, columns: &[&'a str]) -> Option<&'a str> {
+    columns
+        .iter()
+        .copied()
+        .find(|c| c.starts_with("f_") && !fix_columns_by_id(sim, c))
 }
 
 /// Is dump column `c` (`f_ID[i]`) a per-atom value of a fix that keeps it by atom ID on
